@@ -1,0 +1,148 @@
+//! Composite friction laws: a sum of the classical terms of [`crate::terms`].
+//!
+//! `F = static + F_c·sign(v) + μ_v·v + S(v) + z`, where each coefficient is zero for a term
+//! the model does not have and z is the Dahl state (`ż = σ·(v − |v|·z/F_c)`). The six
+//! models of the paper and the classical reference laws (Coulomb, viscous, static, Stribeck,
+//! Dahl, Karnopp) are all values of this one struct; see [`crate::catalog`].
+
+use crate::catalog::ModelId;
+use crate::model::{FrictionModel, Partials, Response, StickInterval};
+use crate::sign::{Direction, SignLaw};
+use crate::terms::{self, Term};
+
+/// Coefficients of Dahl's law.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Dahl {
+    /// Asperity stiffness σ, N/m.
+    pub sigma: f64,
+    /// Saturation force F_c, N.
+    pub f_c: f64,
+}
+
+/// A friction law built from the classical terms.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Composite {
+    /// Which model this is.
+    pub id: ModelId,
+    /// Level of the static term (0 without one), N.
+    pub static_level: f64,
+    /// Whether the static term carries sign(v) (the "odd" reading) or not (as printed).
+    pub static_signed: bool,
+    /// Coulomb level (0 without the term), N.
+    pub coulomb: f64,
+    /// Viscous coefficient (0 without the term), N·s/m.
+    pub viscous: f64,
+    /// Stribeck amplitudes for v > 0 and v < 0 (0 without the term), N.
+    pub stribeck: (f64, f64),
+    /// Stribeck velocity, m/s.
+    pub v_s: f64,
+    /// Dahl's law, for models with a Dahl state.
+    pub dahl: Option<Dahl>,
+    /// An explicit break-away level `F_b` (stick while |F − F_smooth| ≤ F_b), as eqs. (6)–(7)
+    /// state it; `None` takes the one-sided limits of the force as v → 0±.
+    pub break_away: Option<f64>,
+    /// Half-width of a Karnopp stick band, m/s (0 for none).
+    pub band: f64,
+}
+
+impl Composite {
+    /// A law with no terms at all, to be filled in by the catalog.
+    pub fn empty(id: ModelId) -> Self {
+        Composite {
+            id,
+            static_level: 0.0,
+            static_signed: true,
+            coulomb: 0.0,
+            viscous: 0.0,
+            stribeck: (0.0, 0.0),
+            v_s: 1.0,
+            dahl: None,
+            break_away: None,
+            band: 0.0,
+        }
+    }
+
+    /// The memoryless part of the force, F − z, with its v-derivative.
+    fn memoryless(&self, v: f64, law: SignLaw) -> Term {
+        let b = law.branches(v);
+        terms::static_level(self.static_level, self.static_signed, &b)
+            + terms::coulomb(self.coulomb, &b)
+            + terms::viscous(self.viscous, v)
+            + terms::stribeck(self.stribeck.0, self.stribeck.1, self.v_s, v, &b)
+    }
+}
+
+impl FrictionModel for Composite {
+    fn id(&self) -> ModelId {
+        self.id
+    }
+
+    fn n_states(&self) -> usize {
+        usize::from(self.dahl.is_some())
+    }
+
+    fn response(&self, _x: f64, v: f64, z: f64, law: SignLaw) -> Response {
+        let f = self.memoryless(v, law).value;
+        match self.dahl {
+            Some(d) => Response {
+                force: f + z,
+                state_rate: terms::dahl_rate(d.sigma, d.f_c, v, z, &law.branches(v)).rate,
+            },
+            None => Response {
+                force: f,
+                state_rate: 0.0,
+            },
+        }
+    }
+
+    fn partials(&self, _x: f64, v: f64, z: f64, law: SignLaw) -> Partials {
+        let f = self.memoryless(v, law);
+        match self.dahl {
+            Some(d) => {
+                let rate = terms::dahl_rate(d.sigma, d.f_c, v, z, &law.branches(v));
+                Partials {
+                    force_dv: f.dv,
+                    force_dz: 1.0,
+                    rate_dv: rate.dv,
+                    rate_dz: rate.dz,
+                    ..Partials::default()
+                }
+            }
+            None => Partials {
+                force_dv: f.dv,
+                ..Partials::default()
+            },
+        }
+    }
+
+    fn stick_interval(&self, x: f64, z: f64) -> StickInterval {
+        let at_rest = |law| self.response(x, 0.0, z, law).force;
+        match self.break_away {
+            Some(level) => {
+                let smooth = at_rest(SignLaw::Discontinuous);
+                StickInterval {
+                    lower: smooth - level,
+                    upper: smooth + level,
+                }
+            }
+            None => StickInterval {
+                lower: at_rest(SignLaw::Frozen(Direction::Negative)),
+                upper: at_rest(SignLaw::Frozen(Direction::Positive)),
+            },
+        }
+    }
+
+    fn steady_state(&self, v: f64) -> f64 {
+        self.dahl
+            .map_or(0.0, |d| d.f_c * SignLaw::Discontinuous.branches(v).sign())
+    }
+
+    fn state_after_displacement(&self, z0: f64, dx: f64) -> Option<f64> {
+        self.dahl
+            .map(|d| terms::dahl_after_displacement(d.sigma, d.f_c, z0, dx))
+    }
+
+    fn stick_band(&self) -> f64 {
+        self.band
+    }
+}

@@ -1,0 +1,366 @@
+//! Named, validated parameters: the specification table every parameter set is checked
+//! against, and the friction parameters with their named sets (`paper`, `lugre-1995`).
+
+use serde::Serialize;
+use std::fmt;
+use thiserror::Error;
+
+/// The allowed interval of one parameter; every bound excludes NaN, and ±∞ is never allowed.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Range {
+    /// Lower bound.
+    pub min: f64,
+    /// Whether `min` itself is allowed.
+    pub min_inclusive: bool,
+    /// Upper bound (`f64::INFINITY` for none).
+    pub max: f64,
+    /// Whether `max` itself is allowed.
+    pub max_inclusive: bool,
+}
+
+impl Range {
+    /// (0, ∞): strictly positive and finite.
+    pub const POSITIVE: Range = Range {
+        min: 0.0,
+        min_inclusive: false,
+        max: f64::INFINITY,
+        max_inclusive: false,
+    };
+    /// [0, ∞): non-negative and finite.
+    pub const NON_NEGATIVE: Range = Range {
+        min: 0.0,
+        min_inclusive: true,
+        max: f64::INFINITY,
+        max_inclusive: false,
+    };
+    /// (−∞, ∞): any finite number.
+    pub const FINITE: Range = Range {
+        min: f64::NEG_INFINITY,
+        min_inclusive: false,
+        max: f64::INFINITY,
+        max_inclusive: false,
+    };
+
+    /// Whether `value` lies in the range (NaN and ±∞ never do).
+    pub fn contains(&self, value: f64) -> bool {
+        let above = if self.min_inclusive {
+            value >= self.min
+        } else {
+            value > self.min
+        };
+        let below = if self.max_inclusive {
+            value <= self.max
+        } else {
+            value < self.max
+        };
+        value.is_finite() && above && below
+    }
+}
+
+impl fmt::Display for Range {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let open = if self.min_inclusive { '[' } else { '(' };
+        let close = if self.max_inclusive { ']' } else { ')' };
+        let bound = |x: f64| {
+            if x.is_infinite() {
+                if x > 0.0 { "inf" } else { "-inf" }.to_string()
+            } else {
+                x.to_string()
+            }
+        };
+        write!(f, "{open}{}, {}{close}", bound(self.min), bound(self.max))
+    }
+}
+
+/// What is known of one parameter: its name (as `--set` takes it), unit, meaning and range.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct ParamSpec {
+    /// The name used by `--set`, TOML files and listings.
+    pub name: &'static str,
+    /// SI unit.
+    pub unit: &'static str,
+    /// One line on what the parameter is.
+    pub meaning: &'static str,
+    /// The allowed values.
+    pub range: Range,
+}
+
+/// A parameter that could not be accepted.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum ParamError {
+    /// A name that no parameter has.
+    #[error("unknown parameter `{name}`; known parameters: {known}")]
+    Unknown {
+        /// The name given.
+        name: String,
+        /// The known names, comma-separated.
+        known: String,
+    },
+    /// A value outside the parameter's range (NaN and ±∞ included).
+    #[error("parameter `{name}` = {value} is out of range: allowed {range} {unit}")]
+    OutOfRange {
+        /// Parameter name.
+        name: String,
+        /// The rejected value.
+        value: f64,
+        /// The allowed range, as text.
+        range: String,
+        /// The parameter's unit.
+        unit: String,
+    },
+    /// A value that is in range on its own but not for the chosen model.
+    #[error("parameter `{name}` = {value} is not allowed here: {reason}")]
+    Invalid {
+        /// Parameter name.
+        name: String,
+        /// The rejected value.
+        value: f64,
+        /// Why, with the allowed range.
+        reason: String,
+    },
+    /// A named parameter set that does not exist.
+    #[error("unknown parameter set `{name}`; known sets: {known}")]
+    UnknownSet {
+        /// The name given.
+        name: String,
+        /// The known set names.
+        known: String,
+    },
+}
+
+/// A struct of named `f64` parameters, each described by a [`ParamSpec`].
+pub trait Parameters {
+    /// The specification of every parameter, in listing order.
+    fn specs() -> &'static [ParamSpec];
+    /// The storage of the parameter called `name`, if there is one.
+    fn slot(&mut self, name: &str) -> Option<&mut f64>;
+    /// The value of the parameter called `name`, if there is one.
+    fn value(&self, name: &str) -> Option<f64>;
+
+    /// The specification of the parameter called `name`.
+    fn spec(name: &str) -> Option<&'static ParamSpec> {
+        Self::specs().iter().find(|s| s.name == name)
+    }
+
+    /// Sets one parameter after checking its range.
+    fn set(&mut self, name: &str, value: f64) -> Result<(), ParamError> {
+        let spec = Self::spec(name).ok_or_else(|| ParamError::Unknown {
+            name: name.to_string(),
+            known: Self::specs()
+                .iter()
+                .map(|s| s.name)
+                .collect::<Vec<_>>()
+                .join(", "),
+        })?;
+        check(spec, value)?;
+        *self.slot(name).expect("every spec has a slot") = value;
+        Ok(())
+    }
+
+    /// Checks every parameter against its range.
+    fn validate(&self) -> Result<(), ParamError> {
+        Self::specs()
+            .iter()
+            .try_for_each(|spec| check(spec, self.value(spec.name).expect("every spec has a slot")))
+    }
+}
+
+/// Checks one value against its specification.
+pub fn check(spec: &ParamSpec, value: f64) -> Result<(), ParamError> {
+    if spec.range.contains(value) {
+        Ok(())
+    } else {
+        Err(ParamError::OutOfRange {
+            name: spec.name.to_string(),
+            value,
+            range: spec.range.to_string(),
+            unit: spec.unit.to_string(),
+        })
+    }
+}
+
+/// Declares a struct of `f64` parameters together with its [`ParamSpec`] table, so that the
+/// field, the name users type and the range are written once.
+#[macro_export]
+macro_rules! parameters {
+    (
+        $(#[$meta:meta])*
+        pub struct $ty:ident {
+            $( $(#[doc = $doc:literal])* $field:ident: $name:literal, $unit:literal, $range:expr, $meaning:literal; )*
+        }
+    ) => {
+        $(#[$meta])*
+        #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+        pub struct $ty {
+            $( $(#[doc = $doc])* #[serde(rename = $name)] pub $field: f64, )*
+        }
+
+        impl $crate::params::Parameters for $ty {
+            fn specs() -> &'static [$crate::params::ParamSpec] {
+                const SPECS: &[$crate::params::ParamSpec] = &[
+                    $( $crate::params::ParamSpec { name: $name, unit: $unit, meaning: $meaning, range: $range }, )*
+                ];
+                SPECS
+            }
+            fn slot(&mut self, name: &str) -> Option<&mut f64> {
+                match name {
+                    $( $name => Some(&mut self.$field), )*
+                    _ => None,
+                }
+            }
+            fn value(&self, name: &str) -> Option<f64> {
+                match name {
+                    $( $name => Some(self.$field), )*
+                    _ => None,
+                }
+            }
+        }
+    };
+}
+
+parameters! {
+    /// The friction parameters shared by all models (each model reads the ones it uses).
+    pub struct FrictionParams {
+        /// Static (break-away) level F_s = μ_s·F_N.
+        f_s: "F_s", "N", Range::NON_NEGATIVE, "static (break-away) force level F_s = mu_s*F_N";
+        /// Coulomb (kinetic) level F_c, also the Dahl saturation force F_fc.
+        f_c: "F_c", "N", Range::POSITIVE, "Coulomb (kinetic) force level, also the Dahl saturation level";
+        /// Viscous coefficient μ_v.
+        mu_v: "mu_v", "N*s/m", Range::NON_NEGATIVE, "viscous coefficient";
+        /// Stribeck velocity Ẋ_s.
+        v_s: "v_s", "m/s", Range::POSITIVE, "Stribeck velocity";
+        /// Dahl asperity stiffness σ.
+        sigma: "sigma", "N/m", Range::POSITIVE, "Dahl asperity stiffness";
+        /// Stribeck amplitude for v > 0.
+        c1: "C1", "N", Range::NON_NEGATIVE, "Stribeck amplitude for v > 0";
+        /// Stribeck amplitude for v < 0.
+        c2: "C2", "N", Range::NON_NEGATIVE, "Stribeck amplitude for v < 0";
+        /// LuGre bristle stiffness σ0.
+        sigma0: "sigma0", "N/m", Range::POSITIVE, "LuGre bristle stiffness";
+        /// LuGre bristle damping σ1.
+        sigma1: "sigma1", "N*s/m", Range::NON_NEGATIVE, "LuGre bristle damping";
+        /// LuGre viscous coefficient σ2.
+        sigma2: "sigma2", "N*s/m", Range::NON_NEGATIVE, "LuGre viscous coefficient";
+        /// Karnopp stick band half-width Δv.
+        dv: "dv", "m/s", Range::POSITIVE, "Karnopp stick band half-width";
+        /// Regularisation width ε of sign(v) ≈ tanh(v/ε).
+        epsilon: "epsilon", "m/s", Range::POSITIVE, "regularisation width of sign(v) ~ tanh(v/epsilon)";
+    }
+}
+
+/// The names of the named parameter sets, in listing order.
+pub const PARAM_SETS: &[&str] = &["paper", "lugre-1995"];
+
+impl FrictionParams {
+    /// Table 1 of the paper, read as `models.md` fixes it (F_c = 6 N, F_s = 0.75·10 N,
+    /// C1 = C2 = F_s − F_c), with the LuGre values of Canudas de Wit et al. (1995).
+    pub fn paper() -> Self {
+        FrictionParams {
+            f_s: 0.75 * 10.0,
+            f_c: 6.0,
+            mu_v: 0.5,
+            v_s: 0.1,
+            sigma: 5.0,
+            c1: 1.5,
+            c2: 1.5,
+            sigma0: 1e5,
+            sigma1: 1e5_f64.sqrt(),
+            sigma2: 0.4,
+            dv: 1e-3,
+            epsilon: 1e-3,
+        }
+    }
+
+    /// Canudas de Wit, Olsson, Åström and Lischinsky (1995), IEEE TAC 40(3), section II:
+    /// σ0 = 1e5 N/m, σ1 = √1e5 N·s/m, σ2 = 0.4 N·s/m, F_c = 1 N, F_s = 1.5 N, v_s = 1e-3 m/s.
+    /// The other models read the same levels: μ_v = σ2, σ = σ0, C1 = C2 = F_s − F_c, and
+    /// the widths dv and ε are a hundredth of v_s.
+    pub fn lugre_1995() -> Self {
+        FrictionParams {
+            f_s: 1.5,
+            f_c: 1.0,
+            mu_v: 0.4,
+            v_s: 1e-3,
+            sigma: 1e5,
+            c1: 0.5,
+            c2: 0.5,
+            sigma0: 1e5,
+            sigma1: 1e5_f64.sqrt(),
+            sigma2: 0.4,
+            dv: 1e-5,
+            epsilon: 1e-5,
+        }
+    }
+
+    /// The named set `name` (`paper` or `lugre-1995`).
+    pub fn named(name: &str) -> Result<Self, ParamError> {
+        match name {
+            "paper" => Ok(Self::paper()),
+            "lugre-1995" => Ok(Self::lugre_1995()),
+            _ => Err(ParamError::UnknownSet {
+                name: name.to_string(),
+                known: PARAM_SETS.join(", "),
+            }),
+        }
+    }
+}
+
+impl Default for FrictionParams {
+    fn default() -> Self {
+        Self::paper()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn named_sets_are_valid() {
+        for name in PARAM_SETS {
+            FrictionParams::named(name).unwrap().validate().unwrap();
+        }
+    }
+
+    #[test]
+    fn out_of_range_names_the_parameter_value_and_range() {
+        let mut p = FrictionParams::paper();
+        let err = p.set("v_s", 0.0).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "parameter `v_s` = 0 is out of range: allowed (0, inf) m/s"
+        );
+        assert!(p.set("mu_v", -1.0).is_err());
+        assert!(p.set("F_c", f64::NAN).is_err());
+        assert!(p.set("F_s", f64::INFINITY).is_err());
+        assert_eq!(
+            p.v_s, 0.1,
+            "a rejected value leaves the parameter unchanged"
+        );
+    }
+
+    #[test]
+    fn unknown_parameter_lists_the_known_ones() {
+        let err = FrictionParams::paper().set("mu_s", 0.7).unwrap_err();
+        let text = err.to_string();
+        assert!(text.starts_with("unknown parameter `mu_s`"), "{text}");
+        assert!(text.contains("F_s, F_c, mu_v"), "{text}");
+    }
+
+    #[test]
+    fn unknown_set_is_rejected() {
+        let err = FrictionParams::named("steel").unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "unknown parameter set `steel`; known sets: paper, lugre-1995"
+        );
+    }
+
+    #[test]
+    fn every_spec_has_a_slot_with_the_paper_value() {
+        let p = FrictionParams::paper();
+        assert_eq!(p.value("C2"), Some(1.5));
+        assert_eq!(p.value("F_s"), Some(7.5));
+        assert_eq!(FrictionParams::specs().len(), 12);
+    }
+}

@@ -1,0 +1,258 @@
+//! The models against values computed by hand from `models.md`, and every analytic partial
+//! derivative against a central finite difference.
+
+use approx::assert_relative_eq;
+use friction_models::{
+    Direction, FrictionModel, FrictionParams, ModelId, ParamError, Parameters, SignLaw, Variant,
+};
+
+fn build(id: ModelId, variant: Variant) -> Box<dyn FrictionModel> {
+    id.build(variant, &FrictionParams::paper()).unwrap()
+}
+
+fn slip(id: ModelId, variant: Variant, v: f64, z: f64) -> f64 {
+    build(id, variant)
+        .response(0.0, v, z, SignLaw::Discontinuous)
+        .force
+}
+
+#[test]
+fn slip_forces_match_hand_computation_with_table_1() {
+    // Table 1: F_s = 7.5, F_c = 6, mu_v = 0.5, v_s = 0.1, C1 = C2 = 1.5.
+    let e = (-(0.2f64 / 0.1).powi(2)).exp(); // Stribeck factor at |v| = 0.2
+    let odd = Variant::Odd;
+    assert_relative_eq!(slip(ModelId::Av, odd, 0.2, 0.0), 7.5 + 0.1 + 1.5 * e);
+    assert_relative_eq!(slip(ModelId::Av, odd, -0.2, 0.0), -7.5 - 0.1 - 1.5 * e);
+    assert_relative_eq!(slip(ModelId::Cs, odd, 0.2, 0.0), 6.0 + 1.5 * e);
+    assert_relative_eq!(slip(ModelId::Cvs, odd, -0.2, 0.0), -6.0 - 0.1 - 1.5 * e);
+    assert_relative_eq!(slip(ModelId::Dv, odd, 0.2, 2.0), 0.1 + 2.0);
+    assert_relative_eq!(slip(ModelId::Sd, odd, -0.2, -2.0), -7.5 - 2.0);
+    assert_relative_eq!(slip(ModelId::Sv, odd, 0.2, 2.0), 7.5 + 0.1 + 2.0);
+    // As printed, the static term is +F_s in both directions.
+    let printed = Variant::Printed;
+    assert_relative_eq!(slip(ModelId::Av, printed, -0.2, 0.0), 7.5 - 0.1 - 1.5 * e);
+    assert_relative_eq!(slip(ModelId::Sd, printed, -0.2, -2.0), 7.5 - 2.0);
+    assert_relative_eq!(slip(ModelId::Sv, printed, -0.2, -2.0), 7.5 - 0.1 - 2.0);
+    // Models without a static term are the same in both readings.
+    assert_eq!(
+        slip(ModelId::Cvs, printed, -0.2, 0.0),
+        slip(ModelId::Cvs, odd, -0.2, 0.0)
+    );
+}
+
+#[test]
+fn stick_intervals_are_those_of_models_md() {
+    let z = 0.8;
+    let interval = |id, variant| build(id, variant).stick_interval(0.0, z);
+    let odd = Variant::Odd;
+    let check = |id, variant, lower: f64, upper: f64| {
+        let s = interval(id, variant);
+        assert_relative_eq!(s.lower, lower, max_relative = 1e-15);
+        assert_relative_eq!(s.upper, upper, max_relative = 1e-15);
+    };
+    check(ModelId::Av, odd, -(7.5 + 1.5), 7.5 + 1.5);
+    check(ModelId::Cs, odd, -7.5, 7.5);
+    check(ModelId::Cvs, odd, -7.5, 7.5);
+    check(ModelId::Dv, odd, z, z);
+    check(ModelId::Sd, odd, z - 7.5, z + 7.5);
+    check(ModelId::Sv, odd, z - 7.5, z + 7.5);
+    check(ModelId::Av, Variant::Printed, 7.5 - 1.5, 7.5 + 1.5);
+    check(ModelId::Sd, Variant::Printed, 7.5 + z, 7.5 + z);
+    check(ModelId::Coulomb, odd, -6.0, 6.0);
+    check(ModelId::Static, odd, -7.5, 7.5);
+    check(ModelId::Stribeck, odd, -7.5, 7.5);
+    check(ModelId::Karnopp, odd, -7.5, 7.5);
+}
+
+#[test]
+fn asymmetric_stribeck_amplitudes_set_the_av_limits() {
+    let mut p = FrictionParams::paper();
+    p.set("C1", 1.0).unwrap();
+    p.set("C2", 2.0).unwrap();
+    let av = ModelId::Av.build(Variant::Odd, &p).unwrap();
+    let s = av.stick_interval(0.0, 0.0);
+    assert_eq!((s.lower, s.upper), (-9.5, 8.5));
+    // The frozen law gives the one-sided limits of the slip force.
+    let up = av.response(0.0, 0.0, 0.0, SignLaw::Frozen(Direction::Positive));
+    assert_eq!(up.force, 8.5);
+}
+
+#[test]
+fn stick_law_clamps_the_applied_force() {
+    let cs = build(ModelId::Cs, Variant::Odd);
+    let s = cs.stick_interval(0.0, 0.0);
+    assert_eq!(s.clamp(5.0), 5.0);
+    assert_eq!(s.clamp(-15.0), -7.5);
+    assert!(s.contains(7.5) && !s.contains(7.6));
+}
+
+#[test]
+fn odd_models_are_odd() {
+    for id in ModelId::ALL {
+        let m = build(id, Variant::Odd);
+        for &(v, z) in &[(0.03, 0.4), (0.7, 5.0), (2.0, -1.0)] {
+            let plus = m.response(0.0, v, z, SignLaw::Discontinuous);
+            let minus = m.response(0.0, -v, -z, SignLaw::Discontinuous);
+            assert_relative_eq!(plus.force, -minus.force, max_relative = 1e-14);
+            assert_relative_eq!(plus.state_rate, -minus.state_rate, max_relative = 1e-14);
+        }
+    }
+}
+
+#[test]
+fn regularised_force_tends_to_the_slip_force() {
+    for id in ModelId::ALL {
+        let m = build(id, Variant::Odd);
+        let v = 0.05;
+        let z = m.steady_state(v) * 0.5;
+        let exact = m.response(0.0, v, z, SignLaw::Discontinuous).force;
+        let smooth = m
+            .response(0.0, v, z, SignLaw::Smooth { epsilon: 1e-4 })
+            .force;
+        assert_relative_eq!(smooth, exact, max_relative = 1e-12);
+        // and is smooth through zero: no jump between ±1e-12
+        let eps = SignLaw::Smooth { epsilon: 1e-3 };
+        let jump = m.response(0.0, 1e-12, z, eps).force - m.response(0.0, -1e-12, z, eps).force;
+        assert!(jump.abs() < 1e-6, "{id}: jump {jump}");
+    }
+}
+
+/// Central difference of `f` at `u`, step scaled to `u`.
+fn central(f: impl Fn(f64) -> f64, u: f64) -> f64 {
+    let h = 1e-6 * u.abs().max(1e-3);
+    (f(u + h) - f(u - h)) / (2.0 * h)
+}
+
+fn assert_close(analytic: f64, numeric: f64, what: &str) {
+    let scale = analytic.abs().max(numeric.abs()).max(1.0);
+    assert!(
+        (analytic - numeric).abs() <= 1e-6 * scale,
+        "{what}: analytic {analytic} vs finite difference {numeric}"
+    );
+}
+
+#[test]
+fn analytic_partials_match_finite_differences() {
+    let laws = [
+        SignLaw::Discontinuous,
+        SignLaw::Frozen(Direction::Positive),
+        SignLaw::Frozen(Direction::Negative),
+        SignLaw::Smooth { epsilon: 0.05 },
+    ];
+    let mut lugre_params = FrictionParams::lugre_1995();
+    lugre_params.set("v_s", 0.1).unwrap(); // keep g(v) varying over the sampled velocities
+    for id in ModelId::ALL {
+        for variant in [Variant::Odd, Variant::Printed] {
+            let params = if id == ModelId::LuGre {
+                lugre_params
+            } else {
+                FrictionParams::paper()
+            };
+            let m = id.build(variant, &params).unwrap();
+            for law in laws {
+                for &(x, v, z) in &[(0.1, 0.07, 0.3), (-0.4, -0.12, -0.5e-5), (1.0, 0.02, 2e-6)] {
+                    let p = m.partials(x, v, z, law);
+                    let force = |x, v, z| m.response(x, v, z, law).force;
+                    let rate = |x, v, z| m.response(x, v, z, law).state_rate;
+                    let at = format!("{id} {variant} {law:?} at (x, v, z) = ({x}, {v}, {z})");
+                    assert_close(
+                        p.force_dx,
+                        central(|x| force(x, v, z), x),
+                        &format!("dF/dx {at}"),
+                    );
+                    assert_close(
+                        p.force_dv,
+                        central(|v| force(x, v, z), v),
+                        &format!("dF/dv {at}"),
+                    );
+                    assert_close(
+                        p.force_dz,
+                        central(|z| force(x, v, z), z),
+                        &format!("dF/dz {at}"),
+                    );
+                    assert_close(
+                        p.rate_dx,
+                        central(|x| rate(x, v, z), x),
+                        &format!("dzdot/dx {at}"),
+                    );
+                    assert_close(
+                        p.rate_dv,
+                        central(|v| rate(x, v, z), v),
+                        &format!("dzdot/dv {at}"),
+                    );
+                    assert_close(
+                        p.rate_dz,
+                        central(|z| rate(x, v, z), z),
+                        &format!("dzdot/dz {at}"),
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn dahl_state_reproduces_the_closed_form_under_the_paper_motion() {
+    // Along X(t) = t³/3 + t²/2 from rest, the state propagated by Dahl's law equals the
+    // printed closed form F_c(1 − exp(−σ|X|/F_c)) to 1e-10 relative, for every Dahl model.
+    let p = FrictionParams::paper();
+    for id in [ModelId::Dv, ModelId::Sd, ModelId::Sv, ModelId::Dahl] {
+        let m = build(id, Variant::Odd);
+        let position = |t: f64| t.powi(3) / 3.0 + t * t / 2.0;
+        let mut z = 0.0;
+        let n = 2000;
+        for i in 1..=n {
+            let (t0, t1) = ((i - 1) as f64 * 2.0 / n as f64, i as f64 * 2.0 / n as f64);
+            z = m
+                .state_after_displacement(z, position(t1) - position(t0))
+                .unwrap();
+            let closed =
+                friction_models::terms::dahl_closed_form(p.sigma, p.f_c, position(t1), 1.0);
+            assert_relative_eq!(z, closed, max_relative = 1e-10);
+        }
+    }
+}
+
+#[test]
+fn lugre_steady_state_is_the_stribeck_curve() {
+    let p = FrictionParams::lugre_1995();
+    let m = ModelId::LuGre.build(Variant::Odd, &p).unwrap();
+    for &v in &[-0.01, -1e-3, 2e-4, 5e-3, 0.1] {
+        let z = m.steady_state(v);
+        let r = m.response(0.0, v, z, SignLaw::Discontinuous);
+        let g = p.f_c + (p.f_s - p.f_c) * (-(v / p.v_s).powi(2)).exp();
+        assert!(r.state_rate.abs() < 1e-12 * v.abs().max(1e-12) * 1e3);
+        assert_relative_eq!(r.force, g * v.signum() + p.sigma2 * v, max_relative = 1e-12);
+    }
+    assert!(m.state_after_displacement(0.0, 1.0).is_none());
+}
+
+#[test]
+fn lugre_rejects_a_zero_static_level() {
+    let mut p = FrictionParams::lugre_1995();
+    p.set("F_s", 0.0).unwrap();
+    let err = ModelId::LuGre.build(Variant::Odd, &p).unwrap_err();
+    assert!(matches!(err, ParamError::Invalid { ref name, .. } if name == "F_s"));
+    assert!(err.to_string().contains("F_s in (0, inf) N"), "{err}");
+}
+
+#[test]
+fn model_names_round_trip_and_unknown_names_are_listed() {
+    for id in ModelId::ALL {
+        assert_eq!(ModelId::from_name(&id.name().to_lowercase()), Ok(id));
+    }
+    let err = ModelId::from_name("bouc-wen").unwrap_err();
+    assert!(
+        err.starts_with("unknown model `bouc-wen`; known models: AV, CS"),
+        "{err}"
+    );
+}
+
+#[test]
+fn every_model_declares_parameters_that_exist() {
+    for id in ModelId::ALL {
+        for name in id.parameters() {
+            assert!(FrictionParams::spec(name).is_some(), "{id}: {name}");
+        }
+    }
+}

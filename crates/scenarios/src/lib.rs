@@ -1,0 +1,8 @@
+//! The rigs on which friction models and solvers are run (`shared/spec/scenarios.md`), and
+//! the paper's own experiments.
+//!
+//! So far: the two curve rigs of Figures 2–7 ([`curves`]) and the catalogue of those
+//! figures with what the paper says of each ([`figures`]).
+
+pub mod curves;
+pub mod figures;
