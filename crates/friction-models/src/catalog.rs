@@ -67,15 +67,8 @@ impl ModelId {
         ModelId::LuGre,
     ];
 
-    /// The paper's six models.
-    pub const PAPER: [ModelId; 6] = [
-        ModelId::Av,
-        ModelId::Cs,
-        ModelId::Cvs,
-        ModelId::Dv,
-        ModelId::Sd,
-        ModelId::Sv,
-    ];
+    /// The paper's six models: the first six of [`ModelId::ALL`].
+    pub const PAPER: &'static [ModelId] = ModelId::ALL.split_at(6).0;
 
     /// The name the command line takes and prints.
     pub fn name(self) -> &'static str {

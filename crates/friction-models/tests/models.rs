@@ -131,6 +131,9 @@ fn assert_close(analytic: f64, numeric: f64, what: &str) {
     );
 }
 
+/// A force or rate as a function of the point (x, v, z).
+type Of<'a> = dyn Fn([f64; 3]) -> f64 + 'a;
+
 #[test]
 fn analytic_partials_match_finite_differences() {
     let laws = [
@@ -152,39 +155,30 @@ fn analytic_partials_match_finite_differences() {
             for law in laws {
                 for &(x, v, z) in &[(0.1, 0.07, 0.3), (-0.4, -0.12, -0.5e-5), (1.0, 0.02, 2e-6)] {
                     let p = m.partials(x, v, z, law);
-                    let force = |x, v, z| m.response(x, v, z, law).force;
-                    let rate = |x, v, z| m.response(x, v, z, law).state_rate;
-                    let at = format!("{id} {variant} {law:?} at (x, v, z) = ({x}, {v}, {z})");
-                    assert_close(
-                        p.force_dx,
-                        central(|x| force(x, v, z), x),
-                        &format!("dF/dx {at}"),
-                    );
-                    assert_close(
-                        p.force_dv,
-                        central(|v| force(x, v, z), v),
-                        &format!("dF/dv {at}"),
-                    );
-                    assert_close(
-                        p.force_dz,
-                        central(|z| force(x, v, z), z),
-                        &format!("dF/dz {at}"),
-                    );
-                    assert_close(
-                        p.rate_dx,
-                        central(|x| rate(x, v, z), x),
-                        &format!("dzdot/dx {at}"),
-                    );
-                    assert_close(
-                        p.rate_dv,
-                        central(|v| rate(x, v, z), v),
-                        &format!("dzdot/dv {at}"),
-                    );
-                    assert_close(
-                        p.rate_dz,
-                        central(|z| rate(x, v, z), z),
-                        &format!("dzdot/dz {at}"),
-                    );
+                    let force = |u: [f64; 3]| m.response(u[0], u[1], u[2], law).force;
+                    let rate = |u: [f64; 3]| m.response(u[0], u[1], u[2], law).state_rate;
+                    let checks: [(&str, f64, &Of, usize); 6] = [
+                        ("dF/dx", p.force_dx, &force, 0),
+                        ("dF/dv", p.force_dv, &force, 1),
+                        ("dF/dz", p.force_dz, &force, 2),
+                        ("dzdot/dx", p.rate_dx, &rate, 0),
+                        ("dzdot/dv", p.rate_dv, &rate, 1),
+                        ("dzdot/dz", p.rate_dz, &rate, 2),
+                    ];
+                    for (name, analytic, f, i) in checks {
+                        let at = [x, v, z];
+                        let numeric = central(
+                            |u| {
+                                let mut point = at;
+                                point[i] = u;
+                                f(point)
+                            },
+                            at[i],
+                        );
+                        let what =
+                            format!("{name} of {id} {variant} {law:?} at (x, v, z) = {at:?}");
+                        assert_close(analytic, numeric, &what);
+                    }
                 }
             }
         }

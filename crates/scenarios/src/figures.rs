@@ -161,6 +161,14 @@ fn abscissa(curve: &Curve, s: &Sample) -> f64 {
     }
 }
 
+/// The unit of the curve's abscissa.
+fn abscissa_unit(curve: &Curve) -> &'static str {
+    match curve.axis {
+        friction_models::CurveAxis::Velocity => "m/s",
+        friction_models::CurveAxis::Displacement => "m",
+    }
+}
+
 /// Relative slope at the end of the positive branch: the secant slope over the last 10 % of
 /// the branch's abscissa range, times that range, over the end value.
 pub fn relative_end_slope(curve: &Curve) -> f64 {
@@ -218,9 +226,10 @@ pub fn assess(claim: Claim, curve: &Curve) -> Finding {
             Finding {
                 claim: "the force falls as it leaves zero (Stribeck drop)".into(),
                 computed: format!(
-                    "from {right:.4} N at 0+ to a minimum of {:.4} N at {:.4}",
+                    "from {right:.4} N at 0+ to a minimum of {:.4} N at {:.4} {}",
                     min.force,
-                    abscissa(curve, min)
+                    abscissa(curve, min),
+                    abscissa_unit(curve)
                 ),
                 agrees: min.force < right - 1e-9 * right.abs(),
             }

@@ -1,0 +1,163 @@
+//! `friction-lab curve MODEL --out DIR`: one friction curve as CSV, PNG, SVG and a JSON
+//! summary of its key values.
+
+use crate::artifacts::Artifacts;
+use crate::error::AppError;
+use crate::figure::Drawn;
+use crate::options::ModelOptions;
+use clap::Args;
+use friction_models::{CurveAxis, FrictionParams, ModelId, Parameters, StickInterval, Variant};
+use scenarios::curves::{self, Curve};
+use serde::Serialize;
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+/// Options of `curve`.
+#[derive(Args, Debug)]
+pub struct CurveArgs {
+    /// The model, as `friction-lab models` lists it (AV, CS, CVS, DV, SD, SV, coulomb, ...).
+    #[arg(value_name = "MODEL")]
+    pub model: ModelId,
+    /// Folder to write into (created if missing).
+    #[arg(long, value_name = "DIR")]
+    pub out: PathBuf,
+    /// Largest |v| of a force-velocity curve, m/s [default: 1].
+    #[arg(long, value_name = "V", allow_negative_numbers = true)]
+    pub v_max: Option<f64>,
+    /// End time of the prescribed motion X(t) = t^3/3 + t^2/2 of a force-displacement curve,
+    /// s [default: 2].
+    #[arg(long, value_name = "T", allow_negative_numbers = true)]
+    pub t_end: Option<f64>,
+    /// Samples on each side of zero.
+    #[arg(long, value_name = "N", default_value_t = 2000)]
+    pub points: usize,
+    /// The model's parameters and reading.
+    #[command(flatten)]
+    pub model_options: ModelOptions,
+}
+
+/// Key values of a curve, as written to its JSON summary.
+#[derive(Serialize)]
+pub struct KeyValues {
+    /// Force just left of zero (limit v → 0−), N.
+    pub left_of_zero: f64,
+    /// Force just right of zero (limit v → 0+), N.
+    pub right_of_zero: f64,
+    /// Forces admissible at rest, N.
+    pub at_rest: StickInterval,
+    /// Abscissa (v in m/s or X in m) at the positive end.
+    pub end_abscissa: f64,
+    /// Force at the positive end, N.
+    pub end_force: f64,
+    /// Force at the negative end, N.
+    pub end_force_negative: f64,
+}
+
+impl KeyValues {
+    /// The key values of `curve`.
+    pub fn of(curve: &Curve) -> Self {
+        let end = curve.positive[curve.positive.len() - 1];
+        KeyValues {
+            left_of_zero: curve.left_of_zero,
+            right_of_zero: curve.right_of_zero,
+            at_rest: curve.at_rest,
+            end_abscissa: match curve.axis {
+                CurveAxis::Velocity => end.v,
+                CurveAxis::Displacement => end.x,
+            },
+            end_force: end.force,
+            end_force_negative: curve.negative[curve.negative.len() - 1].force,
+        }
+    }
+}
+
+#[derive(Serialize)]
+struct Summary<'a> {
+    model: &'a str,
+    variant: Variant,
+    equation: &'a str,
+    axis: CurveAxis,
+    extent: f64,
+    points: usize,
+    parameters: BTreeMap<&'a str, f64>,
+    key_values: KeyValues,
+}
+
+/// The extent of the curve: the option that belongs to the model's axis, or its default;
+/// the other option is an error.
+fn extent(args: &CurveArgs) -> Result<f64, AppError> {
+    let axis = args.model.curve_axis();
+    let (own, other, other_flag) = match axis {
+        CurveAxis::Velocity => (args.v_max, args.t_end, "--t-end"),
+        CurveAxis::Displacement => (args.t_end, args.v_max, "--v-max"),
+    };
+    if other.is_some() {
+        let (drawn, use_flag) = match axis {
+            CurveAxis::Velocity => ("velocity", "--v-max"),
+            CurveAxis::Displacement => ("displacement under the prescribed motion", "--t-end"),
+        };
+        return Err(AppError::Usage(format!(
+            "{other_flag} does not apply to {}: it is drawn against {drawn}; use {use_flag}",
+            args.model
+        )));
+    }
+    Ok(own.unwrap_or_else(|| curves::default_extent(axis)))
+}
+
+/// The parameters the model reads, with their values.
+pub fn used_parameters(model: ModelId, p: &FrictionParams) -> BTreeMap<&'static str, f64> {
+    model
+        .parameters()
+        .iter()
+        .map(|&n| (n, p.value(n).expect("models name existing parameters")))
+        .collect()
+}
+
+/// Runs `curve`.
+pub fn run(args: &CurveArgs) -> Result<(), AppError> {
+    let params = args.model_options.params.resolve()?;
+    let variant = args.model_options.variant;
+    let extent = extent(args)?;
+    let model = args.model.build(variant, &params)?;
+    let curve = curves::curve(model.as_ref(), extent, args.points)?;
+
+    let suffix = match variant {
+        Variant::Odd => String::new(),
+        Variant::Printed => "-printed".into(),
+    };
+    let stem = format!("curve-{}{suffix}", args.model);
+    let title = format!(
+        "{}: {} ({})",
+        args.model,
+        args.model.title(),
+        args.model.source()
+    );
+    let mut files = Artifacts::default();
+    files.add_figure(
+        &args.out,
+        &stem,
+        title,
+        args.model,
+        &[Drawn {
+            variant,
+            curve: &curve,
+        }],
+    )?;
+    files.add_json(
+        args.out.join(format!("{stem}.json")),
+        &Summary {
+            model: args.model.name(),
+            variant,
+            equation: args.model.equation(variant),
+            axis: curve.axis,
+            extent,
+            points: args.points,
+            parameters: used_parameters(args.model, &params),
+            key_values: KeyValues::of(&curve),
+        },
+    )?;
+    for path in files.write()? {
+        println!("wrote {}", path.display());
+    }
+    Ok(())
+}

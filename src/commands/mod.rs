@@ -1,0 +1,5 @@
+//! One module per command of `friction-lab`.
+
+pub mod curve;
+pub mod models;
+pub mod reproduce;

@@ -1,0 +1,147 @@
+//! `friction-lab models [--json]`: every model with its equation and parameters, and the
+//! parameters with units, defaults, ranges and named sets.
+
+use crate::error::AppError;
+use friction_models::{
+    CurveAxis, FrictionParams, ModelId, ParamSpec, Parameters, Variant, PARAM_SETS,
+};
+use serde::Serialize;
+use std::collections::BTreeMap;
+
+/// One model as listed.
+#[derive(Serialize)]
+struct ModelEntry {
+    name: &'static str,
+    title: &'static str,
+    source: &'static str,
+    in_paper: bool,
+    equation: &'static str,
+    equation_printed: Option<&'static str>,
+    parameters: &'static [&'static str],
+    curve_axis: CurveAxis,
+}
+
+/// One parameter as listed, with its value in every named set.
+#[derive(Serialize)]
+struct ParamEntry {
+    #[serde(flatten)]
+    spec: ParamSpec,
+    range_text: String,
+    default: f64,
+    sets: BTreeMap<&'static str, f64>,
+}
+
+/// The whole listing.
+#[derive(Serialize)]
+struct Listing {
+    models: Vec<ModelEntry>,
+    parameters: Vec<ParamEntry>,
+    parameter_sets: Vec<&'static str>,
+    variants: [&'static str; 2],
+}
+
+fn listing() -> Listing {
+    let models = ModelId::ALL
+        .into_iter()
+        .map(|m| ModelEntry {
+            name: m.name(),
+            title: m.title(),
+            source: m.source(),
+            in_paper: m.in_paper(),
+            equation: m.equation(Variant::Odd),
+            equation_printed: m.has_printed_form().then(|| m.equation(Variant::Printed)),
+            parameters: m.parameters(),
+            curve_axis: m.curve_axis(),
+        })
+        .collect();
+    let sets: Vec<(&str, FrictionParams)> = PARAM_SETS
+        .iter()
+        .map(|&n| (n, FrictionParams::named(n).expect("listed sets exist")))
+        .collect();
+    let parameters = FrictionParams::specs()
+        .iter()
+        .map(|spec| ParamEntry {
+            spec: *spec,
+            range_text: spec.range.to_string(),
+            default: FrictionParams::paper()
+                .value(spec.name)
+                .expect("spec has slot"),
+            sets: sets
+                .iter()
+                .map(|(n, p)| (*n, p.value(spec.name).expect("spec has slot")))
+                .collect(),
+        })
+        .collect();
+    Listing {
+        models,
+        parameters,
+        parameter_sets: PARAM_SETS.to_vec(),
+        variants: ["odd", "printed"],
+    }
+}
+
+/// A value in at most 12 characters: exact when it fits, else rounded to 6 decimals (the
+/// JSON listing keeps every digit).
+fn short(x: f64) -> String {
+    let exact = x.to_string();
+    if exact.len() <= 12 {
+        exact
+    } else {
+        format!("{x:.6}")
+    }
+}
+
+fn text(l: &Listing) -> String {
+    let mut out = String::from("Models (sign(0) = 0; S(v) = C1*exp(-(v/v_s)^2) for v > 0, -C2*exp(-(v/v_s)^2) for v < 0)\n\n");
+    for m in &l.models {
+        let origin = if m.in_paper { "paper" } else { "reference" };
+        out += &format!("{:<9} {} [{origin}; {}]\n", m.name, m.title, m.source);
+        out += &format!("          {}\n", m.equation);
+        if let Some(printed) = m.equation_printed {
+            out += &format!("          as printed (--variant printed): {printed}\n");
+        }
+        out += &format!(
+            "          parameters: {}; curve against {}\n\n",
+            m.parameters.join(", "),
+            match m.curve_axis {
+                CurveAxis::Velocity => "velocity",
+                CurveAxis::Displacement => "displacement",
+            }
+        );
+    }
+    out += "Parameters (--set NAME=VALUE, --params FILE.toml, --param-set NAME)\n\n";
+    out += &format!(
+        "{:<8} {:<6} {:>12} {:>12}  {:<12} meaning\n",
+        "name", "unit", "paper", "lugre-1995", "range"
+    );
+    for p in &l.parameters {
+        out += &format!(
+            "{:<8} {:<6} {:>12} {:>12}  {:<12} {}\n",
+            p.spec.name,
+            p.spec.unit,
+            short(p.sets["paper"]),
+            short(p.sets["lugre-1995"]),
+            p.range_text,
+            p.spec.meaning
+        );
+    }
+    out += &format!(
+        "\nNamed parameter sets: {}\nVariants: odd (default), printed\n",
+        l.parameter_sets.join(", ")
+    );
+    out
+}
+
+/// Prints the listing, as text or as JSON.
+pub fn run(json: bool) -> Result<(), AppError> {
+    let l = listing();
+    if json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&l).expect("the listing serialises")
+        );
+    } else {
+        print!("{}", text(&l));
+    }
+    Ok(())
+}

@@ -1,0 +1,67 @@
+//! Every way a command can fail, each with a message that names what was wrong.
+
+use friction_models::ParamError;
+use scenarios::curves::CurveError;
+use std::path::PathBuf;
+use thiserror::Error;
+
+/// A failed command.
+#[derive(Debug, Error)]
+pub enum AppError {
+    /// A parameter was rejected.
+    #[error(transparent)]
+    Param(#[from] ParamError),
+    /// A curve option was rejected.
+    #[error(transparent)]
+    Curve(#[from] CurveError),
+    /// A command-line value that does not parse or does not apply.
+    #[error("{0}")]
+    Usage(String),
+    /// A parameter file that is not valid TOML or holds something other than numbers.
+    #[error("parameter file {path}: {message}")]
+    ParamFile {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong with it.
+        message: String,
+    },
+    /// An output that would contain NaN or an infinity.
+    #[error("refusing to write {path}: {what} is not finite ({value})")]
+    NonFinite {
+        /// The file that was to be written.
+        path: PathBuf,
+        /// Which value.
+        what: String,
+        /// The value.
+        value: f64,
+    },
+    /// Reading or writing a file failed.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file or folder.
+        path: PathBuf,
+        /// The operating system's error.
+        source: std::io::Error,
+    },
+    /// A plot could not be drawn.
+    #[error("drawing {path}: {message}")]
+    Plot {
+        /// The figure being drawn.
+        path: PathBuf,
+        /// The drawing back-end's error.
+        message: String,
+    },
+}
+
+impl AppError {
+    /// The process exit code: 2 for bad input, 1 for a failure while running.
+    pub fn exit_code(&self) -> i32 {
+        match self {
+            AppError::Param(_)
+            | AppError::Curve(_)
+            | AppError::Usage(_)
+            | AppError::ParamFile { .. } => 2,
+            AppError::NonFinite { .. } | AppError::Io { .. } | AppError::Plot { .. } => 1,
+        }
+    }
+}

@@ -1,0 +1,54 @@
+//! friction-lab: the command-line program over the workspace, and a facade over its crates.
+//!
+//! - [`friction_models`]: the paper's six models, the classical terms, Dahl, Karnopp, LuGre;
+//! - [`integrators`]: the solvers (RK4, Dormand–Prince, implicit Euler, diffsol);
+//! - [`scenarios`]: the rigs, the paper's experiments and the solver studies.
+
+pub use friction_models;
+pub use integrators;
+pub use scenarios;
+
+pub mod artifacts;
+pub mod commands;
+pub mod error;
+pub mod figure;
+pub mod options;
+pub mod output;
+pub mod plot;
+
+use clap::{Parser, Subcommand};
+use error::AppError;
+
+/// Dry-friction models and the solvers that integrate them.
+#[derive(Parser, Debug)]
+#[command(name = "friction-lab", version, about, long_about = None)]
+pub struct Cli {
+    /// The command to run.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The commands of `shared/spec/cli.md`.
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// List every friction model with its equation, its parameters and the named sets.
+    Models {
+        /// Print JSON instead of text.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Draw one friction curve: force against velocity, or against displacement under the
+    /// paper's prescribed motion (DV, SD, SV, dahl).
+    Curve(commands::curve::CurveArgs),
+    /// Reproduce the paper into one folder: Figures 2-7 with notes, and a report.md.
+    Reproduce(commands::reproduce::ReproduceArgs),
+}
+
+/// Runs one parsed command.
+pub fn run(cli: Cli) -> Result<(), AppError> {
+    match cli.command {
+        Command::Models { json } => commands::models::run(json),
+        Command::Curve(args) => commands::curve::run(&args),
+        Command::Reproduce(args) => commands::reproduce::run(&args),
+    }
+}

@@ -1,0 +1,116 @@
+//! Writing results: every file appears whole or not at all (written to a temporary file in
+//! the same folder, then renamed), and no NaN or infinity is ever written.
+
+use crate::error::AppError;
+use std::io::Write;
+use std::path::Path;
+
+/// Creates `dir` and its parents.
+pub fn create_dir(dir: &Path) -> Result<(), AppError> {
+    std::fs::create_dir_all(dir).map_err(|source| AppError::Io {
+        path: dir.to_path_buf(),
+        source,
+    })
+}
+
+/// Writes `bytes` to `path` atomically: a temporary file beside it, then a rename.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), AppError> {
+    let io = |source| AppError::Io {
+        path: path.to_path_buf(),
+        source,
+    };
+    let dir = path.parent().filter(|p| !p.as_os_str().is_empty());
+    let mut tmp = tempfile::Builder::new()
+        .prefix(".friction-lab-")
+        .permissions(readable_by_all())
+        .tempfile_in(dir.unwrap_or(Path::new(".")))
+        .map_err(io)?;
+    tmp.write_all(bytes).map_err(io)?;
+    tmp.as_file().sync_all().map_err(io)?;
+    tmp.persist(path).map_err(|e| io(e.error))?;
+    Ok(())
+}
+
+/// A cell of a CSV table.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Cell {
+    /// A number, written in Rust's shortest round-trip form.
+    Num(f64),
+    /// A label.
+    Text(String),
+}
+
+/// A CSV table: a header row and rows of cells.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Table {
+    /// Column names.
+    pub header: Vec<String>,
+    /// Rows, each as long as the header.
+    pub rows: Vec<Vec<Cell>>,
+}
+
+impl Table {
+    /// An empty table with these column names.
+    pub fn new(header: &[&str]) -> Self {
+        Table {
+            header: header.iter().map(|s| s.to_string()).collect(),
+            rows: Vec::new(),
+        }
+    }
+
+    /// The table as CSV bytes; fails on a non-finite number, naming its row and column.
+    pub fn to_csv(&self, path: &Path) -> Result<Vec<u8>, AppError> {
+        let mut w = csv::Writer::from_writer(Vec::new());
+        let io = |e: csv::Error| AppError::Io {
+            path: path.to_path_buf(),
+            source: std::io::Error::other(e),
+        };
+        w.write_record(&self.header).map_err(io)?;
+        for (i, row) in self.rows.iter().enumerate() {
+            let mut record = Vec::with_capacity(row.len());
+            for (cell, name) in row.iter().zip(&self.header) {
+                record.push(match cell {
+                    Cell::Num(x) if !x.is_finite() => {
+                        return Err(AppError::NonFinite {
+                            path: path.to_path_buf(),
+                            what: format!("column `{name}` of data row {}", i + 1),
+                            value: *x,
+                        })
+                    }
+                    Cell::Num(x) => x.to_string(),
+                    Cell::Text(s) => s.clone(),
+                });
+            }
+            w.write_record(&record).map_err(io)?;
+        }
+        w.into_inner().map_err(|e| io(e.into_error().into()))
+    }
+}
+
+/// Serialises `value` as pretty JSON. serde_json would write a NaN as `null`, so callers
+/// pass only numbers that have already been checked (the same numbers go into a CSV
+/// through [`Table::to_csv`], which refuses non-finite values).
+pub fn to_json<T: serde::Serialize>(value: &T, path: &Path) -> Result<Vec<u8>, AppError> {
+    let mut bytes = serde_json::to_vec_pretty(value).map_err(|e| AppError::Io {
+        path: path.to_path_buf(),
+        source: std::io::Error::other(e),
+    })?;
+    bytes.push(b'\n');
+    Ok(bytes)
+}
+
+/// Results are shared files: rw-r--r-- rather than the temporary file's private mode.
+#[cfg(unix)]
+fn readable_by_all() -> std::fs::Permissions {
+    use std::os::unix::fs::PermissionsExt;
+    std::fs::Permissions::from_mode(0o644)
+}
+
+/// Results are shared files: the platform's default permissions.
+#[cfg(not(unix))]
+fn readable_by_all() -> std::fs::Permissions {
+    std::fs::File::open(".")
+        .and_then(|f| f.metadata())
+        .map(|m| m.permissions())
+        .unwrap_or_else(|_| unreachable!())
+}

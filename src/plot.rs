@@ -1,0 +1,164 @@
+//! Line plots as PNG and SVG, drawn by plotters with an embedded DejaVu Sans font so that
+//! no system font package is needed.
+
+use crate::error::AppError;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use std::path::Path;
+use std::sync::Once;
+
+/// Width and height of every figure, pixels.
+pub const SIZE: (u32, u32) = (900, 600);
+
+/// One polyline of a plot.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Series {
+    /// Legend entry; `None` keeps the series out of the legend.
+    pub label: Option<String>,
+    /// The points, in drawing order.
+    pub points: Vec<(f64, f64)>,
+    /// Line colour.
+    pub color: RGBColor,
+    /// Line width, pixels.
+    pub width: u32,
+}
+
+/// A labelled line plot.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Plot {
+    /// Title above the plot.
+    pub title: String,
+    /// x-axis label, with unit.
+    pub x_label: String,
+    /// y-axis label, with unit.
+    pub y_label: String,
+    /// The polylines.
+    pub series: Vec<Series>,
+}
+
+/// The colours of the figures: the paper's red for the model, blue and green beside it.
+pub const RED: RGBColor = RGBColor(200, 30, 30);
+/// Second series colour.
+pub const BLUE: RGBColor = RGBColor(30, 80, 200);
+/// Third series colour.
+pub const GREEN: RGBColor = RGBColor(20, 140, 60);
+
+static FONT: Once = Once::new();
+
+fn register_font() {
+    FONT.call_once(|| {
+        plotters::style::register_font("sans-serif", FontStyle::Normal, dejavu::sans::regular())
+            .unwrap_or_else(|_| unreachable!("the embedded DejaVu Sans font is valid"));
+    });
+}
+
+/// The plot range of the data, padded by 5 % on each side.
+fn bounds(plot: &Plot) -> ((f64, f64), (f64, f64)) {
+    let points = plot.series.iter().flat_map(|s| s.points.iter());
+    let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+    for &(x, y) in points {
+        x0 = x0.min(x);
+        x1 = x1.max(x);
+        y0 = y0.min(y);
+        y1 = y1.max(y);
+    }
+    let pad = |a: f64, b: f64| {
+        let d = if b > a { 0.05 * (b - a) } else { 0.5 };
+        (a - d, b + d)
+    };
+    (pad(x0, x1), pad(y0, y1))
+}
+
+fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, plot: &Plot) -> Result<(), String> {
+    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
+    root.fill(&WHITE).map_err(err)?;
+    let ((x0, x1), (y0, y1)) = bounds(plot);
+    let mut chart = ChartBuilder::on(&root)
+        .caption(&plot.title, ("sans-serif", 22))
+        .margin(15)
+        .x_label_area_size(50)
+        .y_label_area_size(70)
+        .build_cartesian_2d(x0..x1, y0..y1)
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .light_line_style(WHITE)
+        .x_desc(plot.x_label.as_str())
+        .y_desc(plot.y_label.as_str())
+        .label_style(("sans-serif", 15))
+        .axis_desc_style(("sans-serif", 17))
+        .draw()
+        .map_err(err)?;
+    // The axes through the origin, as in the paper's figures.
+    let axis = ShapeStyle::from(&BLACK.mix(0.4)).stroke_width(1);
+    chart
+        .draw_series(LineSeries::new([(x0, 0.0), (x1, 0.0)], axis))
+        .map_err(err)?;
+    chart
+        .draw_series(LineSeries::new([(0.0, y0), (0.0, y1)], axis))
+        .map_err(err)?;
+    for s in &plot.series {
+        let style = ShapeStyle::from(&s.color).stroke_width(s.width);
+        let drawn = chart
+            .draw_series(LineSeries::new(s.points.iter().copied(), style))
+            .map_err(err)?;
+        if let Some(label) = &s.label {
+            let color = s.color;
+            drawn.label(label.as_str()).legend(move |(x, y)| {
+                PathElement::new([(x, y), (x + 20, y)], color.stroke_width(3))
+            });
+        }
+    }
+    if plot.series.iter().any(|s| s.label.is_some()) {
+        chart
+            .configure_series_labels()
+            .label_font(("sans-serif", 15))
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .position(SeriesLabelPosition::UpperLeft)
+            .draw()
+            .map_err(err)?;
+    }
+    root.present().map_err(err)
+}
+
+/// The plot as SVG text.
+pub fn svg(plot: &Plot, path: &Path) -> Result<String, AppError> {
+    register_font();
+    let mut text = String::new();
+    draw(
+        SVGBackend::with_string(&mut text, SIZE).into_drawing_area(),
+        plot,
+    )
+    .map_err(|message| AppError::Plot {
+        path: path.to_path_buf(),
+        message,
+    })?;
+    Ok(text)
+}
+
+/// The plot as PNG bytes.
+pub fn png(plot: &Plot, path: &Path) -> Result<Vec<u8>, AppError> {
+    register_font();
+    let fail = |message: String| AppError::Plot {
+        path: path.to_path_buf(),
+        message,
+    };
+    let (w, h) = SIZE;
+    let mut pixels = vec![0u8; (w * h * 3) as usize];
+    draw(
+        BitMapBackend::with_buffer(&mut pixels, SIZE).into_drawing_area(),
+        plot,
+    )
+    .map_err(fail)?;
+    let mut bytes = Vec::new();
+    let mut encoder = png::Encoder::new(&mut bytes, w, h);
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.set_depth(png::BitDepth::Eight);
+    encoder.set_compression(png::Compression::Best);
+    encoder
+        .write_header()
+        .and_then(|mut writer| writer.write_image_data(&pixels))
+        .map_err(|e| fail(e.to_string()))?;
+    Ok(bytes)
+}

@@ -1,0 +1,265 @@
+//! The `friction-lab` program as a user runs it: its files, its listing, and its errors on
+//! bad input (a clear message naming the field, a non-zero exit code, and no output).
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn friction_lab(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_friction-lab"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+#[test]
+fn models_json_lists_every_model_and_parameter() {
+    let o = friction_lab(&["models", "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let models = v["models"].as_array().unwrap();
+    let names: Vec<_> = models.iter().map(|m| m["name"].as_str().unwrap()).collect();
+    assert_eq!(&names[..6], &["AV", "CS", "CVS", "DV", "SD", "SV"]);
+    assert!(names.contains(&"lugre") && names.contains(&"karnopp"));
+    let f_s = v["parameters"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|p| p["name"] == "F_s")
+        .unwrap();
+    assert_eq!(f_s["default"], 7.5);
+    assert_eq!(f_s["unit"], "N");
+    assert_eq!(f_s["range_text"], "[0, inf)");
+    assert_eq!(f_s["sets"]["lugre-1995"], 1.5);
+    assert_eq!(
+        models[0]["equation_printed"],
+        "F = F_s + mu_v*v + S(v); at rest F in [F_s - C2, F_s + C1]"
+    );
+}
+
+#[test]
+fn curve_writes_csv_png_svg_and_key_values() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("sd");
+    let o = friction_lab(&[
+        "curve",
+        "SD",
+        "--out",
+        out.to_str().unwrap(),
+        "--points",
+        "500",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let png = std::fs::read(out.join("curve-SD.png")).unwrap();
+    assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
+    let svg = std::fs::read_to_string(out.join("curve-SD.svg")).unwrap();
+    assert!(svg.contains("displacement X (m)") && svg.contains("friction force F (N)"));
+    let csv = std::fs::read_to_string(out.join("curve-SD.csv")).unwrap();
+    assert!(csv.starts_with("variant,branch,t,x,v,z,force\n"));
+    assert_eq!(csv.lines().count(), 1 + 2 * 500 + 2);
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("curve-SD.json")).unwrap()).unwrap();
+    assert_eq!(json["key_values"]["right_of_zero"], 7.5);
+    assert_eq!(json["key_values"]["left_of_zero"], -7.5);
+    // F = F_s + F_c (1 - exp(-sigma X / F_c)) at X = 8/3 + 2.
+    let expected = 7.5 + 6.0 * (1.0 - (-5.0 * (8.0 / 3.0 + 2.0) / 6.0f64).exp());
+    let end = json["key_values"]["end_force"].as_f64().unwrap();
+    assert!(
+        (end - expected).abs() < 1e-12 * expected,
+        "{end} vs {expected}"
+    );
+}
+
+#[test]
+fn printed_variant_and_parameter_overrides_reach_the_curve() {
+    let dir = tempfile::tempdir().unwrap();
+    let params = dir.path().join("p.toml");
+    std::fs::write(&params, "F_s = 8\nC1 = 2.0\n").unwrap();
+    let out = dir.path().join("av");
+    let o = friction_lab(&[
+        "curve",
+        "av",
+        "--out",
+        out.to_str().unwrap(),
+        "--variant",
+        "printed",
+        "--params",
+        params.to_str().unwrap(),
+        "--set",
+        "C1=1",
+        "--v-max",
+        "0.5",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("curve-AV-printed.json")).unwrap()).unwrap();
+    // As printed: limits F_s - C2 = 8 - 1.5 and F_s + C1 = 8 + 1 (--set wins over the file).
+    assert_eq!(json["key_values"]["left_of_zero"], 6.5);
+    assert_eq!(json["key_values"]["right_of_zero"], 9.0);
+    assert_eq!(json["key_values"]["end_abscissa"], 0.5);
+}
+
+#[test]
+fn reproduce_writes_six_figures_notes_and_report_deterministically() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |name: &str| {
+        let out = dir.path().join(name);
+        let o = friction_lab(&["reproduce", "--out", out.to_str().unwrap()]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        out
+    };
+    let (a, b) = (run("a"), run("b"));
+    for (n, m) in [
+        (2, "AV"),
+        (3, "CS"),
+        (4, "CVS"),
+        (5, "DV"),
+        (6, "SD"),
+        (7, "SV"),
+    ] {
+        for ext in ["csv", "png", "svg"] {
+            let name = format!("figures/figure-{n}-{m}.{ext}");
+            let first = std::fs::read(a.join(&name)).unwrap();
+            assert_eq!(
+                first,
+                std::fs::read(b.join(&name)).unwrap(),
+                "{name} differs"
+            );
+        }
+    }
+    let notes = std::fs::read_to_string(a.join("reproduction.md")).unwrap();
+    assert_eq!(notes.matches("## Figure ").count(), 6);
+    // Figure 5 (two claims) and Figure 6 ("about -10") and Figure 7 (levels off).
+    assert_eq!(notes.matches("**disagrees**").count(), 4, "{notes}");
+    let report = std::fs::read_to_string(a.join("report.md")).unwrap();
+    assert!(report.contains("[Figure 6 (SD)](figures/figure-6-SD.png)"));
+}
+
+/// Runs `args` with an output folder that must not be created, and returns stderr.
+fn rejected(args: &[&str]) -> String {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let mut all: Vec<&str> = args.to_vec();
+    all.extend(["--out", out.to_str().unwrap()]);
+    let o = friction_lab(&all);
+    assert!(!o.status.success(), "{args:?} was accepted");
+    assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+    assert!(!Path::new(&out).exists(), "{args:?} wrote output");
+    let text = stderr(&o);
+    assert!(!text.contains("panicked"), "{args:?}: {text}");
+    text
+}
+
+#[test]
+fn bad_parameters_are_rejected_with_name_value_and_range() {
+    let cases: &[(&[&str], &str)] = &[
+        (
+            &["curve", "AV", "--set", "v_s=0"],
+            "parameter `v_s` = 0 is out of range: allowed (0, inf) m/s",
+        ),
+        (
+            &["curve", "CS", "--set", "F_s=-1"],
+            "parameter `F_s` = -1 is out of range: allowed [0, inf) N",
+        ),
+        (
+            &["curve", "SD", "--set", "sigma=nan"],
+            "parameter `sigma` = NaN is out of range: allowed (0, inf) N/m",
+        ),
+        (
+            &["curve", "SD", "--set", "F_c=inf"],
+            "parameter `F_c` = inf is out of range",
+        ),
+        (
+            &["curve", "SD", "--set", "mu_s=0.7"],
+            "unknown parameter `mu_s`; known parameters: F_s, F_c",
+        ),
+        (
+            &["curve", "SD", "--set", "F_s"],
+            "--set `F_s`: expected NAME=VALUE",
+        ),
+        (
+            &["curve", "SD", "--set", "F_s=abc"],
+            "`abc` is not a number",
+        ),
+        (
+            &["curve", "SD", "--param-set", "steel"],
+            "unknown parameter set `steel`; known sets: paper, lugre-1995",
+        ),
+        (
+            &[
+                "curve",
+                "lugre",
+                "--param-set",
+                "lugre-1995",
+                "--set",
+                "F_s=0",
+            ],
+            "parameter `F_s` = 0 is not allowed here",
+        ),
+        (
+            &["reproduce", "--set", "mu_v=-0.5"],
+            "parameter `mu_v` = -0.5 is out of range: allowed [0, inf) N*s/m",
+        ),
+    ];
+    for (args, message) in cases {
+        let text = rejected(args);
+        assert!(text.contains(message), "{args:?}: {text}");
+    }
+}
+
+#[test]
+fn bad_options_and_files_are_rejected() {
+    let dir = tempfile::tempdir().unwrap();
+    let malformed = dir.path().join("bad.toml");
+    std::fs::write(&malformed, "F_s = = 3\n").unwrap();
+    let text_value = dir.path().join("text.toml");
+    std::fs::write(&text_value, "F_s = \"high\"\n").unwrap();
+    let unknown = dir.path().join("unknown.toml");
+    std::fs::write(&unknown, "mass = 2.0\n").unwrap();
+    let missing = dir.path().join("missing.toml");
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (
+            vec!["curve", "bouc-wen"],
+            "unknown model `bouc-wen`; known models: AV, CS",
+        ),
+        (
+            vec!["curve", "AV", "--variant", "even"],
+            "unknown variant `even`; allowed: odd, printed",
+        ),
+        (
+            vec!["curve", "AV", "--points", "1"],
+            "option `points` = 1 is out of range: allowed [2, 1000000]",
+        ),
+        (
+            vec!["curve", "AV", "--t-end", "3"],
+            "--t-end does not apply to AV",
+        ),
+        (
+            vec!["curve", "DV", "--t-end", "-1"],
+            "option `t_end` = -1 is out of range: allowed (0, inf)",
+        ),
+        (
+            vec!["curve", "AV", "--params", malformed.to_str().unwrap()],
+            "parameter file",
+        ),
+        (
+            vec!["curve", "AV", "--params", text_value.to_str().unwrap()],
+            "`F_s` must be a number, found string",
+        ),
+        (
+            vec!["curve", "AV", "--params", unknown.to_str().unwrap()],
+            "unknown parameter `mass`",
+        ),
+        (
+            vec!["curve", "AV", "--params", missing.to_str().unwrap()],
+            "missing.toml",
+        ),
+    ];
+    for (args, message) in cases {
+        let text = rejected(&args);
+        assert!(text.contains(message), "{args:?}: {text}");
+    }
+}
