@@ -1,1 +1,32 @@
-//! Solvers for friction problems (issue 3): RK4, Dormand–Prince 5(4), implicit Euler with Newton, event location and stick–slip switching, and diffsol behind the same interface.
+//! Solvers for friction problems, instrumented so that the claims about them can be measured:
+//!
+//! - [`Rk4`]: classical Runge–Kutta, fixed step, Hermite dense output;
+//! - [`Dopri5`]: Dormand–Prince 5(4) as in Hairer's `dopri5.f`;
+//! - [`ImplicitEuler`]: implicit Euler with full or modified Newton, fixed or adaptive steps;
+//! - diffsol's BDF, TR-BDF2, ESDIRK34 and Tsit45 behind the same [`Stepper`] interface;
+//! - event location on each method's dense output and stick–slip mode switching
+//!   ([`friction`]).
+//!
+//! A problem implements [`OdeProblem`]; an [`Integrator`] drives a [`Stepper`] over it and
+//! returns a [`Solution`] with its [`Stats`], or a [`Failure`] that keeps what was computed.
+
+pub mod dopri5;
+pub mod error;
+pub mod events;
+pub mod integrator;
+pub mod options;
+pub mod problem;
+pub mod rk4;
+pub mod solution;
+pub mod stats;
+pub mod stepper;
+
+pub use dopri5::Dopri5;
+pub use error::SolverError;
+pub use integrator::{Integrator, StopReason};
+pub use options::{Options, Output, StepControl, ZenoGuard};
+pub use problem::{Control, Crossing, Entry, EventSpec, Mode, OdeProblem};
+pub use rk4::Rk4;
+pub use solution::{EventRecord, Failure, Solution};
+pub use stats::Stats;
+pub use stepper::{Ode, Stepper};

@@ -1,0 +1,405 @@
+//! The Dormand–Prince 5(4) method as in E. Hairer's `dopri5.f` (version of 1996, subroutine
+//! DOPCOR; Hairer, Nørsett, Wanner, *Solving ODEs I*, 2nd ed., sec. II.5 and II.6):
+//! the same tableau, error estimate, PI ("Lund-stabilised") step control, step-growth limits,
+//! initial-step heuristic (HINIT), FSAL, Shampine's order-4 dense output (CONTD5), and the
+//! stiffness test. A fixed-step mode (no error control) exists for convergence studies.
+
+use crate::error::SolverError;
+use crate::options::StepControl;
+use crate::stats::Stats;
+use crate::stepper::{check_finite, next_grid_point, wrms, Ode, Stepper};
+
+// Runge–Kutta coefficients of Dormand and Prince (1980), subroutine CDOPRI of dopri5.f.
+const C2: f64 = 0.2;
+const C3: f64 = 0.3;
+const C4: f64 = 0.8;
+const C5: f64 = 8.0 / 9.0;
+const A21: f64 = 0.2;
+const A31: f64 = 3.0 / 40.0;
+const A32: f64 = 9.0 / 40.0;
+const A41: f64 = 44.0 / 45.0;
+const A42: f64 = -56.0 / 15.0;
+const A43: f64 = 32.0 / 9.0;
+const A51: f64 = 19372.0 / 6561.0;
+const A52: f64 = -25360.0 / 2187.0;
+const A53: f64 = 64448.0 / 6561.0;
+const A54: f64 = -212.0 / 729.0;
+const A61: f64 = 9017.0 / 3168.0;
+const A62: f64 = -355.0 / 33.0;
+const A63: f64 = 46732.0 / 5247.0;
+const A64: f64 = 49.0 / 176.0;
+const A65: f64 = -5103.0 / 18656.0;
+const A71: f64 = 35.0 / 384.0;
+const A73: f64 = 500.0 / 1113.0;
+const A74: f64 = 125.0 / 192.0;
+const A75: f64 = -2187.0 / 6784.0;
+const A76: f64 = 11.0 / 84.0;
+// Error coefficients E_i = b_i − b̂_i (CDOPRI).
+const E1: f64 = 71.0 / 57600.0;
+const E3: f64 = -71.0 / 16695.0;
+const E4: f64 = 71.0 / 1920.0;
+const E5: f64 = -17253.0 / 339200.0;
+const E6: f64 = 22.0 / 525.0;
+const E7: f64 = -1.0 / 40.0;
+// Dense output of Shampine (1986) (CDOPRI).
+const D1: f64 = -12715105075.0 / 11282082432.0;
+const D3: f64 = 87487479700.0 / 32700410799.0;
+const D4: f64 = -10690763975.0 / 1880347072.0;
+const D5: f64 = 701980252875.0 / 199316789632.0;
+const D6: f64 = -1453857185.0 / 822651844.0;
+const D7: f64 = 69997945.0 / 29380423.0;
+
+// Step-size control: the defaults of dopri5.f (WORK(2)–WORK(5)).
+/// Safety factor SAFE (WORK(2)).
+const SAFE: f64 = 0.9;
+/// FAC1: the new step is at least FAC1 times the old one (WORK(3)).
+const FAC1: f64 = 0.2;
+/// FAC2: the new step is at most FAC2 times the old one (WORK(4)).
+const FAC2: f64 = 10.0;
+/// BETA of the PI ("Lund") stabilisation (WORK(5)).
+const BETA: f64 = 0.04;
+/// EXPO1 = 1/5 − 0.75·BETA: the exponent of the current error (DOPCOR).
+const EXPO1: f64 = 0.2 - BETA * 0.75;
+/// FACOLD's starting value and floor (DOPCOR).
+const FACOLD_MIN: f64 = 1e-4;
+/// UROUND: the unit round-off dopri5.f assumes (WORK(1)).
+const UROUND: f64 = 2.3e-16;
+/// IORD, the order used by HINIT.
+const HINIT_ORDER: f64 = 5.0;
+// Stiffness detection (DOPCOR): test every NSTIFF accepted steps, or every step once
+// suspicious; h·λ beyond 3.25 is "stiff"; 15 stiff verdicts in a row mean stiffness, and 6
+// non-stiff ones clear the suspicion.
+const NSTIFF: usize = 1000;
+const STIFF_HLAMB: f64 = 3.25;
+const STIFF_COUNT: usize = 15;
+const NONSTIFF_COUNT: usize = 6;
+
+/// Hairer's Dormand–Prince 5(4), adaptive or with fixed steps.
+#[derive(Clone, Debug)]
+pub struct Dopri5 {
+    control: StepControl,
+    h_max: f64,
+    max_steps: usize,
+    h: f64,
+    t_start: f64,
+    t_prev: f64,
+    t: f64,
+    y: Vec<f64>,
+    y1: Vec<f64>,
+    ysti: Vec<f64>,
+    /// k[0] = f(t, y) (FSAL), k[1..6] stages 2..6, k[6] = f(t + h, y1).
+    k: [Vec<f64>; 7],
+    err: Vec<f64>,
+    /// Dense output coefficients CONT of the last accepted step.
+    cont: [Vec<f64>; 5],
+    facold: f64,
+    reject: bool,
+    attempts: usize,
+    iasti: usize,
+    nonsti: usize,
+    stiff_at: Option<f64>,
+    stats: Stats,
+}
+
+impl Dopri5 {
+    /// Dormand–Prince for `dim` unknowns with the given step control, largest step and
+    /// step limit (NMAX).
+    pub fn new(control: StepControl, h_max: f64, max_steps: usize, dim: usize) -> Self {
+        let v = || vec![0.0; dim];
+        Dopri5 {
+            control,
+            h_max,
+            max_steps,
+            h: 0.0,
+            t_start: 0.0,
+            t_prev: 0.0,
+            t: 0.0,
+            y: v(),
+            y1: v(),
+            ysti: v(),
+            k: [v(), v(), v(), v(), v(), v(), v()],
+            err: v(),
+            cont: [v(), v(), v(), v(), v()],
+            facold: FACOLD_MIN,
+            reject: false,
+            attempts: 0,
+            iasti: 0,
+            nonsti: 0,
+            stiff_at: None,
+            stats: Stats::default(),
+        }
+    }
+
+    /// HINIT of dopri5.f: an explicit Euler step of size 0.01·‖y0‖/‖f0‖ estimates the second
+    /// derivative; h is chosen so that h⁵·max(‖f0‖, ‖y''‖) = 0.01.
+    fn hinit(&mut self, ode: &Ode, rtol: f64, atol: f64, t_stop: f64) -> f64 {
+        let (y, f0) = (&self.y, &self.k[0]);
+        let sk = |i: usize| atol + rtol * y[i].abs();
+        let dnf: f64 = (0..y.len()).map(|i| (f0[i] / sk(i)).powi(2)).sum();
+        let dny: f64 = (0..y.len()).map(|i| (y[i] / sk(i)).powi(2)).sum();
+        let mut h = if dnf <= 1e-10 || dny <= 1e-10 {
+            1e-6
+        } else {
+            (dny / dnf).sqrt() * 0.01
+        };
+        h = h.min(self.h_max).min(t_stop - self.t);
+        for i in 0..y.len() {
+            self.y1[i] = y[i] + h * f0[i];
+        }
+        let (y1, f1) = (&self.y1, &mut self.k[1]);
+        ode.explicit_rhs(self.t + h, y1, f1, &mut self.stats);
+        let der2: f64 = (0..y.len())
+            .map(|i| ((self.k[1][i] - self.k[0][i]) / sk(i)).powi(2))
+            .sum::<f64>()
+            .sqrt()
+            / h;
+        let der12 = der2.abs().max(dnf.sqrt());
+        let h1 = if der12 <= 1e-15 {
+            (h * 1e-3).max(1e-6)
+        } else {
+            (0.01 / der12).powf(1.0 / HINIT_ORDER)
+        };
+        (100.0 * h).min(h1).min(self.h_max)
+    }
+
+    /// The six stages, the fifth-order solution `y1`, f at its end (`k[6]`, FSAL) and the
+    /// error estimate `err = h·Σ E_i k_i`.
+    fn stages(&mut self, ode: &Ode, h: f64) {
+        let n = self.y.len();
+        let t = self.t;
+        let y = &self.y;
+        let [k1, k2, k3, k4, k5, k6, k7] = &mut self.k;
+        let y1 = &mut self.y1;
+        for i in 0..n {
+            y1[i] = y[i] + h * A21 * k1[i];
+        }
+        ode.explicit_rhs(t + C2 * h, y1, k2, &mut self.stats);
+        for i in 0..n {
+            y1[i] = y[i] + h * (A31 * k1[i] + A32 * k2[i]);
+        }
+        ode.explicit_rhs(t + C3 * h, y1, k3, &mut self.stats);
+        for i in 0..n {
+            y1[i] = y[i] + h * (A41 * k1[i] + A42 * k2[i] + A43 * k3[i]);
+        }
+        ode.explicit_rhs(t + C4 * h, y1, k4, &mut self.stats);
+        for i in 0..n {
+            y1[i] = y[i] + h * (A51 * k1[i] + A52 * k2[i] + A53 * k3[i] + A54 * k4[i]);
+        }
+        ode.explicit_rhs(t + C5 * h, y1, k5, &mut self.stats);
+        for i in 0..n {
+            self.ysti[i] =
+                y[i] + h * (A61 * k1[i] + A62 * k2[i] + A63 * k3[i] + A64 * k4[i] + A65 * k5[i]);
+        }
+        ode.explicit_rhs(t + h, &self.ysti, k6, &mut self.stats);
+        for i in 0..n {
+            y1[i] =
+                y[i] + h * (A71 * k1[i] + A73 * k3[i] + A74 * k4[i] + A75 * k5[i] + A76 * k6[i]);
+        }
+        ode.explicit_rhs(t + h, y1, k7, &mut self.stats);
+        for i in 0..n {
+            self.err[i] =
+                h * (E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i] + E7 * k7[i]);
+        }
+    }
+
+    /// Stiffness test of DOPCOR, run as the step is accepted (NACCPT already counting it):
+    /// h·λ ≈ h·‖k7 − k6‖/‖y1 − ysti‖.
+    fn stiffness_test(&mut self, h: f64) {
+        let accepted = self.stats.steps + 1;
+        if accepted % NSTIFF != 0 && self.iasti == 0 {
+            return;
+        }
+        let num: f64 = self.k[6]
+            .iter()
+            .zip(&self.k[5])
+            .map(|(a, b)| (a - b).powi(2))
+            .sum();
+        let den: f64 = self
+            .y1
+            .iter()
+            .zip(&self.ysti)
+            .map(|(a, b)| (a - b).powi(2))
+            .sum();
+        let hlamb = if den > 0.0 {
+            h * (num / den).sqrt()
+        } else {
+            0.0
+        };
+        if hlamb > STIFF_HLAMB {
+            self.nonsti = 0;
+            self.iasti += 1;
+            if self.iasti == STIFF_COUNT && self.stiff_at.is_none() {
+                self.stiff_at = Some(self.t);
+            }
+        } else {
+            self.nonsti += 1;
+            if self.nonsti == NONSTIFF_COUNT {
+                self.iasti = 0;
+            }
+        }
+    }
+
+    /// Accepts the step just computed: dense output coefficients, FSAL, new time.
+    fn accept(&mut self, h: f64, t_new: f64) -> Result<(), SolverError> {
+        check_finite(&self.y1, self.t, h, "Dormand-Prince step result")?;
+        let [c0, c1, c2, c3, c4] = &mut self.cont;
+        let k = &self.k;
+        for i in 0..self.y.len() {
+            let ydiff = self.y1[i] - self.y[i];
+            let bspl = h * k[0][i] - ydiff;
+            c0[i] = self.y[i];
+            c1[i] = ydiff;
+            c2[i] = bspl;
+            c3[i] = -h * k[6][i] + ydiff - bspl;
+            c4[i] = h
+                * (D1 * k[0][i]
+                    + D3 * k[2][i]
+                    + D4 * k[3][i]
+                    + D5 * k[4][i]
+                    + D6 * k[5][i]
+                    + D7 * k[6][i]);
+        }
+        let [k1, .., k7] = &mut self.k;
+        std::mem::swap(k1, k7);
+        std::mem::swap(&mut self.y, &mut self.y1);
+        self.t_prev = self.t;
+        self.t = t_new;
+        self.stats.steps += 1;
+        Ok(())
+    }
+
+    fn check_limits(&self, h: f64) -> Result<(), SolverError> {
+        if self.attempts > self.max_steps {
+            return Err(SolverError::TooManySteps {
+                t: self.t,
+                h,
+                max: self.max_steps,
+            });
+        }
+        if 0.1 * h.abs() <= self.t.abs() * UROUND {
+            return Err(SolverError::StepSizeUnderflow { t: self.t, h });
+        }
+        Ok(())
+    }
+}
+
+impl Stepper for Dopri5 {
+    fn name(&self) -> &'static str {
+        "dopri5"
+    }
+
+    fn start(&mut self, ode: &Ode, t: f64, y: &[f64]) -> Result<(), SolverError> {
+        ode.require_regular_mass("dopri5")?;
+        self.t_start = t;
+        self.t_prev = t;
+        self.t = t;
+        self.y.copy_from_slice(y);
+        self.facold = FACOLD_MIN;
+        self.reject = false;
+        self.iasti = 0;
+        self.nonsti = 0;
+        ode.explicit_rhs(t, y, &mut self.k[0], &mut self.stats);
+        self.h = match self.control {
+            StepControl::Fixed { h } => h,
+            StepControl::Adaptive { h0: Some(h), .. } => h,
+            StepControl::Adaptive { h0: None, .. } => 0.0,
+        };
+        Ok(())
+    }
+
+    fn step(&mut self, ode: &Ode, t_stop: f64) -> Result<(), SolverError> {
+        let (rtol, atol) = match self.control {
+            StepControl::Fixed { h } => {
+                let t_new = next_grid_point(self.t_start, h, self.t, t_stop);
+                let step = t_new - self.t;
+                self.attempts += 1;
+                self.check_limits(step)?;
+                self.stages(ode, step);
+                return self.accept(step, t_new);
+            }
+            StepControl::Adaptive { rtol, atol, .. } => (rtol, atol),
+        };
+        if self.h == 0.0 {
+            self.h = self.hinit(ode, rtol, atol, t_stop);
+        }
+        loop {
+            let mut h = self.h;
+            self.attempts += 1;
+            self.check_limits(h)?;
+            let last = self.t + 1.01 * h - t_stop > 0.0;
+            if last {
+                h = t_stop - self.t;
+            }
+            self.stages(ode, h);
+            let err = wrms(&self.err, &self.y, &self.y1, rtol, atol);
+            if !err.is_finite() {
+                // A NaN error estimate cannot steer the step: cut it as FAC1 would.
+                self.stats.rejected_error += 1;
+                self.reject = true;
+                self.h = h * FAC1;
+                continue;
+            }
+            let fac11 = err.powf(EXPO1);
+            // Lund stabilisation, limited so that FAC1 <= hnew/h <= FAC2.
+            let fac = (fac11 / self.facold.powf(BETA) / SAFE).clamp(1.0 / FAC2, 1.0 / FAC1);
+            let h_new = h / fac;
+            if err <= 1.0 {
+                self.facold = err.max(FACOLD_MIN);
+                self.stiffness_test(h);
+                self.accept(h, if last { t_stop } else { self.t + h })?;
+                // On the last step DOPCOR returns H = HNEW before the HMAX and REJECT limits.
+                self.h = if last {
+                    h_new
+                } else if self.reject {
+                    h_new.min(self.h_max).min(h)
+                } else {
+                    h_new.min(self.h_max)
+                };
+                self.reject = false;
+                return Ok(());
+            }
+            self.reject = true;
+            self.stats.rejected_error += 1;
+            self.h = h / (1.0 / FAC1).min(fac11 / SAFE);
+        }
+    }
+
+    fn t_prev(&self) -> f64 {
+        self.t_prev
+    }
+
+    fn t(&self) -> f64 {
+        self.t
+    }
+
+    fn y(&self) -> &[f64] {
+        &self.y
+    }
+
+    fn h(&self) -> f64 {
+        self.h
+    }
+
+    /// CONTD5: `u(θ) = c0 + θ(c1 + (1−θ)(c2 + θ(c3 + (1−θ)c4)))`, θ = (t − t_old)/h.
+    fn dense_output(&self, t: f64, out: &mut [f64]) {
+        let h = self.t - self.t_prev;
+        if h == 0.0 {
+            out.copy_from_slice(&self.y);
+            return;
+        }
+        let th = (t - self.t_prev) / h;
+        let th1 = 1.0 - th;
+        let [c0, c1, c2, c3, c4] = &self.cont;
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = c0[i] + th * (c1[i] + th1 * (c2[i] + th * (c3[i] + th1 * c4[i])));
+        }
+    }
+
+    fn stats(&self) -> Stats {
+        self.stats
+    }
+
+    fn stiffness_detected_at(&self) -> Option<f64> {
+        self.stiff_at
+    }
+}

@@ -1,0 +1,107 @@
+//! Why a solver stopped short: each error says where (t, h) and why.
+
+use thiserror::Error;
+
+/// A failed integration. The solution computed up to the failure is kept by the caller
+/// (see [`crate::Failure`]).
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum SolverError {
+    /// The step size fell below what the floating-point time can resolve.
+    #[error("step size underflow at t = {t}: h = {h:e} is below the resolution of t")]
+    StepSizeUnderflow {
+        /// Time reached.
+        t: f64,
+        /// The step size that was too small.
+        h: f64,
+    },
+    /// More steps than allowed.
+    #[error("too many steps: {max} steps taken by t = {t} (h = {h:e}) without reaching the end")]
+    TooManySteps {
+        /// Time reached.
+        t: f64,
+        /// Current step size.
+        h: f64,
+        /// The limit.
+        max: usize,
+    },
+    /// Newton's iteration failed even after the step was cut repeatedly.
+    #[error(
+        "Newton iteration diverged at t = {t} with h = {h:e} after {cuts} step-size cuts: {why}"
+    )]
+    NewtonDivergence {
+        /// Time of the step's start.
+        t: f64,
+        /// The last step size tried.
+        h: f64,
+        /// How many times the step was cut.
+        cuts: usize,
+        /// What was seen (contraction factor, iteration count).
+        why: String,
+    },
+    /// The iteration matrix could not be factorised.
+    #[error("singular iteration matrix at t = {t} with h = {h:e}")]
+    SingularMatrix {
+        /// Time of the step's start.
+        t: f64,
+        /// Step size.
+        h: f64,
+    },
+    /// A NaN or infinity appeared in the state.
+    #[error("non-finite state at t = {t} (h = {h:e}): {what}")]
+    NonFinite {
+        /// Time of the step's start.
+        t: f64,
+        /// Step size.
+        h: f64,
+        /// Which quantity.
+        what: String,
+    },
+    /// Events accumulate: too many in too short a time (chattering or a Zeno point).
+    #[error("too many events: {count} events within {window:e} s before t = {t} (chattering or Zeno behaviour); last event: {last}")]
+    TooManyEvents {
+        /// Time of the last event.
+        t: f64,
+        /// Events counted in the window.
+        count: usize,
+        /// Length of the window, s.
+        window: f64,
+        /// Name of the last event.
+        last: String,
+    },
+    /// An option outside its range.
+    #[error("invalid option `{name}` = {value}: allowed {allowed}")]
+    InvalidOption {
+        /// Option name.
+        name: &'static str,
+        /// The rejected value.
+        value: f64,
+        /// Allowed range.
+        allowed: &'static str,
+    },
+    /// The end time lies before the start.
+    #[error("t_end = {t_end} lies before t0 = {t0}: integration runs forward in time")]
+    EndBeforeStart {
+        /// Start time.
+        t0: f64,
+        /// End time.
+        t_end: f64,
+    },
+    /// A solver that cannot take the problem (an explicit method and a singular mass matrix).
+    #[error("{solver} cannot integrate this problem: {why}")]
+    Unsupported {
+        /// The solver.
+        solver: &'static str,
+        /// Why.
+        why: String,
+    },
+    /// diffsol reported an error.
+    #[error("diffsol {solver} failed at t = {t}: {message}")]
+    Diffsol {
+        /// Which diffsol method.
+        solver: &'static str,
+        /// Time reached.
+        t: f64,
+        /// diffsol's message.
+        message: String,
+    },
+}

@@ -1,0 +1,149 @@
+//! What the caller asks of a run: time span, step control, limits and output.
+
+use crate::error::SolverError;
+
+/// How the step size is chosen.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum StepControl {
+    /// Constant step `h` (the last step before the end or an event is shortened to land
+    /// exactly on it, never overshooting).
+    Fixed {
+        /// Step size, s.
+        h: f64,
+    },
+    /// Error-controlled steps with tolerance `atol + rtol·|y|` per component.
+    Adaptive {
+        /// Relative tolerance.
+        rtol: f64,
+        /// Absolute tolerance.
+        atol: f64,
+        /// Initial step; `None` lets the method choose (Hairer's HINIT for Dormand–Prince).
+        h0: Option<f64>,
+    },
+}
+
+/// Guard against chattering: an error when more than `max_events` events fall within a
+/// window of `window` seconds.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ZenoGuard {
+    /// Events allowed in one window.
+    pub max_events: usize,
+    /// Window length, s.
+    pub window: f64,
+}
+
+impl Default for ZenoGuard {
+    fn default() -> Self {
+        ZenoGuard {
+            max_events: 100,
+            window: 1e-6,
+        }
+    }
+}
+
+/// Which points the solution records.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub enum Output {
+    /// The end of every accepted step, and both sides of every event.
+    #[default]
+    Steps,
+    /// These times (increasing), by dense output, and both sides of every event.
+    Grid(Vec<f64>),
+}
+
+/// Options of one integration.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Options {
+    /// Start time.
+    pub t0: f64,
+    /// End time.
+    pub t_end: f64,
+    /// Step-size control.
+    pub step: StepControl,
+    /// Largest step; `None` for `t_end − t0` (as in Hairer's codes).
+    pub h_max: Option<f64>,
+    /// Most steps (accepted and rejected) before giving up.
+    pub max_steps: usize,
+    /// Chattering guard.
+    pub zeno: ZenoGuard,
+    /// What to record.
+    pub output: Output,
+}
+
+impl Options {
+    /// Adaptive stepping from `t0` to `t_end` with tolerances `rtol`, `atol`.
+    pub fn adaptive(t0: f64, t_end: f64, rtol: f64, atol: f64) -> Self {
+        Options {
+            t0,
+            t_end,
+            step: StepControl::Adaptive {
+                rtol,
+                atol,
+                h0: None,
+            },
+            h_max: None,
+            max_steps: 10_000_000,
+            zeno: ZenoGuard::default(),
+            output: Output::Steps,
+        }
+    }
+
+    /// Fixed steps of `h` from `t0` to `t_end`.
+    pub fn fixed(t0: f64, t_end: f64, h: f64) -> Self {
+        Options {
+            step: StepControl::Fixed { h },
+            ..Options::adaptive(t0, t_end, 1e-6, 1e-6)
+        }
+    }
+
+    /// Checks every option: finite times with `t_end > t0`, positive finite step and
+    /// tolerances.
+    pub fn validate(&self) -> Result<(), SolverError> {
+        let positive = |name, value: f64| {
+            if value.is_finite() && value > 0.0 {
+                Ok(())
+            } else {
+                Err(SolverError::InvalidOption {
+                    name,
+                    value,
+                    allowed: "(0, inf)",
+                })
+            }
+        };
+        for (name, value) in [("t0", self.t0), ("t_end", self.t_end)] {
+            if !value.is_finite() {
+                return Err(SolverError::InvalidOption {
+                    name,
+                    value,
+                    allowed: "a finite number",
+                });
+            }
+        }
+        if self.t_end <= self.t0 {
+            return Err(SolverError::EndBeforeStart {
+                t0: self.t0,
+                t_end: self.t_end,
+            });
+        }
+        match self.step {
+            StepControl::Fixed { h } => positive("dt", h)?,
+            StepControl::Adaptive { rtol, atol, h0 } => {
+                positive("rtol", rtol)?;
+                positive("atol", atol)?;
+                if let Some(h) = h0 {
+                    positive("dt", h)?;
+                }
+            }
+        }
+        if let Some(h) = self.h_max {
+            positive("h_max", h)?;
+        }
+        positive("zeno window", self.zeno.window)?;
+        Ok(())
+    }
+
+    /// The largest step.
+    pub fn h_max(&self) -> f64 {
+        self.h_max.unwrap_or(self.t_end - self.t0)
+    }
+}

@@ -1,0 +1,134 @@
+//! The classical fourth-order Runge–Kutta method with fixed steps, and its cubic Hermite
+//! dense output (Hairer, Nørsett, Wanner, *Solving ODEs I*, sec. II.6, eq. (6.7)).
+//!
+//! The derivative at the end of a step is the first stage of the next one, so a step costs
+//! four evaluations of f after the first.
+
+use crate::error::SolverError;
+use crate::stats::Stats;
+use crate::stepper::{check_finite, next_grid_point, Ode, Stepper};
+
+/// RK4 with constant step `h`.
+#[derive(Clone, Debug)]
+pub struct Rk4 {
+    h: f64,
+    t_start: f64,
+    t_prev: f64,
+    t: f64,
+    y_prev: Vec<f64>,
+    y: Vec<f64>,
+    /// f at the start of the last step.
+    f_prev: Vec<f64>,
+    /// f at the current point (the next step's first stage).
+    f: Vec<f64>,
+    k: [Vec<f64>; 3],
+    stage: Vec<f64>,
+    stats: Stats,
+}
+
+impl Rk4 {
+    /// RK4 with step `h` for a system of `dim` unknowns.
+    pub fn new(h: f64, dim: usize) -> Self {
+        let v = || vec![0.0; dim];
+        Rk4 {
+            h,
+            t_start: 0.0,
+            t_prev: 0.0,
+            t: 0.0,
+            y_prev: v(),
+            y: v(),
+            f_prev: v(),
+            f: v(),
+            k: [v(), v(), v()],
+            stage: v(),
+            stats: Stats::default(),
+        }
+    }
+}
+
+impl Stepper for Rk4 {
+    fn name(&self) -> &'static str {
+        "rk4"
+    }
+
+    fn start(&mut self, ode: &Ode, t: f64, y: &[f64]) -> Result<(), SolverError> {
+        ode.require_regular_mass("rk4")?;
+        self.t_start = t;
+        self.t_prev = t;
+        self.t = t;
+        self.y.copy_from_slice(y);
+        ode.explicit_rhs(t, y, &mut self.f, &mut self.stats);
+        Ok(())
+    }
+
+    fn step(&mut self, ode: &Ode, t_stop: f64) -> Result<(), SolverError> {
+        let t0 = self.t;
+        let t1 = next_grid_point(self.t_start, self.h, t0, t_stop);
+        let h = t1 - t0;
+        let n = self.y.len();
+        let [k2, k3, k4] = &mut self.k;
+        let (y, k1, s) = (&self.y, &self.f, &mut self.stage);
+        for i in 0..n {
+            s[i] = y[i] + 0.5 * h * k1[i];
+        }
+        ode.explicit_rhs(t0 + 0.5 * h, s, k2, &mut self.stats);
+        for i in 0..n {
+            s[i] = y[i] + 0.5 * h * k2[i];
+        }
+        ode.explicit_rhs(t0 + 0.5 * h, s, k3, &mut self.stats);
+        for i in 0..n {
+            s[i] = y[i] + h * k3[i];
+        }
+        ode.explicit_rhs(t1, s, k4, &mut self.stats);
+        self.y_prev.copy_from_slice(&self.y);
+        for i in 0..n {
+            self.y[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+        }
+        check_finite(&self.y, t0, h, "RK4 step result")?;
+        std::mem::swap(&mut self.f_prev, &mut self.f);
+        ode.explicit_rhs(t1, &self.y, &mut self.f, &mut self.stats);
+        self.t_prev = t0;
+        self.t = t1;
+        self.stats.steps += 1;
+        Ok(())
+    }
+
+    fn t_prev(&self) -> f64 {
+        self.t_prev
+    }
+
+    fn t(&self) -> f64 {
+        self.t
+    }
+
+    fn y(&self) -> &[f64] {
+        &self.y
+    }
+
+    fn h(&self) -> f64 {
+        self.h
+    }
+
+    /// `u(θ) = (1−θ)·y0 + θ·y1 + θ(θ−1)·((1−2θ)(y1−y0) + (θ−1)·h·f0 + θ·h·f1)`.
+    fn dense_output(&self, t: f64, out: &mut [f64]) {
+        let h = self.t - self.t_prev;
+        if h == 0.0 {
+            out.copy_from_slice(&self.y);
+            return;
+        }
+        let th = (t - self.t_prev) / h;
+        for (i, o) in out.iter_mut().enumerate() {
+            let (y0, y1) = (self.y_prev[i], self.y[i]);
+            *o = (1.0 - th) * y0
+                + th * y1
+                + th * (th - 1.0)
+                    * ((1.0 - 2.0 * th) * (y1 - y0)
+                        + (th - 1.0) * h * self.f_prev[i]
+                        + th * h * self.f[i]);
+        }
+    }
+
+    fn stats(&self) -> Stats {
+        self.stats
+    }
+}

@@ -1,0 +1,49 @@
+//! Run statistics: a plain struct that tests compare and `summary.json` reports.
+
+use serde::Serialize;
+use std::ops::AddAssign;
+
+/// Counts of the work a solver did.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct Stats {
+    /// Accepted steps (a step cut short by an event counts once, as accepted).
+    pub steps: usize,
+    /// Steps rejected by the local error test.
+    pub rejected_error: usize,
+    /// Steps rejected because Newton's iteration did not converge.
+    pub rejected_newton: usize,
+    /// Accepted steps whose end was discarded because an event occurred inside them; the
+    /// solution is kept up to the event and the solver restarts there.
+    pub cut_at_event: usize,
+    /// Right-hand side evaluations (including those of finite-difference Jacobians).
+    pub rhs_evals: usize,
+    /// Jacobian evaluations (analytic or by finite differences).
+    pub jacobian_evals: usize,
+    /// LU factorisations of the iteration matrix M − h·γ·J.
+    pub lu_factorizations: usize,
+    /// Newton iterations (each one linear solve).
+    pub newton_iterations: usize,
+    /// Events handled.
+    pub events: usize,
+}
+
+impl Stats {
+    /// All rejected steps, whatever the cause.
+    pub fn rejected(&self) -> usize {
+        self.rejected_error + self.rejected_newton
+    }
+}
+
+impl AddAssign for Stats {
+    fn add_assign(&mut self, o: Stats) {
+        self.steps += o.steps;
+        self.rejected_error += o.rejected_error;
+        self.rejected_newton += o.rejected_newton;
+        self.cut_at_event += o.cut_at_event;
+        self.rhs_evals += o.rhs_evals;
+        self.jacobian_evals += o.jacobian_evals;
+        self.lu_factorizations += o.lu_factorizations;
+        self.newton_iterations += o.newton_iterations;
+        self.events += o.events;
+    }
+}

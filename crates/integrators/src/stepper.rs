@@ -1,0 +1,119 @@
+//! The interface every one-step method implements, and the problem as a method sees it.
+
+use crate::error::SolverError;
+use crate::problem::{Mode, OdeProblem};
+use crate::stats::Stats;
+
+/// The problem in one mode, as the methods see it.
+#[derive(Clone, Copy)]
+pub struct Ode<'a> {
+    /// The problem.
+    pub problem: &'a dyn OdeProblem,
+    /// The mode the right-hand side is evaluated in.
+    pub mode: Mode,
+}
+
+impl Ode<'_> {
+    /// `dy = f(t, y)`, counted in `stats`.
+    pub fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64], stats: &mut Stats) {
+        stats.rhs_evals += 1;
+        self.problem.rhs(t, y, self.mode, dy);
+    }
+
+    /// `dy = M⁻¹·f(t, y)` for explicit methods, counted in `stats`; `M` must be regular.
+    pub fn explicit_rhs(&self, t: f64, y: &[f64], dy: &mut [f64], stats: &mut Stats) {
+        self.rhs(t, y, dy, stats);
+        if let Some(mass) = self.problem.mass() {
+            dy.iter_mut().zip(mass).for_each(|(d, m)| *d /= m);
+        }
+    }
+
+    /// Rejects a singular mass matrix for a method that needs `M⁻¹`.
+    pub fn require_regular_mass(&self, solver: &'static str) -> Result<(), SolverError> {
+        match self.problem.mass() {
+            Some(mass) if mass.contains(&0.0) => Err(SolverError::Unsupported {
+                solver,
+                why: "an explicit method needs a regular mass matrix, and this one has zeros \
+                      on its diagonal (a DAE): use implicit-euler or bdf"
+                    .into(),
+            }),
+            _ => Ok(()),
+        }
+    }
+}
+
+/// A one-step method, driven step by step by [`crate::Integrator`].
+pub trait Stepper {
+    /// The method's name as the command line takes it.
+    fn name(&self) -> &'static str;
+
+    /// (Re)starts at (t, y) in the given mode: any stage reused across steps (FSAL), any
+    /// history and any Jacobian are forgotten.
+    fn start(&mut self, ode: &Ode, t: f64, y: &[f64]) -> Result<(), SolverError>;
+
+    /// Takes one accepted step ending at or before `t_stop` (landing on it exactly when it
+    /// is within reach). Rejected attempts are retried inside and counted.
+    fn step(&mut self, ode: &Ode, t_stop: f64) -> Result<(), SolverError>;
+
+    /// Start of the last accepted step.
+    fn t_prev(&self) -> f64;
+
+    /// Current time (end of the last accepted step).
+    fn t(&self) -> f64;
+
+    /// Current state.
+    fn y(&self) -> &[f64];
+
+    /// The step size the method would try next.
+    fn h(&self) -> f64;
+
+    /// The method's dense output at `t` in `[t_prev, t]`.
+    fn dense_output(&self, t: f64, y: &mut [f64]);
+
+    /// Work done so far.
+    fn stats(&self) -> Stats;
+
+    /// Where a stiffness test (Hairer's, in Dormand–Prince) first found the problem stiff.
+    fn stiffness_detected_at(&self) -> Option<f64> {
+        None
+    }
+}
+
+/// `Σ ((e_i / (atol + rtol·max(|a_i|, |b_i|)))²) / n` square-rooted: the weighted RMS norm
+/// of Hairer's codes (`dopri5.f`, error estimation).
+pub fn wrms(e: &[f64], a: &[f64], b: &[f64], rtol: f64, atol: f64) -> f64 {
+    let sum: f64 = e
+        .iter()
+        .zip(a.iter().zip(b))
+        .map(|(e, (a, b))| {
+            let sk = atol + rtol * a.abs().max(b.abs());
+            (e / sk).powi(2)
+        })
+        .sum();
+    (sum / e.len() as f64).sqrt()
+}
+
+/// Where the next fixed step of size `h` ends: the grid point `t_start + k·h` after `t`,
+/// or `t_stop` when that lies closer than a relative `1e-10·h` beyond it (so the last step
+/// is shortened, never overshot, and never followed by a sliver).
+pub fn next_grid_point(t_start: f64, h: f64, t: f64, t_stop: f64) -> f64 {
+    let k = ((t - t_start) / h).round() + 1.0;
+    let candidate = t_start + k * h;
+    if candidate >= t_stop - 1e-10 * h {
+        t_stop
+    } else {
+        candidate
+    }
+}
+
+/// Checks that every component of `y` is finite.
+pub fn check_finite(y: &[f64], t: f64, h: f64, what: &str) -> Result<(), SolverError> {
+    match y.iter().position(|v| !v.is_finite()) {
+        None => Ok(()),
+        Some(i) => Err(SolverError::NonFinite {
+            t,
+            h,
+            what: format!("{what}, component {i} = {}", y[i]),
+        }),
+    }
+}

@@ -1,0 +1,124 @@
+//! Test problems shared by the integrator tests.
+#![allow(dead_code)]
+
+use integrators::{Control, Crossing, EventSpec, Mode, OdeProblem};
+
+/// The Arenstorf orbit (Hairer, Nørsett, Wanner, *Solving ODEs I*, sec. II.0, eq. (0.1)).
+pub struct Arenstorf;
+
+/// Initial state of the Arenstorf orbit, digits as printed in Hairer's driver dr_dopri5.f.
+#[allow(clippy::excessive_precision)]
+pub const ARENSTORF_Y0: [f64; 4] = [0.994, 0.0, 0.0, -2.00158510637908252240537862224];
+/// Period of the Arenstorf orbit, digits as printed in dr_dopri5.f.
+#[allow(clippy::excessive_precision)]
+pub const ARENSTORF_T_END: f64 = 17.0652165601579625588917206249;
+
+impl OdeProblem for Arenstorf {
+    fn dim(&self) -> usize {
+        4
+    }
+    fn rhs(&self, _t: f64, y: &[f64], _m: Mode, f: &mut [f64]) {
+        let amu = 0.012277471;
+        let amup = 1.0 - amu;
+        let r1 = (y[0] + amu).powi(2) + y[1] * y[1];
+        let r1 = r1 * r1.sqrt();
+        let r2 = (y[0] - amup).powi(2) + y[1] * y[1];
+        let r2 = r2 * r2.sqrt();
+        f[0] = y[2];
+        f[1] = y[3];
+        f[2] = y[0] + 2.0 * y[3] - amup * (y[0] + amu) / r1 - amu * (y[0] - amup) / r2;
+        f[3] = y[1] - 2.0 * y[2] - amup * y[1] / r1 - amu * y[1] / r2;
+    }
+}
+
+/// x'' = −x: x = cos t, v = −sin t from (1, 0); events: x = 0 in the given direction,
+/// handled with the given control.
+pub struct Oscillator {
+    /// The event functions (all x = 0).
+    pub events: Vec<EventSpec>,
+    /// What every event does.
+    pub control: Control,
+}
+
+impl Oscillator {
+    /// Without events.
+    pub fn plain() -> Self {
+        Oscillator {
+            events: vec![],
+            control: Control::Continue,
+        }
+    }
+    /// Watching x = 0 in `crossing` direction.
+    pub fn watching(crossing: Crossing, control: Control) -> Self {
+        Oscillator {
+            events: vec![EventSpec {
+                name: "x=0",
+                crossing,
+            }],
+            control,
+        }
+    }
+}
+
+impl OdeProblem for Oscillator {
+    fn dim(&self) -> usize {
+        2
+    }
+    fn rhs(&self, _t: f64, y: &[f64], _m: Mode, f: &mut [f64]) {
+        f[0] = y[1];
+        f[1] = -y[0];
+    }
+    fn jacobian(&self, _t: f64, _y: &[f64], _m: Mode, jac: &mut Vec<(usize, usize, f64)>) -> bool {
+        jac.extend([(0, 1, 1.0), (1, 0, -1.0)]);
+        true
+    }
+    fn events(&self, _m: Mode) -> &[EventSpec] {
+        &self.events
+    }
+    fn event(&self, _i: usize, _t: f64, y: &[f64], _m: Mode) -> f64 {
+        y[0]
+    }
+    fn on_event(&self, _i: usize, _t: f64, _y: &mut [f64], _m: Mode) -> Control {
+        self.control
+    }
+}
+
+/// A ball bouncing with restitution 1/2 from height 1: its bounces accumulate at a finite
+/// time (a Zeno point).
+pub struct BouncingBall;
+
+impl OdeProblem for BouncingBall {
+    fn dim(&self) -> usize {
+        2
+    }
+    fn rhs(&self, _t: f64, y: &[f64], _m: Mode, f: &mut [f64]) {
+        f[0] = y[1];
+        f[1] = -9.81;
+    }
+    fn events(&self, _m: Mode) -> &[EventSpec] {
+        &[EventSpec {
+            name: "bounce",
+            crossing: Crossing::Falling,
+        }]
+    }
+    fn event(&self, _i: usize, _t: f64, y: &[f64], _m: Mode) -> f64 {
+        y[0]
+    }
+    fn on_event(&self, _i: usize, _t: f64, y: &mut [f64], _m: Mode) -> Control {
+        y[0] = 0.0;
+        y[1] *= -0.5;
+        Control::Continue
+    }
+}
+
+/// y' = y², y(0) = 1: y = 1/(1 − t) blows up at t = 1.
+pub struct BlowUp;
+
+impl OdeProblem for BlowUp {
+    fn dim(&self) -> usize {
+        1
+    }
+    fn rhs(&self, _t: f64, y: &[f64], _m: Mode, f: &mut [f64]) {
+        f[0] = y[0] * y[0];
+    }
+}
