@@ -13,7 +13,10 @@
 pub mod dopri5;
 pub mod error;
 pub mod events;
+pub mod implicit_euler;
 pub mod integrator;
+pub mod linear;
+pub mod newton;
 pub mod options;
 pub mod problem;
 pub mod rk4;
@@ -23,7 +26,9 @@ pub mod stepper;
 
 pub use dopri5::Dopri5;
 pub use error::SolverError;
+pub use implicit_euler::ImplicitEuler;
 pub use integrator::{Integrator, StopReason};
+pub use newton::NewtonKind;
 pub use options::{Options, Output, StepControl, ZenoGuard};
 pub use problem::{Control, Crossing, Entry, EventSpec, Mode, OdeProblem};
 pub use rk4::Rk4;

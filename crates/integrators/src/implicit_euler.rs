@@ -1,0 +1,374 @@
+//! Implicit (backward) Euler, `M·(y1 − y0) = h·f(t1, y1)`, solved by Newton's method, with
+//! fixed steps or with error control.
+//!
+//! Error estimate: the local error of implicit Euler is `−h²/2·y''`, estimated by
+//! `e = h/2·(f(t1, y1) − f(t0, y0))` and filtered through the iteration matrix,
+//! `err = (M − h·J)⁻¹·e`, as radau5.f does (Hairer & Wanner, *Solving ODEs II*, sec. IV.8),
+//! so that stiff components do not overestimate it. Dense output is the linear interpolant.
+
+use crate::error::SolverError;
+use crate::linear::{self, LinearSolver};
+use crate::newton::{self, NewtonKind};
+use crate::options::StepControl;
+use crate::problem::Entry;
+use crate::stats::Stats;
+use crate::stepper::{check_finite, next_grid_point, wrms, Ode, Stepper};
+
+// Step-size control: the defaults of radau5.f.
+/// Safety factor SAFE (WORK(2)).
+const SAFE: f64 = 0.9;
+/// The step shrinks at most to FACMIN = 1/FACL, FACL = 5 (WORK(8)).
+const FACMIN: f64 = 0.2;
+/// The step grows at most to FACMAX = 1/FACR, FACR = 0.125 (WORK(9)).
+const FACMAX: f64 = 8.0;
+/// Step cut after a Newton failure (radau5.f: H = H·0.5 on an unexpected rejection).
+const NEWTON_CUT: f64 = 0.5;
+/// Most Newton iterations (NIT, WORK... IWORK(3) of radau5.f).
+const MAX_NEWTON_ITERATIONS: usize = 7;
+/// Newton converged when η·‖Δ‖ ≤ κ in the error norm (FNEWT of radau5.f is
+/// max(10·UROUND/RTOL, min(0.03, RTOL^½)); 0.03 is its usual value).
+const KAPPA: f64 = 0.03;
+/// With fixed steps there is no error tolerance: Newton then converges to this relative
+/// and absolute level (so that its error stays far below the discretisation error).
+const FIXED_STEP_NEWTON_TOL: f64 = 1e-10;
+/// A contraction factor θ above this asks for a fresh Jacobian at the next step (radau5.f:
+/// THET = 0.001 recomputes the Jacobian whenever θ exceeds it; less eager here, because
+/// the friction Jacobians change only at mode switches).
+const THETA_REFRESH: f64 = 0.5;
+/// Relative change of h below which the iteration matrix is not refactorised.
+const REFACTOR_TOLERANCE: f64 = 1e-8;
+/// Most step cuts after Newton failures within one step.
+const MAX_NEWTON_CUTS: usize = 10;
+/// First step of an adaptive run without a given one, as a fraction of the largest step.
+const INITIAL_FRACTION: f64 = 1e-4;
+/// Unit round-off for the underflow test.
+const UROUND: f64 = 2.3e-16;
+
+/// Implicit Euler with Newton's method.
+pub struct ImplicitEuler {
+    control: StepControl,
+    newton: NewtonKind,
+    h_max: f64,
+    max_steps: usize,
+    h: f64,
+    t_start: f64,
+    t_prev: f64,
+    t: f64,
+    y_prev: Vec<f64>,
+    y: Vec<f64>,
+    /// f(t, y) at the current point, when known.
+    f: Option<Vec<f64>>,
+    jac: Vec<Entry>,
+    jac_valid: bool,
+    jac_fresh: bool,
+    matrix: Vec<Entry>,
+    lu: Box<dyn LinearSolver>,
+    /// The step size of the current factorisation (0 for none).
+    lu_h: f64,
+    eta: f64,
+    reject: bool,
+    attempts: usize,
+    stats: Stats,
+}
+
+impl ImplicitEuler {
+    /// Implicit Euler for `dim` unknowns.
+    pub fn new(
+        control: StepControl,
+        newton: NewtonKind,
+        h_max: f64,
+        max_steps: usize,
+        dim: usize,
+    ) -> Self {
+        ImplicitEuler {
+            control,
+            newton,
+            h_max,
+            max_steps,
+            h: 0.0,
+            t_start: 0.0,
+            t_prev: 0.0,
+            t: 0.0,
+            y_prev: vec![0.0; dim],
+            y: vec![0.0; dim],
+            f: None,
+            jac: Vec::new(),
+            jac_valid: false,
+            jac_fresh: false,
+            matrix: Vec::new(),
+            lu: linear::for_size(dim, dim * dim),
+            lu_h: 0.0,
+            eta: 1.0,
+            reject: false,
+            attempts: 0,
+            stats: Stats::default(),
+        }
+    }
+
+    /// Newton's tolerances: the step's (rtol, atol), or the fixed-step level.
+    fn tolerances(&self) -> (f64, f64, f64) {
+        match self.control {
+            StepControl::Adaptive { rtol, atol, .. } => (rtol, atol, KAPPA),
+            StepControl::Fixed { .. } => (FIXED_STEP_NEWTON_TOL, FIXED_STEP_NEWTON_TOL, 1.0),
+        }
+    }
+
+    /// f at the current point, evaluating it if needed.
+    fn f_here(&mut self, ode: &Ode) -> &[f64] {
+        if self.f.is_none() {
+            let mut f = vec![0.0; self.y.len()];
+            ode.rhs(self.t, &self.y, &mut f, &mut self.stats);
+            self.f = Some(f);
+        }
+        self.f.as_deref().expect("just set")
+    }
+
+    /// Evaluates J at (t, y) with `f0 = f(t, y)`.
+    fn evaluate_jacobian(&mut self, ode: &Ode, t: f64, y: &[f64], f0: &[f64]) {
+        let mut jac = std::mem::take(&mut self.jac);
+        newton::jacobian(ode, t, y, f0, &mut jac, &mut self.stats);
+        self.jac = jac;
+        self.jac_valid = true;
+        self.jac_fresh = true;
+        self.lu_h = 0.0;
+    }
+
+    /// Factorises `M − h·J` unless the current factorisation was made for nearly the same h
+    /// (within [`REFACTOR_TOLERANCE`]: fixed steps `t_(k+1) − t_k` differ in their last bits,
+    /// and Newton's iteration needs only an approximate matrix).
+    fn factor(&mut self, ode: &Ode, h: f64) -> Result<(), SolverError> {
+        if (self.lu_h - h).abs() <= REFACTOR_TOLERANCE * h {
+            return Ok(());
+        }
+        let n = self.y.len();
+        newton::iteration_matrix(ode.problem.mass(), n, h, &self.jac, &mut self.matrix);
+        if self.lu.name() != linear::for_size(n, self.matrix.len()).name() {
+            self.lu = linear::for_size(n, self.matrix.len());
+        }
+        self.stats.lu_factorizations += 1;
+        if !self.lu.factor(n, &self.matrix) {
+            self.lu_h = 0.0;
+            return Err(SolverError::SingularMatrix { t: self.t, h });
+        }
+        self.lu_h = h;
+        Ok(())
+    }
+
+    /// Newton's iteration for `G(Y) = M(Y − y) − h·f(t1, Y) = 0` from `Y = y`. Returns the
+    /// solution and `f(t1, Y)` at it, or why it failed.
+    fn newton(&mut self, ode: &Ode, t1: f64, h: f64) -> Result<(Vec<f64>, Vec<f64>), String> {
+        let n = self.y.len();
+        let (rtol, atol, kappa) = self.tolerances();
+        let mass = ode.problem.mass();
+        let mut yk = self.y.clone();
+        let mut fk = vec![0.0; n];
+        let mut delta = vec![0.0; n];
+        let mut norm_prev = 0.0;
+        for k in 0..MAX_NEWTON_ITERATIONS {
+            ode.rhs(t1, &yk, &mut fk, &mut self.stats);
+            if self.newton == NewtonKind::Full && k > 0 {
+                let fcopy = fk.clone();
+                let ycopy = yk.clone();
+                self.evaluate_jacobian(ode, t1, &ycopy, &fcopy);
+                self.factor(ode, h).map_err(|e| e.to_string())?;
+            }
+            for i in 0..n {
+                let m = mass.map_or(1.0, |m| m[i]);
+                delta[i] = -(m * (yk[i] - self.y[i]) - h * fk[i]);
+            }
+            self.stats.newton_iterations += 1;
+            if !self.lu.solve(&mut delta) {
+                return Err("the linear solve gave a non-finite correction".into());
+            }
+            for i in 0..n {
+                yk[i] += delta[i];
+            }
+            let norm = wrms(&delta, &yk, &self.y, rtol, atol);
+            let eta = if k == 0 {
+                self.eta.max(UROUND).powf(0.8)
+            } else {
+                let theta = norm / norm_prev;
+                if theta >= 1.0 || !theta.is_finite() {
+                    return Err(format!(
+                        "contraction factor {theta:.3} >= 1 at iteration {}",
+                        k + 1
+                    ));
+                }
+                if theta > THETA_REFRESH {
+                    self.jac_valid = false;
+                }
+                theta / (1.0 - theta)
+            };
+            if eta * norm <= kappa {
+                self.eta = eta;
+                ode.rhs(t1, &yk, &mut fk, &mut self.stats);
+                return Ok((yk, fk));
+            }
+            norm_prev = norm;
+        }
+        Err(format!(
+            "no convergence in {MAX_NEWTON_ITERATIONS} iterations"
+        ))
+    }
+
+    fn check_limits(&self, h: f64) -> Result<(), SolverError> {
+        if self.attempts > self.max_steps {
+            return Err(SolverError::TooManySteps {
+                t: self.t,
+                h,
+                max: self.max_steps,
+            });
+        }
+        if 0.1 * h.abs() <= self.t.abs() * UROUND {
+            return Err(SolverError::StepSizeUnderflow { t: self.t, h });
+        }
+        Ok(())
+    }
+}
+
+impl Stepper for ImplicitEuler {
+    fn name(&self) -> &'static str {
+        "implicit-euler"
+    }
+
+    fn start(&mut self, _ode: &Ode, t: f64, y: &[f64]) -> Result<(), SolverError> {
+        self.t_start = t;
+        self.t_prev = t;
+        self.t = t;
+        self.y.copy_from_slice(y);
+        self.y_prev.copy_from_slice(y);
+        self.f = None;
+        self.jac_valid = false;
+        self.lu_h = 0.0;
+        self.eta = 1.0;
+        self.reject = false;
+        if self.h == 0.0 || matches!(self.control, StepControl::Fixed { .. }) {
+            self.h = match self.control {
+                StepControl::Fixed { h } | StepControl::Adaptive { h0: Some(h), .. } => h,
+                // Without a given step: INITIAL_FRACTION of the largest step (the whole
+                // interval by default); the controller grows it by up to FACMAX per step.
+                StepControl::Adaptive { h0: None, .. } => INITIAL_FRACTION * self.h_max,
+            };
+        }
+        Ok(())
+    }
+
+    fn step(&mut self, ode: &Ode, t_stop: f64) -> Result<(), SolverError> {
+        let adaptive = matches!(self.control, StepControl::Adaptive { .. });
+        let mut cuts = 0;
+        loop {
+            self.attempts += 1;
+            let (t1, h) = match self.control {
+                StepControl::Fixed { h } => {
+                    let t1 = next_grid_point(self.t_start, h, self.t, t_stop);
+                    (t1, t1 - self.t)
+                }
+                StepControl::Adaptive { .. } => {
+                    let h = if self.t + 1.01 * self.h - t_stop > 0.0 {
+                        t_stop - self.t
+                    } else {
+                        self.h
+                    };
+                    (self.t + h, h)
+                }
+            };
+            self.check_limits(h)?;
+            if !self.jac_valid || self.newton == NewtonKind::Full {
+                let f0 = self.f_here(ode).to_vec();
+                let y0 = self.y.clone();
+                self.evaluate_jacobian(ode, self.t, &y0, &f0);
+            }
+            if let Err(e) = self.factor(ode, h) {
+                if !adaptive || cuts >= MAX_NEWTON_CUTS {
+                    return Err(e);
+                }
+                cuts += 1;
+                self.stats.rejected_newton += 1;
+                self.h = h * NEWTON_CUT;
+                continue;
+            }
+            let (y1, f1) = match self.newton(ode, t1, h) {
+                Ok(solution) => solution,
+                Err(why) => {
+                    self.stats.rejected_newton += 1;
+                    if self.newton == NewtonKind::Modified && !self.jac_fresh {
+                        self.jac_valid = false;
+                        continue;
+                    }
+                    if !adaptive || cuts >= MAX_NEWTON_CUTS {
+                        return Err(SolverError::NewtonDivergence {
+                            t: self.t,
+                            h,
+                            cuts,
+                            why,
+                        });
+                    }
+                    cuts += 1;
+                    self.h = h * NEWTON_CUT;
+                    continue;
+                }
+            };
+            check_finite(&y1, self.t, h, "implicit Euler step result")?;
+            let mut h_new = h;
+            if let StepControl::Adaptive { rtol, atol, .. } = self.control {
+                let f0 = self.f_here(ode).to_vec();
+                let mut e: Vec<f64> = f1.iter().zip(&f0).map(|(a, b)| 0.5 * h * (a - b)).collect();
+                if !self.lu.solve(&mut e) {
+                    return Err(SolverError::SingularMatrix { t: self.t, h });
+                }
+                let err = wrms(&e, &self.y, &y1, rtol, atol);
+                let fac = (SAFE / err.sqrt()).clamp(FACMIN, FACMAX);
+                if err > 1.0 {
+                    self.stats.rejected_error += 1;
+                    self.reject = true;
+                    self.h = h * fac.min(1.0);
+                    continue;
+                }
+                h_new = (h * fac).min(self.h_max);
+                if self.reject {
+                    h_new = h_new.min(h);
+                }
+                self.reject = false;
+            }
+            self.y_prev.copy_from_slice(&self.y);
+            self.y = y1;
+            self.f = Some(f1);
+            self.t_prev = self.t;
+            self.t = t1;
+            self.jac_fresh = false;
+            self.stats.steps += 1;
+            if adaptive {
+                self.h = h_new;
+            }
+            return Ok(());
+        }
+    }
+
+    fn t_prev(&self) -> f64 {
+        self.t_prev
+    }
+
+    fn t(&self) -> f64 {
+        self.t
+    }
+
+    fn y(&self) -> &[f64] {
+        &self.y
+    }
+
+    fn h(&self) -> f64 {
+        self.h
+    }
+
+    fn dense_output(&self, t: f64, out: &mut [f64]) {
+        let h = self.t - self.t_prev;
+        let th = if h == 0.0 { 1.0 } else { (t - self.t_prev) / h };
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = self.y_prev[i] + th * (self.y[i] - self.y_prev[i]);
+        }
+    }
+
+    fn stats(&self) -> Stats {
+        self.stats
+    }
+}
