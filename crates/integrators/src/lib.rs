@@ -13,6 +13,7 @@
 pub mod dopri5;
 pub mod error;
 pub mod events;
+pub mod friction;
 pub mod implicit_euler;
 pub mod integrator;
 pub mod linear;
