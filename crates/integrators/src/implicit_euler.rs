@@ -154,9 +154,16 @@ impl ImplicitEuler {
         Ok(())
     }
 
-    /// Newton's iteration for `G(Y) = M(Y − y) − h·f(t1, Y) = 0` from `Y = y`. Returns the
-    /// solution and `f(t1, Y)` at it, or why it failed.
-    fn newton(&mut self, ode: &Ode, t1: f64, h: f64) -> Result<(Vec<f64>, Vec<f64>), String> {
+    /// Newton's iteration for `G(Y) = M(Y − y) − h·f(t1, Y) = 0` from `Y = y` (a new
+    /// Jacobian at every iterate when `full`). Returns the solution and `f(t1, Y)` at it, or
+    /// why it failed.
+    fn newton(
+        &mut self,
+        ode: &Ode,
+        t1: f64,
+        h: f64,
+        full: bool,
+    ) -> Result<(Vec<f64>, Vec<f64>), String> {
         let n = self.y.len();
         let (rtol, atol, kappa) = self.tolerances();
         let mass = ode.problem.mass();
@@ -166,7 +173,7 @@ impl ImplicitEuler {
         let mut norm_prev = 0.0;
         for k in 0..MAX_NEWTON_ITERATIONS {
             ode.rhs(t1, &yk, &mut fk, &mut self.stats);
-            if self.newton == NewtonKind::Full && k > 0 {
+            if full && k > 0 {
                 let fcopy = fk.clone();
                 let ycopy = yk.clone();
                 self.evaluate_jacobian(ode, t1, &ycopy, &fcopy);
@@ -256,6 +263,7 @@ impl Stepper for ImplicitEuler {
     fn step(&mut self, ode: &Ode, t_stop: f64) -> Result<(), SolverError> {
         let adaptive = matches!(self.control, StepControl::Adaptive { .. });
         let mut cuts = 0;
+        let mut full_fallback = false;
         loop {
             self.attempts += 1;
             let (t1, h) = match self.control {
@@ -287,12 +295,19 @@ impl Stepper for ImplicitEuler {
                 self.h = h * NEWTON_CUT;
                 continue;
             }
-            let (y1, f1) = match self.newton(ode, t1, h) {
+            let full = self.newton == NewtonKind::Full || full_fallback;
+            let (y1, f1) = match self.newton(ode, t1, h, full) {
                 Ok(solution) => solution,
                 Err(why) => {
                     self.stats.rejected_newton += 1;
-                    if self.newton == NewtonKind::Modified && !self.jac_fresh {
-                        self.jac_valid = false;
+                    // Modified Newton: first a fresh Jacobian, then full Newton, and only
+                    // then a smaller step.
+                    if !full {
+                        if self.jac_fresh {
+                            full_fallback = true;
+                        } else {
+                            self.jac_valid = false;
+                        }
                         continue;
                     }
                     if !adaptive || cuts >= MAX_NEWTON_CUTS {

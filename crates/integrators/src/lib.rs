@@ -10,6 +10,7 @@
 //! A problem implements [`OdeProblem`]; an [`Integrator`] drives a [`Stepper`] over it and
 //! returns a [`Solution`] with its [`Stats`], or a [`Failure`] that keeps what was computed.
 
+pub mod diffsol_backend;
 pub mod dopri5;
 pub mod error;
 pub mod events;
@@ -25,6 +26,7 @@ pub mod solution;
 pub mod stats;
 pub mod stepper;
 
+pub use diffsol_backend::DiffsolMethod;
 pub use dopri5::Dopri5;
 pub use error::SolverError;
 pub use implicit_euler::ImplicitEuler;

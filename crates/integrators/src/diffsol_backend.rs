@@ -1,0 +1,460 @@
+//! diffsol's BDF, TR-BDF2, ESDIRK34 and Tsit45 behind the [`Stepper`] interface, so that they
+//! run the same problems with the same events, mode switching and statistics as the
+//! native methods. This is the only module that instantiates diffsol's generic code (one
+//! dense nalgebra matrix type, nalgebra's LU), which keeps rebuilds of the crate short.
+//!
+//! How the known pitfalls of diffsol 0.18 are met:
+//! - implicit methods need a Jacobian-vector product: it is built from the problem's
+//!   analytic Jacobian, or from a forward difference of f when there is none;
+//! - Newton failures count over a solver's whole life (50 by default) and long stick–slip
+//!   runs would reach that: a fresh solver is built at every event, and the limit raised;
+//! - after a root the state stays at the step end, and a BDF state handed on keeps stale
+//!   history: roots are not left to diffsol at all. Events are located by this crate on
+//!   diffsol's own interpolant, and the method restarts from a new state built at the event
+//!   time (new y, new f(t, y), new initial step), never from the old solver's state.
+
+use crate::error::SolverError;
+use crate::integrator::Integrator;
+use crate::options::{Options, StepControl};
+use crate::problem::{Mode, OdeProblem};
+use crate::solution::{Failure, Solution};
+use crate::stats::Stats;
+use crate::stepper::{Ode, Stepper};
+use diffsol::{
+    BdfState, DiffsolError, NalgebraLU, NalgebraMat, NonLinearOp, OdeBuilder, OdeEquations,
+    OdeEquationsImplicit, OdeSolverMethod, OdeSolverProblem, OdeSolverState, RkState, Vector,
+};
+use std::cell::{Cell, RefCell};
+
+type Matrix = NalgebraMat<f64>;
+type Lu = NalgebraLU<f64>;
+type V = <Matrix as diffsol::MatrixCommon>::V;
+type Ctx = diffsol::NalgebraContext;
+
+/// Newton failures allowed per solver instance (diffsol's default is 50).
+const MAX_NEWTON_FAILURES: usize = 10_000;
+
+/// A diffsol method.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DiffsolMethod {
+    /// Variable-order BDF (orders 1–5) with Newton's method.
+    Bdf,
+    /// TR-BDF2, an ESDIRK method of order 2.
+    TrBdf2,
+    /// ESDIRK3(4), an ESDIRK method of order 3 with an order-4 embedded estimate.
+    Esdirk34,
+    /// Tsitouras 5(4), explicit.
+    Tsit45,
+}
+
+impl DiffsolMethod {
+    /// The name the command line takes.
+    pub fn name(self) -> &'static str {
+        match self {
+            DiffsolMethod::Bdf => "bdf",
+            DiffsolMethod::TrBdf2 => "tr-bdf2",
+            DiffsolMethod::Esdirk34 => "esdirk34",
+            DiffsolMethod::Tsit45 => "tsit45",
+        }
+    }
+
+    /// The order diffsol's initial-step heuristic is told.
+    fn order(self) -> usize {
+        match self {
+            DiffsolMethod::Bdf => 1,
+            DiffsolMethod::TrBdf2 => 2,
+            DiffsolMethod::Esdirk34 => 3,
+            DiffsolMethod::Tsit45 => 4,
+        }
+    }
+}
+
+/// What the closures handed to diffsol share with the stepper.
+struct Shared<'a> {
+    problem: &'a dyn OdeProblem,
+    mode: Cell<Mode>,
+    start: RefCell<Vec<f64>>,
+    rhs_evals: Cell<usize>,
+    jacobian_products: Cell<usize>,
+    jacobian: RefCell<Vec<crate::problem::Entry>>,
+    /// Divide f by this regular mass diagonal (ODE path); `None` for the identity or a DAE.
+    inverse_mass: Option<&'a [f64]>,
+}
+
+impl Shared<'_> {
+    fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
+        self.rhs_evals.set(self.rhs_evals.get() + 1);
+        self.problem.rhs(t, y, self.mode.get(), dy);
+        if let Some(m) = self.inverse_mass {
+            dy.iter_mut().zip(m).for_each(|(d, m)| *d /= m);
+        }
+    }
+
+    /// `jv = J·v` from the analytic Jacobian, or `(f(y + δv) − f(y))/δ`.
+    fn jacobian_product(&self, t: f64, y: &[f64], v: &[f64], jv: &mut [f64]) {
+        self.jacobian_products.set(self.jacobian_products.get() + 1);
+        let mut jac = self.jacobian.borrow_mut();
+        jac.clear();
+        if self.problem.jacobian(t, y, self.mode.get(), &mut jac) {
+            jv.iter_mut().for_each(|x| *x = 0.0);
+            for &(i, j, a) in jac.iter() {
+                jv[i] += a * v[j];
+            }
+            if let Some(m) = self.inverse_mass {
+                jv.iter_mut().zip(m).for_each(|(d, m)| *d /= m);
+            }
+            return;
+        }
+        let norm = |x: &[f64]| x.iter().map(|a| a * a).sum::<f64>().sqrt();
+        let nv = norm(v);
+        if nv == 0.0 {
+            jv.iter_mut().for_each(|x| *x = 0.0);
+            return;
+        }
+        let delta = f64::EPSILON.sqrt() * (1.0 + norm(y)) / nv;
+        let shifted: Vec<f64> = y.iter().zip(v).map(|(y, v)| y + delta * v).collect();
+        let mut f0 = vec![0.0; y.len()];
+        self.rhs(t, y, &mut f0);
+        self.rhs(t, &shifted, jv);
+        jv.iter_mut()
+            .zip(&f0)
+            .for_each(|(a, b)| *a = (*a - b) / delta);
+    }
+}
+
+/// A diffsol solver as a [`Stepper`]: `make` builds a fresh solver at a start time from the
+/// start state in `shared`.
+struct DiffsolStepper<'p, Eqn: OdeEquations, S, F> {
+    method: DiffsolMethod,
+    problem: &'p OdeSolverProblem<Eqn>,
+    shared: &'p Shared<'p>,
+    make: F,
+    solver: Option<S>,
+    stop_set: bool,
+    t_prev: f64,
+    t: f64,
+    y_prev: Vec<f64>,
+    y: Vec<f64>,
+    /// Statistics of the solvers already replaced.
+    finished: Stats,
+}
+
+/// A new diffsol state at time `t` from the start state: y from `init`, f(t, y) afresh (zero
+/// for the algebraic components of a DAE), and diffsol's initial step size.
+fn restart_state<Eqn, St>(
+    problem: &OdeSolverProblem<Eqn>,
+    t: f64,
+    order: usize,
+    algebraic: &[usize],
+) -> Result<St, DiffsolError>
+where
+    Eqn: OdeEquations<T = f64, V = V, C = Ctx>,
+    St: OdeSolverState<V>,
+{
+    let mut state = St::new_without_initialise(problem)?;
+    let mut s = state.as_mut();
+    *s.t = t;
+    problem.eqn.rhs().call_inplace(s.y, t, s.dy);
+    for &i in algebraic {
+        s.dy.set_index(i, 0.0);
+    }
+    s.set_step_size(problem.h0, &problem.atol, problem.rtol, &problem.eqn, order);
+    Ok(state)
+}
+
+impl<'p, Eqn, S, F> DiffsolStepper<'p, Eqn, S, F>
+where
+    Eqn: OdeEquations<T = f64, V = V, C = Ctx>,
+    S: OdeSolverMethod<'p, Eqn>,
+{
+    fn stats_of(&self, s: &S) -> Stats {
+        let d = s.get_statistics();
+        Stats {
+            steps: d.number_of_steps,
+            rejected_error: d.number_of_error_test_failures,
+            rejected_newton: d.number_of_nonlinear_solver_fails,
+            lu_factorizations: d.number_of_linear_solver_setups,
+            newton_iterations: d.number_of_nonlinear_solver_iterations,
+            ..Stats::default()
+        }
+    }
+
+    fn error(&self, e: DiffsolError) -> SolverError {
+        SolverError::Diffsol {
+            solver: self.method.name(),
+            t: self.t,
+            message: e.to_string(),
+        }
+    }
+}
+
+impl<'p, Eqn, S, F> Stepper for DiffsolStepper<'p, Eqn, S, F>
+where
+    Eqn: OdeEquations<T = f64, V = V, C = Ctx>,
+    S: OdeSolverMethod<'p, Eqn>,
+    F: Fn(&'p OdeSolverProblem<Eqn>, f64) -> Result<S, DiffsolError>,
+{
+    fn name(&self) -> &'static str {
+        self.method.name()
+    }
+
+    fn start(&mut self, ode: &Ode, t: f64, y: &[f64]) -> Result<(), SolverError> {
+        self.shared.mode.set(ode.mode);
+        self.shared.start.replace(y.to_vec());
+        if let Some(old) = self.solver.take() {
+            self.finished += self.stats_of(&old);
+        }
+        self.t_prev = t;
+        self.t = t;
+        self.y = y.to_vec();
+        self.y_prev = y.to_vec();
+        self.solver = Some((self.make)(self.problem, t).map_err(|e| self.error(e))?);
+        self.stop_set = false;
+        Ok(())
+    }
+
+    fn step(&mut self, _ode: &Ode, t_stop: f64) -> Result<(), SolverError> {
+        let solver = self.solver.as_mut().expect("started");
+        let result = if self.stop_set {
+            Ok(())
+        } else {
+            solver.set_stop_time(t_stop)
+        }
+        .and_then(|_| solver.step());
+        if let Err(e) = result {
+            return Err(self.error(e));
+        }
+        self.stop_set = true;
+        let state = self.solver.as_ref().expect("started").state();
+        self.t_prev = self.t;
+        self.t = state.t;
+        std::mem::swap(&mut self.y_prev, &mut self.y);
+        self.y = state.y.clone_as_vec();
+        Ok(())
+    }
+
+    fn t_prev(&self) -> f64 {
+        self.t_prev
+    }
+
+    fn t(&self) -> f64 {
+        self.t
+    }
+
+    fn y(&self) -> &[f64] {
+        &self.y
+    }
+
+    fn h(&self) -> f64 {
+        self.solver.as_ref().map_or(0.0, |s| s.state().h)
+    }
+
+    fn dense_output(&self, t: f64, out: &mut [f64]) {
+        match self.solver.as_ref().map(|s| s.interpolate(t)) {
+            Some(Ok(v)) => out.copy_from_slice(&v.clone_as_vec()),
+            // Outside diffsol's interpolation window (never expected): the linear interpolant.
+            _ => {
+                let h = self.t - self.t_prev;
+                let th = if h == 0.0 { 1.0 } else { (t - self.t_prev) / h };
+                for (i, o) in out.iter_mut().enumerate() {
+                    *o = self.y_prev[i] + th * (self.y[i] - self.y_prev[i]);
+                }
+            }
+        }
+    }
+
+    fn stats(&self) -> Stats {
+        let mut s = self.finished;
+        if let Some(solver) = &self.solver {
+            s += self.stats_of(solver);
+        }
+        let n = self.y.len().max(1);
+        s.rhs_evals = self.shared.rhs_evals.get();
+        // A dense Jacobian costs n products; report whole Jacobians.
+        s.jacobian_evals = self.shared.jacobian_products.get().div_ceil(n);
+        s
+    }
+}
+
+/// Runs the driver with a diffsol stepper whose solvers `make` builds.
+fn drive<'p, Eqn, S, F>(
+    method: DiffsolMethod,
+    problem: &'p OdeSolverProblem<Eqn>,
+    shared: &'p Shared<'p>,
+    make: F,
+    y0: &[f64],
+    mode: Mode,
+    options: Options,
+) -> Result<Solution, Failure>
+where
+    Eqn: OdeEquations<T = f64, V = V, C = Ctx>,
+    S: OdeSolverMethod<'p, Eqn> + 'p,
+    F: Fn(&'p OdeSolverProblem<Eqn>, f64) -> Result<S, DiffsolError> + 'p,
+{
+    let n = y0.len();
+    let stepper = DiffsolStepper {
+        method,
+        problem,
+        shared,
+        make,
+        solver: None,
+        stop_set: false,
+        t_prev: options.t0,
+        t: options.t0,
+        y_prev: vec![0.0; n],
+        y: vec![0.0; n],
+        finished: Stats::default(),
+    };
+    let failure = |error| Failure {
+        error,
+        solution: Box::new(Solution::new(method.name(), n)),
+    };
+    Integrator::new(shared.problem, Box::new(stepper), y0, mode, options)
+        .map_err(failure)?
+        .solve()
+}
+
+/// Builds the implicit method's solver on a problem with (DAE) or without a mass matrix.
+fn drive_implicit<'p, Eqn>(
+    method: DiffsolMethod,
+    problem: &'p OdeSolverProblem<Eqn>,
+    shared: &'p Shared<'p>,
+    algebraic: &'p [usize],
+    y0: &[f64],
+    mode: Mode,
+    options: Options,
+) -> Result<Solution, Failure>
+where
+    Eqn: OdeEquationsImplicit<T = f64, V = V, C = Ctx, M = Matrix>,
+{
+    let order = method.order();
+    match method {
+        DiffsolMethod::Bdf => drive(
+            method,
+            problem,
+            shared,
+            move |p, t| {
+                p.bdf_solver::<Lu>(restart_state::<Eqn, BdfState<V>>(p, t, order, algebraic)?)
+            },
+            y0,
+            mode,
+            options,
+        ),
+        DiffsolMethod::TrBdf2 => drive(
+            method,
+            problem,
+            shared,
+            move |p, t| {
+                p.tr_bdf2_solver::<Lu>(restart_state::<Eqn, RkState<V>>(p, t, order, algebraic)?)
+            },
+            y0,
+            mode,
+            options,
+        ),
+        DiffsolMethod::Esdirk34 | DiffsolMethod::Tsit45 => drive(
+            method,
+            problem,
+            shared,
+            move |p, t| {
+                p.esdirk34_solver::<Lu>(restart_state::<Eqn, RkState<V>>(p, t, order, algebraic)?)
+            },
+            y0,
+            mode,
+            options,
+        ),
+    }
+}
+
+/// Integrates `problem` from `y0` in `mode` with a diffsol method, events and mode switching
+/// handled as for the native methods. Only adaptive stepping exists for diffsol's methods.
+pub fn solve(
+    problem: &dyn OdeProblem,
+    method: DiffsolMethod,
+    y0: &[f64],
+    mode: Mode,
+    options: Options,
+) -> Result<Solution, Failure> {
+    let n = problem.dim();
+    let fail = |error| Failure {
+        error,
+        solution: Box::new(Solution::new(method.name(), n)),
+    };
+    options.validate().map_err(fail)?;
+    let StepControl::Adaptive { rtol, atol, h0 } = options.step else {
+        return Err(fail(SolverError::Unsupported {
+            solver: method.name(),
+            why: "diffsol's methods choose their own steps: give tolerances, not a fixed step"
+                .into(),
+        }));
+    };
+    let mass = problem.mass();
+    let algebraic: Vec<usize> = mass
+        .map(|m| (0..n).filter(|&i| m[i] == 0.0).collect())
+        .unwrap_or_default();
+    let dae = !algebraic.is_empty();
+    if dae && method == DiffsolMethod::Tsit45 {
+        return Err(fail(SolverError::Unsupported {
+            solver: method.name(),
+            why: "an explicit method cannot integrate a DAE (zeros on the mass diagonal)".into(),
+        }));
+    }
+    let shared = Shared {
+        problem,
+        mode: Cell::new(mode),
+        start: RefCell::new(y0.to_vec()),
+        rhs_evals: Cell::new(0),
+        jacobian_products: Cell::new(0),
+        jacobian: RefCell::new(Vec::new()),
+        inverse_mass: if dae { None } else { mass },
+    };
+    let builder = OdeBuilder::<Matrix>::new()
+        .t0(options.t0)
+        .h0(h0.unwrap_or(1.0))
+        .rtol(rtol)
+        .atol(vec![atol; n])
+        .rhs_implicit(
+            |y: &[f64], _p: &[f64], t: f64, dy: &mut [f64]| shared.rhs(t, y, dy),
+            |y: &[f64], _p: &[f64], t: f64, v: &[f64], jv: &mut [f64]| {
+                shared.jacobian_product(t, y, v, jv)
+            },
+        )
+        .init(
+            |_p: &[f64], _t: f64, y: &mut [f64]| y.copy_from_slice(&shared.start.borrow()),
+            n,
+        );
+    let build_error = |e: DiffsolError| {
+        fail(SolverError::Diffsol {
+            solver: method.name(),
+            t: options.t0,
+            message: e.to_string(),
+        })
+    };
+    if dae {
+        let diagonal = mass.expect("a DAE has a mass matrix");
+        let mut ds = builder
+            .mass(|v: &[f64], _p: &[f64], _t: f64, beta: f64, y: &mut [f64]| {
+                for i in 0..v.len() {
+                    y[i] = diagonal[i] * v[i] + beta * y[i];
+                }
+            })
+            .build()
+            .map_err(build_error)?;
+        ds.ode_options.max_nonlinear_solver_failures = MAX_NEWTON_FAILURES;
+        return drive_implicit(method, &ds, &shared, &algebraic, y0, mode, options);
+    }
+    let mut ds = builder.build().map_err(build_error)?;
+    ds.ode_options.max_nonlinear_solver_failures = MAX_NEWTON_FAILURES;
+    if method == DiffsolMethod::Tsit45 {
+        let order = method.order();
+        return drive(
+            method,
+            &ds,
+            &shared,
+            move |p, t| p.tsit45_solver(restart_state::<_, RkState<V>>(p, t, order, &[])?),
+            y0,
+            mode,
+            options,
+        );
+    }
+    drive_implicit(method, &ds, &shared, &[], y0, mode, options)
+}
