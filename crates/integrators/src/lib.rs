@@ -23,6 +23,7 @@ pub mod options;
 pub mod problem;
 pub mod rk4;
 pub mod solution;
+pub mod solver;
 pub mod stats;
 pub mod stepper;
 
@@ -36,5 +37,6 @@ pub use options::{Options, Output, StepControl, ZenoGuard};
 pub use problem::{Control, Crossing, Entry, EventSpec, Mode, OdeProblem};
 pub use rk4::Rk4;
 pub use solution::{EventRecord, Failure, Solution};
+pub use solver::Solver;
 pub use stats::Stats;
 pub use stepper::{Ode, Stepper};

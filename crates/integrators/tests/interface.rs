@@ -1,0 +1,147 @@
+//! The shared interface: solvers by name, simultaneous events, and the errors that remain.
+
+mod common;
+
+use common::*;
+use integrators::{
+    Control, Crossing, EventSpec, Mode, OdeProblem, Options, Solver, SolverError, StepControl,
+};
+
+#[test]
+fn every_solver_is_found_by_name_and_integrates_the_oscillator() {
+    for solver in Solver::ALL {
+        assert_eq!(Solver::from_name(solver.name()), Ok(solver));
+        let options = if solver.is_fixed_step() {
+            Options::fixed(0.0, 1.0, 1e-3)
+        } else {
+            Options::adaptive(0.0, 1.0, 1e-9, 1e-9)
+        };
+        let s = solver
+            .solve(&Oscillator::plain(), &[1.0, 0.0], Mode(0), options)
+            .unwrap();
+        let x = s.last().unwrap().1[0];
+        // Implicit Euler is first order: its error at tol 1e-9 is about sqrt(tol).
+        let tolerance = if solver == Solver::ImplicitEuler {
+            1e-3
+        } else {
+            1e-6
+        };
+        assert!((x - 1f64.cos()).abs() < tolerance, "{}: {x}", solver.name());
+        assert_eq!(s.solver, solver.name());
+    }
+    assert_eq!(
+        Solver::from_name("euler").unwrap_err(),
+        "unknown solver `euler`; known solvers: rk4, dopri5, implicit-euler, bdf, tr-bdf2, esdirk34, tsit45"
+    );
+}
+
+#[test]
+fn rk4_asks_for_a_fixed_step() {
+    let f = Solver::Rk4
+        .solve(
+            &Oscillator::plain(),
+            &[1.0, 0.0],
+            Mode(0),
+            Options::adaptive(0.0, 1.0, 1e-6, 1e-6),
+        )
+        .unwrap_err();
+    assert_eq!(
+        f.error.to_string(),
+        "rk4 cannot integrate this problem: RK4 has no error estimate: give a fixed step (--dt)"
+    );
+}
+
+/// x = cos t watched twice: both event functions vanish at π/2.
+struct TwoWatchers;
+
+impl OdeProblem for TwoWatchers {
+    fn dim(&self) -> usize {
+        2
+    }
+    fn rhs(&self, _t: f64, y: &[f64], _m: Mode, f: &mut [f64]) {
+        f[0] = y[1];
+        f[1] = -y[0];
+    }
+    fn events(&self, _m: Mode) -> &[EventSpec] {
+        &[
+            EventSpec {
+                name: "second",
+                crossing: Crossing::Falling,
+            },
+            EventSpec {
+                name: "first",
+                crossing: Crossing::Falling,
+            },
+        ]
+    }
+    fn event(&self, i: usize, _t: f64, y: &[f64], _m: Mode) -> f64 {
+        // The same root, seen through differently scaled functions.
+        if i == 0 {
+            y[0]
+        } else {
+            3.0 * y[0]
+        }
+    }
+    fn on_event(&self, i: usize, _t: f64, y: &mut [f64], _m: Mode) -> Control {
+        y[1] *= 1.0 + i as f64; // actions compose in index order
+        Control::Stop
+    }
+}
+
+#[test]
+fn simultaneous_events_are_handled_in_index_order() {
+    let s = Solver::Dopri5
+        .solve(
+            &TwoWatchers,
+            &[1.0, 0.0],
+            Mode(0),
+            Options::adaptive(0.0, 3.0, 1e-12, 1e-12),
+        )
+        .unwrap();
+    let names: Vec<_> = s.events.iter().map(|e| e.name).collect();
+    assert_eq!(names, ["second", "first"]);
+    assert_eq!(s.events[0].t, s.events[1].t);
+    // Index 0 multiplies v by 1, index 1 by 2, in that order.
+    assert_eq!(s.events[1].y_left[1], s.events[0].y_right[1]);
+    assert!((s.events[1].y_right[1] + 2.0).abs() < 1e-10);
+}
+
+#[test]
+fn a_non_finite_state_and_a_step_size_underflow_are_reported() {
+    // RK4 with h = 0.5 on y' = y² overflows to infinity.
+    let f = Solver::Rk4
+        .solve(&BlowUp, &[1.0], Mode(0), Options::fixed(0.0, 5.0, 0.5))
+        .unwrap_err();
+    let message = f.error.to_string();
+    assert!(message.starts_with("non-finite state at t = "), "{message}");
+    assert!(
+        message.contains("RK4 step result, component 0 = "),
+        "{message}"
+    );
+    assert!(!f.solution.is_empty());
+    // Dormand–Prince approaches the singularity at t = 1 with ever smaller steps.
+    let mut o = Options::adaptive(0.0, 2.0, 1e-6, 1e-6);
+    o.step = StepControl::Adaptive {
+        rtol: 1e-6,
+        atol: 1e-6,
+        h0: None,
+    };
+    let f = Solver::Dopri5
+        .solve(&BlowUp, &[1.0], Mode(0), o)
+        .unwrap_err();
+    match f.error {
+        SolverError::StepSizeUnderflow { t, h } => {
+            // dopri5.f's test: 0.1·|h| <= UROUND·|t|, UROUND = 2.3e-16.
+            assert!((t - 1.0).abs() < 1e-5, "t = {t}");
+            assert!(0.1 * h <= 2.3e-16 * t, "h = {h}");
+            assert!(
+                f.error
+                    .to_string()
+                    .starts_with("step size underflow at t = 1.00000"),
+                "{}",
+                f.error
+            );
+        }
+        ref e => panic!("expected an underflow, got: {e}"),
+    }
+}
