@@ -43,6 +43,11 @@ pub enum AppError {
         /// The operating system's error.
         source: std::io::Error,
     },
+    /// The solver failed; the files written say how far it got.
+    #[error(
+        "the solver failed: {0} (summary.json and trajectory.csv keep the run up to the failure)"
+    )]
+    Solver(String),
     /// A plot could not be drawn.
     #[error("drawing {path}: {message}")]
     Plot {
@@ -61,7 +66,10 @@ impl AppError {
             | AppError::Curve(_)
             | AppError::Usage(_)
             | AppError::ParamFile { .. } => 2,
-            AppError::NonFinite { .. } | AppError::Io { .. } | AppError::Plot { .. } => 1,
+            AppError::NonFinite { .. }
+            | AppError::Io { .. }
+            | AppError::Plot { .. }
+            | AppError::Solver(_) => 1,
         }
     }
 }

@@ -40,6 +40,8 @@ pub enum Command {
     /// Draw one friction curve: force against velocity, or against displacement under the
     /// paper's prescribed motion (DV, SD, SV, dahl).
     Curve(commands::curve::CurveArgs),
+    /// Integrate one scenario: trajectory.csv, summary.json and figures.
+    Simulate(commands::simulate::SimulateArgs),
     /// Reproduce the paper into one folder: Figures 2-7 with notes, and a report.md.
     Reproduce(commands::reproduce::ReproduceArgs),
 }
@@ -49,6 +51,7 @@ pub fn run(cli: Cli) -> Result<(), AppError> {
     match cli.command {
         Command::Models { json } => commands::models::run(json),
         Command::Curve(args) => commands::curve::run(&args),
+        Command::Simulate(args) => commands::simulate::run(&args),
         Command::Reproduce(args) => commands::reproduce::run(&args),
     }
 }

@@ -3,7 +3,8 @@
 
 use crate::error::AppError;
 use clap::Args;
-use friction_models::{FrictionParams, Parameters, Variant};
+use friction_models::{FrictionParams, ParamError, Parameters, Variant};
+use scenarios::{Scenario, ScenarioParams};
 use std::path::{Path, PathBuf};
 
 /// Where the parameters come from.
@@ -32,18 +33,64 @@ pub struct ModelOptions {
 }
 
 impl ParamOptions {
-    /// The parameters: the named set, then the file, then each `--set`, every value checked.
+    /// The friction parameters: the named set, then the file, then each `--set`, every value
+    /// checked. Only friction parameters are accepted.
     pub fn resolve(&self) -> Result<FrictionParams, AppError> {
-        let mut params = FrictionParams::named(&self.param_set)?;
+        Ok(self.resolve_for(None)?.0)
+    }
+
+    /// Friction and scenario parameters for `scenario`: names are looked up among the
+    /// friction parameters first, then among the scenario's own.
+    pub fn resolve_for(
+        &self,
+        scenario: Option<Scenario>,
+    ) -> Result<(FrictionParams, ScenarioParams), AppError> {
+        let mut friction = FrictionParams::named(&self.param_set)?;
+        let mut rig = scenario.map_or_else(ScenarioParams::default, |s| s.defaults());
+        let mut apply = |name: &str, value: f64| -> Result<(), AppError> {
+            if FrictionParams::spec(name).is_some() {
+                return Ok(friction.set(name, value)?);
+            }
+            match scenario {
+                Some(s) if ScenarioParams::spec(name).is_some() => {
+                    if !s.parameters().contains(&name) {
+                        return Err(AppError::Usage(format!(
+                            "parameter `{name}` is not used by scenario {s} (it reads: {})",
+                            if s.parameters().is_empty() {
+                                "none".to_string()
+                            } else {
+                                s.parameters().join(", ")
+                            }
+                        )));
+                    }
+                    Ok(rig.set(name, value)?)
+                }
+                _ => {
+                    let mut known: Vec<&str> =
+                        FrictionParams::specs().iter().map(|p| p.name).collect();
+                    if let Some(s) = scenario {
+                        known.extend(s.parameters());
+                    }
+                    Err(ParamError::Unknown {
+                        name: name.to_string(),
+                        known: known.join(", "),
+                    }
+                    .into())
+                }
+            }
+        };
         if let Some(path) = &self.params {
-            apply_file(&mut params, path)?;
+            for (name, value) in read_file(path)? {
+                apply(&name, value)?;
+            }
         }
         for assignment in &self.set {
             let (name, value) = parse_assignment(assignment)?;
-            params.set(name, value)?;
+            apply(name, value)?;
         }
-        params.validate()?;
-        Ok(params)
+        friction.validate()?;
+        rig.validate()?;
+        Ok((friction, rig))
     }
 }
 
@@ -61,8 +108,8 @@ fn parse_assignment(text: &str) -> Result<(&str, f64), AppError> {
     Ok((name, number))
 }
 
-/// Applies a TOML file of `NAME = number` lines.
-fn apply_file(params: &mut FrictionParams, path: &Path) -> Result<(), AppError> {
+/// Reads a TOML file of `NAME = number` lines.
+fn read_file(path: &Path) -> Result<Vec<(String, f64)>, AppError> {
     let file_error = |message: String| AppError::ParamFile {
         path: path.to_path_buf(),
         message,
@@ -72,18 +119,15 @@ fn apply_file(params: &mut FrictionParams, path: &Path) -> Result<(), AppError> 
     let table: toml::Table = text
         .parse()
         .map_err(|e: toml::de::Error| file_error(e.message().to_string()))?;
-    for (name, value) in &table {
-        let number = match value {
-            toml::Value::Float(x) => *x,
-            toml::Value::Integer(i) => *i as f64,
-            other => {
-                return Err(file_error(format!(
-                    "`{name}` must be a number, found {} `{other}`",
-                    other.type_str()
-                )))
-            }
-        };
-        params.set(name, number)?;
-    }
-    Ok(())
+    table
+        .into_iter()
+        .map(|(name, value)| match value {
+            toml::Value::Float(x) => Ok((name, x)),
+            toml::Value::Integer(i) => Ok((name, i as f64)),
+            other => Err(file_error(format!(
+                "`{name}` must be a number, found {} `{other}`",
+                other.type_str()
+            ))),
+        })
+        .collect()
 }

@@ -3,3 +3,4 @@
 pub mod curve;
 pub mod models;
 pub mod reproduce;
+pub mod simulate;

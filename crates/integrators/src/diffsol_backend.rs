@@ -276,21 +276,33 @@ where
     }
 }
 
+/// Where and how a run starts.
+struct Start<'r> {
+    y0: &'r [f64],
+    mode: Mode,
+    options: Options,
+    observe: &'r mut dyn FnMut(f64),
+}
+
 /// Runs the driver with a diffsol stepper whose solvers `make` builds.
 fn drive<'p, Eqn, S, F>(
     method: DiffsolMethod,
     problem: &'p OdeSolverProblem<Eqn>,
     shared: &'p Shared<'p>,
     make: F,
-    y0: &[f64],
-    mode: Mode,
-    options: Options,
+    start: Start,
 ) -> Result<Solution, Failure>
 where
     Eqn: OdeEquations<T = f64, V = V, C = Ctx>,
     S: OdeSolverMethod<'p, Eqn> + 'p,
     F: Fn(&'p OdeSolverProblem<Eqn>, f64) -> Result<S, DiffsolError> + 'p,
 {
+    let Start {
+        y0,
+        mode,
+        options,
+        observe,
+    } = start;
     let n = y0.len();
     let stepper = DiffsolStepper {
         method,
@@ -311,7 +323,7 @@ where
     };
     Integrator::new(shared.problem, Box::new(stepper), y0, mode, options)
         .map_err(failure)?
-        .solve()
+        .solve_observed(observe)
 }
 
 /// Builds the implicit method's solver on a problem with (DAE) or without a mass matrix.
@@ -320,9 +332,7 @@ fn drive_implicit<'p, Eqn>(
     problem: &'p OdeSolverProblem<Eqn>,
     shared: &'p Shared<'p>,
     algebraic: &'p [usize],
-    y0: &[f64],
-    mode: Mode,
-    options: Options,
+    start: Start,
 ) -> Result<Solution, Failure>
 where
     Eqn: OdeEquationsImplicit<T = f64, V = V, C = Ctx, M = Matrix>,
@@ -336,9 +346,7 @@ where
             move |p, t| {
                 p.bdf_solver::<Lu>(restart_state::<Eqn, BdfState<V>>(p, t, order, algebraic)?)
             },
-            y0,
-            mode,
-            options,
+            start,
         ),
         DiffsolMethod::TrBdf2 => drive(
             method,
@@ -347,9 +355,7 @@ where
             move |p, t| {
                 p.tr_bdf2_solver::<Lu>(restart_state::<Eqn, RkState<V>>(p, t, order, algebraic)?)
             },
-            y0,
-            mode,
-            options,
+            start,
         ),
         DiffsolMethod::Esdirk34 | DiffsolMethod::Tsit45 => drive(
             method,
@@ -358,9 +364,7 @@ where
             move |p, t| {
                 p.esdirk34_solver::<Lu>(restart_state::<Eqn, RkState<V>>(p, t, order, algebraic)?)
             },
-            y0,
-            mode,
-            options,
+            start,
         ),
     }
 }
@@ -373,6 +377,18 @@ pub fn solve(
     y0: &[f64],
     mode: Mode,
     options: Options,
+) -> Result<Solution, Failure> {
+    solve_observed(problem, method, y0, mode, options, &mut |_| {})
+}
+
+/// As [`solve`], telling `observe` the time reached after every step.
+pub fn solve_observed(
+    problem: &dyn OdeProblem,
+    method: DiffsolMethod,
+    y0: &[f64],
+    mode: Mode,
+    options: Options,
+    observe: &mut dyn FnMut(f64),
 ) -> Result<Solution, Failure> {
     let n = problem.dim();
     let fail = |error| Failure {
@@ -398,6 +414,12 @@ pub fn solve(
             why: "an explicit method cannot integrate a DAE (zeros on the mass diagonal)".into(),
         }));
     }
+    let start = Start {
+        y0,
+        mode,
+        options: options.clone(),
+        observe,
+    };
     let shared = Shared {
         problem,
         mode: Cell::new(mode),
@@ -440,7 +462,7 @@ pub fn solve(
             .build()
             .map_err(build_error)?;
         ds.ode_options.max_nonlinear_solver_failures = MAX_NEWTON_FAILURES;
-        return drive_implicit(method, &ds, &shared, &algebraic, y0, mode, options);
+        return drive_implicit(method, &ds, &shared, &algebraic, start);
     }
     let mut ds = builder.build().map_err(build_error)?;
     ds.ode_options.max_nonlinear_solver_failures = MAX_NEWTON_FAILURES;
@@ -451,10 +473,8 @@ pub fn solve(
             &ds,
             &shared,
             move |p, t| p.tsit45_solver(restart_state::<_, RkState<V>>(p, t, order, &[])?),
-            y0,
-            mode,
-            options,
+            start,
         );
     }
-    drive_implicit(method, &ds, &shared, &[], y0, mode, options)
+    drive_implicit(method, &ds, &shared, &[], start)
 }

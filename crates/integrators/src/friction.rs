@@ -32,14 +32,65 @@ pub fn mode_name(mode: Mode) -> &'static str {
     }
 }
 
+/// A force that depends on time only.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub enum Profile {
+    /// No time-dependent force.
+    #[default]
+    None,
+    /// `rate·t`.
+    Ramp {
+        /// Rate, N/s.
+        rate: f64,
+    },
+    /// Rises linearly to `peak` over `rise` s, holds it for `hold` s, falls back to zero over
+    /// `fall` s, and stays at zero.
+    Trapezoid {
+        /// Peak force, N.
+        peak: f64,
+        /// Rise time, s.
+        rise: f64,
+        /// Hold time, s.
+        hold: f64,
+        /// Fall time, s.
+        fall: f64,
+    },
+}
+
+impl Profile {
+    /// The force at time t.
+    pub fn at(&self, t: f64) -> f64 {
+        match *self {
+            Profile::None => 0.0,
+            Profile::Ramp { rate } => rate * t,
+            Profile::Trapezoid {
+                peak,
+                rise,
+                hold,
+                fall,
+            } => {
+                if t < rise {
+                    peak * t / rise
+                } else if t < rise + hold {
+                    peak
+                } else if t < rise + hold + fall {
+                    peak * (rise + hold + fall - t) / fall
+                } else {
+                    0.0
+                }
+            }
+        }
+    }
+}
+
 /// The force applied to the body besides friction:
-/// `F_app(t, x, v) = constant + rate·t − stiffness·x − damping·v`.
+/// `F_app(t, x, v) = constant + profile(t) − stiffness·x − damping·v`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
 pub struct AppliedForce {
     /// Constant force, N.
     pub constant: f64,
-    /// Rate of a linearly rising force, N/s.
-    pub rate: f64,
+    /// Time-dependent force.
+    pub profile: Profile,
     /// Spring stiffness k (spring anchored at x = 0), N/m.
     pub stiffness: f64,
     /// Linear damping c, N·s/m.
@@ -49,7 +100,7 @@ pub struct AppliedForce {
 impl AppliedForce {
     /// The force at (t, x, v).
     pub fn at(&self, t: f64, x: f64, v: f64) -> f64 {
-        self.constant + self.rate * t - self.stiffness * x - self.damping * v
+        self.constant + self.profile.at(t) - self.stiffness * x - self.damping * v
     }
 }
 
@@ -140,6 +191,19 @@ impl FrictionBody<'_> {
                     SLIP_NEGATIVE
                 }
             }
+        }
+    }
+
+    /// The mode to report at state y: the integration's own mode under event switching;
+    /// otherwise the sign of v_rel (`stick` only at exactly zero).
+    pub fn reported_mode(&self, mode: Mode, y: &[f64]) -> Mode {
+        if self.switching == Switching::Event {
+            return mode;
+        }
+        match Direction::of(y[1] - self.surface_velocity) {
+            Some(Direction::Positive) => SLIP_POSITIVE,
+            Some(Direction::Negative) => SLIP_NEGATIVE,
+            None => STICK,
         }
     }
 

@@ -223,13 +223,19 @@ impl<'a> Integrator<'a> {
 
     /// Integrates to the end (or to a stopping event). A failure keeps the solution computed
     /// before it.
-    pub fn solve(mut self) -> Result<Solution, Failure> {
+    pub fn solve(self) -> Result<Solution, Failure> {
+        self.solve_observed(&mut |_| {})
+    }
+
+    /// As [`Integrator::solve`], telling `observe` the time reached after every step (for a
+    /// progress display).
+    pub fn solve_observed(mut self, observe: &mut dyn FnMut(f64)) -> Result<Solution, Failure> {
         loop {
             match self.step() {
                 Ok(StopReason::EndReached | StopReason::Stopped { .. }) => {
                     return Ok(self.solution())
                 }
-                Ok(_) => {}
+                Ok(_) => observe(self.t()),
                 Err(error) => {
                     return Err(Failure {
                         error,

@@ -80,6 +80,18 @@ impl Solver {
         mode: Mode,
         options: Options,
     ) -> Result<Solution, Failure> {
+        self.solve_observed(problem, y0, mode, options, &mut |_| {})
+    }
+
+    /// As [`Solver::solve`], telling `observe` the time reached after every step.
+    pub fn solve_observed(
+        self,
+        problem: &dyn OdeProblem,
+        y0: &[f64],
+        mode: Mode,
+        options: Options,
+        observe: &mut dyn FnMut(f64),
+    ) -> Result<Solution, Failure> {
         let n = problem.dim();
         let stepper: Box<dyn Stepper> = match (self, options.step) {
             (Solver::Rk4, StepControl::Fixed { h }) => Box::new(Rk4::new(h, n)),
@@ -103,7 +115,7 @@ impl Solver {
                 n,
             )),
             (Solver::Diffsol(method), _) => {
-                return diffsol_backend::solve(problem, method, y0, mode, options)
+                return diffsol_backend::solve_observed(problem, method, y0, mode, options, observe)
             }
         };
         Integrator::new(problem, stepper, y0, mode, options)
@@ -111,7 +123,7 @@ impl Solver {
                 error,
                 solution: Box::new(Solution::new(self.name(), n)),
             })?
-            .solve()
+            .solve_observed(observe)
     }
 }
 

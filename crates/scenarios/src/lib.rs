@@ -5,4 +5,13 @@
 //! figures with what the paper says of each ([`figures`]).
 
 pub mod curves;
+pub mod energy;
 pub mod figures;
+pub mod motion;
+pub mod params;
+pub mod run;
+pub mod scenario;
+
+pub use params::ScenarioParams;
+pub use run::{run, Outcome, Row, RunSpec, ScenarioError, SwitchingKind};
+pub use scenario::Scenario;

@@ -1,0 +1,187 @@
+//! Prescribed motion: the surface is fixed and the body's motion x(t) is imposed, so only the
+//! friction model's internal state is integrated, with two accumulators:
+//! `W = ∫F·v dt` (the work done against friction) and `H = ∫F·a dt = ∮F dv` (the area of the
+//! friction–velocity loop, zero for any single-valued map F(v)).
+//!
+//! State: `y = [z, W, H]` for a model with an internal state, `[W, H]` without one.
+
+use friction_models::{Direction, FrictionModel, SignLaw};
+use integrators::friction::{Switching, SLIP_NEGATIVE, SLIP_POSITIVE};
+use integrators::{Control, Crossing, Entry, EventSpec, Mode, OdeProblem};
+
+/// An imposed motion.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Motion {
+    /// The paper's `X(t) = t³/3 + t²/2`, or its mirror image.
+    Paper {
+        /// X → −X.
+        mirrored: bool,
+    },
+    /// `x = amplitude·sin(omega·t)`.
+    Sine {
+        /// Amplitude, m.
+        amplitude: f64,
+        /// Angular frequency, rad/s.
+        omega: f64,
+    },
+    /// `v = mean + amplitude·sin(omega·t)`, x(0) = 0.
+    VelocitySine {
+        /// Mean velocity, m/s.
+        mean: f64,
+        /// Velocity amplitude, m/s.
+        amplitude: f64,
+        /// Angular frequency, rad/s.
+        omega: f64,
+    },
+    /// `v` constant, x(0) = 0.
+    Constant {
+        /// Velocity, m/s.
+        v: f64,
+    },
+}
+
+impl Motion {
+    /// Displacement, velocity and acceleration at t.
+    pub fn at(&self, t: f64) -> (f64, f64, f64) {
+        match *self {
+            Motion::Paper { mirrored } => {
+                let s = if mirrored { -1.0 } else { 1.0 };
+                (
+                    s * (t.powi(3) / 3.0 + t * t / 2.0),
+                    s * t * (t + 1.0),
+                    s * (2.0 * t + 1.0),
+                )
+            }
+            Motion::Sine { amplitude, omega } => {
+                let (sn, cs) = (omega * t).sin_cos();
+                (
+                    amplitude * sn,
+                    amplitude * omega * cs,
+                    -amplitude * omega * omega * sn,
+                )
+            }
+            Motion::VelocitySine {
+                mean,
+                amplitude,
+                omega,
+            } => {
+                let (sn, cs) = (omega * t).sin_cos();
+                (
+                    mean * t + amplitude * (1.0 - cs) / omega,
+                    mean + amplitude * sn,
+                    amplitude * omega * cs,
+                )
+            }
+            Motion::Constant { v } => (v * t, v, 0.0),
+        }
+    }
+}
+
+/// A friction model driven along an imposed motion.
+pub struct Kinematic<'a> {
+    /// The friction law.
+    pub model: &'a dyn FrictionModel,
+    /// The motion.
+    pub motion: Motion,
+    /// The treatment of v = 0.
+    pub switching: Switching,
+}
+
+const POSITIVE_EVENTS: [EventSpec; 1] = [EventSpec {
+    name: "reversal",
+    crossing: Crossing::Falling,
+}];
+const NEGATIVE_EVENTS: [EventSpec; 1] = [EventSpec {
+    name: "reversal",
+    crossing: Crossing::Rising,
+}];
+
+impl Kinematic<'_> {
+    /// Index of the first accumulator (W) in the state.
+    pub fn work_index(&self) -> usize {
+        self.model.n_states()
+    }
+
+    /// The direction of motion at t: the sign of v, or of a where v = 0.
+    pub fn mode_at(&self, t: f64) -> Mode {
+        let (_, v, a) = self.motion.at(t);
+        match Direction::of(v).or(Direction::of(a)) {
+            Some(Direction::Negative) => SLIP_NEGATIVE,
+            _ => SLIP_POSITIVE,
+        }
+    }
+
+    fn law(&self, mode: Mode) -> SignLaw {
+        match self.switching {
+            Switching::Event if mode == SLIP_NEGATIVE => SignLaw::Frozen(Direction::Negative),
+            Switching::Event => SignLaw::Frozen(Direction::Positive),
+            Switching::Regularized { epsilon } => SignLaw::Smooth { epsilon },
+            Switching::Naive => SignLaw::Discontinuous,
+        }
+    }
+
+    /// The internal state in y.
+    pub fn z(&self, y: &[f64]) -> f64 {
+        if self.model.n_states() > 0 {
+            y[0]
+        } else {
+            0.0
+        }
+    }
+
+    /// The friction force at (t, y) in `mode`.
+    pub fn friction(&self, t: f64, y: &[f64], mode: Mode) -> f64 {
+        let (x, v, _) = self.motion.at(t);
+        self.model.response(x, v, self.z(y), self.law(mode)).force
+    }
+}
+
+impl OdeProblem for Kinematic<'_> {
+    fn dim(&self) -> usize {
+        self.model.n_states() + 2
+    }
+
+    fn rhs(&self, t: f64, y: &[f64], mode: Mode, dy: &mut [f64]) {
+        let (x, v, a) = self.motion.at(t);
+        let r = self.model.response(x, v, self.z(y), self.law(mode));
+        let w = self.work_index();
+        if w > 0 {
+            dy[0] = r.state_rate;
+        }
+        dy[w] = r.force * v;
+        dy[w + 1] = r.force * a;
+    }
+
+    fn jacobian(&self, t: f64, y: &[f64], mode: Mode, jac: &mut Vec<Entry>) -> bool {
+        if self.model.n_states() > 0 {
+            let (x, v, a) = self.motion.at(t);
+            let p = self.model.partials(x, v, self.z(y), self.law(mode));
+            jac.extend([
+                (0, 0, p.rate_dz),
+                (1, 0, p.force_dz * v),
+                (2, 0, p.force_dz * a),
+            ]);
+        }
+        true
+    }
+
+    fn events(&self, mode: Mode) -> &[EventSpec] {
+        match (self.switching, mode) {
+            (Switching::Event, SLIP_NEGATIVE) => &NEGATIVE_EVENTS,
+            (Switching::Event, _) => &POSITIVE_EVENTS,
+            _ => &[],
+        }
+    }
+
+    fn event(&self, _i: usize, t: f64, _y: &[f64], _mode: Mode) -> f64 {
+        self.motion.at(t).1
+    }
+
+    fn on_event(&self, _i: usize, _t: f64, _y: &mut [f64], mode: Mode) -> Control {
+        Control::Switch(if mode == SLIP_POSITIVE {
+            SLIP_NEGATIVE
+        } else {
+            SLIP_POSITIVE
+        })
+    }
+}

@@ -1,0 +1,417 @@
+//! One simulation of a scenario: the rig built from the parameters, integrated by a solver
+//! with a treatment of v = 0, and turned into trajectory rows, events, statistics and the
+//! energy balance. A solver failure keeps what was computed before it.
+
+use crate::energy::{EnergyBalance, Tracked};
+use crate::motion::{Kinematic, Motion};
+use crate::params::ScenarioParams;
+use crate::scenario::Scenario;
+use friction_models::{FrictionModel, FrictionParams, ModelId, ParamError, Parameters, Variant};
+use integrators::friction::{mode_name, AppliedForce, FrictionBody, Profile, Switching};
+use integrators::{Failure, OdeProblem, Options, Output, Solution, Solver, Stats, StepControl};
+use serde::Serialize;
+use std::time::Instant;
+use thiserror::Error;
+
+/// How v = 0 is treated, by the name the command line takes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SwitchingKind {
+    /// Event location with stick/slip mode switching.
+    Event,
+    /// tanh(v/ε) with ε the friction parameter `epsilon`.
+    Regularized,
+    /// The discontinuous law stepped through.
+    Naive,
+}
+
+impl SwitchingKind {
+    /// Every treatment.
+    pub const ALL: [SwitchingKind; 3] = [
+        SwitchingKind::Event,
+        SwitchingKind::Regularized,
+        SwitchingKind::Naive,
+    ];
+
+    /// The name the command line takes.
+    pub fn name(self) -> &'static str {
+        match self {
+            SwitchingKind::Event => "event",
+            SwitchingKind::Regularized => "regularized",
+            SwitchingKind::Naive => "naive",
+        }
+    }
+
+    /// The integrators' switching, with the width from the parameters.
+    pub fn with(self, p: &FrictionParams) -> Switching {
+        match self {
+            SwitchingKind::Event => Switching::Event,
+            SwitchingKind::Regularized => Switching::Regularized { epsilon: p.epsilon },
+            SwitchingKind::Naive => Switching::Naive,
+        }
+    }
+}
+
+impl std::str::FromStr for SwitchingKind {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        SwitchingKind::ALL
+            .into_iter()
+            .find(|k| k.name() == s)
+            .ok_or_else(|| format!("unknown switching `{s}`; allowed: event, regularized, naive"))
+    }
+}
+
+/// Everything a simulation needs.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunSpec {
+    /// The rig.
+    pub scenario: Scenario,
+    /// The friction model.
+    pub model: ModelId,
+    /// Its reading.
+    pub variant: Variant,
+    /// Friction parameters.
+    pub friction: FrictionParams,
+    /// Scenario parameters.
+    pub params: ScenarioParams,
+    /// The solver.
+    pub solver: Solver,
+    /// The treatment of v = 0.
+    pub switching: SwitchingKind,
+    /// Step control.
+    pub step: StepControl,
+    /// End time (the scenario's default when `None`).
+    pub t_end: Option<f64>,
+    /// Number of evenly spaced output points (events are recorded besides).
+    pub output_points: usize,
+}
+
+/// A scenario that cannot be set up as asked.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum ScenarioError {
+    /// A parameter was rejected.
+    #[error(transparent)]
+    Param(#[from] ParamError),
+    /// A combination that makes no sense.
+    #[error("{0}")]
+    Invalid(String),
+}
+
+/// One row of `trajectory.csv`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Row {
+    /// Time, s.
+    pub t: f64,
+    /// Displacement, m.
+    pub x: f64,
+    /// Velocity, m/s.
+    pub v: f64,
+    /// Friction force, N.
+    pub friction: f64,
+    /// `slip+`, `slip-` or `stick`.
+    pub mode: &'static str,
+    /// Internal state (Dahl or LuGre), when the model has one.
+    pub z: Option<f64>,
+}
+
+/// An event, as `summary.json` lists it.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct EventEntry {
+    /// Time, s.
+    pub t: f64,
+    /// What happened (`stick`, `slip+`, `slip-`, `reversal`).
+    pub kind: String,
+}
+
+/// What a simulation produced.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Outcome {
+    /// Trajectory rows.
+    pub rows: Vec<Row>,
+    /// Events.
+    pub events: Vec<EventEntry>,
+    /// Solver statistics.
+    pub stats: Stats,
+    /// The solver's error, if it failed (the rows before it are kept).
+    pub error: Option<String>,
+    /// Energy balance (body scenarios).
+    pub energy: Option<EnergyBalance>,
+    /// ∫F·v dt: the work done against friction (prescribed-motion scenarios).
+    pub friction_work: Option<f64>,
+    /// ∮F dv: the friction–velocity loop area (prescribed-motion scenarios).
+    pub loop_area: Option<f64>,
+    /// Wall time of the integration, s.
+    pub wall_time_s: f64,
+}
+
+impl Outcome {
+    /// The last row.
+    pub fn last(&self) -> Option<&Row> {
+        self.rows.last()
+    }
+}
+
+/// Checks the scenario parameters and the combination.
+fn validate(spec: &RunSpec) -> Result<(), ScenarioError> {
+    spec.params.validate()?;
+    if matches!(spec.scenario, Scenario::Belt | Scenario::FreeVibration) && spec.params.k <= 0.0 {
+        return Err(ScenarioError::Invalid(format!(
+            "parameter `k` = {} is out of range for {}: allowed (0, inf) N/m (the spring holds the body)",
+            spec.params.k, spec.scenario
+        )));
+    }
+    if spec.output_points < 2 {
+        return Err(ScenarioError::Invalid(format!(
+            "option `points` = {} is out of range: allowed [2, inf)",
+            spec.output_points
+        )));
+    }
+    Ok(())
+}
+
+fn options(spec: &RunSpec, t_end: f64) -> Options {
+    let n = spec.output_points;
+    let grid = (0..n).map(|i| t_end * i as f64 / (n - 1) as f64).collect();
+    Options {
+        step: spec.step,
+        output: Output::Grid(grid),
+        ..Options::adaptive(0.0, t_end, 1e-8, 1e-10)
+    }
+}
+
+/// The body of a body scenario.
+fn body<'a>(spec: &RunSpec, model: &'a dyn FrictionModel) -> (FrictionBody<'a>, [f64; 2]) {
+    let p = &spec.params;
+    let mut applied = AppliedForce::default();
+    let mut surface_velocity = 0.0;
+    match spec.scenario {
+        Scenario::PaperBlock => applied.constant = p.f_ex,
+        Scenario::Belt => {
+            applied.stiffness = p.k;
+            surface_velocity = p.v_belt;
+        }
+        Scenario::FreeVibration => applied.stiffness = p.k,
+        Scenario::ForceRamp => applied.profile = Profile::Ramp { rate: p.rate },
+        Scenario::Presliding => {
+            applied.profile = Profile::Trapezoid {
+                peak: p.fraction * spec.friction.f_s,
+                rise: 1.0,
+                hold: 1.0,
+                fall: 1.0,
+            }
+        }
+        _ => unreachable!("only body scenarios have a body"),
+    }
+    let start = match spec.scenario {
+        Scenario::PaperBlock | Scenario::Belt | Scenario::FreeVibration => [p.x0, p.v0],
+        _ => [0.0, 0.0],
+    };
+    (
+        FrictionBody {
+            mass: p.m,
+            model,
+            applied,
+            surface_velocity,
+            switching: spec.switching.with(&spec.friction),
+        },
+        start,
+    )
+}
+
+fn finish(solution: Result<Solution, Failure>) -> (Solution, Option<String>) {
+    match solution {
+        Ok(s) => (s, None),
+        Err(f) => (*f.solution, Some(f.error.to_string())),
+    }
+}
+
+fn events(s: &Solution, kind: impl Fn(&integrators::EventRecord) -> String) -> Vec<EventEntry> {
+    s.events
+        .iter()
+        .map(|e| EventEntry {
+            t: e.t,
+            kind: kind(e),
+        })
+        .collect()
+}
+
+fn run_body(
+    spec: &RunSpec,
+    model: &dyn FrictionModel,
+    t_end: f64,
+    observe: &mut dyn FnMut(f64),
+) -> Outcome {
+    let (body, [x0, v0]) = body(spec, model);
+    let tracked = Tracked { body };
+    let n = tracked.body_dim();
+    let mut y0 = vec![0.0; n + 3];
+    y0[0] = x0;
+    y0[1] = v0;
+    let mode = tracked.body.mode_at(0.0, &y0[..n]);
+    let clock = Instant::now();
+    let (s, error) =
+        finish(
+            spec.solver
+                .solve_observed(&tracked, &y0, mode, options(spec, t_end), observe),
+        );
+    let wall_time_s = clock.elapsed().as_secs_f64();
+    let has_state = model.n_states() > 0;
+    let rows = (0..s.len())
+        .map(|i| {
+            let y = s.y_at(i);
+            Row {
+                t: s.t[i],
+                x: y[0],
+                v: y[1],
+                friction: tracked.body.friction(s.t[i], &y[..n], s.mode[i]),
+                mode: mode_name(tracked.body.reported_mode(s.mode[i], &y[..n])),
+                z: has_state.then(|| y[2]),
+            }
+        })
+        .collect();
+    let energy = s.last().map(|(_, y1)| tracked.balance(&y0, y1));
+    Outcome {
+        rows,
+        events: events(&s, |e| mode_name(e.mode_after).to_string()),
+        stats: s.stats,
+        error,
+        energy,
+        friction_work: None,
+        loop_area: None,
+        wall_time_s,
+    }
+}
+
+/// Runs a prescribed motion from rest with zero internal state.
+pub fn run_motion(
+    spec: &RunSpec,
+    model: &dyn FrictionModel,
+    motion: Motion,
+    t_end: f64,
+    observe: &mut dyn FnMut(f64),
+) -> Outcome {
+    let k = Kinematic {
+        model,
+        motion,
+        switching: spec.switching.with(&spec.friction),
+    };
+    let y0 = vec![0.0; k.dim()];
+    let clock = Instant::now();
+    let (s, error) =
+        finish(
+            spec.solver
+                .solve_observed(&k, &y0, k.mode_at(0.0), options(spec, t_end), observe),
+        );
+    let wall_time_s = clock.elapsed().as_secs_f64();
+    let w = k.work_index();
+    let rows = (0..s.len())
+        .map(|i| {
+            let (x, v, _) = motion.at(s.t[i]);
+            let y = s.y_at(i);
+            Row {
+                t: s.t[i],
+                x,
+                v,
+                friction: k.friction(s.t[i], y, s.mode[i]),
+                mode: mode_name(s.mode[i]),
+                z: (w > 0).then(|| y[0]),
+            }
+        })
+        .collect();
+    let last = s.last().map(|(_, y)| (y[w], y[w + 1]));
+    Outcome {
+        rows,
+        events: events(&s, |e| e.name.to_string()),
+        stats: s.stats,
+        error,
+        energy: None,
+        friction_work: last.map(|l| l.0),
+        loop_area: last.map(|l| l.1),
+        wall_time_s,
+    }
+}
+
+/// Steady friction at each velocity of a sweep: each point a constant-velocity run from
+/// z = 0 long enough for the state to settle (20 time constants 1/|∂ż/∂z| at the steady
+/// state; stateless models need no settling).
+fn run_sweep(spec: &RunSpec, model: &dyn FrictionModel, observe: &mut dyn FnMut(f64)) -> Outcome {
+    let mut out = Outcome {
+        rows: Vec::new(),
+        events: Vec::new(),
+        stats: Stats::default(),
+        error: None,
+        energy: None,
+        friction_work: None,
+        loop_area: None,
+        wall_time_s: 0.0,
+    };
+    let v_max = spec.params.v_max;
+    let velocities = (1..=20)
+        .rev()
+        .map(|k| -v_max * k as f64 / 20.0)
+        .chain((1..=20).map(|k| v_max * k as f64 / 20.0));
+    for v in velocities {
+        let settle = settling_time(model, v);
+        let point = RunSpec {
+            output_points: 2,
+            ..spec.clone()
+        };
+        let o = run_motion(&point, model, Motion::Constant { v }, settle, observe);
+        out.stats += o.stats;
+        out.wall_time_s += o.wall_time_s;
+        if let Some(row) = o.last() {
+            out.rows.push(*row);
+        }
+        if o.error.is_some() {
+            out.error = o.error;
+            break;
+        }
+    }
+    out
+}
+
+/// Twenty time constants of the internal state at steady sliding with velocity v (1 ms for
+/// a stateless model).
+pub fn settling_time(model: &dyn FrictionModel, v: f64) -> f64 {
+    if model.n_states() == 0 {
+        return 1e-3;
+    }
+    let z = model.steady_state(v);
+    let rate = model
+        .partials(0.0, v, z, friction_models::SignLaw::Discontinuous)
+        .rate_dz
+        .abs();
+    20.0 / rate
+}
+
+/// Runs the simulation `spec` describes; `observe` is told the time after each step.
+pub fn run(spec: &RunSpec, observe: &mut dyn FnMut(f64)) -> Result<Outcome, ScenarioError> {
+    validate(spec)?;
+    let model = spec.model.build(spec.variant, &spec.friction)?;
+    let t_end = spec
+        .t_end
+        .unwrap_or_else(|| spec.scenario.default_t_end(&spec.params, &spec.friction));
+    let p = &spec.params;
+    Ok(match spec.scenario {
+        Scenario::VelocitySweep => run_sweep(spec, model.as_ref(), observe),
+        Scenario::PrescribedMotion => run_motion(
+            spec,
+            model.as_ref(),
+            Motion::Paper { mirrored: false },
+            t_end,
+            observe,
+        ),
+        Scenario::Oscillation => run_motion(
+            spec,
+            model.as_ref(),
+            Motion::Sine {
+                amplitude: p.amplitude,
+                omega: p.omega,
+            },
+            t_end,
+            observe,
+        ),
+        _ => run_body(spec, model.as_ref(), t_end, observe),
+    })
+}

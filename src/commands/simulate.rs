@@ -1,0 +1,355 @@
+//! `friction-lab simulate SCENARIO --model MODEL --solver SOLVER --out DIR`: one scenario,
+//! written as `trajectory.csv`, `summary.json` and figures (time histories of x, v and
+//! friction; phase portrait; friction against velocity and against displacement).
+
+use crate::artifacts::Artifacts;
+use crate::commands::curve::used_parameters;
+use crate::error::AppError;
+use crate::options::ModelOptions;
+use crate::output::{Cell, Table};
+use crate::plot::{self, Plot, Series, BLUE};
+use clap::Args;
+use friction_models::{ModelId, Parameters};
+use integrators::{Solver, StepControl};
+use scenarios::run::{EventEntry, Outcome};
+use scenarios::{RunSpec, Scenario, SwitchingKind};
+use serde::Serialize;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// Options that choose and tune the solver, shared by every command that integrates.
+#[derive(Args, Clone, Debug)]
+pub struct SolverOptions {
+    /// rk4, dopri5, implicit-euler, bdf, tr-bdf2, esdirk34 (diffsol), tsit45 (diffsol).
+    #[arg(long, value_name = "SOLVER", default_value = "dopri5")]
+    pub solver: Solver,
+    /// event (stick/slip switching), regularized (tanh, width epsilon) or naive.
+    #[arg(long, value_name = "event|regularized|naive", default_value = "event")]
+    pub switching: SwitchingKind,
+    /// Fixed step of rk4 (default 1e-3 s, the paper's), or the initial step of the adaptive
+    /// solvers (the fixed step with --fixed-step).
+    #[arg(long, value_name = "H")]
+    pub dt: Option<f64>,
+    /// Integrate dopri5 or implicit-euler with fixed steps of --dt.
+    #[arg(long)]
+    pub fixed_step: bool,
+    /// Relative tolerance of the adaptive solvers.
+    #[arg(long, value_name = "R", default_value_t = 1e-8)]
+    pub rtol: f64,
+    /// Absolute tolerance of the adaptive solvers.
+    #[arg(long, value_name = "A", default_value_t = 1e-10)]
+    pub atol: f64,
+}
+
+/// The paper's time step, RK4's default.
+pub const PAPER_DT: f64 = 1e-3;
+
+impl SolverOptions {
+    /// The step control these options ask for.
+    pub fn step(&self) -> StepControl {
+        if self.solver.is_fixed_step() || self.fixed_step {
+            StepControl::Fixed {
+                h: self.dt.unwrap_or(PAPER_DT),
+            }
+        } else {
+            StepControl::Adaptive {
+                rtol: self.rtol,
+                atol: self.atol,
+                h0: self.dt,
+            }
+        }
+    }
+}
+
+/// Options of `simulate`.
+#[derive(Args, Debug)]
+pub struct SimulateArgs {
+    /// paper-block, prescribed-motion, velocity-sweep, belt, free-vibration, oscillation,
+    /// force-ramp, presliding.
+    #[arg(value_name = "SCENARIO")]
+    pub scenario: Scenario,
+    /// The friction model, as `friction-lab models` lists it.
+    #[arg(long, value_name = "MODEL")]
+    pub model: ModelId,
+    /// Folder to write into (created if missing).
+    #[arg(long, value_name = "DIR")]
+    pub out: PathBuf,
+    /// End time, s [default: the scenario's].
+    #[arg(long, value_name = "T")]
+    pub t_end: Option<f64>,
+    /// Evenly spaced output points (events are recorded besides).
+    #[arg(long, value_name = "N", default_value_t = 2001)]
+    pub points: usize,
+    /// The solver.
+    #[command(flatten)]
+    pub solver: SolverOptions,
+    /// The model's parameters (friction and scenario parameters alike) and reading.
+    #[command(flatten)]
+    pub model_options: ModelOptions,
+}
+
+#[derive(Serialize)]
+struct Final {
+    t: f64,
+    x: f64,
+    v: f64,
+}
+
+#[derive(Serialize)]
+struct StatsEntry {
+    steps: usize,
+    rejected: usize,
+    rhs_evals: usize,
+    jacobian_evals: usize,
+    lu_factorizations: usize,
+    newton_iterations: usize,
+    events: usize,
+}
+
+#[derive(Serialize)]
+struct Summary<'a> {
+    scenario: &'a str,
+    model: &'a str,
+    variant: friction_models::Variant,
+    solver: &'a str,
+    switching: &'a str,
+    step: String,
+    t_end: f64,
+    parameters: BTreeMap<&'a str, f64>,
+    status: &'a str,
+    error: Option<&'a str>,
+    #[serde(rename = "final")]
+    final_state: Option<Final>,
+    events: &'a [EventEntry],
+    stats: StatsEntry,
+    wall_time_s: f64,
+    energy_residual: Option<f64>,
+    energy: Option<scenarios::energy::EnergyBalance>,
+    friction_work: Option<f64>,
+    loop_area: Option<f64>,
+}
+
+/// The spec of a run from the command line.
+pub fn spec(args: &SimulateArgs) -> Result<RunSpec, AppError> {
+    let (friction, params) = args.model_options.params.resolve_for(Some(args.scenario))?;
+    if let Some(t) = args.t_end {
+        if !(t.is_finite() && t > 0.0) {
+            return Err(AppError::Usage(format!(
+                "option `t_end` = {t} is out of range: allowed (0, inf) s"
+            )));
+        }
+    }
+    let step = args.solver.step();
+    integrators::Options {
+        step,
+        ..integrators::Options::adaptive(0.0, 1.0, 1e-6, 1e-6)
+    }
+    .validate()
+    .map_err(|e| AppError::Usage(e.to_string()))?;
+    Ok(RunSpec {
+        scenario: args.scenario,
+        model: args.model,
+        variant: args.model_options.variant,
+        friction,
+        params,
+        solver: args.solver.solver,
+        switching: args.solver.switching,
+        step,
+        t_end: args.t_end,
+        output_points: args.points,
+    })
+}
+
+fn trajectory(o: &Outcome, has_state: bool, path: &Path) -> Result<Vec<u8>, AppError> {
+    let mut header = vec!["t", "x", "v", "friction", "mode"];
+    if has_state {
+        header.push("z");
+    }
+    let mut table = Table::new(&header);
+    for r in &o.rows {
+        let mut row = vec![
+            Cell::Num(r.t),
+            Cell::Num(r.x),
+            Cell::Num(r.v),
+            Cell::Num(r.friction),
+            Cell::Text(r.mode.into()),
+        ];
+        if let Some(z) = r.z {
+            row.push(Cell::Num(z));
+        }
+        table.rows.push(row);
+    }
+    table.to_csv(path)
+}
+
+/// The figures of a simulation: (file stem, title, x label, y label, points).
+fn figures(o: &Outcome, name: &str) -> Vec<(&'static str, Plot)> {
+    type Pick = fn(&scenarios::Row) -> f64;
+    let specs: [(&str, &str, &str, &str, Pick, Pick); 6] = [
+        (
+            "history-x",
+            "displacement",
+            "time t (s)",
+            "displacement x (m)",
+            |r| r.t,
+            |r| r.x,
+        ),
+        (
+            "history-v",
+            "velocity",
+            "time t (s)",
+            "velocity v (m/s)",
+            |r| r.t,
+            |r| r.v,
+        ),
+        (
+            "history-friction",
+            "friction force",
+            "time t (s)",
+            "friction force F (N)",
+            |r| r.t,
+            |r| r.friction,
+        ),
+        (
+            "phase-portrait",
+            "phase portrait",
+            "displacement x (m)",
+            "velocity v (m/s)",
+            |r| r.x,
+            |r| r.v,
+        ),
+        (
+            "friction-velocity",
+            "friction against velocity",
+            "velocity v (m/s)",
+            "friction force F (N)",
+            |r| r.v,
+            |r| r.friction,
+        ),
+        (
+            "friction-displacement",
+            "friction against displacement",
+            "displacement x (m)",
+            "friction force F (N)",
+            |r| r.x,
+            |r| r.friction,
+        ),
+    ];
+    specs
+        .into_iter()
+        .map(|(stem, what, xl, yl, fx, fy)| {
+            (
+                stem,
+                Plot {
+                    title: format!("{name}: {what}"),
+                    x_label: xl.into(),
+                    y_label: yl.into(),
+                    series: vec![Series {
+                        label: None,
+                        points: o.rows.iter().map(|r| (fx(r), fy(r))).collect(),
+                        color: BLUE,
+                        width: 2,
+                    }],
+                },
+            )
+        })
+        .collect()
+}
+
+/// Runs `simulate`.
+pub fn run(args: &SimulateArgs) -> Result<(), AppError> {
+    let spec = spec(args)?;
+    let t_end = spec
+        .t_end
+        .unwrap_or_else(|| spec.scenario.default_t_end(&spec.params, &spec.friction));
+    let bar = indicatif::ProgressBar::new(1000);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{spinner} {msg} [{bar:40}] {percent}%")
+            .expect("a valid template"),
+    );
+    bar.set_message(format!(
+        "{} {} {}",
+        spec.scenario,
+        spec.model,
+        spec.solver.name()
+    ));
+    let outcome = scenarios::run(&spec, &mut |t| {
+        if t_end > 0.0 {
+            bar.set_position((1000.0 * t / t_end).clamp(0.0, 1000.0) as u64);
+        }
+    })
+    .map_err(|e| AppError::Usage(e.to_string()))?;
+    bar.finish_and_clear();
+
+    let model = spec.model.build(spec.variant, &spec.friction)?;
+    let has_state = model.n_states() > 0;
+    let name = format!(
+        "{} with {} ({}, {} switching)",
+        spec.scenario,
+        spec.model,
+        spec.solver.name(),
+        spec.switching.name()
+    );
+    let mut files = Artifacts::default();
+    let csv = args.out.join("trajectory.csv");
+    files.add(csv.clone(), trajectory(&outcome, has_state, &csv)?);
+    for (stem, p) in figures(&outcome, &name) {
+        let png = args.out.join(format!("{stem}.png"));
+        let bytes = plot::png(&p, &png)?;
+        files.add(png, bytes);
+        let svg = args.out.join(format!("{stem}.svg"));
+        let text = plot::svg(&p, &svg)?;
+        files.add(svg, text.into_bytes());
+    }
+    let mut parameters = used_parameters(spec.model, &spec.friction);
+    for &p in spec.scenario.parameters() {
+        parameters.insert(p, spec.params.value(p).expect("scenario parameters exist"));
+    }
+    if spec.switching == SwitchingKind::Regularized {
+        parameters.insert("epsilon", spec.friction.epsilon);
+    }
+    let s = outcome.stats;
+    let summary = Summary {
+        scenario: spec.scenario.name(),
+        model: spec.model.name(),
+        variant: spec.variant,
+        solver: spec.solver.name(),
+        switching: spec.switching.name(),
+        step: format!("{:?}", spec.step),
+        t_end,
+        parameters,
+        status: if outcome.error.is_some() {
+            "failed"
+        } else {
+            "ok"
+        },
+        error: outcome.error.as_deref(),
+        final_state: outcome.last().map(|r| Final {
+            t: r.t,
+            x: r.x,
+            v: r.v,
+        }),
+        events: &outcome.events,
+        stats: StatsEntry {
+            steps: s.steps,
+            rejected: s.rejected(),
+            rhs_evals: s.rhs_evals,
+            jacobian_evals: s.jacobian_evals,
+            lu_factorizations: s.lu_factorizations,
+            newton_iterations: s.newton_iterations,
+            events: s.events,
+        },
+        wall_time_s: outcome.wall_time_s,
+        energy_residual: outcome.energy.map(|e| e.residual),
+        energy: outcome.energy,
+        friction_work: outcome.friction_work,
+        loop_area: outcome.loop_area,
+    };
+    files.add_json(args.out.join("summary.json"), &summary)?;
+    let written = files.write()?;
+    println!("wrote {} files into {}", written.len(), args.out.display());
+    match outcome.error {
+        Some(e) => Err(AppError::Solver(e)),
+        None => Ok(()),
+    }
+}
