@@ -8,7 +8,9 @@ pub mod curves;
 pub mod energy;
 pub mod figures;
 pub mod motion;
+pub mod paper;
 pub mod params;
+pub mod phenomena;
 pub mod run;
 pub mod scenario;
 

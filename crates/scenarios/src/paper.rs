@@ -1,0 +1,134 @@
+//! The paper's experiment (section 3): a 1 kg block pushed by 15 N from rest, for each of
+//! the six models, against the closed forms of its long-time behaviour.
+//!
+//! With v > 0 for all t > 0 the friction force tends to a constant level plus μ_v·v: the
+//! Stribeck term dies out (v ≫ v_s) and the Dahl state saturates at F_c (X ≫ F_c/σ). So
+//!
+//! - a model with a viscous term tends to the terminal velocity `v_t = (F_ex − level)/μ_v`
+//!   with time constant `m/μ_v`: AV (level F_s), CVS (F_c), DV (F_c from Dahl), SV (F_s + F_c);
+//! - a model without one tends to the constant acceleration `a = (F_ex − level)/m`:
+//!   CS (level F_c), SD (F_s + F_c).
+
+use crate::run::{run, RunSpec, ScenarioError, SwitchingKind};
+use crate::scenario::Scenario;
+use crate::ScenarioParams;
+use friction_models::{FrictionParams, ModelId, Variant};
+use integrators::{Solver, StepControl};
+use serde::Serialize;
+
+/// The long-time behaviour the closed form predicts.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub enum Asymptote {
+    /// v → v_t, m/s.
+    TerminalVelocity(f64),
+    /// v' → a, m/s².
+    Acceleration(f64),
+}
+
+/// The friction level the model tends to at high speed, without its viscous part.
+pub fn level(model: ModelId, p: &FrictionParams) -> f64 {
+    match model {
+        ModelId::Av => p.f_s,
+        ModelId::Cs | ModelId::Cvs | ModelId::Dv => p.f_c,
+        ModelId::Sd | ModelId::Sv => p.f_s + p.f_c,
+        _ => f64::NAN,
+    }
+}
+
+/// The closed-form asymptote of `model` under F_ex on mass m.
+pub fn asymptote(model: ModelId, p: &FrictionParams, s: &ScenarioParams) -> Asymptote {
+    let drive = s.f_ex - level(model, p);
+    match model {
+        ModelId::Av | ModelId::Cvs | ModelId::Dv | ModelId::Sv => {
+            Asymptote::TerminalVelocity(drive / p.mu_v)
+        }
+        _ => Asymptote::Acceleration(drive / s.m),
+    }
+}
+
+/// One model's run of the experiment.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ExperimentRow {
+    /// The model.
+    pub model: ModelId,
+    /// The closed form.
+    pub predicted: Asymptote,
+    /// What the simulation shows: v after 30 time constants m/μ_v (viscous models), or the
+    /// mean acceleration over [4, 5] s.
+    pub measured: f64,
+    /// |measured − predicted| / |predicted|.
+    pub relative_error: f64,
+    /// Velocity at t = 5 s (the paper's window).
+    pub v_at_5s: f64,
+    /// Displacement at t = 5 s.
+    pub x_at_5s: f64,
+    /// (t, v) on [0, 5] s for the figure.
+    pub velocity: Vec<(f64, f64)>,
+}
+
+fn spec(
+    model: ModelId,
+    p: &FrictionParams,
+    s: &ScenarioParams,
+    t_end: f64,
+    points: usize,
+) -> RunSpec {
+    RunSpec {
+        scenario: Scenario::PaperBlock,
+        model,
+        variant: Variant::Odd,
+        friction: *p,
+        params: *s,
+        solver: Solver::Dopri5,
+        switching: SwitchingKind::Event,
+        step: StepControl::Adaptive {
+            rtol: 1e-12,
+            atol: 1e-12,
+            h0: None,
+        },
+        t_end: Some(t_end),
+        output_points: points,
+    }
+}
+
+/// Runs the experiment for the paper's six models. The asymptote is measured on a run of
+/// 30 time constants m/μ_v (viscous models), or as the mean acceleration over [4, 5] s.
+pub fn experiment(
+    p: &FrictionParams,
+    s: &ScenarioParams,
+) -> Result<Vec<ExperimentRow>, ScenarioError> {
+    ModelId::PAPER
+        .iter()
+        .map(|&model| {
+            let window = run(&spec(model, p, s, 5.0, 501), &mut |_| {})?;
+            if let Some(e) = &window.error {
+                return Err(ScenarioError::Invalid(format!("{model}: {e}")));
+            }
+            let at = |t: f64| {
+                window
+                    .rows
+                    .iter()
+                    .rev()
+                    .find(|r| r.t <= t)
+                    .expect("t0 recorded")
+            };
+            let predicted = asymptote(model, p, s);
+            let (measured, target) = match predicted {
+                Asymptote::TerminalVelocity(v_t) => {
+                    let long = run(&spec(model, p, s, 30.0 * s.m / p.mu_v, 2), &mut |_| {})?;
+                    (long.last().expect("end recorded").v, v_t)
+                }
+                Asymptote::Acceleration(a) => (at(5.0).v - at(4.0).v, a),
+            };
+            Ok(ExperimentRow {
+                model,
+                predicted,
+                measured,
+                relative_error: ((measured - target) / target).abs(),
+                v_at_5s: at(5.0).v,
+                x_at_5s: at(5.0).x,
+                velocity: window.rows.iter().map(|r| (r.t, r.v)).collect(),
+            })
+        })
+        .collect()
+}

@@ -1,0 +1,503 @@
+//! Table 2 decided by simulation: one protocol per phenomenon, each a scenario run whose
+//! measured numbers decide the cell against a stated threshold (see `docs/phenomena.md`).
+
+use crate::motion::Motion;
+use crate::run::{run, run_motion, settling_time, RunSpec, ScenarioError, SwitchingKind};
+use crate::scenario::Scenario;
+use crate::ScenarioParams;
+use friction_models::{FrictionModel, FrictionParams, ModelId, Variant};
+use integrators::{Solver, StepControl};
+use serde::Serialize;
+use std::collections::BTreeMap;
+
+/// A row of Table 2.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Phenomenon {
+    /// The body stays put under a force below break-away.
+    Stiction,
+    /// A small, partly reversible displacement before sliding.
+    Presliding,
+    /// Steady friction falls with velocity at low speed.
+    Stribeck,
+    /// Steady friction grows with velocity at high speed.
+    Viscous,
+    /// Friction is a loop, not a single-valued function of velocity, under oscillation.
+    Hysteresis,
+    /// A spring-held body on a slow belt alternates between sticking and slipping.
+    StickSlip,
+    /// The break-away force depends on how fast the applied force rises.
+    RisingStaticFriction,
+}
+
+impl Phenomenon {
+    /// Every row, in the paper's order.
+    pub const ALL: [Phenomenon; 7] = [
+        Phenomenon::Stiction,
+        Phenomenon::Presliding,
+        Phenomenon::Stribeck,
+        Phenomenon::Viscous,
+        Phenomenon::Hysteresis,
+        Phenomenon::StickSlip,
+        Phenomenon::RisingStaticFriction,
+    ];
+
+    /// The name used in `table2.json`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Phenomenon::Stiction => "stiction",
+            Phenomenon::Presliding => "presliding",
+            Phenomenon::Stribeck => "stribeck",
+            Phenomenon::Viscous => "viscous",
+            Phenomenon::Hysteresis => "hysteresis",
+            Phenomenon::StickSlip => "stick_slip",
+            Phenomenon::RisingStaticFriction => "rising_static_friction",
+        }
+    }
+
+    /// The row's label in the paper.
+    pub fn label(self) -> &'static str {
+        match self {
+            Phenomenon::Stiction => "Stiction",
+            Phenomenon::Presliding => "Pre-sliding",
+            Phenomenon::Stribeck => "Stribeck effect",
+            Phenomenon::Viscous => "Viscous friction",
+            Phenomenon::Hysteresis => "Hysteresis",
+            Phenomenon::StickSlip => "Stick-slip",
+            Phenomenon::RisingStaticFriction => "Rising static friction",
+        }
+    }
+
+    /// What Table 2 of the paper claims, for the paper's six models.
+    pub fn paper_claim(self, model: ModelId) -> Option<bool> {
+        let column = ModelId::PAPER.iter().position(|&m| m == model)?;
+        let row: [u8; 6] = match self {
+            Phenomenon::Stiction | Phenomenon::Presliding | Phenomenon::Hysteresis => {
+                [1, 1, 1, 1, 1, 1]
+            }
+            Phenomenon::Stribeck => [1, 1, 1, 0, 0, 0],
+            Phenomenon::Viscous => [1, 0, 1, 1, 0, 1],
+            Phenomenon::StickSlip => [1, 1, 0, 0, 1, 1],
+            Phenomenon::RisingStaticFriction => [0, 0, 0, 0, 0, 0],
+        };
+        Some(row[column] == 1)
+    }
+}
+
+/// A decided cell: the answer and the numbers that decided it.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Verdict {
+    /// Whether the phenomenon was observed.
+    pub measured: bool,
+    /// The numbers that decided it.
+    pub evidence: BTreeMap<&'static str, f64>,
+}
+
+/// The thresholds of the protocols (documented in `docs/phenomena.md`).
+pub mod thresholds {
+    /// Stiction: largest displacement over the second half of the hold, m (a body in gross
+    /// sliding moves metres; LuGre's known creep under a sub-break-away load is micrometres).
+    pub const STICTION_DRIFT: f64 = 1e-3;
+    /// Pre-sliding: smallest displacement under load that counts, m.
+    pub const PRESLIDING_MIN: f64 = 1e-9;
+    /// Pre-sliding: smallest fraction of the displacement recovered after release.
+    pub const PRESLIDING_RECOVERY: f64 = 0.01;
+    /// Stribeck and viscous: smallest relative change of steady friction.
+    pub const STEADY_CHANGE: f64 = 0.01;
+    /// Hysteresis: smallest loop area ∮F dv relative to F_max·2·v_max.
+    pub const LOOP_AREA: f64 = 1e-3;
+    /// Stick–slip: |v_rel| below this fraction of v_belt counts as sticking.
+    pub const STICKING_VELOCITY: f64 = 0.01;
+    /// Stick–slip: sticking phases needed in the second half of the run.
+    pub const STICK_PHASES: usize = 2;
+    /// Stick–slip: least fraction of the second half spent sticking. A velocity that only
+    /// grazes v_belt (the harmonic slip of pure Coulomb friction, F_s = F_c) stays within
+    /// 1 % of it for about 4 % of the time; real stick phases hold the body for 15–65 %.
+    pub const STICK_FRACTION: f64 = 0.1;
+    /// Rising static friction: smallest relative change of the break-away force.
+    pub const BREAKAWAY_CHANGE: f64 = 0.1;
+    /// Rising static friction: a break-away exists only if the peak friction before gross
+    /// sliding reaches this fraction of F_s.
+    pub const BREAKAWAY_MIN: f64 = 0.01;
+}
+
+/// How the protocols integrate.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Protocol {
+    /// The solver.
+    pub solver: Solver,
+    /// Its step control.
+    pub step: StepControl,
+}
+
+impl Default for Protocol {
+    fn default() -> Self {
+        Protocol {
+            solver: Solver::Dopri5,
+            step: StepControl::Adaptive {
+                rtol: 1e-10,
+                atol: 1e-12,
+                h0: None,
+            },
+        }
+    }
+}
+
+/// The parameter set a model is judged with: the paper's for the six and the classical
+/// terms, the LuGre paper's for LuGre.
+pub fn parameters_for(model: ModelId) -> FrictionParams {
+    if model == ModelId::LuGre {
+        FrictionParams::lugre_1995()
+    } else {
+        FrictionParams::paper()
+    }
+}
+
+struct Judge<'a> {
+    model: ModelId,
+    built: &'a dyn FrictionModel,
+    p: FrictionParams,
+    protocol: Protocol,
+}
+
+impl Judge<'_> {
+    fn spec(
+        &self,
+        scenario: Scenario,
+        params: ScenarioParams,
+        t_end: f64,
+        points: usize,
+    ) -> RunSpec {
+        RunSpec {
+            scenario,
+            model: self.model,
+            variant: Variant::Odd,
+            friction: self.p,
+            params,
+            solver: self.protocol.solver,
+            switching: SwitchingKind::Event,
+            step: self.protocol.step,
+            t_end: Some(t_end),
+            output_points: points,
+        }
+    }
+
+    fn outcome(&self, spec: &RunSpec) -> Result<crate::Outcome, ScenarioError> {
+        let o = run(spec, &mut |_| {})?;
+        match &o.error {
+            Some(e) => Err(ScenarioError::Invalid(format!(
+                "{} {}: {e}",
+                self.model, spec.scenario
+            ))),
+            None => Ok(o),
+        }
+    }
+
+    /// Steady friction at constant velocity v, reached by simulation.
+    fn steady(&self, v: f64) -> Result<f64, ScenarioError> {
+        let spec = self.spec(Scenario::VelocitySweep, ScenarioParams::default(), 0.0, 2);
+        let o = run_motion(
+            &spec,
+            self.built,
+            Motion::Constant { v },
+            settling_time(self.built, v),
+            &mut |_| {},
+        );
+        match o.error {
+            Some(e) => Err(ScenarioError::Invalid(format!(
+                "{} steady state at v = {v}: {e}",
+                self.model
+            ))),
+            None => Ok(o.last().expect("end recorded").friction),
+        }
+    }
+
+    /// A pre-sliding length: F_s over the contact stiffness for models with a bristle state.
+    fn presliding_length(&self) -> f64 {
+        match self.model {
+            ModelId::LuGre => self.p.f_s / self.p.sigma0,
+            ModelId::Dv | ModelId::Sd | ModelId::Sv | ModelId::Dahl => self.p.f_s / self.p.sigma,
+            _ => 0.0,
+        }
+    }
+
+    fn stiction(&self) -> Result<Verdict, ScenarioError> {
+        let load = 0.5 * self.p.f_s;
+        let params = ScenarioParams {
+            f_ex: load,
+            ..ScenarioParams::default()
+        };
+        let o = self.outcome(&self.spec(Scenario::PaperBlock, params, 10.0, 3))?;
+        let (mid, end) = (o.rows[1].x, o.rows[2].x);
+        let drift = (end - mid).abs();
+        Ok(Verdict {
+            measured: drift < thresholds::STICTION_DRIFT,
+            evidence: BTreeMap::from([
+                ("load_N", load),
+                ("x_at_5s_m", mid),
+                ("x_at_10s_m", end),
+                ("drift_m", drift),
+            ]),
+        })
+    }
+
+    fn presliding(&self) -> Result<Verdict, ScenarioError> {
+        let params = ScenarioParams {
+            fraction: 0.5,
+            ..ScenarioParams::default()
+        };
+        let o = self.outcome(&self.spec(Scenario::Presliding, params, 4.0, 401))?;
+        let x_max = o
+            .rows
+            .iter()
+            .filter(|r| r.t <= 2.0)
+            .map(|r| r.x.abs())
+            .fold(0.0, f64::max);
+        let x_end = o.last().expect("end recorded").x.abs();
+        let recovered = if x_max > 0.0 {
+            (x_max - x_end) / x_max
+        } else {
+            0.0
+        };
+        Ok(Verdict {
+            measured: x_max > thresholds::PRESLIDING_MIN
+                && recovered > thresholds::PRESLIDING_RECOVERY,
+            evidence: BTreeMap::from([
+                ("x_max_m", x_max),
+                ("x_after_release_m", x_end),
+                ("recovered_fraction", recovered),
+            ]),
+        })
+    }
+
+    fn steady_change(&self, v1: f64, v2: f64) -> Result<(f64, f64, f64), ScenarioError> {
+        let (f1, f2) = (self.steady(v1)?, self.steady(v2)?);
+        Ok((f1, f2, (f2 - f1) / f1.abs().max(f64::MIN_POSITIVE)))
+    }
+
+    fn stribeck(&self) -> Result<Verdict, ScenarioError> {
+        let (v1, v2) = (0.2 * self.p.v_s, 3.0 * self.p.v_s);
+        let (f1, f2, change) = self.steady_change(v1, v2)?;
+        Ok(Verdict {
+            measured: change < -thresholds::STEADY_CHANGE,
+            evidence: BTreeMap::from([
+                ("v_low_m_s", v1),
+                ("F_low_N", f1),
+                ("v_high_m_s", v2),
+                ("F_high_N", f2),
+                ("relative_change", change),
+            ]),
+        })
+    }
+
+    fn viscous(&self) -> Result<Verdict, ScenarioError> {
+        let (v1, v2) = (100.0 * self.p.v_s, 1000.0 * self.p.v_s);
+        let (f1, f2, change) = self.steady_change(v1, v2)?;
+        Ok(Verdict {
+            measured: change > thresholds::STEADY_CHANGE,
+            evidence: BTreeMap::from([
+                ("v_low_m_s", v1),
+                ("F_low_N", f1),
+                ("v_high_m_s", v2),
+                ("F_high_N", f2),
+                ("relative_change", change),
+            ]),
+        })
+    }
+
+    fn hysteresis(&self) -> Result<Verdict, ScenarioError> {
+        let length = self.presliding_length();
+        let amplitude = if length > 0.0 { 2.0 * length } else { 0.1 };
+        let omega = 2.0 * std::f64::consts::PI;
+        let spec = self.spec(
+            Scenario::Oscillation,
+            ScenarioParams {
+                amplitude,
+                omega,
+                ..ScenarioParams::default()
+            },
+            3.0,
+            301,
+        );
+        let o = run_motion(
+            &spec,
+            self.built,
+            Motion::Sine { amplitude, omega },
+            3.0,
+            &mut |_| {},
+        );
+        if let Some(e) = o.error {
+            return Err(ScenarioError::Invalid(format!(
+                "{} oscillation: {e}",
+                self.model
+            )));
+        }
+        // The loop area of the last period: H(3) − H(2) from two runs' end values.
+        let o2 = run_motion(
+            &spec,
+            self.built,
+            Motion::Sine { amplitude, omega },
+            2.0,
+            &mut |_| {},
+        );
+        let area = o.loop_area.expect("motion runs report it")
+            - o2.loop_area.expect("motion runs report it");
+        let f_max = o
+            .rows
+            .iter()
+            .filter(|r| r.t >= 2.0)
+            .map(|r| r.friction.abs())
+            .fold(0.0, f64::max);
+        let v_max = amplitude * omega;
+        let relative = area.abs() / (f_max * 2.0 * v_max).max(f64::MIN_POSITIVE);
+        Ok(Verdict {
+            measured: relative > thresholds::LOOP_AREA,
+            evidence: BTreeMap::from([
+                ("amplitude_m", amplitude),
+                ("loop_area_N_m_s", area),
+                ("relative_area", relative),
+            ]),
+        })
+    }
+
+    fn stick_slip(&self) -> Result<Verdict, ScenarioError> {
+        let params = ScenarioParams::default();
+        let o = self.outcome(&self.spec(Scenario::Belt, params, 20.0, 4001))?;
+        let sticking: Vec<bool> = o
+            .rows
+            .iter()
+            .filter(|r| r.t >= 10.0)
+            .map(|r| {
+                (r.v - params.v_belt).abs() <= thresholds::STICKING_VELOCITY * params.v_belt.abs()
+            })
+            .collect();
+        let phases = sticking.windows(2).filter(|w| !w[0] && w[1]).count()
+            + usize::from(sticking.first() == Some(&true));
+        let fraction = sticking.iter().filter(|&&s| s).count() as f64 / sticking.len() as f64;
+        Ok(Verdict {
+            measured: phases >= thresholds::STICK_PHASES
+                && (thresholds::STICK_FRACTION..1.0).contains(&fraction),
+            evidence: BTreeMap::from([
+                ("stick_phases_10_to_20s", phases as f64),
+                ("sticking_fraction", fraction),
+            ]),
+        })
+    }
+
+    /// Break-away under a force ramp: gross sliding starts when |v| first exceeds v_s (the
+    /// model's own velocity scale); the break-away force is the peak friction before that.
+    /// Returns (force, time of break-away), or `None` when the body never breaks away.
+    fn breakaway(&self, rate: f64) -> Result<Option<(f64, f64)>, ScenarioError> {
+        let params = ScenarioParams {
+            rate,
+            ..ScenarioParams::default()
+        };
+        let t_end = 4.0 * self.p.f_s.max(self.p.f_c) / rate;
+        let o = self.outcome(&self.spec(Scenario::ForceRamp, params, t_end, 20001))?;
+        let Some(end) = o.rows.iter().position(|r| r.v.abs() > self.p.v_s) else {
+            return Ok(None);
+        };
+        let peak = o.rows[..=end]
+            .iter()
+            .map(|r| r.friction.abs())
+            .fold(0.0, f64::max);
+        Ok((peak >= thresholds::BREAKAWAY_MIN * self.p.f_s).then_some((peak, o.rows[end].t)))
+    }
+
+    fn rising_static_friction(&self) -> Result<Verdict, ScenarioError> {
+        let (slow, fast) = (0.1 * self.p.f_s, 10.0 * self.p.f_s);
+        let mut evidence = BTreeMap::from([("rate_slow_N_s", slow), ("rate_fast_N_s", fast)]);
+        let (Some((f_slow, t_slow)), Some((f_fast, t_fast))) =
+            (self.breakaway(slow)?, self.breakaway(fast)?)
+        else {
+            return Ok(Verdict {
+                measured: false,
+                evidence,
+            });
+        };
+        let change = (f_fast - f_slow) / f_slow;
+        evidence.extend([
+            ("breakaway_slow_N", f_slow),
+            ("breakaway_time_slow_s", t_slow),
+            ("breakaway_fast_N", f_fast),
+            ("breakaway_time_fast_s", t_fast),
+            ("relative_change", change),
+        ]);
+        Ok(Verdict {
+            measured: change.abs() > thresholds::BREAKAWAY_CHANGE,
+            evidence,
+        })
+    }
+}
+
+/// Decides one cell: `phenomenon` for `model` with `p`, integrated as `protocol` says.
+pub fn decide(
+    phenomenon: Phenomenon,
+    model: ModelId,
+    p: &FrictionParams,
+    protocol: Protocol,
+) -> Result<Verdict, ScenarioError> {
+    let built = model.build(Variant::Odd, p)?;
+    let judge = Judge {
+        model,
+        built: built.as_ref(),
+        p: *p,
+        protocol,
+    };
+    match phenomenon {
+        Phenomenon::Stiction => judge.stiction(),
+        Phenomenon::Presliding => judge.presliding(),
+        Phenomenon::Stribeck => judge.stribeck(),
+        Phenomenon::Viscous => judge.viscous(),
+        Phenomenon::Hysteresis => judge.hysteresis(),
+        Phenomenon::StickSlip => judge.stick_slip(),
+        Phenomenon::RisingStaticFriction => judge.rising_static_friction(),
+    }
+}
+
+/// One cell of the measured Table 2.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Cell {
+    /// What the simulation shows.
+    pub measured: bool,
+    /// What the paper claims (`None` for models it does not cover).
+    pub paper: Option<bool>,
+    /// The numbers that decided it.
+    pub evidence: BTreeMap<&'static str, f64>,
+}
+
+/// One model's row of Table 2: each phenomenon with its cell.
+pub type Row = Vec<(Phenomenon, Cell)>;
+
+/// Table 2 for `models`: every protocol for every model, run in parallel on rayon's pool
+/// (the result does not depend on the number of threads: each cell is computed alone and
+/// collected in order).
+pub fn table(models: &[ModelId], protocol: Protocol) -> Result<Vec<(ModelId, Row)>, ScenarioError> {
+    use rayon::prelude::*;
+    let jobs: Vec<(ModelId, Phenomenon)> = models
+        .iter()
+        .flat_map(|&m| Phenomenon::ALL.iter().map(move |&p| (m, p)))
+        .collect();
+    let cells: Vec<Result<Cell, ScenarioError>> = jobs
+        .par_iter()
+        .map(|&(model, phenomenon)| {
+            let v = decide(phenomenon, model, &parameters_for(model), protocol)?;
+            Ok(Cell {
+                measured: v.measured,
+                paper: phenomenon.paper_claim(model),
+                evidence: v.evidence,
+            })
+        })
+        .collect();
+    let mut cells = cells.into_iter();
+    models
+        .iter()
+        .map(|&m| {
+            let row = Phenomenon::ALL
+                .iter()
+                .map(|&p| Ok((p, cells.next().expect("one cell per job")?)))
+                .collect::<Result<Vec<_>, ScenarioError>>()?;
+            Ok((m, row))
+        })
+        .collect()
+}

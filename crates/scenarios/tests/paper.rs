@@ -1,0 +1,83 @@
+//! The paper's experiment against closed forms.
+
+use friction_models::{FrictionParams, ModelId, Parameters, Variant};
+use integrators::{Solver, StepControl};
+use scenarios::paper::{experiment, Asymptote};
+use scenarios::{run, RunSpec, Scenario, ScenarioParams, SwitchingKind};
+
+#[test]
+fn terminal_velocities_and_accelerations_match_their_closed_forms() {
+    let p = FrictionParams::paper();
+    let rows = experiment(&p, &Scenario::PaperBlock.defaults()).unwrap();
+    let expected = [
+        (ModelId::Av, Asymptote::TerminalVelocity((15.0 - 7.5) / 0.5)),
+        (ModelId::Cs, Asymptote::Acceleration(15.0 - 6.0)),
+        (
+            ModelId::Cvs,
+            Asymptote::TerminalVelocity((15.0 - 6.0) / 0.5),
+        ),
+        (ModelId::Dv, Asymptote::TerminalVelocity((15.0 - 6.0) / 0.5)),
+        (ModelId::Sd, Asymptote::Acceleration(15.0 - 7.5 - 6.0)),
+        (
+            ModelId::Sv,
+            Asymptote::TerminalVelocity((15.0 - 7.5 - 6.0) / 0.5),
+        ),
+    ];
+    for (row, (model, asymptote)) in rows.iter().zip(expected) {
+        assert_eq!(row.model, model);
+        assert_eq!(row.predicted, asymptote);
+        assert!(
+            row.relative_error < 1e-6,
+            "{model}: measured {} vs {asymptote:?}",
+            row.measured
+        );
+    }
+}
+
+fn paper_block(model: ModelId, p: FrictionParams) -> Vec<(f64, f64, f64)> {
+    let spec = RunSpec {
+        scenario: Scenario::PaperBlock,
+        model,
+        variant: Variant::Odd,
+        friction: p,
+        params: ScenarioParams::default(),
+        solver: Solver::Dopri5,
+        switching: SwitchingKind::Event,
+        step: StepControl::Adaptive {
+            rtol: 1e-12,
+            atol: 1e-12,
+            h0: None,
+        },
+        t_end: Some(5.0),
+        output_points: 11,
+    };
+    run(&spec, &mut |_| {})
+        .unwrap()
+        .rows
+        .iter()
+        .map(|r| (r.t, r.x, r.v))
+        .collect()
+}
+
+#[test]
+fn without_stribeck_the_block_follows_the_exact_solutions() {
+    let mut p = FrictionParams::paper();
+    p.set("C1", 0.0).unwrap();
+    p.set("C2", 0.0).unwrap();
+    // CS without Stribeck: m·v' = F_ex − F_c, v = 9t, x = 4.5t².
+    for (t, x, v) in paper_block(ModelId::Cs, p) {
+        assert!(
+            (v - 9.0 * t).abs() < 1e-9 && (x - 4.5 * t * t).abs() < 1e-9,
+            "t = {t}: {x}, {v}"
+        );
+    }
+    // CVS without Stribeck: m·v' = F_ex − F_c − μ_v·v, v = 18(1 − e^(−t/2)).
+    for (t, x, v) in paper_block(ModelId::Cvs, p) {
+        let exact_v = 18.0 * (1.0 - (-t / 2.0).exp());
+        let exact_x = 18.0 * (t - 2.0 * (1.0 - (-t / 2.0).exp()));
+        assert!(
+            (v - exact_v).abs() < 1e-9 && (x - exact_x).abs() < 1e-9,
+            "t = {t}: {x} vs {exact_x}, {v} vs {exact_v}"
+        );
+    }
+}
