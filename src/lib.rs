@@ -42,6 +42,8 @@ pub enum Command {
     Curve(commands::curve::CurveArgs),
     /// Integrate one scenario: trajectory.csv, summary.json and figures.
     Simulate(commands::simulate::SimulateArgs),
+    /// Decide Table 2 by simulation, beside the paper's table.
+    Phenomena(commands::phenomena::PhenomenaArgs),
     /// Reproduce the paper into one folder: Figures 2-7 with notes, and a report.md.
     Reproduce(commands::reproduce::ReproduceArgs),
 }
@@ -52,6 +54,7 @@ pub fn run(cli: Cli) -> Result<(), AppError> {
         Command::Models { json } => commands::models::run(json),
         Command::Curve(args) => commands::curve::run(&args),
         Command::Simulate(args) => commands::simulate::run(&args),
+        Command::Phenomena(args) => commands::phenomena::run(&args),
         Command::Reproduce(args) => commands::reproduce::run(&args),
     }
 }

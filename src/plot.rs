@@ -43,6 +43,16 @@ pub const BLUE: RGBColor = RGBColor(30, 80, 200);
 /// Third series colour.
 pub const GREEN: RGBColor = RGBColor(20, 140, 60);
 
+/// Colours for figures with several series, in order.
+pub const PALETTE: [RGBColor; 6] = [
+    RED,
+    BLUE,
+    GREEN,
+    RGBColor(230, 130, 0),
+    RGBColor(130, 50, 170),
+    RGBColor(90, 90, 90),
+];
+
 static FONT: Once = Once::new();
 
 fn register_font() {

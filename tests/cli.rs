@@ -134,6 +134,14 @@ fn reproduce_writes_six_figures_notes_and_report_deterministically() {
     assert_eq!(notes.matches("## Figure ").count(), 6);
     // Figure 5 (two claims) and Figure 6 ("about -10") and Figure 7 (levels off).
     assert_eq!(notes.matches("**disagrees**").count(), 4, "{notes}");
+    let table: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(a.join("table2.json")).unwrap()).unwrap();
+    assert_eq!(table["CVS"]["stick_slip"]["paper"], false);
+    assert_eq!(table["lugre"]["stribeck"]["paper"], serde_json::Value::Null);
+    assert_eq!(
+        std::fs::read(a.join("table2.json")).unwrap(),
+        std::fs::read(b.join("table2.json")).unwrap()
+    );
     let report = std::fs::read_to_string(a.join("report.md")).unwrap();
     assert!(report.contains("[Figure 6 (SD)](figures/figure-6-SD.png)"));
 }
@@ -260,6 +268,166 @@ fn bad_options_and_files_are_rejected() {
     ];
     for (args, message) in cases {
         let text = rejected(&args);
+        assert!(text.contains(message), "{args:?}: {text}");
+    }
+}
+
+#[test]
+fn simulate_writes_trajectory_summary_and_figures() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("belt");
+    let o = friction_lab(&[
+        "simulate",
+        "belt",
+        "--model",
+        "SV",
+        "--solver",
+        "dopri5",
+        "--out",
+        out.to_str().unwrap(),
+        "--t-end",
+        "5",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(out.join("trajectory.csv")).unwrap();
+    assert!(csv.starts_with("t,x,v,friction,mode,z\n"), "{}", &csv[..40]);
+    assert!(csv.contains(",stick,") && csv.contains(",slip-,"));
+    let s: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
+    for key in [
+        "scenario",
+        "model",
+        "solver",
+        "switching",
+        "parameters",
+        "status",
+        "error",
+        "final",
+        "events",
+        "stats",
+        "wall_time_s",
+        "energy_residual",
+    ] {
+        assert!(s.get(key).is_some(), "summary.json lacks {key}");
+    }
+    assert_eq!(s["status"], "ok");
+    assert_eq!(s["final"]["t"], 5.0);
+    assert_eq!(s["parameters"]["k"], 100.0);
+    assert_eq!(
+        s["stats"]["events"].as_u64().unwrap() as usize,
+        s["events"].as_array().unwrap().len()
+    );
+    for stem in [
+        "history-x",
+        "history-v",
+        "history-friction",
+        "phase-portrait",
+        "friction-velocity",
+        "friction-displacement",
+    ] {
+        assert!(
+            out.join(format!("{stem}.png")).exists() && out.join(format!("{stem}.svg")).exists(),
+            "{stem}"
+        );
+    }
+}
+
+#[test]
+fn a_failing_solver_keeps_its_trajectory_and_exits_non_zero() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("fail");
+    // RK4 with h = 0.01 on LuGre's stiff bristles (sigma0 = 1e5 N/m) overflows.
+    let o = friction_lab(&[
+        "simulate",
+        "paper-block",
+        "--model",
+        "lugre",
+        "--param-set",
+        "lugre-1995",
+        "--solver",
+        "rk4",
+        "--dt",
+        "0.01",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr(&o).contains("non-finite state at t = "),
+        "{}",
+        stderr(&o)
+    );
+    let s: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(s["status"], "failed");
+    assert!(s["error"]
+        .as_str()
+        .unwrap()
+        .starts_with("non-finite state at t = "));
+    let rows = std::fs::read_to_string(out.join("trajectory.csv"))
+        .unwrap()
+        .lines()
+        .count();
+    assert!(
+        rows > 2,
+        "the trajectory up to the failure is kept ({rows} lines)"
+    );
+}
+
+#[test]
+fn bad_scenario_input_is_rejected_and_writes_nothing() {
+    let cases: &[(&[&str], &str)] = &[
+        (
+            &["simulate", "bogus", "--model", "CS"],
+            "unknown scenario `bogus`; known scenarios: paper-block",
+        ),
+        (
+            &["simulate", "belt", "--model", "CS", "--set", "k=-1"],
+            "parameter `k` = -1 is out of range: allowed [0, inf) N/m",
+        ),
+        (
+            &["simulate", "belt", "--model", "CS", "--set", "k=0"],
+            "parameter `k` = 0 is out of range for belt: allowed (0, inf) N/m",
+        ),
+        (
+            &["simulate", "paper-block", "--model", "CS", "--set", "k=5"],
+            "parameter `k` is not used by scenario paper-block (it reads: m, F_ex, x0, v0)",
+        ),
+        (
+            &["simulate", "belt", "--model", "CS", "--set", "m=0"],
+            "parameter `m` = 0 is out of range: allowed (0, inf) kg",
+        ),
+        (
+            &["simulate", "belt", "--model", "CS", "--switching", "smooth"],
+            "unknown switching `smooth`; allowed: event, regularized, naive",
+        ),
+        (
+            &["simulate", "belt", "--model", "CS", "--solver", "euler"],
+            "unknown solver `euler`; known solvers: rk4",
+        ),
+        (
+            &["simulate", "belt", "--model", "CS", "--rtol", "0"],
+            "invalid option `rtol` = 0: allowed (0, inf)",
+        ),
+        (
+            &["simulate", "belt", "--model", "CS", "--t-end", "-2"],
+            "option `t_end` = -2 is out of range: allowed (0, inf) s",
+        ),
+        (
+            &["simulate", "force-ramp", "--model", "CS", "--set", "rate=0"],
+            "parameter `rate` = 0 is out of range: allowed (0, inf) N/s",
+        ),
+        (
+            &["phenomena", "--threads", "0"],
+            "option `threads` = 0 is out of range: allowed [1, inf)",
+        ),
+        (
+            &["phenomena", "--solver", "rk4"],
+            "solver `rk4` needs a fixed step",
+        ),
+    ];
+    for (args, message) in cases {
+        let text = rejected(args);
         assert!(text.contains(message), "{args:?}: {text}");
     }
 }

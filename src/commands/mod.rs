@@ -2,5 +2,6 @@
 
 pub mod curve;
 pub mod models;
+pub mod phenomena;
 pub mod reproduce;
 pub mod simulate;

@@ -3,15 +3,21 @@
 
 use crate::artifacts::Artifacts;
 use crate::commands::curve::{used_parameters, KeyValues};
+use crate::commands::phenomena::add_table;
 use crate::error::AppError;
 use crate::figure::Drawn;
 use crate::options::ParamOptions;
+use crate::output::{Cell, Table};
+use crate::plot::{self, Plot, Series, PALETTE};
 use clap::Args;
 use friction_models::{FrictionParams, ModelId, Variant};
 use scenarios::curves::{self, Curve};
 use scenarios::figures::{
     assess, Finding, PaperFigure, LEVEL_OFF_FRACTION, NUMERIC_TOLERANCE, PAPER_FIGURES,
 };
+use scenarios::paper::{experiment, Asymptote, ExperimentRow};
+use scenarios::phenomena::Protocol;
+use scenarios::Scenario;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -26,6 +32,9 @@ pub struct ReproduceArgs {
     /// The parameters (Table 1 of the paper unless changed).
     #[command(flatten)]
     pub params: ParamOptions,
+    /// Worker threads for the parallel parts (default: all cores). Results do not depend on it.
+    #[arg(long, value_name = "N")]
+    pub threads: Option<usize>,
 }
 
 /// Samples per branch of each figure.
@@ -119,6 +128,66 @@ fn notes(fig: &PaperFigure, r: &Reproduced) -> String {
     s
 }
 
+/// The paper's experiment: its figure, its data and its table against the closed forms.
+fn add_experiment(
+    files: &mut Artifacts,
+    dir: &std::path::Path,
+    rows: &[ExperimentRow],
+) -> Result<String, AppError> {
+    let stem = dir.join("figures/paper-experiment-velocity");
+    let mut table = Table::new(&["model", "t", "v"]);
+    let mut series = Vec::new();
+    for (row, color) in rows.iter().zip(PALETTE) {
+        table.rows.extend(row.velocity.iter().map(|&(t, v)| {
+            vec![
+                Cell::Text(row.model.name().into()),
+                Cell::Num(t),
+                Cell::Num(v),
+            ]
+        }));
+        series.push(Series {
+            label: Some(row.model.name().into()),
+            points: row.velocity.clone(),
+            color,
+            width: 2,
+        });
+    }
+    let csv = stem.with_extension("csv");
+    files.add(csv.clone(), table.to_csv(&csv)?);
+    let p = Plot {
+        title: "The paper's experiment: 1 kg pushed by 15 N from rest".into(),
+        x_label: "time t (s)".into(),
+        y_label: "velocity v (m/s)".into(),
+        series,
+    };
+    let png = stem.with_extension("png");
+    let bytes = plot::png(&p, &png)?;
+    files.add(png, bytes);
+    let svg = stem.with_extension("svg");
+    let text = plot::svg(&p, &svg)?;
+    files.add(svg, text.into_bytes());
+    let mut md = String::from(
+        "## The paper's experiment (section 3)\n\nA 1 kg block pushed by F_ex = 15 N from rest \
+         (`paper-block`), Table 1 parameters, Dormand-Prince with rtol = atol = 1e-12 and event \
+         switching. Once the Stribeck term has died out and the Dahl state has saturated, the \
+         friction force is a constant level plus mu_v*v: a model with a viscous term tends to \
+         v_t = (F_ex - level)/mu_v, one without accelerates at a = (F_ex - level)/m.\n\n\
+         ![velocity](figures/paper-experiment-velocity.png)\n\n\
+         | model | closed form | simulated | relative error | v(5 s) (m/s) | x(5 s) (m) |\n|---|---|---|---|---|---|\n",
+    );
+    for r in rows {
+        let closed = match r.predicted {
+            Asymptote::TerminalVelocity(v) => format!("v_t = {v} m/s"),
+            Asymptote::Acceleration(a) => format!("a = {a} m/s^2"),
+        };
+        md += &format!(
+            "| {} | {closed} | {:.9} | {:.1e} | {:.4} | {:.4} |\n",
+            r.model, r.measured, r.relative_error, r.v_at_5s, r.x_at_5s
+        );
+    }
+    Ok(md)
+}
+
 fn report(reproduced: &[Reproduced], header: &str) -> String {
     let mut s = String::from("# friction-lab: reproduction of the paper\n\n");
     s += header;
@@ -207,10 +276,28 @@ pub fn run(args: &ReproduceArgs) -> Result<(), AppError> {
         format!("# Figures 2-7: the paper against its own equations\n\n{header}\n{md}");
     files.add(args.out.join("reproduction.md"), reproduction.into_bytes());
     files.add_json(args.out.join("figures.json"), &reproduced)?;
+    let (friction, scenario) = args.params.resolve_for(Some(Scenario::PaperBlock))?;
+    let rows = experiment(&friction, &scenario).map_err(|e| AppError::Usage(e.to_string()))?;
+    let experiment_md = add_experiment(&mut files, &args.out, &rows)?;
     files.add(
-        args.out.join("report.md"),
-        report(&reproduced, &header).into_bytes(),
+        args.out.join("paper-experiment.md"),
+        format!("# The paper's experiment\n\n{experiment_md}").into_bytes(),
     );
+    let table = add_table(&mut files, &args.out, Protocol::default(), args.threads)?;
+    let disagreements = table
+        .iter()
+        .flat_map(|(_, r)| r.iter())
+        .filter(|(_, c)| c.paper.is_some_and(|p| p != c.measured))
+        .count();
+    let mut report_md = report(&reproduced, &header);
+    report_md += &format!(
+        "\n{experiment_md}\n## Table 2, decided by simulation\n\n\
+        [table2.md](table2.md) (and table2.json) decides every cell of the paper's Table 2 by a \
+        simulated protocol, for the six models and the reference models: {disagreements} of the \
+        paper's 42 claims disagree with the simulations. The protocols are described in \
+        docs/phenomena.md.\n"
+    );
+    files.add(args.out.join("report.md"), report_md.into_bytes());
     let written = files.write()?;
     println!(
         "wrote {} files into {} in {:.2} s",

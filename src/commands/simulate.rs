@@ -28,16 +28,26 @@ pub struct SolverOptions {
     pub switching: SwitchingKind,
     /// Fixed step of rk4 (default 1e-3 s, the paper's), or the initial step of the adaptive
     /// solvers (the fixed step with --fixed-step).
-    #[arg(long, value_name = "H")]
+    #[arg(long, value_name = "H", allow_negative_numbers = true)]
     pub dt: Option<f64>,
     /// Integrate dopri5 or implicit-euler with fixed steps of --dt.
     #[arg(long)]
     pub fixed_step: bool,
     /// Relative tolerance of the adaptive solvers.
-    #[arg(long, value_name = "R", default_value_t = 1e-8)]
+    #[arg(
+        long,
+        value_name = "R",
+        allow_negative_numbers = true,
+        default_value_t = 1e-8
+    )]
     pub rtol: f64,
     /// Absolute tolerance of the adaptive solvers.
-    #[arg(long, value_name = "A", default_value_t = 1e-10)]
+    #[arg(
+        long,
+        value_name = "A",
+        allow_negative_numbers = true,
+        default_value_t = 1e-10
+    )]
     pub atol: f64,
 }
 
@@ -75,7 +85,7 @@ pub struct SimulateArgs {
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
     /// End time, s [default: the scenario's].
-    #[arg(long, value_name = "T")]
+    #[arg(long, value_name = "T", allow_negative_numbers = true)]
     pub t_end: Option<f64>,
     /// Evenly spaced output points (events are recorded besides).
     #[arg(long, value_name = "N", default_value_t = 2001)]

@@ -1,0 +1,219 @@
+//! `friction-lab phenomena --out DIR`: Table 2 decided by simulation for the paper's six
+//! models and the reference models, beside the paper's claims, with the numbers that
+//! decided each cell.
+
+use crate::artifacts::Artifacts;
+use crate::error::AppError;
+use clap::Args;
+use friction_models::ModelId;
+use integrators::{Solver, StepControl};
+use scenarios::phenomena::{table, thresholds, Phenomenon, Protocol, Row};
+use serde_json::{json, Map, Value};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Options of `phenomena`.
+#[derive(Args, Debug)]
+pub struct PhenomenaArgs {
+    /// Folder to write into (created if missing).
+    #[arg(long, value_name = "DIR")]
+    pub out: PathBuf,
+    /// The solver every protocol uses (adaptive solvers only).
+    #[arg(long, value_name = "SOLVER", default_value = "dopri5")]
+    pub solver: Solver,
+    /// Relative tolerance.
+    #[arg(
+        long,
+        value_name = "R",
+        allow_negative_numbers = true,
+        default_value_t = 1e-10
+    )]
+    pub rtol: f64,
+    /// Absolute tolerance.
+    #[arg(
+        long,
+        value_name = "A",
+        allow_negative_numbers = true,
+        default_value_t = 1e-12
+    )]
+    pub atol: f64,
+    /// Worker threads (default: all cores). The table does not depend on it.
+    #[arg(long, value_name = "N")]
+    pub threads: Option<usize>,
+}
+
+/// Runs `f` on a pool of `threads` workers (all cores when `None`).
+pub fn with_threads<T: Send>(
+    threads: Option<usize>,
+    f: impl FnOnce() -> T + Send,
+) -> Result<T, AppError> {
+    if threads == Some(0) {
+        return Err(AppError::Usage(
+            "option `threads` = 0 is out of range: allowed [1, inf)".into(),
+        ));
+    }
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.unwrap_or(0))
+        .build()
+        .map_err(|e| AppError::Usage(format!("cannot start {threads:?} threads: {e}")))?;
+    Ok(pool.install(f))
+}
+
+/// Table 2 as `table2.json`: `{"<model>": {"<phenomenon>": {measured, paper, evidence}}}`.
+fn json_table(rows: &[(ModelId, Row)]) -> Value {
+    let mut out = Map::new();
+    for (model, row) in rows {
+        let mut cells = Map::new();
+        for (p, c) in row {
+            cells.insert(
+                p.name().into(),
+                json!({"measured": c.measured, "paper": c.paper, "evidence": c.evidence}),
+            );
+        }
+        out.insert(model.name().into(), Value::Object(cells));
+    }
+    Value::Object(out)
+}
+
+fn mark(measured: bool, paper: Option<bool>) -> String {
+    let m = u8::from(measured);
+    match paper {
+        Some(p) if p != measured => format!("**{m}** ≠ {}", u8::from(p)),
+        Some(p) => format!("{m} = {}", u8::from(p)),
+        None => m.to_string(),
+    }
+}
+
+/// Table 2 as markdown: the measured table beside the paper's, then the evidence.
+pub fn markdown(rows: &[(ModelId, Row)], protocol: &Protocol) -> String {
+    let mut s = String::from("# Table 2, decided by simulation\n\n");
+    s += &format!(
+        "Written by `friction-lab phenomena` with solver {} ({:?}), event switching, parameter set \
+         `paper` (`lugre-1995` for lugre). Each cell reads `measured = paper`; a disagreement is \
+         bold, `measured ≠ paper`. The protocols and thresholds are in docs/phenomena.md.\n\n",
+        protocol.solver.name(),
+        protocol.step
+    );
+    s += "| phenomenon |";
+    for (m, _) in rows {
+        s += &format!(" {m} |");
+    }
+    s += "\n|---|";
+    s += &"---|".repeat(rows.len());
+    s += "\n| parameters read (paper's count) |";
+    for (m, _) in rows {
+        let paper = [4, 4, 4, 3, 3, 4];
+        let n = m.parameters().len();
+        match ModelId::PAPER.iter().position(|p| p == m) {
+            Some(i) => s += &format!(" {n} ({}) |", paper[i]),
+            None => s += &format!(" {n} |"),
+        }
+    }
+    s += "\n";
+    for (i, phenomenon) in Phenomenon::ALL.iter().enumerate() {
+        s += &format!("| {} |", phenomenon.label());
+        for (_, row) in rows {
+            let c = &row[i].1;
+            s += &format!(" {} |", mark(c.measured, c.paper));
+        }
+        s += "\n";
+    }
+    let disagreements: usize = rows
+        .iter()
+        .flat_map(|(_, r)| r.iter())
+        .filter(|(_, c)| c.paper.is_some_and(|p| p != c.measured))
+        .count();
+    s += &format!("\n{disagreements} of the paper's 42 claims disagree with the simulations.\n\n## Evidence\n\n");
+    for (model, row) in rows {
+        s += &format!(
+            "### {model}\n\n| phenomenon | measured | paper | evidence |\n|---|---|---|---|\n"
+        );
+        for (p, c) in row {
+            let evidence: Vec<String> = c
+                .evidence
+                .iter()
+                .map(|(k, v)| format!("{k} = {v:.6e}"))
+                .collect();
+            let paper = c.paper.map_or("-".to_string(), |p| u8::from(p).to_string());
+            s += &format!(
+                "| {} | {} | {paper} | {} |\n",
+                p.label(),
+                u8::from(c.measured),
+                evidence.join(", ")
+            );
+        }
+        s += "\n";
+    }
+    s += &format!(
+        "Thresholds: stiction drift < {} m; pre-sliding x_max > {} m and recovery > {}; Stribeck \
+         and viscous relative change beyond {}; loop area > {} of F_max·2·v_max; stick–slip: at \
+         least {} stick phases and a sticking fraction of at least {}; rising static friction: \
+         break-away force change beyond {}.\n",
+        thresholds::STICTION_DRIFT,
+        thresholds::PRESLIDING_MIN,
+        thresholds::PRESLIDING_RECOVERY,
+        thresholds::STEADY_CHANGE,
+        thresholds::LOOP_AREA,
+        thresholds::STICK_PHASES,
+        thresholds::STICK_FRACTION,
+        thresholds::BREAKAWAY_CHANGE,
+    );
+    s
+}
+
+/// Computes Table 2 and adds `table2.md` and `table2.json` in `dir` to `files`.
+pub fn add_table(
+    files: &mut Artifacts,
+    dir: &Path,
+    protocol: Protocol,
+    threads: Option<usize>,
+) -> Result<Vec<(ModelId, Row)>, AppError> {
+    let rows = with_threads(threads, || table(&ModelId::ALL, protocol))?
+        .map_err(|e| AppError::Usage(e.to_string()))?;
+    files.add(
+        dir.join("table2.md"),
+        markdown(&rows, &protocol).into_bytes(),
+    );
+    files.add_json(dir.join("table2.json"), &json_table(&rows))?;
+    Ok(rows)
+}
+
+/// Runs `phenomena`.
+pub fn run(args: &PhenomenaArgs) -> Result<(), AppError> {
+    let step = StepControl::Adaptive {
+        rtol: args.rtol,
+        atol: args.atol,
+        h0: None,
+    };
+    integrators::Options {
+        step,
+        ..integrators::Options::adaptive(0.0, 1.0, 1e-6, 1e-6)
+    }
+    .validate()
+    .map_err(|e| AppError::Usage(e.to_string()))?;
+    if args.solver.is_fixed_step() {
+        return Err(AppError::Usage(format!(
+            "solver `{}` needs a fixed step; the protocols need an adaptive solver",
+            args.solver.name()
+        )));
+    }
+    let start = Instant::now();
+    let mut files = Artifacts::default();
+    add_table(
+        &mut files,
+        &args.out,
+        Protocol {
+            solver: args.solver,
+            step,
+        },
+        args.threads,
+    )?;
+    let written = files.write()?;
+    println!(
+        "wrote {} files into {} in {:.1} s",
+        written.len(),
+        args.out.display(),
+        start.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
