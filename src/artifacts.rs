@@ -4,7 +4,7 @@
 use crate::error::AppError;
 use crate::figure::{self, Drawn};
 use crate::output::{create_dir, to_json, write_atomic};
-use crate::plot;
+use crate::plot::{self, Plot};
 use friction_models::ModelId;
 use std::path::{Path, PathBuf};
 
@@ -43,12 +43,16 @@ impl Artifacts {
         let csv = dir.join(format!("{stem}.csv"));
         let bytes = figure::table(curves).to_csv(&csv)?;
         self.add(csv, bytes);
-        let plot = figure::plot(title, model, curves);
-        let png = dir.join(format!("{stem}.png"));
-        let bytes = plot::png(&plot, &png)?;
+        self.add_plot(&dir.join(stem), &figure::plot(title, model, curves))
+    }
+
+    /// Adds a plot as `stem.png` and `stem.svg`.
+    pub fn add_plot(&mut self, stem: &Path, plot: &Plot) -> Result<(), AppError> {
+        let png = stem.with_extension("png");
+        let bytes = plot::png(plot, &png)?;
         self.add(png, bytes);
-        let svg = dir.join(format!("{stem}.svg"));
-        let text = plot::svg(&plot, &svg)?;
+        let svg = stem.with_extension("svg");
+        let text = plot::svg(plot, &svg)?;
         self.add(svg, text.into_bytes());
         Ok(())
     }

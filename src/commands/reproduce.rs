@@ -8,7 +8,7 @@ use crate::error::AppError;
 use crate::figure::Drawn;
 use crate::options::ParamOptions;
 use crate::output::{Cell, Table};
-use crate::plot::{self, Plot, Series, PALETTE};
+use crate::plot::{Plot, Series, PALETTE};
 use clap::Args;
 use friction_models::{FrictionParams, ModelId, Variant};
 use scenarios::curves::{self, Curve};
@@ -160,12 +160,7 @@ fn add_experiment(
         y_label: "velocity v (m/s)".into(),
         series,
     };
-    let png = stem.with_extension("png");
-    let bytes = plot::png(&p, &png)?;
-    files.add(png, bytes);
-    let svg = stem.with_extension("svg");
-    let text = plot::svg(&p, &svg)?;
-    files.add(svg, text.into_bytes());
+    files.add_plot(&stem, &p)?;
     let mut md = String::from(
         "## The paper's experiment (section 3)\n\nA 1 kg block pushed by F_ex = 15 N from rest \
          (`paper-block`), Table 1 parameters, Dormand-Prince with rtol = atol = 1e-12 and event \

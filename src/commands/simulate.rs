@@ -7,7 +7,7 @@ use crate::commands::curve::used_parameters;
 use crate::error::AppError;
 use crate::options::ModelOptions;
 use crate::output::{Cell, Table};
-use crate::plot::{self, Plot, Series, BLUE};
+use crate::plot::{Plot, Series, BLUE};
 use clap::Args;
 use friction_models::{ModelId, Parameters};
 use integrators::{Solver, StepControl};
@@ -304,12 +304,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), AppError> {
     let csv = args.out.join("trajectory.csv");
     files.add(csv.clone(), trajectory(&outcome, has_state, &csv)?);
     for (stem, p) in figures(&outcome, &name) {
-        let png = args.out.join(format!("{stem}.png"));
-        let bytes = plot::png(&p, &png)?;
-        files.add(png, bytes);
-        let svg = args.out.join(format!("{stem}.svg"));
-        let text = plot::svg(&p, &svg)?;
-        files.add(svg, text.into_bytes());
+        files.add_plot(&args.out.join(stem), &p)?;
     }
     let mut parameters = used_parameters(spec.model, &spec.friction);
     for &p in spec.scenario.parameters() {

@@ -270,39 +270,29 @@ impl Judge<'_> {
         })
     }
 
-    fn steady_change(&self, v1: f64, v2: f64) -> Result<(f64, f64, f64), ScenarioError> {
+    /// Steady friction at v1 and v2; the phenomenon is present when it changes by more than
+    /// the threshold in the direction `sign` (−1: falls, +1: grows).
+    fn steady_change(&self, v1: f64, v2: f64, sign: f64) -> Result<Verdict, ScenarioError> {
         let (f1, f2) = (self.steady(v1)?, self.steady(v2)?);
-        Ok((f1, f2, (f2 - f1) / f1.abs().max(f64::MIN_POSITIVE)))
+        let change = (f2 - f1) / f1.abs().max(f64::MIN_POSITIVE);
+        Ok(Verdict {
+            measured: sign * change > thresholds::STEADY_CHANGE,
+            evidence: BTreeMap::from([
+                ("v_low_m_s", v1),
+                ("F_low_N", f1),
+                ("v_high_m_s", v2),
+                ("F_high_N", f2),
+                ("relative_change", change),
+            ]),
+        })
     }
 
     fn stribeck(&self) -> Result<Verdict, ScenarioError> {
-        let (v1, v2) = (0.2 * self.p.v_s, 3.0 * self.p.v_s);
-        let (f1, f2, change) = self.steady_change(v1, v2)?;
-        Ok(Verdict {
-            measured: change < -thresholds::STEADY_CHANGE,
-            evidence: BTreeMap::from([
-                ("v_low_m_s", v1),
-                ("F_low_N", f1),
-                ("v_high_m_s", v2),
-                ("F_high_N", f2),
-                ("relative_change", change),
-            ]),
-        })
+        self.steady_change(0.2 * self.p.v_s, 3.0 * self.p.v_s, -1.0)
     }
 
     fn viscous(&self) -> Result<Verdict, ScenarioError> {
-        let (v1, v2) = (100.0 * self.p.v_s, 1000.0 * self.p.v_s);
-        let (f1, f2, change) = self.steady_change(v1, v2)?;
-        Ok(Verdict {
-            measured: change > thresholds::STEADY_CHANGE,
-            evidence: BTreeMap::from([
-                ("v_low_m_s", v1),
-                ("F_low_N", f1),
-                ("v_high_m_s", v2),
-                ("F_high_N", f2),
-                ("relative_change", change),
-            ]),
-        })
+        self.steady_change(100.0 * self.p.v_s, 1000.0 * self.p.v_s, 1.0)
     }
 
     fn hysteresis(&self) -> Result<Verdict, ScenarioError> {
