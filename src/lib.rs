@@ -44,6 +44,14 @@ pub enum Command {
     Simulate(commands::simulate::SimulateArgs),
     /// Decide Table 2 by simulation, beside the paper's table.
     Phenomena(commands::phenomena::PhenomenaArgs),
+    /// Convergence study: observed orders against a reference.
+    Converge(commands::studies::ConvergeArgs),
+    /// Step-size independence: successive differences, Richardson estimate, verdict.
+    Independence(commands::studies::IndependenceArgs),
+    /// Work-precision: error against cost for every solver.
+    WorkPrecision(commands::studies::WorkPrecisionArgs),
+    /// Stiffness sweep: where the implicit solvers overtake the explicit ones.
+    Stiffness(commands::studies::StiffnessArgs),
     /// Reproduce the paper into one folder: Figures 2-7 with notes, and a report.md.
     Reproduce(commands::reproduce::ReproduceArgs),
 }
@@ -55,6 +63,10 @@ pub fn run(cli: Cli) -> Result<(), AppError> {
         Command::Curve(args) => commands::curve::run(&args),
         Command::Simulate(args) => commands::simulate::run(&args),
         Command::Phenomena(args) => commands::phenomena::run(&args),
+        Command::Converge(args) => commands::studies::converge(&args),
+        Command::Independence(args) => commands::studies::independence(&args),
+        Command::WorkPrecision(args) => commands::studies::work_precision(&args),
+        Command::Stiffness(args) => commands::studies::stiffness(&args),
         Command::Reproduce(args) => commands::reproduce::run(&args),
     }
 }

@@ -62,9 +62,14 @@ fn register_font() {
     });
 }
 
-/// The plot range of the data, padded by 5 % on each side.
+/// The plot range of the data, padded by 5 % on each side; [0, 1] on an axis with no finite
+/// data (an empty plot must still draw, and plotters cannot draw an infinite range).
 fn bounds(plot: &Plot) -> ((f64, f64), (f64, f64)) {
-    let points = plot.series.iter().flat_map(|s| s.points.iter());
+    let points = plot
+        .series
+        .iter()
+        .flat_map(|s| s.points.iter())
+        .filter(|(x, y)| x.is_finite() && y.is_finite());
     let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
     for &(x, y) in points {
         x0 = x0.min(x);
@@ -73,6 +78,9 @@ fn bounds(plot: &Plot) -> ((f64, f64), (f64, f64)) {
         y1 = y1.max(y);
     }
     let pad = |a: f64, b: f64| {
+        if a > b {
+            return (0.0, 1.0);
+        }
         let d = if b > a { 0.05 * (b - a) } else { 0.5 };
         (a - d, b + d)
     };
@@ -171,4 +179,28 @@ pub fn png(plot: &Plot, path: &Path) -> Result<Vec<u8>, AppError> {
         .and_then(|mut writer| writer.write_image_data(&pixels))
         .map_err(|e| fail(e.to_string()))?;
     Ok(bytes)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_empty_plot_draws_on_a_unit_range() {
+        let plot = Plot {
+            title: "nothing".into(),
+            x_label: "x".into(),
+            y_label: "y".into(),
+            series: vec![Series {
+                label: None,
+                points: vec![(f64::NAN, 1.0)],
+                color: RED,
+                width: 1,
+            }],
+        };
+        assert_eq!(bounds(&plot), ((0.0, 1.0), (0.0, 1.0)));
+        assert!(svg(&plot, Path::new("empty.svg"))
+            .unwrap()
+            .contains("nothing"));
+    }
 }

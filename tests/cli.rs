@@ -431,3 +431,87 @@ fn bad_scenario_input_is_rejected_and_writes_nothing() {
         assert!(text.contains(message), "{args:?}: {text}");
     }
 }
+
+#[test]
+fn studies_on_one_and_two_threads_write_identical_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |threads: &str| {
+        let out = dir.path().join(format!("t{threads}"));
+        let o = friction_lab(&[
+            "converge",
+            "free-vibration",
+            "--model",
+            "static",
+            "--switching",
+            "naive",
+            "--solvers",
+            "rk4,dopri5,bdf",
+            "--t-end",
+            "2",
+            "--threads",
+            threads,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        out
+    };
+    let (one, two) = (run("1"), run("2"));
+    for name in [
+        "converge.csv",
+        "converge.json",
+        "converge.png",
+        "converge.svg",
+    ] {
+        let a = std::fs::read(one.join(name)).unwrap();
+        assert_eq!(
+            a,
+            std::fs::read(two.join(name)).unwrap(),
+            "{name} differs between 1 and 2 threads"
+        );
+    }
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(one.join("converge.json")).unwrap()).unwrap();
+    assert_eq!(json["runs"].as_array().unwrap().len(), 4 + 4 + 3);
+    assert!(
+        json["reference"]["Run"]["solver"].is_string(),
+        "the reference solver is named"
+    );
+}
+
+#[test]
+fn bad_study_input_is_rejected() {
+    let cases: &[(&[&str], &str)] = &[
+        (
+            &["converge", "belt", "--model", "CS", "--dt-list", "0.01,-1"],
+            "option `dt-list` has -1: allowed values (0, inf)",
+        ),
+        (
+            &["independence", "belt", "--model", "CS", "--ratio", "1"],
+            "option `ratio` = 1 is out of range: allowed (1, inf)",
+        ),
+        (
+            &["independence", "belt", "--model", "CS", "--levels", "1"],
+            "option `levels` = 1 is out of range: allowed [2, 12]",
+        ),
+        (
+            &[
+                "stiffness",
+                "belt",
+                "--model",
+                "CS",
+                "--parameter",
+                "stiffness",
+            ],
+            "unknown parameter `stiffness`",
+        ),
+        (
+            &["converge", "velocity-sweep", "--model", "CS"],
+            "velocity-sweep has none",
+        ),
+    ];
+    for (args, message) in cases {
+        let text = rejected(args);
+        assert!(text.contains(message), "{args:?}: {text}");
+    }
+}

@@ -5,3 +5,4 @@ pub mod models;
 pub mod phenomena;
 pub mod reproduce;
 pub mod simulate;
+pub mod studies;

@@ -13,6 +13,7 @@ pub mod params;
 pub mod phenomena;
 pub mod run;
 pub mod scenario;
+pub mod studies;
 
 pub use params::ScenarioParams;
 pub use run::{run, Outcome, Row, RunSpec, ScenarioError, SwitchingKind};

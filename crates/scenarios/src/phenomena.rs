@@ -374,15 +374,18 @@ impl Judge<'_> {
         })
     }
 
-    /// Break-away under a force ramp: gross sliding starts when |v| first exceeds v_s (the
-    /// model's own velocity scale); the break-away force is the peak friction before that.
+    /// Break-away under a force ramp up to 1.5·max(F_s, F_c): gross sliding starts when |v|
+    /// first exceeds v_s (the model's own velocity scale); the break-away force is the peak
+    /// friction before that.
     /// Returns (force, time of break-away), or `None` when the body never breaks away.
     fn breakaway(&self, rate: f64) -> Result<Option<(f64, f64)>, ScenarioError> {
         let params = ScenarioParams {
             rate,
             ..ScenarioParams::default()
         };
-        let t_end = 4.0 * self.p.f_s.max(self.p.f_c) / rate;
+        // The ramp ends at 1.5 times the larger level: a body that has not broken away by
+        // then does not break away (and a stiff LuGre run costs in proportion to its length).
+        let t_end = 1.5 * self.p.f_s.max(self.p.f_c) / rate;
         let o = self.outcome(&self.spec(Scenario::ForceRamp, params, t_end, 20001))?;
         let Some(end) = o.rows.iter().position(|r| r.v.abs() > self.p.v_s) else {
             return Ok(None);

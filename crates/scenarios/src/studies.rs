@@ -1,0 +1,858 @@
+//! The solver studies: convergence order, step-size independence, work–precision and the
+//! explicit/implicit crossover. Every study is a list of independent runs evaluated on
+//! rayon's pool and collected in order, so its results do not depend on the thread count.
+
+use crate::run::{run, Outcome, RunSpec, ScenarioError, SwitchingKind};
+use crate::scenario::Scenario;
+use crate::ScenarioParams;
+use friction_models::{FrictionParams, ModelId, Variant};
+use integrators::{Solver, Stats, StepControl};
+use rayon::prelude::*;
+use serde::Serialize;
+
+/// A problem to study: everything of a run but the solver and its step control.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Case {
+    /// The rig.
+    pub scenario: Scenario,
+    /// The friction model.
+    pub model: ModelId,
+    /// Friction parameters.
+    pub friction: FrictionParams,
+    /// Scenario parameters.
+    pub params: ScenarioParams,
+    /// The treatment of v = 0.
+    pub switching: SwitchingKind,
+    /// End time.
+    pub t_end: f64,
+}
+
+/// Points of the common time grid on which trajectories are compared.
+pub const GRID_POINTS: usize = 201;
+
+impl Case {
+    /// The run of this case with `solver` and `step`.
+    pub fn spec(&self, solver: Solver, step: StepControl) -> RunSpec {
+        RunSpec {
+            scenario: self.scenario,
+            model: self.model,
+            variant: Variant::Odd,
+            friction: self.friction,
+            params: self.params,
+            solver,
+            switching: self.switching,
+            step,
+            t_end: Some(self.t_end),
+            output_points: GRID_POINTS,
+        }
+    }
+}
+
+/// What a run is judged by.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Measures {
+    /// (x, v) at the end.
+    pub final_state: [f64; 2],
+    /// (x, v) on the common grid.
+    pub grid: Vec<[f64; 2]>,
+    /// Times of the events.
+    pub event_times: Vec<f64>,
+    /// Durations of the completed stick phases.
+    pub stick_durations: Vec<f64>,
+    /// Largest |friction| on the grid.
+    pub peak_friction: f64,
+}
+
+impl Measures {
+    /// The measures of an outcome. The grid holds `GRID_POINTS` evenly spaced rows, and
+    /// the rows at events are skipped.
+    pub fn of(o: &Outcome) -> Measures {
+        let event_times: Vec<f64> = o.events.iter().map(|e| e.t).collect();
+        let mut stick_durations = Vec::new();
+        let mut stick_start = None;
+        for e in &o.events {
+            match (e.kind.as_str(), stick_start) {
+                ("stick", _) => stick_start = Some(e.t),
+                (_, Some(s)) => {
+                    stick_durations.push(e.t - s);
+                    stick_start = None;
+                }
+                _ => {}
+            }
+        }
+        let grid: Vec<[f64; 2]> = o
+            .rows
+            .iter()
+            .filter(|r| !event_times.contains(&r.t))
+            .map(|r| [r.x, r.v])
+            .collect();
+        let last = o.last().map_or([f64::NAN; 2], |r| [r.x, r.v]);
+        Measures {
+            final_state: last,
+            grid,
+            event_times,
+            stick_durations,
+            peak_friction: o.rows.iter().map(|r| r.friction.abs()).fold(0.0, f64::max),
+        }
+    }
+}
+
+/// Errors of a run against the reference.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Errors {
+    /// max(|Δx|, |Δv|) at the end.
+    pub final_state: f64,
+    /// max over the common grid of max(|Δx|, |Δv|).
+    pub grid_max: f64,
+    /// max |Δt| over the events (NaN when the numbers of events differ).
+    pub event_times: f64,
+    /// max |Δ| over the stick durations (NaN when their numbers differ).
+    pub stick_durations: f64,
+}
+
+fn max_diff(a: &[f64], b: &[f64]) -> f64 {
+    if a.len() != b.len() {
+        return f64::NAN;
+    }
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+}
+
+impl Errors {
+    /// The errors of `m` against `reference`.
+    pub fn between(m: &Measures, reference: &Measures) -> Errors {
+        let pair = |a: &[f64; 2], b: &[f64; 2]| (a[0] - b[0]).abs().max((a[1] - b[1]).abs());
+        let grid_max = if m.grid.len() == reference.grid.len() {
+            m.grid
+                .iter()
+                .zip(&reference.grid)
+                .map(|(a, b)| pair(a, b))
+                .fold(0.0, f64::max)
+        } else {
+            f64::NAN
+        };
+        Errors {
+            final_state: pair(&m.final_state, &reference.final_state),
+            grid_max,
+            event_times: max_diff(&m.event_times, &reference.event_times),
+            stick_durations: max_diff(&m.stick_durations, &reference.stick_durations),
+        }
+    }
+}
+
+/// Where the reference comes from.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub enum Reference {
+    /// An exact solution, by name.
+    ClosedForm(String),
+    /// A much tighter run of another solver.
+    Run {
+        /// The solver.
+        solver: &'static str,
+        /// Its step control.
+        step: String,
+    },
+}
+
+/// An exact motion t ↦ (x, v).
+type ExactMotion = Box<dyn Fn(f64) -> (f64, f64)>;
+
+/// The exact solution of the case, where one exists: the block pushed from rest against
+/// viscous friction (v = F/μ_v·(1 − e^(−μ_v t/m))) or against a constant Coulomb level
+/// (v = (F − F_c)·t/m once it slides).
+fn closed_form(case: &Case) -> Option<(String, Measures)> {
+    if case.scenario != Scenario::PaperBlock || case.params.x0 != 0.0 || case.params.v0 != 0.0 {
+        return None;
+    }
+    let (m, f, p) = (case.params.m, case.params.f_ex, &case.friction);
+    let (name, motion): (&str, ExactMotion) = match case.model {
+        ModelId::Viscous => {
+            let tau = m / p.mu_v;
+            let vt = f / p.mu_v;
+            (
+                "x = v_t(t - tau(1 - e^(-t/tau))), v = v_t(1 - e^(-t/tau))",
+                Box::new(move |t| {
+                    (
+                        vt * (t - tau * (1.0 - (-t / tau).exp())),
+                        vt * (1.0 - (-t / tau).exp()),
+                    )
+                }),
+            )
+        }
+        ModelId::Coulomb | ModelId::Static if f > p.f_s.max(p.f_c) => {
+            let a = (f - p.f_c) / m;
+            (
+                "x = a t^2/2, v = a t, a = (F_ex - F_c)/m",
+                Box::new(move |t| (0.5 * a * t * t, a * t)),
+            )
+        }
+        _ => return None,
+    };
+    let grid: Vec<[f64; 2]> = (0..GRID_POINTS)
+        .map(|i| {
+            let (x, v) = motion(case.t_end * i as f64 / (GRID_POINTS - 1) as f64);
+            [x, v]
+        })
+        .collect();
+    let (x, v) = motion(case.t_end);
+    let peak = match case.model {
+        ModelId::Viscous => f * (1.0 - (-case.t_end * p.mu_v / m).exp()),
+        _ => p.f_c,
+    };
+    Some((
+        name.to_string(),
+        Measures {
+            final_state: [x, v],
+            grid,
+            event_times: vec![],
+            stick_durations: vec![],
+            peak_friction: peak,
+        },
+    ))
+}
+
+/// The reference of a case for a study of `studied` solvers: the closed form where one
+/// exists, otherwise a run at rtol = atol = 1e-13 of Dormand–Prince (or, when Dormand–Prince
+/// itself is studied, of diffsol's Tsitouras 5(4)), with event switching for a naive study (the
+/// exact solution of the discontinuous problem it approximates) and the study's own
+/// switching otherwise.
+pub fn reference(case: &Case, studied: &[Solver]) -> Result<(Reference, Measures), ScenarioError> {
+    if let Some((name, m)) = closed_form(case) {
+        return Ok((Reference::ClosedForm(name), m));
+    }
+    let (solver, step) = if studied.contains(&Solver::Dopri5) {
+        (Solver::Rk4, StepControl::Fixed { h: 1e-5 })
+    } else {
+        (
+            Solver::Dopri5,
+            StepControl::Adaptive {
+                rtol: 1e-13,
+                atol: 1e-13,
+                h0: None,
+            },
+        )
+    };
+    // Naive stepping approximates the discontinuous problem, whose exact solution event
+    // switching computes; a regularized problem is its own (smooth) ODE.
+    let switching = match case.switching {
+        SwitchingKind::Naive => SwitchingKind::Event,
+        other => other,
+    };
+    let exact = Case {
+        switching,
+        ..case.clone()
+    };
+    let o = run(&exact.spec(solver, step), &mut |_| {})?;
+    if let Some(e) = o.error {
+        return Err(ScenarioError::Invalid(format!(
+            "the reference run ({}) failed: {e}",
+            solver.name()
+        )));
+    }
+    Ok((
+        Reference::Run {
+            solver: solver.name(),
+            step: format!("{step:?}"),
+        },
+        Measures::of(&o),
+    ))
+}
+
+/// One run of a study.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct StudyRun {
+    /// The solver.
+    pub solver: &'static str,
+    /// The step size (fixed-step runs) or the tolerance (adaptive runs).
+    pub resolution: f64,
+    /// Errors against the reference.
+    pub errors: Errors,
+    /// The run's measures.
+    #[serde(skip)]
+    pub measures: Measures,
+    /// Work done.
+    pub stats: Stats,
+    /// The solver's error, if it failed.
+    pub failure: Option<String>,
+    /// Wall time of the run, s (not deterministic: kept out of the study's main files).
+    #[serde(skip)]
+    pub wall_time_s: f64,
+}
+
+/// Runs `case` with each (solver, step) in parallel, and computes the reference alongside
+/// (`rayon::join`), then measures each run against it.
+pub fn run_against_reference(
+    case: &Case,
+    studied: &[Solver],
+    jobs: &[(Solver, StepControl)],
+    progress: &(dyn Fn() + Sync),
+) -> Result<(Reference, Measures, Vec<StudyRun>), ScenarioError> {
+    let (reference, runs) = rayon::join(
+        || reference(case, studied),
+        || run_all(case, jobs, progress),
+    );
+    let (reference, measures) = reference?;
+    let mut runs = runs?;
+    for r in &mut runs {
+        r.errors = Errors::between(&r.measures, &measures);
+    }
+    Ok((reference, measures, runs))
+}
+
+/// Runs `case` with each (solver, step) in parallel (errors still to be measured).
+pub fn run_all(
+    case: &Case,
+    jobs: &[(Solver, StepControl)],
+    progress: &(dyn Fn() + Sync),
+) -> Result<Vec<StudyRun>, ScenarioError> {
+    jobs.par_iter()
+        .map(|&(solver, step)| {
+            let o = run(&case.spec(solver, step), &mut |_| {})?;
+            progress();
+            let measures = Measures::of(&o);
+            Ok(StudyRun {
+                solver: solver.name(),
+                resolution: match step {
+                    StepControl::Fixed { h } => h,
+                    StepControl::Adaptive { rtol, .. } => rtol,
+                },
+                errors: Errors {
+                    final_state: f64::NAN,
+                    grid_max: f64::NAN,
+                    event_times: f64::NAN,
+                    stick_durations: f64::NAN,
+                },
+                measures,
+                stats: o.stats,
+                failure: o.error,
+                wall_time_s: o.wall_time_s,
+            })
+        })
+        .collect()
+}
+
+/// The observed order between two refinements: log(e_i/e_(i+1)) / log(h_i/h_(i+1)), which
+/// does not assume halving.
+pub fn observed_order(e: (f64, f64), h: (f64, f64)) -> f64 {
+    (e.0 / e.1).ln() / (h.0 / h.1).ln()
+}
+
+/// The order of one refinement pair, with what may make it unreliable.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct PairOrder {
+    /// Coarser resolution.
+    pub from: f64,
+    /// Finer resolution.
+    pub to: f64,
+    /// Observed order.
+    pub order: f64,
+    /// The finer error is at the round-off floor (below 1e-12 of the solution's scale) or
+    /// did not decrease: the pair says nothing of the order.
+    pub round_off: bool,
+    /// Outside the asymptotic range: the order differs by more than 0.5 from the median of
+    /// the usable pairs.
+    pub pre_asymptotic: bool,
+}
+
+/// Orders of successive pairs of (resolution, error), and the least-squares slope of
+/// log(error) against log(resolution) over the pairs that are neither round-off nor
+/// pre-asymptotic.
+pub fn orders(points: &[(f64, f64)], scale: f64) -> (Vec<PairOrder>, Option<f64>) {
+    let mut pairs: Vec<PairOrder> = points
+        .windows(2)
+        .map(|w| PairOrder {
+            from: w[0].0,
+            to: w[1].0,
+            order: observed_order((w[0].1, w[1].1), (w[0].0, w[1].0)),
+            round_off: w[1].1 <= 1e-12 * scale || w[1].1 >= w[0].1 || !w[1].1.is_finite(),
+            pre_asymptotic: false,
+        })
+        .collect();
+    let mut usable: Vec<f64> = pairs
+        .iter()
+        .filter(|p| !p.round_off)
+        .map(|p| p.order)
+        .collect();
+    usable.sort_by(f64::total_cmp);
+    if let Some(&median) = usable.get(usable.len() / 2) {
+        for p in pairs.iter_mut().filter(|p| !p.round_off) {
+            p.pre_asymptotic = (p.order - median).abs() > 0.5;
+        }
+    }
+    // Least squares over the points joined by good pairs.
+    let mut xs = Vec::new();
+    for (i, p) in pairs.iter().enumerate() {
+        if !p.round_off && !p.pre_asymptotic {
+            for point in [points[i], points[i + 1]] {
+                let xy = (point.0.ln(), point.1.ln());
+                if !xs.contains(&xy) {
+                    xs.push(xy);
+                }
+            }
+        }
+    }
+    let slope = (xs.len() >= 2).then(|| {
+        let n = xs.len() as f64;
+        let (mx, my) = (
+            xs.iter().map(|p| p.0).sum::<f64>() / n,
+            xs.iter().map(|p| p.1).sum::<f64>() / n,
+        );
+        let sxy: f64 = xs.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+        let sxx: f64 = xs.iter().map(|p| (p.0 - mx).powi(2)).sum();
+        sxy / sxx
+    });
+    (pairs, slope)
+}
+
+/// The steps or tolerances a study runs a solver at: RK4 always takes the step sizes; with
+/// `fixed`, so do Dormand–Prince and implicit Euler (for observed orders); otherwise they and
+/// diffsol's methods take the tolerances.
+pub fn steps_for(
+    solver: Solver,
+    step_sizes: &[f64],
+    tolerances: &[f64],
+    fixed: bool,
+) -> Vec<StepControl> {
+    let steps = solver.is_fixed_step() || (fixed && !matches!(solver, Solver::Diffsol(_)));
+    match steps {
+        true => step_sizes
+            .iter()
+            .map(|&h| StepControl::Fixed { h })
+            .collect(),
+        false => tolerances
+            .iter()
+            .map(|&tol| StepControl::Adaptive {
+                rtol: tol,
+                atol: tol,
+                h0: None,
+            })
+            .collect(),
+    }
+}
+
+/// The scale of the solution: the largest |x| or |v| of the reference.
+fn scale(reference: &Measures) -> f64 {
+    reference
+        .grid
+        .iter()
+        .flat_map(|p| p.iter())
+        .fold(0.0, |a: f64, b| a.max(b.abs()))
+        .max(f64::MIN_POSITIVE)
+}
+
+/// Orders for one solver and one error measure.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct OrderTable {
+    /// The solver.
+    pub solver: &'static str,
+    /// Which error: `final_state`, `grid_max`, `event_times`, `stick_durations`.
+    pub measure: &'static str,
+    /// Each refinement pair.
+    pub pairs: Vec<PairOrder>,
+    /// Least-squares slope over the reliable pairs.
+    pub fitted_slope: Option<f64>,
+}
+
+/// A convergence study.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Convergence {
+    /// The reference.
+    pub reference: Reference,
+    /// Every run, solver by solver, coarse to fine.
+    pub runs: Vec<StudyRun>,
+    /// Observed orders.
+    pub orders: Vec<OrderTable>,
+}
+
+/// Runs each solver over the step sizes (or tolerances) against the reference and reports
+/// the observed orders of every error measure.
+pub fn convergence(
+    case: &Case,
+    solvers: &[Solver],
+    step_sizes: &[f64],
+    tolerances: &[f64],
+    progress: &(dyn Fn() + Sync),
+) -> Result<Convergence, ScenarioError> {
+    let jobs: Vec<(Solver, StepControl)> = solvers
+        .iter()
+        .flat_map(|&s| {
+            steps_for(s, step_sizes, tolerances, true)
+                .into_iter()
+                .map(move |c| (s, c))
+        })
+        .collect();
+    let (reference, ref_measures, runs) = run_against_reference(case, solvers, &jobs, progress)?;
+    let sc = scale(&ref_measures);
+    let mut tables = Vec::new();
+    for &solver in solvers {
+        let mine: Vec<&StudyRun> = runs.iter().filter(|r| r.solver == solver.name()).collect();
+        type Pick = fn(&Errors) -> f64;
+        let measures: [(&str, Pick); 4] = [
+            ("final_state", |e| e.final_state),
+            ("grid_max", |e| e.grid_max),
+            ("event_times", |e| e.event_times),
+            ("stick_durations", |e| e.stick_durations),
+        ];
+        for (name, pick) in measures {
+            let points: Vec<(f64, f64)> = mine
+                .iter()
+                .map(|r| (r.resolution, pick(&r.errors)))
+                .collect();
+            if points.iter().all(|p| p.1.is_nan() || p.1 == 0.0) {
+                continue;
+            }
+            let (pairs, fitted_slope) = orders(&points, sc);
+            tables.push(OrderTable {
+                solver: solver.name(),
+                measure: name,
+                pairs,
+                fitted_slope,
+            });
+        }
+    }
+    Ok(Convergence {
+        reference,
+        runs,
+        orders: tables,
+    })
+}
+
+/// One output of an independence study across the refinement levels.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct OutputCheck {
+    /// Which output.
+    pub name: String,
+    /// Its value at each level, coarse to fine.
+    pub values: Vec<f64>,
+    /// |q_i − q_(i+1)|.
+    pub differences: Vec<f64>,
+    /// Observed order from the last two differences.
+    pub order: Option<f64>,
+    /// Richardson estimate of the error left in the finest value:
+    /// d_last/(r^p − 1), or d_last when no order can be observed.
+    pub remaining_error: f64,
+    /// remaining_error ≤ tol·max(|q|, 1e-9).
+    pub independent: bool,
+}
+
+/// A step-size independence study.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Independence {
+    /// The solver.
+    pub solver: &'static str,
+    /// The resolutions, coarse to fine (each the previous divided by `ratio`).
+    pub resolutions: Vec<f64>,
+    /// The refinement ratio.
+    pub ratio: f64,
+    /// The relative tolerance of the verdict.
+    pub tolerance: f64,
+    /// Each output.
+    pub outputs: Vec<OutputCheck>,
+    /// Whether every output is independent of the resolution to the tolerance.
+    pub independent: bool,
+    /// x on the common grid at every level, for the overlay plot.
+    #[serde(skip)]
+    pub trajectories: Vec<Vec<f64>>,
+}
+
+fn check(name: String, values: Vec<f64>, ratio: f64, tolerance: f64) -> OutputCheck {
+    let differences: Vec<f64> = values.windows(2).map(|w| (w[0] - w[1]).abs()).collect();
+    let n = differences.len();
+    let last = differences.last().copied().unwrap_or(f64::INFINITY);
+    let order = (n >= 2 && differences[n - 2] > 0.0 && last > 0.0)
+        .then(|| (differences[n - 2] / last).ln() / ratio.ln());
+    let remaining_error = match order {
+        Some(p) if p > 0.0 => last / (ratio.powf(p) - 1.0),
+        _ => last,
+    };
+    let value = values.last().copied().unwrap_or(f64::NAN);
+    OutputCheck {
+        independent: remaining_error <= tolerance * value.abs().max(1e-9),
+        name,
+        values,
+        differences,
+        order,
+        remaining_error,
+    }
+}
+
+/// Runs `solver` at `levels` resolutions, each `ratio` times finer, and judges whether the
+/// final state, the first events, the stick durations and the peak friction are independent
+/// of the resolution to the relative `tolerance`.
+pub fn independence(
+    case: &Case,
+    solver: Solver,
+    start: f64,
+    ratio: f64,
+    levels: usize,
+    tolerance: f64,
+    progress: &(dyn Fn() + Sync),
+) -> Result<Independence, ScenarioError> {
+    let resolutions: Vec<f64> = (0..levels).map(|i| start / ratio.powi(i as i32)).collect();
+    let jobs: Vec<(Solver, StepControl)> = steps_for(solver, &resolutions, &resolutions, false)
+        .into_iter()
+        .map(|c| (solver, c))
+        .collect();
+    let runs = run_all(case, &jobs, progress)?;
+    if let Some(f) = runs.iter().find_map(|r| r.failure.clone()) {
+        return Err(ScenarioError::Invalid(format!(
+            "a run of the independence study failed: {f}"
+        )));
+    }
+    let m: Vec<&Measures> = runs.iter().map(|r| &r.measures).collect();
+    let mut outputs = vec![
+        check(
+            "final x (m)".into(),
+            m.iter().map(|m| m.final_state[0]).collect(),
+            ratio,
+            tolerance,
+        ),
+        check(
+            "final v (m/s)".into(),
+            m.iter().map(|m| m.final_state[1]).collect(),
+            ratio,
+            tolerance,
+        ),
+        check(
+            "peak friction (N)".into(),
+            m.iter().map(|m| m.peak_friction).collect(),
+            ratio,
+            tolerance,
+        ),
+    ];
+    let events = m.iter().map(|m| m.event_times.len()).min().unwrap_or(0);
+    let same_events = m
+        .iter()
+        .all(|x| x.event_times.len() == m[0].event_times.len());
+    for k in 0..events.min(3) {
+        outputs.push(check(
+            format!("event {} time (s)", k + 1),
+            m.iter().map(|m| m.event_times[k]).collect(),
+            ratio,
+            tolerance,
+        ));
+    }
+    let sticks = m.iter().map(|m| m.stick_durations.len()).min().unwrap_or(0);
+    for k in 0..sticks.min(2) {
+        outputs.push(check(
+            format!("stick {} duration (s)", k + 1),
+            m.iter().map(|m| m.stick_durations[k]).collect(),
+            ratio,
+            tolerance,
+        ));
+    }
+    if !same_events {
+        outputs.push(OutputCheck {
+            name: "number of events".into(),
+            values: m.iter().map(|m| m.event_times.len() as f64).collect(),
+            differences: vec![],
+            order: None,
+            remaining_error: f64::INFINITY,
+            independent: false,
+        });
+    }
+    Ok(Independence {
+        solver: solver.name(),
+        independent: outputs.iter().all(|o| o.independent),
+        resolutions,
+        ratio,
+        tolerance,
+        trajectories: m
+            .iter()
+            .map(|m| m.grid.iter().map(|p| p[0]).collect())
+            .collect(),
+        outputs,
+    })
+}
+
+/// A work–precision study: every solver at every resolution, with the work it took.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct WorkPrecision {
+    /// The reference.
+    pub reference: Reference,
+    /// Every run.
+    pub runs: Vec<StudyRun>,
+    /// Median wall time of each run over the repetitions, s (same order as `runs`).
+    #[serde(skip)]
+    pub wall_median_s: Vec<f64>,
+}
+
+/// Runs every solver over its step sizes or tolerances, `repeats` times each for the
+/// median wall time.
+pub fn work_precision(
+    case: &Case,
+    solvers: &[Solver],
+    step_sizes: &[f64],
+    tolerances: &[f64],
+    repeats: usize,
+    progress: &(dyn Fn() + Sync),
+) -> Result<WorkPrecision, ScenarioError> {
+    let jobs: Vec<(Solver, StepControl)> = solvers
+        .iter()
+        .flat_map(|&s| {
+            steps_for(s, step_sizes, tolerances, false)
+                .into_iter()
+                .map(move |c| (s, c))
+        })
+        .collect();
+    let (reference, _, runs) = run_against_reference(case, solvers, &jobs, progress)?;
+    // Timing repeats run one after another, so that they do not compete for the cores.
+    let wall_median_s = jobs
+        .iter()
+        .zip(&runs)
+        .map(|(&(solver, step), first)| {
+            let mut times = vec![first.wall_time_s];
+            for _ in 1..repeats.max(1) {
+                times.push(
+                    run(&case.spec(solver, step), &mut |_| {})
+                        .map(|o| o.wall_time_s)
+                        .unwrap_or(f64::NAN),
+                );
+            }
+            times.sort_by(f64::total_cmp);
+            times[times.len() / 2]
+        })
+        .collect();
+    Ok(WorkPrecision {
+        reference,
+        runs,
+        wall_median_s,
+    })
+}
+
+/// The cheapest run of one solver that met the target at one stiffness value.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Cost {
+    /// The solver.
+    pub solver: &'static str,
+    /// Whether it is implicit.
+    pub implicit: bool,
+    /// The resolution that first met the target (None: none did).
+    pub resolution: Option<f64>,
+    /// Its error.
+    pub error: f64,
+    /// Its work.
+    pub stats: Stats,
+}
+
+/// The costs at one value of the stiffness parameter.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct StiffnessPoint {
+    /// The parameter's value.
+    pub value: f64,
+    /// One cost per solver.
+    pub costs: Vec<Cost>,
+    /// Whether the cheapest implicit solver beats the cheapest explicit one in
+    /// right-hand-side evaluations plus n per Jacobian.
+    pub implicit_wins: bool,
+}
+
+/// A stiffness sweep.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Stiffness {
+    /// The swept parameter.
+    pub parameter: String,
+    /// The target error (grid maximum).
+    pub target: f64,
+    /// Every value.
+    pub points: Vec<StiffnessPoint>,
+    /// The first value (in sweep order) from which the implicit solvers win.
+    pub crossover: Option<f64>,
+}
+
+/// Work measure of a run: right-hand-side evaluations plus `dim` per Jacobian evaluation.
+fn work(s: &Stats, dim: usize) -> usize {
+    s.rhs_evals + dim * s.jacobian_evals
+}
+
+/// What a stiffness study sweeps, and the error each solver must reach.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sweep<'a> {
+    /// The parameter (a friction or a scenario parameter).
+    pub parameter: &'a str,
+    /// Its values, in sweep order.
+    pub values: &'a [f64],
+    /// The error to reach (maximum over the time grid).
+    pub target: f64,
+}
+
+/// Sweeps the parameter over its values and finds, for each solver, the cheapest
+/// resolution in `step_sizes` (or `tolerances`) whose grid error meets the target.
+pub fn stiffness(
+    case: &Case,
+    sweep: Sweep,
+    solvers: &[Solver],
+    step_sizes: &[f64],
+    tolerances: &[f64],
+    progress: &(dyn Fn() + Sync),
+) -> Result<Stiffness, ScenarioError> {
+    use friction_models::Parameters;
+    let Sweep {
+        parameter,
+        values,
+        target,
+    } = sweep;
+    let mut points = Vec::new();
+    for &value in values {
+        let mut c = case.clone();
+        if FrictionParams::spec(parameter).is_some() {
+            c.friction.set(parameter, value)?;
+        } else {
+            c.params.set(parameter, value)?;
+        }
+        let jobs: Vec<(Solver, StepControl)> = solvers
+            .iter()
+            .flat_map(|&s| {
+                steps_for(s, step_sizes, tolerances, false)
+                    .into_iter()
+                    .map(move |st| (s, st))
+            })
+            .collect();
+        let (_, _, runs) = run_against_reference(&c, solvers, &jobs, progress)?;
+        let dim = 2 + c.model.build(Variant::Odd, &c.friction)?.n_states();
+        let costs: Vec<Cost> = solvers
+            .iter()
+            .map(|&s| {
+                let met = runs
+                    .iter()
+                    .filter(|r| {
+                        r.solver == s.name() && r.failure.is_none() && r.errors.grid_max <= target
+                    })
+                    .min_by_key(|r| work(&r.stats, dim));
+                Cost {
+                    solver: s.name(),
+                    implicit: s.is_implicit(),
+                    resolution: met.map(|r| r.resolution),
+                    error: met.map_or(f64::NAN, |r| r.errors.grid_max),
+                    stats: met.map_or(Stats::default(), |r| r.stats),
+                }
+            })
+            .collect();
+        let best = |implicit: bool| {
+            costs
+                .iter()
+                .filter(|c| c.implicit == implicit && c.resolution.is_some())
+                .map(|c| work(&c.stats, dim))
+                .min()
+        };
+        let implicit_wins = match (best(true), best(false)) {
+            (Some(i), Some(e)) => i < e,
+            (Some(_), None) => true,
+            _ => false,
+        };
+        points.push(StiffnessPoint {
+            value,
+            costs,
+            implicit_wins,
+        });
+    }
+    let crossover = points.iter().find(|p| p.implicit_wins).map(|p| p.value);
+    Ok(Stiffness {
+        parameter: parameter.to_string(),
+        target,
+        points,
+        crossover,
+    })
+}

@@ -1,0 +1,775 @@
+//! The solver studies: `converge`, `independence`, `work-precision`, `stiffness`. Every
+//! run of a study is independent; they run on a pool of `--threads` workers and are
+//! collected in order, so the files do not depend on the thread count (wall times, which
+//! cannot be reproduced, go to a separate `*-timing.csv`).
+
+use crate::artifacts::Artifacts;
+use crate::commands::phenomena::with_threads;
+use crate::error::AppError;
+use crate::options::ModelOptions;
+use crate::output::{Cell, Table};
+use crate::plot::{Plot, Series, PALETTE};
+use clap::Args;
+use friction_models::ModelId;
+use integrators::Solver;
+use scenarios::studies::{
+    self, Case, Convergence, Independence, Stiffness, StudyRun, WorkPrecision,
+};
+use scenarios::{Scenario, SwitchingKind};
+use std::path::{Path, PathBuf};
+
+/// The problem a study runs.
+#[derive(Args, Debug, Clone)]
+pub struct CaseArgs {
+    /// The scenario.
+    #[arg(value_name = "SCENARIO")]
+    pub scenario: Scenario,
+    /// The friction model.
+    #[arg(long, value_name = "MODEL")]
+    pub model: ModelId,
+    /// event, regularized or naive.
+    #[arg(long, value_name = "event|regularized|naive", default_value = "event")]
+    pub switching: SwitchingKind,
+    /// End time, s [default: the scenario's].
+    #[arg(long, value_name = "T", allow_negative_numbers = true)]
+    pub t_end: Option<f64>,
+    /// Folder to write into (created if missing).
+    #[arg(long, value_name = "DIR")]
+    pub out: PathBuf,
+    /// Worker threads (default: all cores). The results do not depend on it.
+    #[arg(long, value_name = "N")]
+    pub threads: Option<usize>,
+    /// The model's parameters and reading.
+    #[command(flatten)]
+    pub model_options: ModelOptions,
+}
+
+impl CaseArgs {
+    /// The study case.
+    pub fn case(&self) -> Result<Case, AppError> {
+        if self.scenario == Scenario::VelocitySweep {
+            return Err(AppError::Usage(
+                "the studies integrate trajectories: velocity-sweep has none; use another scenario"
+                    .into(),
+            ));
+        }
+        let (friction, params) = self.model_options.params.resolve_for(Some(self.scenario))?;
+        let t_end = self
+            .t_end
+            .unwrap_or_else(|| self.scenario.default_t_end(&params, &friction));
+        if !(t_end.is_finite() && t_end > 0.0) {
+            return Err(AppError::Usage(format!(
+                "option `t_end` = {t_end} is out of range: allowed (0, inf) s"
+            )));
+        }
+        Ok(Case {
+            scenario: self.scenario,
+            model: self.model,
+            friction,
+            params,
+            switching: self.switching,
+            t_end,
+        })
+    }
+}
+
+fn positive_list(name: &'static str, values: &[f64]) -> Result<(), AppError> {
+    match values.iter().find(|v| !(v.is_finite() && **v > 0.0)) {
+        Some(v) => Err(AppError::Usage(format!(
+            "option `{name}` has {v}: allowed values (0, inf)"
+        ))),
+        None if values.is_empty() => Err(AppError::Usage(format!("option `{name}` is empty"))),
+        None => Ok(()),
+    }
+}
+
+fn bar(len: usize, what: &str) -> indicatif::ProgressBar {
+    let b = indicatif::ProgressBar::new(len as u64);
+    b.set_style(
+        indicatif::ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} runs")
+            .expect("valid template"),
+    );
+    b.set_message(what.to_string());
+    b
+}
+
+/// Where a study's files go, and on how many threads it runs.
+pub struct Target<'a> {
+    /// The files being prepared.
+    pub files: &'a mut Artifacts,
+    /// The folder.
+    pub dir: &'a Path,
+    /// Worker threads (all cores when `None`).
+    pub threads: Option<usize>,
+}
+
+/// The levels of an independence study.
+#[derive(Clone, Copy, Debug)]
+pub struct Refinement {
+    /// The coarsest step size or tolerance.
+    pub start: f64,
+    /// The ratio between levels.
+    pub ratio: f64,
+    /// Number of levels.
+    pub levels: usize,
+    /// Relative tolerance of the verdict.
+    pub tol: f64,
+}
+
+fn study_error(e: scenarios::ScenarioError) -> AppError {
+    AppError::Usage(e.to_string())
+}
+
+/// One CSV row per run: solver, resolution, the errors, the work.
+fn runs_table(runs: &[StudyRun], path: &Path) -> Result<Vec<u8>, AppError> {
+    let mut t = Table::new(&[
+        "solver",
+        "resolution",
+        "error_final_state",
+        "error_grid_max",
+        "error_event_times",
+        "error_stick_durations",
+        "steps",
+        "rejected",
+        "rhs_evals",
+        "jacobian_evals",
+        "lu_factorizations",
+        "newton_iterations",
+        "events",
+        "status",
+    ]);
+    for r in runs {
+        // A missing measure (no events to compare) is written as an empty cell, never NaN.
+        let num = |x: f64| {
+            if x.is_nan() {
+                Cell::Text(String::new())
+            } else {
+                Cell::Num(x)
+            }
+        };
+        let s = r.stats;
+        t.rows.push(vec![
+            Cell::Text(r.solver.into()),
+            Cell::Num(r.resolution),
+            num(r.errors.final_state),
+            num(r.errors.grid_max),
+            num(r.errors.event_times),
+            num(r.errors.stick_durations),
+            Cell::Num(s.steps as f64),
+            Cell::Num(s.rejected() as f64),
+            Cell::Num(s.rhs_evals as f64),
+            Cell::Num(s.jacobian_evals as f64),
+            Cell::Num(s.lu_factorizations as f64),
+            Cell::Num(s.newton_iterations as f64),
+            Cell::Num(s.events as f64),
+            Cell::Text(r.failure.clone().unwrap_or_else(|| "ok".into())),
+        ]);
+    }
+    t.to_csv(path)
+}
+
+/// log10 of (x, y) pairs with both positive and finite.
+fn log_points(points: impl Iterator<Item = (f64, f64)>) -> Vec<(f64, f64)> {
+    points
+        .filter(|(x, y)| *x > 0.0 && *y > 0.0 && x.is_finite() && y.is_finite())
+        .map(|(x, y)| (x.log10(), y.log10()))
+        .collect()
+}
+
+fn per_solver_series(
+    runs: &[StudyRun],
+    x: impl Fn(&StudyRun) -> f64,
+    y: impl Fn(&StudyRun) -> f64,
+) -> Vec<Series> {
+    let mut names: Vec<&str> = Vec::new();
+    for r in runs {
+        if !names.contains(&r.solver) {
+            names.push(r.solver);
+        }
+    }
+    names
+        .iter()
+        .zip(PALETTE.iter().cycle())
+        .map(|(name, &color)| Series {
+            label: Some(name.to_string()),
+            points: log_points(
+                runs.iter()
+                    .filter(|r| r.solver == *name && r.failure.is_none())
+                    .map(|r| (x(r), y(r))),
+            ),
+            color,
+            width: 2,
+        })
+        .filter(|s| !s.points.is_empty())
+        .collect()
+}
+
+/// Options of `converge`.
+#[derive(Args, Debug)]
+pub struct ConvergeArgs {
+    /// The problem.
+    #[command(flatten)]
+    pub case: CaseArgs,
+    /// Solvers, comma-separated.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "rk4,dopri5,implicit-euler"
+    )]
+    pub solvers: Vec<Solver>,
+    /// Step sizes of rk4, dopri5 and implicit-euler (fixed steps), coarse to fine.
+    #[arg(long, value_delimiter = ',', default_value = "0.02,0.01,0.005,0.0025")]
+    pub dt_list: Vec<f64>,
+    /// Tolerances of diffsol's adaptive methods, loose to tight.
+    #[arg(long, value_delimiter = ',', default_value = "1e-4,1e-6,1e-8")]
+    pub tol_list: Vec<f64>,
+}
+
+/// Computes a convergence study and adds its files (`converge.csv`, `converge.json`,
+/// `converge.png`/`.svg`) under `dir` with file stem `stem`.
+pub fn add_convergence(
+    t: &mut Target,
+    stem: &str,
+    case: &Case,
+    solvers: &[Solver],
+    steps: &[f64],
+    tols: &[f64],
+) -> Result<Convergence, AppError> {
+    let (dir, threads) = (t.dir, t.threads);
+    positive_list("dt-list", steps)?;
+    positive_list("tol-list", tols)?;
+    let jobs = solvers
+        .iter()
+        .map(|&s| studies::steps_for(s, steps, tols, true).len())
+        .sum();
+    let b = bar(jobs, "converge");
+    let c = with_threads(threads, || {
+        studies::convergence(case, solvers, steps, tols, &|| b.inc(1))
+    })?
+    .map_err(study_error)?;
+    b.finish_and_clear();
+    let csv = dir.join(format!("{stem}.csv"));
+    t.files.add(csv.clone(), runs_table(&c.runs, &csv)?);
+    t.files.add_json(dir.join(format!("{stem}.json")), &c)?;
+    let mut series = per_solver_series(&c.runs, |r| r.resolution, |r| r.errors.grid_max);
+    if let Some(&(x0, y0)) = series.first().and_then(|s| s.points.first()) {
+        for (p, shade) in [(1.0, 170), (4.0, 120), (5.0, 70)] {
+            series.push(Series {
+                label: Some(format!("slope {p}")),
+                points: vec![(x0, y0), (x0 - 2.0, y0 - 2.0 * p)],
+                color: plotters::style::RGBColor(shade, shade, shade),
+                width: 1,
+            });
+        }
+    }
+    let plot = Plot {
+        title: format!(
+            "Convergence: {} with {} ({} switching)",
+            case.scenario,
+            case.model,
+            case.switching.name()
+        ),
+        x_label: "log10 step size h (s), or tolerance".into(),
+        y_label: "log10 max error on the time grid".into(),
+        series,
+    };
+    t.files.add_plot(&dir.join(stem), &plot)?;
+    Ok(c)
+}
+
+/// Runs `converge`.
+pub fn converge(a: &ConvergeArgs) -> Result<(), AppError> {
+    let case = a.case.case()?;
+    let mut files = Artifacts::default();
+    let mut t = Target {
+        files: &mut files,
+        dir: &a.case.out,
+        threads: a.case.threads,
+    };
+    let c = add_convergence(
+        &mut t,
+        "converge",
+        &case,
+        &a.solvers,
+        &a.dt_list,
+        &a.tol_list,
+    )?;
+    for t in &c.orders {
+        let slope = t.fitted_slope.map_or("-".into(), |s| format!("{s:.3}"));
+        println!("{:15} {:16} fitted slope {slope}", t.solver, t.measure);
+    }
+    println!(
+        "wrote {} files into {}",
+        files.write()?.len(),
+        a.case.out.display()
+    );
+    Ok(())
+}
+
+/// Options of `independence`.
+#[derive(Args, Debug)]
+pub struct IndependenceArgs {
+    /// The problem.
+    #[command(flatten)]
+    pub case: CaseArgs,
+    /// The solver.
+    #[arg(long, value_name = "SOLVER", default_value = "rk4")]
+    pub solver: Solver,
+    /// The coarsest step size (rk4) or tolerance (adaptive solvers).
+    #[arg(
+        long,
+        value_name = "H",
+        default_value_t = 1e-3,
+        allow_negative_numbers = true
+    )]
+    pub start: f64,
+    /// Refinement ratio between levels.
+    #[arg(
+        long,
+        value_name = "R",
+        default_value_t = 2.0,
+        allow_negative_numbers = true
+    )]
+    pub ratio: f64,
+    /// Number of levels.
+    #[arg(long, value_name = "N", default_value_t = 4)]
+    pub levels: usize,
+    /// Relative tolerance of the verdict.
+    #[arg(
+        long,
+        value_name = "TOL",
+        default_value_t = 1e-6,
+        allow_negative_numbers = true
+    )]
+    pub tol: f64,
+}
+
+/// Computes an independence study and adds its files under `dir` with stem `stem`.
+pub fn add_independence(
+    t: &mut Target,
+    stem: &str,
+    case: &Case,
+    solver: Solver,
+    r: Refinement,
+) -> Result<Independence, AppError> {
+    let (dir, threads) = (t.dir, t.threads);
+    let Refinement {
+        start,
+        ratio,
+        levels,
+        tol,
+    } = r;
+    positive_list("start", &[start])?;
+    positive_list("tol", &[tol])?;
+    if !(ratio.is_finite() && ratio > 1.0) {
+        return Err(AppError::Usage(format!(
+            "option `ratio` = {ratio} is out of range: allowed (1, inf)"
+        )));
+    }
+    if !(2..=12).contains(&levels) {
+        return Err(AppError::Usage(format!(
+            "option `levels` = {levels} is out of range: allowed [2, 12]"
+        )));
+    }
+    let b = bar(levels, "independence");
+    let s = with_threads(threads, || {
+        studies::independence(case, solver, start, ratio, levels, tol, &|| b.inc(1))
+    })?
+    .map_err(study_error)?;
+    b.finish_and_clear();
+    let mut table = Table::new(&[
+        "output",
+        "level",
+        "resolution",
+        "value",
+        "difference_to_previous",
+        "remaining_error",
+        "independent",
+    ]);
+    for o in &s.outputs {
+        for (i, v) in o.values.iter().enumerate() {
+            table.rows.push(vec![
+                Cell::Text(o.name.clone()),
+                Cell::Num(i as f64),
+                Cell::Num(s.resolutions[i]),
+                Cell::Num(*v),
+                if i == 0 {
+                    Cell::Text(String::new())
+                } else {
+                    Cell::Num(o.differences[i - 1])
+                },
+                if i + 1 == o.values.len() && o.remaining_error.is_finite() {
+                    Cell::Num(o.remaining_error)
+                } else {
+                    Cell::Text(String::new())
+                },
+                Cell::Text(o.independent.to_string()),
+            ]);
+        }
+    }
+    let csv = dir.join(format!("{stem}.csv"));
+    t.files.add(csv.clone(), table.to_csv(&csv)?);
+    t.files.add_json(dir.join(format!("{stem}.json")), &s)?;
+    let series = s
+        .trajectories
+        .iter()
+        .zip(&s.resolutions)
+        .zip(PALETTE.iter().cycle())
+        .map(|((xs, h), &color)| Series {
+            label: Some(format!("{} at {h:e}", s.solver)),
+            points: xs
+                .iter()
+                .enumerate()
+                .map(|(i, &x)| (case.t_end * i as f64 / (xs.len().max(2) - 1) as f64, x))
+                .collect(),
+            color,
+            width: 2,
+        })
+        .collect();
+    let plot = Plot {
+        title: format!(
+            "Independence: {} with {}: {}",
+            case.scenario,
+            case.model,
+            if s.independent {
+                "independent"
+            } else {
+                "NOT independent"
+            }
+        ),
+        x_label: "time t (s)".into(),
+        y_label: "displacement x (m)".into(),
+        series,
+    };
+    t.files.add_plot(&dir.join(stem), &plot)?;
+    Ok(s)
+}
+
+/// Runs `independence`.
+pub fn independence(a: &IndependenceArgs) -> Result<(), AppError> {
+    let case = a.case.case()?;
+    let mut files = Artifacts::default();
+    let mut t = Target {
+        files: &mut files,
+        dir: &a.case.out,
+        threads: a.case.threads,
+    };
+    let r = Refinement {
+        start: a.start,
+        ratio: a.ratio,
+        levels: a.levels,
+        tol: a.tol,
+    };
+    let s = add_independence(&mut t, "independence", &case, a.solver, r)?;
+    for o in &s.outputs {
+        let verdict = if o.independent {
+            "independent"
+        } else {
+            "NOT independent"
+        };
+        println!(
+            "{:24} remaining error {:.3e} {verdict}",
+            o.name, o.remaining_error
+        );
+    }
+    let verdict = if s.independent {
+        "independent of the step size"
+    } else {
+        "not independent of the step size"
+    };
+    println!("verdict: {verdict}");
+    println!(
+        "wrote {} files into {}",
+        files.write()?.len(),
+        a.case.out.display()
+    );
+    Ok(())
+}
+
+/// Options of `work-precision`.
+#[derive(Args, Debug)]
+pub struct WorkPrecisionArgs {
+    /// The problem.
+    #[command(flatten)]
+    pub case: CaseArgs,
+    /// Solvers, comma-separated.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "rk4,dopri5,implicit-euler,bdf,tr-bdf2,esdirk34,tsit45"
+    )]
+    pub solvers: Vec<Solver>,
+    /// Step sizes of rk4.
+    #[arg(long, value_delimiter = ',', default_value = "0.01,0.003,0.001,0.0003")]
+    pub dt_list: Vec<f64>,
+    /// Tolerances of the adaptive solvers.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "1e-3,1e-4,1e-5,1e-6,1e-7,1e-8"
+    )]
+    pub tol_list: Vec<f64>,
+    /// Repetitions of each run for the median wall time.
+    #[arg(long, value_name = "N", default_value_t = 3)]
+    pub repeats: usize,
+}
+
+/// Computes a work–precision study and adds its files under `dir` with stem `stem`.
+pub fn add_work_precision(
+    t: &mut Target,
+    stem: &str,
+    case: &Case,
+    solvers: &[Solver],
+    steps: &[f64],
+    tols: &[f64],
+    repeats: usize,
+) -> Result<WorkPrecision, AppError> {
+    let (dir, threads) = (t.dir, t.threads);
+    positive_list("dt-list", steps)?;
+    positive_list("tol-list", tols)?;
+    let jobs = solvers
+        .iter()
+        .map(|&s| studies::steps_for(s, steps, tols, false).len())
+        .sum();
+    let b = bar(jobs, "work-precision");
+    let w = with_threads(threads, || {
+        studies::work_precision(case, solvers, steps, tols, repeats, &|| b.inc(1))
+    })?
+    .map_err(study_error)?;
+    b.finish_and_clear();
+    let csv = dir.join(format!("{stem}.csv"));
+    t.files.add(csv.clone(), runs_table(&w.runs, &csv)?);
+    let mut timing = Table::new(&["solver", "resolution", "wall_time_median_s"]);
+    for (r, t) in w.runs.iter().zip(&w.wall_median_s) {
+        timing.rows.push(vec![
+            Cell::Text(r.solver.into()),
+            Cell::Num(r.resolution),
+            Cell::Num(*t),
+        ]);
+    }
+    let timing_csv = dir.join(format!("{stem}-timing.csv"));
+    t.files.add(timing_csv.clone(), timing.to_csv(&timing_csv)?);
+    t.files.add_json(dir.join(format!("{stem}.json")), &w)?;
+    let dims = |r: &StudyRun| r.stats.rhs_evals as f64 + r.stats.jacobian_evals as f64 * 3.0;
+    let plot = Plot {
+        title: format!(
+            "Work-precision: {} with {} ({} switching)",
+            case.scenario,
+            case.model,
+            case.switching.name()
+        ),
+        x_label: "log10 work (f evaluations + n per Jacobian)".into(),
+        y_label: "log10 max error on the time grid".into(),
+        series: per_solver_series(&w.runs, dims, |r| r.errors.grid_max),
+    };
+    t.files.add_plot(&dir.join(stem), &plot)?;
+    Ok(w)
+}
+
+/// Runs `work-precision`.
+pub fn work_precision(a: &WorkPrecisionArgs) -> Result<(), AppError> {
+    let case = a.case.case()?;
+    let mut files = Artifacts::default();
+    let mut t = Target {
+        files: &mut files,
+        dir: &a.case.out,
+        threads: a.case.threads,
+    };
+    add_work_precision(
+        &mut t,
+        "work-precision",
+        &case,
+        &a.solvers,
+        &a.dt_list,
+        &a.tol_list,
+        a.repeats,
+    )?;
+    println!(
+        "wrote {} files into {}",
+        files.write()?.len(),
+        a.case.out.display()
+    );
+    Ok(())
+}
+
+/// Options of `stiffness`.
+#[derive(Args, Debug)]
+pub struct StiffnessArgs {
+    /// The problem.
+    #[command(flatten)]
+    pub case: CaseArgs,
+    /// The parameter swept: epsilon, sigma, sigma0, k, or any other.
+    #[arg(long, value_name = "NAME", default_value = "epsilon")]
+    pub parameter: String,
+    /// Its values, in sweep order.
+    #[arg(long, value_delimiter = ',', default_value = "1e-1,1e-2,1e-3,1e-4")]
+    pub values: Vec<f64>,
+    /// Solvers, comma-separated.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "dopri5,tsit45,implicit-euler,bdf,esdirk34"
+    )]
+    pub solvers: Vec<Solver>,
+    /// The error to reach (maximum over the time grid).
+    #[arg(
+        long,
+        value_name = "E",
+        default_value_t = 1e-3,
+        allow_negative_numbers = true
+    )]
+    pub target: f64,
+    /// Step sizes of rk4.
+    #[arg(long, value_delimiter = ',', default_value = "0.01,0.001,0.0001")]
+    pub dt_list: Vec<f64>,
+    /// Tolerances tried, loose to tight.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "1e-2,1e-3,1e-4,1e-5,1e-6,1e-7"
+    )]
+    pub tol_list: Vec<f64>,
+}
+
+/// Computes a stiffness sweep and adds its files under `dir` with stem `stem`.
+pub fn add_stiffness(
+    t: &mut Target,
+    stem: &str,
+    case: &Case,
+    sweep: studies::Sweep,
+    solvers: &[Solver],
+    steps: &[f64],
+    tols: &[f64],
+) -> Result<Stiffness, AppError> {
+    let (dir, threads) = (t.dir, t.threads);
+    let studies::Sweep {
+        parameter,
+        values,
+        target,
+    } = sweep;
+    positive_list("values", values)?;
+    positive_list("target", &[target])?;
+    let per_value: usize = solvers
+        .iter()
+        .map(|&s| studies::steps_for(s, steps, tols, false).len())
+        .sum();
+    let b = bar(per_value * values.len(), "stiffness");
+    let s = with_threads(threads, || {
+        studies::stiffness(
+            case,
+            studies::Sweep {
+                parameter,
+                values,
+                target,
+            },
+            solvers,
+            steps,
+            tols,
+            &|| b.inc(1),
+        )
+    })?
+    .map_err(study_error)?;
+    b.finish_and_clear();
+    let mut table = Table::new(&[
+        "value",
+        "solver",
+        "implicit",
+        "resolution",
+        "error",
+        "rhs_evals",
+        "jacobian_evals",
+        "lu_factorizations",
+        "implicit_wins",
+    ]);
+    for p in &s.points {
+        for c in &p.costs {
+            table.rows.push(vec![
+                Cell::Num(p.value),
+                Cell::Text(c.solver.into()),
+                Cell::Text(c.implicit.to_string()),
+                c.resolution
+                    .map_or(Cell::Text("not reached".into()), Cell::Num),
+                if c.error.is_nan() {
+                    Cell::Text(String::new())
+                } else {
+                    Cell::Num(c.error)
+                },
+                Cell::Num(c.stats.rhs_evals as f64),
+                Cell::Num(c.stats.jacobian_evals as f64),
+                Cell::Num(c.stats.lu_factorizations as f64),
+                Cell::Text(p.implicit_wins.to_string()),
+            ]);
+        }
+    }
+    let csv = dir.join(format!("{stem}.csv"));
+    t.files.add(csv.clone(), table.to_csv(&csv)?);
+    t.files.add_json(dir.join(format!("{stem}.json")), &s)?;
+    let series = solvers
+        .iter()
+        .zip(PALETTE.iter().cycle())
+        .map(|(solver, &color)| Series {
+            label: Some(solver.name().into()),
+            points: log_points(s.points.iter().filter_map(|p| {
+                let c = p.costs.iter().find(|c| c.solver == solver.name())?;
+                c.resolution.map(|_| {
+                    (
+                        p.value,
+                        (c.stats.rhs_evals + 3 * c.stats.jacobian_evals) as f64,
+                    )
+                })
+            })),
+            color,
+            width: 2,
+        })
+        .filter(|s| !s.points.is_empty())
+        .collect();
+    let plot = Plot {
+        title: format!(
+            "Cost to reach error {target:e} against {parameter}: {} with {}",
+            case.scenario, case.model
+        ),
+        x_label: format!("log10 {parameter}"),
+        y_label: "log10 work (f evaluations + n per Jacobian)".into(),
+        series,
+    };
+    t.files.add_plot(&dir.join(stem), &plot)?;
+    Ok(s)
+}
+
+/// Runs `stiffness`.
+pub fn stiffness(a: &StiffnessArgs) -> Result<(), AppError> {
+    let case = a.case.case()?;
+    let mut files = Artifacts::default();
+    let mut t = Target {
+        files: &mut files,
+        dir: &a.case.out,
+        threads: a.case.threads,
+    };
+    let sweep = studies::Sweep {
+        parameter: &a.parameter,
+        values: &a.values,
+        target: a.target,
+    };
+    let s = add_stiffness(
+        &mut t,
+        "stiffness",
+        &case,
+        sweep,
+        &a.solvers,
+        &a.dt_list,
+        &a.tol_list,
+    )?;
+    let crossover = s
+        .crossover
+        .map_or("(never in this sweep)".into(), |v| v.to_string());
+    println!(
+        "implicit solvers overtake explicit ones from {} = {crossover}",
+        s.parameter
+    );
+    println!(
+        "wrote {} files into {}",
+        files.write()?.len(),
+        a.case.out.display()
+    );
+    Ok(())
+}
