@@ -73,6 +73,29 @@ impl CaseArgs {
     }
 }
 
+impl CaseArgs {
+    /// Sets up the case and the output, runs `study`, and writes its files.
+    fn run(
+        &self,
+        study: impl FnOnce(&mut Target, &Case) -> Result<(), AppError>,
+    ) -> Result<(), AppError> {
+        let case = self.case()?;
+        let mut files = Artifacts::default();
+        let mut target = Target {
+            files: &mut files,
+            dir: &self.out,
+            threads: self.threads,
+        };
+        study(&mut target, &case)?;
+        println!(
+            "wrote {} files into {}",
+            files.write()?.len(),
+            self.out.display()
+        );
+        Ok(())
+    }
+}
+
 fn positive_list(name: &'static str, values: &[f64]) -> Result<(), AppError> {
     match values.iter().find(|v| !(v.is_finite() && **v > 0.0)) {
         Some(v) => Err(AppError::Usage(format!(
@@ -279,31 +302,14 @@ pub fn add_convergence(
 
 /// Runs `converge`.
 pub fn converge(a: &ConvergeArgs) -> Result<(), AppError> {
-    let case = a.case.case()?;
-    let mut files = Artifacts::default();
-    let mut t = Target {
-        files: &mut files,
-        dir: &a.case.out,
-        threads: a.case.threads,
-    };
-    let c = add_convergence(
-        &mut t,
-        "converge",
-        &case,
-        &a.solvers,
-        &a.dt_list,
-        &a.tol_list,
-    )?;
-    for t in &c.orders {
-        let slope = t.fitted_slope.map_or("-".into(), |s| format!("{s:.3}"));
-        println!("{:15} {:16} fitted slope {slope}", t.solver, t.measure);
-    }
-    println!(
-        "wrote {} files into {}",
-        files.write()?.len(),
-        a.case.out.display()
-    );
-    Ok(())
+    a.case.run(|t, case| {
+        let c = add_convergence(t, "converge", case, &a.solvers, &a.dt_list, &a.tol_list)?;
+        for o in &c.orders {
+            let slope = o.fitted_slope.map_or("-".into(), |s| format!("{s:.3}"));
+            println!("{:15} {:16} fitted slope {slope}", o.solver, o.measure);
+        }
+        Ok(())
+    })
 }
 
 /// Options of `independence`.
@@ -447,43 +453,33 @@ pub fn add_independence(
 
 /// Runs `independence`.
 pub fn independence(a: &IndependenceArgs) -> Result<(), AppError> {
-    let case = a.case.case()?;
-    let mut files = Artifacts::default();
-    let mut t = Target {
-        files: &mut files,
-        dir: &a.case.out,
-        threads: a.case.threads,
-    };
-    let r = Refinement {
-        start: a.start,
-        ratio: a.ratio,
-        levels: a.levels,
-        tol: a.tol,
-    };
-    let s = add_independence(&mut t, "independence", &case, a.solver, r)?;
-    for o in &s.outputs {
-        let verdict = if o.independent {
-            "independent"
-        } else {
-            "NOT independent"
+    a.case.run(|t, case| {
+        let r = Refinement {
+            start: a.start,
+            ratio: a.ratio,
+            levels: a.levels,
+            tol: a.tol,
         };
-        println!(
-            "{:24} remaining error {:.3e} {verdict}",
-            o.name, o.remaining_error
-        );
-    }
-    let verdict = if s.independent {
-        "independent of the step size"
-    } else {
-        "not independent of the step size"
-    };
-    println!("verdict: {verdict}");
-    println!(
-        "wrote {} files into {}",
-        files.write()?.len(),
-        a.case.out.display()
-    );
-    Ok(())
+        let s = add_independence(t, "independence", case, a.solver, r)?;
+        for o in &s.outputs {
+            let verdict = if o.independent {
+                "independent"
+            } else {
+                "NOT independent"
+            };
+            println!(
+                "{:24} remaining error {:.3e} {verdict}",
+                o.name, o.remaining_error
+            );
+        }
+        let verdict = if s.independent {
+            "independent of"
+        } else {
+            "not independent of"
+        };
+        println!("verdict: {verdict} the step size");
+        Ok(())
+    })
 }
 
 /// Options of `work-precision`.
@@ -568,28 +564,18 @@ pub fn add_work_precision(
 
 /// Runs `work-precision`.
 pub fn work_precision(a: &WorkPrecisionArgs) -> Result<(), AppError> {
-    let case = a.case.case()?;
-    let mut files = Artifacts::default();
-    let mut t = Target {
-        files: &mut files,
-        dir: &a.case.out,
-        threads: a.case.threads,
-    };
-    add_work_precision(
-        &mut t,
-        "work-precision",
-        &case,
-        &a.solvers,
-        &a.dt_list,
-        &a.tol_list,
-        a.repeats,
-    )?;
-    println!(
-        "wrote {} files into {}",
-        files.write()?.len(),
-        a.case.out.display()
-    );
-    Ok(())
+    a.case.run(|t, case| {
+        add_work_precision(
+            t,
+            "work-precision",
+            case,
+            &a.solvers,
+            &a.dt_list,
+            &a.tol_list,
+            a.repeats,
+        )?;
+        Ok(())
+    })
 }
 
 /// Options of `stiffness`.
@@ -738,38 +724,28 @@ pub fn add_stiffness(
 
 /// Runs `stiffness`.
 pub fn stiffness(a: &StiffnessArgs) -> Result<(), AppError> {
-    let case = a.case.case()?;
-    let mut files = Artifacts::default();
-    let mut t = Target {
-        files: &mut files,
-        dir: &a.case.out,
-        threads: a.case.threads,
-    };
-    let sweep = studies::Sweep {
-        parameter: &a.parameter,
-        values: &a.values,
-        target: a.target,
-    };
-    let s = add_stiffness(
-        &mut t,
-        "stiffness",
-        &case,
-        sweep,
-        &a.solvers,
-        &a.dt_list,
-        &a.tol_list,
-    )?;
-    let crossover = s
-        .crossover
-        .map_or("(never in this sweep)".into(), |v| v.to_string());
-    println!(
-        "implicit solvers overtake explicit ones from {} = {crossover}",
-        s.parameter
-    );
-    println!(
-        "wrote {} files into {}",
-        files.write()?.len(),
-        a.case.out.display()
-    );
-    Ok(())
+    a.case.run(|t, case| {
+        let sweep = studies::Sweep {
+            parameter: &a.parameter,
+            values: &a.values,
+            target: a.target,
+        };
+        let s = add_stiffness(
+            t,
+            "stiffness",
+            case,
+            sweep,
+            &a.solvers,
+            &a.dt_list,
+            &a.tol_list,
+        )?;
+        let crossover = s
+            .crossover
+            .map_or("(never in this sweep)".into(), |v| v.to_string());
+        println!(
+            "implicit solvers overtake explicit ones from {} = {crossover}",
+            s.parameter
+        );
+        Ok(())
+    })
 }
