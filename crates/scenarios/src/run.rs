@@ -161,6 +161,17 @@ fn validate(spec: &RunSpec) -> Result<(), ScenarioError> {
             spec.params.k, spec.scenario
         )));
     }
+    if !spec.scenario.has_body() {
+        let model = spec.model.build(spec.variant, &spec.friction)?;
+        if model.stick_band() > 0.0 {
+            return Err(ScenarioError::Invalid(format!(
+                "model `{}` cannot run in {}: its stick band holds the body against the applied \
+                 force, and here the motion is imposed (there is no applied force); use a body \
+                 scenario such as belt or force-ramp",
+                spec.model, spec.scenario
+            )));
+        }
+    }
     if spec.output_points < 2 {
         return Err(ScenarioError::Invalid(format!(
             "option `points` = {} is out of range: allowed [2, inf)",
