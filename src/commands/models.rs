@@ -5,6 +5,7 @@ use crate::error::AppError;
 use friction_models::{
     CurveAxis, FrictionParams, ModelId, ParamSpec, Parameters, Variant, PARAM_SETS,
 };
+use scenarios::{Scenario, ScenarioParams};
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -31,11 +32,22 @@ struct ParamEntry {
     sets: BTreeMap<&'static str, f64>,
 }
 
+/// A scenario parameter as listed, with the scenarios that read it.
+#[derive(Serialize)]
+struct ScenarioParamEntry {
+    #[serde(flatten)]
+    spec: ParamSpec,
+    range_text: String,
+    default: f64,
+    scenarios: Vec<&'static str>,
+}
+
 /// The whole listing.
 #[derive(Serialize)]
 struct Listing {
     models: Vec<ModelEntry>,
     parameters: Vec<ParamEntry>,
+    scenario_parameters: Vec<ScenarioParamEntry>,
     parameter_sets: Vec<&'static str>,
     variants: [&'static str; 2],
 }
@@ -72,9 +84,25 @@ fn listing() -> Listing {
                 .collect(),
         })
         .collect();
+    let scenario_parameters = ScenarioParams::specs()
+        .iter()
+        .map(|spec| ScenarioParamEntry {
+            spec: *spec,
+            range_text: spec.range.to_string(),
+            default: ScenarioParams::default()
+                .value(spec.name)
+                .expect("spec has slot"),
+            scenarios: Scenario::ALL
+                .iter()
+                .filter(|s| s.parameters().contains(&spec.name))
+                .map(|s| s.name())
+                .collect(),
+        })
+        .collect();
     Listing {
         models,
         parameters,
+        scenario_parameters,
         parameter_sets: PARAM_SETS.to_vec(),
         variants: ["odd", "printed"],
     }
@@ -125,6 +153,23 @@ fn text(l: &Listing) -> String {
             p.spec.meaning
         );
     }
+    out +=
+        "\nScenario parameters (simulate and the studies; defaults as most scenarios use them)\n\n";
+    out += &format!(
+        "{:<10} {:<6} {:>12}  {:<12} scenarios\n",
+        "name", "unit", "default", "range"
+    );
+    for p in &l.scenario_parameters {
+        out += &format!(
+            "{:<10} {:<6} {:>12}  {:<12} {}\n",
+            p.spec.name,
+            p.spec.unit,
+            short(p.default),
+            p.range_text,
+            p.scenarios.join(", ")
+        );
+    }
+    out += "(free-vibration starts from x0 = 0.5 m, as scenarios.md sets it)\n";
     out += &format!(
         "\nNamed parameter sets: {}\nVariants: odd (default), printed\n",
         l.parameter_sets.join(", ")
