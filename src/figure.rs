@@ -1,7 +1,7 @@
 //! A friction curve as the files that show it: a CSV table of its data and a plot.
 
 use crate::output::{Cell, Table};
-use crate::plot::{Plot, Series, BLUE, GREEN, RED};
+use crate::plot::{Corner, Plot, Series, BLUE, GREEN, RED};
 use friction_models::{CurveAxis, ModelId, Variant};
 use scenarios::curves::{Curve, Sample};
 
@@ -128,5 +128,6 @@ pub fn plot(title: String, model: ModelId, curves: &[Drawn]) -> Plot {
         x_label: x_label.into(),
         y_label: "friction force F (N)".into(),
         series,
+        legend: Corner::default(),
     }
 }

@@ -34,6 +34,8 @@ pub struct Plot {
     pub y_label: String,
     /// The polylines.
     pub series: Vec<Series>,
+    /// Where the legend goes.
+    pub legend: Corner,
 }
 
 /// The colours of the figures: the paper's red for the model, blue and green beside it.
@@ -44,14 +46,26 @@ pub const BLUE: RGBColor = RGBColor(30, 80, 200);
 pub const GREEN: RGBColor = RGBColor(20, 140, 60);
 
 /// Colours for figures with several series, in order.
-pub const PALETTE: [RGBColor; 6] = [
+pub const PALETTE: [RGBColor; 8] = [
     RED,
     BLUE,
     GREEN,
     RGBColor(230, 130, 0),
     RGBColor(130, 50, 170),
     RGBColor(90, 90, 90),
+    RGBColor(0, 160, 170),
+    RGBColor(140, 90, 40),
 ];
+
+/// Where the legend goes.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Corner {
+    /// Upper left (the default: most curves here rise to the right).
+    #[default]
+    UpperLeft,
+    /// Upper right (error-against-work plots, which fall to the right).
+    UpperRight,
+}
 
 static FONT: Once = Once::new();
 
@@ -133,7 +147,10 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, plot: &Plot) -> Result
             .label_font(("sans-serif", 15))
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK)
-            .position(SeriesLabelPosition::UpperLeft)
+            .position(match plot.legend {
+                Corner::UpperLeft => SeriesLabelPosition::UpperLeft,
+                Corner::UpperRight => SeriesLabelPosition::UpperRight,
+            })
             .draw()
             .map_err(err)?;
     }
@@ -197,6 +214,7 @@ mod tests {
                 color: RED,
                 width: 1,
             }],
+            legend: Corner::default(),
         };
         assert_eq!(bounds(&plot), ((0.0, 1.0), (0.0, 1.0)));
         assert!(svg(&plot, Path::new("empty.svg"))

@@ -11,7 +11,7 @@ use crate::error::AppError;
 use crate::figure::Drawn;
 use crate::options::ParamOptions;
 use crate::output::{Cell, Table};
-use crate::plot::{Plot, Series, PALETTE};
+use crate::plot::{Corner, Plot, Series, PALETTE};
 use clap::Args;
 use friction_models::{FrictionParams, ModelId, Variant};
 use integrators::Solver;
@@ -164,6 +164,7 @@ fn add_experiment(
         x_label: "time t (s)".into(),
         y_label: "velocity v (m/s)".into(),
         series,
+        legend: Corner::default(),
     };
     files.add_plot(&stem, &p)?;
     let mut md = String::from(

@@ -7,7 +7,7 @@ use crate::commands::curve::used_parameters;
 use crate::error::AppError;
 use crate::options::ModelOptions;
 use crate::output::{Cell, Table};
-use crate::plot::{Plot, Series, BLUE};
+use crate::plot::{Corner, Plot, Series, BLUE};
 use clap::Args;
 use friction_models::{ModelId, Parameters};
 use integrators::{Solver, StepControl};
@@ -260,6 +260,7 @@ fn figures(o: &Outcome, name: &str) -> Vec<(&'static str, Plot)> {
                         color: BLUE,
                         width: 2,
                     }],
+                    legend: Corner::default(),
                 },
             )
         })

@@ -8,7 +8,7 @@ use crate::commands::phenomena::with_threads;
 use crate::error::AppError;
 use crate::options::ModelOptions;
 use crate::output::{Cell, Table};
-use crate::plot::{Plot, Series, PALETTE};
+use crate::plot::{Corner, Plot, Series, PALETTE};
 use clap::Args;
 use friction_models::ModelId;
 use integrators::Solver;
@@ -295,6 +295,7 @@ pub fn add_convergence(
         x_label: "log10 step size h (s), or tolerance".into(),
         y_label: "log10 max error on the time grid".into(),
         series,
+        legend: Corner::default(),
     };
     t.files.add_plot(&dir.join(stem), &plot)?;
     Ok(c)
@@ -446,6 +447,7 @@ pub fn add_independence(
         x_label: "time t (s)".into(),
         y_label: "displacement x (m)".into(),
         series,
+        legend: Corner::default(),
     };
     t.files.add_plot(&dir.join(stem), &plot)?;
     Ok(s)
@@ -557,6 +559,7 @@ pub fn add_work_precision(
         x_label: "log10 work (f evaluations + n per Jacobian)".into(),
         y_label: "log10 max error on the time grid".into(),
         series: per_solver_series(&w.runs, dims, |r| r.errors.grid_max),
+        legend: Corner::UpperRight,
     };
     t.files.add_plot(&dir.join(stem), &plot)?;
     Ok(w)
@@ -717,6 +720,7 @@ pub fn add_stiffness(
         x_label: format!("log10 {parameter}"),
         y_label: "log10 work (f evaluations + n per Jacobian)".into(),
         series,
+        legend: Corner::UpperRight,
     };
     t.files.add_plot(&dir.join(stem), &plot)?;
     Ok(s)
