@@ -333,6 +333,34 @@ fn simulate_writes_trajectory_summary_and_figures() {
 }
 
 #[test]
+fn a_stiff_run_reports_hairers_stiffness_diagnostic() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("stiff");
+    let o = friction_lab(&[
+        "simulate",
+        "paper-block",
+        "--model",
+        "lugre",
+        "--param-set",
+        "lugre-1995",
+        "--t-end",
+        "0.5",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("dopri5 found the problem stiff at t = "),
+        "{}",
+        stderr(&o)
+    );
+    let s: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
+    let t = s["stiffness_detected_at"].as_f64().unwrap();
+    assert!(t > 0.0 && t < 0.5, "{t}");
+}
+
+#[test]
 fn a_failing_solver_keeps_its_trajectory_and_exits_non_zero() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("fail");

@@ -137,6 +137,7 @@ struct Summary<'a> {
     energy: Option<scenarios::energy::EnergyBalance>,
     friction_work: Option<f64>,
     loop_area: Option<f64>,
+    stiffness_detected_at: Option<f64>,
 }
 
 /// The spec of a run from the command line.
@@ -350,10 +351,14 @@ pub fn run(args: &SimulateArgs) -> Result<(), AppError> {
         energy: outcome.energy,
         friction_work: outcome.friction_work,
         loop_area: outcome.loop_area,
+        stiffness_detected_at: outcome.stiffness_detected_at,
     };
     files.add_json(args.out.join("summary.json"), &summary)?;
     let written = files.write()?;
     println!("wrote {} files into {}", written.len(), args.out.display());
+    if let Some(t) = outcome.stiffness_detected_at {
+        eprintln!("note: {} found the problem stiff at t = {t:.6} s; an implicit solver (bdf, esdirk34) may be much faster", spec.solver.name());
+    }
     match outcome.error {
         Some(e) => Err(AppError::Solver(e)),
         None => Ok(()),

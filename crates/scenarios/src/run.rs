@@ -143,6 +143,8 @@ pub struct Outcome {
     pub loop_area: Option<f64>,
     /// Wall time of the integration, s.
     pub wall_time_s: f64,
+    /// Where Hairer's stiffness test (Dormand–Prince) first judged the problem stiff.
+    pub stiffness_detected_at: Option<f64>,
 }
 
 impl Outcome {
@@ -291,6 +293,7 @@ fn run_body(
         friction_work: None,
         loop_area: None,
         wall_time_s,
+        stiffness_detected_at: s.stiffness_detected_at,
     }
 }
 
@@ -340,6 +343,7 @@ pub fn run_motion(
         friction_work: last.map(|l| l.0),
         loop_area: last.map(|l| l.1),
         wall_time_s,
+        stiffness_detected_at: s.stiffness_detected_at,
     }
 }
 
@@ -356,6 +360,7 @@ fn run_sweep(spec: &RunSpec, model: &dyn FrictionModel, observe: &mut dyn FnMut(
         friction_work: None,
         loop_area: None,
         wall_time_s: 0.0,
+        stiffness_detected_at: None,
     };
     let v_max = spec.params.v_max;
     let velocities = (1..=20)
@@ -371,6 +376,7 @@ fn run_sweep(spec: &RunSpec, model: &dyn FrictionModel, observe: &mut dyn FnMut(
         let o = run_motion(&point, model, Motion::Constant { v }, settle, observe);
         out.stats += o.stats;
         out.wall_time_s += o.wall_time_s;
+        out.stiffness_detected_at = out.stiffness_detected_at.or(o.stiffness_detected_at);
         if let Some(row) = o.last() {
             out.rows.push(*row);
         }
