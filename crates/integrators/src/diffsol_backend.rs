@@ -19,7 +19,7 @@ use crate::options::{Options, StepControl};
 use crate::problem::{Mode, OdeProblem};
 use crate::solution::{Failure, Solution};
 use crate::stats::Stats;
-use crate::stepper::{Ode, Stepper};
+use crate::stepper::{linear_interpolation, Ode, Stepper};
 use diffsol::{
     BdfState, DiffsolError, NalgebraLU, NalgebraMat, NonLinearOp, OdeBuilder, OdeEquations,
     OdeEquationsImplicit, OdeSolverMethod, OdeSolverProblem, OdeSolverState, RkState, Vector,
@@ -253,13 +253,7 @@ where
         match self.solver.as_ref().map(|s| s.interpolate(t)) {
             Some(Ok(v)) => out.copy_from_slice(&v.clone_as_vec()),
             // Outside diffsol's interpolation window (never expected): the linear interpolant.
-            _ => {
-                let h = self.t - self.t_prev;
-                let th = if h == 0.0 { 1.0 } else { (t - self.t_prev) / h };
-                for (i, o) in out.iter_mut().enumerate() {
-                    *o = self.y_prev[i] + th * (self.y[i] - self.y_prev[i]);
-                }
-            }
+            _ => linear_interpolation(self.t_prev, &self.y_prev, self.t, &self.y, t, out),
         }
     }
 

@@ -7,7 +7,7 @@
 use crate::error::SolverError;
 use crate::options::StepControl;
 use crate::stats::Stats;
-use crate::stepper::{check_finite, next_grid_point, wrms, Ode, Stepper};
+use crate::stepper::{check_finite, check_limits, next_grid_point, wrms, Ode, Stepper};
 
 // Runge–Kutta coefficients of Dormand and Prince (1980), subroutine CDOPRI of dopri5.f.
 const C2: f64 = 0.2;
@@ -62,8 +62,6 @@ const BETA: f64 = 0.04;
 const EXPO1: f64 = 0.2 - BETA * 0.75;
 /// FACOLD's starting value and floor (DOPCOR).
 const FACOLD_MIN: f64 = 1e-4;
-/// UROUND: the unit round-off dopri5.f assumes (WORK(1)).
-const UROUND: f64 = 2.3e-16;
 /// IORD, the order used by HINIT.
 const HINIT_ORDER: f64 = 5.0;
 // Stiffness detection (DOPCOR): test every NSTIFF accepted steps, or every step once
@@ -267,20 +265,6 @@ impl Dopri5 {
         self.stats.steps += 1;
         Ok(())
     }
-
-    fn check_limits(&self, h: f64) -> Result<(), SolverError> {
-        if self.attempts > self.max_steps {
-            return Err(SolverError::TooManySteps {
-                t: self.t,
-                h,
-                max: self.max_steps,
-            });
-        }
-        if 0.1 * h.abs() <= self.t.abs() * UROUND {
-            return Err(SolverError::StepSizeUnderflow { t: self.t, h });
-        }
-        Ok(())
-    }
 }
 
 impl Stepper for Dopri5 {
@@ -313,7 +297,7 @@ impl Stepper for Dopri5 {
                 let t_new = next_grid_point(self.t_start, h, self.t, t_stop);
                 let step = t_new - self.t;
                 self.attempts += 1;
-                self.check_limits(step)?;
+                check_limits(self.attempts, self.max_steps, self.t, step)?;
                 self.stages(ode, step);
                 return self.accept(step, t_new);
             }
@@ -325,7 +309,7 @@ impl Stepper for Dopri5 {
         loop {
             let mut h = self.h;
             self.attempts += 1;
-            self.check_limits(h)?;
+            check_limits(self.attempts, self.max_steps, self.t, h)?;
             let last = self.t + 1.01 * h - t_stop > 0.0;
             if last {
                 h = t_stop - self.t;

@@ -12,7 +12,9 @@ use crate::newton::{self, NewtonKind};
 use crate::options::StepControl;
 use crate::problem::Entry;
 use crate::stats::Stats;
-use crate::stepper::{check_finite, next_grid_point, wrms, Ode, Stepper};
+use crate::stepper::{
+    check_finite, check_limits, linear_interpolation, next_grid_point, wrms, Ode, Stepper,
+};
 
 // Step-size control: the defaults of radau5.f.
 /// Safety factor SAFE (WORK(2)).
@@ -41,8 +43,6 @@ const REFACTOR_TOLERANCE: f64 = 1e-8;
 const MAX_NEWTON_CUTS: usize = 10;
 /// First step of an adaptive run without a given one, as a fraction of the largest step.
 const INITIAL_FRACTION: f64 = 1e-4;
-/// Unit round-off for the underflow test.
-const UROUND: f64 = 2.3e-16;
 
 /// Implicit Euler with Newton's method.
 pub struct ImplicitEuler {
@@ -192,7 +192,7 @@ impl ImplicitEuler {
             }
             let norm = wrms(&delta, &yk, &self.y, rtol, atol);
             let eta = if k == 0 {
-                self.eta.max(UROUND).powf(0.8)
+                self.eta.max(crate::stepper::UROUND).powf(0.8)
             } else {
                 let theta = norm / norm_prev;
                 if theta >= 1.0 || !theta.is_finite() {
@@ -216,20 +216,6 @@ impl ImplicitEuler {
         Err(format!(
             "no convergence in {MAX_NEWTON_ITERATIONS} iterations"
         ))
-    }
-
-    fn check_limits(&self, h: f64) -> Result<(), SolverError> {
-        if self.attempts > self.max_steps {
-            return Err(SolverError::TooManySteps {
-                t: self.t,
-                h,
-                max: self.max_steps,
-            });
-        }
-        if 0.1 * h.abs() <= self.t.abs() * UROUND {
-            return Err(SolverError::StepSizeUnderflow { t: self.t, h });
-        }
-        Ok(())
     }
 }
 
@@ -280,7 +266,7 @@ impl Stepper for ImplicitEuler {
                     (self.t + h, h)
                 }
             };
-            self.check_limits(h)?;
+            check_limits(self.attempts, self.max_steps, self.t, h)?;
             if !self.jac_valid || self.newton == NewtonKind::Full {
                 let f0 = self.f_here(ode).to_vec();
                 let y0 = self.y.clone();
@@ -376,11 +362,7 @@ impl Stepper for ImplicitEuler {
     }
 
     fn dense_output(&self, t: f64, out: &mut [f64]) {
-        let h = self.t - self.t_prev;
-        let th = if h == 0.0 { 1.0 } else { (t - self.t_prev) / h };
-        for (i, o) in out.iter_mut().enumerate() {
-            *o = self.y_prev[i] + th * (self.y[i] - self.y_prev[i]);
-        }
+        linear_interpolation(self.t_prev, &self.y_prev, self.t, &self.y, t, out);
     }
 
     fn stats(&self) -> Stats {

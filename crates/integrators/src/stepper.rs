@@ -117,3 +117,32 @@ pub fn check_finite(y: &[f64], t: f64, h: f64, what: &str) -> Result<(), SolverE
         }),
     }
 }
+
+/// The unit round-off dopri5.f assumes (UROUND, WORK(1)); the step-size underflow test of
+/// every adaptive method here uses it.
+pub const UROUND: f64 = 2.3e-16;
+
+/// The checks every adaptive step attempt makes first (DOPCOR of dopri5.f): no more than
+/// `max_steps` attempts, and a step size that t can still resolve (`0.1·|h| > UROUND·|t|`).
+pub fn check_limits(attempts: usize, max_steps: usize, t: f64, h: f64) -> Result<(), SolverError> {
+    if attempts > max_steps {
+        return Err(SolverError::TooManySteps {
+            t,
+            h,
+            max: max_steps,
+        });
+    }
+    if 0.1 * h.abs() <= t.abs() * UROUND {
+        return Err(SolverError::StepSizeUnderflow { t, h });
+    }
+    Ok(())
+}
+
+/// The linear interpolant between (t0, y0) and (t1, y1), at t.
+pub fn linear_interpolation(t0: f64, y0: &[f64], t1: f64, y1: &[f64], t: f64, out: &mut [f64]) {
+    let h = t1 - t0;
+    let th = if h == 0.0 { 1.0 } else { (t - t0) / h };
+    for (i, o) in out.iter_mut().enumerate() {
+        *o = y0[i] + th * (y1[i] - y0[i]);
+    }
+}
