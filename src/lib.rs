@@ -52,7 +52,8 @@ pub enum Command {
     WorkPrecision(commands::studies::WorkPrecisionArgs),
     /// Stiffness sweep: where the implicit solvers overtake the explicit ones.
     Stiffness(commands::studies::StiffnessArgs),
-    /// Reproduce the paper into one folder: Figures 2-7 with notes, and a report.md.
+    /// Reproduce the paper into one folder: Figures 2-7 with notes, the experiment, Table 2,
+    /// the solver studies, and a report.md that links them.
     Reproduce(commands::reproduce::ReproduceArgs),
 }
 
