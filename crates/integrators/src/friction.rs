@@ -238,6 +238,23 @@ impl FrictionBody<'_> {
         (r.force, r.state_rate)
     }
 
+    /// The right-hand side `dy = f(t, y)` in `mode`, returning the friction force it used
+    /// (so that callers who need both evaluate the model once).
+    pub fn rhs_with_friction(&self, t: f64, y: &[f64], mode: Mode, dy: &mut [f64]) -> f64 {
+        let (force, rate) = self.friction_and_rate(t, y, mode);
+        if self.switching == Switching::Event && mode == STICK {
+            dy[0] = self.surface_velocity;
+            dy[1..].iter_mut().for_each(|d| *d = 0.0);
+            return force;
+        }
+        dy[0] = y[1];
+        dy[1] = (self.applied.at(t, y[0], y[1]) - force) / self.mass;
+        if let Some(d) = dy.get_mut(2) {
+            *d = rate;
+        }
+        force
+    }
+
     fn law(&self, mode: Mode) -> SignLaw {
         match self.switching {
             Switching::Event if mode == SLIP_POSITIVE => SignLaw::Frozen(Direction::Positive),
@@ -254,17 +271,7 @@ impl OdeProblem for FrictionBody<'_> {
     }
 
     fn rhs(&self, t: f64, y: &[f64], mode: Mode, dy: &mut [f64]) {
-        if self.switching == Switching::Event && mode == STICK {
-            dy[0] = self.surface_velocity;
-            dy[1..].iter_mut().for_each(|d| *d = 0.0);
-            return;
-        }
-        let (force, rate) = self.friction_and_rate(t, y, mode);
-        dy[0] = y[1];
-        dy[1] = (self.applied.at(t, y[0], y[1]) - force) / self.mass;
-        if let Some(d) = dy.get_mut(2) {
-            *d = rate;
-        }
+        self.rhs_with_friction(t, y, mode, dy);
     }
 
     fn jacobian(&self, _t: f64, y: &[f64], mode: Mode, jac: &mut Vec<Entry>) -> bool {

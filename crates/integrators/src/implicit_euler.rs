@@ -142,7 +142,7 @@ impl ImplicitEuler {
         }
         let n = self.y.len();
         newton::iteration_matrix(ode.problem.mass(), n, h, &self.jac, &mut self.matrix);
-        if self.lu.name() != linear::for_size(n, self.matrix.len()).name() {
+        if self.lu.name() != linear::choice(n, self.matrix.len()) {
             self.lu = linear::for_size(n, self.matrix.len());
         }
         self.stats.lu_factorizations += 1;

@@ -26,14 +26,23 @@ pub trait LinearSolver: Send {
     fn solve(&self, b: &mut [f64]) -> bool;
 }
 
-/// The solver for an `n × n` matrix with `nnz` stored entries.
-pub fn for_size(n: usize, nnz: usize) -> Box<dyn LinearSolver> {
+/// The name of the solver chosen for an `n × n` matrix with `nnz` stored entries.
+pub fn choice(n: usize, nnz: usize) -> &'static str {
     if n <= SMALL_DENSE {
-        Box::new(NalgebraLu::default())
+        "nalgebra dense LU"
     } else if (nnz as f64) <= SPARSE_FILL * (n * n) as f64 {
-        Box::new(FaerSparseLu::default())
+        "faer sparse LU"
     } else {
-        Box::new(FaerDenseLu::default())
+        "faer dense LU"
+    }
+}
+
+/// The solver for an `n × n` matrix with `nnz` stored entries (see [`choice`]).
+pub fn for_size(n: usize, nnz: usize) -> Box<dyn LinearSolver> {
+    match choice(n, nnz) {
+        "nalgebra dense LU" => Box::new(NalgebraLu::default()),
+        "faer sparse LU" => Box::new(FaerSparseLu::default()),
+        _ => Box::new(FaerDenseLu::default()),
     }
 }
 

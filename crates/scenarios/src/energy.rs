@@ -77,9 +77,8 @@ impl OdeProblem for Tracked<'_> {
     fn rhs(&self, t: f64, y: &[f64], mode: Mode, dy: &mut [f64]) {
         let n = self.body_dim();
         let b = &self.body;
-        b.rhs(t, &y[..n], mode, &mut dy[..n]);
+        let friction = b.rhs_with_friction(t, &y[..n], mode, &mut dy[..n]);
         let (x, v) = (y[0], y[1]);
-        let friction = b.friction(t, &y[..n], mode);
         let non_spring = b.applied.at(t, x, v) + b.applied.stiffness * x;
         dy[n] = non_spring * v;
         dy[n + 1] = friction * (v - b.surface_velocity);
