@@ -1,7 +1,11 @@
 //! Every way a command can fail, each with a message that names what was wrong.
 
 use friction_models::ParamError;
+use friction_systems::file::SystemFileError;
+use friction_systems::SystemError;
+use integrators::SolverError;
 use scenarios::curves::CurveError;
+use scenarios::ScenarioError;
 use std::path::PathBuf;
 use thiserror::Error;
 
@@ -11,6 +15,12 @@ pub enum AppError {
     /// A parameter was rejected.
     #[error(transparent)]
     Param(#[from] ParamError),
+    /// A system (file, chain or rig) was rejected.
+    #[error(transparent)]
+    System(#[from] SystemError),
+    /// A system file could not be read or declares no valid system.
+    #[error(transparent)]
+    SystemFile(#[from] SystemFileError),
     /// A curve option was rejected.
     #[error(transparent)]
     Curve(#[from] CurveError),
@@ -47,7 +57,10 @@ pub enum AppError {
     #[error(
         "the solver failed: {0} (summary.json and trajectory.csv keep the run up to the failure)"
     )]
-    Solver(String),
+    Solver(SolverError),
+    /// A run that a study needs failed in the solver.
+    #[error("{0}")]
+    StudyRun(String),
     /// A plot could not be drawn.
     #[error("drawing {path}: {message}")]
     Plot {
@@ -63,13 +76,30 @@ impl AppError {
     pub fn exit_code(&self) -> i32 {
         match self {
             AppError::Param(_)
+            | AppError::System(_)
+            | AppError::SystemFile(_)
             | AppError::Curve(_)
             | AppError::Usage(_)
             | AppError::ParamFile { .. } => 2,
             AppError::NonFinite { .. }
             | AppError::Io { .. }
             | AppError::Plot { .. }
-            | AppError::Solver(_) => 1,
+            | AppError::Solver(_)
+            | AppError::StudyRun(_) => 1,
+        }
+    }
+}
+
+impl From<ScenarioError> for AppError {
+    /// Bad input stays bad input (exit 2); a failed run is a failure (exit 1).
+    fn from(e: ScenarioError) -> AppError {
+        match e {
+            ScenarioError::Param(p) => AppError::Param(p),
+            ScenarioError::System(s) => AppError::System(s),
+            ScenarioError::Invalid(m) => AppError::Usage(m),
+            e @ (ScenarioError::Solver { .. } | ScenarioError::RunFailed(_)) => {
+                AppError::StudyRun(e.to_string())
+            }
         }
     }
 }

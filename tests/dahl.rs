@@ -12,7 +12,7 @@ impl OdeProblem for PrescribedDahl<'_> {
     fn dim(&self) -> usize {
         1
     }
-    fn rhs(&self, t: f64, y: &[f64], _m: Mode, f: &mut [f64]) {
+    fn rhs(&self, t: f64, y: &[f64], _m: &[Mode], f: &mut [f64]) {
         let (x, v) = (t.powi(3) / 3.0 + t * t / 2.0, t * (t + 1.0));
         f[0] = self
             .0
@@ -31,7 +31,7 @@ fn integrated_dahl_state_matches_the_closed_form_to_1e_10() {
             (Solver::Rk4, Options::fixed(0.0, 2.0, 1e-3)),
             (Solver::Dopri5, Options::adaptive(0.0, 2.0, 1e-13, 1e-13)),
         ] {
-            let s = solver.solve(&problem, &[0.0], Mode(0), options).unwrap();
+            let s = solver.solve(&problem, &[0.0], &[Mode(0)], options).unwrap();
             for i in 1..s.len() {
                 let t = s.t[i];
                 let x = t.powi(3) / 3.0 + t * t / 2.0;

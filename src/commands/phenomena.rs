@@ -168,8 +168,7 @@ pub fn add_table(
     protocol: Protocol,
     threads: Option<usize>,
 ) -> Result<Vec<(ModelId, Row)>, AppError> {
-    let rows = with_threads(threads, || table(&ModelId::ALL, protocol))?
-        .map_err(|e| AppError::Usage(e.to_string()))?;
+    let rows = with_threads(threads, || table(&ModelId::ALL, protocol))?.map_err(AppError::from)?;
     files.add(
         dir.join("table2.md"),
         markdown(&rows, &protocol).into_bytes(),

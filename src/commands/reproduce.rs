@@ -485,7 +485,7 @@ pub fn run(args: &ReproduceArgs) -> Result<(), AppError> {
     files.add(args.out.join("reproduction.md"), reproduction.into_bytes());
     files.add_json(args.out.join("figures.json"), &reproduced)?;
     let (friction, scenario) = args.params.resolve_for(Some(Scenario::PaperBlock))?;
-    let rows = experiment(&friction, &scenario).map_err(|e| AppError::Usage(e.to_string()))?;
+    let rows = experiment(&friction, &scenario).map_err(AppError::from)?;
     let experiment_md = add_experiment(&mut files, &args.out, &rows)?;
     files.add(
         args.out.join("paper-experiment.md"),

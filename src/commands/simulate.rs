@@ -127,14 +127,14 @@ struct Summary<'a> {
     t_end: f64,
     parameters: BTreeMap<&'a str, f64>,
     status: &'a str,
-    error: Option<&'a str>,
+    error: Option<String>,
     #[serde(rename = "final")]
     final_state: Option<Final>,
     events: &'a [EventEntry],
     stats: StatsEntry,
     wall_time_s: f64,
     energy_residual: Option<f64>,
-    energy: Option<scenarios::energy::EnergyBalance>,
+    energy: Option<friction_systems::EnergyBalance>,
     friction_work: Option<f64>,
     loop_area: Option<f64>,
     stiffness_detected_at: Option<f64>,
@@ -290,7 +290,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), AppError> {
             bar.set_position((1000.0 * t / t_end).clamp(0.0, 1000.0) as u64);
         }
     })
-    .map_err(|e| AppError::Usage(e.to_string()))?;
+    .map_err(AppError::from)?;
     bar.finish_and_clear();
 
     let model = spec.model.build(spec.variant, &spec.friction)?;
@@ -330,7 +330,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), AppError> {
         } else {
             "ok"
         },
-        error: outcome.error.as_deref(),
+        error: outcome.error.as_ref().map(|e| e.to_string()),
         final_state: outcome.last().map(|r| Final {
             t: r.t,
             x: r.x,

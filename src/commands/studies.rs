@@ -140,7 +140,7 @@ pub struct Refinement {
 }
 
 fn study_error(e: scenarios::ScenarioError) -> AppError {
-    AppError::Usage(e.to_string())
+    AppError::from(e)
 }
 
 /// One CSV row per run: solver, resolution, the errors, the work.

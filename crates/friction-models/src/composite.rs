@@ -5,7 +5,7 @@
 //! models of the paper and the classical reference laws (Coulomb, viscous, static, Stribeck,
 //! Dahl, Karnopp) are all values of this one struct; see [`crate::catalog`].
 
-use crate::catalog::ModelId;
+use crate::catalog::{CurveAxis, ModelId};
 use crate::model::{FrictionModel, Partials, Response, StickInterval};
 use crate::sign::{Direction, SignLaw};
 use crate::terms::{self, Term};
@@ -73,8 +73,12 @@ impl Composite {
 }
 
 impl FrictionModel for Composite {
-    fn id(&self) -> ModelId {
-        self.id
+    fn name(&self) -> &str {
+        self.id.name()
+    }
+
+    fn curve_axis(&self) -> CurveAxis {
+        self.id.curve_axis()
     }
 
     fn n_states(&self) -> usize {

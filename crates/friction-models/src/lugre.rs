@@ -58,8 +58,8 @@ impl LuGre {
 }
 
 impl FrictionModel for LuGre {
-    fn id(&self) -> ModelId {
-        ModelId::LuGre
+    fn name(&self) -> &str {
+        ModelId::LuGre.name()
     }
 
     fn n_states(&self) -> usize {

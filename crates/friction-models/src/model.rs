@@ -1,6 +1,6 @@
 //! The interface every friction model implements and the integrators use.
 
-use crate::catalog::ModelId;
+use crate::catalog::CurveAxis;
 use crate::sign::SignLaw;
 use serde::Serialize;
 use std::fmt;
@@ -100,9 +100,18 @@ impl std::str::FromStr for Variant {
 /// - the smooth regularised form of width ε is `response(x, v, z, SignLaw::Smooth { epsilon })`;
 /// - the admissible forces at rest are [`stick_interval`](FrictionModel::stick_interval);
 /// - the state obeys `ż = response(..).state_rate` and, while stuck (v = 0), does not move.
+///
+/// The trait is public so that a model written in another crate runs in every rig, system
+/// and study of friction-lab (see `examples/own_friction_law.rs`).
 pub trait FrictionModel: fmt::Debug + Send + Sync {
-    /// Which model this is.
-    fn id(&self) -> ModelId;
+    /// The model's name, as listings and output files print it.
+    fn name(&self) -> &str;
+
+    /// How the model's curve is drawn: force against velocity in steady sliding (the
+    /// default), or against displacement under the paper's prescribed motion (Dahl types).
+    fn curve_axis(&self) -> CurveAxis {
+        CurveAxis::Velocity
+    }
 
     /// Number of internal states: 0, or 1 for Dahl-type and LuGre models.
     fn n_states(&self) -> usize;

@@ -72,7 +72,7 @@ impl DiffsolMethod {
 /// What the closures handed to diffsol share with the stepper.
 struct Shared<'a> {
     problem: &'a dyn OdeProblem,
-    mode: Cell<Mode>,
+    modes: RefCell<Vec<Mode>>,
     start: RefCell<Vec<f64>>,
     rhs_evals: Cell<usize>,
     jacobian_products: Cell<usize>,
@@ -84,7 +84,7 @@ struct Shared<'a> {
 impl Shared<'_> {
     fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
         self.rhs_evals.set(self.rhs_evals.get() + 1);
-        self.problem.rhs(t, y, self.mode.get(), dy);
+        self.problem.rhs(t, y, &self.modes.borrow(), dy);
         if let Some(m) = self.inverse_mass {
             dy.iter_mut().zip(m).for_each(|(d, m)| *d /= m);
         }
@@ -95,7 +95,7 @@ impl Shared<'_> {
         self.jacobian_products.set(self.jacobian_products.get() + 1);
         let mut jac = self.jacobian.borrow_mut();
         jac.clear();
-        if self.problem.jacobian(t, y, self.mode.get(), &mut jac) {
+        if self.problem.jacobian(t, y, &self.modes.borrow(), &mut jac) {
             jv.iter_mut().for_each(|x| *x = 0.0);
             for &(i, j, a) in jac.iter() {
                 jv[i] += a * v[j];
@@ -199,7 +199,7 @@ where
     }
 
     fn start(&mut self, ode: &Ode, t: f64, y: &[f64]) -> Result<(), SolverError> {
-        self.shared.mode.set(ode.mode);
+        self.shared.modes.replace(ode.modes.to_vec());
         self.shared.start.replace(y.to_vec());
         if let Some(old) = self.solver.take() {
             self.finished += self.stats_of(&old);
@@ -273,7 +273,7 @@ where
 /// Where and how a run starts.
 struct Start<'r> {
     y0: &'r [f64],
-    mode: Mode,
+    modes: &'r [Mode],
     options: Options,
     observe: &'r mut dyn FnMut(f64),
 }
@@ -293,7 +293,7 @@ where
 {
     let Start {
         y0,
-        mode,
+        modes,
         options,
         observe,
     } = start;
@@ -313,9 +313,9 @@ where
     };
     let failure = |error| Failure {
         error,
-        solution: Box::new(Solution::new(method.name(), n)),
+        solution: Box::new(Solution::new(method.name(), n, modes.len())),
     };
-    Integrator::new(shared.problem, Box::new(stepper), y0, mode, options)
+    Integrator::new(shared.problem, Box::new(stepper), y0, modes, options)
         .map_err(failure)?
         .solve_observed(observe)
 }
@@ -363,16 +363,16 @@ where
     }
 }
 
-/// Integrates `problem` from `y0` in `mode` with a diffsol method, events and mode switching
+/// Integrates `problem` from `y0` in `modes` with a diffsol method, events and mode switching
 /// handled as for the native methods. Only adaptive stepping exists for diffsol's methods.
 pub fn solve(
     problem: &dyn OdeProblem,
     method: DiffsolMethod,
     y0: &[f64],
-    mode: Mode,
+    modes: &[Mode],
     options: Options,
 ) -> Result<Solution, Failure> {
-    solve_observed(problem, method, y0, mode, options, &mut |_| {})
+    solve_observed(problem, method, y0, modes, options, &mut |_| {})
 }
 
 /// As [`solve`], telling `observe` the time reached after every step.
@@ -380,14 +380,14 @@ pub fn solve_observed(
     problem: &dyn OdeProblem,
     method: DiffsolMethod,
     y0: &[f64],
-    mode: Mode,
+    modes: &[Mode],
     options: Options,
     observe: &mut dyn FnMut(f64),
 ) -> Result<Solution, Failure> {
     let n = problem.dim();
     let fail = |error| Failure {
         error,
-        solution: Box::new(Solution::new(method.name(), n)),
+        solution: Box::new(Solution::new(method.name(), n, modes.len())),
     };
     options.validate().map_err(fail)?;
     let StepControl::Adaptive { rtol, atol, h0 } = options.step else {
@@ -410,13 +410,13 @@ pub fn solve_observed(
     }
     let start = Start {
         y0,
-        mode,
+        modes,
         options: options.clone(),
         observe,
     };
     let shared = Shared {
         problem,
-        mode: Cell::new(mode),
+        modes: RefCell::new(modes.to_vec()),
         start: RefCell::new(y0.to_vec()),
         rhs_evals: Cell::new(0),
         jacobian_products: Cell::new(0),

@@ -1,18 +1,22 @@
-//! Event location: after each accepted step the event functions of the current mode are
-//! checked for a sign change in their requested direction; the earliest root is found on
-//! the method's dense output by the Illinois variant of regula falsi (Dahlquist & Björck,
-//! *Numerical Methods*, sec. 6.2.3) to a time tolerance of 1e-12 relative.
+//! Event location: after each accepted step the event functions watched in the current
+//! modes are checked for a sign change in their requested direction; the earliest root is
+//! found on the method's dense output by the Illinois variant of regula falsi (Dahlquist &
+//! Björck, *Numerical Methods*, sec. 6.2.3) to a time tolerance of 1e-12 relative, and every
+//! function whose root lies within that tolerance of it fires with it (simultaneous events).
 //!
-//! Re-trigger guard: after an event, an event function that fired and sits at zero does not
-//! fire again from zero: it takes as its reference the first sign it shows in the next step,
-//! sampled on the dense output at [`REARM_SAMPLES`] interior points (so that an excursion and
-//! return within that step, a short bounce, is still caught). Any other event function that
-//! starts at zero is taken to be on the side *before* the crossing it watches, so that a state
-//! that immediately moves across it (an inconsistent mode switch) is caught at once.
+//! Re-trigger guard: after an event, an event function that fired, sits at zero and is
+//! watched as before does not fire again from zero: it takes as its reference the first sign
+//! it shows in the next step, sampled on the dense output at [`REARM_SAMPLES`] interior points
+//! (so that an excursion and return within that step, a short bounce, is still caught). Any
+//! other event function that starts at zero is taken to be on the side *before* the crossing
+//! it watches, so that a state that immediately moves across it (an inconsistent mode switch)
+//! is caught at once.
+//!
+//! The watch keeps its buffers between steps: checking a step allocates nothing.
 
 use crate::error::SolverError;
 use crate::options::ZenoGuard;
-use crate::problem::{Mode, OdeProblem};
+use crate::problem::{EventSpec, Mode, OdeProblem};
 use std::collections::VecDeque;
 
 /// Relative time tolerance of event location.
@@ -36,38 +40,56 @@ pub struct Found {
     pub indices: Vec<usize>,
 }
 
-/// The state of the event functions of the current mode.
+/// The state of the event functions in the current modes.
 #[derive(Clone, Debug, Default)]
 pub struct EventWatch {
+    specs: Vec<Option<EventSpec>>,
     last: Vec<f64>,
     disarmed: Vec<bool>,
+    now: Vec<f64>,
+    roots: Vec<(f64, usize)>,
+    y: Vec<f64>,
     recent: VecDeque<f64>,
 }
 
 impl EventWatch {
-    /// (Re)starts watching the events of `mode` at (t, y); `fired` are the indices that just
-    /// fired in this same mode (empty after a mode switch).
+    /// (Re)starts watching at (t, y) in `modes`; `rearm` are the indices that just fired and
+    /// are watched as before (they start disarmed if they sit at zero).
     pub fn start(
         &mut self,
         problem: &dyn OdeProblem,
-        mode: Mode,
+        modes: &[Mode],
         t: f64,
         y: &[f64],
-        fired: &[usize],
+        rearm: &[usize],
     ) {
-        let specs = problem.events(mode);
+        let n = problem.n_events();
+        self.specs.clear();
         self.last.clear();
         self.disarmed.clear();
-        for (i, spec) in specs.iter().enumerate() {
-            let g = problem.event(i, t, y, mode);
-            let at_zero = g.abs() <= ZERO;
-            self.disarmed.push(at_zero && fired.contains(&i));
-            self.last.push(if at_zero {
-                spec.crossing.side_before() * ZERO
-            } else {
-                g
-            });
+        self.y.resize(y.len(), 0.0);
+        for i in 0..n {
+            let spec = problem.event_spec(i, modes);
+            let (g, disarmed) = match spec {
+                None => (0.0, false),
+                Some(spec) => {
+                    let g = problem.event(i, t, y, modes);
+                    if g.abs() <= ZERO {
+                        (spec.crossing.side_before() * ZERO, rearm.contains(&i))
+                    } else {
+                        (g, false)
+                    }
+                }
+            };
+            self.specs.push(spec);
+            self.last.push(g);
+            self.disarmed.push(disarmed);
         }
+    }
+
+    /// How event function `index` is watched now.
+    pub fn spec(&self, index: usize) -> Option<EventSpec> {
+        self.specs[index]
     }
 
     /// Checks the step from `t0` to `t1` (state `y1`), locating roots on `dense`, which
@@ -75,23 +97,26 @@ impl EventWatch {
     pub fn check(
         &mut self,
         problem: &dyn OdeProblem,
-        mode: Mode,
+        modes: &[Mode],
         t0: f64,
         t1: f64,
         y1: &[f64],
         dense: &mut dyn FnMut(f64, &mut [f64]),
     ) -> Option<Found> {
-        let specs = problem.events(mode);
-        let mut y = vec![0.0; y1.len()];
         let tol = TIME_TOLERANCE * t1.abs().max(t1 - t0).max(f64::MIN_POSITIVE);
-        let mut roots: Vec<(f64, usize)> = Vec::new();
-        let mut now = Vec::with_capacity(specs.len());
-        for (i, spec) in specs.iter().enumerate() {
-            let g1 = problem.event(i, t1, y1, mode);
-            now.push(g1);
+        self.roots.clear();
+        self.now.clear();
+        let y = &mut self.y;
+        for (i, spec) in self.specs.iter().enumerate() {
+            let Some(spec) = spec else {
+                self.now.push(0.0);
+                continue;
+            };
+            let g1 = problem.event(i, t1, y1, modes);
+            self.now.push(g1);
             let mut g = |t: f64| {
-                dense(t, &mut y);
-                problem.event(i, t, &y, mode)
+                dense(t, y);
+                problem.event(i, t, y, modes)
             };
             let (mut ta, mut ga) = (t0, self.last[i]);
             if self.disarmed[i] {
@@ -105,13 +130,13 @@ impl EventWatch {
                 }
             }
             if ta < t1 && spec.crossing.crossed(ga, g1) {
-                roots.push((illinois(&mut g, ta, ga, t1, g1, tol), i));
+                self.roots.push((illinois(&mut g, ta, ga, t1, g1, tol), i));
             } else if self.disarmed[i] {
-                now[i] = if ta < t1 { g1 } else { ga };
+                self.now[i] = if ta < t1 { g1 } else { ga };
             }
         }
-        if roots.is_empty() {
-            for (i, g) in now.into_iter().enumerate() {
+        if self.roots.is_empty() {
+            for (i, &g) in self.now.iter().enumerate() {
                 if g != 0.0 || !self.disarmed[i] {
                     self.disarmed[i] = false;
                     self.last[i] = g;
@@ -119,8 +144,9 @@ impl EventWatch {
             }
             return None;
         }
-        let t = roots.iter().map(|r| r.0).fold(f64::INFINITY, f64::min);
-        let mut indices: Vec<usize> = roots
+        let t = self.roots.iter().map(|r| r.0).fold(f64::INFINITY, f64::min);
+        let mut indices: Vec<usize> = self
+            .roots
             .iter()
             .filter(|r| r.0 - t <= tol)
             .map(|r| r.1)
@@ -129,18 +155,24 @@ impl EventWatch {
         Some(Found { t, indices })
     }
 
-    /// Records an event at `t` and fails if more than `guard.max_events` fall within
-    /// `guard.window` seconds.
-    pub fn record(&mut self, t: f64, name: &str, guard: &ZenoGuard) -> Result<(), SolverError> {
+    /// Records an event instant at `t` and fails if more than `guard.max_events` instants
+    /// fall within `window` seconds (the guard's window in the problem's time scale).
+    pub fn record(
+        &mut self,
+        t: f64,
+        name: &str,
+        guard: &ZenoGuard,
+        window: f64,
+    ) -> Result<(), SolverError> {
         self.recent.push_back(t);
-        while self.recent.front().is_some_and(|&t0| t0 < t - guard.window) {
+        while self.recent.front().is_some_and(|&t0| t0 < t - window) {
             self.recent.pop_front();
         }
         if self.recent.len() > guard.max_events {
             return Err(SolverError::TooManyEvents {
                 t,
                 count: self.recent.len(),
-                window: guard.window,
+                window,
                 last: name.to_string(),
             });
         }

@@ -5,7 +5,7 @@ use crate::error::SolverError;
 use crate::events::EventWatch;
 use crate::options::{Options, Output};
 use crate::problem::{Control, Mode, OdeProblem};
-use crate::solution::{EventRecord, Failure, Solution};
+use crate::solution::{EventRecord, Failure, ModeSwitch, Solution};
 use crate::stepper::{check_finite, Ode, Stepper};
 
 /// Why [`Integrator::step`] returned.
@@ -20,7 +20,7 @@ pub enum StopReason {
     EventFound {
         /// Time of the event.
         t: f64,
-        /// Names of the events handled there.
+        /// Names of the event functions that fired there.
         names: Vec<&'static str>,
     },
     /// The end time was reached.
@@ -37,21 +37,25 @@ pub struct Integrator<'a> {
     problem: &'a dyn OdeProblem,
     stepper: Box<dyn Stepper + 'a>,
     options: Options,
-    mode: Mode,
+    /// The chattering guard's window, s.
+    zeno_window: f64,
+    modes: Vec<Mode>,
     watch: EventWatch,
     solution: Solution,
     grid_next: usize,
+    /// Scratch state for dense output at grid points.
+    y_grid: Vec<f64>,
     cut_at_event: usize,
     done: bool,
 }
 
 impl<'a> Integrator<'a> {
-    /// Starts integrating `problem` from `y0` in `mode` at `options.t0` with `stepper`.
+    /// Starts integrating `problem` from `y0` in `modes` at `options.t0` with `stepper`.
     pub fn new(
         problem: &'a dyn OdeProblem,
         mut stepper: Box<dyn Stepper + 'a>,
         y0: &[f64],
-        mode: Mode,
+        modes: &[Mode],
         options: Options,
     ) -> Result<Self, SolverError> {
         options.validate()?;
@@ -63,18 +67,17 @@ impl<'a> Integrator<'a> {
             });
         }
         check_finite(y0, options.t0, 0.0, "initial state")?;
-        let ode = Ode { problem, mode };
-        stepper.start(&ode, options.t0, y0)?;
+        stepper.start(&Ode { problem, modes }, options.t0, y0)?;
         let mut watch = EventWatch::default();
-        watch.start(problem, mode, options.t0, y0, &[]);
-        let mut solution = Solution::new(stepper.name(), problem.dim());
+        watch.start(problem, modes, options.t0, y0, &[]);
+        let mut solution = Solution::new(stepper.name(), problem.dim(), modes.len());
         let mut grid_next = 0;
         match &options.output {
-            Output::Steps => solution.push(options.t0, y0, mode),
+            Output::Steps => solution.push(options.t0, y0, modes),
             Output::Grid(times) => {
                 while grid_next < times.len() && times[grid_next] <= options.t0 {
                     if times[grid_next] == options.t0 {
-                        solution.push(options.t0, y0, mode);
+                        solution.push(options.t0, y0, modes);
                     }
                     grid_next += 1;
                 }
@@ -83,19 +86,21 @@ impl<'a> Integrator<'a> {
         Ok(Integrator {
             problem,
             stepper,
+            zeno_window: options.zeno.window_s(problem.time_scale()),
             options,
-            mode,
+            modes: modes.to_vec(),
             watch,
             solution,
             grid_next,
+            y_grid: vec![0.0; problem.dim()],
             cut_at_event: 0,
             done: false,
         })
     }
 
-    /// The current mode.
-    pub fn mode(&self) -> Mode {
-        self.mode
+    /// The current modes.
+    pub fn modes(&self) -> &[Mode] {
+        &self.modes
     }
 
     /// The current time.
@@ -108,14 +113,13 @@ impl<'a> Integrator<'a> {
         let Output::Grid(times) = &self.options.output else {
             return;
         };
-        let mut y = vec![0.0; self.problem.dim()];
         while self.grid_next < times.len() {
             let tg = times[self.grid_next];
             if tg > t || (!inclusive && tg == t) {
                 break;
             }
-            self.stepper.dense_output(tg, &mut y);
-            self.solution.push(tg, &y, self.mode);
+            self.stepper.dense_output(tg, &mut self.y_grid);
+            self.solution.push(tg, &self.y_grid, &self.modes);
             self.grid_next += 1;
         }
     }
@@ -128,19 +132,22 @@ impl<'a> Integrator<'a> {
         let t_end = self.options.t_end;
         let ode = Ode {
             problem: self.problem,
-            mode: self.mode,
+            modes: &self.modes,
         };
         self.stepper.step(&ode, t_end)?;
         let (t0, t1) = (self.stepper.t_prev(), self.stepper.t());
         let stepper = &self.stepper;
-        let found = self
-            .watch
-            .check(self.problem, self.mode, t0, t1, stepper.y(), &mut |t, y| {
-                stepper.dense_output(t, y)
-            });
+        let found = self.watch.check(
+            self.problem,
+            &self.modes,
+            t0,
+            t1,
+            stepper.y(),
+            &mut |t, y| stepper.dense_output(t, y),
+        );
         let Some(found) = found else {
             match self.options.output {
-                Output::Steps => self.solution.push(t1, self.stepper.y(), self.mode),
+                Output::Steps => self.solution.push(t1, self.stepper.y(), &self.modes),
                 Output::Grid(_) => self.record_grid_until(t1, true),
             }
             if t1 >= t_end {
@@ -149,46 +156,52 @@ impl<'a> Integrator<'a> {
             }
             return Ok(StopReason::StepTaken { t: t1 });
         };
-        self.handle(found.t, &found.indices)
+        self.handle(found.t, found.indices)
     }
 
-    /// Applies the events `indices` at `t`, records both sides and restarts the method.
-    fn handle(&mut self, t: f64, indices: &[usize]) -> Result<StopReason, SolverError> {
+    /// Applies the events `fired` at `t`, records both sides and restarts the method.
+    fn handle(&mut self, t: f64, fired: Vec<usize>) -> Result<StopReason, SolverError> {
         self.cut_at_event += 1;
         self.record_grid_until(t, false);
-        let mut y_left = vec![0.0; self.problem.dim()];
-        self.stepper.dense_output(t, &mut y_left);
+        let mut y = vec![0.0; self.problem.dim()];
+        self.stepper.dense_output(t, &mut y);
         if let Output::Steps = self.options.output {
-            self.solution.push(t, &y_left, self.mode);
+            self.solution.push(t, &y, &self.modes);
         }
-        let mut y = y_left.clone();
-        let mut names = Vec::new();
-        let mut stop = false;
-        let mode_before = self.mode;
-        for &i in indices {
-            let name = self.problem.events(mode_before)[i].name;
-            let before = y.clone();
-            let control = self.problem.on_event(i, t, &mut y, mode_before);
-            let mode_after = match control {
-                Control::Switch(m) => m,
-                Control::Continue | Control::Stop => self.mode,
-            };
-            self.solution.events.push(EventRecord {
-                t,
-                name,
-                index: i,
-                mode_before: self.mode,
-                mode_after,
-                y_left: before,
-                y_right: y.clone(),
-            });
-            names.push(name);
-            self.watch.record(t, name, &self.options.zeno)?;
-            stop |= control == Control::Stop;
-            self.mode = mode_after;
-        }
+        let names: Vec<&'static str> = fired
+            .iter()
+            .map(|&i| self.watch.spec(i).expect("a fired event is watched").name)
+            .collect();
+        let before = self.modes.clone();
+        let control = self.problem.on_events(&fired, t, &mut y, &mut self.modes);
+        let switches: Vec<ModeSwitch> = before
+            .iter()
+            .zip(&self.modes)
+            .enumerate()
+            .filter(|(_, (a, b))| a != b)
+            .map(|(component, (&from, &to))| ModeSwitch {
+                component,
+                from,
+                to,
+            })
+            .collect();
+        // A fired function watched as before after the action is re-armed by its first sign.
+        let rearm: Vec<usize> = fired
+            .iter()
+            .copied()
+            .filter(|&i| self.problem.event_spec(i, &self.modes) == self.watch.spec(i))
+            .collect();
+        self.watch
+            .record(t, names[0], &self.options.zeno, self.zeno_window)?;
+        self.solution.events.push(EventRecord {
+            t,
+            fired,
+            names: names.clone(),
+            switches,
+        });
         check_finite(&y, t, 0.0, "state after an event action")?;
-        self.solution.push(t, &y, self.mode);
+        self.solution.push(t, &y, &self.modes);
+        let stop = control == Control::Stop;
         if stop || t >= self.options.t_end {
             self.done = true;
             return Ok(if stop {
@@ -199,23 +212,22 @@ impl<'a> Integrator<'a> {
         }
         let ode = Ode {
             problem: self.problem,
-            mode: self.mode,
+            modes: &self.modes,
         };
         self.stepper.start(&ode, t, &y)?;
-        let fired: &[usize] = if self.mode == mode_before {
-            indices
-        } else {
-            &[]
-        };
-        self.watch.start(self.problem, self.mode, t, &y, fired);
+        self.watch.start(self.problem, &self.modes, t, &y, &rearm);
         Ok(StopReason::EventFound { t, names })
     }
 
     /// The solution so far, with the statistics of the run.
     pub fn solution(&self) -> Solution {
-        let mut s = self.solution.clone();
+        self.with_stats(self.solution.clone())
+    }
+
+    /// `s` with the statistics of the run so far.
+    fn with_stats(&self, mut s: Solution) -> Solution {
         s.stats = self.stepper.stats();
-        s.stats.events = s.events.len();
+        s.stats.events = s.events.iter().map(|e| e.fired.len()).sum();
         s.stats.cut_at_event = self.cut_at_event;
         s.stiffness_detected_at = self.stepper.stiffness_detected_at();
         s
@@ -233,16 +245,23 @@ impl<'a> Integrator<'a> {
         loop {
             match self.step() {
                 Ok(StopReason::EndReached | StopReason::Stopped { .. }) => {
-                    return Ok(self.solution())
+                    return Ok(self.into_solution())
                 }
                 Ok(_) => observe(self.t()),
                 Err(error) => {
                     return Err(Failure {
                         error,
-                        solution: Box::new(self.solution()),
+                        solution: Box::new(self.into_solution()),
                     })
                 }
             }
         }
+    }
+
+    /// The solution, without copying it.
+    fn into_solution(mut self) -> Solution {
+        let empty = Solution::new(self.solution.solver, 0, 0);
+        let s = std::mem::replace(&mut self.solution, empty);
+        self.with_stats(s)
     }
 }

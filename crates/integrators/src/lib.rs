@@ -1,11 +1,14 @@
-//! Solvers for friction problems, instrumented so that the claims about them can be measured:
+//! General solvers for hybrid initial value problems, instrumented so that the claims about
+//! them can be measured. Nothing here knows about friction: a problem declares its state,
+//! its modes and its events through [`OdeProblem`].
+//!
 //!
 //! - [`Rk4`]: classical Runge–Kutta, fixed step, Hermite dense output;
 //! - [`Dopri5`]: Dormand–Prince 5(4) as in Hairer's `dopri5.f`;
 //! - [`ImplicitEuler`]: implicit Euler with full or modified Newton, fixed or adaptive steps;
 //! - diffsol's BDF, TR-BDF2, ESDIRK34 and Tsit45 behind the same [`Stepper`] interface;
-//! - event location on each method's dense output and stick–slip mode switching
-//!   ([`friction`]).
+//! - event location on each method's dense output, simultaneous events handled in one call,
+//!   one mode per component of the discrete state.
 //!
 //! A problem implements [`OdeProblem`]; an [`Integrator`] drives a [`Stepper`] over it and
 //! returns a [`Solution`] with its [`Stats`], or a [`Failure`] that keeps what was computed.
@@ -14,7 +17,6 @@ pub mod diffsol_backend;
 pub mod dopri5;
 pub mod error;
 pub mod events;
-pub mod friction;
 pub mod implicit_euler;
 pub mod integrator;
 pub mod linear;
@@ -36,7 +38,7 @@ pub use newton::NewtonKind;
 pub use options::{Options, Output, StepControl, ZenoGuard};
 pub use problem::{Control, Crossing, Entry, EventSpec, Mode, OdeProblem};
 pub use rk4::Rk4;
-pub use solution::{EventRecord, Failure, Solution};
+pub use solution::{EventRecord, Failure, ModeSwitch, Solution};
 pub use solver::Solver;
 pub use stats::Stats;
 pub use stepper::{Ode, Stepper};

@@ -24,7 +24,7 @@ pub enum NewtonKind {
 pub fn jacobian(ode: &Ode, t: f64, y: &[f64], f0: &[f64], jac: &mut Vec<Entry>, stats: &mut Stats) {
     jac.clear();
     stats.jacobian_evals += 1;
-    if ode.problem.jacobian(t, y, ode.mode, jac) {
+    if ode.problem.jacobian(t, y, ode.modes, jac) {
         return;
     }
     let n = y.len();

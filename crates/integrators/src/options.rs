@@ -22,14 +22,23 @@ pub enum StepControl {
     },
 }
 
-/// Guard against chattering: an error when more than `max_events` events fall within a
-/// window of `window` seconds.
+/// Guard against chattering: an error when more than `max_events` event instants fall
+/// within a window of `window` times the problem's own time scale
+/// ([`crate::OdeProblem::time_scale`], its shortest natural period; seconds for a problem
+/// without one). Simultaneous switches of several components are one instant.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ZenoGuard {
-    /// Events allowed in one window.
+    /// Event instants allowed in one window.
     pub max_events: usize,
-    /// Window length, s.
+    /// Window length, in units of the problem's time scale.
     pub window: f64,
+}
+
+impl ZenoGuard {
+    /// The window in seconds for a problem whose time scale is `scale` (s).
+    pub fn window_s(&self, scale: Option<f64>) -> f64 {
+        self.window * scale.unwrap_or(1.0)
+    }
 }
 
 impl Default for ZenoGuard {

@@ -1,11 +1,17 @@
-//! What a solver integrates: `M·y' = f(t, y)` with an optional analytic Jacobian, a constant
-//! diagonal mass matrix (identity by default; zeros on the diagonal make a semi-explicit
-//! index-1 DAE), a discrete mode, and event functions with their actions.
+//! What a solver integrates: `M·y' = f(t, y, q)` with an optional analytic Jacobian, a
+//! constant diagonal mass matrix (identity by default; zeros on the diagonal make a
+//! semi-explicit index-1 DAE), a discrete state `q` (one [`Mode`] per component: for a
+//! friction system, one per contact), and event functions with their actions.
+//!
+//! A hybrid problem has a fixed number of event functions `g_k(t, y, q)`, `k = 0..n_events`;
+//! which of them are watched, and for which sign change, depends on the modes
+//! ([`OdeProblem::event_spec`]). Every function whose root lies at the same instant is
+//! handed to [`OdeProblem::on_events`] in one call, which may reset `y` and switch any modes.
 
 use serde::Serialize;
 
-/// A discrete mode of a hybrid system (for friction: `slip+`, `slip-`, `stick`). Problems
-/// without modes use `Mode(0)` throughout.
+/// One component of the discrete state of a hybrid system (for a friction contact:
+/// `slip+`, `slip-`, `stick`). Problems without modes use one component `Mode(0)`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
 pub struct Mode(pub u8);
 
@@ -43,7 +49,8 @@ impl Crossing {
     }
 }
 
-/// An event function g(t, y) of one mode: its name (as recorded) and the crossing watched.
+/// An event function as watched in the current modes: its name (as recorded) and the
+/// crossing that triggers it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 pub struct EventSpec {
     /// Name recorded with each occurrence (e.g. `stick`, `break-away+`).
@@ -52,13 +59,11 @@ pub struct EventSpec {
     pub crossing: Crossing,
 }
 
-/// What the integration does after an event handler has run.
+/// What the integration does after the event handler has run.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 pub enum Control {
-    /// Go on in the same mode (from the state the handler left, which it may have reset).
+    /// Go on, from the state and modes the handler left.
     Continue,
-    /// Go on in another mode (from the state the handler left).
-    Switch(Mode),
     /// End the integration at the event.
     Stop,
 }
@@ -66,17 +71,18 @@ pub enum Control {
 /// A Jacobian entry: row, column, value.
 pub type Entry = (usize, usize, f64);
 
-/// An initial value problem `M·y' = f(t, y)` with modes and events.
+/// An initial value problem `M·y' = f(t, y, q)` with discrete modes `q` and events.
 pub trait OdeProblem: Sync {
     /// Number of unknowns.
     fn dim(&self) -> usize;
 
-    /// The right-hand side `dy = f(t, y)` in `mode`.
-    fn rhs(&self, t: f64, y: &[f64], mode: Mode, dy: &mut [f64]);
+    /// The right-hand side `dy = f(t, y, q)` in the modes `q`.
+    fn rhs(&self, t: f64, y: &[f64], modes: &[Mode], dy: &mut [f64]);
 
-    /// The analytic Jacobian ∂f/∂y as entries pushed onto `jac` (cleared by the caller);
-    /// returns `false` when there is none, and the solvers use finite differences.
-    fn jacobian(&self, _t: f64, _y: &[f64], _mode: Mode, _jac: &mut Vec<Entry>) -> bool {
+    /// The analytic Jacobian ∂f/∂y as entries pushed onto `jac` (cleared by the caller; an
+    /// entry repeated is summed); returns `false` when there is none, and the solvers use
+    /// finite differences.
+    fn jacobian(&self, _t: f64, _y: &[f64], _modes: &[Mode], _jac: &mut Vec<Entry>) -> bool {
         false
     }
 
@@ -85,18 +91,31 @@ pub trait OdeProblem: Sync {
         None
     }
 
-    /// The event functions watched in `mode`.
-    fn events(&self, _mode: Mode) -> &[EventSpec] {
-        &[]
+    /// Number of event functions `g_k`, whatever the modes.
+    fn n_events(&self) -> usize {
+        0
     }
 
-    /// Value of event function `index` of `mode` at (t, y).
-    fn event(&self, _index: usize, _t: f64, _y: &[f64], _mode: Mode) -> f64 {
+    /// How event function `index` is watched in `modes`; `None` when it is not watched there.
+    fn event_spec(&self, _index: usize, _modes: &[Mode]) -> Option<EventSpec> {
+        None
+    }
+
+    /// Value of event function `index` at (t, y) in `modes`.
+    fn event(&self, _index: usize, _t: f64, _y: &[f64], _modes: &[Mode]) -> f64 {
         0.0
     }
 
-    /// Handles event `index` of `mode` at time `t`: may reset `y`, and says how to go on.
-    fn on_event(&self, _index: usize, _t: f64, _y: &mut [f64], _mode: Mode) -> Control {
+    /// Handles the event functions `fired` (ascending), whose roots all lie at `t`: may reset
+    /// `y`, may switch any of the `modes`, and says how to go on.
+    fn on_events(&self, _fired: &[usize], _t: f64, _y: &mut [f64], _modes: &mut [Mode]) -> Control {
         Control::Stop
+    }
+
+    /// The shortest time scale of the problem, s (for a mechanical system, its shortest
+    /// natural period): the chattering guard measures its window in it. `None` when the
+    /// problem has none, and the guard's window is taken in seconds.
+    fn time_scale(&self) -> Option<f64> {
+        None
     }
 }

@@ -1,5 +1,6 @@
-//! What a run produces: the recorded points, the events with both sides, the statistics;
-//! and, for a failed run, the error beside everything computed before it.
+//! What a run produces: the recorded points with their modes, the events with the mode
+//! switches they made, the statistics; and, for a failed run, the error beside everything
+//! computed before it.
 
 use crate::error::SolverError;
 use crate::problem::Mode;
@@ -7,23 +8,28 @@ use crate::stats::Stats;
 use serde::Serialize;
 use std::fmt;
 
-/// One event: when, which, and the state just before and just after its action.
+/// One mode component switched by an event: `q[component]` went from `from` to `to`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub struct ModeSwitch {
+    /// Which component of the discrete state (for a friction system: which contact).
+    pub component: usize,
+    /// Mode before the event.
+    pub from: Mode,
+    /// Mode after it.
+    pub to: Mode,
+}
+
+/// One event instant: when, which event functions fired there, and which modes switched.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct EventRecord {
     /// Time located.
     pub t: f64,
-    /// The event function's name.
-    pub name: &'static str,
-    /// Its index among the events of `mode_before`.
-    pub index: usize,
-    /// Mode before the event.
-    pub mode_before: Mode,
-    /// Mode after it.
-    pub mode_after: Mode,
-    /// State on the dense output at `t`, before the action.
-    pub y_left: Vec<f64>,
-    /// State after the action.
-    pub y_right: Vec<f64>,
+    /// The event functions that fired, ascending.
+    pub fired: Vec<usize>,
+    /// Their names, in the same order.
+    pub names: Vec<&'static str>,
+    /// The mode components the handler switched, ascending by component.
+    pub switches: Vec<ModeSwitch>,
 }
 
 /// A computed trajectory.
@@ -33,13 +39,15 @@ pub struct Solution {
     pub solver: &'static str,
     /// Number of unknowns.
     pub dim: usize,
+    /// Number of mode components.
+    pub n_modes: usize,
     /// Recorded times (an event appears twice: before and after its action).
     pub t: Vec<f64>,
     /// Recorded states, `dim` numbers per time, flattened.
     pub y: Vec<f64>,
-    /// Mode at each recorded time.
-    pub mode: Vec<Mode>,
-    /// Every event, in order.
+    /// Modes at each recorded time, `n_modes` per time, flattened.
+    pub modes: Vec<Mode>,
+    /// Every event instant, in order.
     pub events: Vec<EventRecord>,
     /// Work done.
     pub stats: Stats,
@@ -48,14 +56,15 @@ pub struct Solution {
 }
 
 impl Solution {
-    /// An empty solution for `dim` unknowns.
-    pub fn new(solver: &'static str, dim: usize) -> Self {
+    /// An empty solution for `dim` unknowns and `n_modes` mode components.
+    pub fn new(solver: &'static str, dim: usize, n_modes: usize) -> Self {
         Solution {
             solver,
             dim,
+            n_modes,
             t: Vec::new(),
             y: Vec::new(),
-            mode: Vec::new(),
+            modes: Vec::new(),
             events: Vec::new(),
             stats: Stats::default(),
             stiffness_detected_at: None,
@@ -63,10 +72,10 @@ impl Solution {
     }
 
     /// Appends a point.
-    pub fn push(&mut self, t: f64, y: &[f64], mode: Mode) {
+    pub fn push(&mut self, t: f64, y: &[f64], modes: &[Mode]) {
         self.t.push(t);
         self.y.extend_from_slice(y);
-        self.mode.push(mode);
+        self.modes.extend_from_slice(modes);
     }
 
     /// Number of recorded points.
@@ -82,6 +91,11 @@ impl Solution {
     /// The state at recorded point `i`.
     pub fn y_at(&self, i: usize) -> &[f64] {
         &self.y[i * self.dim..(i + 1) * self.dim]
+    }
+
+    /// The modes at recorded point `i`.
+    pub fn modes_at(&self, i: usize) -> &[Mode] {
+        &self.modes[i * self.n_modes..(i + 1) * self.n_modes]
     }
 
     /// The last recorded time and state.

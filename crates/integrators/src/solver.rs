@@ -72,15 +72,15 @@ impl Solver {
         self == Solver::Rk4
     }
 
-    /// Integrates `problem` from `y0` in `mode` with `options`.
+    /// Integrates `problem` from `y0` in `modes` with `options`.
     pub fn solve(
         self,
         problem: &dyn OdeProblem,
         y0: &[f64],
-        mode: Mode,
+        modes: &[Mode],
         options: Options,
     ) -> Result<Solution, Failure> {
-        self.solve_observed(problem, y0, mode, options, &mut |_| {})
+        self.solve_observed(problem, y0, modes, options, &mut |_| {})
     }
 
     /// As [`Solver::solve`], telling `observe` the time reached after every step.
@@ -88,7 +88,7 @@ impl Solver {
         self,
         problem: &dyn OdeProblem,
         y0: &[f64],
-        mode: Mode,
+        modes: &[Mode],
         options: Options,
         observe: &mut dyn FnMut(f64),
     ) -> Result<Solution, Failure> {
@@ -101,7 +101,7 @@ impl Solver {
                         solver: "rk4",
                         why: "RK4 has no error estimate: give a fixed step (--dt)".into(),
                     },
-                    solution: Box::new(Solution::new("rk4", n)),
+                    solution: Box::new(Solution::new("rk4", n, modes.len())),
                 })
             }
             (Solver::Dopri5, step) => {
@@ -115,13 +115,15 @@ impl Solver {
                 n,
             )),
             (Solver::Diffsol(method), _) => {
-                return diffsol_backend::solve_observed(problem, method, y0, mode, options, observe)
+                return diffsol_backend::solve_observed(
+                    problem, method, y0, modes, options, observe,
+                )
             }
         };
-        Integrator::new(problem, stepper, y0, mode, options)
+        Integrator::new(problem, stepper, y0, modes, options)
             .map_err(|error| Failure {
                 error,
-                solution: Box::new(Solution::new(self.name(), n)),
+                solution: Box::new(Solution::new(self.name(), n, modes.len())),
             })?
             .solve_observed(observe)
     }

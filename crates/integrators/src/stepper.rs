@@ -4,20 +4,20 @@ use crate::error::SolverError;
 use crate::problem::{Mode, OdeProblem};
 use crate::stats::Stats;
 
-/// The problem in one mode, as the methods see it.
+/// The problem in fixed modes, as the methods see it.
 #[derive(Clone, Copy)]
 pub struct Ode<'a> {
     /// The problem.
     pub problem: &'a dyn OdeProblem,
-    /// The mode the right-hand side is evaluated in.
-    pub mode: Mode,
+    /// The modes the right-hand side is evaluated in.
+    pub modes: &'a [Mode],
 }
 
 impl Ode<'_> {
     /// `dy = f(t, y)`, counted in `stats`.
     pub fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64], stats: &mut Stats) {
         stats.rhs_evals += 1;
-        self.problem.rhs(t, y, self.mode, dy);
+        self.problem.rhs(t, y, self.modes, dy);
     }
 
     /// `dy = M⁻¹·f(t, y)` for explicit methods, counted in `stats`; `M` must be regular.
@@ -47,7 +47,7 @@ pub trait Stepper {
     /// The method's name as the command line takes it.
     fn name(&self) -> &'static str;
 
-    /// (Re)starts at (t, y) in the given mode: any stage reused across steps (FSAL), any
+    /// (Re)starts at (t, y) in the given modes: any stage reused across steps (FSAL), any
     /// history and any Jacobian are forgotten.
     fn start(&mut self, ode: &Ode, t: f64, y: &[f64]) -> Result<(), SolverError>;
 

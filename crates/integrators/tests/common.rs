@@ -17,7 +17,7 @@ impl OdeProblem for Arenstorf {
     fn dim(&self) -> usize {
         4
     }
-    fn rhs(&self, _t: f64, y: &[f64], _m: Mode, f: &mut [f64]) {
+    fn rhs(&self, _t: f64, y: &[f64], _m: &[Mode], f: &mut [f64]) {
         let amu = 0.012277471;
         let amup = 1.0 - amu;
         let r1 = (y[0] + amu).powi(2) + y[1] * y[1];
@@ -64,21 +64,30 @@ impl OdeProblem for Oscillator {
     fn dim(&self) -> usize {
         2
     }
-    fn rhs(&self, _t: f64, y: &[f64], _m: Mode, f: &mut [f64]) {
+    fn rhs(&self, _t: f64, y: &[f64], _m: &[Mode], f: &mut [f64]) {
         f[0] = y[1];
         f[1] = -y[0];
     }
-    fn jacobian(&self, _t: f64, _y: &[f64], _m: Mode, jac: &mut Vec<(usize, usize, f64)>) -> bool {
+    fn jacobian(
+        &self,
+        _t: f64,
+        _y: &[f64],
+        _m: &[Mode],
+        jac: &mut Vec<(usize, usize, f64)>,
+    ) -> bool {
         jac.extend([(0, 1, 1.0), (1, 0, -1.0)]);
         true
     }
-    fn events(&self, _m: Mode) -> &[EventSpec] {
-        &self.events
+    fn n_events(&self) -> usize {
+        self.events.len()
     }
-    fn event(&self, _i: usize, _t: f64, y: &[f64], _m: Mode) -> f64 {
+    fn event_spec(&self, i: usize, _m: &[Mode]) -> Option<EventSpec> {
+        Some(self.events[i])
+    }
+    fn event(&self, _i: usize, _t: f64, y: &[f64], _m: &[Mode]) -> f64 {
         y[0]
     }
-    fn on_event(&self, _i: usize, _t: f64, _y: &mut [f64], _m: Mode) -> Control {
+    fn on_events(&self, _i: &[usize], _t: f64, _y: &mut [f64], _m: &mut [Mode]) -> Control {
         self.control
     }
 }
@@ -91,20 +100,23 @@ impl OdeProblem for BouncingBall {
     fn dim(&self) -> usize {
         2
     }
-    fn rhs(&self, _t: f64, y: &[f64], _m: Mode, f: &mut [f64]) {
+    fn rhs(&self, _t: f64, y: &[f64], _m: &[Mode], f: &mut [f64]) {
         f[0] = y[1];
         f[1] = -9.81;
     }
-    fn events(&self, _m: Mode) -> &[EventSpec] {
-        &[EventSpec {
+    fn n_events(&self) -> usize {
+        1
+    }
+    fn event_spec(&self, _i: usize, _m: &[Mode]) -> Option<EventSpec> {
+        Some(EventSpec {
             name: "bounce",
             crossing: Crossing::Falling,
-        }]
+        })
     }
-    fn event(&self, _i: usize, _t: f64, y: &[f64], _m: Mode) -> f64 {
+    fn event(&self, _i: usize, _t: f64, y: &[f64], _m: &[Mode]) -> f64 {
         y[0]
     }
-    fn on_event(&self, _i: usize, _t: f64, y: &mut [f64], _m: Mode) -> Control {
+    fn on_events(&self, _i: &[usize], _t: f64, y: &mut [f64], _m: &mut [Mode]) -> Control {
         y[0] = 0.0;
         y[1] *= -0.5;
         Control::Continue
@@ -118,7 +130,7 @@ impl OdeProblem for BlowUp {
     fn dim(&self) -> usize {
         1
     }
-    fn rhs(&self, _t: f64, y: &[f64], _m: Mode, f: &mut [f64]) {
+    fn rhs(&self, _t: f64, y: &[f64], _m: &[Mode], f: &mut [f64]) {
         f[0] = y[0] * y[0];
     }
 }

@@ -25,7 +25,7 @@ fn run(
     y0: &[f64],
     o: Options,
 ) -> integrators::Solution {
-    Integrator::new(problem, stepper, y0, Mode(0), o)
+    Integrator::new(problem, stepper, y0, &[Mode(0)], o)
         .unwrap()
         .solve()
         .unwrap()
@@ -78,7 +78,7 @@ fn dopri5_matches_hairers_arenstorf_driver_with_hinit_and_dense_output() {
     ];
     let mut o = Options::adaptive(0.0, ARENSTORF_T_END, 1e-7, 1e-7);
     o.output = Output::Grid(printed.iter().map(|p| p.0).collect());
-    let mut run = Integrator::new(&Arenstorf, dopri5(&o, 4), &ARENSTORF_Y0, Mode(0), o).unwrap();
+    let mut run = Integrator::new(&Arenstorf, dopri5(&o, 4), &ARENSTORF_Y0, &[Mode(0)], o).unwrap();
     let mut accepted_at_output = Vec::new();
     let mut recorded = 0;
     while run.step().unwrap() != StopReason::EndReached {
@@ -250,7 +250,7 @@ fn an_event_that_fired_does_not_fire_again_at_once() {
 fn accumulating_events_end_with_an_error_and_keep_the_solution() {
     // Bounces at t_k accumulate at t* = t_1·(1 + 2·(1/2)/(1 − 1/2)) = 3·sqrt(2/9.81).
     let o = Options::adaptive(0.0, 5.0, 1e-10, 1e-10);
-    let failure = Integrator::new(&BouncingBall, dopri5(&o, 2), &[1.0, 0.0], Mode(0), o)
+    let failure = Integrator::new(&BouncingBall, dopri5(&o, 2), &[1.0, 0.0], &[Mode(0)], o)
         .unwrap()
         .solve()
         .unwrap_err();
@@ -270,7 +270,7 @@ fn accumulating_events_end_with_an_error_and_keep_the_solution() {
 fn each_error_says_where_and_why() {
     let p = Oscillator::plain();
     let err = |o: Options| {
-        Integrator::new(&p, dopri5(&o, 2), &[1.0, 0.0], Mode(0), o)
+        Integrator::new(&p, dopri5(&o, 2), &[1.0, 0.0], &[Mode(0)], o)
             .err()
             .unwrap()
     };
@@ -293,7 +293,7 @@ fn each_error_says_where_and_why() {
     // Too many steps, with the solution so far kept.
     let mut o = Options::adaptive(0.0, 100.0, 1e-10, 1e-10);
     o.max_steps = 10;
-    let f = Integrator::new(&p, dopri5(&o, 2), &[1.0, 0.0], Mode(0), o)
+    let f = Integrator::new(&p, dopri5(&o, 2), &[1.0, 0.0], &[Mode(0)], o)
         .unwrap()
         .solve()
         .unwrap_err();
@@ -304,7 +304,7 @@ fn each_error_says_where_and_why() {
     assert_eq!(f.solution.len(), 1 + 10);
     // Blow-up of y' = y² at t = 1: the step size underflows just before it.
     let o = Options::adaptive(0.0, 2.0, 1e-8, 1e-8);
-    let f = Integrator::new(&BlowUp, dopri5(&o, 1), &[1.0], Mode(0), o)
+    let f = Integrator::new(&BlowUp, dopri5(&o, 1), &[1.0], &[Mode(0)], o)
         .unwrap()
         .solve()
         .unwrap_err();

@@ -24,7 +24,7 @@ fn solve(
     y0: &[f64],
     o: Options,
 ) -> Result<Solution, integrators::Failure> {
-    Integrator::new(p, s, y0, Mode(0), o).unwrap().solve()
+    Integrator::new(p, s, y0, &[Mode(0)], o).unwrap().solve()
 }
 
 /// Prothero–Robinson: y' = λ(y − sin t) + cos t, y(0) = 0, exact y = sin t, λ = −1e6.
@@ -34,10 +34,16 @@ impl OdeProblem for ProtheroRobinson {
     fn dim(&self) -> usize {
         1
     }
-    fn rhs(&self, t: f64, y: &[f64], _m: Mode, f: &mut [f64]) {
+    fn rhs(&self, t: f64, y: &[f64], _m: &[Mode], f: &mut [f64]) {
         f[0] = -1e6 * (y[0] - t.sin()) + t.cos();
     }
-    fn jacobian(&self, _t: f64, _y: &[f64], _m: Mode, jac: &mut Vec<(usize, usize, f64)>) -> bool {
+    fn jacobian(
+        &self,
+        _t: f64,
+        _y: &[f64],
+        _m: &[Mode],
+        jac: &mut Vec<(usize, usize, f64)>,
+    ) -> bool {
         jac.push((0, 0, -1e6));
         true
     }
@@ -177,7 +183,7 @@ impl OdeProblem for LinearDae {
     fn dim(&self) -> usize {
         2
     }
-    fn rhs(&self, _t: f64, y: &[f64], _m: Mode, f: &mut [f64]) {
+    fn rhs(&self, _t: f64, y: &[f64], _m: &[Mode], f: &mut [f64]) {
         f[0] = -y[1];
         f[1] = y[1] - y[0];
     }
@@ -193,7 +199,7 @@ fn explicit_methods_refuse_a_dae_and_implicit_euler_solves_it() {
         &LinearDae,
         Box::new(Rk4::new(1e-3, 2)),
         &[1.0, 1.0],
-        Mode(0),
+        &[Mode(0)],
         o.clone(),
     )
     .err()

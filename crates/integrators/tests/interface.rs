@@ -17,7 +17,7 @@ fn every_solver_is_found_by_name_and_integrates_the_oscillator() {
             Options::adaptive(0.0, 1.0, 1e-9, 1e-9)
         };
         let s = solver
-            .solve(&Oscillator::plain(), &[1.0, 0.0], Mode(0), options)
+            .solve(&Oscillator::plain(), &[1.0, 0.0], &[Mode(0)], options)
             .unwrap();
         let x = s.last().unwrap().1[0];
         // Implicit Euler is first order: its error at tol 1e-9 is about sqrt(tol).
@@ -41,7 +41,7 @@ fn rk4_asks_for_a_fixed_step() {
         .solve(
             &Oscillator::plain(),
             &[1.0, 0.0],
-            Mode(0),
+            &[Mode(0)],
             Options::adaptive(0.0, 1.0, 1e-6, 1e-6),
         )
         .unwrap_err();
@@ -58,23 +58,20 @@ impl OdeProblem for TwoWatchers {
     fn dim(&self) -> usize {
         2
     }
-    fn rhs(&self, _t: f64, y: &[f64], _m: Mode, f: &mut [f64]) {
+    fn rhs(&self, _t: f64, y: &[f64], _m: &[Mode], f: &mut [f64]) {
         f[0] = y[1];
         f[1] = -y[0];
     }
-    fn events(&self, _m: Mode) -> &[EventSpec] {
-        &[
-            EventSpec {
-                name: "second",
-                crossing: Crossing::Falling,
-            },
-            EventSpec {
-                name: "first",
-                crossing: Crossing::Falling,
-            },
-        ]
+    fn n_events(&self) -> usize {
+        2
     }
-    fn event(&self, i: usize, _t: f64, y: &[f64], _m: Mode) -> f64 {
+    fn event_spec(&self, i: usize, _m: &[Mode]) -> Option<EventSpec> {
+        Some(EventSpec {
+            name: ["second", "first"][i],
+            crossing: Crossing::Falling,
+        })
+    }
+    fn event(&self, i: usize, _t: f64, y: &[f64], _m: &[Mode]) -> f64 {
         // The same root, seen through differently scaled functions.
         if i == 0 {
             y[0]
@@ -82,35 +79,39 @@ impl OdeProblem for TwoWatchers {
             3.0 * y[0]
         }
     }
-    fn on_event(&self, i: usize, _t: f64, y: &mut [f64], _m: Mode) -> Control {
-        y[1] *= 1.0 + i as f64; // actions compose in index order
+    fn on_events(&self, fired: &[usize], _t: f64, y: &mut [f64], _m: &mut [Mode]) -> Control {
+        for &i in fired {
+            y[1] *= 1.0 + i as f64; // index 0 multiplies v by 1, index 1 by 2
+        }
         Control::Stop
     }
 }
 
 #[test]
-fn simultaneous_events_are_handled_in_index_order() {
+fn simultaneous_events_are_handled_in_one_call() {
     let s = Solver::Dopri5
         .solve(
             &TwoWatchers,
             &[1.0, 0.0],
-            Mode(0),
+            &[Mode(0)],
             Options::adaptive(0.0, 3.0, 1e-12, 1e-12),
         )
         .unwrap();
-    let names: Vec<_> = s.events.iter().map(|e| e.name).collect();
-    assert_eq!(names, ["second", "first"]);
-    assert_eq!(s.events[0].t, s.events[1].t);
-    // Index 0 multiplies v by 1, index 1 by 2, in that order.
-    assert_eq!(s.events[1].y_left[1], s.events[0].y_right[1]);
-    assert!((s.events[1].y_right[1] + 2.0).abs() < 1e-10);
+    // Both roots at the same instant: one event, both functions handed over at once.
+    assert_eq!(s.events.len(), 1);
+    assert_eq!(s.events[0].names, ["second", "first"]);
+    assert_eq!(s.events[0].fired, [0, 1]);
+    assert_eq!(s.stats.events, 2);
+    // v = −1 at x = 0 (t = π/2), multiplied by 1 and by 2.
+    let (_, y) = s.last().unwrap();
+    assert!((y[1] + 2.0).abs() < 1e-10, "{}", y[1]);
 }
 
 #[test]
 fn a_non_finite_state_and_a_step_size_underflow_are_reported() {
     // RK4 with h = 0.5 on y' = y² overflows to infinity.
     let f = Solver::Rk4
-        .solve(&BlowUp, &[1.0], Mode(0), Options::fixed(0.0, 5.0, 0.5))
+        .solve(&BlowUp, &[1.0], &[Mode(0)], Options::fixed(0.0, 5.0, 0.5))
         .unwrap_err();
     let message = f.error.to_string();
     assert!(message.starts_with("non-finite state at t = "), "{message}");
@@ -127,7 +128,7 @@ fn a_non_finite_state_and_a_step_size_underflow_are_reported() {
         h0: None,
     };
     let f = Solver::Dopri5
-        .solve(&BlowUp, &[1.0], Mode(0), o)
+        .solve(&BlowUp, &[1.0], &[Mode(0)], o)
         .unwrap_err();
     match f.error {
         SolverError::StepSizeUnderflow { t, h } => {

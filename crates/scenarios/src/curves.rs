@@ -155,7 +155,7 @@ pub fn prescribed_motion(
                 let (x, v) = (sign * x, sign * v);
                 z = model
                     .state_after_displacement(z, x - x_prev)
-                    .ok_or_else(|| CurveError::RateDependentState(model.id().to_string()))?;
+                    .ok_or_else(|| CurveError::RateDependentState(model.name().to_string()))?;
                 x_prev = x;
                 let force = model.response(x, v, z, SignLaw::Discontinuous).force;
                 Ok(Sample { t, x, v, z, force })
@@ -173,11 +173,11 @@ pub fn prescribed_motion(
     })
 }
 
-/// The model's curve along its own axis (see [`friction_models::ModelId::curve_axis`]),
+/// The model's curve along its own axis (see [`FrictionModel::curve_axis`]),
 /// with `extent` the largest |v| (m/s) of a velocity sweep or the end time (s) of the
 /// prescribed motion.
 pub fn curve(model: &dyn FrictionModel, extent: f64, points: usize) -> Result<Curve, CurveError> {
-    match model.id().curve_axis() {
+    match model.curve_axis() {
         CurveAxis::Velocity => velocity_sweep(model, extent, points),
         CurveAxis::Displacement => prescribed_motion(model, extent, points),
     }

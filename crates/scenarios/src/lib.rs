@@ -5,7 +5,6 @@
 //! figures with what the paper says of each ([`figures`]).
 
 pub mod curves;
-pub mod energy;
 pub mod figures;
 pub mod motion;
 pub mod paper;

@@ -5,8 +5,8 @@
 //!
 //! State: `y = [z, W, H]` for a model with an internal state, `[W, H]` without one.
 
-use friction_models::{Direction, FrictionModel, SignLaw};
-use integrators::friction::{Switching, SLIP_NEGATIVE, SLIP_POSITIVE};
+use friction_models::{Direction, FrictionModel};
+use friction_systems::{Switching, SLIP_NEGATIVE, SLIP_POSITIVE};
 use integrators::{Control, Crossing, Entry, EventSpec, Mode, OdeProblem};
 
 /// An imposed motion.
@@ -87,14 +87,14 @@ pub struct Kinematic<'a> {
     pub switching: Switching,
 }
 
-const POSITIVE_EVENTS: [EventSpec; 1] = [EventSpec {
+const POSITIVE_EVENT: EventSpec = EventSpec {
     name: "reversal",
     crossing: Crossing::Falling,
-}];
-const NEGATIVE_EVENTS: [EventSpec; 1] = [EventSpec {
+};
+const NEGATIVE_EVENT: EventSpec = EventSpec {
     name: "reversal",
     crossing: Crossing::Rising,
-}];
+};
 
 impl Kinematic<'_> {
     /// Index of the first accumulator (W) in the state.
@@ -111,15 +111,6 @@ impl Kinematic<'_> {
         }
     }
 
-    fn law(&self, mode: Mode) -> SignLaw {
-        match self.switching {
-            Switching::Event if mode == SLIP_NEGATIVE => SignLaw::Frozen(Direction::Negative),
-            Switching::Event => SignLaw::Frozen(Direction::Positive),
-            Switching::Regularized { epsilon } => SignLaw::Smooth { epsilon },
-            Switching::Naive => SignLaw::Discontinuous,
-        }
-    }
-
     /// The internal state in y.
     pub fn z(&self, y: &[f64]) -> f64 {
         if self.model.n_states() > 0 {
@@ -132,7 +123,9 @@ impl Kinematic<'_> {
     /// The friction force at (t, y) in `mode`.
     pub fn friction(&self, t: f64, y: &[f64], mode: Mode) -> f64 {
         let (x, v, _) = self.motion.at(t);
-        self.model.response(x, v, self.z(y), self.law(mode)).force
+        self.model
+            .response(x, v, self.z(y), self.switching.law(mode))
+            .force
     }
 }
 
@@ -141,9 +134,11 @@ impl OdeProblem for Kinematic<'_> {
         self.model.n_states() + 2
     }
 
-    fn rhs(&self, t: f64, y: &[f64], mode: Mode, dy: &mut [f64]) {
+    fn rhs(&self, t: f64, y: &[f64], modes: &[Mode], dy: &mut [f64]) {
         let (x, v, a) = self.motion.at(t);
-        let r = self.model.response(x, v, self.z(y), self.law(mode));
+        let r = self
+            .model
+            .response(x, v, self.z(y), self.switching.law(modes[0]));
         let w = self.work_index();
         if w > 0 {
             dy[0] = r.state_rate;
@@ -152,10 +147,12 @@ impl OdeProblem for Kinematic<'_> {
         dy[w + 1] = r.force * a;
     }
 
-    fn jacobian(&self, t: f64, y: &[f64], mode: Mode, jac: &mut Vec<Entry>) -> bool {
+    fn jacobian(&self, t: f64, y: &[f64], modes: &[Mode], jac: &mut Vec<Entry>) -> bool {
         if self.model.n_states() > 0 {
             let (x, v, a) = self.motion.at(t);
-            let p = self.model.partials(x, v, self.z(y), self.law(mode));
+            let p = self
+                .model
+                .partials(x, v, self.z(y), self.switching.law(modes[0]));
             jac.extend([
                 (0, 0, p.rate_dz),
                 (1, 0, p.force_dz * v),
@@ -165,23 +162,28 @@ impl OdeProblem for Kinematic<'_> {
         true
     }
 
-    fn events(&self, mode: Mode) -> &[EventSpec] {
-        match (self.switching, mode) {
-            (Switching::Event, SLIP_NEGATIVE) => &NEGATIVE_EVENTS,
-            (Switching::Event, _) => &POSITIVE_EVENTS,
-            _ => &[],
-        }
+    fn n_events(&self) -> usize {
+        usize::from(self.switching == Switching::Event)
     }
 
-    fn event(&self, _i: usize, t: f64, _y: &[f64], _mode: Mode) -> f64 {
+    fn event_spec(&self, _i: usize, modes: &[Mode]) -> Option<EventSpec> {
+        Some(if modes[0] == SLIP_NEGATIVE {
+            NEGATIVE_EVENT
+        } else {
+            POSITIVE_EVENT
+        })
+    }
+
+    fn event(&self, _i: usize, t: f64, _y: &[f64], _modes: &[Mode]) -> f64 {
         self.motion.at(t).1
     }
 
-    fn on_event(&self, _i: usize, _t: f64, _y: &mut [f64], mode: Mode) -> Control {
-        Control::Switch(if mode == SLIP_POSITIVE {
+    fn on_events(&self, _fired: &[usize], _t: f64, _y: &mut [f64], modes: &mut [Mode]) -> Control {
+        modes[0] = if modes[0] == SLIP_POSITIVE {
             SLIP_NEGATIVE
         } else {
             SLIP_POSITIVE
-        })
+        };
+        Control::Continue
     }
 }

@@ -2,14 +2,18 @@
 //! with a treatment of v = 0, and turned into trajectory rows, events, statistics and the
 //! energy balance. A solver failure keeps what was computed before it.
 
-use crate::energy::{EnergyBalance, Tracked};
 use crate::motion::{Kinematic, Motion};
 use crate::params::ScenarioParams;
 use crate::scenario::Scenario;
 use friction_models::{FrictionModel, FrictionParams, ModelId, ParamError, Parameters, Variant};
-use integrators::friction::{mode_name, AppliedForce, FrictionBody, Profile, Switching};
-use integrators::{Failure, OdeProblem, Options, Output, Solution, Solver, Stats, StepControl};
+use friction_systems::{
+    mode_name, End, EnergyBalance, Profile, Switching, System, SystemError, STICK,
+};
+use integrators::{
+    Failure, OdeProblem, Options, Output, Solution, Solver, SolverError, Stats, StepControl,
+};
 use serde::Serialize;
+use std::sync::Arc;
 use std::time::Instant;
 use thiserror::Error;
 
@@ -93,9 +97,23 @@ pub enum ScenarioError {
     /// A parameter was rejected.
     #[error(transparent)]
     Param(#[from] ParamError),
+    /// The rig's system was rejected.
+    #[error(transparent)]
+    System(#[from] SystemError),
     /// A combination that makes no sense.
     #[error("{0}")]
     Invalid(String),
+    /// A run that a study depends on failed in the solver (not bad input).
+    #[error("{what} failed: {error}")]
+    Solver {
+        /// Which run.
+        what: String,
+        /// The solver's error.
+        error: SolverError,
+    },
+    /// A run of a study failed; the message names which and why.
+    #[error("{0}")]
+    RunFailed(String),
 }
 
 /// One row of `trajectory.csv`.
@@ -134,7 +152,7 @@ pub struct Outcome {
     /// Solver statistics.
     pub stats: Stats,
     /// The solver's error, if it failed (the rows before it are kept).
-    pub error: Option<String>,
+    pub error: Option<SolverError>,
     /// Energy balance (body scenarios).
     pub energy: Option<EnergyBalance>,
     /// ∫F·v dt: the work done against friction (prescribed-motion scenarios).
@@ -193,108 +211,94 @@ fn options(spec: &RunSpec, t_end: f64) -> Options {
     }
 }
 
-/// The body of a body scenario.
-fn body<'a>(spec: &RunSpec, model: &'a dyn FrictionModel) -> (FrictionBody<'a>, [f64; 2]) {
+/// The system of a body scenario: one body, its spring to a wall, its applied force, its
+/// contact.
+pub fn body_system(spec: &RunSpec, model: Arc<dyn FrictionModel>) -> System {
     let p = &spec.params;
-    let mut applied = AppliedForce::default();
+    let mut s = System::default();
+    let start = match spec.scenario {
+        Scenario::PaperBlock | Scenario::Belt | Scenario::FreeVibration => (p.x0, p.v0),
+        _ => (0.0, 0.0),
+    };
+    let body = s.add_body("body", p.m, start.0, start.1);
     let mut surface_velocity = 0.0;
     match spec.scenario {
-        Scenario::PaperBlock => applied.constant = p.f_ex,
-        Scenario::Belt => {
-            applied.stiffness = p.k;
-            surface_velocity = p.v_belt;
+        Scenario::PaperBlock => s.add_force(body, p.f_ex, Profile::None),
+        Scenario::Belt | Scenario::FreeVibration => {
+            let wall = s.add_anchor("wall", 0.0, 0.0);
+            s.add_spring(End::Body(body), End::Anchor(wall), p.k, 0.0);
+            if spec.scenario == Scenario::Belt {
+                surface_velocity = p.v_belt;
+            }
         }
-        Scenario::FreeVibration => applied.stiffness = p.k,
-        Scenario::ForceRamp => applied.profile = Profile::Ramp { rate: p.rate },
-        Scenario::Presliding => {
-            applied.profile = Profile::Trapezoid {
+        Scenario::ForceRamp => s.add_force(body, 0.0, Profile::Ramp { rate: p.rate }),
+        Scenario::Presliding => s.add_force(
+            body,
+            0.0,
+            Profile::Trapezoid {
                 peak: p.fraction * spec.friction.f_s,
                 rise: 1.0,
                 hold: 1.0,
                 fall: 1.0,
-            }
-        }
+            },
+        ),
         _ => unreachable!("only body scenarios have a body"),
     }
-    let start = match spec.scenario {
-        Scenario::PaperBlock | Scenario::Belt | Scenario::FreeVibration => [p.x0, p.v0],
-        _ => [0.0, 0.0],
-    };
-    (
-        FrictionBody {
-            mass: p.m,
-            model,
-            applied,
-            surface_velocity,
-            switching: spec.switching.with(&spec.friction),
-        },
-        start,
-    )
+    s.add_contact(body, surface_velocity, model);
+    s
 }
 
-fn finish(solution: Result<Solution, Failure>) -> (Solution, Option<String>) {
+fn finish(solution: Result<Solution, Failure>) -> (Solution, Option<SolverError>) {
     match solution {
         Ok(s) => (s, None),
-        Err(f) => (*f.solution, Some(f.error.to_string())),
+        Err(f) => (*f.solution, Some(f.error)),
     }
-}
-
-fn events(s: &Solution, kind: impl Fn(&integrators::EventRecord) -> String) -> Vec<EventEntry> {
-    s.events
-        .iter()
-        .map(|e| EventEntry {
-            t: e.t,
-            kind: kind(e),
-        })
-        .collect()
 }
 
 fn run_body(
     spec: &RunSpec,
-    model: &dyn FrictionModel,
+    model: Arc<dyn FrictionModel>,
     t_end: f64,
     observe: &mut dyn FnMut(f64),
-) -> Outcome {
-    let (body, [x0, v0]) = body(spec, model);
-    let tracked = Tracked { body };
-    let n = tracked.body_dim();
-    let mut y0 = vec![0.0; n + 3];
-    y0[0] = x0;
-    y0[1] = v0;
-    let mode = tracked.body.mode_at(0.0, &y0[..n]);
-    let clock = Instant::now();
-    let (s, error) =
-        finish(
-            spec.solver
-                .solve_observed(&tracked, &y0, mode, options(spec, t_end), observe),
-        );
-    let wall_time_s = clock.elapsed().as_secs_f64();
-    let has_state = model.n_states() > 0;
-    let rows = (0..s.len())
-        .map(|i| {
-            let y = s.y_at(i);
-            Row {
-                t: s.t[i],
-                x: y[0],
-                v: y[1],
-                friction: tracked.body.friction(s.t[i], &y[..n], s.mode[i]),
-                mode: mode_name(tracked.body.reported_mode(s.mode[i], &y[..n])),
-                z: has_state.then(|| y[2]),
-            }
+) -> Result<Outcome, ScenarioError> {
+    let system = body_system(spec, model);
+    let run = friction_systems::simulate(
+        &system,
+        spec.switching.with(&spec.friction),
+        spec.solver,
+        options(spec, t_end),
+        observe,
+    )?;
+    let rows = run
+        .body(0)
+        .into_iter()
+        .map(|b| Row {
+            t: b.t,
+            x: b.x,
+            v: b.v,
+            friction: b.friction,
+            mode: mode_name(b.mode.unwrap_or(STICK)),
+            z: b.z,
         })
         .collect();
-    let energy = s.last().map(|(_, y1)| tracked.balance(&y0, y1));
-    Outcome {
+    Ok(Outcome {
         rows,
-        events: events(&s, |e| mode_name(e.mode_after).to_string()),
-        stats: s.stats,
-        error,
-        energy,
+        events: run
+            .contact_events()
+            .iter()
+            .map(|e| EventEntry {
+                t: e.t,
+                kind: mode_name(e.to).to_string(),
+            })
+            .collect(),
+        stats: run.solution.stats,
+        energy: run.energy(),
+        error: run.error,
         friction_work: None,
         loop_area: None,
-        wall_time_s,
-        stiffness_detected_at: s.stiffness_detected_at,
-    }
+        wall_time_s: run.wall_time_s,
+        stiffness_detected_at: run.solution.stiffness_detected_at,
+    })
 }
 
 /// Runs a prescribed motion from rest with zero internal state.
@@ -312,11 +316,13 @@ pub fn run_motion(
     };
     let y0 = vec![0.0; k.dim()];
     let clock = Instant::now();
-    let (s, error) =
-        finish(
-            spec.solver
-                .solve_observed(&k, &y0, k.mode_at(0.0), options(spec, t_end), observe),
-        );
+    let (s, error) = finish(spec.solver.solve_observed(
+        &k,
+        &y0,
+        &[k.mode_at(0.0)],
+        options(spec, t_end),
+        observe,
+    ));
     let wall_time_s = clock.elapsed().as_secs_f64();
     let w = k.work_index();
     let rows = (0..s.len())
@@ -327,8 +333,8 @@ pub fn run_motion(
                 t: s.t[i],
                 x,
                 v,
-                friction: k.friction(s.t[i], y, s.mode[i]),
-                mode: mode_name(s.mode[i]),
+                friction: k.friction(s.t[i], y, s.modes_at(i)[0]),
+                mode: mode_name(s.modes_at(i)[0]),
                 z: (w > 0).then(|| y[0]),
             }
         })
@@ -336,7 +342,14 @@ pub fn run_motion(
     let last = s.last().map(|(_, y)| (y[w], y[w + 1]));
     Outcome {
         rows,
-        events: events(&s, |e| e.name.to_string()),
+        events: s
+            .events
+            .iter()
+            .map(|e| EventEntry {
+                t: e.t,
+                kind: e.names.join("+"),
+            })
+            .collect(),
         stats: s.stats,
         error,
         energy: None,
@@ -410,6 +423,7 @@ pub fn run(spec: &RunSpec, observe: &mut dyn FnMut(f64)) -> Result<Outcome, Scen
         .t_end
         .unwrap_or_else(|| spec.scenario.default_t_end(&spec.params, &spec.friction));
     let p = &spec.params;
+    let model: Arc<dyn FrictionModel> = Arc::from(model);
     Ok(match spec.scenario {
         Scenario::VelocitySweep => run_sweep(spec, model.as_ref(), observe),
         Scenario::PrescribedMotion => run_motion(
@@ -429,6 +443,6 @@ pub fn run(spec: &RunSpec, observe: &mut dyn FnMut(f64)) -> Result<Outcome, Scen
             t_end,
             observe,
         ),
-        _ => run_body(spec, model.as_ref(), t_end, observe),
+        _ => run_body(spec, model, t_end, observe)?,
     })
 }

@@ -245,11 +245,11 @@ pub fn reference(case: &Case, studied: &[Solver]) -> Result<(Reference, Measures
         ..case.clone()
     };
     let o = run(&exact.spec(solver, step), &mut |_| {})?;
-    if let Some(e) = o.error {
-        return Err(ScenarioError::Invalid(format!(
-            "the reference run ({}) failed: {e}",
-            solver.name()
-        )));
+    if let Some(error) = o.error {
+        return Err(ScenarioError::Solver {
+            what: format!("the reference run ({})", solver.name()),
+            error,
+        });
     }
     Ok((
         Reference::Run {
@@ -326,7 +326,7 @@ pub fn run_all(
                 },
                 measures,
                 stats: o.stats,
-                failure: o.error,
+                failure: o.error.map(|e| e.to_string()),
                 wall_time_s: o.wall_time_s,
             })
         })
@@ -597,7 +597,7 @@ pub fn independence(
         .collect();
     let runs = run_all(case, &jobs, progress)?;
     if let Some(f) = runs.iter().find_map(|r| r.failure.clone()) {
-        return Err(ScenarioError::Invalid(format!(
+        return Err(ScenarioError::RunFailed(format!(
             "a run of the independence study failed: {f}"
         )));
     }

@@ -4,7 +4,7 @@ use friction_models::{FrictionParams, ModelId, Variant};
 use integrators::{Solver, StepControl};
 use scenarios::{run, RunSpec, Scenario, SwitchingKind};
 
-fn belt(model: ModelId, switching: SwitchingKind, rtol: f64) -> scenarios::energy::EnergyBalance {
+fn belt(model: ModelId, switching: SwitchingKind, rtol: f64) -> friction_systems::EnergyBalance {
     let spec = RunSpec {
         scenario: Scenario::Belt,
         model,

@@ -6,10 +6,14 @@
 //! ends when ẋ = v_b again, after τ = (π − 2φ)/ω, at x = (2F_c − F_s)/k, where the body
 //! sticks; the stick phase lasts 2(F_s − F_c)/(k·v_b).
 
-use friction_models::{FrictionModel, FrictionParams, ModelId, Variant};
-use integrators::friction::{AppliedForce, FrictionBody, Switching, STICK};
+mod common;
+
+use common::belt;
+use friction_models::{FrictionParams, ModelId};
+use friction_systems::{FrictionSystem, Switching, STICK};
 use integrators::{
-    Dopri5, ImplicitEuler, Integrator, NewtonKind, Options, Rk4, Solution, StepControl, Stepper,
+    Dopri5, ImplicitEuler, Integrator, NewtonKind, OdeProblem, Options, Rk4, Solution, StepControl,
+    Stepper,
 };
 
 const M: f64 = 1.0;
@@ -24,26 +28,16 @@ fn closed_form(p: &FrictionParams) -> (f64, f64) {
     (stick + slip, stick)
 }
 
-fn body(model: &dyn FrictionModel, switching: Switching) -> FrictionBody<'_> {
-    FrictionBody {
-        mass: M,
-        model,
-        applied: AppliedForce {
-            stiffness: K,
-            ..AppliedForce::default()
-        },
-        surface_velocity: V_BELT,
-        switching,
-    }
-}
+/// The unknowns of the belt system: x, v and the three energy accumulators.
+const DIM: usize = 5;
 
 fn simulate(stepper: Box<dyn Stepper>, options: Options, switching: Switching) -> Solution {
-    let p = FrictionParams::paper();
-    let model = ModelId::Static.build(Variant::Odd, &p).unwrap();
-    let b = body(model.as_ref(), switching);
-    let y0 = [0.0, 0.0];
-    let mode = b.mode_at(0.0, &y0);
-    Integrator::new(&b, stepper, &y0, mode, options)
+    let system = belt(ModelId::Static, M, K, V_BELT);
+    let problem = FrictionSystem::new(&system, switching);
+    assert_eq!(problem.dim(), DIM);
+    let y0 = problem.initial_state();
+    let modes = problem.initial_modes(0.0, &y0);
+    Integrator::new(&problem, stepper, &y0, &modes, options)
         .unwrap()
         .solve()
         .unwrap()
@@ -55,13 +49,13 @@ fn cycle(s: &Solution) -> (Vec<f64>, Vec<f64>) {
     let stick_starts: Vec<f64> = s
         .events
         .iter()
-        .filter(|e| e.mode_after == STICK)
+        .filter(|e| e.switches.iter().any(|s| s.to == STICK))
         .map(|e| e.t)
         .collect();
     let breaks: Vec<f64> = s
         .events
         .iter()
-        .filter(|e| e.mode_before == STICK)
+        .filter(|e| e.switches.iter().any(|s| s.from == STICK))
         .map(|e| e.t)
         .collect();
     let periods = breaks.windows(2).map(|w| w[1] - w[0]).collect();
@@ -101,7 +95,7 @@ fn switched_dopri5_reproduces_the_period_and_stick_time_to_1e_8() {
         atol: 1e-14,
         h0: None,
     };
-    let stepper = Box::new(Dopri5::new(o.step, o.h_max(), o.max_steps, 2));
+    let stepper = Box::new(Dopri5::new(o.step, o.h_max(), o.max_steps, DIM));
     assert_cycle(&simulate(stepper, o, Switching::Event), 1e-8);
 }
 
@@ -109,7 +103,7 @@ fn switched_dopri5_reproduces_the_period_and_stick_time_to_1e_8() {
 fn switched_rk4_reproduces_the_period_and_stick_time_to_1e_8() {
     let o = Options::fixed(0.0, 10.0, 1e-3);
     assert_cycle(
-        &simulate(Box::new(Rk4::new(1e-3, 2)), o, Switching::Event),
+        &simulate(Box::new(Rk4::new(1e-3, DIM)), o, Switching::Event),
         1e-8,
     );
 }
@@ -122,7 +116,7 @@ fn switched_implicit_euler_converges_to_the_cycle_at_first_order() {
         NewtonKind::Modified,
         o.h_max(),
         o.max_steps,
-        2,
+        DIM,
     ));
     assert_cycle(&simulate(stepper, o, Switching::Event), 1e-3);
 }
@@ -130,7 +124,7 @@ fn switched_implicit_euler_converges_to_the_cycle_at_first_order() {
 #[test]
 fn naive_stepping_misses_the_cycle_that_switching_finds() {
     let o = Options::fixed(0.0, 10.0, 1e-3);
-    let s = simulate(Box::new(Rk4::new(1e-3, 2)), o, Switching::Naive);
+    let s = simulate(Box::new(Rk4::new(1e-3, DIM)), o, Switching::Naive);
     // The exact solution never changes the sign of v_rel: it is negative while slipping and
     // exactly zero while stuck. Stepped blindly, v_rel chatters around zero instead.
     assert!(s.events.is_empty());

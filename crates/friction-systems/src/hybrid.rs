@@ -1,0 +1,399 @@
+//! A [`System`] as a hybrid [`OdeProblem`]: one mode per contact, two event functions per
+//! contact, the energy accumulators integrated with the state.
+//!
+//! Per body i with contact j (surface velocity `v_s`, relative velocity `v_rel = v_i − v_s`):
+//!
+//! - the force on the body from everything but friction, `F_o,i(t, y) = F_ext,i(t) +
+//!   Σ_springs k·(x_other − x_i) + c·(v_other − v_i)`, is explicit in (t, y), because every
+//!   coupling is a spring or a damper;
+//! - `slip±`: `m_i·v̇_i = F_o,i − F(x_i, v_rel, z_i)` with the direction of sign(v_rel)
+//!   frozen; event g_{2j} = v_rel, watched falling (slip+) or rising (slip−);
+//! - `stick`: `ẋ_i = v_s`, `v̇_i = 0`, `ż_i = 0`, friction = `F_o,i` (the force that holds the
+//!   body); events `g_{2j} = F_upper − F_o,i` and `g_{2j+1} = F_o,i − F_lower`, both watched
+//!   falling, with `[F_lower, F_upper]` the model's stick interval;
+//! - at v_rel = 0 the contact sticks if `F_o,i` lies inside a stick interval of positive
+//!   width, and otherwise slides in the direction of `F_o,i`.
+//!
+//! Contacts whose events fire at one instant are switched in one call: first every arriving
+//! body is put exactly on its surface velocity, then each contact's new mode is decided from
+//! forces that already see all of them.
+
+use crate::layout::Layout;
+use crate::switching::{mode_of_velocity, Switching, SLIP_NEGATIVE, SLIP_POSITIVE, STICK};
+use crate::system::{End, System};
+use friction_models::{Direction, StickInterval};
+use integrators::{Control, Crossing, Entry, EventSpec, Mode, OdeProblem};
+
+const SLIP_POSITIVE_EVENT: EventSpec = EventSpec {
+    name: "v_rel=0",
+    crossing: Crossing::Falling,
+};
+const SLIP_NEGATIVE_EVENT: EventSpec = EventSpec {
+    name: "v_rel=0",
+    crossing: Crossing::Rising,
+};
+const BREAK_AWAY_POSITIVE: EventSpec = EventSpec {
+    name: "break-away+",
+    crossing: Crossing::Falling,
+};
+const BREAK_AWAY_NEGATIVE: EventSpec = EventSpec {
+    name: "break-away-",
+    crossing: Crossing::Falling,
+};
+
+/// A system with a treatment of v_rel = 0, ready for any solver.
+pub struct FrictionSystem<'a> {
+    /// The system.
+    pub system: &'a System,
+    /// Where every unknown lives.
+    pub layout: Layout,
+    /// The treatment of v_rel = 0.
+    pub switching: Switching,
+    /// The springs at each body, by index.
+    springs_at: Vec<Vec<usize>>,
+    /// The external forces on each body, by index.
+    forces_at: Vec<Vec<usize>>,
+}
+
+impl<'a> FrictionSystem<'a> {
+    /// The problem of `system` (which must be valid) under `switching`.
+    pub fn new(system: &'a System, switching: Switching) -> Self {
+        let n = system.bodies.len();
+        let mut springs_at = vec![Vec::new(); n];
+        for (s, spring) in system.springs.iter().enumerate() {
+            for end in [spring.a, spring.b] {
+                if let End::Body(i) = end {
+                    springs_at[i].push(s);
+                }
+            }
+        }
+        let mut forces_at = vec![Vec::new(); n];
+        for (f, force) in system.forces.iter().enumerate() {
+            forces_at[force.body].push(f);
+        }
+        FrictionSystem {
+            system,
+            layout: Layout::of(system),
+            switching,
+            springs_at,
+            forces_at,
+        }
+    }
+
+    /// Position and velocity of a spring end at (t, y).
+    fn end(&self, end: End, t: f64, y: &[f64]) -> (f64, f64) {
+        match end {
+            End::Body(i) => {
+                let x = self.layout.x[i];
+                (y[x], y[x + 1])
+            }
+            End::Anchor(a) => self.system.anchors[a].at(t),
+        }
+    }
+
+    /// Force of spring `s` on its end `a` (on `b` it is the opposite): `k·Δx + c·Δv`.
+    fn spring_force(&self, s: usize, t: f64, y: &[f64]) -> (f64, f64) {
+        let spring = &self.system.springs[s];
+        let (xa, va) = self.end(spring.a, t, y);
+        let (xb, vb) = self.end(spring.b, t, y);
+        let dv = vb - va;
+        (spring.k * (xb - xa) + spring.c * dv, dv)
+    }
+
+    /// The force on body `i` from everything but friction, `F_o,i(t, y)`.
+    pub fn other_force(&self, i: usize, t: f64, y: &[f64]) -> f64 {
+        let mut f: f64 = self.forces_at[i]
+            .iter()
+            .map(|&g| {
+                let g = &self.system.forces[g];
+                g.constant + g.profile.at(t)
+            })
+            .sum();
+        for &s in &self.springs_at[i] {
+            let (force, _) = self.spring_force(s, t, y);
+            f += if self.system.springs[s].a == End::Body(i) {
+                force
+            } else {
+                -force
+            };
+        }
+        f
+    }
+
+    fn z(&self, i: usize, y: &[f64]) -> f64 {
+        self.layout.z[i].map_or(0.0, |k| y[k])
+    }
+
+    /// The admissible friction forces of contact `j` at rest, in state y.
+    pub fn stick_interval(&self, j: usize, y: &[f64]) -> StickInterval {
+        let c = &self.system.contacts[j];
+        c.model
+            .stick_interval(y[self.layout.x[c.body]], self.z(c.body, y))
+    }
+
+    /// Friction force and internal-state rate of contact `j` in `mode`, given the other
+    /// forces `other` on its body.
+    fn contact_force(&self, j: usize, y: &[f64], mode: Mode, other: f64) -> (f64, f64) {
+        let c = &self.system.contacts[j];
+        let i = c.body;
+        let x = y[self.layout.x[i]];
+        let v_rel = y[self.layout.v(i)] - c.surface_velocity;
+        let z = self.z(i, y);
+        match self.switching {
+            Switching::Event if mode == STICK => return (other, 0.0),
+            Switching::Naive if v_rel == 0.0 || v_rel.abs() < c.model.stick_band() => {
+                return (c.model.stick_interval(x, z).clamp(other), 0.0)
+            }
+            _ => {}
+        }
+        let r = c.model.response(x, v_rel, z, self.switching.law(mode));
+        (r.force, r.state_rate)
+    }
+
+    /// The friction force of contact `j` at (t, y) in `modes`, as the right-hand side uses it.
+    pub fn friction(&self, j: usize, t: f64, y: &[f64], modes: &[Mode]) -> f64 {
+        let other = self.other_force(self.system.contacts[j].body, t, y);
+        self.contact_force(j, y, modes[j], other).0
+    }
+
+    /// The mode contact `j` is in at (t, y): by the sign of v_rel, and at v_rel = 0 by the
+    /// stick law.
+    pub fn mode_at(&self, j: usize, t: f64, y: &[f64]) -> Mode {
+        let c = &self.system.contacts[j];
+        let v_rel = y[self.layout.v(c.body)] - c.surface_velocity;
+        match Direction::of(v_rel) {
+            Some(Direction::Positive) => SLIP_POSITIVE,
+            Some(Direction::Negative) => SLIP_NEGATIVE,
+            None => {
+                let s = self.stick_interval(j, y);
+                let f = self.other_force(c.body, t, y);
+                if s.upper > s.lower && s.contains(f) {
+                    STICK
+                } else if f > s.upper {
+                    SLIP_POSITIVE
+                } else {
+                    SLIP_NEGATIVE
+                }
+            }
+        }
+    }
+
+    /// The initial state: every body's x0 and v0, internal states and accumulators zero.
+    pub fn initial_state(&self) -> Vec<f64> {
+        let mut y = vec![0.0; self.layout.dim()];
+        for (i, b) in self.system.bodies.iter().enumerate() {
+            y[self.layout.x[i]] = b.x0;
+            y[self.layout.v(i)] = b.v0;
+        }
+        y
+    }
+
+    /// The modes of every contact at (t0, y0).
+    pub fn initial_modes(&self, t0: f64, y0: &[f64]) -> Vec<Mode> {
+        (0..self.system.contacts.len())
+            .map(|j| self.mode_at(j, t0, y0))
+            .collect()
+    }
+
+    /// The mode of contact `j` to report: the integrated mode under event switching,
+    /// otherwise the sign of v_rel.
+    pub fn reported_mode(&self, j: usize, y: &[f64], modes: &[Mode]) -> Mode {
+        if self.switching == Switching::Event {
+            return modes[j];
+        }
+        let c = &self.system.contacts[j];
+        mode_of_velocity(y[self.layout.v(c.body)] - c.surface_velocity)
+    }
+
+    fn stuck(&self, i: usize, modes: &[Mode]) -> bool {
+        self.switching == Switching::Event
+            && self.layout.contact[i].is_some_and(|j| modes[j] == STICK)
+    }
+}
+
+impl OdeProblem for FrictionSystem<'_> {
+    fn dim(&self) -> usize {
+        self.layout.dim()
+    }
+
+    /// `ẋ_i = v_i`, `m_i·v̇_i = F_o,i − F_f,i`, `ż_i = g_i`, and the accumulators
+    /// `Ẇ_ext = Σ F_ext,i·v_i + Σ anchor power − Σ c·Δv²`, `Ḋ = Σ F_f,j·v_rel,j`,
+    /// `Ẇ_belt = −Σ F_f,j·v_s,j`.
+    fn rhs(&self, t: f64, y: &[f64], modes: &[Mode], dy: &mut [f64]) {
+        let l = &self.layout;
+        let mut external = 0.0;
+        for i in 0..self.system.bodies.len() {
+            dy[l.x[i]] = y[l.v(i)];
+            dy[l.v(i)] = 0.0;
+        }
+        for f in &self.system.forces {
+            let force = f.constant + f.profile.at(t);
+            dy[l.v(f.body)] += force;
+            external += force * y[l.v(f.body)];
+        }
+        for (s, spring) in self.system.springs.iter().enumerate() {
+            let (force, dv) = self.spring_force(s, t, y);
+            external -= spring.c * dv * dv;
+            match spring.a {
+                End::Body(i) => dy[l.v(i)] += force,
+                End::Anchor(a) => external -= force * self.system.anchors[a].v,
+            }
+            match spring.b {
+                End::Body(i) => dy[l.v(i)] -= force,
+                End::Anchor(a) => external += force * self.system.anchors[a].v,
+            }
+        }
+        let (mut dissipated, mut belt) = (0.0, 0.0);
+        for (i, body) in self.system.bodies.iter().enumerate() {
+            let v = l.v(i);
+            let Some(j) = l.contact[i] else {
+                dy[v] /= body.m;
+                continue;
+            };
+            let surface = self.system.contacts[j].surface_velocity;
+            let (force, rate) = self.contact_force(j, y, modes[j], dy[v]);
+            dissipated += force * (y[v] - surface);
+            belt -= force * surface;
+            if self.stuck(i, modes) {
+                dy[l.x[i]] = surface;
+                dy[v] = 0.0;
+            } else {
+                dy[v] = (dy[v] - force) / body.m;
+            }
+            if let Some(z) = l.z[i] {
+                dy[z] = if self.stuck(i, modes) { 0.0 } else { rate };
+            }
+        }
+        let a = l.accumulators;
+        dy[a] = external;
+        dy[a + 1] = dissipated;
+        dy[a + 2] = belt;
+    }
+
+    /// The analytic Jacobian of the bodies' unknowns, sparse: the rows of a stuck body are
+    /// zero, and the accumulators, which do not act back, are left out (an inexact Newton
+    /// matrix only for them).
+    fn jacobian(&self, _t: f64, y: &[f64], modes: &[Mode], jac: &mut Vec<Entry>) -> bool {
+        let l = &self.layout;
+        let inv_m = |i: usize| 1.0 / self.system.bodies[i].m;
+        for i in 0..self.system.bodies.len() {
+            if !self.stuck(i, modes) {
+                jac.push((l.x[i], l.v(i), 1.0));
+            }
+        }
+        for spring in &self.system.springs {
+            for (me, other) in [(spring.a, spring.b), (spring.b, spring.a)] {
+                let End::Body(i) = me else { continue };
+                if self.stuck(i, modes) {
+                    continue;
+                }
+                let (k, c) = (spring.k * inv_m(i), spring.c * inv_m(i));
+                jac.push((l.v(i), l.x[i], -k));
+                jac.push((l.v(i), l.v(i), -c));
+                if let End::Body(o) = other {
+                    jac.push((l.v(i), l.x[o], k));
+                    jac.push((l.v(i), l.v(o), c));
+                }
+            }
+        }
+        for (j, contact) in self.system.contacts.iter().enumerate() {
+            let i = contact.body;
+            if self.stuck(i, modes) {
+                continue;
+            }
+            let (x, v) = (l.x[i], l.v(i));
+            let p = contact.model.partials(
+                y[x],
+                y[v] - contact.surface_velocity,
+                self.z(i, y),
+                self.switching.law(modes[j]),
+            );
+            jac.push((v, x, -p.force_dx * inv_m(i)));
+            jac.push((v, v, -p.force_dv * inv_m(i)));
+            if let Some(z) = l.z[i] {
+                jac.push((v, z, -p.force_dz * inv_m(i)));
+                jac.push((z, x, p.rate_dx));
+                jac.push((z, v, p.rate_dv));
+                jac.push((z, z, p.rate_dz));
+            }
+        }
+        true
+    }
+
+    fn n_events(&self) -> usize {
+        match self.switching {
+            Switching::Event => 2 * self.system.contacts.len(),
+            _ => 0,
+        }
+    }
+
+    fn event_spec(&self, index: usize, modes: &[Mode]) -> Option<EventSpec> {
+        match (modes[index / 2], index % 2) {
+            (SLIP_POSITIVE, 0) => Some(SLIP_POSITIVE_EVENT),
+            (SLIP_NEGATIVE, 0) => Some(SLIP_NEGATIVE_EVENT),
+            (STICK, 0) => Some(BREAK_AWAY_POSITIVE),
+            (STICK, _) => Some(BREAK_AWAY_NEGATIVE),
+            _ => None,
+        }
+    }
+
+    fn event(&self, index: usize, t: f64, y: &[f64], modes: &[Mode]) -> f64 {
+        let j = index / 2;
+        let c = &self.system.contacts[j];
+        if modes[j] != STICK {
+            return y[self.layout.v(c.body)] - c.surface_velocity;
+        }
+        let s = self.stick_interval(j, y);
+        let f = self.other_force(c.body, t, y);
+        if index % 2 == 0 {
+            s.upper - f
+        } else {
+            f - s.lower
+        }
+    }
+
+    fn on_events(&self, fired: &[usize], t: f64, y: &mut [f64], modes: &mut [Mode]) -> Control {
+        // Every arriving body onto its surface first (removing the location residual), so
+        // that each new mode is decided from forces that see all of them.
+        for &index in fired {
+            let j = index / 2;
+            if modes[j] != STICK {
+                let c = &self.system.contacts[j];
+                y[self.layout.v(c.body)] = c.surface_velocity;
+            }
+        }
+        for &index in fired {
+            let j = index / 2;
+            modes[j] = if modes[j] == STICK {
+                // The needed force has left the stick interval through one of its bounds.
+                if index % 2 == 0 {
+                    SLIP_POSITIVE
+                } else {
+                    SLIP_NEGATIVE
+                }
+            } else {
+                self.mode_at(j, t, y)
+            };
+        }
+        Control::Continue
+    }
+
+    /// The shortest natural period `2π·√(m_i / Σ k)` over the bodies held by springs.
+    fn time_scale(&self) -> Option<f64> {
+        let mut stiffness = vec![0.0; self.system.bodies.len()];
+        for s in &self.system.springs {
+            for end in [s.a, s.b] {
+                if let End::Body(i) = end {
+                    stiffness[i] += s.k;
+                }
+            }
+        }
+        self.system
+            .bodies
+            .iter()
+            .zip(&stiffness)
+            .filter(|(_, &k)| k > 0.0)
+            .map(|(b, &k)| 2.0 * std::f64::consts::PI * (b.m / k).sqrt())
+            .reduce(f64::min)
+    }
+}

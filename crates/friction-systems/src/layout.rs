@@ -1,0 +1,54 @@
+//! Where each unknown of a system lives in the state vector `y`: per body `x_i`, `v_i` and,
+//! at a contact whose model has one, the internal state `z_i`, body after body (so that the
+//! Jacobian of a chain is banded); then the three energy accumulators (see
+//! [`crate::energy`]).
+
+use crate::system::System;
+
+/// The state layout of a system.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Layout {
+    /// Index of `x_i`; `v_i` follows it, then `z_i` where there is one.
+    pub x: Vec<usize>,
+    /// Index of `z_i` for a body whose contact model has an internal state.
+    pub z: Vec<Option<usize>>,
+    /// The contact of each body, by index.
+    pub contact: Vec<Option<usize>>,
+    /// Index of the first energy accumulator; the state has three more unknowns.
+    pub accumulators: usize,
+}
+
+impl Layout {
+    /// The layout of `system` (which must be valid).
+    pub fn of(system: &System) -> Layout {
+        let n = system.bodies.len();
+        let mut contact = vec![None; n];
+        for (j, c) in system.contacts.iter().enumerate() {
+            contact[c.body] = Some(j);
+        }
+        let (mut x, mut z, mut next) = (Vec::with_capacity(n), Vec::with_capacity(n), 0);
+        for c in &contact {
+            x.push(next);
+            next += 2;
+            let states = c.map_or(0, |j| system.contacts[j].model.n_states());
+            z.push((states > 0).then_some(next));
+            next += states;
+        }
+        Layout {
+            x,
+            z,
+            contact,
+            accumulators: next,
+        }
+    }
+
+    /// Index of `v_i`.
+    pub fn v(&self, body: usize) -> usize {
+        self.x[body] + 1
+    }
+
+    /// Number of unknowns, accumulators included.
+    pub fn dim(&self) -> usize {
+        self.accumulators + 3
+    }
+}

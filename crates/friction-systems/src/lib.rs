@@ -1,0 +1,33 @@
+//! Friction systems: many bodies on one line, joined by springs and dampers, driven by
+//! anchors and external forces, each on its own friction contact (`shared/spec/systems.md`).
+//!
+//! The layers, as in Siconos, keep the declaration apart from the scheme that integrates it:
+//!
+//! - [`system`]: the declaration ([`System`]: bodies, anchors, springs, contacts, forces),
+//!   built in code or read from a TOML file ([`file`]), or generated ([`chain`]);
+//! - [`hybrid`]: the system as a hybrid ODE ([`FrictionSystem`], an
+//!   [`integrators::OdeProblem`]): the state layout ([`layout`]), one stick/slip mode per
+//!   contact, two event functions per contact, the analytic sparse Jacobian, the energy
+//!   accumulators ([`energy`]);
+//! - [`switching`]: how v_rel = 0 is treated (event-driven, regularised, naive);
+//! - [`run`]: one integration by any solver of `integrators`, read per body and per contact.
+//!
+//! Any [`friction_models::FrictionModel`], also one written in another crate, can sit at a
+//! contact.
+
+pub mod chain;
+pub mod energy;
+pub mod file;
+pub mod hybrid;
+pub mod layout;
+pub mod run;
+pub mod switching;
+pub mod system;
+
+pub use chain::ChainParams;
+pub use energy::EnergyBalance;
+pub use hybrid::FrictionSystem;
+pub use layout::Layout;
+pub use run::{simulate, BodyState, ContactEvent, Run};
+pub use switching::{mode_name, Switching, SLIP_NEGATIVE, SLIP_POSITIVE, STICK};
+pub use system::{Anchor, Body, Contact, End, Force, Profile, Spring, System, SystemError};

@@ -1,0 +1,155 @@
+//! One integration of a system by any solver, and what it produced, read per body and per
+//! contact: trajectories, final states, the switching log, the energy balance. A solver
+//! failure keeps what was computed before it, with its typed error.
+
+use crate::energy::EnergyBalance;
+use crate::hybrid::FrictionSystem;
+use crate::switching::Switching;
+use crate::system::{System, SystemError};
+use integrators::{Failure, Mode, Options, Solution, Solver, SolverError};
+use std::time::Instant;
+
+/// A switch (or a touch of v_rel = 0 that kept the mode) of one contact.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ContactEvent {
+    /// Time, s.
+    pub t: f64,
+    /// The contact, by index.
+    pub contact: usize,
+    /// Its body, by index.
+    pub body: usize,
+    /// Mode before.
+    pub from: Mode,
+    /// Mode after (equal to `from` where v_rel touched zero and the contact slid on).
+    pub to: Mode,
+}
+
+/// The state of one body at one recorded time.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BodyState {
+    /// Time, s.
+    pub t: f64,
+    /// Displacement, m.
+    pub x: f64,
+    /// Velocity, m/s.
+    pub v: f64,
+    /// Friction force at its contact, N (0 without one).
+    pub friction: f64,
+    /// Contact mode (`None` without a contact).
+    pub mode: Option<Mode>,
+    /// Internal state of its contact model, if any.
+    pub z: Option<f64>,
+}
+
+/// A finished (or failed) integration of a system.
+pub struct Run<'a> {
+    /// The problem that was integrated.
+    pub problem: FrictionSystem<'a>,
+    /// Start time and state.
+    pub t0: f64,
+    /// Initial state (accumulators included).
+    pub y0: Vec<f64>,
+    /// Initial modes.
+    pub modes0: Vec<Mode>,
+    /// What was computed (up to the failure, if any).
+    pub solution: Solution,
+    /// The solver's error, if it failed.
+    pub error: Option<SolverError>,
+    /// Wall time of the integration, s.
+    pub wall_time_s: f64,
+}
+
+/// Integrates `system` under `switching` with `solver` and `options` from the bodies'
+/// initial states; `observe` is told the time after every step.
+pub fn simulate<'a>(
+    system: &'a System,
+    switching: Switching,
+    solver: Solver,
+    options: Options,
+    observe: &mut dyn FnMut(f64),
+) -> Result<Run<'a>, SystemError> {
+    system.validate()?;
+    let problem = FrictionSystem::new(system, switching);
+    let t0 = options.t0;
+    let y0 = problem.initial_state();
+    let modes0 = problem.initial_modes(t0, &y0);
+    let clock = Instant::now();
+    let (solution, error) = match solver.solve_observed(&problem, &y0, &modes0, options, observe) {
+        Ok(s) => (s, None),
+        Err(Failure { error, solution }) => (*solution, Some(error)),
+    };
+    Ok(Run {
+        problem,
+        t0,
+        y0,
+        modes0,
+        solution,
+        error,
+        wall_time_s: clock.elapsed().as_secs_f64(),
+    })
+}
+
+impl Run<'_> {
+    /// Body `i` at recorded point `k`.
+    pub fn body_at(&self, i: usize, k: usize) -> BodyState {
+        let p = &self.problem;
+        let s = &self.solution;
+        let (t, y, modes) = (s.t[k], s.y_at(k), s.modes_at(k));
+        let contact = p.layout.contact[i];
+        BodyState {
+            t,
+            x: y[p.layout.x[i]],
+            v: y[p.layout.v(i)],
+            friction: contact.map_or(0.0, |j| p.friction(j, t, y, modes)),
+            mode: contact.map(|j| p.reported_mode(j, y, modes)),
+            z: p.layout.z[i].map(|z| y[z]),
+        }
+    }
+
+    /// Body `i` at every recorded point.
+    pub fn body(&self, i: usize) -> Vec<BodyState> {
+        (0..self.solution.len())
+            .map(|k| self.body_at(i, k))
+            .collect()
+    }
+
+    /// Every body at the last recorded point (none if nothing was recorded).
+    pub fn final_states(&self) -> Vec<BodyState> {
+        match self.solution.len() {
+            0 => Vec::new(),
+            n => (0..self.problem.system.bodies.len())
+                .map(|i| self.body_at(i, n - 1))
+                .collect(),
+        }
+    }
+
+    /// The switching log: every contact whose event fired, in time order.
+    pub fn contact_events(&self) -> Vec<ContactEvent> {
+        let mut modes = self.modes0.clone();
+        let mut out = Vec::new();
+        for e in &self.solution.events {
+            let mut contacts: Vec<usize> = e.fired.iter().map(|&k| k / 2).collect();
+            contacts.dedup();
+            let mut after = modes.clone();
+            for s in &e.switches {
+                after[s.component] = s.to;
+            }
+            out.extend(contacts.into_iter().map(|j| ContactEvent {
+                t: e.t,
+                contact: j,
+                body: self.problem.system.contacts[j].body,
+                from: modes[j],
+                to: after[j],
+            }));
+            modes = after;
+        }
+        out
+    }
+
+    /// The energy balance from the start to the last recorded point.
+    pub fn energy(&self) -> Option<EnergyBalance> {
+        self.solution
+            .last()
+            .map(|(t1, y1)| self.problem.balance(self.t0, &self.y0, t1, y1))
+    }
+}
