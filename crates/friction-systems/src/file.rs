@@ -125,6 +125,7 @@ pub fn parse(text: &str) -> Result<System, String> {
     for a in &file.anchor {
         s.add_anchor(&a.name, a.x0, a.v);
     }
+    s.check_names().map_err(|e| e.to_string())?;
     let end = |table: &str, i: usize, key: &str, name: &str| -> Result<End, String> {
         if let Some(b) = s.bodies.iter().position(|b| b.name == name) {
             Ok(End::Body(b))

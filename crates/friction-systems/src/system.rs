@@ -251,6 +251,26 @@ impl System {
         });
     }
 
+    /// Checks that the names of bodies and anchors are unique.
+    pub fn check_names(&self) -> Result<(), SystemError> {
+        let mut names = std::collections::BTreeSet::new();
+        let named = self
+            .bodies
+            .iter()
+            .map(|b| ("body", &b.name))
+            .chain(self.anchors.iter().map(|a| ("anchor", &a.name)));
+        for (table, name) in named {
+            if !names.insert(name.as_str()) {
+                return Err(SystemError::Invalid {
+                    what: format!("[[{table}]] \"{name}\""),
+                    why: "the name is used twice: names of bodies and anchors must be unique"
+                        .into(),
+                });
+            }
+        }
+        Ok(())
+    }
+
     /// Checks the declaration: at least one body, positive masses, finite values,
     /// non-negative stiffness and damping, ends and bodies that exist, a spring between two
     /// different ends and not between two anchors, unique names, at most one contact a body.
@@ -261,31 +281,17 @@ impl System {
                 why: "it has no body: declare at least one [[body]]".into(),
             });
         }
-        let mut names = std::collections::BTreeSet::new();
+        self.check_names()?;
         for b in &self.bodies {
             let what = || format!("[[body]] \"{}\"", b.name);
             check(what, "m", b.m, true)?;
             check(what, "x0", b.x0, false)?;
             check(what, "v0", b.v0, false)?;
-            if !names.insert(b.name.as_str()) {
-                return Err(SystemError::Invalid {
-                    what: what(),
-                    why: "the name is used twice: names of bodies and anchors must be unique"
-                        .into(),
-                });
-            }
         }
         for a in &self.anchors {
             let what = || format!("[[anchor]] \"{}\"", a.name);
             check(what, "x0", a.x0, false)?;
             check(what, "v", a.v, false)?;
-            if !names.insert(a.name.as_str()) {
-                return Err(SystemError::Invalid {
-                    what: what(),
-                    why: "the name is used twice: names of bodies and anchors must be unique"
-                        .into(),
-                });
-            }
         }
         for (i, s) in self.springs.iter().enumerate() {
             let what = || format!("[[spring]] {}", i + 1);

@@ -96,6 +96,38 @@ impl OdeProblem for Oscillator {
 /// time (a Zeno point).
 pub struct BouncingBall;
 
+/// The bouncing ball with its clock stretched by `scale` (gravity 9.81/scale²), declaring
+/// `scale` as its time scale: its Zeno point is at `scale` times the ball's.
+pub struct ScaledBall {
+    /// The time scale, s.
+    pub scale: f64,
+}
+
+impl OdeProblem for ScaledBall {
+    fn dim(&self) -> usize {
+        2
+    }
+    fn rhs(&self, _t: f64, y: &[f64], _m: &[Mode], f: &mut [f64]) {
+        f[0] = y[1];
+        f[1] = -9.81 / (self.scale * self.scale);
+    }
+    fn n_events(&self) -> usize {
+        BouncingBall.n_events()
+    }
+    fn event_spec(&self, i: usize, m: &[Mode]) -> Option<EventSpec> {
+        BouncingBall.event_spec(i, m)
+    }
+    fn event(&self, i: usize, t: f64, y: &[f64], m: &[Mode]) -> f64 {
+        BouncingBall.event(i, t, y, m)
+    }
+    fn on_events(&self, i: &[usize], t: f64, y: &mut [f64], m: &mut [Mode]) -> Control {
+        BouncingBall.on_events(i, t, y, m)
+    }
+    fn time_scale(&self) -> Option<f64> {
+        Some(self.scale)
+    }
+}
+
 impl OdeProblem for BouncingBall {
     fn dim(&self) -> usize {
         2

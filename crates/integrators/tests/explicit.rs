@@ -267,6 +267,40 @@ fn accumulating_events_end_with_an_error_and_keep_the_solution() {
 }
 
 #[test]
+fn chattering_is_detected_relative_to_the_problems_own_time_scale() {
+    // The same Zeno point at time scales 1e-9 s, 1 s and 100 s: the guard's window follows
+    // the scale, so it fires after the same bounces at the same scaled time.
+    let zeno = 3.0 * (2.0 / 9.81f64).sqrt();
+    let mut counts = Vec::new();
+    for scale in [1e-9, 1.0, 1e2] {
+        let o = Options::adaptive(0.0, 5.0 * scale, 1e-10, 1e-10);
+        let failure = Integrator::new(
+            &ScaledBall { scale },
+            dopri5(&o, 2),
+            &[1.0, 0.0],
+            &[Mode(0)],
+            o,
+        )
+        .unwrap()
+        .solve()
+        .unwrap_err();
+        let SolverError::TooManyEvents { t, window, .. } = failure.error else {
+            panic!("scale {scale}: {failure}");
+        };
+        assert!(
+            (t / scale - zeno).abs() < 1e-5,
+            "scale {scale}: stopped at {t}"
+        );
+        assert_eq!(window, 1e-6 * scale);
+        counts.push(failure.solution.events.len());
+    }
+    assert!(
+        counts.iter().all(|&c| c.abs_diff(counts[1]) <= 2),
+        "bounces before the guard fired: {counts:?}"
+    );
+}
+
+#[test]
 fn each_error_says_where_and_why() {
     let p = Oscillator::plain();
     let err = |o: Options| {

@@ -201,7 +201,9 @@ fn validate(spec: &RunSpec) -> Result<(), ScenarioError> {
     Ok(())
 }
 
-fn options(spec: &RunSpec, t_end: f64) -> Options {
+/// The integration options of a run: its step control, and `output_points` evenly spaced
+/// output times on [0, t_end].
+pub fn options(spec: &RunSpec, t_end: f64) -> Options {
     let n = spec.output_points;
     let grid = (0..n).map(|i| t_end * i as f64 / (n - 1) as f64).collect();
     Options {

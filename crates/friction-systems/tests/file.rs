@@ -1,0 +1,131 @@
+//! The system file: what it declares, and errors that name the table, the key and the range.
+
+use friction_systems::file::parse;
+use friction_systems::{End, Profile};
+
+const TWO_MASSES: &str = r#"
+param_set = "paper"
+
+[[body]]
+name = "b1"
+m = 1.0
+
+[[body]]
+name = "b2"
+m = 2.0
+x0 = 0.1
+
+[[anchor]]
+name = "driver"
+v = 0.1
+
+[[spring]]
+between = ["driver", "b1"]
+k = 10.0
+
+[[spring]]
+between = ["b1", "b2"]
+k = 100.0
+c = 0.5
+
+[[contact]]
+body = "b1"
+model = "coulomb"
+params = { F_c = 1.0841 }
+
+[[contact]]
+body = "b2"
+surface_velocity = 0.2
+model = "lugre"
+
+[[force]]
+body = "b2"
+constant = 1.0
+rate = 0.5
+"#;
+
+#[test]
+fn a_two_mass_file_declares_what_it_says() {
+    let s = parse(TWO_MASSES).unwrap();
+    assert_eq!(s.bodies.len(), 2);
+    assert_eq!(
+        (s.bodies[1].m, s.bodies[1].x0, s.bodies[1].v0),
+        (2.0, 0.1, 0.0)
+    );
+    assert_eq!(s.anchors[0].at(2.0), (0.2, 0.1));
+    assert_eq!(s.springs[0].a, End::Anchor(0));
+    assert_eq!(s.springs[1].b, End::Body(1));
+    assert_eq!((s.springs[1].k, s.springs[1].c), (100.0, 0.5));
+    assert_eq!(s.contacts[0].model.name(), "coulomb");
+    // Coulomb at rest holds up to F_c, as overridden.
+    assert_eq!(s.contacts[0].model.stick_interval(0.0, 0.0).upper, 1.0841);
+    assert_eq!(s.contacts[1].surface_velocity, 0.2);
+    assert_eq!(s.contacts[1].model.n_states(), 1);
+    assert_eq!(s.forces[0].profile, Profile::Ramp { rate: 0.5 });
+}
+
+fn error_of(text: &str) -> String {
+    match parse(text) {
+        Ok(_) => panic!("accepted:\n{text}"),
+        Err(e) => e,
+    }
+}
+
+#[test]
+fn every_error_names_the_table_the_key_and_the_range() {
+    let cases = [
+        (
+            TWO_MASSES.replace("m = 2.0", "m = -2.0"),
+            "[[body]] \"b2\": `m` = -2 is out of range: allowed (0, inf)",
+        ),
+        (
+            TWO_MASSES.replace("k = 100.0", "k = -1.0"),
+            "[[spring]] 2: `k` = -1 is out of range: allowed [0, inf)",
+        ),
+        (
+            TWO_MASSES.replace("F_c = 1.0841", "F_c = -1.0"),
+            "[[contact]] 1: `params.F_c`: parameter `F_c` = -1 is out of range: allowed (0, inf) N",
+        ),
+        (
+            TWO_MASSES.replace("F_c = 1.0841", "mu = 1.0"),
+            "[[contact]] 1: `params.mu`: unknown parameter `mu`",
+        ),
+        (
+            TWO_MASSES.replace("model = \"lugre\"", "model = \"stribek\""),
+            "[[contact]] 2: `model`: unknown model `stribek`",
+        ),
+        (
+            TWO_MASSES.replace("between = [\"b1\", \"b2\"]", "between = [\"b1\", \"b3\"]"),
+            "[[spring]] 2: `between` names \"b3\", which is no body or anchor of the file",
+        ),
+        (
+            TWO_MASSES.replace(
+                "body = \"b2\"\nsurface_velocity",
+                "body = \"b1\"\nsurface_velocity",
+            ),
+            "[[contact]] 2: body \"b1\" has a contact already: a body has at most one contact",
+        ),
+        (
+            TWO_MASSES.replace("name = \"driver\"", "name = \"b1\""),
+            "[[anchor]] \"b1\": the name is used twice",
+        ),
+        (
+            TWO_MASSES.replace("x0 = 0.1", "mass = 0.1"),
+            "unknown field `mass`, expected one of `name`, `m`, `x0`, `v0`",
+        ),
+        (
+            TWO_MASSES.replace("param_set = \"paper\"", "param_set = \"steel\""),
+            "`param_set`: unknown parameter set `steel`",
+        ),
+        (
+            TWO_MASSES.replace("m = 1.0", "m = \"heavy\""),
+            "invalid type: string \"heavy\", expected f64",
+        ),
+    ];
+    for (text, expected) in cases {
+        let e = error_of(&text);
+        assert!(e.contains(expected), "expected `{expected}` in:\n{e}");
+    }
+    // A TOML syntax or type error says where.
+    assert!(error_of("[[body]]\nname = \"a\"\nm = ").contains("line 3"));
+}
