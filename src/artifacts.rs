@@ -57,6 +57,17 @@ impl Artifacts {
         Ok(())
     }
 
+    /// Adds a raster picture as `stem.png` and `stem.svg`.
+    pub fn add_raster(&mut self, stem: &Path, raster: &plot::Raster) -> Result<(), AppError> {
+        let png = stem.with_extension("png");
+        let bytes = plot::raster_png(raster, &png)?;
+        self.add(png, bytes);
+        let svg = stem.with_extension("svg");
+        let text = plot::raster_svg(raster, &svg)?;
+        self.add(svg, text.into_bytes());
+        Ok(())
+    }
+
     /// Writes every file, creating folders as needed; each file appears whole or not at all.
     pub fn write(self) -> Result<Vec<PathBuf>, AppError> {
         let mut written = Vec::with_capacity(self.files.len());

@@ -95,7 +95,7 @@ impl ParamOptions {
 }
 
 /// Splits `NAME=VALUE` and parses the value as a number.
-fn parse_assignment(text: &str) -> Result<(&str, f64), AppError> {
+pub fn parse_assignment(text: &str) -> Result<(&str, f64), AppError> {
     let (name, value) = text.split_once('=').ok_or_else(|| {
         AppError::Usage(format!(
             "--set `{text}`: expected NAME=VALUE, e.g. --set F_s=7.5"

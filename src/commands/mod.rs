@@ -6,3 +6,4 @@ pub mod phenomena;
 pub mod reproduce;
 pub mod simulate;
 pub mod studies;
+pub mod system;

@@ -55,6 +55,18 @@ pub struct SolverOptions {
 pub const PAPER_DT: f64 = 1e-3;
 
 impl SolverOptions {
+    /// The step control these options ask for, checked (positive, finite).
+    pub fn checked_step(&self) -> Result<StepControl, AppError> {
+        let step = self.step();
+        integrators::Options {
+            step,
+            ..integrators::Options::adaptive(0.0, 1.0, 1e-6, 1e-6)
+        }
+        .validate()
+        .map_err(|e| AppError::Usage(e.to_string()))?;
+        Ok(step)
+    }
+
     /// The step control these options ask for.
     pub fn step(&self) -> StepControl {
         if self.solver.is_fixed_step() || self.fixed_step {
@@ -71,25 +83,59 @@ impl SolverOptions {
     }
 }
 
+/// What `simulate` integrates: a single-body rig, or the built-in chain of blocks.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Target {
+    /// A rig of `scenarios.md`.
+    Rig(Scenario),
+    /// The Burridge–Knopoff chain of `systems.md`.
+    Chain,
+}
+
+impl std::str::FromStr for Target {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        if s == "chain" {
+            return Ok(Target::Chain);
+        }
+        Scenario::from_name(s)
+            .map(Target::Rig)
+            .map_err(|e| format!("{e}, chain"))
+    }
+}
+
 /// Options of `simulate`.
 #[derive(Args, Debug)]
 pub struct SimulateArgs {
     /// paper-block, prescribed-motion, velocity-sweep, belt, free-vibration, oscillation,
-    /// force-ramp, presliding.
-    #[arg(value_name = "SCENARIO")]
-    pub scenario: Scenario,
-    /// The friction model, as `friction-lab models` lists it.
+    /// force-ramp, presliding (one body), or chain (the Burridge–Knopoff chain of
+    /// systems.md, parameters n_bodies, m, k_chain, k_driver, v_driver, spread by --set).
+    #[arg(
+        value_name = "SCENARIO",
+        required_unless_present = "system",
+        conflicts_with = "system"
+    )]
+    pub scenario: Option<Target>,
+    /// A system file (TOML, shared/spec/systems.md) to integrate instead of a scenario.
+    #[arg(long, value_name = "FILE.toml")]
+    pub system: Option<PathBuf>,
+    /// The friction model, as `friction-lab models` lists it (rigs and chain).
     #[arg(long, value_name = "MODEL")]
-    pub model: ModelId,
+    pub model: Option<ModelId>,
     /// Folder to write into (created if missing).
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
-    /// End time, s [default: the scenario's].
+    /// End time, s [default: the scenario's; 50 for the chain; 20 for a system file].
     #[arg(long, value_name = "T", allow_negative_numbers = true)]
     pub t_end: Option<f64>,
-    /// Evenly spaced output points (events are recorded besides).
-    #[arg(long, value_name = "N", default_value_t = 2001)]
-    pub points: usize,
+    /// Evenly spaced output points (events are recorded besides) [default: 2001; for a
+    /// system, fewer when 2001 states would exceed 1e7 numbers].
+    #[arg(long, value_name = "N", allow_negative_numbers = true)]
+    pub points: Option<i64>,
+    /// Systems: the bodies written to trajectory.csv and drawn in velocity.png, as names or
+    /// 1-based indices, comma-separated [default: all up to 20 bodies, else 20 evenly spaced].
+    #[arg(long, value_name = "LIST", value_delimiter = ',')]
+    pub bodies: Vec<String>,
     /// The solver.
     #[command(flatten)]
     pub solver: SolverOptions,
@@ -140,26 +186,57 @@ struct Summary<'a> {
     stiffness_detected_at: Option<f64>,
 }
 
-/// The spec of a run from the command line.
-pub fn spec(args: &SimulateArgs) -> Result<RunSpec, AppError> {
-    let (friction, params) = args.model_options.params.resolve_for(Some(args.scenario))?;
-    if let Some(t) = args.t_end {
-        if !(t.is_finite() && t > 0.0) {
-            return Err(AppError::Usage(format!(
+impl SimulateArgs {
+    /// `--t-end`, checked: (0, inf).
+    pub fn checked_t_end(&self) -> Result<Option<f64>, AppError> {
+        match self.t_end {
+            Some(t) if !(t.is_finite() && t > 0.0) => Err(AppError::Usage(format!(
                 "option `t_end` = {t} is out of range: allowed (0, inf) s"
-            )));
+            ))),
+            t => Ok(t),
         }
     }
-    let step = args.solver.step();
-    integrators::Options {
-        step,
-        ..integrators::Options::adaptive(0.0, 1.0, 1e-6, 1e-6)
+
+    /// `--points`, checked: [2, 10_000_000].
+    pub fn checked_points(&self) -> Result<Option<usize>, AppError> {
+        match self.points {
+            Some(n) if !(2..=10_000_000).contains(&n) => Err(AppError::Usage(format!(
+                "option `points` = {n} is out of range: allowed [2, 10000000]"
+            ))),
+            n => Ok(n.map(|n| n as usize)),
+        }
     }
-    .validate()
-    .map_err(|e| AppError::Usage(e.to_string()))?;
+}
+
+/// A progress bar of 1000 steps with a message.
+pub fn progress_bar(message: String) -> indicatif::ProgressBar {
+    let bar = indicatif::ProgressBar::new(1000);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{spinner} {msg} [{bar:40}] {percent}%")
+            .expect("a valid template"),
+    );
+    bar.set_message(message);
+    bar
+}
+
+/// The spec of a run of rig `scenario` from the command line.
+pub fn spec(args: &SimulateArgs, scenario: Scenario) -> Result<RunSpec, AppError> {
+    let model = args.model.ok_or_else(|| {
+        AppError::Usage(format!(
+            "option `--model` is required for scenario {scenario}: e.g. --model CS"
+        ))
+    })?;
+    if !args.bodies.is_empty() {
+        return Err(AppError::Usage(
+            "option `--bodies` applies to systems (chain, --system), not to a rig".into(),
+        ));
+    }
+    let (friction, params) = args.model_options.params.resolve_for(Some(scenario))?;
+    args.checked_t_end()?;
+    let step = args.solver.checked_step()?;
     Ok(RunSpec {
-        scenario: args.scenario,
-        model: args.model,
+        scenario,
+        model,
         variant: args.model_options.variant,
         friction,
         params,
@@ -167,7 +244,7 @@ pub fn spec(args: &SimulateArgs) -> Result<RunSpec, AppError> {
         switching: args.solver.switching,
         step,
         t_end: args.t_end,
-        output_points: args.points,
+        output_points: args.checked_points()?.unwrap_or(2001),
     })
 }
 
@@ -268,18 +345,21 @@ fn figures(o: &Outcome, name: &str) -> Vec<(&'static str, Plot)> {
         .collect()
 }
 
-/// Runs `simulate`.
+/// Runs `simulate`: a rig, or a system (chain or file).
 pub fn run(args: &SimulateArgs) -> Result<(), AppError> {
-    let spec = spec(args)?;
+    match args.scenario {
+        Some(Target::Rig(scenario)) => run_rig(args, scenario),
+        _ => crate::commands::system::run(args),
+    }
+}
+
+/// Runs `simulate` on a rig.
+fn run_rig(args: &SimulateArgs, scenario: Scenario) -> Result<(), AppError> {
+    let spec = spec(args, scenario)?;
     let t_end = spec
         .t_end
         .unwrap_or_else(|| spec.scenario.default_t_end(&spec.params, &spec.friction));
-    let bar = indicatif::ProgressBar::new(1000);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("{spinner} {msg} [{bar:40}] {percent}%")
-            .expect("a valid template"),
-    );
-    bar.set_message(format!(
+    let bar = progress_bar(format!(
         "{} {} {}",
         spec.scenario,
         spec.model,

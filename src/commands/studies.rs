@@ -5,6 +5,8 @@
 
 use crate::artifacts::Artifacts;
 use crate::commands::phenomena::with_threads;
+use crate::commands::simulate::Target as Problem;
+use crate::commands::system::{chosen_bodies, system_of, FILE_T_END};
 use crate::error::AppError;
 use crate::options::ModelOptions;
 use crate::output::{Cell, Table};
@@ -13,7 +15,8 @@ use clap::Args;
 use friction_models::ModelId;
 use integrators::Solver;
 use scenarios::studies::{
-    self, Case, Convergence, Independence, Stiffness, StudyRun, WorkPrecision,
+    self, Case, Convergence, Independence, Stiffness, StudyCase, StudyRun, SystemCase,
+    WorkPrecision,
 };
 use scenarios::{Scenario, SwitchingKind};
 use std::path::{Path, PathBuf};
@@ -21,16 +24,28 @@ use std::path::{Path, PathBuf};
 /// The problem a study runs.
 #[derive(Args, Debug, Clone)]
 pub struct CaseArgs {
-    /// The scenario.
-    #[arg(value_name = "SCENARIO")]
-    pub scenario: Scenario,
-    /// The friction model.
+    /// A scenario (paper-block, belt, free-vibration, …), or chain (the Burridge–Knopoff
+    /// chain of systems.md, its parameters by --set); omit it with --system.
+    #[arg(
+        value_name = "SCENARIO",
+        required_unless_present = "system",
+        conflicts_with = "system"
+    )]
+    pub scenario: Option<Problem>,
+    /// A system file (TOML, shared/spec/systems.md) to study instead of a scenario.
+    #[arg(long, value_name = "FILE.toml")]
+    pub system: Option<PathBuf>,
+    /// The friction model (scenarios and chain).
     #[arg(long, value_name = "MODEL")]
-    pub model: ModelId,
+    pub model: Option<ModelId>,
+    /// Systems: the bodies whose trajectories, event times and stick phases are measured
+    /// (names or 1-based indices) [default: the first body]; every body's final state is.
+    #[arg(long, value_name = "LIST", value_delimiter = ',')]
+    pub bodies: Vec<String>,
     /// event, regularized or naive.
     #[arg(long, value_name = "event|regularized|naive", default_value = "event")]
     pub switching: SwitchingKind,
-    /// End time, s [default: the scenario's].
+    /// End time, s [default: the scenario's; 50 for the chain; 20 for a system file].
     #[arg(long, value_name = "T", allow_negative_numbers = true)]
     pub t_end: Option<f64>,
     /// Folder to write into (created if missing).
@@ -45,31 +60,71 @@ pub struct CaseArgs {
 }
 
 impl CaseArgs {
-    /// The study case.
-    pub fn case(&self) -> Result<Case, AppError> {
-        if self.scenario == Scenario::VelocitySweep {
+    /// The study case: a rig, the chain, or a system file.
+    pub fn case(&self) -> Result<Box<dyn StudyCase>, AppError> {
+        let check_t_end = |t_end: f64| {
+            if t_end.is_finite() && t_end > 0.0 {
+                Ok(t_end)
+            } else {
+                Err(AppError::Usage(format!(
+                    "option `t_end` = {t_end} is out of range: allowed (0, inf) s"
+                )))
+            }
+        };
+        let scenario = match self.scenario {
+            Some(Problem::Rig(s)) => s,
+            _ => {
+                let described = system_of(self.system.as_deref(), self.model, &self.model_options)?;
+                described.system.validate()?;
+                let default_t_end = if self.system.is_some() {
+                    FILE_T_END
+                } else {
+                    crate::commands::system::CHAIN_T_END
+                };
+                let bodies = if self.bodies.is_empty() {
+                    vec![0]
+                } else {
+                    chosen_bodies(&described.system, &self.bodies)?
+                };
+                return Ok(Box::new(SystemCase {
+                    name: described.name,
+                    system: described.system,
+                    switching: self.switching,
+                    epsilon: described.friction.epsilon,
+                    t_end: check_t_end(self.t_end.unwrap_or(default_t_end))?,
+                    bodies,
+                }));
+            }
+        };
+        if scenario == Scenario::VelocitySweep {
             return Err(AppError::Usage(
                 "the studies integrate trajectories: velocity-sweep has none; use another scenario"
                     .into(),
             ));
         }
-        let (friction, params) = self.model_options.params.resolve_for(Some(self.scenario))?;
-        let t_end = self
-            .t_end
-            .unwrap_or_else(|| self.scenario.default_t_end(&params, &friction));
-        if !(t_end.is_finite() && t_end > 0.0) {
-            return Err(AppError::Usage(format!(
-                "option `t_end` = {t_end} is out of range: allowed (0, inf) s"
-            )));
+        if !self.bodies.is_empty() {
+            return Err(AppError::Usage(
+                "option `--bodies` applies to systems (chain, --system), not to a rig".into(),
+            ));
         }
-        Ok(Case {
-            scenario: self.scenario,
-            model: self.model,
+        let model = self.model.ok_or_else(|| {
+            AppError::Usage(format!(
+                "option `--model` is required for scenario {scenario}: e.g. --model CS"
+            ))
+        })?;
+        let (friction, params) = self.model_options.params.resolve_for(Some(scenario))?;
+        let t_end = check_t_end(
+            self.t_end
+                .unwrap_or_else(|| scenario.default_t_end(&params, &friction)),
+        )?;
+        Ok(Box::new(Case {
+            scenario,
+            model,
             friction,
             params,
             switching: self.switching,
             t_end,
-        })
+        }))
     }
 }
 
@@ -77,16 +132,17 @@ impl CaseArgs {
     /// Sets up the case and the output, runs `study`, and writes its files.
     fn run(
         &self,
-        study: impl FnOnce(&mut Target, &Case) -> Result<(), AppError>,
+        study: impl FnOnce(&mut Target, &dyn StudyCase) -> Result<(), AppError>,
     ) -> Result<(), AppError> {
         let case = self.case()?;
+        let case = case.as_ref();
         let mut files = Artifacts::default();
         let mut target = Target {
             files: &mut files,
             dir: &self.out,
             threads: self.threads,
         };
-        study(&mut target, &case)?;
+        study(&mut target, case)?;
         println!(
             "wrote {} files into {}",
             files.write()?.len(),
@@ -253,7 +309,7 @@ pub struct ConvergeArgs {
 pub fn add_convergence(
     t: &mut Target,
     stem: &str,
-    case: &Case,
+    case: &dyn StudyCase,
     solvers: &[Solver],
     steps: &[f64],
     tols: &[f64],
@@ -286,12 +342,7 @@ pub fn add_convergence(
         }
     }
     let plot = Plot {
-        title: format!(
-            "Convergence: {} with {} ({} switching)",
-            case.scenario,
-            case.model,
-            case.switching.name()
-        ),
+        title: format!("Convergence: {}", case.describe()),
         x_label: "log10 step size h (s), or tolerance".into(),
         y_label: "log10 max error on the time grid".into(),
         series,
@@ -355,7 +406,7 @@ pub struct IndependenceArgs {
 pub fn add_independence(
     t: &mut Target,
     stem: &str,
-    case: &Case,
+    case: &dyn StudyCase,
     solver: Solver,
     r: Refinement,
 ) -> Result<Independence, AppError> {
@@ -427,7 +478,7 @@ pub fn add_independence(
             points: xs
                 .iter()
                 .enumerate()
-                .map(|(i, &x)| (case.t_end * i as f64 / (xs.len().max(2) - 1) as f64, x))
+                .map(|(i, &x)| (case.t_end() * i as f64 / (xs.len().max(2) - 1) as f64, x))
                 .collect(),
             color,
             width: 2,
@@ -435,9 +486,8 @@ pub fn add_independence(
         .collect();
     let plot = Plot {
         title: format!(
-            "Independence: {} with {}: {}",
-            case.scenario,
-            case.model,
+            "Independence: {}: {}",
+            case.describe(),
             if s.independent {
                 "independent"
             } else {
@@ -516,7 +566,7 @@ pub struct WorkPrecisionArgs {
 pub fn add_work_precision(
     t: &mut Target,
     stem: &str,
-    case: &Case,
+    case: &dyn StudyCase,
     solvers: &[Solver],
     steps: &[f64],
     tols: &[f64],
@@ -548,15 +598,10 @@ pub fn add_work_precision(
     let timing_csv = dir.join(format!("{stem}-timing.csv"));
     t.files.add(timing_csv.clone(), timing.to_csv(&timing_csv)?);
     t.files.add_json(dir.join(format!("{stem}.json")), &w)?;
-    let dims = |r: &StudyRun| r.stats.rhs_evals as f64 + r.stats.jacobian_evals as f64 * 3.0;
+    let dims = |r: &StudyRun| r.work as f64;
     let plot = Plot {
-        title: format!(
-            "Work-precision: {} with {} ({} switching)",
-            case.scenario,
-            case.model,
-            case.switching.name()
-        ),
-        x_label: "log10 work (f evaluations + n per Jacobian)".into(),
+        title: format!("Work-precision: {}", case.describe()),
+        x_label: "log10 work (f evaluations + dim per Jacobian)".into(),
         y_label: "log10 max error on the time grid".into(),
         series: per_solver_series(&w.runs, dims, |r| r.errors.grid_max),
         legend: Corner::UpperRight,
@@ -624,7 +669,7 @@ pub struct StiffnessArgs {
 pub fn add_stiffness(
     t: &mut Target,
     stem: &str,
-    case: &Case,
+    case: &dyn StudyCase,
     sweep: studies::Sweep,
     solvers: &[Solver],
     steps: &[f64],
@@ -700,12 +745,7 @@ pub fn add_stiffness(
             label: Some(solver.name().into()),
             points: log_points(s.points.iter().filter_map(|p| {
                 let c = p.costs.iter().find(|c| c.solver == solver.name())?;
-                c.resolution.map(|_| {
-                    (
-                        p.value,
-                        (c.stats.rhs_evals + 3 * c.stats.jacobian_evals) as f64,
-                    )
-                })
+                c.resolution.map(|_| (p.value, c.work as f64))
             })),
             color,
             width: 2,
@@ -714,11 +754,11 @@ pub fn add_stiffness(
         .collect();
     let plot = Plot {
         title: format!(
-            "Cost to reach error {target:e} against {parameter}: {} with {}",
-            case.scenario, case.model
+            "Cost to reach error {target:e} against {parameter}: {}",
+            case.describe()
         ),
         x_label: format!("log10 {parameter}"),
-        y_label: "log10 work (f evaluations + n per Jacobian)".into(),
+        y_label: "log10 work (f evaluations + dim per Jacobian)".into(),
         series,
         legend: Corner::UpperRight,
     };

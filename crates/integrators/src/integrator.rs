@@ -72,9 +72,9 @@ impl<'a> Integrator<'a> {
         watch.start(problem, modes, options.t0, y0, &[]);
         let mut solution = Solution::new(stepper.name(), problem.dim(), modes.len());
         let mut grid_next = 0;
-        match &options.output {
-            Output::Steps => solution.push(options.t0, y0, modes),
-            Output::Grid(times) => {
+        match options.output.grid() {
+            None => solution.push(options.t0, y0, modes),
+            Some(times) => {
                 while grid_next < times.len() && times[grid_next] <= options.t0 {
                     if times[grid_next] == options.t0 {
                         solution.push(options.t0, y0, modes);
@@ -110,7 +110,7 @@ impl<'a> Integrator<'a> {
 
     /// Records the grid points in `(t_prev, t]` from the dense output of the last step.
     fn record_grid_until(&mut self, t: f64, inclusive: bool) {
-        let Output::Grid(times) = &self.options.output else {
+        let Some(times) = self.options.output.grid() else {
             return;
         };
         while self.grid_next < times.len() {
@@ -148,7 +148,7 @@ impl<'a> Integrator<'a> {
         let Some(found) = found else {
             match self.options.output {
                 Output::Steps => self.solution.push(t1, self.stepper.y(), &self.modes),
-                Output::Grid(_) => self.record_grid_until(t1, true),
+                _ => self.record_grid_until(t1, true),
             }
             if t1 >= t_end {
                 self.done = true;
@@ -200,7 +200,9 @@ impl<'a> Integrator<'a> {
             switches,
         });
         check_finite(&y, t, 0.0, "state after an event action")?;
-        self.solution.push(t, &y, &self.modes);
+        if self.options.output.records_events() {
+            self.solution.push(t, &y, &self.modes);
+        }
         let stop = control == Control::Stop;
         if stop || t >= self.options.t_end {
             self.done = true;

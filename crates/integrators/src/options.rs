@@ -58,6 +58,24 @@ pub enum Output {
     Steps,
     /// These times (increasing), by dense output, and both sides of every event.
     Grid(Vec<f64>),
+    /// These times (increasing), by dense output, and nothing else: for large systems, whose
+    /// events are read from the event records rather than from recorded states.
+    GridOnly(Vec<f64>),
+}
+
+impl Output {
+    /// The output times, for the grid outputs.
+    pub fn grid(&self) -> Option<&[f64]> {
+        match self {
+            Output::Steps => None,
+            Output::Grid(t) | Output::GridOnly(t) => Some(t),
+        }
+    }
+
+    /// Whether both sides of every event are recorded.
+    pub fn records_events(&self) -> bool {
+        !matches!(self, Output::GridOnly(_))
+    }
 }
 
 /// Options of one integration.

@@ -28,6 +28,14 @@ pub struct Stats {
 }
 
 impl Stats {
+    /// The work of a run in right-hand-side evaluations: `rhs_evals + dim·jacobian_evals`
+    /// for a problem of `dim` unknowns (a finite-difference Jacobian costs `dim` evaluations,
+    /// and an analytic one is counted at the same price so that solvers compare on one scale).
+    /// The one definition of work that the studies use.
+    pub fn work(&self, dim: usize) -> usize {
+        self.rhs_evals + dim * self.jacobian_evals
+    }
+
     /// All rejected steps, whatever the cause.
     pub fn rejected(&self) -> usize {
         self.rejected_error + self.rejected_newton

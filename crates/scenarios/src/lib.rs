@@ -4,6 +4,7 @@
 //! So far: the two curve rigs of Figures 2–7 ([`curves`]) and the catalogue of those
 //! figures with what the paper says of each ([`figures`]).
 
+pub mod cases;
 pub mod curves;
 pub mod figures;
 pub mod motion;

@@ -2,107 +2,18 @@
 //! explicit/implicit crossover. Every study is a list of independent runs evaluated on
 //! rayon's pool and collected in order, so its results do not depend on the thread count.
 
-use crate::run::{run, Outcome, RunSpec, ScenarioError, SwitchingKind};
-use crate::scenario::Scenario;
-use crate::ScenarioParams;
-use friction_models::{FrictionParams, ModelId, Variant};
+pub use crate::cases::{Case, Measured, Measures, StudyCase, SystemCase, GRID_POINTS};
+use crate::run::{ScenarioError, SwitchingKind};
 use integrators::{Solver, Stats, StepControl};
 use rayon::prelude::*;
 use serde::Serialize;
 
-/// A problem to study: everything of a run but the solver and its step control.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Case {
-    /// The rig.
-    pub scenario: Scenario,
-    /// The friction model.
-    pub model: ModelId,
-    /// Friction parameters.
-    pub friction: FrictionParams,
-    /// Scenario parameters.
-    pub params: ScenarioParams,
-    /// The treatment of v = 0.
-    pub switching: SwitchingKind,
-    /// End time.
-    pub t_end: f64,
-}
-
-/// Points of the common time grid on which trajectories are compared.
-pub const GRID_POINTS: usize = 201;
-
-impl Case {
-    /// The run of this case with `solver` and `step`.
-    pub fn spec(&self, solver: Solver, step: StepControl) -> RunSpec {
-        RunSpec {
-            scenario: self.scenario,
-            model: self.model,
-            variant: Variant::Odd,
-            friction: self.friction,
-            params: self.params,
-            solver,
-            switching: self.switching,
-            step,
-            t_end: Some(self.t_end),
-            output_points: GRID_POINTS,
-        }
-    }
-}
-
-/// What a run is judged by.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct Measures {
-    /// (x, v) at the end.
-    pub final_state: [f64; 2],
-    /// (x, v) on the common grid.
-    pub grid: Vec<[f64; 2]>,
-    /// Times of the events.
-    pub event_times: Vec<f64>,
-    /// Durations of the completed stick phases.
-    pub stick_durations: Vec<f64>,
-    /// Largest |friction| on the grid.
-    pub peak_friction: f64,
-}
-
-impl Measures {
-    /// The measures of an outcome. The grid holds `GRID_POINTS` evenly spaced rows, and
-    /// the rows at events are skipped.
-    pub fn of(o: &Outcome) -> Measures {
-        let event_times: Vec<f64> = o.events.iter().map(|e| e.t).collect();
-        let mut stick_durations = Vec::new();
-        let mut stick_start = None;
-        for e in &o.events {
-            match (e.kind.as_str(), stick_start) {
-                ("stick", _) => stick_start = Some(e.t),
-                (_, Some(s)) => {
-                    stick_durations.push(e.t - s);
-                    stick_start = None;
-                }
-                _ => {}
-            }
-        }
-        let grid: Vec<[f64; 2]> = o
-            .rows
-            .iter()
-            .filter(|r| !event_times.contains(&r.t))
-            .map(|r| [r.x, r.v])
-            .collect();
-        let last = o.last().map_or([f64::NAN; 2], |r| [r.x, r.v]);
-        Measures {
-            final_state: last,
-            grid,
-            event_times,
-            stick_durations,
-            peak_friction: o.rows.iter().map(|r| r.friction.abs()).fold(0.0, f64::max),
-        }
-    }
-}
-
 /// Errors of a run against the reference.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Errors {
-    /// max(|Δx|, |Δv|) at the end.
+    /// max |Δx|, |Δv| over every body at the end.
     pub final_state: f64,
-    /// max over the common grid of max(|Δx|, |Δv|).
+    /// max |Δx|, |Δv| of the measured bodies over the common grid.
     pub grid_max: f64,
     /// max |Δt| over the events (NaN when the numbers of events differ).
     pub event_times: f64,
@@ -123,18 +34,17 @@ fn max_diff(a: &[f64], b: &[f64]) -> f64 {
 impl Errors {
     /// The errors of `m` against `reference`.
     pub fn between(m: &Measures, reference: &Measures) -> Errors {
-        let pair = |a: &[f64; 2], b: &[f64; 2]| (a[0] - b[0]).abs().max((a[1] - b[1]).abs());
         let grid_max = if m.grid.len() == reference.grid.len() {
             m.grid
                 .iter()
                 .zip(&reference.grid)
-                .map(|(a, b)| pair(a, b))
+                .map(|(a, b)| max_diff(a, b))
                 .fold(0.0, f64::max)
         } else {
             f64::NAN
         };
         Errors {
-            final_state: pair(&m.final_state, &reference.final_state),
+            final_state: max_diff(&m.final_state, &reference.final_state),
             grid_max,
             event_times: max_diff(&m.event_times, &reference.event_times),
             stick_durations: max_diff(&m.stick_durations, &reference.stick_durations),
@@ -156,70 +66,16 @@ pub enum Reference {
     },
 }
 
-/// An exact motion t ↦ (x, v).
-type ExactMotion = Box<dyn Fn(f64) -> (f64, f64)>;
-
-/// The exact solution of the case, where one exists: the block pushed from rest against
-/// viscous friction (v = F/μ_v·(1 − e^(−μ_v t/m))) or against a constant Coulomb level
-/// (v = (F − F_c)·t/m once it slides).
-fn closed_form(case: &Case) -> Option<(String, Measures)> {
-    if case.scenario != Scenario::PaperBlock || case.params.x0 != 0.0 || case.params.v0 != 0.0 {
-        return None;
-    }
-    let (m, f, p) = (case.params.m, case.params.f_ex, &case.friction);
-    let (name, motion): (&str, ExactMotion) = match case.model {
-        ModelId::Viscous => {
-            let tau = m / p.mu_v;
-            let vt = f / p.mu_v;
-            (
-                "x = v_t(t - tau(1 - e^(-t/tau))), v = v_t(1 - e^(-t/tau))",
-                Box::new(move |t| {
-                    (
-                        vt * (t - tau * (1.0 - (-t / tau).exp())),
-                        vt * (1.0 - (-t / tau).exp()),
-                    )
-                }),
-            )
-        }
-        ModelId::Coulomb | ModelId::Static if f > p.f_s.max(p.f_c) => {
-            let a = (f - p.f_c) / m;
-            (
-                "x = a t^2/2, v = a t, a = (F_ex - F_c)/m",
-                Box::new(move |t| (0.5 * a * t * t, a * t)),
-            )
-        }
-        _ => return None,
-    };
-    let grid: Vec<[f64; 2]> = (0..GRID_POINTS)
-        .map(|i| {
-            let (x, v) = motion(case.t_end * i as f64 / (GRID_POINTS - 1) as f64);
-            [x, v]
-        })
-        .collect();
-    let (x, v) = motion(case.t_end);
-    let peak = match case.model {
-        ModelId::Viscous => f * (1.0 - (-case.t_end * p.mu_v / m).exp()),
-        _ => p.f_c,
-    };
-    Some((
-        name.to_string(),
-        Measures {
-            final_state: [x, v],
-            grid,
-            event_times: vec![],
-            stick_durations: vec![],
-            peak_friction: peak,
-        },
-    ))
-}
-
 /// The reference of a case for a study of `studied` solvers: the closed form where one
 /// exists, otherwise a run at rtol = atol = 1e-13 of Dormand–Prince (or, when Dormand–Prince
-/// itself is studied, of diffsol's Tsitouras 5(4)), with event switching for a naive study (the
-/// exact solution of the discontinuous problem it approximates) and the study's own
-/// switching otherwise.
-pub fn reference(case: &Case, studied: &[Solver]) -> Result<(Reference, Measures), ScenarioError> {
-    if let Some((name, m)) = closed_form(case) {
+/// itself is studied, of RK4 at h = 1e-5), with event switching for a naive study (the exact
+/// solution of the discontinuous problem it approximates) and the study's own switching
+/// otherwise.
+pub fn reference(
+    case: &dyn StudyCase,
+    studied: &[Solver],
+) -> Result<(Reference, Measures), ScenarioError> {
+    if let Some((name, m)) = case.closed_form() {
         return Ok((Reference::ClosedForm(name), m));
     }
     let (solver, step) = if studied.contains(&Solver::Dopri5) {
@@ -236,15 +92,11 @@ pub fn reference(case: &Case, studied: &[Solver]) -> Result<(Reference, Measures
     };
     // Naive stepping approximates the discontinuous problem, whose exact solution event
     // switching computes; a regularized problem is its own (smooth) ODE.
-    let switching = match case.switching {
+    let switching = match case.switching() {
         SwitchingKind::Naive => SwitchingKind::Event,
         other => other,
     };
-    let exact = Case {
-        switching,
-        ..case.clone()
-    };
-    let o = run(&exact.spec(solver, step), &mut |_| {})?;
+    let o = case.with_switching(switching).measure(solver, step)?;
     if let Some(error) = o.error {
         return Err(ScenarioError::Solver {
             what: format!("the reference run ({})", solver.name()),
@@ -256,7 +108,7 @@ pub fn reference(case: &Case, studied: &[Solver]) -> Result<(Reference, Measures
             solver: solver.name(),
             step: format!("{step:?}"),
         },
-        Measures::of(&o),
+        o.measures,
     ))
 }
 
@@ -274,6 +126,8 @@ pub struct StudyRun {
     pub measures: Measures,
     /// Work done.
     pub stats: Stats,
+    /// Work in right-hand-side evaluations ([`Stats::work`] at the problem's dimension).
+    pub work: usize,
     /// The solver's error, if it failed.
     pub failure: Option<String>,
     /// Wall time of the run, s (not deterministic: kept out of the study's main files).
@@ -284,7 +138,7 @@ pub struct StudyRun {
 /// Runs `case` with each (solver, step) in parallel, and computes the reference alongside
 /// (`rayon::join`), then measures each run against it.
 pub fn run_against_reference(
-    case: &Case,
+    case: &dyn StudyCase,
     studied: &[Solver],
     jobs: &[(Solver, StepControl)],
     progress: &(dyn Fn() + Sync),
@@ -303,15 +157,16 @@ pub fn run_against_reference(
 
 /// Runs `case` with each (solver, step) in parallel (errors still to be measured).
 pub fn run_all(
-    case: &Case,
+    case: &dyn StudyCase,
     jobs: &[(Solver, StepControl)],
     progress: &(dyn Fn() + Sync),
 ) -> Result<Vec<StudyRun>, ScenarioError> {
+    let dim = case.dim()?;
     jobs.par_iter()
         .map(|&(solver, step)| {
-            let o = run(&case.spec(solver, step), &mut |_| {})?;
+            let o = case.measure(solver, step)?;
             progress();
-            let measures = Measures::of(&o);
+            let measures = o.measures;
             Ok(StudyRun {
                 solver: solver.name(),
                 resolution: match step {
@@ -326,6 +181,7 @@ pub fn run_all(
                 },
                 measures,
                 stats: o.stats,
+                work: o.stats.work(dim),
                 failure: o.error.map(|e| e.to_string()),
                 wall_time_s: o.wall_time_s,
             })
@@ -469,7 +325,7 @@ pub struct Convergence {
 /// Runs each solver over the step sizes (or tolerances) against the reference and reports
 /// the observed orders of every error measure.
 pub fn convergence(
-    case: &Case,
+    case: &dyn StudyCase,
     solvers: &[Solver],
     step_sizes: &[f64],
     tolerances: &[f64],
@@ -582,7 +438,7 @@ fn check(name: String, values: Vec<f64>, ratio: f64, tolerance: f64) -> OutputCh
 /// final state, the first events, the stick durations and the peak friction are independent
 /// of the resolution to the relative `tolerance`.
 pub fn independence(
-    case: &Case,
+    case: &dyn StudyCase,
     solver: Solver,
     start: f64,
     ratio: f64,
@@ -682,7 +538,7 @@ pub struct WorkPrecision {
 /// Runs every solver over its step sizes or tolerances, `repeats` times each for the
 /// median wall time.
 pub fn work_precision(
-    case: &Case,
+    case: &dyn StudyCase,
     solvers: &[Solver],
     step_sizes: &[f64],
     tolerances: &[f64],
@@ -706,7 +562,7 @@ pub fn work_precision(
             let mut times = vec![first.wall_time_s];
             for _ in 1..repeats.max(1) {
                 times.push(
-                    run(&case.spec(solver, step), &mut |_| {})
+                    case.measure(solver, step)
                         .map(|o| o.wall_time_s)
                         .unwrap_or(f64::NAN),
                 );
@@ -733,8 +589,10 @@ pub struct Cost {
     pub resolution: Option<f64>,
     /// Its error.
     pub error: f64,
-    /// Its work.
+    /// Its statistics.
     pub stats: Stats,
+    /// Its work ([`Stats::work`]).
+    pub work: usize,
 }
 
 /// The costs at one value of the stiffness parameter.
@@ -744,8 +602,8 @@ pub struct StiffnessPoint {
     pub value: f64,
     /// One cost per solver.
     pub costs: Vec<Cost>,
-    /// Whether the cheapest implicit solver beats the cheapest explicit one in
-    /// right-hand-side evaluations plus n per Jacobian.
+    /// Whether the cheapest implicit solver beats the cheapest explicit one in work
+    /// ([`Stats::work`]).
     pub implicit_wins: bool,
 }
 
@@ -762,11 +620,6 @@ pub struct Stiffness {
     pub crossover: Option<f64>,
 }
 
-/// Work measure of a run: right-hand-side evaluations plus `dim` per Jacobian evaluation.
-fn work(s: &Stats, dim: usize) -> usize {
-    s.rhs_evals + dim * s.jacobian_evals
-}
-
 /// What a stiffness study sweeps, and the error each solver must reach.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sweep<'a> {
@@ -781,14 +634,13 @@ pub struct Sweep<'a> {
 /// Sweeps the parameter over its values and finds, for each solver, the cheapest
 /// resolution in `step_sizes` (or `tolerances`) whose grid error meets the target.
 pub fn stiffness(
-    case: &Case,
+    case: &dyn StudyCase,
     sweep: Sweep,
     solvers: &[Solver],
     step_sizes: &[f64],
     tolerances: &[f64],
     progress: &(dyn Fn() + Sync),
 ) -> Result<Stiffness, ScenarioError> {
-    use friction_models::Parameters;
     let Sweep {
         parameter,
         values,
@@ -796,12 +648,7 @@ pub fn stiffness(
     } = sweep;
     let mut points = Vec::new();
     for &value in values {
-        let mut c = case.clone();
-        if FrictionParams::spec(parameter).is_some() {
-            c.friction.set(parameter, value)?;
-        } else {
-            c.params.set(parameter, value)?;
-        }
+        let c = case.with_parameter(parameter, value)?;
         let jobs: Vec<(Solver, StepControl)> = solvers
             .iter()
             .flat_map(|&s| {
@@ -810,8 +657,7 @@ pub fn stiffness(
                     .map(move |st| (s, st))
             })
             .collect();
-        let (_, _, runs) = run_against_reference(&c, solvers, &jobs, progress)?;
-        let dim = 2 + c.model.build(Variant::Odd, &c.friction)?.n_states();
+        let (_, _, runs) = run_against_reference(c.as_ref(), solvers, &jobs, progress)?;
         let costs: Vec<Cost> = solvers
             .iter()
             .map(|&s| {
@@ -820,13 +666,14 @@ pub fn stiffness(
                     .filter(|r| {
                         r.solver == s.name() && r.failure.is_none() && r.errors.grid_max <= target
                     })
-                    .min_by_key(|r| work(&r.stats, dim));
+                    .min_by_key(|r| r.work);
                 Cost {
                     solver: s.name(),
                     implicit: s.is_implicit(),
                     resolution: met.map(|r| r.resolution),
                     error: met.map_or(f64::NAN, |r| r.errors.grid_max),
                     stats: met.map_or(Stats::default(), |r| r.stats),
+                    work: met.map_or(0, |r| r.work),
                 }
             })
             .collect();
@@ -834,7 +681,7 @@ pub fn stiffness(
             costs
                 .iter()
                 .filter(|c| c.implicit == implicit && c.resolution.is_some())
-                .map(|c| work(&c.stats, dim))
+                .map(|c| c.work)
                 .min()
         };
         let implicit_wins = match (best(true), best(false)) {

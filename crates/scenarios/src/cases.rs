@@ -1,0 +1,389 @@
+//! What a study runs: any problem that can be integrated again and again with different
+//! solvers and steps and measured the same way. A rig ([`Case`]), a system of many bodies
+//! ([`SystemCase`]), or a user's own problem through the public [`StudyCase`] trait.
+
+use crate::run::{run, Outcome, RunSpec, ScenarioError, SwitchingKind};
+use crate::scenario::Scenario;
+use crate::ScenarioParams;
+use friction_models::{FrictionParams, ModelId, Parameters, Variant};
+use friction_systems::{simulate, Run, System, STICK};
+use integrators::{Options, Output, Solver, SolverError, Stats, StepControl};
+use serde::Serialize;
+
+/// Points of the common time grid on which trajectories are compared.
+pub const GRID_POINTS: usize = 201;
+
+/// What a run is judged by.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Measures {
+    /// (x, v) of every body at the end, body after body.
+    pub final_state: Vec<f64>,
+    /// (x, v) of the measured bodies on the common grid, one row per grid point.
+    pub grid: Vec<Vec<f64>>,
+    /// Times of the measured bodies' events, body after body.
+    pub event_times: Vec<f64>,
+    /// Durations of the measured bodies' completed stick phases, body after body.
+    pub stick_durations: Vec<f64>,
+    /// Largest |friction| of the measured bodies on the grid.
+    pub peak_friction: f64,
+}
+
+/// One run of a case, measured.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Measured {
+    /// The measures.
+    pub measures: Measures,
+    /// Work done.
+    pub stats: Stats,
+    /// The solver's error, if it failed (the measures are of what it computed before).
+    pub error: Option<SolverError>,
+    /// Wall time of the integration, s.
+    pub wall_time_s: f64,
+}
+
+/// A problem a study integrates with many solvers and steps.
+pub trait StudyCase: Sync + Send {
+    /// What it is, for titles: "belt with CS (event switching)".
+    fn describe(&self) -> String;
+
+    /// End time, s.
+    fn t_end(&self) -> f64;
+
+    /// The treatment of v = 0.
+    fn switching(&self) -> SwitchingKind;
+
+    /// Number of unknowns the solvers integrate (the `dim` of [`Stats::work`]).
+    fn dim(&self) -> Result<usize, ScenarioError>;
+
+    /// The same problem under another treatment of v = 0 (for a reference run).
+    fn with_switching(&self, switching: SwitchingKind) -> Box<dyn StudyCase>;
+
+    /// The same problem with parameter `name` set to `value` (for a stiffness sweep).
+    fn with_parameter(&self, name: &str, value: f64) -> Result<Box<dyn StudyCase>, ScenarioError>;
+
+    /// One run with `solver` and `step`, measured on the common grid.
+    fn measure(&self, solver: Solver, step: StepControl) -> Result<Measured, ScenarioError>;
+
+    /// The exact solution's measures, where one is known, with its formula.
+    fn closed_form(&self) -> Option<(String, Measures)> {
+        None
+    }
+}
+
+/// Stick durations from a sequence of (time, mode after) of one contact.
+fn stick_durations(events: impl Iterator<Item = (f64, bool)>, out: &mut Vec<f64>) {
+    let mut start = None;
+    for (t, sticks) in events {
+        match (sticks, start) {
+            (true, _) => start = Some(t),
+            (false, Some(s)) => {
+                out.push(t - s);
+                start = None;
+            }
+            _ => {}
+        }
+    }
+}
+
+impl Measures {
+    /// The measures of a rig's outcome; the rows at events are skipped, so the grid holds
+    /// the evenly spaced rows only.
+    pub fn of(o: &Outcome) -> Measures {
+        let event_times: Vec<f64> = o.events.iter().map(|e| e.t).collect();
+        let mut sticks = Vec::new();
+        stick_durations(
+            o.events.iter().map(|e| (e.t, e.kind == "stick")),
+            &mut sticks,
+        );
+        let grid = o
+            .rows
+            .iter()
+            .filter(|r| !event_times.contains(&r.t))
+            .map(|r| vec![r.x, r.v])
+            .collect();
+        Measures {
+            final_state: o.last().map_or(vec![f64::NAN; 2], |r| vec![r.x, r.v]),
+            grid,
+            event_times,
+            stick_durations: sticks,
+            peak_friction: o.rows.iter().map(|r| r.friction.abs()).fold(0.0, f64::max),
+        }
+    }
+
+    /// The measures of a system's run: every body's final state, and the grid, events and
+    /// stick phases of `bodies`.
+    pub fn of_run(run: &Run, bodies: &[usize]) -> Measures {
+        let n = run.problem.system.bodies.len();
+        let last = run.solution.len().checked_sub(1);
+        let final_state = match last {
+            Some(k) => (0..n)
+                .flat_map(|i| {
+                    let b = run.body_at(i, k);
+                    [b.x, b.v]
+                })
+                .collect(),
+            None => vec![f64::NAN; 2 * n],
+        };
+        let mut peak: f64 = 0.0;
+        let grid = (0..run.solution.len())
+            .map(|k| {
+                bodies
+                    .iter()
+                    .flat_map(|&i| {
+                        let b = run.body_at(i, k);
+                        peak = peak.max(b.friction.abs());
+                        [b.x, b.v]
+                    })
+                    .collect()
+            })
+            .collect();
+        let events = run.contact_events();
+        let mut event_times = Vec::new();
+        let mut sticks = Vec::new();
+        for &i in bodies {
+            let mine = || events.iter().filter(move |e| e.body == i);
+            event_times.extend(mine().map(|e| e.t));
+            stick_durations(mine().map(|e| (e.t, e.to == STICK)), &mut sticks);
+        }
+        Measures {
+            final_state,
+            grid,
+            event_times,
+            stick_durations: sticks,
+            peak_friction: peak,
+        }
+    }
+}
+
+/// A rig to study: everything of a run but the solver and its step control.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Case {
+    /// The rig.
+    pub scenario: Scenario,
+    /// The friction model.
+    pub model: ModelId,
+    /// Friction parameters.
+    pub friction: FrictionParams,
+    /// Scenario parameters.
+    pub params: ScenarioParams,
+    /// The treatment of v = 0.
+    pub switching: SwitchingKind,
+    /// End time.
+    pub t_end: f64,
+}
+
+impl Case {
+    /// The run of this case with `solver` and `step`.
+    pub fn spec(&self, solver: Solver, step: StepControl) -> RunSpec {
+        RunSpec {
+            scenario: self.scenario,
+            model: self.model,
+            variant: Variant::Odd,
+            friction: self.friction,
+            params: self.params,
+            solver,
+            switching: self.switching,
+            step,
+            t_end: Some(self.t_end),
+            output_points: GRID_POINTS,
+        }
+    }
+}
+
+/// An exact motion t ↦ (x, v).
+type ExactMotion = Box<dyn Fn(f64) -> (f64, f64)>;
+
+impl StudyCase for Case {
+    fn describe(&self) -> String {
+        format!(
+            "{} with {} ({} switching)",
+            self.scenario,
+            self.model,
+            self.switching.name()
+        )
+    }
+
+    fn t_end(&self) -> f64 {
+        self.t_end
+    }
+
+    fn switching(&self) -> SwitchingKind {
+        self.switching
+    }
+
+    /// The body's x, v and internal state, and the three energy accumulators.
+    fn dim(&self) -> Result<usize, ScenarioError> {
+        let model = self.model.build(Variant::Odd, &self.friction)?;
+        Ok(if self.scenario.has_body() {
+            2 + model.n_states() + 3
+        } else {
+            model.n_states() + 2
+        })
+    }
+
+    fn with_switching(&self, switching: SwitchingKind) -> Box<dyn StudyCase> {
+        Box::new(Case {
+            switching,
+            ..self.clone()
+        })
+    }
+
+    fn with_parameter(&self, name: &str, value: f64) -> Result<Box<dyn StudyCase>, ScenarioError> {
+        let mut c = self.clone();
+        if FrictionParams::spec(name).is_some() {
+            c.friction.set(name, value)?;
+        } else {
+            c.params.set(name, value)?;
+        }
+        Ok(Box::new(c))
+    }
+
+    fn measure(&self, solver: Solver, step: StepControl) -> Result<Measured, ScenarioError> {
+        let o = run(&self.spec(solver, step), &mut |_| {})?;
+        Ok(Measured {
+            measures: Measures::of(&o),
+            stats: o.stats,
+            error: o.error,
+            wall_time_s: o.wall_time_s,
+        })
+    }
+
+    /// The block pushed from rest against viscous friction (v = F/μ_v·(1 − e^(−μ_v t/m))) or
+    /// against a constant Coulomb level (v = (F − F_c)·t/m once it slides).
+    fn closed_form(&self) -> Option<(String, Measures)> {
+        if self.scenario != Scenario::PaperBlock || self.params.x0 != 0.0 || self.params.v0 != 0.0 {
+            return None;
+        }
+        let (m, f, p) = (self.params.m, self.params.f_ex, &self.friction);
+        let (name, motion): (&str, ExactMotion) = match self.model {
+            ModelId::Viscous => {
+                let tau = m / p.mu_v;
+                let vt = f / p.mu_v;
+                (
+                    "x = v_t(t - tau(1 - e^(-t/tau))), v = v_t(1 - e^(-t/tau))",
+                    Box::new(move |t| {
+                        (
+                            vt * (t - tau * (1.0 - (-t / tau).exp())),
+                            vt * (1.0 - (-t / tau).exp()),
+                        )
+                    }),
+                )
+            }
+            ModelId::Coulomb | ModelId::Static if f > p.f_s.max(p.f_c) => {
+                let a = (f - p.f_c) / m;
+                (
+                    "x = a t^2/2, v = a t, a = (F_ex - F_c)/m",
+                    Box::new(move |t| (0.5 * a * t * t, a * t)),
+                )
+            }
+            _ => return None,
+        };
+        let grid = (0..GRID_POINTS)
+            .map(|i| {
+                let (x, v) = motion(self.t_end * i as f64 / (GRID_POINTS - 1) as f64);
+                vec![x, v]
+            })
+            .collect();
+        let (x, v) = motion(self.t_end);
+        let peak = match self.model {
+            ModelId::Viscous => f * (1.0 - (-self.t_end * p.mu_v / m).exp()),
+            _ => p.f_c,
+        };
+        Some((
+            name.to_string(),
+            Measures {
+                final_state: vec![x, v],
+                grid,
+                event_times: vec![],
+                stick_durations: vec![],
+                peak_friction: peak,
+            },
+        ))
+    }
+}
+
+/// A system of many bodies to study: every body's final state is compared, and the grid,
+/// the events and the stick phases of the chosen `bodies`.
+#[derive(Clone, Debug)]
+pub struct SystemCase {
+    /// What it is, for titles.
+    pub name: String,
+    /// The system.
+    pub system: System,
+    /// The treatment of v = 0.
+    pub switching: SwitchingKind,
+    /// The regularisation width ε of `switching = regularized`, m/s.
+    pub epsilon: f64,
+    /// End time, s.
+    pub t_end: f64,
+    /// The bodies whose trajectories, events and stick phases are measured.
+    pub bodies: Vec<usize>,
+}
+
+impl StudyCase for SystemCase {
+    fn describe(&self) -> String {
+        format!("{} ({} switching)", self.name, self.switching.name())
+    }
+
+    fn t_end(&self) -> f64 {
+        self.t_end
+    }
+
+    fn switching(&self) -> SwitchingKind {
+        self.switching
+    }
+
+    fn dim(&self) -> Result<usize, ScenarioError> {
+        self.system.validate()?;
+        Ok(friction_systems::Layout::of(&self.system).dim())
+    }
+
+    fn with_switching(&self, switching: SwitchingKind) -> Box<dyn StudyCase> {
+        Box::new(SystemCase {
+            switching,
+            ..self.clone()
+        })
+    }
+
+    /// Only the regularisation width `epsilon` can be swept on a system (each contact has its
+    /// own parameters).
+    fn with_parameter(&self, name: &str, value: f64) -> Result<Box<dyn StudyCase>, ScenarioError> {
+        if name != "epsilon" {
+            return Err(ScenarioError::Invalid(format!(
+                "parameter `{name}` cannot be swept on a system (each contact has its own \
+                 parameters): allowed epsilon"
+            )));
+        }
+        FrictionParams::paper().set(name, value)?;
+        Ok(Box::new(SystemCase {
+            epsilon: value,
+            ..self.clone()
+        }))
+    }
+
+    fn measure(&self, solver: Solver, step: StepControl) -> Result<Measured, ScenarioError> {
+        let mut friction = FrictionParams::paper();
+        friction.epsilon = self.epsilon;
+        let grid = (0..GRID_POINTS)
+            .map(|i| self.t_end * i as f64 / (GRID_POINTS - 1) as f64)
+            .collect();
+        let options = Options {
+            step,
+            output: Output::GridOnly(grid),
+            ..Options::adaptive(0.0, self.t_end, 1e-8, 1e-10)
+        };
+        let run = simulate(
+            &self.system,
+            self.switching.with(&friction),
+            solver,
+            options,
+            &mut |_| {},
+        )?;
+        Ok(Measured {
+            measures: Measures::of_run(&run, &self.bodies),
+            stats: run.solution.stats,
+            error: run.error,
+            wall_time_s: run.wall_time_s,
+        })
+    }
+}

@@ -1,0 +1,415 @@
+//! `friction-lab simulate chain` and `friction-lab simulate --system FILE.toml`: one system of
+//! many bodies (`shared/spec/systems.md`), written as `final.csv`, `events.csv`, the tidy
+//! `trajectory.csv` of chosen bodies, `summary.json` and two figures (space–time picture of
+//! the contact modes; velocities of chosen bodies).
+
+use crate::artifacts::Artifacts;
+use crate::commands::curve::used_parameters;
+use crate::commands::simulate::{progress_bar, SimulateArgs};
+use crate::error::AppError;
+use crate::options::ModelOptions;
+use crate::output::{Cell, Table};
+use crate::plot::{self, Corner, Plot, Raster, Series, PALETTE};
+use friction_models::{FrictionModel, FrictionParams, ModelId};
+use friction_systems::chain::{ChainParams, CHAIN_PARAMETERS};
+use friction_systems::{mode_name, EnergyBalance, Run, System, SLIP_NEGATIVE, SLIP_POSITIVE};
+use integrators::{Options, Output};
+use serde::Serialize;
+use std::collections::BTreeMap;
+use std::path::Path;
+use std::sync::Arc;
+
+/// Bodies written to the trajectory when none are chosen: all of a chain this long or shorter,
+/// otherwise this many evenly spaced.
+pub const DEFAULT_TRAJECTORY_BODIES: usize = 20;
+/// The largest number of recorded numbers (points × unknowns) by default: about 80 MB.
+pub const RECORD_BUDGET: usize = 10_000_000;
+/// Default end time of the chain, s.
+pub const CHAIN_T_END: f64 = 50.0;
+/// Default end time of a system file, s.
+pub const FILE_T_END: f64 = 20.0;
+/// Most columns and rows of the space–time picture.
+const RASTER: (usize, usize) = (300, 200);
+
+/// The default number of output points for a system of `dim` unknowns: 2001, fewer for a
+/// large system so that the recorded states stay within [`RECORD_BUDGET`] numbers.
+pub fn default_points(dim: usize) -> usize {
+    (RECORD_BUDGET / dim.max(1)).clamp(101, 2001)
+}
+
+/// What the arguments describe: the system, its name, the parameters the summary reports, and
+/// the friction parameters (whose `epsilon` the regularised treatment reads).
+pub struct Described {
+    /// The system.
+    pub system: System,
+    /// Its name, for titles.
+    pub name: String,
+    /// The parameters the summary reports.
+    pub parameters: BTreeMap<String, f64>,
+    /// The friction parameters of the command line.
+    pub friction: FrictionParams,
+}
+
+/// The system of `--system FILE` or, without one, the chain with `model` and the parameters
+/// of `options` (chain parameters by `--set` too).
+pub fn system_of(
+    file: Option<&Path>,
+    model: Option<ModelId>,
+    options: &ModelOptions,
+) -> Result<Described, AppError> {
+    if let Some(path) = file {
+        if model.is_some() {
+            return Err(AppError::Usage(
+                "option `--model` does not apply to --system: each [[contact]] of the file \
+                 names its model"
+                    .into(),
+            ));
+        }
+        return Ok(Described {
+            system: friction_systems::file::read(path)?,
+            name: path.display().to_string(),
+            parameters: BTreeMap::new(),
+            friction: options.params.resolve()?,
+        });
+    }
+    let model = model.ok_or_else(|| {
+        AppError::Usage("option `--model` is required for the chain: e.g. --model coulomb".into())
+    })?;
+    let mut chain = ChainParams::default();
+    let mut params = options.params.clone();
+    params.set.clear();
+    for assignment in &options.params.set {
+        let (name, value) = crate::options::parse_assignment(assignment)?;
+        if !chain.set(name, value)? {
+            params.set.push(assignment.clone());
+        }
+    }
+    let friction = params.resolve()?;
+    let variant = options.variant;
+    let system = chain.build(&friction, |p| {
+        model.build(variant, p).map(Arc::<dyn FrictionModel>::from)
+    })?;
+    let mut reported: BTreeMap<String, f64> = used_parameters(model, &friction)
+        .into_iter()
+        .map(|(k, v)| (k.to_string(), v))
+        .collect();
+    for (name, _, _) in CHAIN_PARAMETERS {
+        let value = match name {
+            "n_bodies" => chain.n_bodies as f64,
+            "m" => chain.m,
+            "k_chain" => chain.k_chain,
+            "k_driver" => chain.k_driver,
+            "v_driver" => chain.v_driver,
+            _ => chain.spread,
+        };
+        reported.insert(name.to_string(), value);
+    }
+    Ok(Described {
+        system,
+        name: format!("chain of {} {model}", chain.n_bodies),
+        parameters: reported,
+        friction,
+    })
+}
+
+/// The bodies chosen with `--bodies` (names or 1-based indices), or the default choice.
+pub fn chosen_bodies(system: &System, chosen: &[String]) -> Result<Vec<usize>, AppError> {
+    let n = system.bodies.len();
+    if chosen.is_empty() {
+        let k = n.min(DEFAULT_TRAJECTORY_BODIES);
+        return Ok(if k <= 1 {
+            vec![0]
+        } else {
+            (0..k).map(|j| j * (n - 1) / (k - 1)).collect()
+        });
+    }
+    chosen
+        .iter()
+        .map(|token| {
+            if let Some(i) = system.bodies.iter().position(|b| &b.name == token) {
+                return Ok(i);
+            }
+            match token.parse::<usize>() {
+                Ok(i) if (1..=n).contains(&i) => Ok(i - 1),
+                _ => Err(AppError::Usage(format!(
+                    "option `--bodies`: `{token}` is no body: allowed a body's name or an index in [1, {n}]"
+                ))),
+            }
+        })
+        .collect()
+}
+
+fn mode_cell(mode: Option<integrators::Mode>) -> Cell {
+    Cell::Text(mode.map_or("none", mode_name).into())
+}
+
+fn z_cell(z: Option<f64>) -> Cell {
+    z.map_or(Cell::Text(String::new()), Cell::Num)
+}
+
+fn has_states(run: &Run) -> bool {
+    run.problem.layout.z.iter().any(Option::is_some)
+}
+
+fn final_table(run: &Run, path: &Path) -> Result<Vec<u8>, AppError> {
+    let mut t = Table::new(&["body", "x", "v", "friction", "mode", "z"]);
+    let states = has_states(run);
+    if !states {
+        t.header.pop();
+    }
+    for (i, b) in run.final_states().into_iter().enumerate() {
+        let mut row = vec![
+            Cell::Text(run.problem.system.bodies[i].name.clone()),
+            Cell::Num(b.x),
+            Cell::Num(b.v),
+            Cell::Num(b.friction),
+            mode_cell(b.mode),
+        ];
+        if states {
+            row.push(z_cell(b.z));
+        }
+        t.rows.push(row);
+    }
+    t.to_csv(path)
+}
+
+fn events_table(run: &Run, path: &Path) -> Result<Vec<u8>, AppError> {
+    let mut t = Table::new(&["t", "body", "from", "to"]);
+    for e in run.contact_events() {
+        t.rows.push(vec![
+            Cell::Num(e.t),
+            Cell::Text(run.problem.system.bodies[e.body].name.clone()),
+            Cell::Text(mode_name(e.from).into()),
+            Cell::Text(mode_name(e.to).into()),
+        ]);
+    }
+    t.to_csv(path)
+}
+
+fn trajectory_table(run: &Run, bodies: &[usize], path: &Path) -> Result<Vec<u8>, AppError> {
+    let mut t = Table::new(&["t", "body", "x", "v", "friction", "mode", "z"]);
+    let states = has_states(run);
+    if !states {
+        t.header.pop();
+    }
+    for k in 0..run.solution.len() {
+        for &i in bodies {
+            let b = run.body_at(i, k);
+            let mut row = vec![
+                Cell::Num(b.t),
+                Cell::Text(run.problem.system.bodies[i].name.clone()),
+                Cell::Num(b.x),
+                Cell::Num(b.v),
+                Cell::Num(b.friction),
+                mode_cell(b.mode),
+            ];
+            if states {
+                row.push(z_cell(b.z));
+            }
+            t.rows.push(row);
+        }
+    }
+    t.to_csv(path)
+}
+
+/// The space–time picture: body index against time, coloured by contact mode, sampled on at
+/// most [`RASTER`] columns and rows; with its data as a CSV table.
+fn space_time(run: &Run, title: &str, path: &Path) -> Result<(Raster, Vec<u8>), AppError> {
+    let s = &run.solution;
+    let n = run.problem.system.bodies.len();
+    let (t0, t1) = (
+        s.t.first().copied().unwrap_or(0.0),
+        s.t.last().copied().unwrap_or(1.0),
+    );
+    let columns = RASTER.0.min(s.len().saturating_sub(1)).max(1);
+    let rows = n.min(RASTER.1);
+    let x_edges: Vec<f64> = (0..=columns)
+        .map(|c| t0 + (t1 - t0) * c as f64 / columns as f64)
+        .collect();
+    let body_of_row = |r: usize| r * n / rows;
+    let mut cells = Vec::with_capacity(columns * rows);
+    let mut table = Table::new(&["t_start", "t_end", "body", "mode"]);
+    let mut k = 0;
+    for c in 0..columns {
+        while k + 1 < s.len() && s.t[k] < x_edges[c] {
+            k += 1;
+        }
+        let modes = s.modes_at(k);
+        for r in 0..rows {
+            let i = body_of_row(r);
+            let mode = run.problem.layout.contact[i]
+                .map(|j| run.problem.reported_mode(j, s.y_at(k), modes));
+            cells.push(match mode {
+                None => 3,
+                Some(SLIP_POSITIVE) => 0,
+                Some(SLIP_NEGATIVE) => 1,
+                Some(_) => 2,
+            });
+            table.rows.push(vec![
+                Cell::Num(x_edges[c]),
+                Cell::Num(x_edges[c + 1]),
+                Cell::Text(run.problem.system.bodies[i].name.clone()),
+                mode_cell(mode),
+            ]);
+        }
+    }
+    let raster = Raster {
+        title: format!("{title}: contact modes"),
+        x_label: "time t (s)".into(),
+        y_label: if rows < n {
+            format!("body index ({rows} of {n} bodies)")
+        } else {
+            "body index".into()
+        },
+        x_edges,
+        rows,
+        cells,
+        legend: vec![
+            (plot::RED, "slip+".into()),
+            (plot::BLUE, "slip-".into()),
+            (plotters::style::RGBColor(170, 170, 170), "stick".into()),
+            (plotters::style::WHITE, "no contact".into()),
+        ],
+    };
+    Ok((raster, table.to_csv(path)?))
+}
+
+#[derive(Serialize)]
+struct SystemSummary<'a> {
+    system: &'a str,
+    n_bodies: usize,
+    n_contacts: usize,
+    solver: &'a str,
+    switching: &'a str,
+    step: String,
+    t_end: f64,
+    parameters: &'a BTreeMap<String, f64>,
+    status: &'a str,
+    error: Option<String>,
+    #[serde(rename = "final")]
+    final_t: Option<f64>,
+    event_counts: BTreeMap<&'static str, usize>,
+    stats: integrators::Stats,
+    wall_time_s: f64,
+    energy_residual: Option<f64>,
+    energy: Option<EnergyBalance>,
+    stiffness_detected_at: Option<f64>,
+}
+
+/// Runs `simulate` on a system.
+pub fn run(args: &SimulateArgs) -> Result<(), AppError> {
+    let Described {
+        system,
+        name,
+        parameters,
+        friction,
+    } = system_of(args.system.as_deref(), args.model, &args.model_options)?;
+    system.validate()?;
+    let bodies = chosen_bodies(&system, &args.bodies)?;
+    let switching = args.solver.switching.with(&friction);
+    let t_end = args.checked_t_end()?.unwrap_or(if args.system.is_some() {
+        FILE_T_END
+    } else {
+        CHAIN_T_END
+    });
+    let dim = friction_systems::Layout::of(&system).dim();
+    let points = args
+        .checked_points()?
+        .unwrap_or_else(|| default_points(dim));
+    let step = args.solver.checked_step()?;
+    let options = Options {
+        step,
+        output: Output::GridOnly(
+            (0..points)
+                .map(|i| t_end * i as f64 / (points - 1) as f64)
+                .collect(),
+        ),
+        ..Options::adaptive(0.0, t_end, 1e-8, 1e-10)
+    };
+    let bar = progress_bar(format!("{name} {}", args.solver.solver.name()));
+    let run =
+        friction_systems::simulate(&system, switching, args.solver.solver, options, &mut |t| {
+            bar.set_position((1000.0 * t / t_end).clamp(0.0, 1000.0) as u64)
+        })?;
+    bar.finish_and_clear();
+
+    let title = format!(
+        "{name} ({}, {} switching)",
+        args.solver.solver.name(),
+        args.solver.switching.name()
+    );
+    let mut files = Artifacts::default();
+    for (file, bytes) in [
+        ("final.csv", final_table(&run, &args.out.join("final.csv"))?),
+        (
+            "events.csv",
+            events_table(&run, &args.out.join("events.csv"))?,
+        ),
+        (
+            "trajectory.csv",
+            trajectory_table(&run, &bodies, &args.out.join("trajectory.csv"))?,
+        ),
+    ] {
+        files.add(args.out.join(file), bytes);
+    }
+    let (raster, data) = space_time(&run, &title, &args.out.join("space-time.csv"))?;
+    files.add(args.out.join("space-time.csv"), data);
+    files.add_raster(&args.out.join("space-time"), &raster)?;
+    let velocity = Plot {
+        title: format!("{title}: velocities"),
+        x_label: "time t (s)".into(),
+        y_label: "velocity v (m/s)".into(),
+        series: bodies
+            .iter()
+            .take(PALETTE.len())
+            .enumerate()
+            .map(|(c, &i)| Series {
+                label: Some(system.bodies[i].name.clone()),
+                points: run.body(i).iter().map(|b| (b.t, b.v)).collect(),
+                color: PALETTE[c],
+                width: 2,
+            })
+            .collect(),
+        legend: Corner::UpperRight,
+    };
+    files.add_plot(&args.out.join("velocity"), &velocity)?;
+    let mut event_counts = BTreeMap::new();
+    for e in run.contact_events() {
+        *event_counts.entry(mode_name(e.to)).or_insert(0) += 1;
+    }
+    let energy = run.energy();
+    let summary = SystemSummary {
+        system: &name,
+        n_bodies: system.bodies.len(),
+        n_contacts: system.contacts.len(),
+        solver: args.solver.solver.name(),
+        switching: args.solver.switching.name(),
+        step: format!("{step:?}"),
+        t_end,
+        parameters: &parameters,
+        status: if run.error.is_some() { "failed" } else { "ok" },
+        error: run.error.as_ref().map(|e| e.to_string()),
+        final_t: run.solution.t.last().copied(),
+        event_counts,
+        stats: run.solution.stats,
+        wall_time_s: run.wall_time_s,
+        energy_residual: energy.map(|e| e.residual),
+        energy,
+        stiffness_detected_at: run.solution.stiffness_detected_at,
+    };
+    files.add_json(args.out.join("summary.json"), &summary)?;
+    let written = files.write()?;
+    println!(
+        "wrote {} files into {} ({} bodies, {} steps, {} events, {:.3} s)",
+        written.len(),
+        args.out.display(),
+        system.bodies.len(),
+        run.solution.stats.steps,
+        run.solution.stats.events,
+        run.wall_time_s
+    );
+    match run.error {
+        Some(e) => Err(AppError::Solver(e)),
+        None => Ok(()),
+    }
+}
