@@ -2,9 +2,12 @@
 //!
 //! - [`friction_models`]: the paper's six models, the classical terms, Dahl, Karnopp, LuGre;
 //! - [`integrators`]: the solvers (RK4, Dormand–Prince, implicit Euler, diffsol);
+//! - [`friction_systems`]: bodies, springs and contacts as hybrid problems, one mode per
+//!   contact;
 //! - [`scenarios`]: the rigs, the paper's experiments and the solver studies.
 
 pub use friction_models;
+pub use friction_systems;
 pub use integrators;
 pub use scenarios;
 

@@ -543,3 +543,182 @@ fn bad_study_input_is_rejected() {
         assert!(text.contains(message), "{args:?}: {text}");
     }
 }
+
+#[test]
+fn simulate_chain_writes_the_system_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("chain");
+    let o = friction_lab(&[
+        "simulate",
+        "chain",
+        "--model",
+        "static",
+        "--set",
+        "n_bodies=30",
+        "--set",
+        "F_c=5",
+        "--t-end",
+        "20",
+        "--points",
+        "101",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let fin = std::fs::read_to_string(out.join("final.csv")).unwrap();
+    let lines: Vec<&str> = fin.lines().collect();
+    assert_eq!(lines[0], "body,x,v,friction,mode");
+    assert_eq!(lines.len(), 31, "one row per body");
+    assert!(lines[1].starts_with("b1,") && lines[30].starts_with("b30,"));
+    let events = std::fs::read_to_string(out.join("events.csv")).unwrap();
+    assert!(events.starts_with("t,body,from,to\n"));
+    assert!(events.lines().count() > 30, "every block breaks away");
+    assert!(events.contains(",stick,slip+"));
+    // 20 of the 30 bodies by default, at 101 grid points: the tidy trajectory.
+    let tidy = std::fs::read_to_string(out.join("trajectory.csv")).unwrap();
+    assert!(tidy.starts_with("t,body,x,v,friction,mode\n"));
+    assert_eq!(tidy.lines().count(), 1 + 101 * 20);
+    let summary: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["n_bodies"], 30);
+    assert_eq!(summary["status"], "ok");
+    assert_eq!(summary["parameters"]["F_c"], 5.0);
+    assert_eq!(summary["parameters"]["n_bodies"], 30.0);
+    assert!(summary["energy"]["relative_residual"].as_f64().unwrap() < 1e-6);
+    let by_kind = summary["event_counts"].as_object().unwrap();
+    let counted: u64 = by_kind.values().map(|v| v.as_u64().unwrap()).sum();
+    assert_eq!(counted as usize, events.lines().count() - 1);
+    for f in [
+        "space-time.png",
+        "space-time.svg",
+        "velocity.png",
+        "velocity.svg",
+    ] {
+        assert!(out.join(f).exists(), "{f}");
+    }
+}
+
+#[test]
+fn simulate_and_study_a_system_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("two.toml");
+    std::fs::write(
+        &file,
+        r#"
+[[body]]
+name = "m1"
+m = 1.0
+[[body]]
+name = "m2"
+m = 0.5
+[[anchor]]
+name = "frame"
+[[spring]]
+between = ["frame", "m1"]
+k = 100.0
+[[spring]]
+between = ["m1", "m2"]
+k = 50.0
+c = 0.2
+[[contact]]
+body = "m1"
+surface_velocity = 0.1
+model = "CS"
+"#,
+    )
+    .unwrap();
+    let out = dir.path().join("sim");
+    let o = friction_lab(&[
+        "simulate",
+        "--system",
+        file.to_str().unwrap(),
+        "--bodies",
+        "m2,1",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let fin = std::fs::read_to_string(out.join("final.csv")).unwrap();
+    assert!(fin.contains("\nm2,") && fin.contains(",none\n"), "{fin}");
+    let tidy = std::fs::read_to_string(out.join("trajectory.csv")).unwrap();
+    assert!(
+        tidy.lines().nth(1).unwrap().starts_with("0,m2,"),
+        "chosen order"
+    );
+    let study = dir.path().join("study");
+    let o = friction_lab(&[
+        "converge",
+        "--system",
+        file.to_str().unwrap(),
+        "--bodies",
+        "m1,m2",
+        "--solvers",
+        "rk4",
+        "--t-end",
+        "2",
+        "--out",
+        study.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(study.join("converge.json")).unwrap()).unwrap();
+    let order = json["orders"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|o| o["measure"] == "final_state")
+        .unwrap()["fitted_slope"]
+        .as_f64()
+        .unwrap();
+    assert!((order - 4.0).abs() < 0.5, "RK4 order {order}");
+}
+
+#[test]
+fn bad_system_input_is_rejected_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("bad.toml");
+    std::fs::write(
+        &file,
+        "[[body]]\nname = \"a\"\nm = 1.0\n[[contact]]\nbody = \"a\"\nmodel = \"CS\"\nparams = { F_s = -2.0 }\n",
+    )
+    .unwrap();
+    let path = file.to_str().unwrap();
+    let cases: &[(&[&str], &str)] = &[
+        (
+            &["simulate", "--system", path],
+            "bad.toml: [[contact]] 1: `params.F_s`: parameter `F_s` = -2 is out of range: allowed [0, inf) N",
+        ),
+        (
+            &["simulate", "chain", "--model", "CS", "--set", "n_bodies=0"],
+            "`n_bodies` = 0 is out of range: allowed [1, 1000000], a whole number",
+        ),
+        (
+            &["simulate", "chain", "--model", "CS", "--set", "spread=1.5"],
+            "`spread` = 1.5 is out of range: allowed [0, 1)",
+        ),
+        (
+            &["simulate", "chain"],
+            "option `--model` is required for the chain",
+        ),
+        (
+            &["simulate", "chain", "--model", "CS", "--bodies", "b99"],
+            "option `--bodies`: `b99` is no body: allowed a body's name or an index in [1, 10]",
+        ),
+        (
+            &["simulate", "belt", "--model", "CS", "--bodies", "1"],
+            "option `--bodies` applies to systems",
+        ),
+        (
+            &["simulate", "--system", "/nonexistent/system.toml"],
+            "system file /nonexistent/system.toml:",
+        ),
+        (
+            &["stiffness", "chain", "--model", "CS", "--parameter", "k"],
+            "parameter `k` cannot be swept on a system",
+        ),
+    ];
+    for (args, message) in cases {
+        let text = rejected(args);
+        assert!(text.contains(message), "{args:?}: {text}");
+    }
+}
