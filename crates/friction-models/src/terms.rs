@@ -56,6 +56,13 @@ pub fn viscous(mu_v: f64, v: f64) -> Term {
 /// `S(v) = exp(−(v/v_s)²)·(C1·[v > 0] − C2·[v < 0])`, with the indicator functions given by
 /// the branch weights (so S(0) = 0 under the discontinuous law).
 pub fn stribeck(c1: f64, c2: f64, v_s: f64, v: f64, b: &Branches) -> Term {
+    if c1 == 0.0 && c2 == 0.0 {
+        // No Stribeck term (Coulomb, static, Dahl models): spare the exponential.
+        return Term {
+            value: 0.0,
+            dv: 0.0,
+        };
+    }
     let e = (-(v / v_s).powi(2)).exp();
     let de = -2.0 * v / (v_s * v_s) * e;
     let level = c1 * b.plus - c2 * b.minus;

@@ -41,6 +41,45 @@ const BREAK_AWAY_NEGATIVE: EventSpec = EventSpec {
     crossing: Crossing::Falling,
 };
 
+/// A spring end as the right-hand side reads it: the index of a body's x in y (its v
+/// follows), or an anchor's motion `x0 + v·t`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Point {
+    State(usize),
+    Moving { x0: f64, v: f64 },
+}
+
+impl Point {
+    /// Position and velocity at (t, y).
+    #[inline]
+    fn at(self, t: f64, y: &[f64]) -> (f64, f64) {
+        match self {
+            Point::State(x) => (y[x], y[x + 1]),
+            Point::Moving { x0, v } => (x0 + v * t, v),
+        }
+    }
+}
+
+/// A spring with its ends resolved: `f = k·(x_b − x_a) + c·(v_b − v_a)` on `a`, `−f` on `b`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Link {
+    a: Point,
+    b: Point,
+    k: f64,
+    c: f64,
+}
+
+impl Link {
+    /// The force on end `a`, and `v_b − v_a`.
+    #[inline]
+    fn force(&self, t: f64, y: &[f64]) -> (f64, f64) {
+        let (xa, va) = self.a.at(t, y);
+        let (xb, vb) = self.b.at(t, y);
+        let dv = vb - va;
+        (self.k * (xb - xa) + self.c * dv, dv)
+    }
+}
+
 /// A system with a treatment of v_rel = 0, ready for any solver.
 pub struct FrictionSystem<'a> {
     /// The system.
@@ -49,6 +88,8 @@ pub struct FrictionSystem<'a> {
     pub layout: Layout,
     /// The treatment of v_rel = 0.
     pub switching: Switching,
+    /// The springs with their ends resolved to state indices and anchor motions.
+    links: Vec<Link>,
     /// The springs at each body, by index.
     springs_at: Vec<Vec<usize>>,
     /// The external forces on each body, by index.
@@ -71,33 +112,35 @@ impl<'a> FrictionSystem<'a> {
         for (f, force) in system.forces.iter().enumerate() {
             forces_at[force.body].push(f);
         }
+        let layout = Layout::of(system);
+        let point = |end| match end {
+            End::Body(i) => Point::State(layout.x[i]),
+            End::Anchor(a) => {
+                let anchor = &system.anchors[a];
+                Point::Moving {
+                    x0: anchor.x0,
+                    v: anchor.v,
+                }
+            }
+        };
+        let links = system
+            .springs
+            .iter()
+            .map(|s| Link {
+                a: point(s.a),
+                b: point(s.b),
+                k: s.k,
+                c: s.c,
+            })
+            .collect();
         FrictionSystem {
             system,
-            layout: Layout::of(system),
+            layout,
             switching,
+            links,
             springs_at,
             forces_at,
         }
-    }
-
-    /// Position and velocity of a spring end at (t, y).
-    fn end(&self, end: End, t: f64, y: &[f64]) -> (f64, f64) {
-        match end {
-            End::Body(i) => {
-                let x = self.layout.x[i];
-                (y[x], y[x + 1])
-            }
-            End::Anchor(a) => self.system.anchors[a].at(t),
-        }
-    }
-
-    /// Force of spring `s` on its end `a` (on `b` it is the opposite): `k·Δx + c·Δv`.
-    fn spring_force(&self, s: usize, t: f64, y: &[f64]) -> (f64, f64) {
-        let spring = &self.system.springs[s];
-        let (xa, va) = self.end(spring.a, t, y);
-        let (xb, vb) = self.end(spring.b, t, y);
-        let dv = vb - va;
-        (spring.k * (xb - xa) + spring.c * dv, dv)
     }
 
     /// The force on body `i` from everything but friction, `F_o,i(t, y)`.
@@ -110,8 +153,9 @@ impl<'a> FrictionSystem<'a> {
             })
             .sum();
         for &s in &self.springs_at[i] {
-            let (force, _) = self.spring_force(s, t, y);
-            f += if self.system.springs[s].a == End::Body(i) {
+            let link = &self.links[s];
+            let (force, _) = link.force(t, y);
+            f += if link.a == Point::State(self.layout.x[i]) {
                 force
             } else {
                 -force
@@ -231,16 +275,16 @@ impl OdeProblem for FrictionSystem<'_> {
             dy[l.v(f.body)] += force;
             external += force * y[l.v(f.body)];
         }
-        for (s, spring) in self.system.springs.iter().enumerate() {
-            let (force, dv) = self.spring_force(s, t, y);
-            external -= spring.c * dv * dv;
-            match spring.a {
-                End::Body(i) => dy[l.v(i)] += force,
-                End::Anchor(a) => external -= force * self.system.anchors[a].v,
+        for link in &self.links {
+            let (force, dv) = link.force(t, y);
+            external -= link.c * dv * dv;
+            match link.a {
+                Point::State(x) => dy[x + 1] += force,
+                Point::Moving { v, .. } => external -= force * v,
             }
-            match spring.b {
-                End::Body(i) => dy[l.v(i)] -= force,
-                End::Anchor(a) => external += force * self.system.anchors[a].v,
+            match link.b {
+                Point::State(x) => dy[x + 1] -= force,
+                Point::Moving { v, .. } => external += force * v,
             }
         }
         let (mut dissipated, mut belt) = (0.0, 0.0);

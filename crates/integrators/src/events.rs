@@ -16,7 +16,7 @@
 
 use crate::error::SolverError;
 use crate::options::ZenoGuard;
-use crate::problem::{EventSpec, Mode, OdeProblem};
+use crate::problem::{Crossing, EventSpec, Mode, OdeProblem};
 use std::collections::VecDeque;
 
 /// Relative time tolerance of event location.
@@ -40,6 +40,39 @@ pub struct Found {
     pub indices: Vec<usize>,
 }
 
+/// An event function that changed sign in the step being checked.
+#[derive(Clone, Copy, Debug)]
+struct Candidate {
+    index: usize,
+    crossing: Crossing,
+    /// Start of its bracket and its value there.
+    ta: f64,
+    ga: f64,
+    /// Its value at the step's end.
+    g1: f64,
+}
+
+/// Locates the root of candidate `c` on `[c.ta, tb]` (the step ends at `t1`, where its value
+/// is known) by Illinois on the dense output.
+#[allow(clippy::too_many_arguments)]
+fn locate(
+    problem: &dyn OdeProblem,
+    modes: &[Mode],
+    dense: &mut dyn FnMut(f64, &mut [f64]),
+    y: &mut [f64],
+    c: &Candidate,
+    tb: f64,
+    t1: f64,
+    tol: f64,
+) -> f64 {
+    let mut g = |t: f64| {
+        dense(t, y);
+        problem.event(c.index, t, y, modes)
+    };
+    let gb = if tb == t1 { c.g1 } else { g(tb) };
+    illinois(&mut g, c.ta, c.ga, tb, gb, tol)
+}
+
 /// The state of the event functions in the current modes.
 #[derive(Clone, Debug, Default)]
 pub struct EventWatch {
@@ -47,7 +80,7 @@ pub struct EventWatch {
     last: Vec<f64>,
     disarmed: Vec<bool>,
     now: Vec<f64>,
-    roots: Vec<(f64, usize)>,
+    candidates: Vec<Candidate>,
     y: Vec<f64>,
     recent: VecDeque<f64>,
 }
@@ -94,6 +127,12 @@ impl EventWatch {
 
     /// Checks the step from `t0` to `t1` (state `y1`), locating roots on `dense`, which
     /// evaluates the method's dense output. Updates the stored values when nothing fires.
+    ///
+    /// Only the earliest root is located by Illinois: the function whose secant estimate is
+    /// earliest is located first, and every other function that crossed in the step is then
+    /// classified by its sign at `t* − tol` and `t* + tol` (two dense outputs for all of them):
+    /// crossed before `t* − tol`, it is located and becomes the new earliest; crossed by
+    /// `t* + tol`, it fires with it; otherwise its root lies later and is found in a later step.
     pub fn check(
         &mut self,
         problem: &dyn OdeProblem,
@@ -104,7 +143,7 @@ impl EventWatch {
         dense: &mut dyn FnMut(f64, &mut [f64]),
     ) -> Option<Found> {
         let tol = TIME_TOLERANCE * t1.abs().max(t1 - t0).max(f64::MIN_POSITIVE);
-        self.roots.clear();
+        self.candidates.clear();
         self.now.clear();
         let y = &mut self.y;
         for (i, spec) in self.specs.iter().enumerate() {
@@ -114,28 +153,39 @@ impl EventWatch {
             };
             let g1 = problem.event(i, t1, y1, modes);
             self.now.push(g1);
-            let mut g = |t: f64| {
-                dense(t, y);
-                problem.event(i, t, y, modes)
-            };
             let (mut ta, mut ga) = (t0, self.last[i]);
             if self.disarmed[i] {
                 // The first sign the function shows after leaving zero is its reference.
                 let samples =
                     (1..REARM_SAMPLES).map(|k| t0 + (t1 - t0) * k as f64 / REARM_SAMPLES as f64);
-                match samples.map(|t| (t, g(t))).find(|&(_, v)| v != 0.0) {
+                let mut first = None;
+                for t in samples {
+                    dense(t, y);
+                    let v = problem.event(i, t, y, modes);
+                    if v != 0.0 {
+                        first = Some((t, v));
+                        break;
+                    }
+                }
+                match first {
                     Some((t, v)) => (ta, ga) = (t, v),
                     None if g1 != 0.0 => (ta, ga) = (t1, g1),
                     None => continue,
                 }
             }
             if ta < t1 && spec.crossing.crossed(ga, g1) {
-                self.roots.push((illinois(&mut g, ta, ga, t1, g1, tol), i));
+                self.candidates.push(Candidate {
+                    index: i,
+                    crossing: spec.crossing,
+                    ta,
+                    ga,
+                    g1,
+                });
             } else if self.disarmed[i] {
                 self.now[i] = if ta < t1 { g1 } else { ga };
             }
         }
-        if self.roots.is_empty() {
+        if self.candidates.is_empty() {
             for (i, &g) in self.now.iter().enumerate() {
                 if g != 0.0 || !self.disarmed[i] {
                     self.disarmed[i] = false;
@@ -144,14 +194,45 @@ impl EventWatch {
             }
             return None;
         }
-        let t = self.roots.iter().map(|r| r.0).fold(f64::INFINITY, f64::min);
-        let mut indices: Vec<usize> = self
-            .roots
+        let secant = |c: &Candidate| c.ta - c.ga * (t1 - c.ta) / (c.g1 - c.ga);
+        let mut earliest = *self
+            .candidates
             .iter()
-            .filter(|r| r.0 - t <= tol)
-            .map(|r| r.1)
+            .min_by(|a, b| secant(a).total_cmp(&secant(b)))
+            .expect("there are candidates");
+        let mut t = locate(problem, modes, dense, y, &earliest, t1, t1, tol);
+        // A candidate already crossed at t* − tol has an earlier root: it becomes the earliest.
+        loop {
+            let before = (t - tol).max(t0);
+            dense(before, y);
+            let crossed_before = self.candidates.iter().find(|c| {
+                c.ta < before
+                    && c.crossing
+                        .crossed(c.ga, problem.event(c.index, before, y, modes))
+            });
+            match crossed_before {
+                Some(&c) => {
+                    earliest = c;
+                    t = locate(problem, modes, dense, y, &c, before, t1, tol);
+                }
+                None => break,
+            }
+        }
+        // Every candidate crossed by t* + tol fires with the earliest.
+        let after = (t + tol).min(t1);
+        dense(after, y);
+        let mut indices: Vec<usize> = self
+            .candidates
+            .iter()
+            .filter(|c| {
+                c.index == earliest.index
+                    || c.crossing
+                        .crossed(c.ga, problem.event(c.index, after, y, modes))
+            })
+            .map(|c| c.index)
             .collect();
         indices.sort_unstable();
+        self.candidates.clear();
         Some(Found { t, indices })
     }
 

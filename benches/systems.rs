@@ -1,0 +1,66 @@
+//! Systems of many bodies: the Burridge–Knopoff chain (`coulomb`, 50 s, event switching,
+//! Dormand–Prince at rtol 1e-8) at N = 10, 100, 1000, and implicit Euler with the sparse
+//! Jacobian at N = 100 and 1000 (10 s, tolerance 1e-4). Run: `cargo bench --bench systems`.
+//! Each configuration's statistics are printed once before it is timed.
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use friction_lab::friction_models::{FrictionParams, ModelId, Variant};
+use friction_lab::friction_systems::chain::ChainParams;
+use friction_lab::friction_systems::{simulate, Switching, System};
+use friction_lab::integrators::{Options, Output, Solver};
+use std::hint::black_box;
+use std::sync::Arc;
+
+fn chain(n: usize) -> System {
+    ChainParams {
+        n_bodies: n,
+        ..ChainParams::default()
+    }
+    .build(&FrictionParams::paper(), |p| {
+        ModelId::Coulomb.build(Variant::Odd, p).map(Arc::from)
+    })
+    .expect("valid parameters")
+}
+
+fn run(system: &System, solver: Solver, options: Options) -> (usize, usize) {
+    let r = simulate(system, Switching::Event, solver, options, &mut |_| {}).expect("valid");
+    assert!(r.error.is_none(), "{:?}", r.error);
+    (r.solution.stats.steps, r.solution.stats.events)
+}
+
+fn options(t_end: f64, tol: f64, atol: f64) -> Options {
+    Options {
+        output: Output::GridOnly(vec![t_end]),
+        ..Options::adaptive(0.0, t_end, tol, atol)
+    }
+}
+
+fn chains(c: &mut Criterion) {
+    let mut group = c.benchmark_group("chain coulomb 50 s dopri5 rtol 1e-8");
+    group.sample_size(10);
+    for n in [10, 100, 1000] {
+        let system = chain(n);
+        let o = options(50.0, 1e-8, 1e-10);
+        let (steps, events) = run(&system, Solver::Dopri5, o.clone());
+        println!("N = {n}: {steps} steps, {events} events");
+        group.bench_function(format!("N = {n}"), |b| {
+            b.iter(|| black_box(run(&system, Solver::Dopri5, o.clone())))
+        });
+    }
+    group.finish();
+    let mut group = c.benchmark_group("chain coulomb 10 s implicit-euler tol 1e-4 (sparse LU)");
+    group.sample_size(10);
+    for n in [100, 1000] {
+        let system = chain(n);
+        let o = options(10.0, 1e-4, 1e-6);
+        let (steps, events) = run(&system, Solver::ImplicitEuler, o.clone());
+        println!("N = {n}: {steps} steps, {events} events");
+        group.bench_function(format!("N = {n}"), |b| {
+            b.iter(|| black_box(run(&system, Solver::ImplicitEuler, o.clone())))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, chains);
+criterion_main!(benches);
