@@ -722,3 +722,29 @@ fn bad_system_input_is_rejected_and_writes_nothing() {
         assert!(text.contains(message), "{args:?}: {text}");
     }
 }
+
+#[test]
+fn independence_with_an_adaptive_solver_and_a_changing_event_count_reports_it() {
+    // Dormand–Prince at tolerances 1e-3 … 1.25e-4 on the belt finds different numbers of events
+    // at different tolerances: the study says so instead of failing.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("i");
+    let o = friction_lab(&[
+        "independence",
+        "belt",
+        "--model",
+        "CS",
+        "--solver",
+        "dopri5",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(out.join("independence.csv")).unwrap();
+    let counts: Vec<&str> = csv
+        .lines()
+        .filter(|l| l.starts_with("number of events,"))
+        .collect();
+    assert_eq!(counts.len(), 4, "{csv}");
+    assert!(counts.iter().all(|l| l.ends_with(",false")), "{counts:?}");
+}

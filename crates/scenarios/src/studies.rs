@@ -503,7 +503,10 @@ pub fn independence(
         outputs.push(OutputCheck {
             name: "number of events".into(),
             values: m.iter().map(|m| m.event_times.len() as f64).collect(),
-            differences: vec![],
+            differences: m
+                .windows(2)
+                .map(|w| (w[0].event_times.len() as f64 - w[1].event_times.len() as f64).abs())
+                .collect(),
             order: None,
             remaining_error: f64::INFINITY,
             independent: false,
