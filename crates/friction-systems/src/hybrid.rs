@@ -314,24 +314,28 @@ impl OdeProblem for FrictionSystem<'_> {
         dy[a + 2] = belt;
     }
 
-    /// The analytic Jacobian of the bodies' unknowns, sparse: the rows of a stuck body are
-    /// zero, and the accumulators, which do not act back, are left out (an inexact Newton
-    /// matrix only for them).
+    /// The analytic Jacobian of the bodies' unknowns, sparse. Its pattern does not depend on
+    /// the modes: the rows of a stuck body are listed with the value zero (a sparse LU that
+    /// analyses the pattern once stays valid through every switch). The accumulators, which do
+    /// not act back, are left out (an inexact Newton matrix only for them).
     fn jacobian(&self, _t: f64, y: &[f64], modes: &[Mode], jac: &mut Vec<Entry>) -> bool {
         let l = &self.layout;
-        let inv_m = |i: usize| 1.0 / self.system.bodies[i].m;
-        for i in 0..self.system.bodies.len() {
-            if !self.stuck(i, modes) {
-                jac.push((l.x[i], l.v(i), 1.0));
+        // 1/m_i for a body that moves with the forces, 0 for one held by its contact.
+        let live = |i: usize| {
+            if self.stuck(i, modes) {
+                0.0
+            } else {
+                1.0 / self.system.bodies[i].m
             }
+        };
+        for i in 0..self.system.bodies.len() {
+            let one = if self.stuck(i, modes) { 0.0 } else { 1.0 };
+            jac.push((l.x[i], l.v(i), one));
         }
         for spring in &self.system.springs {
             for (me, other) in [(spring.a, spring.b), (spring.b, spring.a)] {
                 let End::Body(i) = me else { continue };
-                if self.stuck(i, modes) {
-                    continue;
-                }
-                let (k, c) = (spring.k * inv_m(i), spring.c * inv_m(i));
+                let (k, c) = (spring.k * live(i), spring.c * live(i));
                 jac.push((l.v(i), l.x[i], -k));
                 jac.push((l.v(i), l.v(i), -c));
                 if let End::Body(o) = other {
@@ -342,9 +346,6 @@ impl OdeProblem for FrictionSystem<'_> {
         }
         for (j, contact) in self.system.contacts.iter().enumerate() {
             let i = contact.body;
-            if self.stuck(i, modes) {
-                continue;
-            }
             let (x, v) = (l.x[i], l.v(i));
             let p = contact.model.partials(
                 y[x],
@@ -352,13 +353,14 @@ impl OdeProblem for FrictionSystem<'_> {
                 self.z(i, y),
                 self.switching.law(modes[j]),
             );
-            jac.push((v, x, -p.force_dx * inv_m(i)));
-            jac.push((v, v, -p.force_dv * inv_m(i)));
+            let (w, state) = (live(i), if self.stuck(i, modes) { 0.0 } else { 1.0 });
+            jac.push((v, x, -p.force_dx * w));
+            jac.push((v, v, -p.force_dv * w));
             if let Some(z) = l.z[i] {
-                jac.push((v, z, -p.force_dz * inv_m(i)));
-                jac.push((z, x, p.rate_dx));
-                jac.push((z, v, p.rate_dv));
-                jac.push((z, z, p.rate_dz));
+                jac.push((v, z, -p.force_dz * w));
+                jac.push((z, x, p.rate_dx * state));
+                jac.push((z, v, p.rate_dv * state));
+                jac.push((z, z, p.rate_dz * state));
             }
         }
         true

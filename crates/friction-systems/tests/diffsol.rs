@@ -207,3 +207,39 @@ fn diffsol_refuses_fixed_steps_and_explicit_daes() {
         "tsit45 cannot integrate this problem: an explicit method cannot integrate a DAE (zeros on the mass diagonal)"
     );
 }
+
+#[test]
+fn diffsol_implicit_methods_run_a_chain_on_the_sparse_path_and_agree_with_dopri5() {
+    use friction_systems::chain::ChainParams;
+    use friction_systems::simulate;
+    let system = ChainParams {
+        n_bodies: 200,
+        ..ChainParams::default()
+    }
+    .build(&FrictionParams::paper(), |p| {
+        ModelId::Static
+            .build(Variant::Odd, p)
+            .map(std::sync::Arc::from)
+    })
+    .unwrap();
+    let problem = FrictionSystem::new(&system, Switching::Event);
+    let y0 = problem.initial_state();
+    let modes = problem.initial_modes(0.0, &y0);
+    assert!(diffsol_backend::sparse_jacobian(&problem, 0.0, &y0, &modes));
+    let finals = |solver: &str, tol: f64| {
+        let o = Options::adaptive(0.0, 10.0, tol, tol * 1e-2);
+        let solver = integrators::Solver::from_name(solver).unwrap();
+        let r = simulate(&system, Switching::Event, solver, o, &mut |_| {}).unwrap();
+        assert!(r.error.is_none(), "{:?}", r.error);
+        r.final_states()
+    };
+    let reference = finals("dopri5", 1e-11);
+    for method in ["bdf", "esdirk34"] {
+        let worst = finals(method, 1e-8)
+            .iter()
+            .zip(&reference)
+            .map(|(a, b)| (a.x - b.x).abs().max((a.v - b.v).abs()))
+            .fold(0.0, f64::max);
+        assert!(worst < 1e-4, "{method}: {worst:e}");
+    }
+}

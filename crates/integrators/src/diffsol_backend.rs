@@ -1,7 +1,12 @@
 //! diffsol's BDF, TR-BDF2, ESDIRK34 and Tsit45 behind the [`Stepper`] interface, so that they
 //! run the same problems with the same events, mode switching and statistics as the
-//! native methods. This is the only module that instantiates diffsol's generic code (one
-//! dense nalgebra matrix type, nalgebra's LU), which keeps rebuilds of the crate short.
+//! native methods. This is the only module that instantiates diffsol's generic code, with two
+//! matrix types: nalgebra's dense matrix and LU, and, for a large problem whose analytic
+//! Jacobian is sparse (a chain of many blocks), faer's sparse matrix and sparse LU, chosen as
+//! implicit Euler chooses its linear solver ([`crate::linear::choice`]). The sparse path needs
+//! a Jacobian whose pattern does not depend on the modes: diffsol finds the pattern once, by
+//! probing the Jacobian-vector product with NaN columns, so a problem lists its structural
+//! entries even where their value is zero.
 //!
 //! How the known pitfalls of diffsol 0.18 are met:
 //! - implicit methods need a Jacobian-vector product: it is built from the problem's
@@ -21,15 +26,15 @@ use crate::solution::{Failure, Solution};
 use crate::stats::Stats;
 use crate::stepper::{linear_interpolation, Ode, Stepper};
 use diffsol::{
-    BdfState, DiffsolError, NalgebraLU, NalgebraMat, NonLinearOp, OdeBuilder, OdeEquations,
-    OdeEquationsImplicit, OdeSolverMethod, OdeSolverProblem, OdeSolverState, RkState, Vector,
+    BdfState, DiffsolError, FaerSparseLU, FaerSparseMat, NalgebraLU, NalgebraMat, NonLinearOp,
+    OdeBuilder, OdeEquations, OdeSolverMethod, OdeSolverProblem, OdeSolverState, RkState, Vector,
 };
 use std::cell::{Cell, RefCell};
 
-type Matrix = NalgebraMat<f64>;
-type Lu = NalgebraLU<f64>;
-type V = <Matrix as diffsol::MatrixCommon>::V;
-type Ctx = diffsol::NalgebraContext;
+type Dense = NalgebraMat<f64>;
+type DenseLu = NalgebraLU<f64>;
+type Sparse = FaerSparseMat<f64>;
+type SparseLu = FaerSparseLU<f64>;
 
 /// Newton failures allowed per solver instance (diffsol's default is 50).
 const MAX_NEWTON_FAILURES: usize = 10_000;
@@ -148,8 +153,8 @@ fn restart_state<Eqn, St>(
     algebraic: &[usize],
 ) -> Result<St, DiffsolError>
 where
-    Eqn: OdeEquations<T = f64, V = V, C = Ctx>,
-    St: OdeSolverState<V>,
+    Eqn: OdeEquations<T = f64>,
+    St: OdeSolverState<Eqn::V>,
 {
     let mut state = St::new_without_initialise(problem)?;
     let mut s = state.as_mut();
@@ -164,7 +169,7 @@ where
 
 impl<'p, Eqn, S, F> DiffsolStepper<'p, Eqn, S, F>
 where
-    Eqn: OdeEquations<T = f64, V = V, C = Ctx>,
+    Eqn: OdeEquations<T = f64>,
     S: OdeSolverMethod<'p, Eqn>,
 {
     fn stats_of(&self, s: &S) -> Stats {
@@ -190,7 +195,7 @@ where
 
 impl<'p, Eqn, S, F> Stepper for DiffsolStepper<'p, Eqn, S, F>
 where
-    Eqn: OdeEquations<T = f64, V = V, C = Ctx>,
+    Eqn: OdeEquations<T = f64>,
     S: OdeSolverMethod<'p, Eqn>,
     F: Fn(&'p OdeSolverProblem<Eqn>, f64) -> Result<S, DiffsolError>,
 {
@@ -287,7 +292,7 @@ fn drive<'p, Eqn, S, F>(
     start: Start,
 ) -> Result<Solution, Failure>
 where
-    Eqn: OdeEquations<T = f64, V = V, C = Ctx>,
+    Eqn: OdeEquations<T = f64>,
     S: OdeSolverMethod<'p, Eqn> + 'p,
     F: Fn(&'p OdeSolverProblem<Eqn>, f64) -> Result<S, DiffsolError> + 'p,
 {
@@ -320,47 +325,45 @@ where
         .solve_observed(observe)
 }
 
-/// Builds the implicit method's solver on a problem with (DAE) or without a mass matrix.
-fn drive_implicit<'p, Eqn>(
-    method: DiffsolMethod,
-    problem: &'p OdeSolverProblem<Eqn>,
-    shared: &'p Shared<'p>,
-    algebraic: &'p [usize],
-    start: Start,
-) -> Result<Solution, Failure>
-where
-    Eqn: OdeEquationsImplicit<T = f64, V = V, C = Ctx, M = Matrix>,
-{
-    let order = method.order();
-    match method {
-        DiffsolMethod::Bdf => drive(
-            method,
-            problem,
-            shared,
-            move |p, t| {
-                p.bdf_solver::<Lu>(restart_state::<Eqn, BdfState<V>>(p, t, order, algebraic)?)
-            },
-            start,
-        ),
-        DiffsolMethod::TrBdf2 => drive(
-            method,
-            problem,
-            shared,
-            move |p, t| {
-                p.tr_bdf2_solver::<Lu>(restart_state::<Eqn, RkState<V>>(p, t, order, algebraic)?)
-            },
-            start,
-        ),
-        DiffsolMethod::Esdirk34 | DiffsolMethod::Tsit45 => drive(
-            method,
-            problem,
-            shared,
-            move |p, t| {
-                p.esdirk34_solver::<Lu>(restart_state::<Eqn, RkState<V>>(p, t, order, algebraic)?)
-            },
-            start,
-        ),
-    }
+/// Runs the implicit `method` on the built diffsol problem `ds` with the linear solver `lu`
+/// (a macro rather than a generic function: it instantiates diffsol's solvers for the concrete
+/// equation and matrix types of each call site, whose trait bounds are long to spell out).
+macro_rules! drive_implicit {
+    ($method:expr, $ds:expr, $shared:expr, $algebraic:expr, $start:expr, $lu:ty) => {{
+        let (method, algebraic): (DiffsolMethod, &[usize]) = ($method, $algebraic);
+        let order = method.order();
+        match method {
+            DiffsolMethod::Bdf => drive(
+                method,
+                $ds,
+                $shared,
+                move |p, t| {
+                    p.bdf_solver::<$lu>(restart_state::<_, BdfState<_>>(p, t, order, algebraic)?)
+                },
+                $start,
+            ),
+            DiffsolMethod::TrBdf2 => drive(
+                method,
+                $ds,
+                $shared,
+                move |p, t| {
+                    p.tr_bdf2_solver::<$lu>(restart_state::<_, RkState<_>>(p, t, order, algebraic)?)
+                },
+                $start,
+            ),
+            DiffsolMethod::Esdirk34 | DiffsolMethod::Tsit45 => drive(
+                method,
+                $ds,
+                $shared,
+                move |p, t| {
+                    p.esdirk34_solver::<$lu>(restart_state::<_, RkState<_>>(
+                        p, t, order, algebraic,
+                    )?)
+                },
+                $start,
+            ),
+        }
+    }};
 }
 
 /// Integrates `problem` from `y0` in `modes` with a diffsol method, events and mode switching
@@ -423,21 +426,26 @@ pub fn solve_observed(
         jacobian: RefCell::new(Vec::new()),
         inverse_mass: if dae { None } else { mass },
     };
-    let builder = OdeBuilder::<Matrix>::new()
-        .t0(options.t0)
-        .h0(h0.unwrap_or(1.0))
-        .rtol(rtol)
-        .atol(vec![atol; n])
-        .rhs_implicit(
-            |y: &[f64], _p: &[f64], t: f64, dy: &mut [f64]| shared.rhs(t, y, dy),
-            |y: &[f64], _p: &[f64], t: f64, v: &[f64], jv: &mut [f64]| {
-                shared.jacobian_product(t, y, v, jv)
-            },
-        )
-        .init(
-            |_p: &[f64], _t: f64, y: &mut [f64]| y.copy_from_slice(&shared.start.borrow()),
-            n,
-        );
+    // One builder for both matrix types: the same closures, the same tolerances.
+    macro_rules! builder {
+        ($matrix:ty) => {
+            OdeBuilder::<$matrix>::new()
+                .t0(options.t0)
+                .h0(h0.unwrap_or(1.0))
+                .rtol(rtol)
+                .atol(vec![atol; n])
+                .rhs_implicit(
+                    |y: &[f64], _p: &[f64], t: f64, dy: &mut [f64]| shared.rhs(t, y, dy),
+                    |y: &[f64], _p: &[f64], t: f64, v: &[f64], jv: &mut [f64]| {
+                        shared.jacobian_product(t, y, v, jv)
+                    },
+                )
+                .init(
+                    |_p: &[f64], _t: f64, y: &mut [f64]| y.copy_from_slice(&shared.start.borrow()),
+                    n,
+                )
+        };
+    }
     let build_error = |e: DiffsolError| {
         fail(SolverError::Diffsol {
             solver: method.name(),
@@ -447,7 +455,7 @@ pub fn solve_observed(
     };
     if dae {
         let diagonal = mass.expect("a DAE has a mass matrix");
-        let mut ds = builder
+        let mut ds = builder!(Dense)
             .mass(|v: &[f64], _p: &[f64], _t: f64, beta: f64, y: &mut [f64]| {
                 for i in 0..v.len() {
                     y[i] = diagonal[i] * v[i] + beta * y[i];
@@ -456,19 +464,33 @@ pub fn solve_observed(
             .build()
             .map_err(build_error)?;
         ds.ode_options.max_nonlinear_solver_failures = MAX_NEWTON_FAILURES;
-        return drive_implicit(method, &ds, &shared, &algebraic, start);
+        return drive_implicit!(method, &ds, &shared, &algebraic, start, DenseLu);
     }
-    let mut ds = builder.build().map_err(build_error)?;
-    ds.ode_options.max_nonlinear_solver_failures = MAX_NEWTON_FAILURES;
     if method == DiffsolMethod::Tsit45 {
+        let ds = builder!(Dense).build().map_err(build_error)?;
         let order = method.order();
         return drive(
             method,
             &ds,
             &shared,
-            move |p, t| p.tsit45_solver(restart_state::<_, RkState<V>>(p, t, order, &[])?),
+            move |p, t| p.tsit45_solver(restart_state::<_, RkState<_>>(p, t, order, &[])?),
             start,
         );
     }
-    drive_implicit(method, &ds, &shared, &[], start)
+    if sparse_jacobian(problem, options.t0, y0, modes) {
+        let mut ds = builder!(Sparse).build().map_err(build_error)?;
+        ds.ode_options.max_nonlinear_solver_failures = MAX_NEWTON_FAILURES;
+        return drive_implicit!(method, &ds, &shared, &[], start, SparseLu);
+    }
+    let mut ds = builder!(Dense).build().map_err(build_error)?;
+    ds.ode_options.max_nonlinear_solver_failures = MAX_NEWTON_FAILURES;
+    drive_implicit!(method, &ds, &shared, &[], start, DenseLu)
+}
+
+/// Whether the problem's analytic Jacobian at the start is large and sparse enough for faer's
+/// sparse LU (the rule of [`crate::linear::choice`]).
+pub fn sparse_jacobian(problem: &dyn OdeProblem, t0: f64, y0: &[f64], modes: &[Mode]) -> bool {
+    let mut jac = Vec::new();
+    problem.jacobian(t0, y0, modes, &mut jac)
+        && crate::linear::choice(problem.dim(), jac.len()) == "faer sparse LU"
 }
