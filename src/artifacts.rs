@@ -1,9 +1,12 @@
-//! Output files prepared in memory and written together, so that a command that fails
-//! while computing writes nothing at all.
+//! Output files prepared in memory and written together as one folder: a command that fails
+//! while computing writes nothing, and a folder appears whole or not at all. The files are
+//! written into a temporary folder beside the target (`.friction-lab-XXXXXX`), which is then
+//! renamed into place; a target folder that friction-lab wrote before (it holds the marker
+//! file [`MARKER`]) is replaced, and any other non-empty folder is refused.
 
 use crate::error::AppError;
 use crate::figure::{self, Drawn};
-use crate::output::{create_dir, to_json, write_atomic};
+use crate::output::{share_folder, to_json, write_file};
 use crate::plot::{self, Plot};
 use friction_models::ModelId;
 use std::path::{Path, PathBuf};
@@ -68,16 +71,123 @@ impl Artifacts {
         Ok(())
     }
 
-    /// Writes every file, creating folders as needed; each file appears whole or not at all.
-    pub fn write(self) -> Result<Vec<PathBuf>, AppError> {
+    /// Writes every file as the folder `root` (every path must lie inside it): into a temporary
+    /// folder beside `root`, renamed into place once all files are written. Returns the paths.
+    pub fn write(self, root: &Path) -> Result<Vec<PathBuf>, AppError> {
+        let parent = match root.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+            _ => PathBuf::from("."),
+        };
+        let refuse = |why: String| AppError::OutputFolder {
+            path: root.to_path_buf(),
+            why,
+        };
+        check_target(root).map_err(refuse)?;
+        std::fs::create_dir_all(&parent)
+            .map_err(|e| refuse(format!("its parent folder cannot be created: {e}")))?;
+        remove_stale_temporaries(&parent);
+        let tmp = tempfile::Builder::new()
+            .prefix(TEMPORARY_PREFIX)
+            .tempdir_in(&parent)
+            .map_err(|e| refuse(format!("no temporary folder can be made beside it: {e}")))?;
+        write_file(&tmp.path().join(MARKER), MARKER_TEXT.as_bytes())?;
         let mut written = Vec::with_capacity(self.files.len());
         for (path, bytes) in self.files {
-            if let Some(dir) = path.parent() {
-                create_dir(dir)?;
+            let relative = path
+                .strip_prefix(root)
+                .expect("every output file lies inside the output folder");
+            let staged = tmp.path().join(relative);
+            if let Some(dir) = staged.parent() {
+                std::fs::create_dir_all(dir)
+                    .and_then(|_| share_folder(dir))
+                    .map_err(|source| AppError::Io {
+                        path: path.clone(),
+                        source,
+                    })?;
             }
-            write_atomic(&path, &bytes)?;
+            write_file(&staged, &bytes)?;
             written.push(path);
         }
+        swap_into_place(tmp, root)?;
         Ok(written)
     }
+}
+
+/// The file that marks a folder as friction-lab's output (replaceable by the next run).
+pub const MARKER: &str = ".friction-lab-output";
+const MARKER_TEXT: &str =
+    "This folder was written by friction-lab; the next run into it replaces it whole.\n";
+/// Prefix of the temporary folders (and of the folder set aside while swapping).
+pub const TEMPORARY_PREFIX: &str = ".friction-lab-";
+
+/// Whether `root` may be written: absent, an empty folder, or a folder friction-lab wrote.
+fn check_target(root: &Path) -> Result<(), String> {
+    let Ok(meta) = std::fs::symlink_metadata(root) else {
+        return Ok(());
+    };
+    if !meta.is_dir() {
+        return Err("it exists and is not a folder".into());
+    }
+    if root.join(MARKER).is_file() {
+        return Ok(());
+    }
+    let empty = std::fs::read_dir(root)
+        .map_err(|e| format!("it cannot be read: {e}"))?
+        .next()
+        .is_none();
+    if empty {
+        Ok(())
+    } else {
+        Err(format!(
+            "it is a folder that friction-lab did not write and it is not empty (no {MARKER} \
+             in it): choose a new or empty folder"
+        ))
+    }
+}
+
+/// Removes temporary folders of friction-lab runs that were killed before they finished
+/// (recognised by their prefix and their marker file).
+fn remove_stale_temporaries(parent: &Path) {
+    let Ok(entries) = std::fs::read_dir(parent) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let path = entry.path();
+        let ours = entry
+            .file_name()
+            .to_str()
+            .is_some_and(|n| n.starts_with(TEMPORARY_PREFIX) && n != MARKER);
+        if ours && path.is_dir() && path.join(MARKER).is_file() {
+            let _ = std::fs::remove_dir_all(&path);
+        }
+    }
+}
+
+/// Renames the finished temporary folder to `root`, setting a previous output aside first
+/// and removing it after.
+fn swap_into_place(tmp: tempfile::TempDir, root: &Path) -> Result<(), AppError> {
+    let io = |source| AppError::Io {
+        path: root.to_path_buf(),
+        source,
+    };
+    let old = if root.exists() {
+        let aside = tempfile::Builder::new()
+            .prefix(TEMPORARY_PREFIX)
+            .tempdir_in(tmp.path().parent().unwrap_or(Path::new(".")))
+            .map_err(io)?
+            .keep();
+        std::fs::remove_dir(&aside).map_err(io)?;
+        std::fs::rename(root, &aside).map_err(io)?;
+        Some(aside)
+    } else {
+        None
+    };
+    share_folder(tmp.path()).map_err(io)?;
+    std::fs::rename(tmp.path(), root).map_err(io)?;
+    // The temporary folder now is the output: nothing left to delete.
+    let _ = tmp.keep();
+    if let Some(old) = old {
+        let _ = std::fs::remove_dir_all(old);
+    }
+    Ok(())
 }

@@ -45,6 +45,14 @@ pub enum AppError {
         /// The value.
         value: f64,
     },
+    /// The output folder cannot be written as asked (bad input: exit 2).
+    #[error("output folder {path}: {why}")]
+    OutputFolder {
+        /// The folder.
+        path: PathBuf,
+        /// Why.
+        why: String,
+    },
     /// Reading or writing a file failed.
     #[error("{path}: {source}")]
     Io {
@@ -79,6 +87,7 @@ impl AppError {
             | AppError::System(_)
             | AppError::SystemFile(_)
             | AppError::Curve(_)
+            | AppError::OutputFolder { .. }
             | AppError::Usage(_)
             | AppError::ParamFile { .. } => 2,
             AppError::NonFinite { .. }

@@ -1,33 +1,20 @@
-//! Writing results: every file appears whole or not at all (written to a temporary file in
-//! the same folder, then renamed), and no NaN or infinity is ever written.
+//! Writing results: files are staged in a temporary folder and the folder is renamed into
+//! place whole (see [`crate::artifacts`]); no NaN or infinity is ever written.
 
 use crate::error::AppError;
 use std::io::Write;
 use std::path::Path;
 
-/// Creates `dir` and its parents.
-pub fn create_dir(dir: &Path) -> Result<(), AppError> {
-    std::fs::create_dir_all(dir).map_err(|source| AppError::Io {
-        path: dir.to_path_buf(),
-        source,
-    })
-}
-
-/// Writes `bytes` to `path` atomically: a temporary file beside it, then a rename.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), AppError> {
+/// Writes `bytes` to `path` (in a temporary folder being assembled) and flushes it to disk.
+pub fn write_file(path: &Path, bytes: &[u8]) -> Result<(), AppError> {
     let io = |source| AppError::Io {
         path: path.to_path_buf(),
         source,
     };
-    let dir = path.parent().filter(|p| !p.as_os_str().is_empty());
-    let mut tmp = tempfile::Builder::new()
-        .prefix(".friction-lab-")
-        .permissions(readable_by_all())
-        .tempfile_in(dir.unwrap_or(Path::new(".")))
-        .map_err(io)?;
-    tmp.write_all(bytes).map_err(io)?;
-    tmp.as_file().sync_all().map_err(io)?;
-    tmp.persist(path).map_err(|e| io(e.error))?;
+    let mut file = std::fs::File::create(path).map_err(io)?;
+    file.write_all(bytes).map_err(io)?;
+    file.set_permissions(readable_by_all()).map_err(io)?;
+    file.sync_all().map_err(io)?;
     Ok(())
 }
 
@@ -99,7 +86,7 @@ pub fn to_json<T: serde::Serialize>(value: &T, path: &Path) -> Result<Vec<u8>, A
     Ok(bytes)
 }
 
-/// Results are shared files: rw-r--r-- rather than the temporary file's private mode.
+/// Results are shared files: rw-r--r--.
 #[cfg(unix)]
 fn readable_by_all() -> std::fs::Permissions {
     use std::os::unix::fs::PermissionsExt;
@@ -113,4 +100,16 @@ fn readable_by_all() -> std::fs::Permissions {
         .and_then(|f| f.metadata())
         .map(|m| m.permissions())
         .unwrap_or_else(|_| unreachable!())
+}
+
+/// Output folders are shared: rwxr-xr-x rather than the temporary folder's private mode.
+pub fn share_folder(dir: &Path) -> std::io::Result<()> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        std::fs::set_permissions(dir, std::fs::Permissions::from_mode(0o755))?;
+    }
+    #[cfg(not(unix))]
+    let _ = dir;
+    Ok(())
 }

@@ -748,3 +748,64 @@ fn independence_with_an_adaptive_solver_and_a_changing_event_count_reports_it() 
     assert_eq!(counts.len(), 4, "{csv}");
     assert!(counts.iter().all(|l| l.ends_with(",false")), "{counts:?}");
 }
+
+/// Names in `dir` that start with friction-lab's temporary prefix.
+fn temporaries(dir: &Path) -> Vec<String> {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with(".friction-lab-"))
+        .collect()
+}
+
+#[test]
+fn a_folder_is_written_whole_or_not_at_all() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("r");
+    let curve = |out: &Path| friction_lab(&["curve", "CS", "--out", out.to_str().unwrap()]);
+    // A folder friction-lab did not write, with something in it: refused, untouched, exit 2.
+    std::fs::create_dir(&out).unwrap();
+    std::fs::write(out.join("notes.txt"), "mine").unwrap();
+    let o = curve(&out);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("friction-lab did not write and it is not empty"));
+    assert_eq!(std::fs::read_dir(&out).unwrap().count(), 1);
+    // An empty folder is written; a second run replaces it whole, even where a file of the
+    // set is in the way as a folder (the reproducer: table2.json as a folder made reproduce
+    // fail half-way).
+    std::fs::remove_file(out.join("notes.txt")).unwrap();
+    assert!(curve(&out).status.success());
+    std::fs::remove_file(out.join("curve-CS.json")).unwrap();
+    std::fs::create_dir(out.join("curve-CS.json")).unwrap();
+    std::fs::write(out.join("stale.csv"), "from an earlier run").unwrap();
+    let o = curve(&out);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(out.join("curve-CS.json").is_file());
+    assert!(
+        !out.join("stale.csv").exists(),
+        "the folder is replaced whole"
+    );
+    // A run killed while writing leaves its temporary folder; the next run removes it.
+    let killed = dir.path().join(".friction-lab-AbC123");
+    std::fs::create_dir(&killed).unwrap();
+    std::fs::write(killed.join(".friction-lab-output"), "").unwrap();
+    assert!(curve(&out).status.success());
+    assert!(
+        temporaries(dir.path()).is_empty(),
+        "{:?}",
+        temporaries(dir.path())
+    );
+    // A file where the folder should be: refused with exit 2.
+    let file = dir.path().join("file");
+    std::fs::write(&file, "x").unwrap();
+    let o = curve(&file);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("it exists and is not a folder"));
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        let mode = std::fs::metadata(&out).unwrap().permissions().mode() & 0o777;
+        assert_eq!(mode, 0o755);
+    }
+}

@@ -156,7 +156,7 @@ pub fn run(args: &CurveArgs) -> Result<(), AppError> {
             key_values: KeyValues::of(&curve),
         },
     )?;
-    for path in files.write()? {
+    for path in files.write(&args.out)? {
         println!("wrote {}", path.display());
     }
     Ok(())

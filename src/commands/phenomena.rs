@@ -207,7 +207,7 @@ pub fn run(args: &PhenomenaArgs) -> Result<(), AppError> {
         },
         args.threads,
     )?;
-    let written = files.write()?;
+    let written = files.write(&args.out)?;
     println!(
         "wrote {} files into {} in {:.1} s",
         written.len(),

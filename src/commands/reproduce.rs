@@ -507,7 +507,7 @@ pub fn run(args: &ReproduceArgs) -> Result<(), AppError> {
     );
     report_md += &add_studies(&mut files, &args.out, &friction, args.threads)?;
     files.add(args.out.join("report.md"), report_md.into_bytes());
-    let written = files.write()?;
+    let written = files.write(&args.out)?;
     println!(
         "wrote {} files into {} in {:.2} s",
         written.len(),

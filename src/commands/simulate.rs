@@ -434,7 +434,7 @@ fn run_rig(args: &SimulateArgs, scenario: Scenario) -> Result<(), AppError> {
         stiffness_detected_at: outcome.stiffness_detected_at,
     };
     files.add_json(args.out.join("summary.json"), &summary)?;
-    let written = files.write()?;
+    let written = files.write(&args.out)?;
     println!("wrote {} files into {}", written.len(), args.out.display());
     if let Some(t) = outcome.stiffness_detected_at {
         eprintln!("note: {} found the problem stiff at t = {t:.6} s; an implicit solver (bdf, esdirk34) may be much faster", spec.solver.name());

@@ -145,7 +145,7 @@ impl CaseArgs {
         study(&mut target, case)?;
         println!(
             "wrote {} files into {}",
-            files.write()?.len(),
+            files.write(&self.out)?.len(),
             self.out.display()
         );
         Ok(())

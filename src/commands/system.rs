@@ -398,7 +398,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), AppError> {
         stiffness_detected_at: run.solution.stiffness_detected_at,
     };
     files.add_json(args.out.join("summary.json"), &summary)?;
-    let written = files.write()?;
+    let written = files.write(&args.out)?;
     println!(
         "wrote {} files into {} ({} bodies, {} steps, {} events, {:.3} s)",
         written.len(),
