@@ -6,7 +6,7 @@ use criterion::{criterion_group, criterion_main, Criterion};
 use friction_lab::friction_models::{FrictionParams, ModelId, Variant};
 use friction_lab::integrators::{Solver, StepControl};
 use friction_lab::scenarios::studies::{self, Case};
-use friction_lab::scenarios::{run, RunSpec, Scenario, SwitchingKind};
+use friction_lab::scenarios::{run, Limits, RunSpec, Scenario, SwitchingKind};
 use std::hint::black_box;
 
 fn spec(
@@ -29,6 +29,7 @@ fn spec(
         step,
         t_end: Some(t_end),
         output_points: 2,
+        limits: Limits::default(),
     }
 }
 

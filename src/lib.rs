@@ -18,6 +18,7 @@ pub mod figure;
 pub mod options;
 pub mod output;
 pub mod plot;
+pub mod ranges;
 
 use clap::{Parser, Subcommand};
 use error::AppError;

@@ -5,6 +5,7 @@ use crate::error::AppError;
 use clap::Args;
 use friction_models::{FrictionParams, ParamError, Parameters, Variant};
 use scenarios::{Scenario, ScenarioParams};
+use std::io::Read;
 use std::path::{Path, PathBuf};
 
 /// Where the parameters come from.
@@ -108,14 +109,24 @@ pub fn parse_assignment(text: &str) -> Result<(&str, f64), AppError> {
     Ok((name, number))
 }
 
-/// Reads a TOML file of `NAME = number` lines.
+/// The largest parameter file read, bytes.
+pub const MAX_PARAMS_BYTES: u64 = 1 << 20;
+
+/// Reads a TOML file of `NAME = number` lines (at most [`MAX_PARAMS_BYTES`]).
 fn read_file(path: &Path) -> Result<Vec<(String, f64)>, AppError> {
     let file_error = |message: String| AppError::ParamFile {
         path: path.to_path_buf(),
         message,
     };
-    let text =
-        std::fs::read_to_string(path).map_err(|e| file_error(format!("cannot be read: {e}")))?;
+    let mut text = String::new();
+    std::fs::File::open(path)
+        .and_then(|f| f.take(MAX_PARAMS_BYTES + 1).read_to_string(&mut text))
+        .map_err(|e| file_error(format!("cannot be read: {e}")))?;
+    if text.len() as u64 > MAX_PARAMS_BYTES {
+        return Err(file_error(format!(
+            "larger than {MAX_PARAMS_BYTES} bytes, the most a parameter file may hold"
+        )));
+    }
     let table: toml::Table = text
         .parse()
         .map_err(|e: toml::de::Error| file_error(e.message().to_string()))?;

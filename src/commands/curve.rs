@@ -5,6 +5,7 @@ use crate::artifacts::Artifacts;
 use crate::error::AppError;
 use crate::figure::Drawn;
 use crate::options::ModelOptions;
+use crate::ranges;
 use clap::Args;
 use friction_models::{CurveAxis, FrictionParams, ModelId, Parameters, StickInterval, Variant};
 use scenarios::curves::{self, Curve};
@@ -22,15 +23,20 @@ pub struct CurveArgs {
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
     /// Largest |v| of a force-velocity curve, m/s [default: 1].
-    #[arg(long, value_name = "V", allow_negative_numbers = true)]
+    #[arg(long, value_name = "V", allow_hyphen_values = true)]
     pub v_max: Option<f64>,
     /// End time of the prescribed motion X(t) = t^3/3 + t^2/2 of a force-displacement curve,
     /// s [default: 2].
-    #[arg(long, value_name = "T", allow_negative_numbers = true)]
+    #[arg(long, value_name = "T", allow_hyphen_values = true)]
     pub t_end: Option<f64>,
     /// Samples on each side of zero.
-    #[arg(long, value_name = "N", default_value_t = 2000)]
-    pub points: usize,
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 2000,
+        allow_hyphen_values = true
+    )]
+    pub points: i64,
     /// The model's parameters and reading.
     #[command(flatten)]
     pub model_options: ModelOptions,
@@ -101,7 +107,13 @@ fn extent(args: &CurveArgs) -> Result<f64, AppError> {
             args.model
         )));
     }
-    Ok(own.unwrap_or_else(|| curves::default_extent(axis)))
+    let range = match axis {
+        CurveAxis::Velocity => ranges::V_MAX,
+        CurveAxis::Displacement => ranges::T_END,
+    };
+    own.map(|v| range.check(v))
+        .transpose()
+        .map(|v| v.unwrap_or_else(|| curves::default_extent(axis)))
 }
 
 /// The parameters the model reads, with their values.
@@ -118,8 +130,9 @@ pub fn run(args: &CurveArgs) -> Result<(), AppError> {
     let params = args.model_options.params.resolve()?;
     let variant = args.model_options.variant;
     let extent = extent(args)?;
+    let points = ranges::POINTS.count(args.points)?;
     let model = args.model.build(variant, &params)?;
-    let curve = curves::curve(model.as_ref(), extent, args.points)?;
+    let curve = curves::curve(model.as_ref(), extent, points)?;
 
     let suffix = match variant {
         Variant::Odd => String::new(),
@@ -151,7 +164,7 @@ pub fn run(args: &CurveArgs) -> Result<(), AppError> {
             equation: args.model.equation(variant),
             axis: curve.axis,
             extent,
-            points: args.points,
+            points,
             parameters: used_parameters(args.model, &params),
             key_values: KeyValues::of(&curve),
         },

@@ -4,6 +4,7 @@
 
 use crate::artifacts::Artifacts;
 use crate::error::AppError;
+use crate::ranges;
 use clap::Args;
 use friction_models::ModelId;
 use integrators::{Solver, StepControl};
@@ -25,7 +26,7 @@ pub struct PhenomenaArgs {
     #[arg(
         long,
         value_name = "R",
-        allow_negative_numbers = true,
+        allow_hyphen_values = true,
         default_value_t = 1e-10
     )]
     pub rtol: f64,
@@ -33,13 +34,14 @@ pub struct PhenomenaArgs {
     #[arg(
         long,
         value_name = "A",
-        allow_negative_numbers = true,
+        allow_hyphen_values = true,
         default_value_t = 1e-12
     )]
     pub atol: f64,
-    /// Worker threads (default: all cores). The table does not depend on it.
-    #[arg(long, value_name = "N")]
-    pub threads: Option<usize>,
+    /// Worker threads (default: all cores; more than the machine has are capped to its cores).
+    /// The table does not depend on it.
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    pub threads: Option<i64>,
 }
 
 /// Runs `f` on a pool of `threads` workers (all cores when `None`).
@@ -180,16 +182,11 @@ pub fn add_table(
 /// Runs `phenomena`.
 pub fn run(args: &PhenomenaArgs) -> Result<(), AppError> {
     let step = StepControl::Adaptive {
-        rtol: args.rtol,
-        atol: args.atol,
+        rtol: ranges::RTOL.check(args.rtol)?,
+        atol: ranges::ATOL.check(args.atol)?,
         h0: None,
     };
-    integrators::Options {
-        step,
-        ..integrators::Options::adaptive(0.0, 1.0, 1e-6, 1e-6)
-    }
-    .validate()
-    .map_err(|e| AppError::Usage(e.to_string()))?;
+    let threads = ranges::threads(args.threads)?;
     if args.solver.is_fixed_step() {
         return Err(AppError::Usage(format!(
             "solver `{}` needs a fixed step; the protocols need an adaptive solver",
@@ -205,7 +202,7 @@ pub fn run(args: &PhenomenaArgs) -> Result<(), AppError> {
             solver: args.solver,
             step,
         },
-        args.threads,
+        threads,
     )?;
     let written = files.write(&args.out)?;
     println!(

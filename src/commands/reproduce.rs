@@ -12,6 +12,7 @@ use crate::figure::Drawn;
 use crate::options::ParamOptions;
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Plot, Series, PALETTE};
+use crate::ranges;
 use clap::Args;
 use friction_models::{FrictionParams, ModelId, Variant};
 use integrators::Solver;
@@ -37,9 +38,10 @@ pub struct ReproduceArgs {
     /// The parameters (Table 1 of the paper unless changed).
     #[command(flatten)]
     pub params: ParamOptions,
-    /// Worker threads for the parallel parts (default: all cores). Results do not depend on it.
-    #[arg(long, value_name = "N")]
-    pub threads: Option<usize>,
+    /// Worker threads for the parallel parts (default: all cores; more than the machine has are
+    /// capped to its cores). Results do not depend on it.
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    pub threads: Option<i64>,
 }
 
 /// Samples per branch of each figure.
@@ -421,6 +423,7 @@ fn report(reproduced: &[Reproduced], header: &str) -> String {
 /// Runs `reproduce`.
 pub fn run(args: &ReproduceArgs) -> Result<(), AppError> {
     let start = Instant::now();
+    let threads = ranges::threads(args.threads)?;
     let params = args.params.resolve()?;
     let mut files = Artifacts::default();
     let mut reproduced = Vec::new();
@@ -491,7 +494,7 @@ pub fn run(args: &ReproduceArgs) -> Result<(), AppError> {
         args.out.join("paper-experiment.md"),
         format!("# The paper's experiment\n\n{experiment_md}").into_bytes(),
     );
-    let table = add_table(&mut files, &args.out, Protocol::default(), args.threads)?;
+    let table = add_table(&mut files, &args.out, Protocol::default(), threads)?;
     let disagreements = table
         .iter()
         .flat_map(|(_, r)| r.iter())
@@ -505,7 +508,7 @@ pub fn run(args: &ReproduceArgs) -> Result<(), AppError> {
         paper's 42 claims disagree with the simulations. The protocols are described in \
         docs/phenomena.md.\n"
     );
-    report_md += &add_studies(&mut files, &args.out, &friction, args.threads)?;
+    report_md += &add_studies(&mut files, &args.out, &friction, threads)?;
     files.add(args.out.join("report.md"), report_md.into_bytes());
     let written = files.write(&args.out)?;
     println!(

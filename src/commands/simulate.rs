@@ -8,11 +8,12 @@ use crate::error::AppError;
 use crate::options::ModelOptions;
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Plot, Series, BLUE};
+use crate::ranges;
 use clap::Args;
 use friction_models::{ModelId, Parameters};
 use integrators::{Solver, StepControl};
 use scenarios::run::{EventEntry, Outcome};
-use scenarios::{RunSpec, Scenario, SwitchingKind};
+use scenarios::{Limits, RunSpec, Scenario, SwitchingKind};
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -28,7 +29,7 @@ pub struct SolverOptions {
     pub switching: SwitchingKind,
     /// Fixed step of rk4 (default 1e-3 s, the paper's), or the initial step of the adaptive
     /// solvers (the fixed step with --fixed-step).
-    #[arg(long, value_name = "H", allow_negative_numbers = true)]
+    #[arg(long, value_name = "H", allow_hyphen_values = true)]
     pub dt: Option<f64>,
     /// Integrate dopri5 or implicit-euler with fixed steps of --dt.
     #[arg(long)]
@@ -37,7 +38,7 @@ pub struct SolverOptions {
     #[arg(
         long,
         value_name = "R",
-        allow_negative_numbers = true,
+        allow_hyphen_values = true,
         default_value_t = 1e-8
     )]
     pub rtol: f64,
@@ -45,26 +46,48 @@ pub struct SolverOptions {
     #[arg(
         long,
         value_name = "A",
-        allow_negative_numbers = true,
+        allow_hyphen_values = true,
         default_value_t = 1e-10
     )]
     pub atol: f64,
+    /// Most steps (accepted and rejected) before the run ends with an error, keeping what it
+    /// computed.
+    #[arg(
+        long,
+        value_name = "N",
+        allow_hyphen_values = true,
+        default_value_t = 10_000_000
+    )]
+    pub max_steps: i64,
+    /// Wall-clock limit of the run, s: it ends with an error, keeping what it computed.
+    #[arg(long, value_name = "S", allow_hyphen_values = true)]
+    pub time_limit: Option<f64>,
 }
 
 /// The paper's time step, RK4's default.
 pub const PAPER_DT: f64 = 1e-3;
 
 impl SolverOptions {
-    /// The step control these options ask for, checked (positive, finite).
+    /// The step control these options ask for, every value checked against its range, also
+    /// those the chosen solver does not use.
     pub fn checked_step(&self) -> Result<StepControl, AppError> {
-        let step = self.step();
-        integrators::Options {
-            step,
-            ..integrators::Options::adaptive(0.0, 1.0, 1e-6, 1e-6)
+        ranges::RTOL.check(self.rtol)?;
+        ranges::ATOL.check(self.atol)?;
+        if let Some(dt) = self.dt {
+            ranges::DT.check(dt)?;
         }
-        .validate()
-        .map_err(|e| AppError::Usage(e.to_string()))?;
-        Ok(step)
+        Ok(self.step())
+    }
+
+    /// The bounds of a run: `--max-steps` and `--time-limit`, checked.
+    pub fn checked_limits(&self) -> Result<Limits, AppError> {
+        Ok(Limits {
+            max_steps: ranges::MAX_STEPS.count(self.max_steps)?,
+            time_limit: self
+                .time_limit
+                .map(|t| ranges::TIME_LIMIT.check(t))
+                .transpose()?,
+        })
     }
 
     /// The step control these options ask for.
@@ -126,11 +149,11 @@ pub struct SimulateArgs {
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
     /// End time, s [default: the scenario's; 50 for the chain; 20 for a system file].
-    #[arg(long, value_name = "T", allow_negative_numbers = true)]
+    #[arg(long, value_name = "T", allow_hyphen_values = true)]
     pub t_end: Option<f64>,
     /// Evenly spaced output points (events are recorded besides) [default: 2001; for a
     /// system, fewer when 2001 states would exceed 1e7 numbers].
-    #[arg(long, value_name = "N", allow_negative_numbers = true)]
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
     pub points: Option<i64>,
     /// Systems: the bodies written to trajectory.csv and drawn in velocity.png, as names or
     /// 1-based indices, comma-separated [default: all up to 20 bodies, else 20 evenly spaced].
@@ -187,24 +210,14 @@ struct Summary<'a> {
 }
 
 impl SimulateArgs {
-    /// `--t-end`, checked: (0, inf).
+    /// `--t-end`, checked.
     pub fn checked_t_end(&self) -> Result<Option<f64>, AppError> {
-        match self.t_end {
-            Some(t) if !(t.is_finite() && t > 0.0) => Err(AppError::Usage(format!(
-                "option `t_end` = {t} is out of range: allowed (0, inf) s"
-            ))),
-            t => Ok(t),
-        }
+        self.t_end.map(|t| ranges::T_END.check(t)).transpose()
     }
 
-    /// `--points`, checked: [2, 10_000_000].
+    /// `--points`, checked.
     pub fn checked_points(&self) -> Result<Option<usize>, AppError> {
-        match self.points {
-            Some(n) if !(2..=10_000_000).contains(&n) => Err(AppError::Usage(format!(
-                "option `points` = {n} is out of range: allowed [2, 10000000]"
-            ))),
-            n => Ok(n.map(|n| n as usize)),
-        }
+        self.points.map(|n| ranges::POINTS.count(n)).transpose()
     }
 }
 
@@ -245,6 +258,7 @@ pub fn spec(args: &SimulateArgs, scenario: Scenario) -> Result<RunSpec, AppError
         step,
         t_end: args.t_end,
         output_points: args.checked_points()?.unwrap_or(2001),
+        limits: args.solver.checked_limits()?,
     })
 }
 

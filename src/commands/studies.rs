@@ -11,6 +11,7 @@ use crate::error::AppError;
 use crate::options::ModelOptions;
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Plot, Series, PALETTE};
+use crate::ranges;
 use clap::Args;
 use friction_models::ModelId;
 use integrators::Solver;
@@ -46,14 +47,15 @@ pub struct CaseArgs {
     #[arg(long, value_name = "event|regularized|naive", default_value = "event")]
     pub switching: SwitchingKind,
     /// End time, s [default: the scenario's; 50 for the chain; 20 for a system file].
-    #[arg(long, value_name = "T", allow_negative_numbers = true)]
+    #[arg(long, value_name = "T", allow_hyphen_values = true)]
     pub t_end: Option<f64>,
     /// Folder to write into (created if missing).
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
-    /// Worker threads (default: all cores). The results do not depend on it.
-    #[arg(long, value_name = "N")]
-    pub threads: Option<usize>,
+    /// Worker threads (default: all cores; more than the machine has are capped to its cores).
+    /// The results do not depend on it.
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    pub threads: Option<i64>,
     /// The model's parameters and reading.
     #[command(flatten)]
     pub model_options: ModelOptions,
@@ -62,15 +64,7 @@ pub struct CaseArgs {
 impl CaseArgs {
     /// The study case: a rig, the chain, or a system file.
     pub fn case(&self) -> Result<Box<dyn StudyCase>, AppError> {
-        let check_t_end = |t_end: f64| {
-            if t_end.is_finite() && t_end > 0.0 {
-                Ok(t_end)
-            } else {
-                Err(AppError::Usage(format!(
-                    "option `t_end` = {t_end} is out of range: allowed (0, inf) s"
-                )))
-            }
-        };
+        let check_t_end = |t_end: f64| ranges::T_END.check(t_end);
         let scenario = match self.scenario {
             Some(Problem::Rig(s)) => s,
             _ => {
@@ -140,7 +134,7 @@ impl CaseArgs {
         let mut target = Target {
             files: &mut files,
             dir: &self.out,
-            threads: self.threads,
+            threads: ranges::threads(self.threads)?,
         };
         study(&mut target, case)?;
         println!(
@@ -190,7 +184,7 @@ pub struct Refinement {
     /// The ratio between levels.
     pub ratio: f64,
     /// Number of levels.
-    pub levels: usize,
+    pub levels: i64,
     /// Relative tolerance of the verdict.
     pub tol: f64,
 }
@@ -297,10 +291,20 @@ pub struct ConvergeArgs {
     )]
     pub solvers: Vec<Solver>,
     /// Step sizes of rk4, dopri5 and implicit-euler (fixed steps), coarse to fine.
-    #[arg(long, value_delimiter = ',', default_value = "0.02,0.01,0.005,0.0025")]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        allow_hyphen_values = true,
+        default_value = "0.02,0.01,0.005,0.0025"
+    )]
     pub dt_list: Vec<f64>,
     /// Tolerances of diffsol's adaptive methods, loose to tight.
-    #[arg(long, value_delimiter = ',', default_value = "1e-4,1e-6,1e-8")]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        allow_hyphen_values = true,
+        default_value = "1e-4,1e-6,1e-8"
+    )]
     pub tol_list: Vec<f64>,
 }
 
@@ -315,8 +319,8 @@ pub fn add_convergence(
     tols: &[f64],
 ) -> Result<Convergence, AppError> {
     let (dir, threads) = (t.dir, t.threads);
-    positive_list("dt-list", steps)?;
-    positive_list("tol-list", tols)?;
+    ranges::DT.list("dt-list", steps)?;
+    ranges::RTOL.list("tol-list", tols)?;
     let jobs = solvers
         .iter()
         .map(|&s| studies::steps_for(s, steps, tols, true).len())
@@ -378,7 +382,7 @@ pub struct IndependenceArgs {
         long,
         value_name = "H",
         default_value_t = 1e-3,
-        allow_negative_numbers = true
+        allow_hyphen_values = true
     )]
     pub start: f64,
     /// Refinement ratio between levels.
@@ -386,18 +390,23 @@ pub struct IndependenceArgs {
         long,
         value_name = "R",
         default_value_t = 2.0,
-        allow_negative_numbers = true
+        allow_hyphen_values = true
     )]
     pub ratio: f64,
     /// Number of levels.
-    #[arg(long, value_name = "N", default_value_t = 4)]
-    pub levels: usize,
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 4,
+        allow_hyphen_values = true
+    )]
+    pub levels: i64,
     /// Relative tolerance of the verdict.
     #[arg(
         long,
         value_name = "TOL",
         default_value_t = 1e-6,
-        allow_negative_numbers = true
+        allow_hyphen_values = true
     )]
     pub tol: f64,
 }
@@ -417,11 +426,14 @@ pub fn add_independence(
         levels,
         tol,
     } = r;
-    positive_list("start", &[start])?;
-    positive_list("tol", &[tol])?;
-    if !(ratio.is_finite() && ratio > 1.0) {
+    if !(0.0..=1.0).contains(&tol) || tol == 0.0 {
         return Err(AppError::Usage(format!(
-            "option `ratio` = {ratio} is out of range: allowed (1, inf)"
+            "option `tol` = {tol} is out of range: allowed (0, 1]"
+        )));
+    }
+    if !(ratio.is_finite() && ratio > 1.0 && ratio <= 1e3) {
+        return Err(AppError::Usage(format!(
+            "option `ratio` = {ratio} is out of range: allowed (1, 1000]"
         )));
     }
     if !(2..=12).contains(&levels) {
@@ -429,6 +441,27 @@ pub fn add_independence(
             "option `levels` = {levels} is out of range: allowed [2, 12]"
         )));
     }
+    let levels = levels as usize;
+    // Every level is a step size (fixed-step solvers) or a tolerance, in that option's range.
+    let resolution = if solver.is_fixed_step() {
+        ranges::DT
+    } else {
+        ranges::RTOL
+    };
+    let finest = start / ratio.powi(levels as i32 - 1);
+    resolution
+        .check(start)
+        .and(resolution.check(finest))
+        .map_err(|_| {
+            AppError::Usage(format!(
+                "option `start` = {} (finest level {finest:e}) is out of range for {}: every \
+             level must lie in {} (the range of --{})",
+                ranges::show(start),
+                solver.name(),
+                resolution.range,
+                resolution.name
+            ))
+        })?;
     let b = bar(levels, "independence");
     let s = with_threads(threads, || {
         studies::independence(case, solver, start, ratio, levels, tol, &|| b.inc(1))
@@ -548,7 +581,12 @@ pub struct WorkPrecisionArgs {
     )]
     pub solvers: Vec<Solver>,
     /// Step sizes of rk4.
-    #[arg(long, value_delimiter = ',', default_value = "0.01,0.003,0.001,0.0003")]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        allow_hyphen_values = true,
+        default_value = "0.01,0.003,0.001,0.0003"
+    )]
     pub dt_list: Vec<f64>,
     /// Tolerances of the adaptive solvers.
     #[arg(
@@ -558,8 +596,13 @@ pub struct WorkPrecisionArgs {
     )]
     pub tol_list: Vec<f64>,
     /// Repetitions of each run for the median wall time.
-    #[arg(long, value_name = "N", default_value_t = 3)]
-    pub repeats: usize,
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 3,
+        allow_hyphen_values = true
+    )]
+    pub repeats: i64,
 }
 
 /// Computes a work–precision study and adds its files under `dir` with stem `stem`.
@@ -573,8 +616,8 @@ pub fn add_work_precision(
     repeats: usize,
 ) -> Result<WorkPrecision, AppError> {
     let (dir, threads) = (t.dir, t.threads);
-    positive_list("dt-list", steps)?;
-    positive_list("tol-list", tols)?;
+    ranges::DT.list("dt-list", steps)?;
+    ranges::RTOL.list("tol-list", tols)?;
     let jobs = solvers
         .iter()
         .map(|&s| studies::steps_for(s, steps, tols, false).len())
@@ -620,7 +663,7 @@ pub fn work_precision(a: &WorkPrecisionArgs) -> Result<(), AppError> {
             &a.solvers,
             &a.dt_list,
             &a.tol_list,
-            a.repeats,
+            ranges::REPEATS.count(a.repeats)?,
         )?;
         Ok(())
     })
@@ -636,7 +679,12 @@ pub struct StiffnessArgs {
     #[arg(long, value_name = "NAME", default_value = "epsilon")]
     pub parameter: String,
     /// Its values, in sweep order.
-    #[arg(long, value_delimiter = ',', default_value = "1e-1,1e-2,1e-3,1e-4")]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        allow_hyphen_values = true,
+        default_value = "1e-1,1e-2,1e-3,1e-4"
+    )]
     pub values: Vec<f64>,
     /// Solvers, comma-separated.
     #[arg(
@@ -650,11 +698,16 @@ pub struct StiffnessArgs {
         long,
         value_name = "E",
         default_value_t = 1e-3,
-        allow_negative_numbers = true
+        allow_hyphen_values = true
     )]
     pub target: f64,
     /// Step sizes of rk4.
-    #[arg(long, value_delimiter = ',', default_value = "0.01,0.001,0.0001")]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        allow_hyphen_values = true,
+        default_value = "0.01,0.001,0.0001"
+    )]
     pub dt_list: Vec<f64>,
     /// Tolerances tried, loose to tight.
     #[arg(
@@ -683,6 +736,12 @@ pub fn add_stiffness(
     } = sweep;
     positive_list("values", values)?;
     positive_list("target", &[target])?;
+    if values.len() > 50 {
+        return Err(AppError::Usage(format!(
+            "option `values` has {} values: allowed 1 to 50",
+            values.len()
+        )));
+    }
     let per_value: usize = solvers
         .iter()
         .map(|&s| studies::steps_for(s, steps, tols, false).len())

@@ -317,8 +317,11 @@ pub fn run(args: &SimulateArgs) -> Result<(), AppError> {
         .checked_points()?
         .unwrap_or_else(|| default_points(dim));
     let step = args.solver.checked_step()?;
+    let limits = args.solver.checked_limits()?;
     let options = Options {
         step,
+        max_steps: limits.max_steps,
+        time_limit: limits.time_limit,
         output: Output::GridOnly(
             (0..points)
                 .map(|i| t_end * i as f64 / (points - 1) as f64)

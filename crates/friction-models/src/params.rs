@@ -64,6 +64,8 @@ impl fmt::Display for Range {
         let bound = |x: f64| {
             if x.is_infinite() {
                 if x > 0.0 { "inf" } else { "-inf" }.to_string()
+            } else if x != 0.0 && !(1e-3..1e6).contains(&x.abs()) {
+                format!("{x:e}")
             } else {
                 x.to_string()
             }

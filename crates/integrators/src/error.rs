@@ -24,6 +24,14 @@ pub enum SolverError {
         /// The limit.
         max: usize,
     },
+    /// The wall-clock limit was reached.
+    #[error("time limit: {limit} s of wall time used by t = {t} without reaching the end")]
+    TimeLimit {
+        /// Time reached.
+        t: f64,
+        /// The limit, s.
+        limit: f64,
+    },
     /// Newton's iteration failed even after the step was cut repeatedly.
     #[error(
         "Newton iteration diverged at t = {t} with h = {h:e} after {cuts} step-size cuts: {why}"

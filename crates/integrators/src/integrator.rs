@@ -46,6 +46,10 @@ pub struct Integrator<'a> {
     /// Scratch state for dense output at grid points.
     y_grid: Vec<f64>,
     cut_at_event: usize,
+    /// Steps taken through [`Integrator::step`], for the step cap of every method.
+    steps: usize,
+    /// When the integration started, for the wall-clock limit.
+    clock: std::time::Instant,
     done: bool,
 }
 
@@ -94,6 +98,8 @@ impl<'a> Integrator<'a> {
             grid_next,
             y_grid: vec![0.0; problem.dim()],
             cut_at_event: 0,
+            steps: 0,
+            clock: std::time::Instant::now(),
             done: false,
         })
     }
@@ -130,6 +136,22 @@ impl<'a> Integrator<'a> {
             return Ok(StopReason::EndReached);
         }
         let t_end = self.options.t_end;
+        self.steps += 1;
+        if self.steps > self.options.max_steps {
+            return Err(SolverError::TooManySteps {
+                t: self.stepper.t(),
+                h: self.stepper.h(),
+                max: self.options.max_steps,
+            });
+        }
+        if let Some(limit) = self.options.time_limit {
+            if self.clock.elapsed().as_secs_f64() > limit {
+                return Err(SolverError::TimeLimit {
+                    t: self.stepper.t(),
+                    limit,
+                });
+            }
+        }
         let ode = Ode {
             problem: self.problem,
             modes: &self.modes,

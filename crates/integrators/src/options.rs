@@ -89,8 +89,12 @@ pub struct Options {
     pub step: StepControl,
     /// Largest step; `None` for `t_end − t0` (as in Hairer's codes).
     pub h_max: Option<f64>,
-    /// Most steps (accepted and rejected) before giving up.
+    /// Most steps (accepted and rejected) before giving up; the driver also counts the steps
+    /// of methods that do not count their own (diffsol's).
     pub max_steps: usize,
+    /// Wall-clock limit of the integration, s: the run ends with [`SolverError::TimeLimit`]
+    /// and keeps what it computed. `None`: no limit.
+    pub time_limit: Option<f64>,
     /// Chattering guard.
     pub zeno: ZenoGuard,
     /// What to record.
@@ -110,6 +114,7 @@ impl Options {
             },
             h_max: None,
             max_steps: 10_000_000,
+            time_limit: None,
             zeno: ZenoGuard::default(),
             output: Output::Steps,
         }
@@ -164,6 +169,16 @@ impl Options {
         }
         if let Some(h) = self.h_max {
             positive("h_max", h)?;
+        }
+        if let Some(limit) = self.time_limit {
+            positive("time_limit", limit)?;
+        }
+        if self.max_steps == 0 {
+            return Err(SolverError::InvalidOption {
+                name: "max_steps",
+                value: 0.0,
+                allowed: "[1, inf)",
+            });
         }
         positive("zeno window", self.zeno.window)?;
         Ok(())

@@ -2,6 +2,7 @@
 //! solvers and steps and measured the same way. A rig ([`Case`]), a system of many bodies
 //! ([`SystemCase`]), or a user's own problem through the public [`StudyCase`] trait.
 
+use crate::run::Limits;
 use crate::run::{run, Outcome, RunSpec, ScenarioError, SwitchingKind};
 use crate::scenario::Scenario;
 use crate::ScenarioParams;
@@ -186,6 +187,7 @@ impl Case {
             step,
             t_end: Some(self.t_end),
             output_points: GRID_POINTS,
+            limits: Limits::default(),
         }
     }
 }

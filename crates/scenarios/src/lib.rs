@@ -16,5 +16,5 @@ pub mod scenario;
 pub mod studies;
 
 pub use params::ScenarioParams;
-pub use run::{run, Outcome, Row, RunSpec, ScenarioError, SwitchingKind};
+pub use run::{run, Limits, Outcome, Row, RunSpec, ScenarioError, SwitchingKind};
 pub use scenario::Scenario;

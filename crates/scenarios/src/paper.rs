@@ -9,6 +9,7 @@
 //! - a model without one tends to the constant acceleration `a = (F_ex − level)/m`:
 //!   CS (level F_c), SD (F_s + F_c).
 
+use crate::run::Limits;
 use crate::run::{run, RunSpec, ScenarioError, SwitchingKind};
 use crate::scenario::Scenario;
 use crate::ScenarioParams;
@@ -88,6 +89,7 @@ fn spec(
         },
         t_end: Some(t_end),
         output_points: points,
+        limits: Limits::default(),
     }
 }
 

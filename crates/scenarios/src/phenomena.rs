@@ -2,6 +2,7 @@
 //! measured numbers decide the cell against a stated threshold (see `docs/phenomena.md`).
 
 use crate::motion::Motion;
+use crate::run::Limits;
 use crate::run::{run, run_motion, settling_time, RunSpec, ScenarioError, SwitchingKind};
 use crate::scenario::Scenario;
 use crate::ScenarioParams;
@@ -179,6 +180,7 @@ impl Judge<'_> {
             step: self.protocol.step,
             t_end: Some(t_end),
             output_points: points,
+            limits: Limits::default(),
         }
     }
 

@@ -89,6 +89,28 @@ pub struct RunSpec {
     pub t_end: Option<f64>,
     /// Number of evenly spaced output points (events are recorded besides).
     pub output_points: usize,
+    /// Bounds of the run.
+    pub limits: Limits,
+}
+
+/// What bounds one run: a step cap and an optional wall-clock limit, both ending the run with
+/// an error that keeps what was computed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Limits {
+    /// Most steps, accepted and rejected.
+    pub max_steps: usize,
+    /// Wall-clock limit, s.
+    pub time_limit: Option<f64>,
+}
+
+impl Default for Limits {
+    /// 10 million steps, no time limit.
+    fn default() -> Self {
+        Limits {
+            max_steps: 10_000_000,
+            time_limit: None,
+        }
+    }
 }
 
 /// A scenario that cannot be set up as asked.
@@ -209,6 +231,8 @@ pub fn options(spec: &RunSpec, t_end: f64) -> Options {
     Options {
         step: spec.step,
         output: Output::Grid(grid),
+        max_steps: spec.limits.max_steps,
+        time_limit: spec.limits.time_limit,
         ..Options::adaptive(0.0, t_end, 1e-8, 1e-10)
     }
 }
@@ -386,6 +410,7 @@ fn run_sweep(spec: &RunSpec, model: &dyn FrictionModel, observe: &mut dyn FnMut(
         let settle = settling_time(model, v);
         let point = RunSpec {
             output_points: 2,
+            limits: Limits::default(),
             ..spec.clone()
         };
         let o = run_motion(&point, model, Motion::Constant { v }, settle, observe);

@@ -2,7 +2,7 @@
 
 use friction_models::{FrictionParams, ModelId, Variant};
 use integrators::{Solver, StepControl};
-use scenarios::{run, RunSpec, Scenario, SwitchingKind};
+use scenarios::{run, Limits, RunSpec, Scenario, SwitchingKind};
 
 fn belt(model: ModelId, switching: SwitchingKind, rtol: f64) -> friction_systems::EnergyBalance {
     let spec = RunSpec {
@@ -20,6 +20,7 @@ fn belt(model: ModelId, switching: SwitchingKind, rtol: f64) -> friction_systems
         },
         t_end: Some(20.0),
         output_points: 11,
+        limits: Limits::default(),
     };
     run(&spec, &mut |_| {}).unwrap().energy.unwrap()
 }

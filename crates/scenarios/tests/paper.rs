@@ -3,7 +3,7 @@
 use friction_models::{FrictionParams, ModelId, Parameters, Variant};
 use integrators::{Solver, StepControl};
 use scenarios::paper::{experiment, Asymptote};
-use scenarios::{run, RunSpec, Scenario, ScenarioParams, SwitchingKind};
+use scenarios::{run, Limits, RunSpec, Scenario, ScenarioParams, SwitchingKind};
 
 #[test]
 fn terminal_velocities_and_accelerations_match_their_closed_forms() {
@@ -50,6 +50,7 @@ fn paper_block(model: ModelId, p: FrictionParams) -> Vec<(f64, f64, f64)> {
         },
         t_end: Some(5.0),
         output_points: 11,
+        limits: Limits::default(),
     };
     run(&spec, &mut |_| {})
         .unwrap()

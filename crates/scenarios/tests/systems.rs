@@ -4,7 +4,7 @@ use friction_models::{FrictionParams, ModelId, Variant};
 use friction_systems::{file, simulate};
 use integrators::{Solver, StepControl};
 use scenarios::run::options;
-use scenarios::{run, RunSpec, Scenario, SwitchingKind};
+use scenarios::{run, Limits, RunSpec, Scenario, SwitchingKind};
 
 #[test]
 fn a_one_body_system_file_equals_the_belt_rig() {
@@ -23,6 +23,7 @@ fn a_one_body_system_file_equals_the_belt_rig() {
         },
         t_end: Some(10.0),
         output_points: 101,
+        limits: Limits::default(),
     };
     let rig = run(&spec, &mut |_| {}).unwrap();
     let text = r#"

@@ -1,0 +1,166 @@
+//! The allowed range of every numeric option of the command line, in one table, checked before
+//! any work starts: an error names the option, the value and the range, and exits 2.
+
+use crate::error::AppError;
+use friction_models::params::Range;
+
+/// A numeric option: its name as the command line spells it, its unit and its range.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OptionRange {
+    /// The option, as `--NAME` takes it.
+    pub name: &'static str,
+    /// Unit of the value ("" for a count).
+    pub unit: &'static str,
+    /// The allowed values.
+    pub range: Range,
+}
+
+const fn closed(min: f64, max: f64) -> Range {
+    Range {
+        min,
+        min_inclusive: true,
+        max,
+        max_inclusive: true,
+    }
+}
+
+const fn left_open(min: f64, max: f64) -> Range {
+    Range {
+        min,
+        min_inclusive: false,
+        max,
+        max_inclusive: true,
+    }
+}
+
+/// End time: 1 µs to 1e6 s (11 days of simulated time).
+pub const T_END: OptionRange = OptionRange {
+    name: "t-end",
+    unit: "s",
+    range: closed(1e-6, 1e6),
+};
+/// Fixed step, or initial step: 1e-10 s to 10 s.
+pub const DT: OptionRange = OptionRange {
+    name: "dt",
+    unit: "s",
+    range: closed(1e-10, 10.0),
+};
+/// Relative tolerance: from 1e-14 (about 50 units of round-off) to 1.
+pub const RTOL: OptionRange = OptionRange {
+    name: "rtol",
+    unit: "",
+    range: closed(1e-14, 1.0),
+};
+/// Absolute tolerance: (0, 1].
+pub const ATOL: OptionRange = OptionRange {
+    name: "atol",
+    unit: "",
+    range: left_open(0.0, 1.0),
+};
+/// Output points of a run or a curve.
+pub const POINTS: OptionRange = OptionRange {
+    name: "points",
+    unit: "",
+    range: closed(2.0, 1e7),
+};
+/// Step cap of one run.
+pub const MAX_STEPS: OptionRange = OptionRange {
+    name: "max-steps",
+    unit: "",
+    range: closed(1.0, 1e10),
+};
+/// Wall-clock limit of one run.
+pub const TIME_LIMIT: OptionRange = OptionRange {
+    name: "time-limit",
+    unit: "s",
+    range: left_open(0.0, 1e6),
+};
+/// Worker threads asked for (more than the machine's cores are capped to them).
+pub const THREADS: OptionRange = OptionRange {
+    name: "threads",
+    unit: "",
+    range: closed(1.0, 1024.0),
+};
+/// Timing repetitions of work-precision.
+pub const REPEATS: OptionRange = OptionRange {
+    name: "repeats",
+    unit: "",
+    range: closed(1.0, 100.0),
+};
+/// Largest |v| of a velocity curve.
+pub const V_MAX: OptionRange = OptionRange {
+    name: "v-max",
+    unit: "m/s",
+    range: left_open(0.0, 1e6),
+};
+
+/// A value as messages show it: in exponent form when very small or very large (as the
+/// ranges print their bounds), otherwise in full.
+pub fn show(x: f64) -> String {
+    if x.is_finite() && x != 0.0 && !(1e-3..1e6).contains(&x.abs()) {
+        format!("{x:e}")
+    } else {
+        x.to_string()
+    }
+}
+
+impl OptionRange {
+    /// `value` if it lies in the range, else the error that names option, value and range.
+    pub fn check(&self, value: f64) -> Result<f64, AppError> {
+        if self.range.contains(value) {
+            Ok(value)
+        } else {
+            let unit = if self.unit.is_empty() {
+                String::new()
+            } else {
+                format!(" {}", self.unit)
+            };
+            Err(AppError::Usage(format!(
+                "option `{}` = {} is out of range: allowed {}{unit}",
+                self.name,
+                show(value),
+                self.range
+            )))
+        }
+    }
+
+    /// A whole-number option, checked.
+    pub fn count(&self, value: i64) -> Result<usize, AppError> {
+        self.check(value as f64).map(|v| v as usize)
+    }
+
+    /// Every value of the list option `option` (`dt-list`, `tol-list`), checked against this
+    /// range; a list has 1 to 50 values.
+    pub fn list(&self, option: &str, values: &[f64]) -> Result<(), AppError> {
+        if values.is_empty() || values.len() > 50 {
+            return Err(AppError::Usage(format!(
+                "option `{option}` has {} values: allowed 1 to 50",
+                values.len()
+            )));
+        }
+        match values.iter().find(|&&v| !self.range.contains(v)) {
+            Some(&v) => Err(AppError::Usage(format!(
+                "option `{option}` has {}: allowed values {}{}",
+                show(v),
+                self.range,
+                if self.unit.is_empty() {
+                    String::new()
+                } else {
+                    format!(" {}", self.unit)
+                }
+            ))),
+            None => Ok(()),
+        }
+    }
+}
+
+/// The worker threads to use: `--threads` checked and capped at the machine's cores; `None`
+/// for all of them.
+pub fn threads(asked: Option<i64>) -> Result<Option<usize>, AppError> {
+    let Some(n) = asked else {
+        return Ok(None);
+    };
+    let n = THREADS.count(n)?;
+    let cores = std::thread::available_parallelism().map_or(1, |c| c.get());
+    Ok(Some(n.min(cores)))
+}
