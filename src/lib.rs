@@ -18,14 +18,22 @@ pub mod figure;
 pub mod options;
 pub mod output;
 pub mod plot;
+pub mod progress;
 pub mod ranges;
 
 use clap::{Parser, Subcommand};
 use error::AppError;
 
+/// The exit codes, as `--help` lists them.
+pub const EXIT_CODES: &str = "Exit codes:
+  0  success
+  1  a run failed (solver error, step or time limit): the files written keep what was computed
+     and summary.json says where and why; or writing the output failed
+  2  bad input (an option, a parameter, a file, the output folder): nothing was run or written";
+
 /// Dry-friction models and the solvers that integrate them.
 #[derive(Parser, Debug)]
-#[command(name = "friction-lab", version, about, long_about = None)]
+#[command(name = "friction-lab", version, about, long_about = None, after_help = EXIT_CODES)]
 pub struct Cli {
     /// The command to run.
     #[command(subcommand)]
@@ -36,6 +44,7 @@ pub struct Cli {
 #[derive(Subcommand, Debug)]
 pub enum Command {
     /// List every friction model with its equation, its parameters and the named sets.
+    #[command(after_help = EXIT_CODES)]
     Models {
         /// Print JSON instead of text.
         #[arg(long)]
@@ -43,21 +52,29 @@ pub enum Command {
     },
     /// Draw one friction curve: force against velocity, or against displacement under the
     /// paper's prescribed motion (DV, SD, SV, dahl).
+    #[command(after_help = EXIT_CODES)]
     Curve(commands::curve::CurveArgs),
     /// Integrate one scenario: trajectory.csv, summary.json and figures.
+    #[command(after_help = EXIT_CODES)]
     Simulate(commands::simulate::SimulateArgs),
     /// Decide Table 2 by simulation, beside the paper's table.
+    #[command(after_help = EXIT_CODES)]
     Phenomena(commands::phenomena::PhenomenaArgs),
     /// Convergence study: observed orders against a reference.
+    #[command(after_help = EXIT_CODES)]
     Converge(commands::studies::ConvergeArgs),
     /// Step-size independence: successive differences, Richardson estimate, verdict.
+    #[command(after_help = EXIT_CODES)]
     Independence(commands::studies::IndependenceArgs),
     /// Work-precision: error against cost for every solver.
+    #[command(after_help = EXIT_CODES)]
     WorkPrecision(commands::studies::WorkPrecisionArgs),
     /// Stiffness sweep: where the implicit solvers overtake the explicit ones.
+    #[command(after_help = EXIT_CODES)]
     Stiffness(commands::studies::StiffnessArgs),
     /// Reproduce the paper into one folder: Figures 2-7 with notes, the experiment, Table 2,
     /// the solver studies, and a report.md that links them.
+    #[command(after_help = EXIT_CODES)]
     Reproduce(commands::reproduce::ReproduceArgs),
 }
 

@@ -975,3 +975,39 @@ fn a_run_that_hits_its_step_cap_or_time_limit_keeps_its_result_and_exits_1() {
         assert!(rows > 1, "{what}: the trajectory up to the failure is kept");
     }
 }
+
+#[test]
+fn the_exit_codes_are_listed_in_every_help() {
+    for command in [
+        vec!["--help"],
+        vec!["simulate", "--help"],
+        vec!["converge", "--help"],
+        vec!["reproduce", "--help"],
+    ] {
+        let o = friction_lab(&command);
+        assert!(o.status.success());
+        let text = String::from_utf8_lossy(&o.stdout);
+        assert!(
+            text.contains("Exit codes:") && text.contains("2  bad input"),
+            "{command:?}: {text}"
+        );
+    }
+}
+
+#[test]
+fn progress_shows_as_a_heartbeat_without_a_terminal() {
+    // stderr is a pipe here, as under nohup or CI; a heartbeat period of 0 s prints every update.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("c");
+    let o = Command::new(env!("CARGO_BIN_EXE_friction-lab"))
+        .args(["converge", "belt", "--model", "CS", "--t-end", "1"])
+        .args(["--out", out.to_str().unwrap()])
+        .env("FRICTION_LAB_HEARTBEAT_S", "0")
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stderr(&o);
+    assert!(text.contains("converge: 1 runs done, 11 left, "), "{text}");
+    assert!(text.contains("converge: 12 runs done, 0 left, "), "{text}");
+    assert!(text.lines().all(|l| l.ends_with(" s elapsed")), "{text}");
+}

@@ -8,6 +8,7 @@ use crate::error::AppError;
 use crate::options::ModelOptions;
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Plot, Series, BLUE};
+use crate::progress::Progress;
 use crate::ranges;
 use clap::Args;
 use friction_models::{ModelId, Parameters};
@@ -221,17 +222,6 @@ impl SimulateArgs {
     }
 }
 
-/// A progress bar of 1000 steps with a message.
-pub fn progress_bar(message: String) -> indicatif::ProgressBar {
-    let bar = indicatif::ProgressBar::new(1000);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("{spinner} {msg} [{bar:40}] {percent}%")
-            .expect("a valid template"),
-    );
-    bar.set_message(message);
-    bar
-}
-
 /// The spec of a run of rig `scenario` from the command line.
 pub fn spec(args: &SimulateArgs, scenario: Scenario) -> Result<RunSpec, AppError> {
     let model = args.model.ok_or_else(|| {
@@ -373,19 +363,15 @@ fn run_rig(args: &SimulateArgs, scenario: Scenario) -> Result<(), AppError> {
     let t_end = spec
         .t_end
         .unwrap_or_else(|| spec.scenario.default_t_end(&spec.params, &spec.friction));
-    let bar = progress_bar(format!(
-        "{} {} {}",
-        spec.scenario,
-        spec.model,
-        spec.solver.name()
-    ));
+    let what = format!("{} {} {}", spec.scenario, spec.model, spec.solver.name());
+    let bar = Progress::time(t_end, &what);
     let outcome = scenarios::run(&spec, &mut |t| {
         if t_end > 0.0 {
-            bar.set_position((1000.0 * t / t_end).clamp(0.0, 1000.0) as u64);
+            bar.at(t);
         }
     })
     .map_err(AppError::from)?;
-    bar.finish_and_clear();
+    bar.finish();
 
     let model = spec.model.build(spec.variant, &spec.friction)?;
     let has_state = model.n_states() > 0;

@@ -11,6 +11,7 @@ use crate::error::AppError;
 use crate::options::ModelOptions;
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Plot, Series, PALETTE};
+use crate::progress::Progress;
 use crate::ranges;
 use clap::Args;
 use friction_models::ModelId;
@@ -154,16 +155,6 @@ fn positive_list(name: &'static str, values: &[f64]) -> Result<(), AppError> {
         None if values.is_empty() => Err(AppError::Usage(format!("option `{name}` is empty"))),
         None => Ok(()),
     }
-}
-
-fn bar(len: usize, what: &str) -> indicatif::ProgressBar {
-    let b = indicatif::ProgressBar::new(len as u64);
-    b.set_style(
-        indicatif::ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} runs")
-            .expect("valid template"),
-    );
-    b.set_message(what.to_string());
-    b
 }
 
 /// Where a study's files go, and on how many threads it runs.
@@ -325,12 +316,12 @@ pub fn add_convergence(
         .iter()
         .map(|&s| studies::steps_for(s, steps, tols, true).len())
         .sum();
-    let b = bar(jobs, "converge");
+    let b = Progress::runs(jobs, "converge");
     let c = with_threads(threads, || {
-        studies::convergence(case, solvers, steps, tols, &|| b.inc(1))
+        studies::convergence(case, solvers, steps, tols, &|| b.inc())
     })?
     .map_err(study_error)?;
-    b.finish_and_clear();
+    b.finish();
     let csv = dir.join(format!("{stem}.csv"));
     t.files.add(csv.clone(), runs_table(&c.runs, &csv)?);
     t.files.add_json(dir.join(format!("{stem}.json")), &c)?;
@@ -462,12 +453,12 @@ pub fn add_independence(
                 resolution.name
             ))
         })?;
-    let b = bar(levels, "independence");
+    let b = Progress::runs(levels, "independence");
     let s = with_threads(threads, || {
-        studies::independence(case, solver, start, ratio, levels, tol, &|| b.inc(1))
+        studies::independence(case, solver, start, ratio, levels, tol, &|| b.inc())
     })?
     .map_err(study_error)?;
-    b.finish_and_clear();
+    b.finish();
     let mut table = Table::new(&[
         "output",
         "level",
@@ -622,12 +613,12 @@ pub fn add_work_precision(
         .iter()
         .map(|&s| studies::steps_for(s, steps, tols, false).len())
         .sum();
-    let b = bar(jobs, "work-precision");
+    let b = Progress::runs(jobs, "work-precision");
     let w = with_threads(threads, || {
-        studies::work_precision(case, solvers, steps, tols, repeats, &|| b.inc(1))
+        studies::work_precision(case, solvers, steps, tols, repeats, &|| b.inc())
     })?
     .map_err(study_error)?;
-    b.finish_and_clear();
+    b.finish();
     let csv = dir.join(format!("{stem}.csv"));
     t.files.add(csv.clone(), runs_table(&w.runs, &csv)?);
     let mut timing = Table::new(&["solver", "resolution", "wall_time_median_s"]);
@@ -746,7 +737,7 @@ pub fn add_stiffness(
         .iter()
         .map(|&s| studies::steps_for(s, steps, tols, false).len())
         .sum();
-    let b = bar(per_value * values.len(), "stiffness");
+    let b = Progress::runs(per_value * values.len(), "stiffness");
     let s = with_threads(threads, || {
         studies::stiffness(
             case,
@@ -758,11 +749,11 @@ pub fn add_stiffness(
             solvers,
             steps,
             tols,
-            &|| b.inc(1),
+            &|| b.inc(),
         )
     })?
     .map_err(study_error)?;
-    b.finish_and_clear();
+    b.finish();
     let mut table = Table::new(&[
         "value",
         "solver",

@@ -5,11 +5,12 @@
 
 use crate::artifacts::Artifacts;
 use crate::commands::curve::used_parameters;
-use crate::commands::simulate::{progress_bar, SimulateArgs};
+use crate::commands::simulate::SimulateArgs;
 use crate::error::AppError;
 use crate::options::ModelOptions;
 use crate::output::{Cell, Table};
 use crate::plot::{self, Corner, Plot, Raster, Series, PALETTE};
+use crate::progress::Progress;
 use friction_models::{FrictionModel, FrictionParams, ModelId};
 use friction_systems::chain::{ChainParams, CHAIN_PARAMETERS};
 use friction_systems::{mode_name, EnergyBalance, Run, System, SLIP_NEGATIVE, SLIP_POSITIVE};
@@ -329,12 +330,12 @@ pub fn run(args: &SimulateArgs) -> Result<(), AppError> {
         ),
         ..Options::adaptive(0.0, t_end, 1e-8, 1e-10)
     };
-    let bar = progress_bar(format!("{name} {}", args.solver.solver.name()));
+    let bar = Progress::time(t_end, &format!("{name} {}", args.solver.solver.name()));
     let run =
         friction_systems::simulate(&system, switching, args.solver.solver, options, &mut |t| {
-            bar.set_position((1000.0 * t / t_end).clamp(0.0, 1000.0) as u64)
+            bar.at(t)
         })?;
-    bar.finish_and_clear();
+    bar.finish();
 
     let title = format!(
         "{name} ({}, {} switching)",
