@@ -127,18 +127,23 @@ fn read_file(path: &Path) -> Result<Vec<(String, f64)>, AppError> {
             "larger than {MAX_PARAMS_BYTES} bytes, the most a parameter file may hold"
         )));
     }
+    parse_params(&text).map_err(file_error)
+}
+
+/// Parses the text of a parameter file: `NAME = number` lines (TOML), in file order.
+pub fn parse_params(text: &str) -> Result<Vec<(String, f64)>, String> {
     let table: toml::Table = text
         .parse()
-        .map_err(|e: toml::de::Error| file_error(e.message().to_string()))?;
+        .map_err(|e: toml::de::Error| e.message().to_string())?;
     table
         .into_iter()
         .map(|(name, value)| match value {
             toml::Value::Float(x) => Ok((name, x)),
             toml::Value::Integer(i) => Ok((name, i as f64)),
-            other => Err(file_error(format!(
+            other => Err(format!(
                 "`{name}` must be a number, found {} `{other}`",
                 other.type_str()
-            ))),
+            )),
         })
         .collect()
 }

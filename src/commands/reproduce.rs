@@ -388,13 +388,13 @@ fn add_studies(
          f evaluations (plus n per Jacobian) for all seven solvers; wall times in \
          studies/work-precision-belt-CS-timing.csv.\n\
          - [Cost to reach error 1e-3 against the regularisation width](studies/stiffness-belt-CS-epsilon.png): \
-         the implicit solvers overtake the explicit ones from epsilon = {}.\n",
+         {}.\n",
         slopes(&smooth, "grid_max"),
         slopes(&naive, "grid_max"),
         slopes(&switched, "grid_max"),
         verdict(&av),
         verdict(&cs),
-        stiff.crossover.map_or("(never in this sweep)".into(), |v| v.to_string()),
+        stiff.verdict(),
     ))
 }
 

@@ -833,13 +833,7 @@ pub fn stiffness(a: &StiffnessArgs) -> Result<(), AppError> {
             &a.dt_list,
             &a.tol_list,
         )?;
-        let crossover = s
-            .crossover
-            .map_or("(never in this sweep)".into(), |v| v.to_string());
-        println!(
-            "implicit solvers overtake explicit ones from {} = {crossover}",
-            s.parameter
-        );
+        println!("{}", s.verdict());
         Ok(())
     })
 }

@@ -623,6 +623,50 @@ pub struct Stiffness {
     pub crossover: Option<f64>,
 }
 
+impl Stiffness {
+    /// The study's conclusion in words: a crossover only where the winner changes inside the
+    /// sweep; "no crossover in this range" where one kind wins at every value.
+    pub fn verdict(&self) -> String {
+        let wins: Vec<bool> = self.points.iter().map(|p| p.implicit_wins).collect();
+        let values = |implicit: bool| {
+            self.points
+                .iter()
+                .filter(|p| p.implicit_wins == implicit)
+                .map(|p| p.value.to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        match (wins.iter().all(|&w| w), wins.iter().any(|&w| w)) {
+            _ if wins.is_empty() => "no values were swept".into(),
+            (true, _) => format!(
+                "the implicit solvers win at every {} of the sweep: no crossover in this range",
+                self.parameter
+            ),
+            (false, false) => format!(
+                "the explicit solvers win at every {} of the sweep: no crossover in this range",
+                self.parameter
+            ),
+            _ => {
+                let k = wins.iter().position(|&w| w).expect("some value is won");
+                if wins[k..].iter().all(|&w| w) {
+                    format!(
+                        "the implicit solvers overtake the explicit ones from {} = {}",
+                        self.parameter, self.points[k].value
+                    )
+                } else {
+                    format!(
+                        "the winner changes more than once: implicit solvers win at {} = {}, \
+                         explicit ones at {}",
+                        self.parameter,
+                        values(true),
+                        values(false)
+                    )
+                }
+            }
+        }
+    }
+}
+
 /// What a stiffness study sweeps, and the error each solver must reach.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sweep<'a> {

@@ -119,3 +119,40 @@ fn the_independence_verdict_is_negative_for_a_coarse_step_and_positive_for_a_fin
         "{v:?}"
     );
 }
+
+#[test]
+fn the_stiffness_verdict_names_a_crossover_only_inside_the_sweep() {
+    use scenarios::studies::{Stiffness, StiffnessPoint};
+    let sweep = |wins: &[bool]| Stiffness {
+        parameter: "epsilon".into(),
+        target: 1e-3,
+        points: wins
+            .iter()
+            .enumerate()
+            .map(|(i, &w)| StiffnessPoint {
+                value: 10f64.powi(-(i as i32)),
+                costs: vec![],
+                implicit_wins: w,
+            })
+            .collect(),
+        crossover: wins
+            .iter()
+            .position(|&w| w)
+            .map(|i| 10f64.powi(-(i as i32))),
+    };
+    assert_eq!(
+        sweep(&[true, true, true]).verdict(),
+        "the implicit solvers win at every epsilon of the sweep: no crossover in this range"
+    );
+    assert_eq!(
+        sweep(&[false, false]).verdict(),
+        "the explicit solvers win at every epsilon of the sweep: no crossover in this range"
+    );
+    assert_eq!(
+        sweep(&[false, true, true]).verdict(),
+        "the implicit solvers overtake the explicit ones from epsilon = 0.1"
+    );
+    assert!(sweep(&[false, true, false])
+        .verdict()
+        .starts_with("the winner changes more than once"));
+}
