@@ -51,11 +51,16 @@ impl Artifacts {
 
     /// Adds a plot as `stem.png` and `stem.svg`.
     pub fn add_plot(&mut self, stem: &Path, plot: &Plot) -> Result<(), AppError> {
+        self.add_panels(stem, std::slice::from_ref(plot))
+    }
+
+    /// Adds plots side by side as one figure, `stem.png` and `stem.svg`.
+    pub fn add_panels(&mut self, stem: &Path, plots: &[Plot]) -> Result<(), AppError> {
         let png = stem.with_extension("png");
-        let bytes = plot::png(plot, &png)?;
+        let bytes = plot::png_panels(plots, &png)?;
         self.add(png, bytes);
         let svg = stem.with_extension("svg");
-        let text = plot::svg(plot, &svg)?;
+        let text = plot::svg_panels(plots, &svg)?;
         self.add(svg, text.into_bytes());
         Ok(())
     }

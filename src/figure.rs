@@ -1,7 +1,7 @@
 //! A friction curve as the files that show it: a CSV table of its data and a plot.
 
 use crate::output::{Cell, Table};
-use crate::plot::{Corner, Plot, Series, BLUE, GREEN, RED};
+use crate::plot::{Corner, Marker, Plot, Series, BLUE, GREEN, RED};
 use friction_models::{CurveAxis, ModelId, Variant};
 use scenarios::curves::{Curve, Sample};
 
@@ -105,6 +105,7 @@ pub fn plot(title: String, model: ModelId, curves: &[Drawn]) -> Plot {
             points: polyline(d.curve),
             color,
             width,
+            marker: Marker::None,
         });
     }
     let main = curves[0].curve.at_rest;
@@ -117,6 +118,7 @@ pub fn plot(title: String, model: ModelId, curves: &[Drawn]) -> Plot {
             points: vec![(0.0, main.lower), (0.0, main.upper)],
             color: GREEN,
             width: 4,
+            marker: Marker::None,
         });
     }
     let x_label = match axis {
@@ -129,5 +131,6 @@ pub fn plot(title: String, model: ModelId, curves: &[Drawn]) -> Plot {
         y_label: "friction force F (N)".into(),
         series,
         legend: Corner::default(),
+        log: false,
     }
 }

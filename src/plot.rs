@@ -2,6 +2,7 @@
 //! no system font package is needed.
 
 use crate::error::AppError;
+use plotters::coord::ranged1d::ValueFormatter;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::Path;
@@ -19,8 +20,22 @@ pub struct Series {
     pub points: Vec<(f64, f64)>,
     /// Line colour.
     pub color: RGBColor,
-    /// Line width, pixels.
+    /// Line width, pixels (0: no line, markers only).
     pub width: u32,
+    /// How each point is marked.
+    pub marker: Marker,
+}
+
+/// How the points of a series are marked.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Marker {
+    /// Not at all (a curve).
+    #[default]
+    None,
+    /// A filled dot (a computed run).
+    Dot,
+    /// A cross (a run that failed or did not reach its target).
+    Cross,
 }
 
 /// A labelled line plot.
@@ -36,6 +51,9 @@ pub struct Plot {
     pub series: Vec<Series>,
     /// Where the legend goes.
     pub legend: Corner,
+    /// Logarithmic axes (x and y), with the data in their own units; non-positive values
+    /// are left out. Linear axes draw the axes through the origin, as the paper's figures.
+    pub log: bool,
 }
 
 /// The colours of the figures: the paper's red for the model, blue and green beside it.
@@ -76,16 +94,24 @@ fn register_font() {
     });
 }
 
-/// The plot range of the data, padded by 5 % on each side; [0, 1] on an axis with no finite
-/// data (an empty plot must still draw, and plotters cannot draw an infinite range).
-fn bounds(plot: &Plot) -> ((f64, f64), (f64, f64)) {
-    let points = plot
-        .series
+/// The points of a plot that can be drawn on its axes: finite, and positive on log axes.
+fn drawable(plot: &Plot) -> impl Iterator<Item = (f64, f64)> + '_ {
+    plot.series
         .iter()
-        .flat_map(|s| s.points.iter())
-        .filter(|(x, y)| x.is_finite() && y.is_finite());
+        .flat_map(|s| s.points.iter().copied())
+        .filter(move |(x, y)| {
+            x.is_finite() && y.is_finite() && (!plot.log || (*x > 0.0 && *y > 0.0))
+        })
+}
+
+/// The plot range of the data, padded by 5 % on each side (of the decades on log axes);
+/// [0, 1] (or [1, 10]) on an axis with no drawable data (an empty plot must still draw, and
+/// plotters cannot draw an infinite range).
+fn bounds(plot: &Plot) -> ((f64, f64), (f64, f64)) {
     let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
-    for &(x, y) in points {
+    let to_axis = |v: f64| if plot.log { v.log10() } else { v };
+    for (x, y) in drawable(plot) {
+        let (x, y) = (to_axis(x), to_axis(y));
         x0 = x0.min(x);
         x1 = x1.max(x);
         y0 = y0.min(y);
@@ -98,47 +124,141 @@ fn bounds(plot: &Plot) -> ((f64, f64), (f64, f64)) {
         let d = if b > a { 0.05 * (b - a) } else { 0.5 };
         (a - d, b + d)
     };
-    (pad(x0, x1), pad(y0, y1))
+    let from_axis = |(a, b): (f64, f64)| {
+        if plot.log {
+            (10f64.powf(a), 10f64.powf(b))
+        } else {
+            (a, b)
+        }
+    };
+    (from_axis(pad(x0, x1)), from_axis(pad(y0, y1)))
 }
 
-fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, plot: &Plot) -> Result<(), String> {
+/// Draws `plots` side by side on `root`.
+fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, plots: &[Plot]) -> Result<(), String> {
     let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
     root.fill(&WHITE).map_err(err)?;
-    let ((x0, x1), (y0, y1)) = bounds(plot);
-    let mut chart = ChartBuilder::on(&root)
-        .caption(&plot.title, ("sans-serif", 22))
-        .margin(15)
-        .x_label_area_size(50)
-        .y_label_area_size(70)
-        .build_cartesian_2d(x0..x1, y0..y1)
-        .map_err(err)?;
-    chart
-        .configure_mesh()
-        .light_line_style(WHITE)
+    for (area, plot) in root.split_evenly((1, plots.len().max(1))).iter().zip(plots) {
+        let ((x0, x1), (y0, y1)) = bounds(plot);
+        let mut builder = ChartBuilder::on(area);
+        builder
+            .caption(&plot.title, ("sans-serif", 22))
+            .margin(15)
+            .x_label_area_size(50)
+            .y_label_area_size(70);
+        if plot.log {
+            let chart = builder
+                .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
+                .map_err(err)?;
+            draw_on(chart, plot)?;
+        } else {
+            let chart = builder.build_cartesian_2d(x0..x1, y0..y1).map_err(err)?;
+            draw_on(chart, plot)?;
+        }
+    }
+    root.present().map_err(err)
+}
+
+/// A tick label of a log axis: three significant digits, exponent form outside [1e-3, 1e4).
+fn tick_label(v: f64) -> String {
+    let trim = |m: String| {
+        if m.contains('.') {
+            m.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            m
+        }
+    };
+    if v == 0.0 || (1e-3..1e4).contains(&v.abs()) {
+        trim(format!("{v:.4}"))
+    } else {
+        let text = format!("{v:.2e}");
+        let (mantissa, exponent) = text.split_once('e').unwrap_or((&text, "0"));
+        format!("{}e{exponent}", trim(mantissa.to_string()))
+    }
+}
+
+/// The mesh, the series with their markers, and the legend, on linear or log axes.
+fn draw_on<'a, DB, X, Y>(
+    mut chart: ChartContext<'a, DB, Cartesian2d<X, Y>>,
+    plot: &Plot,
+) -> Result<(), String>
+where
+    DB: DrawingBackend + 'a,
+    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+{
+    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
+    let tick = |v: &f64| tick_label(*v);
+    let mut mesh = chart.configure_mesh();
+    mesh.light_line_style(WHITE)
         .x_desc(plot.x_label.as_str())
         .y_desc(plot.y_label.as_str())
         .label_style(("sans-serif", 15))
-        .axis_desc_style(("sans-serif", 17))
-        .draw()
-        .map_err(err)?;
-    // The axes through the origin, as in the paper's figures.
-    let axis = ShapeStyle::from(&BLACK.mix(0.4)).stroke_width(1);
-    chart
-        .draw_series(LineSeries::new([(x0, 0.0), (x1, 0.0)], axis))
-        .map_err(err)?;
-    chart
-        .draw_series(LineSeries::new([(0.0, y0), (0.0, y1)], axis))
-        .map_err(err)?;
-    for s in &plot.series {
-        let style = ShapeStyle::from(&s.color).stroke_width(s.width);
-        let drawn = chart
-            .draw_series(LineSeries::new(s.points.iter().copied(), style))
+        .axis_desc_style(("sans-serif", 17));
+    if plot.log {
+        mesh.x_label_formatter(&tick).y_label_formatter(&tick);
+    }
+    mesh.draw().map_err(err)?;
+    if !plot.log {
+        // The axes through the origin, as in the paper's figures.
+        let (xr, yr) = (chart.x_range(), chart.y_range());
+        let axis = ShapeStyle::from(&BLACK.mix(0.4)).stroke_width(1);
+        chart
+            .draw_series(LineSeries::new([(xr.start, 0.0), (xr.end, 0.0)], axis))
             .map_err(err)?;
+        chart
+            .draw_series(LineSeries::new([(0.0, yr.start), (0.0, yr.end)], axis))
+            .map_err(err)?;
+    }
+    for s in &plot.series {
+        let points: Vec<(f64, f64)> = s
+            .points
+            .iter()
+            .copied()
+            .filter(|(x, y)| {
+                x.is_finite() && y.is_finite() && (!plot.log || (*x > 0.0 && *y > 0.0))
+            })
+            .collect();
+        let color = s.color;
+        let marker = s.marker;
+        let drawn = if s.width > 0 {
+            let style = ShapeStyle::from(&s.color).stroke_width(s.width);
+            chart
+                .draw_series(LineSeries::new(points.iter().copied(), style))
+                .map_err(err)?
+        } else {
+            chart
+                .draw_series(std::iter::empty::<PathElement<(f64, f64)>>())
+                .map_err(err)?
+        };
         if let Some(label) = &s.label {
-            let color = s.color;
+            // A cross for failed runs, a line (with its dot) for the others.
+            let (cross, line) = match marker {
+                Marker::Cross => (1.0, 0.0),
+                _ => (0.0, 1.0),
+            };
             drawn.label(label.as_str()).legend(move |(x, y)| {
-                PathElement::new([(x, y), (x + 20, y)], color.stroke_width(3))
+                EmptyElement::at((x, y))
+                    + PathElement::new([(0, 0), (20, 0)], color.mix(line).stroke_width(3))
+                    + Cross::new((10, 0), 5, color.mix(cross).stroke_width(2))
             });
+        }
+        match marker {
+            Marker::None => {}
+            Marker::Dot => {
+                chart
+                    .draw_series(points.iter().map(|&p| Circle::new(p, 4, color.filled())))
+                    .map_err(err)?;
+            }
+            Marker::Cross => {
+                chart
+                    .draw_series(
+                        points
+                            .iter()
+                            .map(|&p| Cross::new(p, 6, color.stroke_width(2))),
+                    )
+                    .map_err(err)?;
+            }
         }
     }
     if plot.series.iter().any(|s| s.label.is_some()) {
@@ -154,16 +274,26 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, plot: &Plot) -> Result
             .draw()
             .map_err(err)?;
     }
-    root.present().map_err(err)
+    Ok(())
+}
+
+/// The size of a figure of `panels` plots side by side.
+fn size(panels: usize) -> (u32, u32) {
+    (SIZE.0 * panels.max(1) as u32, SIZE.1)
 }
 
 /// The plot as SVG text.
 pub fn svg(plot: &Plot, path: &Path) -> Result<String, AppError> {
+    svg_panels(std::slice::from_ref(plot), path)
+}
+
+/// Plots side by side as SVG text.
+pub fn svg_panels(plots: &[Plot], path: &Path) -> Result<String, AppError> {
     register_font();
     let mut text = String::new();
     draw(
-        SVGBackend::with_string(&mut text, SIZE).into_drawing_area(),
-        plot,
+        SVGBackend::with_string(&mut text, size(plots.len())).into_drawing_area(),
+        plots,
     )
     .map_err(|message| AppError::Plot {
         path: path.to_path_buf(),
@@ -174,24 +304,28 @@ pub fn svg(plot: &Plot, path: &Path) -> Result<String, AppError> {
 
 /// The plot as PNG bytes.
 pub fn png(plot: &Plot, path: &Path) -> Result<Vec<u8>, AppError> {
+    png_panels(std::slice::from_ref(plot), path)
+}
+
+/// Plots side by side as PNG bytes.
+pub fn png_panels(plots: &[Plot], path: &Path) -> Result<Vec<u8>, AppError> {
     register_font();
     let fail = |message: String| AppError::Plot {
         path: path.to_path_buf(),
         message,
     };
-    let (w, h) = SIZE;
+    let (w, h) = size(plots.len());
     let mut pixels = vec![0u8; (w * h * 3) as usize];
     draw(
-        BitMapBackend::with_buffer(&mut pixels, SIZE).into_drawing_area(),
-        plot,
+        BitMapBackend::with_buffer(&mut pixels, (w, h)).into_drawing_area(),
+        plots,
     )
     .map_err(fail)?;
-    encode_png(&pixels, path)
+    encode_png(&pixels, (w, h), path)
 }
 
-/// RGB pixels of a [`SIZE`] image as PNG bytes.
-fn encode_png(pixels: &[u8], path: &Path) -> Result<Vec<u8>, AppError> {
-    let (w, h) = SIZE;
+/// RGB pixels of a `w × h` image as PNG bytes.
+fn encode_png(pixels: &[u8], (w, h): (u32, u32), path: &Path) -> Result<Vec<u8>, AppError> {
     let mut bytes = Vec::new();
     let mut encoder = png::Encoder::new(&mut bytes, w, h);
     encoder.set_color(png::ColorType::Rgb);
@@ -312,12 +446,20 @@ pub fn raster_png(r: &Raster, path: &Path) -> Result<Vec<u8>, AppError> {
         path: path.to_path_buf(),
         message,
     })?;
-    encode_png(&pixels, path)
+    encode_png(&pixels, SIZE, path)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn log_tick_labels_are_short() {
+        assert_eq!(tick_label(9.999999999999999e-6), "1e-5");
+        assert_eq!(tick_label(0.02), "0.02");
+        assert_eq!(tick_label(2.5e7), "2.5e7");
+        assert_eq!(tick_label(1000.0), "1000");
+    }
 
     #[test]
     fn an_empty_plot_draws_on_a_unit_range() {
@@ -330,8 +472,10 @@ mod tests {
                 points: vec![(f64::NAN, 1.0)],
                 color: RED,
                 width: 1,
+                marker: Marker::None,
             }],
             legend: Corner::default(),
+            log: false,
         };
         assert_eq!(bounds(&plot), ((0.0, 1.0), (0.0, 1.0)));
         assert!(svg(&plot, Path::new("empty.svg"))

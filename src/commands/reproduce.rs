@@ -11,7 +11,7 @@ use crate::error::AppError;
 use crate::figure::Drawn;
 use crate::options::ParamOptions;
 use crate::output::{Cell, Table};
-use crate::plot::{Corner, Plot, Series, PALETTE};
+use crate::plot::{Corner, Marker, Plot, Series, PALETTE};
 use crate::ranges;
 use clap::Args;
 use friction_models::{FrictionParams, ModelId, Variant};
@@ -157,6 +157,7 @@ fn add_experiment(
             points: row.velocity.clone(),
             color,
             width: 2,
+            marker: Marker::None,
         });
     }
     let csv = stem.with_extension("csv");
@@ -167,6 +168,7 @@ fn add_experiment(
         y_label: "velocity v (m/s)".into(),
         series,
         legend: Corner::default(),
+        log: false,
     };
     files.add_plot(&stem, &p)?;
     let mut md = String::from(

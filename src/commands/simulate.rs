@@ -7,7 +7,7 @@ use crate::commands::curve::used_parameters;
 use crate::error::AppError;
 use crate::options::ModelOptions;
 use crate::output::{Cell, Table};
-use crate::plot::{Corner, Plot, Series, BLUE};
+use crate::plot::{Corner, Marker, Plot, Series, BLUE};
 use crate::progress::Progress;
 use crate::ranges;
 use clap::Args;
@@ -341,8 +341,10 @@ fn figures(o: &Outcome, name: &str) -> Vec<(&'static str, Plot)> {
                         points: o.rows.iter().map(|r| (fx(r), fy(r))).collect(),
                         color: BLUE,
                         width: 2,
+                        marker: Marker::None,
                     }],
                     legend: Corner::default(),
+                    log: false,
                 },
             )
         })

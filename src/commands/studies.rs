@@ -10,7 +10,7 @@ use crate::commands::system::{chosen_bodies, system_of, FILE_T_END};
 use crate::error::AppError;
 use crate::options::ModelOptions;
 use crate::output::{Cell, Table};
-use crate::plot::{Corner, Plot, Series, PALETTE};
+use crate::plot::{Corner, Marker, Plot, Series, PALETTE};
 use crate::progress::Progress;
 use crate::ranges;
 use clap::Args;
@@ -188,7 +188,9 @@ fn study_error(e: scenarios::ScenarioError) -> AppError {
 fn runs_table(runs: &[StudyRun], path: &Path) -> Result<Vec<u8>, AppError> {
     let mut t = Table::new(&[
         "solver",
+        "step",
         "resolution",
+        "work",
         "error_final_state",
         "error_grid_max",
         "error_event_times",
@@ -214,7 +216,9 @@ fn runs_table(runs: &[StudyRun], path: &Path) -> Result<Vec<u8>, AppError> {
         let s = r.stats;
         t.rows.push(vec![
             Cell::Text(r.solver.into()),
+            Cell::Text(r.step.into()),
             Cell::Num(r.resolution),
+            Cell::Num(r.work as f64),
             num(r.errors.final_state),
             num(r.errors.grid_max),
             num(r.errors.event_times),
@@ -233,38 +237,86 @@ fn runs_table(runs: &[StudyRun], path: &Path) -> Result<Vec<u8>, AppError> {
 }
 
 /// log10 of (x, y) pairs with both positive and finite.
-fn log_points(points: impl Iterator<Item = (f64, f64)>) -> Vec<(f64, f64)> {
-    points
-        .filter(|(x, y)| *x > 0.0 && *y > 0.0 && x.is_finite() && y.is_finite())
-        .map(|(x, y)| (x.log10(), y.log10()))
-        .collect()
-}
-
+/// One series per solver of the runs `keep` selects, with a dot on every run that computed,
+/// and, per solver with failed runs, a series of crosses drawn at the top of the plot at their
+/// x, named with their count (a failed run has no error to plot, but it is not left out).
 fn per_solver_series(
     runs: &[StudyRun],
+    keep: impl Fn(&StudyRun) -> bool,
     x: impl Fn(&StudyRun) -> f64,
     y: impl Fn(&StudyRun) -> f64,
 ) -> Vec<Series> {
+    let runs: Vec<&StudyRun> = runs.iter().filter(|r| keep(r)).collect();
     let mut names: Vec<&str> = Vec::new();
-    for r in runs {
+    for r in &runs {
         if !names.contains(&r.solver) {
             names.push(r.solver);
         }
     }
-    names
+    let plotted = |r: &&&StudyRun| r.failure.is_none() && y(r) > 0.0 && y(r).is_finite();
+    let top = runs
         .iter()
-        .zip(PALETTE.iter().cycle())
-        .map(|(name, &color)| Series {
-            label: Some(name.to_string()),
-            points: log_points(
-                runs.iter()
-                    .filter(|r| r.solver == *name && r.failure.is_none())
-                    .map(|r| (x(r), y(r))),
-            ),
-            color,
-            width: 2,
+        .filter(plotted)
+        .map(|r| y(r))
+        .reduce(f64::max)
+        .unwrap_or(1.0)
+        * 3.0;
+    let mut series = Vec::new();
+    for (name, &color) in names.iter().zip(PALETTE.iter().cycle()) {
+        let mine = || runs.iter().filter(|r| r.solver == *name);
+        let points: Vec<(f64, f64)> = mine().filter(plotted).map(|r| (x(r), y(r))).collect();
+        if !points.is_empty() {
+            series.push(Series {
+                label: Some(name.to_string()),
+                points,
+                color,
+                width: 2,
+                marker: Marker::Dot,
+            });
+        }
+        let failed: Vec<(f64, f64)> = mine()
+            .filter(|r| r.failure.is_some())
+            .map(|r| (x(r), top))
+            .collect();
+        if !failed.is_empty() {
+            series.push(Series {
+                label: Some(format!("{name}: {} failed (at the top)", failed.len())),
+                points: failed,
+                color,
+                width: 0,
+                marker: Marker::Cross,
+            });
+        }
+    }
+    series
+}
+
+/// Reference lines of slope `p` (on log–log axes) through the first point of the first
+/// series, drawn only over that series' x-range.
+fn slope_lines(series: &[Series], slopes: &[f64]) -> Vec<Series> {
+    let Some(first) = series.iter().find(|s| s.marker == Marker::Dot) else {
+        return Vec::new();
+    };
+    let (x0, y0) = first.points[0];
+    let (lo, hi) = first
+        .points
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(lo, hi), p| {
+            (lo.min(p.0), hi.max(p.0))
+        });
+    slopes
+        .iter()
+        .zip([170u8, 120, 70].iter().cycle())
+        .map(|(&p, &shade)| Series {
+            label: Some(format!("slope {p}")),
+            points: [lo, hi]
+                .iter()
+                .map(|&x| (x, y0 * (x / x0).powf(p)))
+                .collect(),
+            color: plotters::style::RGBColor(shade, shade, shade),
+            width: 1,
+            marker: Marker::None,
         })
-        .filter(|s| !s.points.is_empty())
         .collect()
 }
 
@@ -325,25 +377,32 @@ pub fn add_convergence(
     let csv = dir.join(format!("{stem}.csv"));
     t.files.add(csv.clone(), runs_table(&c.runs, &csv)?);
     t.files.add_json(dir.join(format!("{stem}.json")), &c)?;
-    let mut series = per_solver_series(&c.runs, |r| r.resolution, |r| r.errors.grid_max);
-    if let Some(&(x0, y0)) = series.first().and_then(|s| s.points.first()) {
-        for (p, shade) in [(1.0, 170), (4.0, 120), (5.0, 70)] {
-            series.push(Series {
-                label: Some(format!("slope {p}")),
-                points: vec![(x0, y0), (x0 - 2.0, y0 - 2.0 * p)],
-                color: plotters::style::RGBColor(shade, shade, shade),
-                width: 1,
-            });
+    // Step sizes and tolerances are different things: one panel each.
+    let panel = |step: &str, x_label: &str, slopes: &[f64]| {
+        let mut series = per_solver_series(
+            &c.runs,
+            |r| r.step == step,
+            |r| r.resolution,
+            |r| r.errors.grid_max,
+        );
+        series.extend(slope_lines(&series, slopes));
+        Plot {
+            title: format!("Convergence ({step} steps): {}", case.describe()),
+            x_label: x_label.into(),
+            y_label: "max error on the time grid".into(),
+            series,
+            legend: Corner::default(),
+            log: true,
         }
-    }
-    let plot = Plot {
-        title: format!("Convergence: {}", case.describe()),
-        x_label: "log10 step size h (s), or tolerance".into(),
-        y_label: "log10 max error on the time grid".into(),
-        series,
-        legend: Corner::default(),
     };
-    t.files.add_plot(&dir.join(stem), &plot)?;
+    let panels: Vec<Plot> = [
+        panel("fixed", "step size h (s)", &[1.0, 4.0, 5.0]),
+        panel("adaptive", "tolerance (rtol = atol)", &[1.0]),
+    ]
+    .into_iter()
+    .filter(|p| !p.series.is_empty())
+    .collect();
+    t.files.add_panels(&dir.join(stem), &panels)?;
     Ok(c)
 }
 
@@ -506,6 +565,7 @@ pub fn add_independence(
                 .collect(),
             color,
             width: 2,
+            marker: Marker::None,
         })
         .collect();
     let plot = Plot {
@@ -522,6 +582,7 @@ pub fn add_independence(
         y_label: "displacement x (m)".into(),
         series,
         legend: Corner::default(),
+        log: false,
     };
     t.files.add_plot(&dir.join(stem), &plot)?;
     Ok(s)
@@ -632,13 +693,13 @@ pub fn add_work_precision(
     let timing_csv = dir.join(format!("{stem}-timing.csv"));
     t.files.add(timing_csv.clone(), timing.to_csv(&timing_csv)?);
     t.files.add_json(dir.join(format!("{stem}.json")), &w)?;
-    let dims = |r: &StudyRun| r.work as f64;
     let plot = Plot {
         title: format!("Work-precision: {}", case.describe()),
-        x_label: "log10 work (f evaluations + dim per Jacobian)".into(),
-        y_label: "log10 max error on the time grid".into(),
-        series: per_solver_series(&w.runs, dims, |r| r.errors.grid_max),
+        x_label: "work (f evaluations + dim per Jacobian)".into(),
+        y_label: "max error on the time grid".into(),
+        series: per_solver_series(&w.runs, |_| true, |r| r.work as f64, |r| r.errors.grid_max),
         legend: Corner::UpperRight,
+        log: true,
     };
     t.files.add_plot(&dir.join(stem), &plot)?;
     Ok(w)
@@ -788,29 +849,67 @@ pub fn add_stiffness(
     let csv = dir.join(format!("{stem}.csv"));
     t.files.add(csv.clone(), table.to_csv(&csv)?);
     t.files.add_json(dir.join(format!("{stem}.json")), &s)?;
-    let series = solvers
+    // A solver that met the target at a value: a dot at its cost; one that did not: a cross
+    // at the top of the plot, named.
+    let reached: Vec<(f64, f64)> = s
+        .points
         .iter()
-        .zip(PALETTE.iter().cycle())
-        .map(|(solver, &color)| Series {
-            label: Some(solver.name().into()),
-            points: log_points(s.points.iter().filter_map(|p| {
-                let c = p.costs.iter().find(|c| c.solver == solver.name())?;
-                c.resolution.map(|_| (p.value, c.work as f64))
-            })),
-            color,
-            width: 2,
+        .flat_map(|p| {
+            p.costs
+                .iter()
+                .filter(|c| c.resolution.is_some())
+                .map(|c| (p.value, c.work as f64))
         })
-        .filter(|s| !s.points.is_empty())
         .collect();
+    let top = reached.iter().map(|p| p.1).fold(1.0, f64::max) * 3.0;
+    let mut series = Vec::new();
+    for (solver, &color) in solvers.iter().zip(PALETTE.iter().cycle()) {
+        let costs = || {
+            s.points.iter().filter_map(|p| {
+                Some((p.value, p.costs.iter().find(|c| c.solver == solver.name())?))
+            })
+        };
+        let met: Vec<(f64, f64)> = costs()
+            .filter(|(_, c)| c.resolution.is_some())
+            .map(|(v, c)| (v, c.work as f64))
+            .collect();
+        let missed: Vec<(f64, f64)> = costs()
+            .filter(|(_, c)| c.resolution.is_none())
+            .map(|(v, _)| (v, top))
+            .collect();
+        if !met.is_empty() {
+            series.push(Series {
+                label: Some(solver.name().into()),
+                points: met,
+                color,
+                width: 2,
+                marker: Marker::Dot,
+            });
+        }
+        if !missed.is_empty() {
+            series.push(Series {
+                label: Some(format!(
+                    "{}: target not reached at {} value(s) (at the top)",
+                    solver.name(),
+                    missed.len()
+                )),
+                points: missed,
+                color,
+                width: 0,
+                marker: Marker::Cross,
+            });
+        }
+    }
     let plot = Plot {
         title: format!(
             "Cost to reach error {target:e} against {parameter}: {}",
             case.describe()
         ),
-        x_label: format!("log10 {parameter}"),
-        y_label: "log10 work (f evaluations + dim per Jacobian)".into(),
+        x_label: parameter.to_string(),
+        y_label: "work (f evaluations + dim per Jacobian)".into(),
         series,
         legend: Corner::UpperRight,
+        log: true,
     };
     t.files.add_plot(&dir.join(stem), &plot)?;
     Ok(s)

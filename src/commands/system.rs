@@ -9,7 +9,7 @@ use crate::commands::simulate::SimulateArgs;
 use crate::error::AppError;
 use crate::options::ModelOptions;
 use crate::output::{Cell, Table};
-use crate::plot::{self, Corner, Plot, Raster, Series, PALETTE};
+use crate::plot::{self, Corner, Marker, Plot, Raster, Series, PALETTE};
 use crate::progress::Progress;
 use friction_models::{FrictionModel, FrictionParams, ModelId};
 use friction_systems::chain::{ChainParams, CHAIN_PARAMETERS};
@@ -372,9 +372,11 @@ pub fn run(args: &SimulateArgs) -> Result<(), AppError> {
                 points: run.body(i).iter().map(|b| (b.t, b.v)).collect(),
                 color: PALETTE[c],
                 width: 2,
+                marker: Marker::None,
             })
             .collect(),
         legend: Corner::UpperRight,
+        log: false,
     };
     files.add_plot(&args.out.join("velocity"), &velocity)?;
     let mut event_counts = BTreeMap::new();

@@ -119,6 +119,8 @@ pub struct StudyRun {
     pub solver: &'static str,
     /// The step size (fixed-step runs) or the tolerance (adaptive runs).
     pub resolution: f64,
+    /// Which the resolution is: `fixed` (a step size, s) or `adaptive` (rtol = atol).
+    pub step: &'static str,
     /// Errors against the reference.
     pub errors: Errors,
     /// The run's measures.
@@ -172,6 +174,10 @@ pub fn run_all(
                 resolution: match step {
                     StepControl::Fixed { h } => h,
                     StepControl::Adaptive { rtol, .. } => rtol,
+                },
+                step: match step {
+                    StepControl::Fixed { .. } => "fixed",
+                    StepControl::Adaptive { .. } => "adaptive",
                 },
                 errors: Errors {
                     final_state: f64::NAN,
