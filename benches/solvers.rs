@@ -109,6 +109,7 @@ fn study_threads(c: &mut Criterion) {
         params: Scenario::Belt.defaults(),
         switching: SwitchingKind::Event,
         t_end: 10.0,
+        limits: Limits::default(),
     };
     let all = [
         Solver::Rk4,

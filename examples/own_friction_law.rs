@@ -12,7 +12,7 @@ use friction_lab::friction_models::{FrictionModel, Partials, Response, SignLaw, 
 use friction_lab::friction_systems::{simulate, End, Switching, System, STICK};
 use friction_lab::integrators::{Options, Solver};
 use friction_lab::scenarios::studies::{self, SystemCase};
-use friction_lab::scenarios::SwitchingKind;
+use friction_lab::scenarios::{Limits, SwitchingKind};
 use std::sync::Arc;
 
 /// Tustin's law.
@@ -129,6 +129,7 @@ pub fn run() -> Report {
         epsilon: 1e-3,
         t_end: 3.0,
         bodies: vec![0],
+        limits: Limits::default(),
     };
     let study = studies::convergence(
         &case,

@@ -10,7 +10,7 @@ use friction_lab::friction_models::{FrictionParams, ModelId, Variant};
 use friction_lab::friction_systems::{simulate, End, Switching, System, STICK};
 use friction_lab::integrators::{Options, Solver};
 use friction_lab::scenarios::studies::{self, SystemCase};
-use friction_lab::scenarios::SwitchingKind;
+use friction_lab::scenarios::{Limits, SwitchingKind};
 use std::sync::Arc;
 
 /// The two-mass system.
@@ -74,6 +74,7 @@ pub fn run() -> Report {
         epsilon: 1e-3,
         t_end: 5.0,
         bodies: vec![0, 1],
+        limits: Limits::default(),
     };
     let wp = studies::work_precision(
         &case,

@@ -1011,3 +1011,37 @@ fn progress_shows_as_a_heartbeat_without_a_terminal() {
     assert!(text.contains("converge: 12 runs done, 0 left, "), "{text}");
     assert!(text.lines().all(|l| l.ends_with(" s elapsed")), "{text}");
 }
+
+#[test]
+fn a_study_bounds_each_run_and_draws_the_failed_ones() {
+    // Every run capped at 100 steps: the fine RK4 runs fail, and the plot names them.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("c");
+    let o = friction_lab(&[
+        "converge",
+        "belt",
+        "--model",
+        "CS",
+        "--solvers",
+        "rk4",
+        "--t-end",
+        "1",
+        "--max-steps",
+        "100",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(out.join("converge.csv")).unwrap();
+    let failed = csv
+        .lines()
+        .filter(|l| l.contains("too many steps: 100"))
+        .count();
+    // h = 0.02 takes 50 steps; 0.01, 0.005 and 0.0025 take more than 100.
+    assert_eq!(failed, 3, "{csv}");
+    let svg = std::fs::read_to_string(out.join("converge.svg")).unwrap();
+    assert!(
+        svg.contains("rk4: 3 failed (at the top)"),
+        "the failed runs are named"
+    );
+}

@@ -23,6 +23,7 @@ use scenarios::figures::{
 use scenarios::paper::{experiment, Asymptote, ExperimentRow};
 use scenarios::phenomena::Protocol;
 use scenarios::studies::Case;
+use scenarios::Limits;
 use scenarios::{Scenario, SwitchingKind};
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -208,6 +209,7 @@ fn case(
         params: scenario.defaults(),
         switching,
         t_end,
+        limits: Limits::default(),
     }
 }
 

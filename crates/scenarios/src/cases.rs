@@ -171,6 +171,8 @@ pub struct Case {
     pub switching: SwitchingKind,
     /// End time.
     pub t_end: f64,
+    /// Bounds of every run.
+    pub limits: Limits,
 }
 
 impl Case {
@@ -187,7 +189,7 @@ impl Case {
             step,
             t_end: Some(self.t_end),
             output_points: GRID_POINTS,
-            limits: Limits::default(),
+            limits: self.limits,
         }
     }
 }
@@ -320,6 +322,8 @@ pub struct SystemCase {
     pub t_end: f64,
     /// The bodies whose trajectories, events and stick phases are measured.
     pub bodies: Vec<usize>,
+    /// Bounds of every run.
+    pub limits: Limits,
 }
 
 impl StudyCase for SystemCase {
@@ -372,6 +376,8 @@ impl StudyCase for SystemCase {
         let options = Options {
             step,
             output: Output::GridOnly(grid),
+            max_steps: self.limits.max_steps,
+            time_limit: self.limits.time_limit,
             ..Options::adaptive(0.0, self.t_end, 1e-8, 1e-10)
         };
         let run = simulate(

@@ -4,7 +4,7 @@
 use friction_models::{FrictionParams, ModelId};
 use integrators::Solver;
 use scenarios::studies::{convergence, independence, Case, Reference};
-use scenarios::{Scenario, SwitchingKind};
+use scenarios::{Limits, Scenario, SwitchingKind};
 
 /// The block pushed by 15 N against viscous friction: smooth, with a closed form.
 fn viscous_block() -> Case {
@@ -15,6 +15,7 @@ fn viscous_block() -> Case {
         params: Scenario::PaperBlock.defaults(),
         switching: SwitchingKind::Event,
         t_end: 5.0,
+        limits: Limits::default(),
     }
 }
 
@@ -57,6 +58,7 @@ fn coulomb_vibration(switching: SwitchingKind) -> Case {
         params: Scenario::FreeVibration.defaults(),
         switching,
         t_end: 2.0,
+        limits: Limits::default(),
     }
 }
 
