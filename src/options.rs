@@ -2,9 +2,10 @@
 //! `--set` and `--variant`, resolved into validated parameters.
 
 use crate::error::AppError;
+use crate::ranges;
 use clap::Args;
 use friction_models::{FrictionParams, ParamError, Parameters, Variant};
-use scenarios::{Scenario, ScenarioParams};
+use scenarios::{Limits, Scenario, ScenarioParams};
 use std::io::Read;
 use std::path::{Path, PathBuf};
 
@@ -20,6 +21,36 @@ pub struct ParamOptions {
     /// Override one parameter (repeatable; wins over --params). Names as `models` lists them.
     #[arg(long = "set", value_name = "NAME=VALUE")]
     pub set: Vec<String>,
+}
+
+/// The bounds of a run: a step cap and a wall-clock limit.
+#[derive(Args, Clone, Debug)]
+pub struct LimitArgs {
+    /// Most steps (accepted and rejected) of a run before it ends with an error, keeping what
+    /// it computed.
+    #[arg(
+        long,
+        value_name = "N",
+        allow_hyphen_values = true,
+        default_value_t = 10_000_000
+    )]
+    pub max_steps: i64,
+    /// Wall-clock limit of a run, s: it ends with an error, keeping what it computed.
+    #[arg(long, value_name = "S", allow_hyphen_values = true)]
+    pub time_limit: Option<f64>,
+}
+
+impl LimitArgs {
+    /// The bounds, checked against their ranges.
+    pub fn limits(&self) -> Result<Limits, AppError> {
+        Ok(Limits {
+            max_steps: ranges::MAX_STEPS.count(self.max_steps)?,
+            time_limit: self
+                .time_limit
+                .map(|t| ranges::TIME_LIMIT.check(t))
+                .transpose()?,
+        })
+    }
 }
 
 /// The parameters and the reading of the equations of one model.

@@ -5,7 +5,7 @@
 use crate::artifacts::Artifacts;
 use crate::commands::curve::used_parameters;
 use crate::error::AppError;
-use crate::options::ModelOptions;
+use crate::options::{LimitArgs, ModelOptions};
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Marker, Plot, Series, BLUE};
 use crate::progress::Progress;
@@ -51,18 +51,9 @@ pub struct SolverOptions {
         default_value_t = 1e-10
     )]
     pub atol: f64,
-    /// Most steps (accepted and rejected) before the run ends with an error, keeping what it
-    /// computed.
-    #[arg(
-        long,
-        value_name = "N",
-        allow_hyphen_values = true,
-        default_value_t = 10_000_000
-    )]
-    pub max_steps: i64,
-    /// Wall-clock limit of the run, s: it ends with an error, keeping what it computed.
-    #[arg(long, value_name = "S", allow_hyphen_values = true)]
-    pub time_limit: Option<f64>,
+    /// The bounds of the run.
+    #[command(flatten)]
+    pub limits: LimitArgs,
 }
 
 /// The paper's time step, RK4's default.
@@ -82,13 +73,7 @@ impl SolverOptions {
 
     /// The bounds of a run: `--max-steps` and `--time-limit`, checked.
     pub fn checked_limits(&self) -> Result<Limits, AppError> {
-        Ok(Limits {
-            max_steps: ranges::MAX_STEPS.count(self.max_steps)?,
-            time_limit: self
-                .time_limit
-                .map(|t| ranges::TIME_LIMIT.check(t))
-                .transpose()?,
-        })
+        self.limits.limits()
     }
 
     /// The step control these options ask for.

@@ -8,7 +8,7 @@ use crate::commands::phenomena::with_threads;
 use crate::commands::simulate::Target as Problem;
 use crate::commands::system::{chosen_bodies, system_of, FILE_T_END};
 use crate::error::AppError;
-use crate::options::ModelOptions;
+use crate::options::{LimitArgs, ModelOptions};
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Marker, Plot, Series, PALETTE};
 use crate::progress::Progress;
@@ -20,7 +20,7 @@ use scenarios::studies::{
     self, Case, Convergence, Independence, Stiffness, StudyCase, StudyRun, SystemCase,
     WorkPrecision,
 };
-use scenarios::{Limits, Scenario, SwitchingKind};
+use scenarios::{Scenario, SwitchingKind};
 use std::path::{Path, PathBuf};
 
 /// The problem a study runs.
@@ -53,18 +53,9 @@ pub struct CaseArgs {
     /// Folder to write into (created if missing).
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
-    /// Most steps of each run (accepted and rejected); a run past it fails, and the study says
-    /// which.
-    #[arg(
-        long,
-        value_name = "N",
-        allow_hyphen_values = true,
-        default_value_t = 10_000_000
-    )]
-    pub max_steps: i64,
-    /// Wall-clock limit of each run, s.
-    #[arg(long, value_name = "S", allow_hyphen_values = true)]
-    pub time_limit: Option<f64>,
+    /// The bounds of each run (a run past them fails, and the study says which).
+    #[command(flatten)]
+    pub limits: LimitArgs,
     /// Worker threads (default: all cores; more than the machine has are capped to its cores).
     /// The results do not depend on it.
     #[arg(long, value_name = "N", allow_hyphen_values = true)]
@@ -100,7 +91,7 @@ impl CaseArgs {
                     epsilon: described.friction.epsilon,
                     t_end: check_t_end(self.t_end.unwrap_or(default_t_end))?,
                     bodies,
-                    limits: self.limits()?,
+                    limits: self.limits.limits()?,
                 }));
             }
         };
@@ -132,19 +123,8 @@ impl CaseArgs {
             params,
             switching: self.switching,
             t_end,
-            limits: self.limits()?,
+            limits: self.limits.limits()?,
         }))
-    }
-
-    /// The bounds of every run: `--max-steps` and `--time-limit`, checked.
-    fn limits(&self) -> Result<Limits, AppError> {
-        Ok(Limits {
-            max_steps: ranges::MAX_STEPS.count(self.max_steps)?,
-            time_limit: self
-                .time_limit
-                .map(|t| ranges::TIME_LIMIT.check(t))
-                .transpose()?,
-        })
     }
 }
 

@@ -13,7 +13,9 @@ use crate::plot::{self, Corner, Marker, Plot, Raster, Series, PALETTE};
 use crate::progress::Progress;
 use friction_models::{FrictionModel, FrictionParams, ModelId};
 use friction_systems::chain::{ChainParams, CHAIN_PARAMETERS};
-use friction_systems::{mode_name, EnergyBalance, Run, System, SLIP_NEGATIVE, SLIP_POSITIVE};
+use friction_systems::{
+    mode_name, BodyState, EnergyBalance, Run, System, SLIP_NEGATIVE, SLIP_POSITIVE,
+};
 use integrators::{Options, Output};
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -140,38 +142,52 @@ pub fn chosen_bodies(system: &System, chosen: &[String]) -> Result<Vec<usize>, A
         .collect()
 }
 
-fn mode_cell(mode: Option<integrators::Mode>) -> Cell {
-    Cell::Text(mode.map_or("none", mode_name).into())
+/// A table of body states: `[t,] body, x, v, friction, mode[, z]` (the `z` column only when
+/// some contact has an internal state; empty for the bodies without one).
+struct BodyTable<'r> {
+    run: &'r Run<'r>,
+    table: Table,
+    states: bool,
 }
 
-fn z_cell(z: Option<f64>) -> Cell {
-    z.map_or(Cell::Text(String::new()), Cell::Num)
-}
-
-fn has_states(run: &Run) -> bool {
-    run.problem.layout.z.iter().any(Option::is_some)
-}
-
-fn final_table(run: &Run, path: &Path) -> Result<Vec<u8>, AppError> {
-    let mut t = Table::new(&["body", "x", "v", "friction", "mode", "z"]);
-    let states = has_states(run);
-    if !states {
-        t.header.pop();
+impl<'r> BodyTable<'r> {
+    fn new(run: &'r Run<'r>, with_time: bool) -> Self {
+        let states = run.problem.layout.z.iter().any(Option::is_some);
+        let columns = ["t", "body", "x", "v", "friction", "mode", "z"];
+        let columns = &columns[usize::from(!with_time)..columns.len() - usize::from(!states)];
+        BodyTable {
+            run,
+            table: Table::new(columns),
+            states,
+        }
     }
-    for (i, b) in run.final_states().into_iter().enumerate() {
-        let mut row = vec![
-            Cell::Text(run.problem.system.bodies[i].name.clone()),
+
+    /// Adds body `i` in state `b`, with the time when the table has that column.
+    fn push(&mut self, i: usize, b: &BodyState) {
+        let mut row = Vec::with_capacity(self.table.header.len());
+        if self.table.header[0] == "t" {
+            row.push(Cell::Num(b.t));
+        }
+        row.extend([
+            Cell::Text(self.run.problem.system.bodies[i].name.clone()),
             Cell::Num(b.x),
             Cell::Num(b.v),
             Cell::Num(b.friction),
-            mode_cell(b.mode),
-        ];
-        if states {
-            row.push(z_cell(b.z));
+            Cell::Text(b.mode.map_or("none", mode_name).into()),
+        ]);
+        if self.states {
+            row.push(b.z.map_or(Cell::Text(String::new()), Cell::Num));
         }
-        t.rows.push(row);
+        self.table.rows.push(row);
     }
-    t.to_csv(path)
+}
+
+fn final_table(run: &Run, path: &Path) -> Result<Vec<u8>, AppError> {
+    let mut t = BodyTable::new(run, false);
+    for (i, b) in run.final_states().iter().enumerate() {
+        t.push(i, b);
+    }
+    t.table.to_csv(path)
 }
 
 fn events_table(run: &Run, path: &Path) -> Result<Vec<u8>, AppError> {
@@ -188,29 +204,13 @@ fn events_table(run: &Run, path: &Path) -> Result<Vec<u8>, AppError> {
 }
 
 fn trajectory_table(run: &Run, bodies: &[usize], path: &Path) -> Result<Vec<u8>, AppError> {
-    let mut t = Table::new(&["t", "body", "x", "v", "friction", "mode", "z"]);
-    let states = has_states(run);
-    if !states {
-        t.header.pop();
-    }
+    let mut t = BodyTable::new(run, true);
     for k in 0..run.solution.len() {
         for &i in bodies {
-            let b = run.body_at(i, k);
-            let mut row = vec![
-                Cell::Num(b.t),
-                Cell::Text(run.problem.system.bodies[i].name.clone()),
-                Cell::Num(b.x),
-                Cell::Num(b.v),
-                Cell::Num(b.friction),
-                mode_cell(b.mode),
-            ];
-            if states {
-                row.push(z_cell(b.z));
-            }
-            t.rows.push(row);
+            t.push(i, &run.body_at(i, k));
         }
     }
-    t.to_csv(path)
+    t.table.to_csv(path)
 }
 
 /// The space–time picture: body index against time, coloured by contact mode, sampled on at
@@ -250,7 +250,7 @@ fn space_time(run: &Run, title: &str, path: &Path) -> Result<(Raster, Vec<u8>), 
                 Cell::Num(x_edges[c]),
                 Cell::Num(x_edges[c + 1]),
                 Cell::Text(run.problem.system.bodies[i].name.clone()),
-                mode_cell(mode),
+                Cell::Text(mode.map_or("none", mode_name).into()),
             ]);
         }
     }
