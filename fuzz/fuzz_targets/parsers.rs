@@ -2,7 +2,7 @@
 //! springs, contacts and forces) and the parameter file (`NAME = number` lines), then the
 //! parameters through the same range checks as `--params`. Neither may panic or hang; every
 //! rejection is an error value. Run from the repository root with a nightly toolchain:
-//! `cargo fuzz run parsers fuzz/corpus/parsers`.
+//! `cargo fuzz run parsers fuzz/corpus/parsers fuzz/seeds`.
 #![no_main]
 
 use friction_lab::friction_models::{FrictionParams, Parameters};
