@@ -56,8 +56,15 @@ pub struct ImplicitEuler {
     t: f64,
     y_prev: Vec<f64>,
     y: Vec<f64>,
-    /// f(t, y) at the current point, when known.
-    f: Option<Vec<f64>>,
+    /// f(t, y) at the current point, valid when `f_known`.
+    f: Vec<f64>,
+    f_known: bool,
+    /// Newton's iterate Y and f(t1, Y), the correction, and the error estimate: scratch kept
+    /// between steps so that a step allocates nothing.
+    y_new: Vec<f64>,
+    f_new: Vec<f64>,
+    delta: Vec<f64>,
+    err: Vec<f64>,
     jac: Vec<Entry>,
     jac_valid: bool,
     jac_fresh: bool,
@@ -91,7 +98,12 @@ impl ImplicitEuler {
             t: 0.0,
             y_prev: vec![0.0; dim],
             y: vec![0.0; dim],
-            f: None,
+            f: vec![0.0; dim],
+            f_known: false,
+            y_new: vec![0.0; dim],
+            f_new: vec![0.0; dim],
+            delta: vec![0.0; dim],
+            err: vec![0.0; dim],
             jac: Vec::new(),
             jac_valid: false,
             jac_fresh: false,
@@ -113,21 +125,22 @@ impl ImplicitEuler {
         }
     }
 
-    /// f at the current point, evaluating it if needed.
-    fn f_here(&mut self, ode: &Ode) -> &[f64] {
-        if self.f.is_none() {
-            let mut f = vec![0.0; self.y.len()];
-            ode.rhs(self.t, &self.y, &mut f, &mut self.stats);
-            self.f = Some(f);
+    /// Makes f at the current point known, evaluating it if needed.
+    fn f_here(&mut self, ode: &Ode) {
+        if !self.f_known {
+            ode.rhs(self.t, &self.y, &mut self.f, &mut self.stats);
+            self.f_known = true;
         }
-        self.f.as_deref().expect("just set")
     }
 
-    /// Evaluates J at (t, y) with `f0 = f(t, y)`.
-    fn evaluate_jacobian(&mut self, ode: &Ode, t: f64, y: &[f64], f0: &[f64]) {
-        let mut jac = std::mem::take(&mut self.jac);
-        newton::jacobian(ode, t, y, f0, &mut jac, &mut self.stats);
-        self.jac = jac;
+    /// Evaluates J at the current point (`at_iterate`: at Newton's iterate instead).
+    fn evaluate_jacobian(&mut self, ode: &Ode, t: f64, at_iterate: bool) {
+        let (y, f) = if at_iterate {
+            (&self.y_new, &self.f_new)
+        } else {
+            (&self.y, &self.f)
+        };
+        newton::jacobian(ode, t, y, f, &mut self.jac, &mut self.stats);
         self.jac_valid = true;
         self.jac_fresh = true;
         self.lu_h = 0.0;
@@ -155,42 +168,32 @@ impl ImplicitEuler {
     }
 
     /// Newton's iteration for `G(Y) = M(Y − y) − h·f(t1, Y) = 0` from `Y = y` (a new
-    /// Jacobian at every iterate when `full`). Returns the solution and `f(t1, Y)` at it, or
-    /// why it failed.
-    fn newton(
-        &mut self,
-        ode: &Ode,
-        t1: f64,
-        h: f64,
-        full: bool,
-    ) -> Result<(Vec<f64>, Vec<f64>), String> {
+    /// Jacobian at every iterate when `full`). Leaves the solution in `y_new` and `f(t1, Y)`
+    /// in `f_new`, or says why it failed.
+    fn newton(&mut self, ode: &Ode, t1: f64, h: f64, full: bool) -> Result<(), String> {
         let n = self.y.len();
         let (rtol, atol, kappa) = self.tolerances();
         let mass = ode.problem.mass();
-        let mut yk = self.y.clone();
-        let mut fk = vec![0.0; n];
-        let mut delta = vec![0.0; n];
+        self.y_new.copy_from_slice(&self.y);
         let mut norm_prev = 0.0;
         for k in 0..MAX_NEWTON_ITERATIONS {
-            ode.rhs(t1, &yk, &mut fk, &mut self.stats);
+            ode.rhs(t1, &self.y_new, &mut self.f_new, &mut self.stats);
             if full && k > 0 {
-                let fcopy = fk.clone();
-                let ycopy = yk.clone();
-                self.evaluate_jacobian(ode, t1, &ycopy, &fcopy);
+                self.evaluate_jacobian(ode, t1, true);
                 self.factor(ode, h).map_err(|e| e.to_string())?;
             }
             for i in 0..n {
                 let m = mass.map_or(1.0, |m| m[i]);
-                delta[i] = -(m * (yk[i] - self.y[i]) - h * fk[i]);
+                self.delta[i] = -(m * (self.y_new[i] - self.y[i]) - h * self.f_new[i]);
             }
             self.stats.newton_iterations += 1;
-            if !self.lu.solve(&mut delta) {
+            if !self.lu.solve(&mut self.delta) {
                 return Err("the linear solve gave a non-finite correction".into());
             }
             for i in 0..n {
-                yk[i] += delta[i];
+                self.y_new[i] += self.delta[i];
             }
-            let norm = wrms(&delta, &yk, &self.y, rtol, atol);
+            let norm = wrms(&self.delta, &self.y_new, &self.y, rtol, atol);
             let eta = if k == 0 {
                 self.eta.max(crate::stepper::UROUND).powf(0.8)
             } else {
@@ -208,8 +211,8 @@ impl ImplicitEuler {
             };
             if eta * norm <= kappa {
                 self.eta = eta;
-                ode.rhs(t1, &yk, &mut fk, &mut self.stats);
-                return Ok((yk, fk));
+                ode.rhs(t1, &self.y_new, &mut self.f_new, &mut self.stats);
+                return Ok(());
             }
             norm_prev = norm;
         }
@@ -230,7 +233,7 @@ impl Stepper for ImplicitEuler {
         self.t = t;
         self.y.copy_from_slice(y);
         self.y_prev.copy_from_slice(y);
-        self.f = None;
+        self.f_known = false;
         self.jac_valid = false;
         self.lu_h = 0.0;
         self.eta = 1.0;
@@ -268,9 +271,8 @@ impl Stepper for ImplicitEuler {
             };
             check_limits(self.attempts, self.max_steps, self.t, h)?;
             if !self.jac_valid || self.newton == NewtonKind::Full {
-                let f0 = self.f_here(ode).to_vec();
-                let y0 = self.y.clone();
-                self.evaluate_jacobian(ode, self.t, &y0, &f0);
+                self.f_here(ode);
+                self.evaluate_jacobian(ode, self.t, false);
             }
             if let Err(e) = self.factor(ode, h) {
                 if !adaptive || cuts >= MAX_NEWTON_CUTS {
@@ -282,8 +284,8 @@ impl Stepper for ImplicitEuler {
                 continue;
             }
             let full = self.newton == NewtonKind::Full || full_fallback;
-            let (y1, f1) = match self.newton(ode, t1, h, full) {
-                Ok(solution) => solution,
+            match self.newton(ode, t1, h, full) {
+                Ok(()) => {}
                 Err(why) => {
                     self.stats.rejected_newton += 1;
                     // Modified Newton: first a fresh Jacobian, then full Newton, and only
@@ -309,15 +311,17 @@ impl Stepper for ImplicitEuler {
                     continue;
                 }
             };
-            check_finite(&y1, self.t, h, "implicit Euler step result")?;
+            check_finite(&self.y_new, self.t, h, "implicit Euler step result")?;
             let mut h_new = h;
             if let StepControl::Adaptive { rtol, atol, .. } = self.control {
-                let f0 = self.f_here(ode).to_vec();
-                let mut e: Vec<f64> = f1.iter().zip(&f0).map(|(a, b)| 0.5 * h * (a - b)).collect();
-                if !self.lu.solve(&mut e) {
+                self.f_here(ode);
+                for i in 0..self.err.len() {
+                    self.err[i] = 0.5 * h * (self.f_new[i] - self.f[i]);
+                }
+                if !self.lu.solve(&mut self.err) {
                     return Err(SolverError::SingularMatrix { t: self.t, h });
                 }
-                let err = wrms(&e, &self.y, &y1, rtol, atol);
+                let err = wrms(&self.err, &self.y, &self.y_new, rtol, atol);
                 let fac = (SAFE / err.sqrt()).clamp(FACMIN, FACMAX);
                 if err > 1.0 {
                     self.stats.rejected_error += 1;
@@ -331,9 +335,10 @@ impl Stepper for ImplicitEuler {
                 }
                 self.reject = false;
             }
-            self.y_prev.copy_from_slice(&self.y);
-            self.y = y1;
-            self.f = Some(f1);
+            std::mem::swap(&mut self.y_prev, &mut self.y);
+            std::mem::swap(&mut self.y, &mut self.y_new);
+            std::mem::swap(&mut self.f, &mut self.f_new);
+            self.f_known = true;
             self.t_prev = self.t;
             self.t = t1;
             self.jac_fresh = false;

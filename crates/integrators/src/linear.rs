@@ -1,12 +1,14 @@
 //! Linear solves `A·x = b` for Newton's method, behind one small trait: nalgebra's LU for
-//! small dense systems, faer's LU for large dense ones and faer's sparse LU for large sparse
-//! ones (a chain of many blocks), chosen by size and fill.
+//! small systems and faer's for large dense ones, both factorised in place in buffers kept
+//! between factorisations, and faer's sparse LU for large sparse ones (a chain of many
+//! blocks), chosen by size and fill.
 
 use crate::problem::Entry;
-use faer::linalg::solvers::{PartialPivLu, Solve};
+use faer::linalg::solvers::Solve;
 use faer::sparse::{SparseColMat, Triplet};
+use faer::Par;
 
-/// Up to this many unknowns nalgebra's dense LU is used.
+/// Up to this many unknowns nalgebra's dense LU is used whatever the fill.
 pub const SMALL_DENSE: usize = 16;
 /// Above [`SMALL_DENSE`], a matrix with at most this fraction of non-zeros goes to the
 /// sparse LU.
@@ -22,8 +24,8 @@ pub trait LinearSolver: Send {
     fn factor(&mut self, n: usize, entries: &[Entry]) -> bool;
 
     /// Overwrites `b` with `A⁻¹·b`; `false` when the result is not finite (a singular
-    /// matrix that pivoting did not reveal).
-    fn solve(&self, b: &mut [f64]) -> bool;
+    /// matrix that pivoting did not reveal). Takes the solver mutably for its scratch space.
+    fn solve(&mut self, b: &mut [f64]) -> bool;
 }
 
 /// The name of the solver chosen for an `n × n` matrix with `nnz` stored entries.
@@ -46,10 +48,25 @@ pub fn for_size(n: usize, nnz: usize) -> Box<dyn LinearSolver> {
     }
 }
 
-/// nalgebra's LU with partial pivoting.
-#[derive(Default)]
+/// nalgebra's LU with partial pivoting for small systems, run in place on a buffer kept between
+/// factorisations: the loop of `nalgebra::LU::new` (pivot by largest magnitude, then
+/// `gauss_step` or `gauss_step_swap`), without its allocations. Once sized, factorising and
+/// solving allocate nothing.
 pub struct NalgebraLu {
-    lu: Option<nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>>,
+    lu: nalgebra::DMatrix<f64>,
+    /// Row swaps (i, pivot) in the order they were made.
+    swaps: Vec<(usize, usize)>,
+    regular: bool,
+}
+
+impl Default for NalgebraLu {
+    fn default() -> Self {
+        NalgebraLu {
+            lu: nalgebra::DMatrix::zeros(0, 0),
+            swaps: Vec::new(),
+            regular: false,
+        }
+    }
 }
 
 impl LinearSolver for NalgebraLu {
@@ -58,27 +75,69 @@ impl LinearSolver for NalgebraLu {
     }
 
     fn factor(&mut self, n: usize, entries: &[Entry]) -> bool {
-        let mut a = nalgebra::DMatrix::<f64>::zeros(n, n);
-        for &(i, j, v) in entries {
-            a[(i, j)] += v;
+        use nalgebra::linalg::{gauss_step, gauss_step_swap};
+        if self.lu.nrows() != n {
+            self.lu = nalgebra::DMatrix::zeros(n, n);
+            self.swaps = Vec::with_capacity(n);
         }
-        let lu = a.lu();
-        let regular = lu.is_invertible();
-        self.lu = Some(lu);
-        regular
+        self.lu.fill(0.0);
+        self.swaps.clear();
+        for &(i, j, v) in entries {
+            self.lu[(i, j)] += v;
+        }
+        self.regular = true;
+        for i in 0..n {
+            let piv = self.lu.view_range(i.., i).icamax() + i;
+            let diag = self.lu[(piv, i)];
+            if diag == 0.0 {
+                self.regular = false;
+                continue;
+            }
+            if piv != i {
+                self.swaps.push((i, piv));
+                self.lu.columns_range_mut(..i).swap_rows(i, piv);
+                gauss_step_swap(&mut self.lu, diag, i, piv);
+            } else {
+                gauss_step(&mut self.lu, diag, i);
+            }
+        }
+        self.regular
     }
 
-    fn solve(&self, b: &mut [f64]) -> bool {
-        let Some(lu) = &self.lu else { return false };
+    fn solve(&mut self, b: &mut [f64]) -> bool {
+        if !self.regular || b.len() != self.lu.nrows() {
+            return false;
+        }
+        for &(i, piv) in &self.swaps {
+            b.swap(i, piv);
+        }
         let mut x = nalgebra::DVectorViewMut::from_slice(b, b.len());
-        lu.solve_mut(&mut x) && b.iter().all(|v| v.is_finite())
+        let _ = self.lu.solve_lower_triangular_with_diag_mut(&mut x, 1.0);
+        self.lu.solve_upper_triangular_mut(&mut x) && b.iter().all(|v| v.is_finite())
     }
 }
 
-/// faer's dense LU with partial pivoting.
-#[derive(Default)]
+/// faer's dense LU with partial pivoting, factorised in place in buffers kept between
+/// factorisations (faer's `lu_in_place` with a preallocated stack): once sized, factorising
+/// and solving allocate nothing.
 pub struct FaerDenseLu {
-    lu: Option<PartialPivLu<f64>>,
+    n: usize,
+    lu: faer::Mat<f64>,
+    perm: Vec<usize>,
+    perm_inv: Vec<usize>,
+    stack: Option<faer::dyn_stack::MemBuffer>,
+}
+
+impl Default for FaerDenseLu {
+    fn default() -> Self {
+        FaerDenseLu {
+            n: 0,
+            lu: faer::Mat::zeros(0, 0),
+            perm: Vec::new(),
+            perm_inv: Vec::new(),
+            stack: None,
+        }
+    }
 }
 
 impl LinearSolver for FaerDenseLu {
@@ -87,18 +146,48 @@ impl LinearSolver for FaerDenseLu {
     }
 
     fn factor(&mut self, n: usize, entries: &[Entry]) -> bool {
-        let mut a = faer::Mat::<f64>::zeros(n, n);
-        for &(i, j, v) in entries {
-            a[(i, j)] += v;
+        use faer::linalg::lu::partial_pivoting::{factor, solve};
+        if self.n != n || self.stack.is_none() {
+            self.n = n;
+            self.lu = faer::Mat::zeros(n, n);
+            self.perm = vec![0; n];
+            self.perm_inv = vec![0; n];
+            let req = factor::lu_in_place_scratch::<usize, f64>(n, n, Par::Seq, Default::default())
+                .or(solve::solve_in_place_scratch::<usize, f64>(n, 1, Par::Seq));
+            self.stack = Some(faer::dyn_stack::MemBuffer::new(req));
         }
-        self.lu = Some(a.partial_piv_lu());
-        true
+        self.lu.fill(0.0);
+        for &(i, j, v) in entries {
+            self.lu[(i, j)] += v;
+        }
+        let stack = self.stack.as_mut().expect("sized above");
+        factor::lu_in_place(
+            self.lu.as_mut(),
+            &mut self.perm,
+            &mut self.perm_inv,
+            Par::Seq,
+            faer::dyn_stack::MemStack::new(stack),
+            Default::default(),
+        );
+        (0..n).all(|i| self.lu[(i, i)] != 0.0 && self.lu[(i, i)].is_finite())
     }
 
-    fn solve(&self, b: &mut [f64]) -> bool {
-        let Some(lu) = &self.lu else { return false };
-        let n = b.len();
-        lu.solve_in_place(faer::MatMut::from_column_major_slice_mut(b, n, 1));
+    fn solve(&mut self, b: &mut [f64]) -> bool {
+        use faer::linalg::lu::partial_pivoting::solve;
+        let Some(stack) = self.stack.as_mut() else {
+            return false;
+        };
+        let n = self.n;
+        let perm = faer::perm::PermRef::new_checked(&self.perm, &self.perm_inv, n);
+        solve::solve_in_place_with_conj(
+            self.lu.as_ref(),
+            self.lu.as_ref(),
+            perm,
+            faer::Conj::No,
+            faer::MatMut::from_column_major_slice_mut(b, n, 1),
+            Par::Seq,
+            faer::dyn_stack::MemStack::new(stack),
+        );
         b.iter().all(|v| v.is_finite())
     }
 }
@@ -127,7 +216,7 @@ impl LinearSolver for FaerSparseLu {
         factored
     }
 
-    fn solve(&self, b: &mut [f64]) -> bool {
+    fn solve(&mut self, b: &mut [f64]) -> bool {
         let Some(lu) = &self.lu else { return false };
         let n = b.len();
         lu.solve_in_place(faer::MatMut::from_column_major_slice_mut(b, n, 1));
@@ -176,8 +265,13 @@ mod tests {
 
     #[test]
     fn every_solver_solves_a_known_system() {
-        check(&mut NalgebraLu::default(), 7);
-        check(&mut FaerDenseLu::default(), 40);
+        // Dense solvers resized: their buffers follow the size.
+        let (mut small, mut dense) = (NalgebraLu::default(), FaerDenseLu::default());
+        check(&mut small, 7);
+        check(&mut small, 12);
+        check(&mut small, 7);
+        check(&mut dense, 40);
+        check(&mut dense, 7);
         check(&mut FaerSparseLu::default(), 300);
     }
 
@@ -192,8 +286,6 @@ mod tests {
     fn singular_matrices_are_reported() {
         let singular = [(0, 0, 1.0), (0, 1, 2.0), (1, 0, 2.0), (1, 1, 4.0)];
         assert!(!NalgebraLu::default().factor(2, &singular));
-        let mut dense = FaerDenseLu::default();
-        dense.factor(2, &singular);
-        assert!(!dense.solve(&mut [1.0, 1.0]));
+        assert!(!FaerDenseLu::default().factor(2, &singular));
     }
 }
