@@ -9,18 +9,43 @@ use crate::figure::{self, Drawn};
 use crate::output::{share_folder, to_json, write_file};
 use crate::plot::{self, Plot};
 use friction_models::ModelId;
+use rayon::prelude::*;
 use std::path::{Path, PathBuf};
 
-/// Files to write: each path with its bytes.
+/// What a file will hold: its bytes, or a figure drawn when the files are written (figures
+/// are drawn in parallel there; the bytes do not depend on the thread count).
+#[derive(Debug)]
+enum Content {
+    Bytes(Vec<u8>),
+    Png(Vec<Plot>),
+    Svg(Vec<Plot>),
+    RasterPng(Box<plot::Raster>),
+    RasterSvg(Box<plot::Raster>),
+}
+
+impl Content {
+    /// The file's bytes, drawing the figure if it is one.
+    fn render(self, path: &Path) -> Result<Vec<u8>, AppError> {
+        match self {
+            Content::Bytes(b) => Ok(b),
+            Content::Png(plots) => plot::png_panels(&plots, path),
+            Content::Svg(plots) => plot::svg_panels(&plots, path).map(String::into_bytes),
+            Content::RasterPng(r) => plot::raster_png(&r, path),
+            Content::RasterSvg(r) => plot::raster_svg(&r, path).map(String::into_bytes),
+        }
+    }
+}
+
+/// Files to write: each path with its content.
 #[derive(Debug, Default)]
 pub struct Artifacts {
-    files: Vec<(PathBuf, Vec<u8>)>,
+    files: Vec<(PathBuf, Content)>,
 }
 
 impl Artifacts {
     /// Adds a file.
     pub fn add(&mut self, path: PathBuf, bytes: Vec<u8>) {
-        self.files.push((path, bytes));
+        self.files.push((path, Content::Bytes(bytes)));
     }
 
     /// Adds `value` as a JSON file.
@@ -54,25 +79,22 @@ impl Artifacts {
         self.add_panels(stem, std::slice::from_ref(plot))
     }
 
-    /// Adds plots side by side as one figure, `stem.png` and `stem.svg`.
+    /// Adds plots side by side as one figure, `stem.png` and `stem.svg` (drawn at writing).
     pub fn add_panels(&mut self, stem: &Path, plots: &[Plot]) -> Result<(), AppError> {
-        let png = stem.with_extension("png");
-        let bytes = plot::png_panels(plots, &png)?;
-        self.add(png, bytes);
-        let svg = stem.with_extension("svg");
-        let text = plot::svg_panels(plots, &svg)?;
-        self.add(svg, text.into_bytes());
+        self.files
+            .push((stem.with_extension("png"), Content::Png(plots.to_vec())));
+        self.files
+            .push((stem.with_extension("svg"), Content::Svg(plots.to_vec())));
         Ok(())
     }
 
-    /// Adds a raster picture as `stem.png` and `stem.svg`.
+    /// Adds a raster picture as `stem.png` and `stem.svg` (drawn at writing).
     pub fn add_raster(&mut self, stem: &Path, raster: &plot::Raster) -> Result<(), AppError> {
-        let png = stem.with_extension("png");
-        let bytes = plot::raster_png(raster, &png)?;
-        self.add(png, bytes);
-        let svg = stem.with_extension("svg");
-        let text = plot::raster_svg(raster, &svg)?;
-        self.add(svg, text.into_bytes());
+        let boxed = || Box::new(raster.clone());
+        self.files
+            .push((stem.with_extension("png"), Content::RasterPng(boxed())));
+        self.files
+            .push((stem.with_extension("svg"), Content::RasterSvg(boxed())));
         Ok(())
     }
 
@@ -96,8 +118,14 @@ impl Artifacts {
             .tempdir_in(&parent)
             .map_err(|e| refuse(format!("no temporary folder can be made beside it: {e}")))?;
         write_file(&tmp.path().join(MARKER), MARKER_TEXT.as_bytes())?;
-        let mut written = Vec::with_capacity(self.files.len());
-        for (path, bytes) in self.files {
+        // Figures are drawn here, in parallel, in order; the first error (in file order) wins.
+        let files: Vec<(PathBuf, Vec<u8>)> = self
+            .files
+            .into_par_iter()
+            .map(|(path, content)| content.render(&path).map(|bytes| (path, bytes)))
+            .collect::<Result<_, _>>()?;
+        let mut written = Vec::with_capacity(files.len());
+        for (path, bytes) in files {
             let relative = path
                 .strip_prefix(root)
                 .expect("every output file lies inside the output folder");

@@ -204,7 +204,7 @@ pub fn run(args: &PhenomenaArgs) -> Result<(), AppError> {
         },
         threads,
     )?;
-    let written = files.write(&args.out)?;
+    let written = with_threads(threads, || files.write(&args.out))??;
     println!(
         "wrote {} files into {} in {:.1} s",
         written.len(),

@@ -4,6 +4,7 @@
 use crate::artifacts::Artifacts;
 use crate::commands::curve::{used_parameters, KeyValues};
 use crate::commands::phenomena::add_table;
+use crate::commands::phenomena::with_threads;
 use crate::commands::studies::{
     add_convergence, add_independence, add_stiffness, add_work_precision, Refinement, Target,
 };
@@ -514,7 +515,7 @@ pub fn run(args: &ReproduceArgs) -> Result<(), AppError> {
     );
     report_md += &add_studies(&mut files, &args.out, &friction, threads)?;
     files.add(args.out.join("report.md"), report_md.into_bytes());
-    let written = files.write(&args.out)?;
+    let written = with_threads(threads, || files.write(&args.out))??;
     println!(
         "wrote {} files into {} in {:.2} s",
         written.len(),

@@ -137,17 +137,15 @@ impl CaseArgs {
         let case = self.case()?;
         let case = case.as_ref();
         let mut files = Artifacts::default();
+        let threads = ranges::threads(self.threads)?;
         let mut target = Target {
             files: &mut files,
             dir: &self.out,
-            threads: ranges::threads(self.threads)?,
+            threads,
         };
         study(&mut target, case)?;
-        println!(
-            "wrote {} files into {}",
-            files.write(&self.out)?.len(),
-            self.out.display()
-        );
+        let written = with_threads(threads, || files.write(&self.out))??;
+        println!("wrote {} files into {}", written.len(), self.out.display());
         Ok(())
     }
 }
