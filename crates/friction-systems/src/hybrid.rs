@@ -298,14 +298,15 @@ impl OdeProblem for FrictionSystem<'_> {
             let (force, rate) = self.contact_force(j, y, modes[j], dy[v]);
             dissipated += force * (y[v] - surface);
             belt -= force * surface;
-            if self.stuck(i, modes) {
+            let stuck = self.switching == Switching::Event && modes[j] == STICK;
+            if stuck {
                 dy[l.x[i]] = surface;
                 dy[v] = 0.0;
             } else {
                 dy[v] = (dy[v] - force) / body.m;
             }
             if let Some(z) = l.z[i] {
-                dy[z] = if self.stuck(i, modes) { 0.0 } else { rate };
+                dy[z] = if stuck { 0.0 } else { rate };
             }
         }
         let a = l.accumulators;
@@ -320,17 +321,11 @@ impl OdeProblem for FrictionSystem<'_> {
     /// not act back, are left out (an inexact Newton matrix only for them).
     fn jacobian(&self, _t: f64, y: &[f64], modes: &[Mode], jac: &mut Vec<Entry>) -> bool {
         let l = &self.layout;
-        // 1/m_i for a body that moves with the forces, 0 for one held by its contact.
-        let live = |i: usize| {
-            if self.stuck(i, modes) {
-                0.0
-            } else {
-                1.0 / self.system.bodies[i].m
-            }
-        };
+        // 1 for a body that moves with the forces, 0 for one held by its contact.
+        let moving = |i: usize| if self.stuck(i, modes) { 0.0 } else { 1.0 };
+        let live = |i: usize| moving(i) / self.system.bodies[i].m;
         for i in 0..self.system.bodies.len() {
-            let one = if self.stuck(i, modes) { 0.0 } else { 1.0 };
-            jac.push((l.x[i], l.v(i), one));
+            jac.push((l.x[i], l.v(i), moving(i)));
         }
         for spring in &self.system.springs {
             for (me, other) in [(spring.a, spring.b), (spring.b, spring.a)] {
@@ -353,7 +348,7 @@ impl OdeProblem for FrictionSystem<'_> {
                 self.z(i, y),
                 self.switching.law(modes[j]),
             );
-            let (w, state) = (live(i), if self.stuck(i, modes) { 0.0 } else { 1.0 });
+            let (w, state) = (live(i), moving(i));
             jac.push((v, x, -p.force_dx * w));
             jac.push((v, v, -p.force_dv * w));
             if let Some(z) = l.z[i] {

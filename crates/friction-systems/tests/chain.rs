@@ -2,9 +2,23 @@
 
 use friction_models::{FrictionParams, ModelId, Variant};
 use friction_systems::chain::ChainParams;
-use friction_systems::{simulate, Switching, System, STICK};
+use friction_systems::{simulate, Run, Switching, System, STICK};
 use integrators::{Options, Output, Solver};
 use std::sync::Arc;
+
+/// The event-driven Dormand–Prince run of `system`, which must succeed.
+fn switched(system: &System, options: Options) -> Run<'_> {
+    let run = simulate(
+        system,
+        Switching::Event,
+        Solver::Dopri5,
+        options,
+        &mut |_| {},
+    )
+    .unwrap();
+    assert!(run.error.is_none(), "{:?}", run.error);
+    run
+}
 
 fn chain(model: ModelId, c: &ChainParams) -> System {
     c.build(&FrictionParams::paper(), |p| {
@@ -57,15 +71,7 @@ fn a_one_block_chain_follows_its_piecewise_harmonic_solution_to_1e_8() {
         output: Output::Grid(grid),
         ..Options::adaptive(0.0, t_end, 1e-12, 1e-14)
     };
-    let run = simulate(
-        &system,
-        Switching::Event,
-        Solver::Dopri5,
-        options,
-        &mut |_| {},
-    )
-    .unwrap();
-    assert!(run.error.is_none());
+    let run = switched(&system, options);
     let states = run.body(0);
     let mut worst: f64 = 0.0;
     for b in &states {
@@ -95,15 +101,7 @@ fn mirrored_blocks_of_a_symmetric_chain_move_identically_and_switch_together() {
         b.x0 = 0.01 * s * s;
     }
     let options = Options::adaptive(0.0, 40.0, 1e-10, 1e-12);
-    let run = simulate(
-        &system,
-        Switching::Event,
-        Solver::Dopri5,
-        options,
-        &mut |_| {},
-    )
-    .unwrap();
-    assert!(run.error.is_none());
+    let run = switched(&system, options);
     let mut worst: f64 = 0.0;
     for k in 0..run.solution.len() {
         for i in 0..n / 2 {
@@ -143,15 +141,7 @@ fn the_energy_of_a_100_block_chain_balances_to_1e_8() {
     };
     let system = chain(ModelId::Static, &c);
     let options = Options::adaptive(0.0, 20.0, 1e-11, 1e-13);
-    let run = simulate(
-        &system,
-        Switching::Event,
-        Solver::Dopri5,
-        options,
-        &mut |_| {},
-    )
-    .unwrap();
-    assert!(run.error.is_none(), "{:?}", run.error);
+    let run = switched(&system, options);
     let e = run.energy().unwrap();
     assert!(e.relative_residual < 1e-8, "{e:?}");
     // The driver did work and friction took some of it.
