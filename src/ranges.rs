@@ -45,6 +45,13 @@ pub const DT: OptionRange = OptionRange {
     unit: "s",
     range: closed(1e-10, 10.0),
 };
+/// θ of time-stepping: 1/2 (trapezoidal) to 1 (implicit Euler); below 1/2 the θ-method is
+/// unstable on an undamped oscillator.
+pub const THETA: OptionRange = OptionRange {
+    name: "theta",
+    unit: "",
+    range: closed(0.5, 1.0),
+};
 /// Relative tolerance: from 1e-14 (about 50 units of round-off) to 1.
 pub const RTOL: OptionRange = OptionRange {
     name: "rtol",

@@ -1045,3 +1045,83 @@ fn a_study_bounds_each_run_and_draws_the_failed_ones() {
         "the failed runs are named"
     );
 }
+
+#[test]
+fn time_stepping_runs_rigs_and_chains_and_refuses_what_it_cannot_do() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("belt");
+    let o = friction_lab(&[
+        "simulate",
+        "belt",
+        "--model",
+        "static",
+        "--switching",
+        "timestepping",
+        "--theta",
+        "1",
+        "--dt",
+        "1e-3",
+        "--t-end",
+        "5",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let summary: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["solver"], "moreau-jean");
+    assert_eq!(summary["switching"], "timestepping");
+    assert_eq!(summary["parameters"]["theta"], 1.0);
+    assert_eq!(summary["stats"]["steps"], 5000);
+    // Stuck on the belt (v_belt = 0.05) the body moves with it to the last digit.
+    let csv = std::fs::read_to_string(out.join("trajectory.csv")).unwrap();
+    let stuck: Vec<&str> = csv.lines().filter(|l| l.contains(",stick")).collect();
+    assert!(stuck.len() > 10, "{} stuck rows", stuck.len());
+    for row in stuck {
+        assert_eq!(row.split(',').nth(2), Some("0.05"), "{row}");
+    }
+    let chain = dir.path().join("chain");
+    let o = friction_lab(&[
+        "simulate",
+        "chain",
+        "--model",
+        "static",
+        "--switching",
+        "timestepping",
+        "--set",
+        "n_bodies=20",
+        "--t-end",
+        "20",
+        "--out",
+        chain.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let summary: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(chain.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["solver"], "moreau-jean");
+    assert!(summary["energy"]["relative_residual"].as_f64().unwrap() < 1e-10);
+    assert!(summary["event_counts"]["slip+"].as_u64().unwrap() >= 20);
+    let e = rejected(&[
+        "simulate",
+        "prescribed-motion",
+        "--model",
+        "CS",
+        "--switching",
+        "timestepping",
+    ]);
+    assert!(e.contains("no body to time-step"), "{e}");
+    let e = rejected(&[
+        "simulate",
+        "belt",
+        "--model",
+        "CS",
+        "--switching",
+        "timestepping",
+        "--theta",
+        "0.4",
+    ]);
+    assert!(
+        e.contains("option `theta` = 0.4 is out of range: allowed [0.5, 1]"),
+        "{e}"
+    );
+}

@@ -25,11 +25,25 @@ pub struct SolverOptions {
     /// rk4, dopri5, implicit-euler, bdf, tr-bdf2, esdirk34 (diffsol), tsit45 (diffsol).
     #[arg(long, value_name = "SOLVER", default_value = "dopri5")]
     pub solver: Solver,
-    /// event (stick/slip switching), regularized (tanh, width epsilon) or naive.
-    #[arg(long, value_name = "event|regularized|naive", default_value = "event")]
+    /// event (stick/slip switching), regularized (tanh, width epsilon), naive, or
+    /// timestepping (Moreau–Jean: fixed steps of --dt, no event located; --solver unused).
+    #[arg(
+        long,
+        value_name = "event|regularized|naive|timestepping",
+        default_value = "event"
+    )]
     pub switching: SwitchingKind,
-    /// Fixed step of rk4 (default 1e-3 s, the paper's), or the initial step of the adaptive
-    /// solvers (the fixed step with --fixed-step).
+    /// θ of --switching timestepping: the weight of the step's end on the smooth forces,
+    /// 0.5 (trapezoidal, second order) to 1 (implicit Euler, first order).
+    #[arg(
+        long,
+        value_name = "THETA",
+        allow_hyphen_values = true,
+        default_value_t = scenarios::run::DEFAULT_THETA
+    )]
+    pub theta: f64,
+    /// Fixed step of rk4 and of time-stepping (default 1e-3 s, the paper's), or the initial
+    /// step of the adaptive solvers (the fixed step with --fixed-step).
     #[arg(long, value_name = "H", allow_hyphen_values = true)]
     pub dt: Option<f64>,
     /// Integrate dopri5 or implicit-euler with fixed steps of --dt.
@@ -65,6 +79,7 @@ impl SolverOptions {
     pub fn checked_step(&self) -> Result<StepControl, AppError> {
         ranges::RTOL.check(self.rtol)?;
         ranges::ATOL.check(self.atol)?;
+        ranges::THETA.check(self.theta)?;
         if let Some(dt) = self.dt {
             ranges::DT.check(dt)?;
         }
@@ -76,9 +91,15 @@ impl SolverOptions {
         self.limits.limits()
     }
 
+    /// The treatment of v = 0, with θ from `--theta`.
+    pub fn switching(&self) -> SwitchingKind {
+        self.switching.with_theta(self.theta)
+    }
+
     /// The step control these options ask for.
     pub fn step(&self) -> StepControl {
-        if self.solver.is_fixed_step() || self.fixed_step {
+        let fixed = self.solver.is_fixed_step() || self.fixed_step;
+        if fixed || self.switching.is_time_stepping() {
             StepControl::Fixed {
                 h: self.dt.unwrap_or(PAPER_DT),
             }
@@ -229,7 +250,7 @@ pub fn spec(args: &SimulateArgs, scenario: Scenario) -> Result<RunSpec, AppError
         friction,
         params,
         solver: args.solver.solver,
-        switching: args.solver.switching,
+        switching: args.solver.switching(),
         step,
         t_end: args.t_end,
         output_points: args.checked_points()?.unwrap_or(2001),
@@ -350,7 +371,8 @@ fn run_rig(args: &SimulateArgs, scenario: Scenario) -> Result<(), AppError> {
     let t_end = spec
         .t_end
         .unwrap_or_else(|| spec.scenario.default_t_end(&spec.params, &spec.friction));
-    let what = format!("{} {} {}", spec.scenario, spec.model, spec.solver.name());
+    let method = spec.switching.method(spec.solver);
+    let what = format!("{} {} {method}", spec.scenario, spec.model);
     let bar = Progress::time(t_end, &what);
     let outcome = scenarios::run(&spec, &mut |t| {
         if t_end > 0.0 {
@@ -363,10 +385,9 @@ fn run_rig(args: &SimulateArgs, scenario: Scenario) -> Result<(), AppError> {
     let model = spec.model.build(spec.variant, &spec.friction)?;
     let has_state = model.n_states() > 0;
     let name = format!(
-        "{} with {} ({}, {} switching)",
+        "{} with {} ({method}, {} switching)",
         spec.scenario,
         spec.model,
-        spec.solver.name(),
         spec.switching.name()
     );
     let mut files = Artifacts::default();
@@ -379,15 +400,21 @@ fn run_rig(args: &SimulateArgs, scenario: Scenario) -> Result<(), AppError> {
     for &p in spec.scenario.parameters() {
         parameters.insert(p, spec.params.value(p).expect("scenario parameters exist"));
     }
-    if spec.switching == SwitchingKind::Regularized {
-        parameters.insert("epsilon", spec.friction.epsilon);
+    match spec.switching {
+        SwitchingKind::Regularized => {
+            parameters.insert("epsilon", spec.friction.epsilon);
+        }
+        SwitchingKind::TimeStepping { theta } => {
+            parameters.insert("theta", theta);
+        }
+        _ => {}
     }
     let s = outcome.stats;
     let summary = Summary {
         scenario: spec.scenario.name(),
         model: spec.model.name(),
         variant: spec.variant,
-        solver: spec.solver.name(),
+        solver: method,
         switching: spec.switching.name(),
         step: format!("{:?}", spec.step),
         t_end,

@@ -302,12 +302,16 @@ pub fn run(args: &SimulateArgs) -> Result<(), AppError> {
     let Described {
         system,
         name,
-        parameters,
+        mut parameters,
         friction,
     } = system_of(args.system.as_deref(), args.model, &args.model_options)?;
+    args.solver.checked_step()?;
+    if let scenarios::SwitchingKind::TimeStepping { theta } = args.solver.switching() {
+        parameters.insert("theta".into(), theta);
+    }
     system.validate()?;
     let bodies = chosen_bodies(&system, &args.bodies)?;
-    let switching = args.solver.switching.with(&friction);
+    let switching = args.solver.switching().with(&friction);
     let t_end = args.checked_t_end()?.unwrap_or(if args.system.is_some() {
         FILE_T_END
     } else {
@@ -330,7 +334,8 @@ pub fn run(args: &SimulateArgs) -> Result<(), AppError> {
         ),
         ..Options::adaptive(0.0, t_end, 1e-8, 1e-10)
     };
-    let bar = Progress::time(t_end, &format!("{name} {}", args.solver.solver.name()));
+    let method = args.solver.switching().method(args.solver.solver);
+    let bar = Progress::time(t_end, &format!("{name} {method}"));
     let run =
         friction_systems::simulate(&system, switching, args.solver.solver, options, &mut |t| {
             bar.at(t)
@@ -338,8 +343,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), AppError> {
     bar.finish();
 
     let title = format!(
-        "{name} ({}, {} switching)",
-        args.solver.solver.name(),
+        "{name} ({method}, {} switching)",
         args.solver.switching.name()
     );
     let mut files = Artifacts::default();
@@ -388,7 +392,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), AppError> {
         system: &name,
         n_bodies: system.bodies.len(),
         n_contacts: system.contacts.len(),
-        solver: args.solver.solver.name(),
+        solver: method,
         switching: args.solver.switching.name(),
         step: format!("{step:?}"),
         t_end,

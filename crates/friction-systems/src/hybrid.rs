@@ -41,11 +41,11 @@ const BREAK_AWAY_NEGATIVE: EventSpec = EventSpec {
     crossing: Crossing::Falling,
 };
 
-/// A spring end as the right-hand side reads it: the index of a body's x in y (its v
+/// A spring end as the right-hand side reads it: a body with the index of its x in y (its v
 /// follows), or an anchor's motion `x0 + v·t`.
 #[derive(Clone, Copy, Debug, PartialEq)]
-enum Point {
-    State(usize),
+pub(crate) enum Point {
+    State { body: usize, x: usize },
     Moving { x0: f64, v: f64 },
 }
 
@@ -54,7 +54,7 @@ impl Point {
     #[inline]
     fn at(self, t: f64, y: &[f64]) -> (f64, f64) {
         match self {
-            Point::State(x) => (y[x], y[x + 1]),
+            Point::State { x, .. } => (y[x], y[x + 1]),
             Point::Moving { x0, v } => (x0 + v * t, v),
         }
     }
@@ -62,17 +62,17 @@ impl Point {
 
 /// A spring with its ends resolved: `f = k·(x_b − x_a) + c·(v_b − v_a)` on `a`, `−f` on `b`.
 #[derive(Clone, Copy, Debug, PartialEq)]
-struct Link {
-    a: Point,
-    b: Point,
-    k: f64,
-    c: f64,
+pub(crate) struct Link {
+    pub(crate) a: Point,
+    pub(crate) b: Point,
+    pub(crate) k: f64,
+    pub(crate) c: f64,
 }
 
 impl Link {
     /// The force on end `a`, and `v_b − v_a`.
     #[inline]
-    fn force(&self, t: f64, y: &[f64]) -> (f64, f64) {
+    pub(crate) fn force(&self, t: f64, y: &[f64]) -> (f64, f64) {
         let (xa, va) = self.a.at(t, y);
         let (xb, vb) = self.b.at(t, y);
         let dv = vb - va;
@@ -89,7 +89,7 @@ pub struct FrictionSystem<'a> {
     /// The treatment of v_rel = 0.
     pub switching: Switching,
     /// The springs with their ends resolved to state indices and anchor motions.
-    links: Vec<Link>,
+    pub(crate) links: Vec<Link>,
     /// The springs at each body, by index.
     springs_at: Vec<Vec<usize>>,
     /// The external forces on each body, by index.
@@ -114,7 +114,10 @@ impl<'a> FrictionSystem<'a> {
         }
         let layout = Layout::of(system);
         let point = |end| match end {
-            End::Body(i) => Point::State(layout.x[i]),
+            End::Body(i) => Point::State {
+                body: i,
+                x: layout.x[i],
+            },
             End::Anchor(a) => {
                 let anchor = &system.anchors[a];
                 Point::Moving {
@@ -155,13 +158,38 @@ impl<'a> FrictionSystem<'a> {
         for &s in &self.springs_at[i] {
             let link = &self.links[s];
             let (force, _) = link.force(t, y);
-            f += if link.a == Point::State(self.layout.x[i]) {
-                force
-            } else {
-                -force
+            f += match link.a {
+                Point::State { body, .. } if body == i => force,
+                _ => -force,
             };
         }
         f
+    }
+
+    /// Every force but friction at (t, y), handed to `add(body, force)` term by term (the
+    /// external forces, then each spring and damper on each of its body ends); returns the
+    /// power of those forces that is not stored in the springs,
+    /// `Σ F_ext,i·v_i + Σ anchor power − Σ c·Δv²`.
+    pub(crate) fn applied_forces(&self, t: f64, y: &[f64], mut add: impl FnMut(usize, f64)) -> f64 {
+        let mut external = 0.0;
+        for f in &self.system.forces {
+            let force = f.constant + f.profile.at(t);
+            add(f.body, force);
+            external += force * y[self.layout.v(f.body)];
+        }
+        for link in &self.links {
+            let (force, dv) = link.force(t, y);
+            external -= link.c * dv * dv;
+            match link.a {
+                Point::State { body, .. } => add(body, force),
+                Point::Moving { v, .. } => external -= force * v,
+            }
+            match link.b {
+                Point::State { body, .. } => add(body, -force),
+                Point::Moving { v, .. } => external += force * v,
+            }
+        }
+        external
     }
 
     fn z(&self, i: usize, y: &[f64]) -> f64 {
@@ -184,7 +212,7 @@ impl<'a> FrictionSystem<'a> {
         let v_rel = y[self.layout.v(i)] - c.surface_velocity;
         let z = self.z(i, y);
         match self.switching {
-            Switching::Event if mode == STICK => return (other, 0.0),
+            s if s.has_modes() && mode == STICK => return (other, 0.0),
             Switching::Naive if v_rel == 0.0 || v_rel.abs() < c.model.stick_band() => {
                 return (c.model.stick_interval(x, z).clamp(other), 0.0)
             }
@@ -242,7 +270,7 @@ impl<'a> FrictionSystem<'a> {
     /// The mode of contact `j` to report: the integrated mode under event switching,
     /// otherwise the sign of v_rel.
     pub fn reported_mode(&self, j: usize, y: &[f64], modes: &[Mode]) -> Mode {
-        if self.switching == Switching::Event {
+        if self.switching.has_modes() {
             return modes[j];
         }
         let c = &self.system.contacts[j];
@@ -250,8 +278,7 @@ impl<'a> FrictionSystem<'a> {
     }
 
     fn stuck(&self, i: usize, modes: &[Mode]) -> bool {
-        self.switching == Switching::Event
-            && self.layout.contact[i].is_some_and(|j| modes[j] == STICK)
+        self.switching.has_modes() && self.layout.contact[i].is_some_and(|j| modes[j] == STICK)
     }
 }
 
@@ -265,28 +292,11 @@ impl OdeProblem for FrictionSystem<'_> {
     /// `Ẇ_belt = −Σ F_f,j·v_s,j`.
     fn rhs(&self, t: f64, y: &[f64], modes: &[Mode], dy: &mut [f64]) {
         let l = &self.layout;
-        let mut external = 0.0;
         for i in 0..self.system.bodies.len() {
             dy[l.x[i]] = y[l.v(i)];
             dy[l.v(i)] = 0.0;
         }
-        for f in &self.system.forces {
-            let force = f.constant + f.profile.at(t);
-            dy[l.v(f.body)] += force;
-            external += force * y[l.v(f.body)];
-        }
-        for link in &self.links {
-            let (force, dv) = link.force(t, y);
-            external -= link.c * dv * dv;
-            match link.a {
-                Point::State(x) => dy[x + 1] += force,
-                Point::Moving { v, .. } => external -= force * v,
-            }
-            match link.b {
-                Point::State(x) => dy[x + 1] -= force,
-                Point::Moving { v, .. } => external += force * v,
-            }
-        }
+        let external = self.applied_forces(t, y, |i, f| dy[l.v(i)] += f);
         let (mut dissipated, mut belt) = (0.0, 0.0);
         for (i, body) in self.system.bodies.iter().enumerate() {
             let v = l.v(i);
@@ -298,7 +308,7 @@ impl OdeProblem for FrictionSystem<'_> {
             let (force, rate) = self.contact_force(j, y, modes[j], dy[v]);
             dissipated += force * (y[v] - surface);
             belt -= force * surface;
-            let stuck = self.switching == Switching::Event && modes[j] == STICK;
+            let stuck = self.switching.has_modes() && modes[j] == STICK;
             if stuck {
                 dy[l.x[i]] = surface;
                 dy[v] = 0.0;

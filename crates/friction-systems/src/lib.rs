@@ -9,8 +9,12 @@
 //!   [`integrators::OdeProblem`]): the state layout ([`layout`]), one stick/slip mode per
 //!   contact, two event functions per contact, the analytic sparse Jacobian, the energy
 //!   accumulators ([`energy`]);
-//! - [`switching`]: how v_rel = 0 is treated (event-driven, regularised, naive);
-//! - [`run`]: one integration by any solver of `integrators`, read per body and per contact.
+//! - [`switching`]: how v_rel = 0 is treated (event-driven, regularised, naive,
+//!   time-stepping);
+//! - [`moreau_jean`]: the same system time-stepped by Moreau–Jean's scheme, each step's
+//!   contact problem solved by nonsmooth Gauss–Seidel ([`MoreauJean`]);
+//! - [`run`]: one integration by any solver of `integrators`, or by time-stepping, read per
+//!   body and per contact.
 //!
 //! Any [`friction_models::FrictionModel`], also one written in another crate, can sit at a
 //! contact.
@@ -20,6 +24,8 @@ pub mod energy;
 pub mod file;
 pub mod hybrid;
 pub mod layout;
+mod local;
+pub mod moreau_jean;
 pub mod run;
 pub mod switching;
 pub mod system;
@@ -28,6 +34,7 @@ pub use chain::ChainParams;
 pub use energy::EnergyBalance;
 pub use hybrid::FrictionSystem;
 pub use layout::Layout;
+pub use moreau_jean::MoreauJean;
 pub use run::{simulate, BodyState, ContactEvent, Run};
 pub use switching::{mode_name, Switching, SLIP_NEGATIVE, SLIP_POSITIVE, STICK};
 pub use system::{Anchor, Body, Contact, End, Force, Profile, Spring, System, SystemError};

@@ -4,6 +4,7 @@
 
 use crate::energy::EnergyBalance;
 use crate::hybrid::FrictionSystem;
+use crate::moreau_jean::MoreauJean;
 use crate::switching::Switching;
 use crate::system::{System, SystemError};
 use integrators::{Failure, Mode, Options, Solution, Solver, SolverError};
@@ -60,7 +61,8 @@ pub struct Run<'a> {
 }
 
 /// Integrates `system` under `switching` with `solver` and `options` from the bodies'
-/// initial states; `observe` is told the time after every step.
+/// initial states (under [`Switching::TimeStepping`] the scheme is Moreau–Jean's and `solver`
+/// is not used); `observe` is told the time after every step.
 pub fn simulate<'a>(
     system: &'a System,
     switching: Switching,
@@ -74,7 +76,13 @@ pub fn simulate<'a>(
     let y0 = problem.initial_state();
     let modes0 = problem.initial_modes(t0, &y0);
     let clock = Instant::now();
-    let (solution, error) = match solver.solve_observed(&problem, &y0, &modes0, options, observe) {
+    let result = match switching {
+        Switching::TimeStepping { theta } => {
+            MoreauJean { theta }.solve(&problem, &y0, &modes0, &options, observe)
+        }
+        _ => solver.solve_observed(&problem, &y0, &modes0, options, observe),
+    };
+    let (solution, error) = match result {
         Ok(s) => (s, None),
         Err(Failure { error, solution }) => (*solution, Some(error)),
     };

@@ -7,6 +7,10 @@
 //! - [`Switching::Regularized`]: sign(v) ≈ tanh(v/ε), one smooth ODE.
 //! - [`Switching::Naive`]: the discontinuous law stepped through blindly (sign(0) = 0, and
 //!   the stick rule of eqs. (6)–(7) only when v_rel is exactly zero or inside a Karnopp band).
+//! - [`Switching::TimeStepping`]: no event is located; Moreau–Jean's scheme
+//!   ([`crate::moreau_jean`]) takes fixed steps and finds each contact's force and mode at the
+//!   end of every step from the set-valued law. Between steps the modes mean what they mean
+//!   under `Event`.
 
 use friction_models::{Direction, SignLaw};
 use integrators::Mode;
@@ -50,16 +54,31 @@ pub enum Switching {
     },
     /// The discontinuous law stepped through blindly.
     Naive,
+    /// Moreau–Jean time-stepping with the θ-method on the smooth forces.
+    TimeStepping {
+        /// Weight θ of the end of the step, in [1/2, 1].
+        theta: f64,
+    },
 }
 
 impl Switching {
     /// The law sign(v) is evaluated by in a sliding `mode`.
     pub fn law(self, mode: Mode) -> SignLaw {
         match self {
-            Switching::Event if mode == SLIP_NEGATIVE => SignLaw::Frozen(Direction::Negative),
-            Switching::Event => SignLaw::Frozen(Direction::Positive),
+            Switching::Event | Switching::TimeStepping { .. } if mode == SLIP_NEGATIVE => {
+                SignLaw::Frozen(Direction::Negative)
+            }
+            Switching::Event | Switching::TimeStepping { .. } => {
+                SignLaw::Frozen(Direction::Positive)
+            }
             Switching::Regularized { epsilon } => SignLaw::Smooth { epsilon },
             Switching::Naive => SignLaw::Discontinuous,
         }
+    }
+
+    /// Whether every contact carries a stick/slip mode (event switching and time-stepping);
+    /// otherwise the mode is only read off the sign of v_rel.
+    pub fn has_modes(self) -> bool {
+        matches!(self, Switching::Event | Switching::TimeStepping { .. })
     }
 }

@@ -102,6 +102,17 @@ pub enum SolverError {
         /// Why.
         why: String,
     },
+    /// The contact problem of a time step (the set-valued friction laws with the momentum
+    /// balance) was not solved.
+    #[error("contact problem of the step at t = {t} (h = {h:e}) not solved: {why}")]
+    ContactProblem {
+        /// Time of the step's start.
+        t: f64,
+        /// Step size.
+        h: f64,
+        /// What failed, and at which contact.
+        why: String,
+    },
     /// diffsol reported an error.
     #[error("diffsol {solver} failed at t = {t}: {message}")]
     Diffsol {

@@ -18,7 +18,7 @@ use std::time::Instant;
 use thiserror::Error;
 
 /// How v = 0 is treated, by the name the command line takes.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum SwitchingKind {
     /// Event location with stick/slip mode switching.
@@ -27,14 +27,26 @@ pub enum SwitchingKind {
     Regularized,
     /// The discontinuous law stepped through.
     Naive,
+    /// Moreau–Jean time-stepping (fixed steps, no event located).
+    #[serde(rename = "timestepping")]
+    TimeStepping {
+        /// Weight θ of the step's end on the smooth forces, in [1/2, 1].
+        theta: f64,
+    },
 }
 
+/// θ of time-stepping unless `--theta` says otherwise: the trapezoidal rule.
+pub const DEFAULT_THETA: f64 = 0.5;
+
 impl SwitchingKind {
-    /// Every treatment.
-    pub const ALL: [SwitchingKind; 3] = [
+    /// Every treatment (time-stepping at the default θ).
+    pub const ALL: [SwitchingKind; 4] = [
         SwitchingKind::Event,
         SwitchingKind::Regularized,
         SwitchingKind::Naive,
+        SwitchingKind::TimeStepping {
+            theta: DEFAULT_THETA,
+        },
     ];
 
     /// The name the command line takes.
@@ -43,7 +55,30 @@ impl SwitchingKind {
             SwitchingKind::Event => "event",
             SwitchingKind::Regularized => "regularized",
             SwitchingKind::Naive => "naive",
+            SwitchingKind::TimeStepping { .. } => "timestepping",
         }
+    }
+
+    /// The same treatment with θ = `theta` if it is time-stepping.
+    pub fn with_theta(self, theta: f64) -> SwitchingKind {
+        match self {
+            SwitchingKind::TimeStepping { .. } => SwitchingKind::TimeStepping { theta },
+            other => other,
+        }
+    }
+
+    /// The name of the method that integrates under this treatment with `solver`: the solver's,
+    /// or Moreau–Jean's under time-stepping (which uses no ODE solver).
+    pub fn method(self, solver: Solver) -> &'static str {
+        match self {
+            SwitchingKind::TimeStepping { .. } => friction_systems::moreau_jean::NAME,
+            _ => solver.name(),
+        }
+    }
+
+    /// Whether the scheme takes fixed steps whatever the solver (time-stepping).
+    pub fn is_time_stepping(self) -> bool {
+        matches!(self, SwitchingKind::TimeStepping { .. })
     }
 
     /// The integrators' switching, with the width from the parameters.
@@ -52,6 +87,16 @@ impl SwitchingKind {
             SwitchingKind::Event => Switching::Event,
             SwitchingKind::Regularized => Switching::Regularized { epsilon: p.epsilon },
             SwitchingKind::Naive => Switching::Naive,
+            SwitchingKind::TimeStepping { theta } => Switching::TimeStepping { theta },
+        }
+    }
+}
+
+impl std::fmt::Display for SwitchingKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            SwitchingKind::TimeStepping { theta } => write!(f, "timestepping (θ = {theta})"),
+            other => f.write_str(other.name()),
         }
     }
 }
@@ -62,7 +107,9 @@ impl std::str::FromStr for SwitchingKind {
         SwitchingKind::ALL
             .into_iter()
             .find(|k| k.name() == s)
-            .ok_or_else(|| format!("unknown switching `{s}`; allowed: event, regularized, naive"))
+            .ok_or_else(|| {
+                format!("unknown switching `{s}`; allowed: event, regularized, naive, timestepping")
+            })
     }
 }
 
@@ -201,6 +248,13 @@ fn validate(spec: &RunSpec) -> Result<(), ScenarioError> {
         return Err(ScenarioError::Invalid(format!(
             "parameter `k` = {} is out of range for {}: allowed (0, inf) N/m (the spring holds the body)",
             spec.params.k, spec.scenario
+        )));
+    }
+    if !spec.scenario.has_body() && spec.switching.is_time_stepping() {
+        return Err(ScenarioError::Invalid(format!(
+            "switching `timestepping` cannot run {}: the motion is prescribed, there is no body \
+             to time-step; use event, regularized or naive",
+            spec.scenario
         )));
     }
     if !spec.scenario.has_body() {

@@ -1,0 +1,270 @@
+//! The one-contact problem of a Moreau–Jean step ([`crate::moreau_jean`]): one body, its
+//! neighbours' velocities fixed, solved exactly.
+//!
+//! Unknowns: the relative velocity at the end of the step `u = v − v_s`, and the internal
+//! state z of the contact's model. With `Ŵ` the body's diagonal of the iteration matrix and
+//! `b` everything else of its momentum equation,
+//!
+//! - `Ŵ·(u + v_s) = b − P`, P the friction impulse of the step;
+//! - `x = x̂ + h·θ·(u + v_s)` (x̂ the part of the end position known before the step);
+//! - `z = z_k + h·(1−θ)·g_k + h·θ·g(x, u, z)`.
+//!
+//! At rest (u = 0) the impulse is `P = h·λ*`, `λ* = (b − Ŵ·v_s)/h`, admissible when λ* lies in
+//! the model's stick interval (a projection onto a closed interval: the relay problem of one
+//! contact). Sliding in direction d, `P = h·[θ_f·F_d(x, u, z) + (1−θ_f)·F_k]` with the frozen
+//! law of direction d, and `R(u) = Ŵ·(u + v_s) + P − b = 0` is solved for u on the side of d by
+//! Newton's method safeguarded by bisection (Press et al., *Numerical Recipes*, `rtsafe`).
+
+use friction_models::{Direction, FrictionModel, SignLaw};
+
+/// Most Newton iterations of the sliding equation, or of the internal state, before the
+/// step is declared unsolved.
+pub(crate) const MAX_LOCAL_ITERATIONS: usize = 200;
+
+/// Newton's iteration has converged when the update is below this many units of roundoff
+/// of the unknown.
+const LOCAL_ROUNDOFF: f64 = 4.0 * f64::EPSILON;
+
+/// One contact's problem in one sweep.
+pub(crate) struct Local<'a> {
+    /// The contact's law.
+    pub model: &'a dyn FrictionModel,
+    /// Step size h, s.
+    pub h: f64,
+    /// θ of the smooth forces (and of the internal state).
+    pub theta: f64,
+    /// Diagonal of the iteration matrix Ŵ = m + h·θ·Σ(c + h·θ·k), kg.
+    pub w: f64,
+    /// Right-hand side b of the momentum equation with the neighbours' velocities, N·s.
+    pub b: f64,
+    /// Surface velocity v_s, m/s.
+    pub v_s: f64,
+    /// End position with the body's own end velocity left out, m.
+    pub x_hat: f64,
+    /// Internal state at the start of the step (0 without one).
+    pub z0: f64,
+    /// Its rate at the start of the step.
+    pub rate0: f64,
+    /// Whether the model has an internal state.
+    pub has_state: bool,
+}
+
+/// The solution of one contact's problem.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Solved {
+    /// Relative velocity at the end of the step, m/s (exactly 0 at rest).
+    pub u: f64,
+    /// Internal state at the end of the step.
+    pub z: f64,
+    /// Friction force at the end of the step, N (the holding force λ* at rest).
+    pub force: f64,
+    /// Friction impulse of the step, N·s.
+    pub impulse: f64,
+    /// Direction of sliding at the end of the step; `None` at rest.
+    pub direction: Option<Direction>,
+    /// Newton iterations spent.
+    pub iterations: usize,
+}
+
+/// The law, the force and the rate at one relative velocity, with the derivatives the
+/// sliding equation needs.
+struct Point {
+    z: f64,
+    force: f64,
+    /// dF/du along the solution z(u) of the state equation.
+    dforce: f64,
+    iterations: usize,
+}
+
+impl Local<'_> {
+    /// The end position for relative velocity u.
+    fn x(&self, u: f64) -> f64 {
+        self.x_hat + self.h * self.theta * (u + self.v_s)
+    }
+
+    /// z(u) from the state equation and F(x(u), u, z(u)) with dF/du, under `law`.
+    fn point(&self, u: f64, law: SignLaw) -> Result<Point, String> {
+        let x = self.x(u);
+        let ht = self.h * self.theta;
+        let mut z = self.z0;
+        let mut iterations = 0;
+        if self.has_state {
+            let known = self.z0 + self.h * (1.0 - self.theta) * self.rate0;
+            loop {
+                let rate = self.model.response(x, u, z, law).state_rate;
+                let p = self.model.partials(x, u, z, law);
+                let dz = (z - known - ht * rate) / (1.0 - ht * p.rate_dz);
+                z -= dz;
+                iterations += 1;
+                if dz.abs() <= LOCAL_ROUNDOFF * z.abs() {
+                    break;
+                }
+                if !dz.is_finite() || iterations == MAX_LOCAL_ITERATIONS {
+                    return Err(format!(
+                        "the internal state did not converge at v_rel = {u:e} (last update {dz:e})"
+                    ));
+                }
+            }
+        }
+        let r = self.model.response(x, u, z, law);
+        let p = self.model.partials(x, u, z, law);
+        let dz_du = if self.has_state {
+            ht * (p.rate_dv + p.rate_dx * ht) / (1.0 - ht * p.rate_dz)
+        } else {
+            0.0
+        };
+        Ok(Point {
+            z,
+            force: r.force,
+            dforce: p.force_dv + p.force_dx * ht + p.force_dz * dz_du,
+            iterations,
+        })
+    }
+
+    /// The force that holds the body at rest, λ*.
+    fn holding_force(&self) -> f64 {
+        (self.b - self.w * self.v_s) / self.h
+    }
+
+    /// Solves the problem: first, if the contact slid in `previous` through the step before,
+    /// with the θ-method on friction (`previous_force` F_k) if it still slides that way;
+    /// otherwise at rest if λ* is admissible, else sliding with the impulse implicit.
+    pub fn solve(
+        &self,
+        previous: Option<(Direction, f64)>,
+        u_guess: f64,
+    ) -> Result<Solved, String> {
+        let mut iterations = 0;
+        if let Some((d, f_k)) = previous.filter(|_| self.theta < 1.0) {
+            let sliding = self.slide(d, self.theta, f_k, u_guess)?;
+            iterations += sliding.1;
+            if let Some(s) = sliding.0 {
+                return Ok(Solved {
+                    iterations: s.iterations + iterations,
+                    ..s
+                });
+            }
+        }
+        let z_rest = if self.has_state {
+            let rest = self.point(0.0, SignLaw::Discontinuous)?;
+            iterations += rest.iterations;
+            rest.z
+        } else {
+            self.z0
+        };
+        let interval = self.model.stick_interval(self.x(0.0), z_rest);
+        let held = self.holding_force();
+        if interval.contains(held) {
+            return Ok(Solved {
+                u: 0.0,
+                z: z_rest,
+                force: held,
+                impulse: self.h * held,
+                direction: None,
+                iterations,
+            });
+        }
+        let d = if held > interval.upper {
+            Direction::Positive
+        } else {
+            Direction::Negative
+        };
+        match self.slide(d, 1.0, 0.0, u_guess)? {
+            (Some(s), n) => Ok(Solved {
+                iterations: s.iterations + n + iterations,
+                ..s
+            }),
+            (None, _) => Err(format!(
+                "no sliding solution in direction {d:?}: the model's sliding force at v_rel = 0 \
+                 lies outside its stick interval [{}, {}]",
+                interval.lower, interval.upper
+            )),
+        }
+    }
+
+    /// The sliding solution in direction `d` with weight `theta_f` on the end force and
+    /// `f_k` at the start, if one exists on that side (`None` when R does not change sign
+    /// there), with the iterations spent.
+    fn slide(
+        &self,
+        d: Direction,
+        theta_f: f64,
+        f_k: f64,
+        u_guess: f64,
+    ) -> Result<(Option<Solved>, usize), String> {
+        let law = SignLaw::Frozen(d);
+        let s = d.sign();
+        // R along the side of d, as a function of w = s·u ≥ 0: increasing through its root.
+        let residual = |w: f64| -> Result<(f64, f64, Point), String> {
+            let p = self.point(s * w, law)?;
+            let impulse = self.h * (theta_f * p.force + (1.0 - theta_f) * f_k);
+            let r = self.w * (s * w + self.v_s) + impulse - self.b;
+            Ok((s * r, self.w + self.h * theta_f * p.dforce, p))
+        };
+        let (r0, _, p0) = residual(0.0)?;
+        let mut iterations = p0.iterations;
+        if r0 >= 0.0 {
+            return Ok((None, iterations));
+        }
+        // Bracket: a velocity large enough that the inertia beats every force.
+        let (mut lo, mut hi) = (
+            0.0,
+            (self.b / self.w - self.v_s).abs().max(f64::MIN_POSITIVE),
+        );
+        loop {
+            let (r, _, p) = residual(hi)?;
+            iterations += p.iterations;
+            if r > 0.0 {
+                break;
+            }
+            lo = hi;
+            hi *= 2.0;
+            if !hi.is_finite() {
+                return Err(format!(
+                    "no sliding solution in direction {d:?} at any speed"
+                ));
+            }
+        }
+        let guess = s * u_guess;
+        let mut w = if guess > lo && guess < hi {
+            guess
+        } else {
+            0.5 * (lo + hi)
+        };
+        for _ in 0..MAX_LOCAL_ITERATIONS {
+            let (r, dr, p) = residual(w)?;
+            iterations += p.iterations + 1;
+            if r < 0.0 {
+                lo = w;
+            } else {
+                hi = w;
+            }
+            let newton = w - r / dr;
+            let next = if r != 0.0 && dr > 0.0 && newton > lo && newton < hi {
+                newton
+            } else {
+                0.5 * (lo + hi)
+            };
+            let converged = r == 0.0 || (next - w).abs() <= LOCAL_ROUNDOFF * w;
+            if converged {
+                let u = s * w;
+                return Ok((
+                    Some(Solved {
+                        u,
+                        z: p.z,
+                        force: p.force,
+                        impulse: self.h * (theta_f * p.force + (1.0 - theta_f) * f_k),
+                        direction: Some(d),
+                        iterations: 0,
+                    }),
+                    iterations,
+                ));
+            }
+            w = next;
+        }
+        Err(format!(
+            "the sliding equation in direction {d:?} did not converge in {MAX_LOCAL_ITERATIONS} \
+             iterations (bracket [{lo:e}, {hi:e}] m/s)"
+        ))
+    }
+}

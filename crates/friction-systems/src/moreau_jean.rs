@@ -1,0 +1,585 @@
+//! Moreau–Jean time-stepping (Moreau 1988; Jean 1999; Acary & Brogliato 2008, ch. 10;
+//! Siconos's `MoreauJeanOSI`) for a friction [`System`](crate::System): fixed steps, no event
+//! located, every contact's friction impulse and mode found at the end of each step from its
+//! set-valued law.
+//!
+//! One step from t_k to t_{k+1} = t_k + h, for every body i, with θ ∈ [1/2, 1]:
+//!
+//! ```text
+//! m_i·(v_i' − v_i) = h·[θ·F_o,i(t_{k+1}, x', v') + (1−θ)·F_o,i(t_k, x, v)] − P_i
+//! x_i'             = x_i + h·[θ·v_i' + (1−θ)·v_i]
+//! z_i'             = z_i + h·[θ·g(x_i', u_i', z_i') + (1−θ)·g(x_i, u_i, z_i)]
+//! ```
+//!
+//! with primes at t_{k+1}, `F_o` the springs, dampers and external forces, `u = v − v_s` and
+//! `P_i` the friction impulse of the step. `F_o` is linear in (x, v), so eliminating x' leaves
+//! one equation per body in the end velocities, `Ŵ·v' = b − P`, with
+//! `Ŵ = M − h·θ·(C + h·θ·K)`: the pattern of the springs, symmetric, diagonally dominant.
+//! Each contact's impulse obeys its set-valued law at the end of the step ([`crate::local`]):
+//! at rest if the force that holds the body lies in the stick interval, otherwise sliding with
+//! `P = h·F(u')`; a contact that slid the same way through the previous step and still does
+//! has the θ-method on its friction too, `P = h·[θ·F(u') + (1−θ)·F(u)]` (identical for a
+//! constant sliding force, as Coulomb's; second order at θ = 1/2 for a velocity-dependent one).
+//!
+//! The coupled problem is solved by nonsmooth Gauss–Seidel (Jean 1999; Acary & Brogliato
+//! 2008, §13.4; Siconos's NSGS): each body's problem solved exactly with its neighbours'
+//! velocities fixed, in index order, sweeping until no velocity changes by more than
+//! [`SWEEP_ATOL`]` + `[`SWEEP_RTOL`]`·|v|`; only the neighbours of a body that moved are
+//! visited again. One sweep costs one pass over the springs and contacts: O(N) on a chain.
+//!
+//! The energy accumulators of [`crate::energy`] are the work of each step's impulses on the
+//! mean velocity `(v + v')/2`; at θ = 1/2 the discrete balance then holds to rounding (the
+//! scheme conserves what the system conserves), for θ > 1/2 its residual is the scheme's own
+//! numerical dissipation. Points between step ends (a grid output) are linear interpolations.
+
+use crate::hybrid::{FrictionSystem, Point};
+use crate::local::{Local, Solved};
+use crate::switching::{SLIP_NEGATIVE, SLIP_POSITIVE, STICK};
+use friction_models::{Direction, SignLaw};
+use integrators::{
+    EventRecord, Failure, Mode, ModeSwitch, Options, Output, Solution, SolverError, StepControl,
+};
+
+/// Relative change of a velocity in one sweep below which Gauss–Seidel has converged.
+pub const SWEEP_RTOL: f64 = 1e-14;
+/// Absolute change of a velocity in one sweep below which Gauss–Seidel has converged, m/s.
+pub const SWEEP_ATOL: f64 = 1e-15;
+/// Most Gauss–Seidel sweeps in one step.
+pub const MAX_SWEEPS: usize = 10_000;
+/// The wall clock is read every this many steps.
+const CLOCK_EVERY: usize = 64;
+
+/// The scheme's name in solutions and summaries.
+pub const NAME: &str = "moreau-jean";
+
+/// Moreau–Jean time-stepping with weight θ of the end of the step on the smooth forces.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MoreauJean {
+    /// θ ∈ [1/2, 1]: 1/2 the trapezoidal rule (second order, energy-conserving), 1 implicit
+    /// Euler (first order, dissipative).
+    pub theta: f64,
+}
+
+/// The iteration matrix `Ŵ = M − h·θ·(C + h·θ·K)` of one step size, row by row: its
+/// diagonal and the couplings `h·θ·(c + h·θ·k)` to other bodies.
+struct Matrix {
+    h: f64,
+    diagonal: Vec<f64>,
+    start: Vec<usize>,
+    coupling: Vec<(usize, f64)>,
+}
+
+impl Matrix {
+    fn new(p: &FrictionSystem, h: f64, theta: f64) -> Matrix {
+        let n = p.system.bodies.len();
+        let mut diagonal: Vec<f64> = p.system.bodies.iter().map(|b| b.m).collect();
+        let mut rows = vec![Vec::new(); n];
+        for link in &p.links {
+            let weight = h * theta * (link.c + h * theta * link.k);
+            for (me, other) in [(link.a, link.b), (link.b, link.a)] {
+                let Point::State { body, .. } = me else {
+                    continue;
+                };
+                diagonal[body] += weight;
+                if let Point::State { body: o, .. } = other {
+                    rows[body].push((o, weight));
+                }
+            }
+        }
+        let mut start = vec![0];
+        let mut coupling = Vec::new();
+        for row in rows {
+            coupling.extend(row);
+            start.push(coupling.len());
+        }
+        Matrix {
+            h,
+            diagonal,
+            start,
+            coupling,
+        }
+    }
+
+    fn row(&self, i: usize) -> &[(usize, f64)] {
+        &self.coupling[self.start[i]..self.start[i + 1]]
+    }
+}
+
+/// The scheme's working state between steps.
+struct Stepper<'p, 'a> {
+    p: &'p FrictionSystem<'a>,
+    theta: f64,
+    matrix: Matrix,
+    y: Vec<f64>,
+    y_prev: Vec<f64>,
+    modes: Vec<Mode>,
+    modes_prev: Vec<Mode>,
+    /// Per body: forces but friction at the start of the step, then the known part of b.
+    known: Vec<f64>,
+    x_hat: Vec<f64>,
+    v: Vec<f64>,
+    dirty: Vec<bool>,
+    /// Per contact: the last local solution, its force F at the end of the step and its
+    /// state rate there.
+    solved: Vec<Solved>,
+    rate: Vec<f64>,
+    /// Per contact: its friction force at the start of the step.
+    force_start: Vec<f64>,
+    sweeps: usize,
+    iterations: usize,
+}
+
+impl<'p, 'a> Stepper<'p, 'a> {
+    fn new(p: &'p FrictionSystem<'a>, theta: f64, h: f64, y0: &[f64], modes0: &[Mode]) -> Self {
+        let n = p.system.bodies.len();
+        let l = &p.layout;
+        let solved: Vec<Solved> = p
+            .system
+            .contacts
+            .iter()
+            .enumerate()
+            .map(|(j, c)| Solved {
+                u: y0[l.v(c.body)] - c.surface_velocity,
+                z: l.z[c.body].map_or(0.0, |z| y0[z]),
+                force: p.friction(j, 0.0, y0, modes0),
+                impulse: 0.0,
+                direction: None,
+                iterations: 0,
+            })
+            .collect();
+        let mut s = Stepper {
+            p,
+            theta,
+            matrix: Matrix::new(p, h, theta),
+            y: y0.to_vec(),
+            y_prev: y0.to_vec(),
+            modes: modes0.to_vec(),
+            modes_prev: modes0.to_vec(),
+            known: vec![0.0; n],
+            x_hat: vec![0.0; n],
+            v: vec![0.0; n],
+            dirty: vec![false; n],
+            rate: vec![0.0; p.system.contacts.len()],
+            force_start: vec![0.0; p.system.contacts.len()],
+            solved,
+            sweeps: 0,
+            iterations: 0,
+        };
+        for j in 0..p.system.contacts.len() {
+            s.rate[j] = s.state_rate(j, &s.y, s.modes[j]);
+        }
+        s
+    }
+
+    /// ż of contact j's model at y in `mode`.
+    fn state_rate(&self, j: usize, y: &[f64], mode: Mode) -> f64 {
+        let c = &self.p.system.contacts[j];
+        let l = &self.p.layout;
+        let Some(z) = l.z[c.body] else { return 0.0 };
+        let law = match mode {
+            STICK => SignLaw::Discontinuous,
+            m => self.p.switching.law(m),
+        };
+        let u = y[l.v(c.body)] - c.surface_velocity;
+        c.model.response(y[l.x[c.body]], u, y[z], law).state_rate
+    }
+
+    /// One step from t0 to t0 + h.
+    fn step(&mut self, t0: f64, h: f64) -> Result<(), SolverError> {
+        let (p, theta) = (self.p, self.theta);
+        let l = &p.layout;
+        let t1 = t0 + h;
+        if h != self.matrix.h {
+            self.matrix = Matrix::new(p, h, theta);
+        }
+        self.y_prev.copy_from_slice(&self.y);
+        self.modes_prev.copy_from_slice(&self.modes);
+        for (f, s) in self.force_start.iter_mut().zip(&self.solved) {
+            *f = s.force;
+        }
+        // The known part of b: m·v + h·(1−θ)·F_o(t_k) + h·θ·F_o(t_{k+1}) at zero end velocities.
+        let known = &mut self.known;
+        known.fill(0.0);
+        p.applied_forces(t0, &self.y, |i, f| known[i] += f);
+        for (i, b) in p.system.bodies.iter().enumerate() {
+            let (x, v) = (self.y[l.x[i]], self.y[l.v(i)]);
+            self.x_hat[i] = x + h * (1.0 - theta) * v;
+            known[i] = b.m * v + h * (1.0 - theta) * known[i];
+            self.v[i] = v;
+        }
+        let ht = h * theta;
+        for f in &p.system.forces {
+            known[f.body] += ht * (f.constant + f.profile.at(t1));
+        }
+        let x_hat = &self.x_hat;
+        let end = |point: Point| match point {
+            Point::State { body, .. } => (x_hat[body], 0.0),
+            Point::Moving { x0, v } => (x0 + v * t1, v),
+        };
+        for link in &p.links {
+            let ((xa, va), (xb, vb)) = (end(link.a), end(link.b));
+            let f = ht * (link.k * (xb - xa) + link.c * (vb - va));
+            if let Point::State { body, .. } = link.a {
+                known[body] += f;
+            }
+            if let Point::State { body, .. } = link.b {
+                known[body] -= f;
+            }
+        }
+        self.sweep_to_convergence(t0, h)?;
+        self.finish_step(t0, h);
+        Ok(())
+    }
+
+    /// Nonsmooth Gauss–Seidel over the bodies until no velocity changes.
+    fn sweep_to_convergence(&mut self, t0: f64, h: f64) -> Result<(), SolverError> {
+        let p = self.p;
+        let l = &p.layout;
+        self.dirty.fill(true);
+        let mut pending = true;
+        let mut sweeps = 0;
+        while pending {
+            if sweeps == MAX_SWEEPS {
+                return Err(SolverError::ContactProblem {
+                    t: t0,
+                    h,
+                    why: format!("Gauss–Seidel did not converge in {MAX_SWEEPS} sweeps"),
+                });
+            }
+            sweeps += 1;
+            pending = false;
+            for i in 0..self.v.len() {
+                if !self.dirty[i] {
+                    continue;
+                }
+                self.dirty[i] = false;
+                let row = self.matrix.row(i);
+                let b = row
+                    .iter()
+                    .fold(self.known[i], |b, &(o, w)| b + w * self.v[o]);
+                let w = self.matrix.diagonal[i];
+                let v = match l.contact[i] {
+                    None => b / w,
+                    Some(j) => {
+                        let c = &p.system.contacts[j];
+                        let local = Local {
+                            model: c.model.as_ref(),
+                            h,
+                            theta: self.theta,
+                            w,
+                            b,
+                            v_s: c.surface_velocity,
+                            x_hat: self.x_hat[i],
+                            z0: l.z[i].map_or(0.0, |z| self.y[z]),
+                            rate0: self.rate[j],
+                            has_state: l.z[i].is_some(),
+                        };
+                        let previous = match self.modes_prev[j] {
+                            SLIP_POSITIVE => Some((Direction::Positive, self.force_start[j])),
+                            SLIP_NEGATIVE => Some((Direction::Negative, self.force_start[j])),
+                            _ => None,
+                        };
+                        let s = local.solve(previous, self.solved[j].u).map_err(|why| {
+                            SolverError::ContactProblem {
+                                t: t0,
+                                h,
+                                why: format!(
+                                    "contact {} (body \"{}\"): {why}",
+                                    j + 1,
+                                    p.system.bodies[i].name
+                                ),
+                            }
+                        })?;
+                        self.iterations += s.iterations;
+                        self.solved[j] = s;
+                        s.u + c.surface_velocity
+                    }
+                };
+                if !v.is_finite() {
+                    return Err(SolverError::NonFinite {
+                        t: t0,
+                        h,
+                        what: format!("velocity of body \"{}\"", p.system.bodies[i].name),
+                    });
+                }
+                if (v - self.v[i]).abs() > SWEEP_ATOL + SWEEP_RTOL * v.abs() {
+                    for &(o, _) in row {
+                        self.dirty[o] = true;
+                        pending |= o != i;
+                    }
+                }
+                self.v[i] = v;
+            }
+            pending = pending && self.dirty.iter().any(|&d| d);
+        }
+        self.sweeps += sweeps;
+        Ok(())
+    }
+
+    /// Writes the end state, the modes and the energy accumulators.
+    fn finish_step(&mut self, t0: f64, h: f64) {
+        let (p, theta) = (self.p, self.theta);
+        let l = &p.layout;
+        for i in 0..self.v.len() {
+            self.y[l.x[i]] = self.x_hat[i] + h * theta * self.v[i];
+            self.y[l.v(i)] = self.v[i];
+        }
+        for (j, c) in p.system.contacts.iter().enumerate() {
+            let s = self.solved[j];
+            if let Some(z) = l.z[c.body] {
+                self.y[z] = s.z;
+            }
+            self.modes[j] = match s.direction {
+                Some(Direction::Positive) => SLIP_POSITIVE,
+                Some(Direction::Negative) => SLIP_NEGATIVE,
+                None => STICK,
+            };
+        }
+        for j in 0..p.system.contacts.len() {
+            self.rate[j] = self.state_rate(j, &self.y, self.modes[j]);
+        }
+        self.accumulate(t0, h);
+    }
+
+    /// The energy accumulators: each impulse of the step from t0 to t0 + h times the mean
+    /// velocity it acts on.
+    fn accumulate(&mut self, t0: f64, h: f64) {
+        let (p, theta) = (self.p, self.theta);
+        let l = &p.layout;
+        let t1 = t0 + h;
+        let (y0, y1) = (&self.y_prev, &self.y);
+        let mean = |i: usize| 0.5 * (y0[l.v(i)] + y1[l.v(i)]);
+        let impulse = |f0: f64, f1: f64| h * (theta * f1 + (1.0 - theta) * f0);
+        let mut external = 0.0;
+        for f in &p.system.forces {
+            let i = impulse(f.constant + f.profile.at(t0), f.constant + f.profile.at(t1));
+            external += i * mean(f.body);
+        }
+        for link in &p.links {
+            let ((f0, dv0), (f1, dv1)) = (link.force(t0, y0), link.force(t1, y1));
+            let i = impulse(f0, f1);
+            external -= link.c * impulse(dv0, dv1) * 0.5 * (dv0 + dv1);
+            if let Point::Moving { v, .. } = link.a {
+                external -= i * v;
+            }
+            if let Point::Moving { v, .. } = link.b {
+                external += i * v;
+            }
+        }
+        let (mut dissipated, mut belt) = (0.0, 0.0);
+        for (j, c) in p.system.contacts.iter().enumerate() {
+            let i = self.solved[j].impulse;
+            dissipated += i * (mean(c.body) - c.surface_velocity);
+            belt -= i * c.surface_velocity;
+        }
+        let a = l.accumulators;
+        self.y[a] = y0[a] + external;
+        self.y[a + 1] = y0[a + 1] + dissipated;
+        self.y[a + 2] = y0[a + 2] + belt;
+    }
+}
+
+/// What the recorder keeps of each step, by the output option.
+struct Recorder<'o> {
+    output: &'o Output,
+    next: usize,
+    y: Vec<f64>,
+    modes: Vec<Mode>,
+}
+
+impl Recorder<'_> {
+    /// Records the start (t0, y0) of the run.
+    fn start(&mut self, solution: &mut Solution, t0: f64, y0: &[f64], modes: &[Mode]) {
+        match self.output.grid() {
+            None => solution.push(t0, y0, modes),
+            Some(grid) => {
+                while self.next < grid.len() && grid[self.next] <= t0 {
+                    solution.push(grid[self.next], y0, modes);
+                    self.next += 1;
+                }
+            }
+        }
+    }
+
+    /// Records what falls in the step from (t0, y0, modes0) to (t1, y1, modes1): the step end,
+    /// or the grid points inside it by linear interpolation and the end of a step that
+    /// switched a mode. Inside a step a contact is reported stuck only if it is stuck at both
+    /// ends (so that a stuck contact moves with its surface exactly).
+    fn step(
+        &mut self,
+        solution: &mut Solution,
+        (t0, y0, modes0): (f64, &[f64], &[Mode]),
+        (t1, y1, modes1): (f64, &[f64], &[Mode]),
+        switched: bool,
+    ) {
+        let Some(grid) = self.output.grid() else {
+            solution.push(t1, y1, modes1);
+            return;
+        };
+        while self.next < grid.len() && grid[self.next] <= t1 {
+            if grid[self.next] == t1 {
+                solution.push(t1, y1, modes1);
+            } else {
+                let s = (grid[self.next] - t0) / (t1 - t0);
+                for ((y, a), b) in self.y.iter_mut().zip(y0).zip(y1) {
+                    *y = a + s * (b - a);
+                }
+                for ((m, &a), &b) in self.modes.iter_mut().zip(modes0).zip(modes1) {
+                    *m = if b == STICK && a != STICK { a } else { b };
+                }
+                solution.push(grid[self.next], &self.y, &self.modes);
+            }
+            self.next += 1;
+        }
+        if switched && self.output.records_events() && solution.t.last() != Some(&t1) {
+            solution.push(t1, y1, modes1);
+        }
+    }
+}
+
+impl MoreauJean {
+    /// The allowed range of θ, as messages print it.
+    pub const THETA_RANGE: &'static str = "[0.5, 1]";
+
+    /// Integrates `problem` (whose switching should be
+    /// [`Switching::TimeStepping`](crate::Switching)) from `y0` in `modes0` with the fixed step
+    /// of `options`, telling `observe` the time after every step. A failure keeps everything
+    /// recorded before it.
+    pub fn solve(
+        &self,
+        problem: &FrictionSystem,
+        y0: &[f64],
+        modes0: &[Mode],
+        options: &Options,
+        observe: &mut dyn FnMut(f64),
+    ) -> Result<Solution, Failure> {
+        let mut solution = Solution::new(NAME, y0.len(), modes0.len());
+        match self.run(problem, y0, modes0, options, observe, &mut solution) {
+            Ok(()) => Ok(solution),
+            Err(error) => Err(Failure {
+                error,
+                solution: Box::new(solution),
+            }),
+        }
+    }
+
+    fn run(
+        &self,
+        problem: &FrictionSystem,
+        y0: &[f64],
+        modes0: &[Mode],
+        options: &Options,
+        observe: &mut dyn FnMut(f64),
+        solution: &mut Solution,
+    ) -> Result<(), SolverError> {
+        options.validate()?;
+        if !(0.5..=1.0).contains(&self.theta) {
+            return Err(SolverError::InvalidOption {
+                name: "theta",
+                value: self.theta,
+                allowed: Self::THETA_RANGE,
+            });
+        }
+        let StepControl::Fixed { h } = options.step else {
+            return Err(SolverError::Unsupported {
+                solver: NAME,
+                why: "time-stepping takes a fixed step (--dt), not tolerances".into(),
+            });
+        };
+        let (t0, t_end) = (options.t0, options.t_end);
+        let n_steps = ((t_end - t0) / h - 1e-9).ceil().max(1.0);
+        if n_steps >= usize::MAX as f64 {
+            return Err(SolverError::InvalidOption {
+                name: "dt",
+                value: h,
+                allowed: "a step that divides the span into fewer than 2^64 steps",
+            });
+        }
+        let n_steps = n_steps as usize;
+        let clock = std::time::Instant::now();
+        let mut s = Stepper::new(problem, self.theta, h, y0, modes0);
+        let mut recorder = Recorder {
+            output: &options.output,
+            next: 0,
+            y: vec![0.0; y0.len()],
+            modes: modes0.to_vec(),
+        };
+        recorder.start(solution, t0, y0, modes0);
+        for k in 0..n_steps {
+            if k == options.max_steps {
+                return Err(SolverError::TooManySteps {
+                    t: t0 + k as f64 * h,
+                    h,
+                    max: options.max_steps,
+                });
+            }
+            if let Some(limit) = options.time_limit {
+                if k % CLOCK_EVERY == 0 && clock.elapsed().as_secs_f64() > limit {
+                    return Err(SolverError::TimeLimit {
+                        t: t0 + k as f64 * h,
+                        limit,
+                    });
+                }
+            }
+            let t_k = t0 + k as f64 * h;
+            let t_next = if k + 1 == n_steps {
+                t_end
+            } else {
+                t0 + (k + 1) as f64 * h
+            };
+            let step = if k + 1 == n_steps { t_end - t_k } else { h };
+            s.step(t_k, step)?;
+            let switches = switches(&s.modes_prev, &s.modes);
+            let switched = !switches.is_empty();
+            if switched {
+                solution.events.push(event_record(t_next, switches));
+                solution.stats.events += 1;
+            }
+            recorder.step(
+                solution,
+                (t_k, &s.y_prev, &s.modes_prev),
+                (t_next, &s.y, &s.modes),
+                switched,
+            );
+            solution.stats.steps += 1;
+            observe(t_next);
+        }
+        solution.stats.rhs_evals = s.sweeps;
+        solution.stats.newton_iterations = s.iterations;
+        Ok(())
+    }
+}
+
+/// The contacts whose mode changed between `before` and `after`.
+fn switches(before: &[Mode], after: &[Mode]) -> Vec<ModeSwitch> {
+    before
+        .iter()
+        .zip(after)
+        .enumerate()
+        .filter(|(_, (from, to))| from != to)
+        .map(|(component, (&from, &to))| ModeSwitch {
+            component,
+            from,
+            to,
+        })
+        .collect()
+}
+
+/// A step's switches as an event record with the names of event switching: `v_rel=0` for a
+/// contact that came to rest or reversed, `break-away±` for one that left rest.
+fn event_record(t: f64, switches: Vec<ModeSwitch>) -> EventRecord {
+    let (fired, names) = switches
+        .iter()
+        .map(|s| match (s.from, s.to) {
+            (STICK, SLIP_NEGATIVE) => (2 * s.component + 1, "break-away-"),
+            (STICK, _) => (2 * s.component, "break-away+"),
+            _ => (2 * s.component, "v_rel=0"),
+        })
+        .unzip();
+    EventRecord {
+        t,
+        fired,
+        names,
+        switches,
+    }
+}

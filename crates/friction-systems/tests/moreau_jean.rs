@@ -1,0 +1,369 @@
+//! Moreau–Jean time-stepping against closed forms: exact sticking, the observed orders at
+//! θ = 1/2 and θ = 1, the discrete energy balance, and chains against event-driving.
+
+mod common;
+
+use common::belt;
+use friction_models::{FrictionParams, ModelId, Variant};
+use friction_systems::chain::ChainParams;
+use friction_systems::{simulate, Run, Switching, System, STICK};
+use integrators::{Options, Output, Solver, SolverError, StepControl};
+use std::f64::consts::PI;
+use std::sync::Arc;
+
+const F_C: f64 = 6.0;
+const F_S: f64 = 7.5;
+
+/// The time-stepped run, recorded on `grid` (every step end if it is empty).
+fn stepped<'a>(system: &'a System, theta: f64, h: f64, t_end: f64, grid: &[f64]) -> Run<'a> {
+    let output = match grid {
+        [] => Output::Steps,
+        g => Output::Grid(g.to_vec()),
+    };
+    let options = Options {
+        output,
+        ..Options::fixed(0.0, t_end, h)
+    };
+    let switching = Switching::TimeStepping { theta };
+    let run = simulate(system, switching, Solver::Rk4, options, &mut |_| {}).unwrap();
+    assert!(run.error.is_none(), "{:?}", run.error);
+    run
+}
+
+fn grid(t_end: f64, n: usize) -> Vec<f64> {
+    (0..=n).map(|i| t_end * i as f64 / n as f64).collect()
+}
+
+/// The one-block chain: mass 1, driver spring 10, driver at 0.1 m/s.
+fn one_block(model: ModelId) -> System {
+    let c = ChainParams {
+        n_bodies: 1,
+        spread: 0.0,
+        ..ChainParams::default()
+    };
+    c.build(&FrictionParams::paper(), |p| {
+        model.build(Variant::Odd, p).map(Arc::from)
+    })
+    .unwrap()
+}
+
+/// The one-block chain with Coulomb friction F_c alone (ω = √10, v_d = 0.1): at rest until
+/// the spring force k·v_d·t reaches F_c at t_b = F_c/(k·v_d), then, the friction force being
+/// continuous there, `x = v_d·t − F_c/k − (v_d/ω)·sin ω(t − t_b)` for ever (v = v_d·(1 − cos)
+/// returns to zero only tangentially, where the block grazes the floor's velocity).
+fn one_block_coulomb(t: f64) -> (f64, f64) {
+    let (k, v_d, omega) = (10.0, 0.1, 10f64.sqrt());
+    let t_b = F_C / (k * v_d);
+    if t <= t_b {
+        return (0.0, 0.0);
+    }
+    let (s, c) = (omega * (t - t_b)).sin_cos();
+    (v_d * t - F_C / k - v_d / omega * s, v_d * (1.0 - c))
+}
+
+/// The one-block chain with stiction F_s > F_c: piecewise harmonic (see tests/chain.rs).
+fn one_block_static(t: f64) -> (f64, f64) {
+    let (k, v_d, omega) = (10.0, 0.1, 10f64.sqrt());
+    let a = (F_S - F_C) / k;
+    let slip = (PI + 2.0 * (v_d / (a * omega)).atan()) / omega;
+    let mut x_stuck = 0.0;
+    loop {
+        let t_b = (F_S / k + x_stuck) / v_d;
+        if t <= t_b {
+            return (x_stuck, 0.0);
+        }
+        let slide = |tau: f64| {
+            let (s, c) = (omega * tau).sin_cos();
+            let e = -F_C / k - a * c - v_d / omega * s;
+            (v_d * (t_b + tau) + e, v_d + a * omega * s - v_d * c)
+        };
+        if t <= t_b + slip {
+            return slide(t - t_b);
+        }
+        x_stuck = slide(slip).0;
+    }
+}
+
+const BELT_K: f64 = 100.0;
+const BELT_V: f64 = 0.05;
+
+/// A body (m = 1) held by a spring k = 100 to a wall on a belt at 0.05 m/s with Coulomb
+/// friction F_c alone, from rest at x = 0: it slides back on the belt,
+/// `x = (F_c/k)·(1 − cos ωt)`, until it reaches the belt's velocity at t_1, sticks to the belt
+/// until the spring force reaches F_c at x = F_c/k (t_2), and then oscillates about F_c/k,
+/// `x = F_c/k + (v_b/ω)·sin ω(t − t_2)`, touching the belt's velocity tangentially once a
+/// period.
+fn belt_coulomb(t: f64) -> (f64, f64) {
+    let omega = BELT_K.sqrt();
+    let amplitude = F_C / BELT_K;
+    let t_1 = (BELT_V / (amplitude * omega)).asin() / omega;
+    let x_1 = amplitude * (1.0 - (omega * t_1).cos());
+    let t_2 = t_1 + (amplitude - x_1) / BELT_V;
+    if t <= t_1 {
+        let (s, c) = (omega * t).sin_cos();
+        (amplitude * (1.0 - c), amplitude * omega * s)
+    } else if t <= t_2 {
+        (x_1 + BELT_V * (t - t_1), BELT_V)
+    } else {
+        let (s, c) = (omega * (t - t_2)).sin_cos();
+        (amplitude + BELT_V / omega * s, BELT_V * c)
+    }
+}
+
+/// The same belt with stiction F_s > F_c: after the same first slip and stick, break-away at
+/// x = F_s/k, then the cycle of tests/stick_slip.rs: slip about F_c/k from
+/// `x = F_s/k`, `v = v_b` until v = v_b again, stick until x = F_s/k.
+fn belt_static(t: f64) -> (f64, f64) {
+    let omega = BELT_K.sqrt();
+    let amplitude = F_C / BELT_K;
+    let t_1 = (BELT_V / (amplitude * omega)).asin() / omega;
+    let x_1 = amplitude * (1.0 - (omega * t_1).cos());
+    if t <= t_1 {
+        let (s, c) = (omega * t).sin_cos();
+        return (amplitude * (1.0 - c), amplitude * omega * s);
+    }
+    // x − F_c/k = A·cos(ωτ + φ) with A·cos φ = (F_s − F_c)/k, −A·ω·sin φ = v_b.
+    let c0 = (F_S - F_C) / BELT_K;
+    let phi = -(BELT_V / (omega * c0)).atan();
+    let a = c0 / phi.cos();
+    let slip = (PI - 2.0 * phi) / omega;
+    let stick = (F_S / BELT_K - (2.0 * F_C - F_S) / BELT_K) / BELT_V;
+    let mut t_b = t_1 + (F_S / BELT_K - x_1) / BELT_V;
+    if t <= t_b {
+        return (x_1 + BELT_V * (t - t_1), BELT_V);
+    }
+    loop {
+        if t <= t_b + slip {
+            let arg = omega * (t - t_b) + phi;
+            return (F_C / BELT_K + a * arg.cos(), -a * omega * arg.sin());
+        }
+        if t <= t_b + slip + stick {
+            let x_stick = (2.0 * F_C - F_S) / BELT_K;
+            return (x_stick + BELT_V * (t - t_b - slip), BELT_V);
+        }
+        t_b += slip + stick;
+    }
+}
+
+/// A system, its closed form, the span.
+struct Case {
+    name: &'static str,
+    system: System,
+    exact: fn(f64) -> (f64, f64),
+    t_end: f64,
+}
+
+/// The two cases with `model`, and the largest step of each order study (the belt's
+/// tangential touches of the belt velocity, every 0.63 s, need steps below 2e-3 to be resolved).
+fn cases(model: ModelId) -> [(Case, f64); 2] {
+    let (chain, on_belt): (fn(f64) -> (f64, f64), fn(f64) -> (f64, f64)) = match model {
+        ModelId::Coulomb => (one_block_coulomb, belt_coulomb),
+        _ => (one_block_static, belt_static),
+    };
+    [
+        (
+            Case {
+                name: "one-block chain",
+                system: one_block(model),
+                exact: chain,
+                t_end: 20.0,
+            },
+            1e-2,
+        ),
+        (
+            Case {
+                name: "belt",
+                system: belt(model, 1.0, BELT_K, BELT_V),
+                exact: on_belt,
+                t_end: 2.0,
+            },
+            2e-3,
+        ),
+    ]
+}
+
+/// Largest deviation of x and v from the closed form on a grid of 400 points.
+fn error(case: &Case, theta: f64, h: f64) -> f64 {
+    let g = grid(case.t_end, 400);
+    let run = stepped(&case.system, theta, h, case.t_end, &g);
+    run.body(0).iter().fold(0.0, |worst: f64, b| {
+        let (x, v) = (case.exact)(b.t);
+        worst.max((b.x - x).abs()).max((b.v - v).abs())
+    })
+}
+
+/// The least-squares slope of log(error) against log(h) over steps spaced by a factor
+/// √3 (not a power of two, so that the step ends do not fall at the same phase of the
+/// switches for every h).
+fn observed_order(case: &Case, theta: f64, h0: f64) -> f64 {
+    let points: Vec<(f64, f64)> = (0..6)
+        .map(|i| {
+            let h = h0 / 3f64.sqrt().powi(i);
+            (h.ln(), error(case, theta, h).ln())
+        })
+        .collect();
+    let n = points.len() as f64;
+    let (mx, my) = points
+        .iter()
+        .fold((0.0, 0.0), |(a, b), (x, y)| (a + x / n, b + y / n));
+    let sxy: f64 = points.iter().map(|(x, y)| (x - mx) * (y - my)).sum();
+    let sxx: f64 = points.iter().map(|(x, _)| (x - mx).powi(2)).sum();
+    sxy / sxx
+}
+
+#[test]
+fn the_closed_forms_agree_with_event_driven_dormand_prince() {
+    for model in [ModelId::Coulomb, ModelId::Static] {
+        for (case, _) in cases(model) {
+            let options = Options {
+                output: Output::Grid(grid(case.t_end, 400)),
+                ..Options::adaptive(0.0, case.t_end, 1e-12, 1e-14)
+            };
+            let run = simulate(
+                &case.system,
+                Switching::Event,
+                Solver::Dopri5,
+                options,
+                &mut |_| {},
+            )
+            .unwrap();
+            let worst = run.body(0).iter().fold(0.0, |w: f64, b| {
+                let (x, v) = (case.exact)(b.t);
+                w.max((b.x - x).abs()).max((b.v - v).abs())
+            });
+            assert!(worst < 1e-8, "{} {model:?}: {worst:e}", case.name);
+        }
+    }
+}
+
+#[test]
+fn with_continuous_friction_at_break_away_the_order_is_two_at_theta_half_and_one_at_theta_one() {
+    for (case, h0) in cases(ModelId::Coulomb) {
+        let half = observed_order(&case, 0.5, h0);
+        let one = observed_order(&case, 1.0, h0);
+        assert!(
+            (1.8..2.3).contains(&half),
+            "{}: θ = 1/2 order {half}",
+            case.name
+        );
+        assert!(
+            (0.85..1.2).contains(&one),
+            "{}: θ = 1 order {one}",
+            case.name
+        );
+    }
+}
+
+#[test]
+fn with_a_jump_from_stiction_to_sliding_friction_the_order_is_one_at_either_theta() {
+    for (case, h0) in cases(ModelId::Static) {
+        for theta in [0.5, 1.0] {
+            let order = observed_order(&case, theta, h0);
+            assert!(
+                (0.8..1.5).contains(&order),
+                "{}: θ = {theta} order {order}",
+                case.name
+            );
+        }
+    }
+}
+
+#[test]
+fn a_stuck_body_moves_with_its_belt_to_the_last_bit() {
+    let system = belt(ModelId::Static, 1.0, BELT_K, BELT_V);
+    let run = stepped(&system, 0.5, 1e-3, 2.0, &[]);
+    let stuck: Vec<_> = run
+        .body(0)
+        .into_iter()
+        .filter(|b| b.mode == Some(STICK))
+        .collect();
+    assert!(stuck.len() > 500, "{} stuck steps", stuck.len());
+    for b in stuck {
+        assert_eq!(b.v, BELT_V, "t = {}", b.t);
+    }
+}
+
+#[test]
+fn the_energy_balance_holds_to_rounding_at_theta_half_and_shows_the_dissipation_of_theta_one() {
+    let system = belt(ModelId::Static, 1.0, BELT_K, BELT_V);
+    let balance = |theta, h| stepped(&system, theta, h, 2.0, &[2.0]).energy().unwrap();
+    let half = balance(0.5, 1e-3);
+    assert!(half.relative_residual < 1e-12, "{half:?}");
+    assert!(half.friction_work > 0.1, "{half:?}");
+    // θ = 1 loses energy in proportion to h: the residual Δ(kinetic + spring) − work is
+    // negative and halves with h.
+    let (coarse, fine) = (balance(1.0, 2e-3), balance(1.0, 1e-3));
+    assert!(coarse.residual < 0.0, "{coarse:?}");
+    let ratio = coarse.residual / fine.residual;
+    assert!((1.8..2.2).contains(&ratio), "ratio {ratio}");
+}
+
+#[test]
+fn a_100_block_chain_time_stepped_converges_to_the_event_driven_solution() {
+    let c = ChainParams {
+        n_bodies: 100,
+        ..ChainParams::default()
+    };
+    let system = c
+        .build(&FrictionParams::paper(), |p| {
+            ModelId::Coulomb.build(Variant::Odd, p).map(Arc::from)
+        })
+        .unwrap();
+    let t_end = 20.0;
+    let reference = simulate(
+        &system,
+        Switching::Event,
+        Solver::Dopri5,
+        Options {
+            output: Output::GridOnly(vec![t_end]),
+            ..Options::adaptive(0.0, t_end, 1e-11, 1e-13)
+        },
+        &mut |_| {},
+    )
+    .unwrap();
+    let deviation = |h| {
+        let run = stepped(&system, 0.5, h, t_end, &[t_end]);
+        let sweeps = run.solution.stats.rhs_evals as f64 / run.solution.stats.steps as f64;
+        let d = run
+            .final_states()
+            .iter()
+            .zip(reference.final_states())
+            .fold(0.0, |w: f64, (a, b)| w.max((a.x - b.x).abs()));
+        (d, sweeps)
+    };
+    let (coarse, sweeps) = deviation(1e-2);
+    let (fine, _) = deviation(2.5e-3);
+    assert!(fine < 2e-4, "deviation {fine:e} at h = 2.5e-3");
+    assert!(coarse / fine > 8.0, "{coarse:e} -> {fine:e}");
+    assert!(sweeps < 6.0, "{sweeps} Gauss–Seidel sweeps per step");
+}
+
+#[test]
+fn bad_theta_and_tolerances_are_refused_with_their_range() {
+    let system = belt(ModelId::Coulomb, 1.0, BELT_K, BELT_V);
+    let run = |switching, step| {
+        let options = Options {
+            step,
+            ..Options::fixed(0.0, 1.0, 1e-3)
+        };
+        simulate(&system, switching, Solver::Rk4, options, &mut |_| {})
+            .unwrap()
+            .error
+    };
+    let fixed = StepControl::Fixed { h: 1e-3 };
+    assert_eq!(
+        run(Switching::TimeStepping { theta: 0.3 }, fixed),
+        Some(SolverError::InvalidOption {
+            name: "theta",
+            value: 0.3,
+            allowed: "[0.5, 1]"
+        })
+    );
+    let adaptive = StepControl::Adaptive {
+        rtol: 1e-6,
+        atol: 1e-8,
+        h0: None,
+    };
+    let e = run(Switching::TimeStepping { theta: 0.5 }, adaptive).unwrap();
+    assert!(e.to_string().contains("fixed step"), "{e}");
+}
