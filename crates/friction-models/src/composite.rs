@@ -85,37 +85,44 @@ impl FrictionModel for Composite {
         usize::from(self.dahl.is_some())
     }
 
-    fn response(&self, _x: f64, v: f64, z: f64, law: SignLaw) -> Response {
-        let f = self.memoryless(v, law).value;
-        match self.dahl {
-            Some(d) => Response {
-                force: f + z,
-                state_rate: terms::dahl_rate(d.sigma, d.f_c, v, z, &law.branches(v)).rate,
-            },
-            None => Response {
-                force: f,
-                state_rate: 0.0,
-            },
-        }
+    fn response(&self, x: f64, v: f64, z: f64, law: SignLaw) -> Response {
+        self.evaluate(x, v, z, law).0
     }
 
-    fn partials(&self, _x: f64, v: f64, z: f64, law: SignLaw) -> Partials {
+    fn partials(&self, x: f64, v: f64, z: f64, law: SignLaw) -> Partials {
+        self.evaluate(x, v, z, law).1
+    }
+
+    /// `F = F_memoryless(v) + z`, `ż` of Dahl's law (eq. 4) when the model has it.
+    fn evaluate(&self, _x: f64, v: f64, z: f64, law: SignLaw) -> (Response, Partials) {
         let f = self.memoryless(v, law);
         match self.dahl {
             Some(d) => {
                 let rate = terms::dahl_rate(d.sigma, d.f_c, v, z, &law.branches(v));
+                (
+                    Response {
+                        force: f.value + z,
+                        state_rate: rate.rate,
+                    },
+                    Partials {
+                        force_dv: f.dv,
+                        force_dz: 1.0,
+                        rate_dv: rate.dv,
+                        rate_dz: rate.dz,
+                        ..Partials::default()
+                    },
+                )
+            }
+            None => (
+                Response {
+                    force: f.value,
+                    state_rate: 0.0,
+                },
                 Partials {
                     force_dv: f.dv,
-                    force_dz: 1.0,
-                    rate_dv: rate.dv,
-                    rate_dz: rate.dz,
                     ..Partials::default()
-                }
-            }
-            None => Partials {
-                force_dv: f.dv,
-                ..Partials::default()
-            },
+                },
+            ),
         }
     }
 

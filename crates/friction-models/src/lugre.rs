@@ -66,23 +66,29 @@ impl FrictionModel for LuGre {
         1
     }
 
-    fn response(&self, _x: f64, v: f64, z: f64, law: SignLaw) -> Response {
-        let r = self.rate(v, z, law);
-        Response {
-            force: self.sigma0 * z + self.sigma1 * r.rate + self.sigma2 * v,
-            state_rate: r.rate,
-        }
+    fn response(&self, x: f64, v: f64, z: f64, law: SignLaw) -> Response {
+        self.evaluate(x, v, z, law).0
     }
 
-    fn partials(&self, _x: f64, v: f64, z: f64, law: SignLaw) -> Partials {
+    fn partials(&self, x: f64, v: f64, z: f64, law: SignLaw) -> Partials {
+        self.evaluate(x, v, z, law).1
+    }
+
+    fn evaluate(&self, _x: f64, v: f64, z: f64, law: SignLaw) -> (Response, Partials) {
         let r = self.rate(v, z, law);
-        Partials {
-            force_dv: self.sigma1 * r.dv + self.sigma2,
-            force_dz: self.sigma0 + self.sigma1 * r.dz,
-            rate_dv: r.dv,
-            rate_dz: r.dz,
-            ..Partials::default()
-        }
+        (
+            Response {
+                force: self.sigma0 * z + self.sigma1 * r.rate + self.sigma2 * v,
+                state_rate: r.rate,
+            },
+            Partials {
+                force_dv: self.sigma1 * r.dv + self.sigma2,
+                force_dz: self.sigma0 + self.sigma1 * r.dz,
+                rate_dv: r.dv,
+                rate_dz: r.dz,
+                ..Partials::default()
+            },
+        )
     }
 
     fn stick_interval(&self, x: f64, z: f64) -> StickInterval {

@@ -122,6 +122,13 @@ pub trait FrictionModel: fmt::Debug + Send + Sync {
     /// Analytic partial derivatives of force and state rate at (x, v, z) under `law`.
     fn partials(&self, x: f64, v: f64, z: f64, law: SignLaw) -> Partials;
 
+    /// [`response`](FrictionModel::response) and [`partials`](FrictionModel::partials) at
+    /// one point together, for solvers that need both (the Newton iterations of
+    /// time-stepping); a model overrides it to share the work of the two.
+    fn evaluate(&self, x: f64, v: f64, z: f64, law: SignLaw) -> (Response, Partials) {
+        (self.response(x, v, z, law), self.partials(x, v, z, law))
+    }
+
     /// The admissible friction forces at rest with state `z`.
     fn stick_interval(&self, x: f64, z: f64) -> StickInterval;
 

@@ -15,7 +15,7 @@
 //! law of direction d, and `R(u) = Ŵ·(u + v_s) + P − b = 0` is solved for u on the side of d by
 //! Newton's method safeguarded by bisection (Press et al., *Numerical Recipes*, `rtsafe`).
 
-use friction_models::{Direction, FrictionModel, SignLaw};
+use friction_models::{Direction, FrictionModel, SignLaw, StickInterval};
 
 /// Most Newton iterations of the sliding equation, or of the internal state, before the
 /// step is declared unsolved.
@@ -24,6 +24,12 @@ pub(crate) const MAX_LOCAL_ITERATIONS: usize = 200;
 /// Newton's iteration has converged when the update is below this many units of roundoff
 /// of the unknown.
 const LOCAL_ROUNDOFF: f64 = 4.0 * f64::EPSILON;
+
+/// A Newton update below this fraction of the unknown is taken without evaluating the law
+/// again: the force and state at the new point are linearised, with an error
+/// `½·|F''|·Δu²` ≤ `½·|F''|·u²·1e-16`, below rounding for every law whose force varies on the
+/// scale of u (a Stribeck curve varies on v_s).
+const LINEAR_UPDATE: f64 = 1e-8;
 
 /// One contact's problem in one sweep.
 pub(crate) struct Local<'a> {
@@ -66,14 +72,37 @@ pub(crate) struct Solved {
     pub iterations: usize,
 }
 
-/// The law, the force and the rate at one relative velocity, with the derivatives the
-/// sliding equation needs.
-struct Point {
+/// The law at one relative velocity: the end state z(u), the force, and dF/du along z(u).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct Point {
     z: f64,
     force: f64,
     /// dF/du along the solution z(u) of the state equation.
     dforce: f64,
+    /// dz/du along it.
+    dz: f64,
     iterations: usize,
+}
+
+/// What a contact's problem keeps through the sweeps of one step: everything that does not
+/// depend on b (on the neighbours' velocities), computed at the first visit.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct StepCache {
+    /// The law at u = 0+ (index 0) and u = 0− (index 1), under the frozen sign.
+    edge: [Option<Point>; 2],
+    /// The stick interval and the internal state at rest.
+    rest: Option<(StickInterval, f64)>,
+    /// The last sliding solution: direction, weight θ_f, w = |u|, and the law there (after a
+    /// linearised update, the linearised law), from which a later visit starts Newton's
+    /// iteration without evaluating the law again.
+    last: Option<(Direction, f64, f64, Point)>,
+}
+
+fn side(d: Direction) -> usize {
+    match d {
+        Direction::Positive => 0,
+        Direction::Negative => 1,
+    }
 }
 
 impl Local<'_> {
@@ -91,9 +120,8 @@ impl Local<'_> {
         if self.has_state {
             let known = self.z0 + self.h * (1.0 - self.theta) * self.rate0;
             loop {
-                let rate = self.model.response(x, u, z, law).state_rate;
-                let p = self.model.partials(x, u, z, law);
-                let dz = (z - known - ht * rate) / (1.0 - ht * p.rate_dz);
+                let (r, p) = self.model.evaluate(x, u, z, law);
+                let dz = (z - known - ht * r.state_rate) / (1.0 - ht * p.rate_dz);
                 z -= dz;
                 iterations += 1;
                 if dz.abs() <= LOCAL_ROUNDOFF * z.abs() {
@@ -106,8 +134,7 @@ impl Local<'_> {
                 }
             }
         }
-        let r = self.model.response(x, u, z, law);
-        let p = self.model.partials(x, u, z, law);
+        let (r, p) = self.model.evaluate(x, u, z, law);
         let dz_du = if self.has_state {
             ht * (p.rate_dv + p.rate_dx * ht) / (1.0 - ht * p.rate_dz)
         } else {
@@ -117,6 +144,7 @@ impl Local<'_> {
             z,
             force: r.force,
             dforce: p.force_dv + p.force_dx * ht + p.force_dz * dz_du,
+            dz: dz_du,
             iterations,
         })
     }
@@ -126,33 +154,56 @@ impl Local<'_> {
         (self.b - self.w * self.v_s) / self.h
     }
 
-    /// Solves the problem: first, if the contact slid in `previous` through the step before,
-    /// with the θ-method on friction (`previous_force` F_k) if it still slides that way;
+    /// The stick interval and the internal state at rest, computed once per step.
+    fn rest(&self, cache: &mut StepCache) -> Result<((StickInterval, f64), usize), String> {
+        if let Some(rest) = cache.rest {
+            return Ok((rest, 0));
+        }
+        let (z, iterations) = if self.has_state {
+            let rest = self.point(0.0, SignLaw::Discontinuous)?;
+            (rest.z, rest.iterations)
+        } else {
+            (self.z0, 0)
+        };
+        let rest = (self.model.stick_interval(self.x(0.0), z), z);
+        cache.rest = Some(rest);
+        Ok((rest, iterations))
+    }
+
+    /// Solves the problem: first, if the contact slid in `previous` (direction, force F_k)
+    /// through the step before, with the θ-method on friction if it still slides that way (or
+    /// either way, for a law continuous at rest: a stick interval of zero width, as LuGre's);
     /// otherwise at rest if λ* is admissible, else sliding with the impulse implicit.
+    /// `u_guess` starts Newton's iteration on a visit after the first (`cache` filled).
     pub fn solve(
         &self,
+        cache: &mut StepCache,
         previous: Option<(Direction, f64)>,
         u_guess: f64,
     ) -> Result<Solved, String> {
         let mut iterations = 0;
         if let Some((d, f_k)) = previous.filter(|_| self.theta < 1.0) {
-            let sliding = self.slide(d, self.theta, f_k, u_guess)?;
-            iterations += sliding.1;
-            if let Some(s) = sliding.0 {
-                return Ok(Solved {
-                    iterations: s.iterations + iterations,
-                    ..s
-                });
+            let (found, n) = self.slide(cache, d, self.theta, f_k, u_guess)?;
+            iterations += n;
+            if let Some(s) = found {
+                return Ok(Solved { iterations, ..s });
+            }
+            let ((interval, _), n) = self.rest(cache)?;
+            iterations += n;
+            if interval.upper == interval.lower {
+                let reversed = match d {
+                    Direction::Positive => Direction::Negative,
+                    Direction::Negative => Direction::Positive,
+                };
+                let (found, n) = self.slide(cache, reversed, self.theta, f_k, u_guess)?;
+                iterations += n;
+                if let Some(s) = found {
+                    return Ok(Solved { iterations, ..s });
+                }
             }
         }
-        let z_rest = if self.has_state {
-            let rest = self.point(0.0, SignLaw::Discontinuous)?;
-            iterations += rest.iterations;
-            rest.z
-        } else {
-            self.z0
-        };
-        let interval = self.model.stick_interval(self.x(0.0), z_rest);
+        let ((interval, z_rest), n) = self.rest(cache)?;
+        iterations += n;
         let held = self.holding_force();
         if interval.contains(held) {
             return Ok(Solved {
@@ -169,9 +220,9 @@ impl Local<'_> {
         } else {
             Direction::Negative
         };
-        match self.slide(d, 1.0, 0.0, u_guess)? {
+        match self.slide(cache, d, 1.0, 0.0, u_guess)? {
             (Some(s), n) => Ok(Solved {
-                iterations: s.iterations + n + iterations,
+                iterations: n + iterations,
                 ..s
             }),
             (None, _) => Err(format!(
@@ -184,9 +235,11 @@ impl Local<'_> {
 
     /// The sliding solution in direction `d` with weight `theta_f` on the end force and
     /// `f_k` at the start, if one exists on that side (`None` when R does not change sign
-    /// there), with the iterations spent.
+    /// there), with the iterations spent. Newton's iteration starts from u = 0 at the first
+    /// visit of the step, from `u_guess` after it.
     fn slide(
         &self,
+        cache: &mut StepCache,
         d: Direction,
         theta_f: f64,
         f_k: f64,
@@ -194,73 +247,92 @@ impl Local<'_> {
     ) -> Result<(Option<Solved>, usize), String> {
         let law = SignLaw::Frozen(d);
         let s = d.sign();
+        let impulse = |force: f64| self.h * (theta_f * force + (1.0 - theta_f) * f_k);
         // R along the side of d, as a function of w = s·u ≥ 0: increasing through its root.
-        let residual = |w: f64| -> Result<(f64, f64, Point), String> {
-            let p = self.point(s * w, law)?;
-            let impulse = self.h * (theta_f * p.force + (1.0 - theta_f) * f_k);
-            let r = self.w * (s * w + self.v_s) + impulse - self.b;
-            Ok((s * r, self.w + self.h * theta_f * p.dforce, p))
+        let residual = |w: f64, p: &Point| {
+            let r = self.w * (s * w + self.v_s) + impulse(p.force) - self.b;
+            (s * r, self.w + self.h * theta_f * p.dforce)
         };
-        let (r0, _, p0) = residual(0.0)?;
-        let mut iterations = p0.iterations;
+        let mut iterations = 0;
+        let first_visit = cache.edge[side(d)].is_none();
+        let edge = match cache.edge[side(d)] {
+            Some(p) => p,
+            None => {
+                let p = self.point(0.0, law)?;
+                iterations += p.iterations;
+                cache.edge[side(d)] = Some(p);
+                p
+            }
+        };
+        let (r0, dr0) = residual(0.0, &edge);
         if r0 >= 0.0 {
             return Ok((None, iterations));
         }
-        // Bracket: a velocity large enough that the inertia beats every force.
-        let (mut lo, mut hi) = (
-            0.0,
-            (self.b / self.w - self.v_s).abs().max(f64::MIN_POSITIVE),
-        );
-        loop {
-            let (r, _, p) = residual(hi)?;
-            iterations += p.iterations;
-            if r > 0.0 {
-                break;
-            }
-            lo = hi;
-            hi *= 2.0;
-            if !hi.is_finite() {
-                return Err(format!(
-                    "no sliding solution in direction {d:?} at any speed"
-                ));
-            }
-        }
+        let (mut lo, mut hi) = (0.0, f64::INFINITY);
         let guess = s * u_guess;
-        let mut w = if guess > lo && guess < hi {
+        let mut w = if !first_visit && guess > 0.0 {
             guess
+        } else if dr0 > 0.0 {
+            -r0 / dr0
         } else {
-            0.5 * (lo + hi)
+            (self.b / self.w - self.v_s).abs().max(f64::MIN_POSITIVE)
         };
+        let mut known = cache
+            .last
+            .filter(|&(dl, tl, wl, _)| dl == d && tl == theta_f && wl == w)
+            .map(|(.., p)| p);
         for _ in 0..MAX_LOCAL_ITERATIONS {
-            let (r, dr, p) = residual(w)?;
-            iterations += p.iterations + 1;
+            let p = match known.take() {
+                Some(p) => p,
+                None => {
+                    let p = self.point(s * w, law)?;
+                    iterations += p.iterations + 1;
+                    p
+                }
+            };
+            let (r, dr) = residual(w, &p);
             if r < 0.0 {
                 lo = w;
             } else {
                 hi = w;
             }
             let newton = w - r / dr;
-            let next = if r != 0.0 && dr > 0.0 && newton > lo && newton < hi {
+            let step = newton - w;
+            if r == 0.0 || step.abs() <= LINEAR_UPDATE * w {
+                // At w itself to rounding, or one linearised Newton step from it.
+                let du = if step.abs() <= LOCAL_ROUNDOFF * w {
+                    0.0
+                } else {
+                    s * step
+                };
+                let at = Point {
+                    z: p.z + p.dz * du,
+                    force: p.force + p.dforce * du,
+                    ..p
+                };
+                let solved = Solved {
+                    u: s * w + du,
+                    z: at.z,
+                    force: at.force,
+                    impulse: impulse(at.force),
+                    direction: Some(d),
+                    iterations: 0,
+                };
+                cache.last = Some((d, theta_f, s * solved.u, at));
+                return Ok((Some(solved), iterations));
+            }
+            w = if dr > 0.0 && newton > lo && newton < hi {
                 newton
-            } else {
+            } else if hi.is_finite() {
                 0.5 * (lo + hi)
+            } else {
+                2.0 * w
             };
-            let converged = r == 0.0 || (next - w).abs() <= LOCAL_ROUNDOFF * w;
-            if converged {
-                let u = s * w;
-                return Ok((
-                    Some(Solved {
-                        u,
-                        z: p.z,
-                        force: p.force,
-                        impulse: self.h * (theta_f * p.force + (1.0 - theta_f) * f_k),
-                        direction: Some(d),
-                        iterations: 0,
-                    }),
-                    iterations,
+            if !w.is_finite() {
+                return Err(format!(
+                    "no sliding solution in direction {d:?} at any speed"
                 ));
             }
-            w = next;
         }
         Err(format!(
             "the sliding equation in direction {d:?} did not converge in {MAX_LOCAL_ITERATIONS} \

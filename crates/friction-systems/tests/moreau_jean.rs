@@ -367,3 +367,45 @@ fn bad_theta_and_tolerances_are_refused_with_their_range() {
     let e = run(Switching::TimeStepping { theta: 0.5 }, adaptive).unwrap();
     assert!(e.to_string().contains("fixed step"), "{e}");
 }
+
+/// Largest deviation of x and v from a run `reference` at the grid points `g` (both runs
+/// also record their switches, at times of their own).
+fn deviation(run: &Run, reference: &Run, g: &[f64]) -> f64 {
+    let on_grid =
+        |r: &Run| -> Vec<_> { r.body(0).into_iter().filter(|b| g.contains(&b.t)).collect() };
+    let (a, b) = (on_grid(run), on_grid(reference));
+    assert_eq!(a.len(), g.len());
+    a.iter().zip(&b).fold(0.0, |w: f64, (a, b)| {
+        w.max((a.x - b.x).abs()).max((a.v - b.v).abs())
+    })
+}
+
+#[test]
+fn models_with_an_internal_state_converge_at_second_order_at_theta_half() {
+    // Dahl + viscous (DV) and LuGre on the belt: their friction is continuous in v, so there is
+    // no break-away jump; the internal state is integrated by the θ-method with the velocity.
+    for (model, h0) in [(ModelId::Dv, 2e-3), (ModelId::LuGre, 2e-4)] {
+        let system = belt(model, 1.0, BELT_K, BELT_V);
+        let t_end = 1.0;
+        let g = grid(t_end, 200);
+        let reference = simulate(
+            &system,
+            Switching::Event,
+            Solver::Diffsol(integrators::DiffsolMethod::Bdf),
+            Options {
+                output: Output::Grid(g.clone()),
+                ..Options::adaptive(0.0, t_end, 1e-11, 1e-13)
+            },
+            &mut |_| {},
+        )
+        .unwrap();
+        assert!(reference.error.is_none(), "{:?}", reference.error);
+        let coarse = deviation(&stepped(&system, 0.5, h0, t_end, &g), &reference, &g);
+        let fine = deviation(&stepped(&system, 0.5, h0 / 4.0, t_end, &g), &reference, &g);
+        let order = (coarse / fine).log(4.0);
+        assert!(
+            (1.8..2.3).contains(&order),
+            "{model:?}: {coarse:e} -> {fine:e}, order {order}"
+        );
+    }
+}
