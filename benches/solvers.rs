@@ -116,7 +116,8 @@ fn study_threads(c: &mut Criterion) {
         Solver::Dopri5,
         Solver::ImplicitEuler,
         Solver::from_name("bdf").unwrap(),
-    ];
+    ]
+    .map(studies::Method::of);
     let mut group = c.benchmark_group("work-precision sweep (belt CS, 28 runs)");
     group.sample_size(10);
     for threads in [1, 2] {

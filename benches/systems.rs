@@ -1,7 +1,8 @@
-//! Systems of many bodies: the Burridge–Knopoff chain (`coulomb`, 50 s, event switching,
-//! Dormand–Prince at rtol 1e-8) at N = 10, 100, 1000, and implicit Euler with the sparse
-//! Jacobian at N = 100 and 1000 (10 s, tolerance 1e-4). Run: `cargo bench --bench systems`.
-//! Each configuration's statistics are printed once before it is timed.
+//! Systems of many bodies: the Burridge–Knopoff chain (`coulomb`, 50 s) event-driven by
+//! Dormand–Prince at rtol 1e-8 and time-stepped by Moreau–Jean at h = 1e-3, θ = 1/2, at
+//! N = 10, 100, 1000; implicit Euler with the sparse Jacobian at N = 100 and 1000 (10 s,
+//! tolerance 1e-4). Run: `cargo bench --bench systems`. Each configuration's statistics are
+//! printed once before it is timed.
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use friction_lab::friction_models::{FrictionParams, ModelId, Variant};
@@ -23,7 +24,16 @@ fn chain(n: usize) -> System {
 }
 
 fn run(system: &System, solver: Solver, options: Options) -> (usize, usize) {
-    let r = simulate(system, Switching::Event, solver, options, &mut |_| {}).expect("valid");
+    switched(system, Switching::Event, solver, options)
+}
+
+fn switched(
+    system: &System,
+    switching: Switching,
+    solver: Solver,
+    options: Options,
+) -> (usize, usize) {
+    let r = simulate(system, switching, solver, options, &mut |_| {}).expect("valid");
     assert!(r.error.is_none(), "{:?}", r.error);
     (r.solution.stats.steps, r.solution.stats.events)
 }
@@ -45,6 +55,22 @@ fn chains(c: &mut Criterion) {
         println!("N = {n}: {steps} steps, {events} events");
         group.bench_function(format!("N = {n}"), |b| {
             b.iter(|| black_box(run(&system, Solver::Dopri5, o.clone())))
+        });
+    }
+    group.finish();
+    let mut group = c.benchmark_group("chain coulomb 50 s moreau-jean h 1e-3 theta 0.5");
+    group.sample_size(10);
+    let stepping = Switching::TimeStepping { theta: 0.5 };
+    for n in [10, 100, 1000] {
+        let system = chain(n);
+        let o = Options {
+            output: Output::GridOnly(vec![50.0]),
+            ..Options::fixed(0.0, 50.0, 1e-3)
+        };
+        let (steps, events) = switched(&system, stepping, Solver::Rk4, o.clone());
+        println!("N = {n}: {steps} steps, {events} steps that switched");
+        group.bench_function(format!("N = {n}"), |b| {
+            b.iter(|| black_box(switched(&system, stepping, Solver::Rk4, o.clone())))
         });
     }
     group.finish();

@@ -78,7 +78,7 @@ pub fn run() -> Report {
     };
     let wp = studies::work_precision(
         &case,
-        &[Solver::Dopri5, Solver::ImplicitEuler],
+        &[Solver::Dopri5, Solver::ImplicitEuler].map(studies::Method::of),
         &[],
         &[1e-4, 1e-6, 1e-8],
         1,

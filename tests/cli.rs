@@ -144,6 +144,31 @@ fn reproduce_writes_six_figures_notes_and_report_deterministically() {
     );
     let report = std::fs::read_to_string(a.join("report.md")).unwrap();
     assert!(report.contains("[Figure 6 (SD)](figures/figure-6-SD.png)"));
+    // The chain, integrated three ways: work-precision at N = 100, cost against N.
+    let wp = std::fs::read_to_string(a.join("studies/work-precision-chain-100.csv")).unwrap();
+    for label in [
+        "dopri5,",
+        "bdf (regularized),",
+        "moreau-jean (timestepping),fixed,",
+    ] {
+        assert!(wp.contains(label), "{label}");
+    }
+    let cost = std::fs::read_to_string(a.join("studies/cost-chain.csv")).unwrap();
+    assert_eq!(cost.lines().count(), 1 + 5 * 3, "five sizes, three methods");
+    assert!(cost.contains("\n1000,moreau-jean (timestepping),0.001,4000,"));
+    for f in [
+        "cost-chain-timing.png",
+        "cost-chain-timing.csv",
+        "work-precision-chain-100.png",
+    ] {
+        assert!(a.join("studies").join(f).exists(), "{f}");
+    }
+    assert_eq!(
+        std::fs::read(a.join("studies/cost-chain.csv")).unwrap(),
+        std::fs::read(b.join("studies/cost-chain.csv")).unwrap()
+    );
+    assert!(report
+        .contains("[Work against precision at N = 100](studies/work-precision-chain-100.png)"));
 }
 
 /// Runs `args` with an output folder that must not be created, and returns stderr.

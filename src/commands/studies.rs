@@ -17,7 +17,7 @@ use clap::Args;
 use friction_models::ModelId;
 use integrators::Solver;
 use scenarios::studies::{
-    self, Case, Convergence, Independence, Stiffness, StudyCase, StudyRun, SystemCase,
+    self, Case, Convergence, Independence, Method, Stiffness, StudyCase, StudyRun, SystemCase,
     WorkPrecision,
 };
 use scenarios::{Scenario, SwitchingKind};
@@ -218,7 +218,7 @@ fn runs_table(runs: &[StudyRun], path: &Path) -> Result<Vec<u8>, AppError> {
         };
         let s = r.stats;
         t.rows.push(vec![
-            Cell::Text(r.solver.into()),
+            Cell::Text(r.solver.clone()),
             Cell::Text(r.step.into()),
             Cell::Num(r.resolution),
             Cell::Num(r.work as f64),
@@ -252,8 +252,8 @@ fn per_solver_series(
     let runs: Vec<&StudyRun> = runs.iter().filter(|r| keep(r)).collect();
     let mut names: Vec<&str> = Vec::new();
     for r in &runs {
-        if !names.contains(&r.solver) {
-            names.push(r.solver);
+        if !names.contains(&r.solver.as_str()) {
+            names.push(&r.solver);
         }
     }
     let plotted = |r: &&&StudyRun| r.failure.is_none() && y(r) > 0.0 && y(r).is_finite();
@@ -673,13 +673,15 @@ pub fn add_work_precision(
     let (dir, threads) = (t.dir, t.threads);
     ranges::DT.list("dt-list", steps)?;
     ranges::RTOL.list("tol-list", tols)?;
-    let jobs = solvers
+    let methods: Vec<Method> = solvers
         .iter()
-        .map(|&s| studies::steps_for(s, steps, tols, false).len())
-        .sum();
+        .map(|&s| Method::of(s))
+        .chain(case.peers())
+        .collect();
+    let jobs = Method::jobs(&methods, steps, tols, false).len();
     let b = Progress::runs(jobs, "work-precision");
     let w = with_threads(threads, || {
-        studies::work_precision(case, solvers, steps, tols, repeats, &|| b.inc())
+        studies::work_precision(case, &methods, steps, tols, repeats, &|| b.inc())
     })?
     .map_err(study_error)?;
     b.finish();
@@ -688,7 +690,7 @@ pub fn add_work_precision(
     let mut timing = Table::new(&["solver", "resolution", "wall_time_median_s"]);
     for (r, t) in w.runs.iter().zip(&w.wall_median_s) {
         timing.rows.push(vec![
-            Cell::Text(r.solver.into()),
+            Cell::Text(r.solver.clone()),
             Cell::Num(r.resolution),
             Cell::Num(*t),
         ]);
@@ -797,10 +799,12 @@ pub fn add_stiffness(
             values.len()
         )));
     }
-    let per_value: usize = solvers
+    let methods: Vec<Method> = solvers
         .iter()
-        .map(|&s| studies::steps_for(s, steps, tols, false).len())
-        .sum();
+        .map(|&s| Method::of(s))
+        .chain(case.peers())
+        .collect();
+    let per_value = Method::jobs(&methods, steps, tols, false).len();
     let b = Progress::runs(per_value * values.len(), "stiffness");
     let s = with_threads(threads, || {
         studies::stiffness(
@@ -810,7 +814,7 @@ pub fn add_stiffness(
                 values,
                 target,
             },
-            solvers,
+            &methods,
             steps,
             tols,
             &|| b.inc(),
@@ -833,7 +837,7 @@ pub fn add_stiffness(
         for c in &p.costs {
             table.rows.push(vec![
                 Cell::Num(p.value),
-                Cell::Text(c.solver.into()),
+                Cell::Text(c.solver.clone()),
                 Cell::Text(c.implicit.to_string()),
                 c.resolution
                     .map_or(Cell::Text("not reached".into()), Cell::Num),
@@ -866,11 +870,12 @@ pub fn add_stiffness(
         .collect();
     let top = reached.iter().map(|p| p.1).fold(1.0, f64::max) * 3.0;
     let mut series = Vec::new();
-    for (solver, &color) in solvers.iter().zip(PALETTE.iter().cycle()) {
+    for (method, &color) in methods.iter().zip(PALETTE.iter().cycle()) {
+        let label = method.label();
         let costs = || {
-            s.points.iter().filter_map(|p| {
-                Some((p.value, p.costs.iter().find(|c| c.solver == solver.name())?))
-            })
+            s.points
+                .iter()
+                .filter_map(|p| Some((p.value, p.costs.iter().find(|c| c.solver == label)?)))
         };
         let met: Vec<(f64, f64)> = costs()
             .filter(|(_, c)| c.resolution.is_some())
@@ -882,7 +887,7 @@ pub fn add_stiffness(
             .collect();
         if !met.is_empty() {
             series.push(Series {
-                label: Some(solver.name().into()),
+                label: Some(label.clone()),
                 points: met,
                 color,
                 width: 2,
@@ -892,8 +897,7 @@ pub fn add_stiffness(
         if !missed.is_empty() {
             series.push(Series {
                 label: Some(format!(
-                    "{}: target not reached at {} value(s) (at the top)",
-                    solver.name(),
+                    "{label}: target not reached at {} value(s) (at the top)",
                     missed.len()
                 )),
                 points: missed,
@@ -938,4 +942,92 @@ pub fn stiffness(a: &StiffnessArgs) -> Result<(), AppError> {
         println!("{}", s.verdict());
         Ok(())
     })
+}
+
+/// Computes a cost-against-size study (every method at one resolution on each case) and adds
+/// its files under `dir` with stem `stem`: the runs (CSV, JSON: steps, work, work per step
+/// and its fitted exponent in N), and their wall times (`-timing.csv`) with wall time per step
+/// against the number of bodies on log–log axes (`-timing.png`, `.svg`): the files that vary
+/// between runs.
+pub fn add_scaling(
+    t: &mut Target,
+    stem: &str,
+    cases: &[(usize, Box<dyn StudyCase>)],
+    methods: &[(Method, integrators::StepControl)],
+) -> Result<studies::Scaling, AppError> {
+    let (dir, threads) = (t.dir, t.threads);
+    let b = Progress::runs(2 * cases.len() * methods.len(), "cost against size");
+    let s = with_threads(threads, || studies::scaling(cases, methods, &|| b.inc()))?
+        .map_err(study_error)?;
+    b.finish();
+    let mut table = Table::new(&[
+        "bodies",
+        "solver",
+        "resolution",
+        "steps",
+        "work",
+        "work_per_step",
+        "rhs_evals",
+        "jacobian_evals",
+        "lu_factorizations",
+        "events",
+        "status",
+    ]);
+    let mut timing = Table::new(&["bodies", "solver", "resolution", "wall_time_s"]);
+    for r in &s.runs {
+        table.rows.push(vec![
+            Cell::Num(r.size as f64),
+            Cell::Text(r.solver.clone()),
+            Cell::Num(r.resolution),
+            Cell::Num(r.stats.steps as f64),
+            Cell::Num(r.work as f64),
+            Cell::Num(r.work_per_step),
+            Cell::Num(r.stats.rhs_evals as f64),
+            Cell::Num(r.stats.jacobian_evals as f64),
+            Cell::Num(r.stats.lu_factorizations as f64),
+            Cell::Num(r.stats.events as f64),
+            Cell::Text(r.failure.clone().unwrap_or_else(|| "ok".into())),
+        ]);
+        timing.rows.push(vec![
+            Cell::Num(r.size as f64),
+            Cell::Text(r.solver.clone()),
+            Cell::Num(r.resolution),
+            Cell::Num(r.wall_time_s),
+        ]);
+    }
+    let csv = dir.join(format!("{stem}.csv"));
+    t.files.add(csv.clone(), table.to_csv(&csv)?);
+    let timing_csv = dir.join(format!("{stem}-timing.csv"));
+    t.files.add(timing_csv.clone(), timing.to_csv(&timing_csv)?);
+    t.files.add_json(dir.join(format!("{stem}.json")), &s)?;
+    // Wall time per step against N, with each method's fitted slope: the one figure of the
+    // study that varies between runs (hence `-timing`).
+    let mut series = Vec::new();
+    for ((label, _), &color) in s.exponents.iter().zip(PALETTE.iter().cycle()) {
+        let points: Vec<(f64, f64)> = s
+            .runs
+            .iter()
+            .filter(|r| &r.solver == label && r.failure.is_none() && r.stats.steps > 0)
+            .map(|r| (r.size as f64, r.wall_time_s / r.stats.steps as f64))
+            .collect();
+        let logs: Vec<(f64, f64)> = points.iter().map(|p| (p.0.ln(), p.1.ln())).collect();
+        series.push(Series {
+            label: Some(format!("{label} (slope {:.2})", studies::slope(&logs))),
+            points,
+            color,
+            width: 2,
+            marker: Marker::Dot,
+        });
+    }
+    let plot = Plot {
+        title: "Wall time per step against the number of bodies".into(),
+        x_label: "bodies".into(),
+        y_label: "wall time per step (s)".into(),
+        series,
+        legend: Corner::UpperLeft,
+        log: true,
+    };
+    t.files
+        .add_plot(&dir.join(format!("{stem}-timing")), &plot)?;
+    Ok(s)
 }

@@ -3,12 +3,13 @@
 //! ([`SystemCase`]), or a user's own problem through the public [`StudyCase`] trait.
 
 use crate::run::Limits;
-use crate::run::{run, Outcome, RunSpec, ScenarioError, SwitchingKind};
+use crate::run::{run, Outcome, RunSpec, ScenarioError, SwitchingKind, DEFAULT_THETA};
 use crate::scenario::Scenario;
+use crate::studies::Method;
 use crate::ScenarioParams;
 use friction_models::{FrictionParams, ModelId, Parameters, Variant};
 use friction_systems::{simulate, Run, System, STICK};
-use integrators::{Options, Output, Solver, SolverError, Stats, StepControl};
+use integrators::{DiffsolMethod, Options, Output, Solver, SolverError, Stats, StepControl};
 use serde::Serialize;
 
 /// Points of the common time grid on which trajectories are compared.
@@ -68,6 +69,12 @@ pub trait StudyCase: Sync + Send {
     /// The exact solution's measures, where one is known, with its formula.
     fn closed_form(&self) -> Option<(String, Measures)> {
         None
+    }
+
+    /// Methods under other treatments of v = 0 that the work–precision and stiffness studies
+    /// draw beside the studied solvers (none by default).
+    fn peers(&self) -> Vec<Method> {
+        Vec::new()
     }
 }
 
@@ -365,6 +372,27 @@ impl StudyCase for SystemCase {
             epsilon: value,
             ..self.clone()
         }))
+    }
+
+    /// Under event switching: diffsol's BDF on the regularised system (sparse Jacobian and
+    /// LU) and Moreau–Jean time-stepping at θ = 1/2 — the two other ways to integrate many
+    /// contacts.
+    fn peers(&self) -> Vec<Method> {
+        if self.switching != SwitchingKind::Event {
+            return Vec::new();
+        }
+        vec![
+            Method {
+                solver: Solver::Diffsol(DiffsolMethod::Bdf),
+                switching: Some(SwitchingKind::Regularized),
+            },
+            Method {
+                solver: Solver::Rk4,
+                switching: Some(SwitchingKind::TimeStepping {
+                    theta: DEFAULT_THETA,
+                }),
+            },
+        ]
     }
 
     fn measure(&self, solver: Solver, step: StepControl) -> Result<Measured, ScenarioError> {

@@ -4,9 +4,91 @@
 
 pub use crate::cases::{Case, Measured, Measures, StudyCase, SystemCase, GRID_POINTS};
 use crate::run::{ScenarioError, SwitchingKind};
-use integrators::{Solver, Stats, StepControl};
+use integrators::{DiffsolMethod, Solver, Stats, StepControl};
 use rayon::prelude::*;
 use serde::Serialize;
+
+/// How a study integrates its case: a solver under the case's own treatment of v = 0, or a
+/// peer under another one (regularised BDF, or Moreau–Jean time-stepping, beside event-driven
+/// solvers: one system, several schemes, as Siconos runs one declared system event-driven or
+/// time-stepped).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Method {
+    /// The solver (not used under time-stepping).
+    pub solver: Solver,
+    /// The treatment of v = 0; `None` for the case's own.
+    pub switching: Option<SwitchingKind>,
+}
+
+impl Method {
+    /// `solver` under the case's own treatment.
+    pub fn of(solver: Solver) -> Method {
+        Method {
+            solver,
+            switching: None,
+        }
+    }
+
+    /// The name tables and legends give it: the solver's (`dopri5`), or a peer's with its
+    /// treatment (`bdf (regularized)`, `moreau-jean (timestepping)`).
+    pub fn label(&self) -> String {
+        match self.switching {
+            None => self.solver.name().to_string(),
+            Some(s) => format!("{} ({})", s.method(self.solver), s.name()),
+        }
+    }
+
+    /// Whether it takes the study's step sizes rather than its tolerances.
+    pub fn is_fixed_step(&self) -> bool {
+        self.solver.is_fixed_step() || self.switching.is_some_and(|s| s.is_time_stepping())
+    }
+
+    /// Whether it solves an implicit problem per step (time-stepping does).
+    pub fn is_implicit(&self) -> bool {
+        self.solver.is_implicit() || self.switching.is_some_and(|s| s.is_time_stepping())
+    }
+
+    /// One run of `case` by this method with `step`.
+    pub fn measure(
+        &self,
+        case: &dyn StudyCase,
+        step: StepControl,
+    ) -> Result<Measured, ScenarioError> {
+        match self.switching {
+            None => case.measure(self.solver, step),
+            Some(s) => case.with_switching(s).measure(self.solver, step),
+        }
+    }
+
+    /// The steps or tolerances a study runs it at (see [`steps_for`]).
+    pub fn steps(&self, step_sizes: &[f64], tolerances: &[f64], fixed: bool) -> Vec<StepControl> {
+        if self.switching.is_some_and(|s| s.is_time_stepping()) {
+            step_sizes
+                .iter()
+                .map(|&h| StepControl::Fixed { h })
+                .collect()
+        } else {
+            steps_for(self.solver, step_sizes, tolerances, fixed)
+        }
+    }
+
+    /// Every (method, step) of a study of `methods`.
+    pub fn jobs(
+        methods: &[Method],
+        step_sizes: &[f64],
+        tolerances: &[f64],
+        fixed: bool,
+    ) -> Vec<(Method, StepControl)> {
+        methods
+            .iter()
+            .flat_map(|&m| {
+                m.steps(step_sizes, tolerances, fixed)
+                    .into_iter()
+                    .map(move |c| (m, c))
+            })
+            .collect()
+    }
+}
 
 /// Errors of a run against the reference.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -57,20 +139,29 @@ impl Errors {
 pub enum Reference {
     /// An exact solution, by name.
     ClosedForm(String),
-    /// A much tighter run of another solver.
+    /// A much tighter run of a solver.
     Run {
         /// The solver.
         solver: &'static str,
         /// Its step control.
         step: String,
+        /// A second tight run by an independent solver, where the first one is also studied:
+        /// the solver, and the largest difference of the two on the time grid (a bound on the
+        /// reference's own error).
+        cross_check: Option<(&'static str, f64)>,
     },
 }
 
+/// The tolerance of a reference run, rtol = atol.
+pub const REFERENCE_TOLERANCE: f64 = 1e-13;
+
 /// The reference of a case for a study of `studied` solvers: the closed form where one
-/// exists, otherwise a run at rtol = atol = 1e-13 of Dormand–Prince (or, when Dormand–Prince
-/// itself is studied, of RK4 at h = 1e-5), with event switching for a naive study (the exact
-/// solution of the discontinuous problem it approximates) and the study's own switching
-/// otherwise.
+/// exists; otherwise a run at rtol = atol = 1e-13 of Dormand–Prince, or, when Dormand–Prince
+/// itself is studied, of diffsol's Tsit45 (an independent 5(4) pair); when both are studied,
+/// Dormand–Prince's tight run cross-checked by Tsit45's (their difference is reported). Event
+/// switching for a naive study (the exact solution of the discontinuous problem it
+/// approximates), the study's own switching otherwise. The reference runs concurrently
+/// with each other.
 pub fn reference(
     case: &dyn StudyCase,
     studied: &[Solver],
@@ -78,17 +169,16 @@ pub fn reference(
     if let Some((name, m)) = case.closed_form() {
         return Ok((Reference::ClosedForm(name), m));
     }
-    let (solver, step) = if studied.contains(&Solver::Dopri5) {
-        (Solver::Rk4, StepControl::Fixed { h: 1e-5 })
-    } else {
-        (
-            Solver::Dopri5,
-            StepControl::Adaptive {
-                rtol: 1e-13,
-                atol: 1e-13,
-                h0: None,
-            },
-        )
+    let tsit45 = Solver::Diffsol(DiffsolMethod::Tsit45);
+    let (solver, check) = match (studied.contains(&Solver::Dopri5), studied.contains(&tsit45)) {
+        (false, _) => (Solver::Dopri5, None),
+        (true, false) => (tsit45, None),
+        (true, true) => (Solver::Dopri5, Some(tsit45)),
+    };
+    let step = StepControl::Adaptive {
+        rtol: REFERENCE_TOLERANCE,
+        atol: REFERENCE_TOLERANCE,
+        h0: None,
     };
     // Naive stepping approximates the discontinuous problem, whose exact solution event
     // switching computes; a regularized problem is its own (smooth) ODE.
@@ -96,27 +186,38 @@ pub fn reference(
         SwitchingKind::Naive => SwitchingKind::Event,
         other => other,
     };
-    let o = case.with_switching(switching).measure(solver, step)?;
-    if let Some(error) = o.error {
-        return Err(ScenarioError::Solver {
-            what: format!("the reference run ({})", solver.name()),
-            error,
-        });
-    }
+    let own = case.with_switching(switching);
+    let tight = |solver: Solver| -> Result<Measures, ScenarioError> {
+        let o = own.measure(solver, step)?;
+        match o.error {
+            Some(error) => Err(ScenarioError::Solver {
+                what: format!("the reference run ({})", solver.name()),
+                error,
+            }),
+            None => Ok(o.measures),
+        }
+    };
+    let (measures, checked) = rayon::join(|| tight(solver), || check.map(tight));
+    let measures = measures?;
+    let cross_check = match (check, checked) {
+        (Some(other), Some(m)) => Some((other.name(), Errors::between(&m?, &measures).grid_max)),
+        _ => None,
+    };
     Ok((
         Reference::Run {
             solver: solver.name(),
             step: format!("{step:?}"),
+            cross_check,
         },
-        o.measures,
+        measures,
     ))
 }
 
 /// One run of a study.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct StudyRun {
-    /// The solver.
-    pub solver: &'static str,
+    /// The method's label ([`Method::label`]): the solver, or a peer with its treatment.
+    pub solver: String,
     /// The step size (fixed-step runs) or the tolerance (adaptive runs).
     pub resolution: f64,
     /// Which the resolution is: `fixed` (a step size, s) or `adaptive` (rtol = atol).
@@ -142,7 +243,7 @@ pub struct StudyRun {
 pub fn run_against_reference(
     case: &dyn StudyCase,
     studied: &[Solver],
-    jobs: &[(Solver, StepControl)],
+    jobs: &[(Method, StepControl)],
     progress: &(dyn Fn() + Sync),
 ) -> Result<(Reference, Measures, Vec<StudyRun>), ScenarioError> {
     let (reference, runs) = rayon::join(
@@ -157,20 +258,20 @@ pub fn run_against_reference(
     Ok((reference, measures, runs))
 }
 
-/// Runs `case` with each (solver, step) in parallel (errors still to be measured).
+/// Runs `case` with each (method, step) in parallel (errors still to be measured).
 pub fn run_all(
     case: &dyn StudyCase,
-    jobs: &[(Solver, StepControl)],
+    jobs: &[(Method, StepControl)],
     progress: &(dyn Fn() + Sync),
 ) -> Result<Vec<StudyRun>, ScenarioError> {
     let dim = case.dim()?;
     jobs.par_iter()
-        .map(|&(solver, step)| {
-            let o = case.measure(solver, step)?;
+        .map(|&(method, step)| {
+            let o = method.measure(case, step)?;
             progress();
             let measures = o.measures;
             Ok(StudyRun {
-                solver: solver.name(),
+                solver: method.label(),
                 resolution: match step {
                     StepControl::Fixed { h } => h,
                     StepControl::Adaptive { rtol, .. } => rtol,
@@ -255,16 +356,7 @@ pub fn orders(points: &[(f64, f64)], scale: f64) -> (Vec<PairOrder>, Option<f64>
             }
         }
     }
-    let slope = (xs.len() >= 2).then(|| {
-        let n = xs.len() as f64;
-        let (mx, my) = (
-            xs.iter().map(|p| p.0).sum::<f64>() / n,
-            xs.iter().map(|p| p.1).sum::<f64>() / n,
-        );
-        let sxy: f64 = xs.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
-        let sxx: f64 = xs.iter().map(|p| (p.0 - mx).powi(2)).sum();
-        sxy / sxx
-    });
+    let slope = (xs.len() >= 2).then(|| slope(&xs));
     (pairs, slope)
 }
 
@@ -337,14 +429,8 @@ pub fn convergence(
     tolerances: &[f64],
     progress: &(dyn Fn() + Sync),
 ) -> Result<Convergence, ScenarioError> {
-    let jobs: Vec<(Solver, StepControl)> = solvers
-        .iter()
-        .flat_map(|&s| {
-            steps_for(s, step_sizes, tolerances, true)
-                .into_iter()
-                .map(move |c| (s, c))
-        })
-        .collect();
+    let methods: Vec<Method> = solvers.iter().map(|&s| Method::of(s)).collect();
+    let jobs = Method::jobs(&methods, step_sizes, tolerances, true);
     let (reference, ref_measures, runs) = run_against_reference(case, solvers, &jobs, progress)?;
     let sc = scale(&ref_measures);
     let mut tables = Vec::new();
@@ -453,10 +539,7 @@ pub fn independence(
     progress: &(dyn Fn() + Sync),
 ) -> Result<Independence, ScenarioError> {
     let resolutions: Vec<f64> = (0..levels).map(|i| start / ratio.powi(i as i32)).collect();
-    let jobs: Vec<(Solver, StepControl)> = steps_for(solver, &resolutions, &resolutions, false)
-        .into_iter()
-        .map(|c| (solver, c))
-        .collect();
+    let jobs = Method::jobs(&[Method::of(solver)], &resolutions, &resolutions, false);
     let runs = run_all(case, &jobs, progress)?;
     if let Some(f) = runs.iter().find_map(|r| r.failure.clone()) {
         return Err(ScenarioError::RunFailed(format!(
@@ -544,34 +627,34 @@ pub struct WorkPrecision {
     pub wall_median_s: Vec<f64>,
 }
 
-/// Runs every solver over its step sizes or tolerances, `repeats` times each for the
-/// median wall time.
+/// Runs every method over its step sizes or tolerances, `repeats` times each for the
+/// median wall time. The reference is the one of the methods' solvers under the case's own
+/// treatment.
 pub fn work_precision(
     case: &dyn StudyCase,
-    solvers: &[Solver],
+    methods: &[Method],
     step_sizes: &[f64],
     tolerances: &[f64],
     repeats: usize,
     progress: &(dyn Fn() + Sync),
 ) -> Result<WorkPrecision, ScenarioError> {
-    let jobs: Vec<(Solver, StepControl)> = solvers
+    let jobs = Method::jobs(methods, step_sizes, tolerances, false);
+    let own: Vec<Solver> = methods
         .iter()
-        .flat_map(|&s| {
-            steps_for(s, step_sizes, tolerances, false)
-                .into_iter()
-                .map(move |c| (s, c))
-        })
+        .filter(|m| m.switching.is_none())
+        .map(|m| m.solver)
         .collect();
-    let (reference, _, runs) = run_against_reference(case, solvers, &jobs, progress)?;
+    let (reference, _, runs) = run_against_reference(case, &own, &jobs, progress)?;
     // Timing repeats run one after another, so that they do not compete for the cores.
     let wall_median_s = jobs
         .iter()
         .zip(&runs)
-        .map(|(&(solver, step), first)| {
+        .map(|(&(method, step), first)| {
             let mut times = vec![first.wall_time_s];
             for _ in 1..repeats.max(1) {
                 times.push(
-                    case.measure(solver, step)
+                    method
+                        .measure(case, step)
                         .map(|o| o.wall_time_s)
                         .unwrap_or(f64::NAN),
                 );
@@ -590,8 +673,8 @@ pub fn work_precision(
 /// The cheapest run of one solver that met the target at one stiffness value.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Cost {
-    /// The solver.
-    pub solver: &'static str,
+    /// The method's label.
+    pub solver: String,
     /// Whether it is implicit.
     pub implicit: bool,
     /// The resolution that first met the target (None: none did).
@@ -689,11 +772,16 @@ pub struct Sweep<'a> {
 pub fn stiffness(
     case: &dyn StudyCase,
     sweep: Sweep,
-    solvers: &[Solver],
+    methods: &[Method],
     step_sizes: &[f64],
     tolerances: &[f64],
     progress: &(dyn Fn() + Sync),
 ) -> Result<Stiffness, ScenarioError> {
+    let own: Vec<Solver> = methods
+        .iter()
+        .filter(|m| m.switching.is_none())
+        .map(|m| m.solver)
+        .collect();
     let Sweep {
         parameter,
         values,
@@ -702,27 +790,21 @@ pub fn stiffness(
     let mut points = Vec::new();
     for &value in values {
         let c = case.with_parameter(parameter, value)?;
-        let jobs: Vec<(Solver, StepControl)> = solvers
+        let jobs = Method::jobs(methods, step_sizes, tolerances, false);
+        let (_, _, runs) = run_against_reference(c.as_ref(), &own, &jobs, progress)?;
+        let costs: Vec<Cost> = methods
             .iter()
-            .flat_map(|&s| {
-                steps_for(s, step_sizes, tolerances, false)
-                    .into_iter()
-                    .map(move |st| (s, st))
-            })
-            .collect();
-        let (_, _, runs) = run_against_reference(c.as_ref(), solvers, &jobs, progress)?;
-        let costs: Vec<Cost> = solvers
-            .iter()
-            .map(|&s| {
+            .map(|m| {
+                let label = m.label();
                 let met = runs
                     .iter()
                     .filter(|r| {
-                        r.solver == s.name() && r.failure.is_none() && r.errors.grid_max <= target
+                        r.solver == label && r.failure.is_none() && r.errors.grid_max <= target
                     })
                     .min_by_key(|r| r.work);
                 Cost {
-                    solver: s.name(),
-                    implicit: s.is_implicit(),
+                    solver: label,
+                    implicit: m.is_implicit(),
                     resolution: met.map(|r| r.resolution),
                     error: met.map_or(f64::NAN, |r| r.errors.grid_max),
                     stats: met.map_or(Stats::default(), |r| r.stats),
@@ -755,4 +837,100 @@ pub fn stiffness(
         points,
         crossover,
     })
+}
+
+/// One run of a cost-against-size study.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ScalingRun {
+    /// Number of bodies.
+    pub size: usize,
+    /// The method's label.
+    pub solver: String,
+    /// Its step size or tolerance.
+    pub resolution: f64,
+    /// Work done.
+    pub stats: Stats,
+    /// Work in right-hand-side evaluations ([`Stats::work`]).
+    pub work: usize,
+    /// Work per accepted step.
+    pub work_per_step: f64,
+    /// The solver's error, if it failed.
+    pub failure: Option<String>,
+    /// Wall time of the run, s (not deterministic: kept out of the study's main files).
+    #[serde(skip)]
+    pub wall_time_s: f64,
+}
+
+/// Cost against the number of bodies: every method at one resolution on each case.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Scaling {
+    /// Every run, by size then method.
+    pub runs: Vec<ScalingRun>,
+    /// Per method, the least-squares slope of log(work per step) against log(size): 1 for a
+    /// cost linear in the number of bodies.
+    pub exponents: Vec<(String, f64)>,
+}
+
+/// Runs every (method, step) on each (size, case), in parallel; the timings are taken one
+/// run after another afterwards, so that they do not compete for the cores.
+pub fn scaling(
+    cases: &[(usize, Box<dyn StudyCase>)],
+    methods: &[(Method, StepControl)],
+    progress: &(dyn Fn() + Sync),
+) -> Result<Scaling, ScenarioError> {
+    let jobs: Vec<(usize, usize)> = (0..cases.len())
+        .flat_map(|c| (0..methods.len()).map(move |m| (c, m)))
+        .collect();
+    let run = |&(c, m): &(usize, usize)| -> Result<ScalingRun, ScenarioError> {
+        let (size, case) = (&cases[c].0, cases[c].1.as_ref());
+        let (method, step) = methods[m];
+        let o = method.measure(case, step)?;
+        progress();
+        let work = o.stats.work(case.dim()?);
+        Ok(ScalingRun {
+            size: *size,
+            solver: method.label(),
+            resolution: match step {
+                StepControl::Fixed { h } => h,
+                StepControl::Adaptive { rtol, .. } => rtol,
+            },
+            stats: o.stats,
+            work,
+            work_per_step: work as f64 / o.stats.steps.max(1) as f64,
+            failure: o.error.map(|e| e.to_string()),
+            wall_time_s: o.wall_time_s,
+        })
+    };
+    let mut runs: Vec<ScalingRun> = jobs.par_iter().map(run).collect::<Result<_, _>>()?;
+    for (r, job) in runs.iter_mut().zip(&jobs) {
+        r.wall_time_s = run(job)?.wall_time_s;
+    }
+    let exponents = methods
+        .iter()
+        .map(|(m, _)| {
+            let label = m.label();
+            let points: Vec<(f64, f64)> = runs
+                .iter()
+                .filter(|r| r.solver == label && r.failure.is_none())
+                .map(|r| ((r.size as f64).ln(), r.work_per_step.ln()))
+                .collect();
+            (label, slope(&points))
+        })
+        .collect();
+    Ok(Scaling { runs, exponents })
+}
+
+/// The least-squares slope of `points` (NaN for fewer than two).
+pub fn slope(points: &[(f64, f64)]) -> f64 {
+    let n = points.len() as f64;
+    if points.len() < 2 {
+        return f64::NAN;
+    }
+    let (mx, my) = (
+        points.iter().map(|p| p.0).sum::<f64>() / n,
+        points.iter().map(|p| p.1).sum::<f64>() / n,
+    );
+    let sxy: f64 = points.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    let sxx: f64 = points.iter().map(|p| (p.0 - mx).powi(2)).sum();
+    sxy / sxx
 }

@@ -158,3 +158,94 @@ fn the_stiffness_verdict_names_a_crossover_only_inside_the_sweep() {
         .verdict()
         .starts_with("the winner changes more than once"));
 }
+
+/// The switched belt (CS, event switching), which has no closed form.
+fn switched_belt() -> Case {
+    Case {
+        scenario: Scenario::Belt,
+        model: ModelId::Cs,
+        friction: FrictionParams::paper(),
+        params: Scenario::Belt.defaults(),
+        switching: SwitchingKind::Event,
+        t_end: 5.0,
+        limits: Limits::default(),
+    }
+}
+
+#[test]
+fn the_reference_is_an_independent_tight_run_and_is_cross_checked_when_both_are_studied() {
+    use scenarios::studies::reference;
+    let case = switched_belt();
+    let tsit45 = Solver::from_name("tsit45").unwrap();
+    let solver_of = |r: &Reference| match r {
+        Reference::Run {
+            solver,
+            cross_check,
+            ..
+        } => (*solver, *cross_check),
+        other => panic!("{other:?}"),
+    };
+    let (r, _) = reference(&case, &[Solver::Rk4]).unwrap();
+    assert_eq!(solver_of(&r), ("dopri5", None));
+    let (r, _) = reference(&case, &[Solver::Dopri5]).unwrap();
+    assert_eq!(solver_of(&r), ("tsit45", None));
+    let (r, _) = reference(&case, &[Solver::Dopri5, tsit45]).unwrap();
+    let (solver, check) = solver_of(&r);
+    assert_eq!(solver, "dopri5");
+    let (other, difference) = check.unwrap();
+    assert_eq!(other, "tsit45");
+    // Two independent 5(4) codes at 1e-13 agree far below the tolerances a study uses.
+    assert!(difference < 1e-10, "{difference:e}");
+}
+
+#[test]
+fn a_system_study_draws_regularised_bdf_and_time_stepping_beside_its_solvers() {
+    use friction_systems::chain::ChainParams;
+    use scenarios::studies::{work_precision, Method, StudyCase, SystemCase};
+    use std::sync::Arc;
+    let system = ChainParams {
+        n_bodies: 5,
+        ..ChainParams::default()
+    }
+    .build(&FrictionParams::paper(), |p| {
+        ModelId::Coulomb
+            .build(friction_models::Variant::Odd, p)
+            .map(Arc::from)
+    })
+    .unwrap();
+    let case = SystemCase {
+        name: "chain".into(),
+        system,
+        switching: SwitchingKind::Event,
+        epsilon: 1e-3,
+        t_end: 10.0,
+        bodies: vec![0],
+        limits: Limits::default(),
+    };
+    let peers = case.peers();
+    let labels: Vec<String> = peers.iter().map(Method::label).collect();
+    assert_eq!(labels, ["bdf (regularized)", "moreau-jean (timestepping)"]);
+    let mut methods = vec![Method::of(Solver::Dopri5)];
+    methods.extend(peers);
+    let w = work_precision(&case, &methods, &[1e-2, 1e-3], &[1e-6, 1e-8], 1, &|| {}).unwrap();
+    let errors = |label: &str| -> Vec<f64> {
+        w.runs
+            .iter()
+            .filter(|r| r.solver == label)
+            .map(|r| r.errors.grid_max)
+            .collect()
+    };
+    // Time-stepping takes the step sizes and converges (Coulomb: continuous at break-away).
+    let stepped = errors("moreau-jean (timestepping)");
+    assert_eq!(stepped.len(), 2);
+    assert!(stepped[1] < stepped[0] / 20.0, "{stepped:?}");
+    // Regularised BDF takes the tolerances; its error against the event-driven reference stops
+    // at the regularisation's, far above event-driven Dormand–Prince at the same tolerance.
+    let regularized = errors("bdf (regularized)");
+    let dopri5 = errors("dopri5");
+    assert_eq!(regularized.len(), 2);
+    assert!(
+        regularized[1] > 100.0 * dopri5[1],
+        "{regularized:?} {dopri5:?}"
+    );
+}
