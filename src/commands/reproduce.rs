@@ -382,6 +382,7 @@ fn add_studies(
             "**not** independent"
         }
     };
+    let chain = add_chain_studies(&mut t, friction)?;
     Ok(format!(
         "\n## Solver studies\n\nThe files are in `studies/` (CSV per run, JSON summary, PNG and SVG); \
          docs/studies.md explains each study and how to read its plot.\n\n\
@@ -397,7 +398,7 @@ fn add_studies(
          f evaluations (plus n per Jacobian) for all seven solvers; wall times in \
          studies/work-precision-belt-CS-timing.csv.\n\
          - [Cost to reach error 1e-3 against the regularisation width](studies/stiffness-belt-CS-epsilon.png): \
-         {}.\n",
+         {}.\n{chain}",
         slopes(&smooth, "grid_max"),
         slopes(&naive, "grid_max"),
         slopes(&switched, "grid_max"),
@@ -438,21 +439,10 @@ fn chain_case(n: usize, friction: &FrictionParams, t_end: f64) -> Result<SystemC
 
 /// Event-driving, regularisation and time-stepping on the chain: work–precision at N = 100
 /// and the cost per step against N up to 1000, with their report section.
-fn add_chain_studies(
-    files: &mut Artifacts,
-    out: &std::path::Path,
-    friction: &FrictionParams,
-    threads: Option<usize>,
-) -> Result<String, AppError> {
-    let dir = out.join("studies");
-    let mut t = Target {
-        files,
-        dir: &dir,
-        threads,
-    };
+fn add_chain_studies(t: &mut Target, friction: &FrictionParams) -> Result<String, AppError> {
     let bdf = Solver::from_name("bdf").expect("a known solver");
     add_work_precision(
-        &mut t,
+        t,
         "work-precision-chain-100",
         &chain_case(100, friction, 5.0)?,
         &[Solver::Dopri5, bdf],
@@ -484,7 +474,7 @@ fn add_chain_studies(
         };
         (m, step)
     }));
-    let scaling = add_scaling(&mut t, "cost-chain", &cases, &methods)?;
+    let scaling = add_scaling(t, "cost-chain", &cases, &methods)?;
     let exponents = scaling
         .exponents
         .iter()
@@ -621,7 +611,6 @@ pub fn run(args: &ReproduceArgs) -> Result<(), AppError> {
         docs/phenomena.md.\n"
     );
     report_md += &add_studies(&mut files, &args.out, &friction, threads)?;
-    report_md += &add_chain_studies(&mut files, &args.out, &friction, threads)?;
     files.add(args.out.join("report.md"), report_md.into_bytes());
     let written = with_threads(threads, || files.write(&args.out))??;
     println!(

@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::belt;
+use common::{belt, one_block_exact};
 use friction_models::{FrictionParams, ModelId, Variant};
 use friction_systems::chain::ChainParams;
 use friction_systems::{simulate, Run, Switching, System, STICK};
@@ -61,27 +61,9 @@ fn one_block_coulomb(t: f64) -> (f64, f64) {
     (v_d * t - F_C / k - v_d / omega * s, v_d * (1.0 - c))
 }
 
-/// The one-block chain with stiction F_s > F_c: piecewise harmonic (see tests/chain.rs).
+/// The one-block chain with stiction F_s > F_c: piecewise harmonic ([`one_block_exact`]).
 fn one_block_static(t: f64) -> (f64, f64) {
-    let (k, v_d, omega) = (10.0, 0.1, 10f64.sqrt());
-    let a = (F_S - F_C) / k;
-    let slip = (PI + 2.0 * (v_d / (a * omega)).atan()) / omega;
-    let mut x_stuck = 0.0;
-    loop {
-        let t_b = (F_S / k + x_stuck) / v_d;
-        if t <= t_b {
-            return (x_stuck, 0.0);
-        }
-        let slide = |tau: f64| {
-            let (s, c) = (omega * tau).sin_cos();
-            let e = -F_C / k - a * c - v_d / omega * s;
-            (v_d * (t_b + tau) + e, v_d + a * omega * s - v_d * c)
-        };
-        if t <= t_b + slip {
-            return slide(t - t_b);
-        }
-        x_stuck = slide(slip).0;
-    }
+    one_block_exact(t, 1.0, 10.0, 0.1, F_S, F_C)
 }
 
 const BELT_K: f64 = 100.0;

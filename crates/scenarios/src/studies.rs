@@ -258,24 +258,31 @@ pub fn run_against_reference(
     Ok((reference, measures, runs))
 }
 
-/// Runs `case` with each (method, step) in parallel (errors still to be measured).
+/// Runs `case` with each (method, step) in parallel (errors still to be measured), the
+/// finest resolutions first (the longest runs, started first, do not leave one core idle at
+/// the end); the runs are returned in the order of `jobs`.
 pub fn run_all(
     case: &dyn StudyCase,
     jobs: &[(Method, StepControl)],
     progress: &(dyn Fn() + Sync),
 ) -> Result<Vec<StudyRun>, ScenarioError> {
     let dim = case.dim()?;
-    jobs.par_iter()
-        .map(|&(method, step)| {
+    let resolution = |step: StepControl| match step {
+        StepControl::Fixed { h } => h,
+        StepControl::Adaptive { rtol, .. } => rtol,
+    };
+    let mut order: Vec<usize> = (0..jobs.len()).collect();
+    order.sort_by(|&a, &b| resolution(jobs[a].1).total_cmp(&resolution(jobs[b].1)));
+    let mut runs: Vec<(usize, StudyRun)> = order
+        .par_iter()
+        .map(|&i| {
+            let (method, step) = jobs[i];
             let o = method.measure(case, step)?;
             progress();
             let measures = o.measures;
-            Ok(StudyRun {
+            let run = StudyRun {
                 solver: method.label(),
-                resolution: match step {
-                    StepControl::Fixed { h } => h,
-                    StepControl::Adaptive { rtol, .. } => rtol,
-                },
+                resolution: resolution(step),
                 step: match step {
                     StepControl::Fixed { .. } => "fixed",
                     StepControl::Adaptive { .. } => "adaptive",
@@ -291,9 +298,12 @@ pub fn run_all(
                 work: o.stats.work(dim),
                 failure: o.error.map(|e| e.to_string()),
                 wall_time_s: o.wall_time_s,
-            })
+            };
+            Ok((i, run))
         })
-        .collect()
+        .collect::<Result<_, ScenarioError>>()?;
+    runs.sort_by_key(|(i, _)| *i);
+    Ok(runs.into_iter().map(|(_, r)| r).collect())
 }
 
 /// The observed order between two refinements: log(e_i/e_(i+1)) / log(h_i/h_(i+1)), which
