@@ -127,18 +127,21 @@ fn belt_static(t: f64) -> (f64, f64) {
     }
 }
 
+/// A closed form: (x, v) at t.
+type ClosedForm = fn(f64) -> (f64, f64);
+
 /// A system, its closed form, the span.
 struct Case {
     name: &'static str,
     system: System,
-    exact: fn(f64) -> (f64, f64),
+    exact: ClosedForm,
     t_end: f64,
 }
 
 /// The two cases with `model`, and the largest step of each order study (the belt's
 /// tangential touches of the belt velocity, every 0.63 s, need steps below 2e-3 to be resolved).
 fn cases(model: ModelId) -> [(Case, f64); 2] {
-    let (chain, on_belt): (fn(f64) -> (f64, f64), fn(f64) -> (f64, f64)) = match model {
+    let (chain, on_belt): (ClosedForm, ClosedForm) = match model {
         ModelId::Coulomb => (one_block_coulomb, belt_coulomb),
         _ => (one_block_static, belt_static),
     };
