@@ -138,7 +138,7 @@ impl std::str::FromStr for Target {
 #[derive(Args, Debug)]
 pub struct SimulateArgs {
     /// paper-block, prescribed-motion, velocity-sweep, belt, free-vibration, oscillation,
-    /// force-ramp, presliding (one body), or chain (the Burridge–Knopoff chain of
+    /// velocity-oscillation, force-ramp, presliding (one body), or chain (the Burridge–Knopoff chain of
     /// systems.md, parameters n_bodies, m, k_chain, k_driver, v_driver, spread by --set).
     #[arg(
         value_name = "SCENARIO",

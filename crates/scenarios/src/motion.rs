@@ -24,8 +24,8 @@ pub enum Motion {
         /// Angular frequency, rad/s.
         omega: f64,
     },
-    /// `v = mean + amplitude·sin(omega·t)`, x(0) = 0.
-    VelocitySine {
+    /// `v = mean + amplitude·cos(omega·t)`, x(0) = 0.
+    VelocityOscillation {
         /// Mean velocity, m/s.
         mean: f64,
         /// Velocity amplitude, m/s.
@@ -60,16 +60,16 @@ impl Motion {
                     -amplitude * omega * omega * sn,
                 )
             }
-            Motion::VelocitySine {
+            Motion::VelocityOscillation {
                 mean,
                 amplitude,
                 omega,
             } => {
                 let (sn, cs) = (omega * t).sin_cos();
                 (
-                    mean * t + amplitude * (1.0 - cs) / omega,
-                    mean + amplitude * sn,
-                    amplitude * omega * cs,
+                    mean * t + amplitude * sn / omega,
+                    mean + amplitude * cs,
+                    -amplitude * omega * sn,
                 )
             }
             Motion::Constant { v } => (v * t, v, 0.0),

@@ -31,9 +31,13 @@ parameters! {
         /// Rate of a rising force.
         rate: "rate", "N/s", Range::POSITIVE, "rate of the rising applied force";
         /// Amplitude of a prescribed oscillation.
-        amplitude: "amplitude", "m", Range::POSITIVE, "amplitude of the prescribed oscillation (m, or m/s for the velocity variant)";
+        amplitude: "amplitude", "m", Range::POSITIVE, "amplitude of the prescribed oscillation";
         /// Angular frequency of a prescribed oscillation.
-        omega: "omega", "rad/s", Range::POSITIVE, "angular frequency of the prescribed oscillation";
+        omega: "omega", "rad/s", Range::POSITIVE, "angular frequency of the prescribed oscillation (of x, or of v)";
+        /// Mean velocity of a prescribed velocity oscillation.
+        v_mean: "v_mean", "m/s", Range::FINITE, "mean velocity of the prescribed velocity oscillation";
+        /// Velocity amplitude of a prescribed velocity oscillation.
+        v_amplitude: "v_amplitude", "m/s", Range::NON_NEGATIVE, "velocity amplitude of the prescribed velocity oscillation";
         /// Load of the pre-sliding test as a fraction of F_s.
         fraction: "fraction", "1", FRACTION, "applied load of the presliding test as a fraction of F_s";
         /// Largest velocity of a velocity sweep.
@@ -54,6 +58,8 @@ impl Default for ScenarioParams {
             rate: 1.0,
             amplitude: 0.1,
             omega: 2.0 * std::f64::consts::PI,
+            v_mean: 0.1,
+            v_amplitude: 0.05,
             fraction: 0.5,
             v_max: 1.0,
         }

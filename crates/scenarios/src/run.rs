@@ -524,6 +524,17 @@ pub fn run(spec: &RunSpec, observe: &mut dyn FnMut(f64)) -> Result<Outcome, Scen
             t_end,
             observe,
         ),
+        Scenario::VelocityOscillation => run_motion(
+            spec,
+            model.as_ref(),
+            Motion::VelocityOscillation {
+                mean: p.v_mean,
+                amplitude: p.v_amplitude,
+                omega: p.omega,
+            },
+            t_end,
+            observe,
+        ),
         _ => run_body(spec, model, t_end, observe)?,
     })
 }

@@ -20,6 +20,8 @@ pub enum Scenario {
     FreeVibration,
     /// Prescribed x = amplitude·sin(omega·t).
     Oscillation,
+    /// Prescribed v = v_mean + v_amplitude·cos(omega·t), x(0) = 0, internal states from zero.
+    VelocityOscillation,
     /// m·v' = rate·t − F from rest.
     ForceRamp,
     /// A load of `fraction`·F_s applied (1 s ramp), held 1 s, released (1 s), then 1 s at rest.
@@ -28,13 +30,14 @@ pub enum Scenario {
 
 impl Scenario {
     /// Every scenario.
-    pub const ALL: [Scenario; 8] = [
+    pub const ALL: [Scenario; 9] = [
         Scenario::PaperBlock,
         Scenario::PrescribedMotion,
         Scenario::VelocitySweep,
         Scenario::Belt,
         Scenario::FreeVibration,
         Scenario::Oscillation,
+        Scenario::VelocityOscillation,
         Scenario::ForceRamp,
         Scenario::Presliding,
     ];
@@ -48,6 +51,7 @@ impl Scenario {
             Scenario::Belt => "belt",
             Scenario::FreeVibration => "free-vibration",
             Scenario::Oscillation => "oscillation",
+            Scenario::VelocityOscillation => "velocity-oscillation",
             Scenario::ForceRamp => "force-ramp",
             Scenario::Presliding => "presliding",
         }
@@ -76,6 +80,9 @@ impl Scenario {
             Scenario::Belt => "m*x'' + k*x = -F(x' - v_belt), from x0, v0",
             Scenario::FreeVibration => "m*x'' + k*x = -F(x'), released from x0 at v0",
             Scenario::Oscillation => "x = amplitude*sin(omega*t) prescribed",
+            Scenario::VelocityOscillation => {
+                "v = v_mean + v_amplitude*cos(omega*t) prescribed, x(0) = 0, internal states from zero"
+            }
             Scenario::ForceRamp => "m*v' = rate*t - F(v), from rest",
             Scenario::Presliding => "m*v' = L(t) - F(v), L: 0 -> fraction*F_s in 1 s, held 1 s, back to 0 in 1 s, 1 s at 0",
         }
@@ -90,6 +97,7 @@ impl Scenario {
             Scenario::Belt => &["m", "k", "v_belt", "x0", "v0"],
             Scenario::FreeVibration => &["m", "k", "x0", "v0"],
             Scenario::Oscillation => &["amplitude", "omega"],
+            Scenario::VelocityOscillation => &["v_mean", "v_amplitude", "omega"],
             Scenario::ForceRamp => &["m", "rate"],
             Scenario::Presliding => &["m", "fraction"],
         }
@@ -99,7 +107,10 @@ impl Scenario {
     pub fn has_body(self) -> bool {
         !matches!(
             self,
-            Scenario::PrescribedMotion | Scenario::VelocitySweep | Scenario::Oscillation
+            Scenario::PrescribedMotion
+                | Scenario::VelocitySweep
+                | Scenario::Oscillation
+                | Scenario::VelocityOscillation
         )
     }
 
@@ -120,7 +131,9 @@ impl Scenario {
             Scenario::VelocitySweep => 0.0,
             Scenario::Belt => 20.0,
             Scenario::FreeVibration => 10.0,
-            Scenario::Oscillation => 3.0 * 2.0 * std::f64::consts::PI / p.omega,
+            Scenario::Oscillation | Scenario::VelocityOscillation => {
+                3.0 * 2.0 * std::f64::consts::PI / p.omega
+            }
             Scenario::ForceRamp => 2.0 * f.f_s.max(f.f_c) / p.rate,
             Scenario::Presliding => 4.0,
         }
