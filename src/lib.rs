@@ -72,6 +72,10 @@ pub enum Command {
     /// Stiffness sweep: where the implicit solvers overtake the explicit ones.
     #[command(after_help = EXIT_CODES)]
     Stiffness(commands::studies::StiffnessArgs),
+    /// Sweep a rig or the chain over a grid of parameters: the settled state at every point
+    /// (stick phases per cycle, amplitude and period, friction, solver statistics).
+    #[command(after_help = EXIT_CODES)]
+    Sweep(commands::sweep::SweepArgs),
     /// Reproduce the paper into one folder: Figures 2-7 with notes, the experiment, Table 2,
     /// the solver studies, and a report.md that links them.
     #[command(after_help = EXIT_CODES)]
@@ -89,6 +93,7 @@ pub fn run(cli: Cli) -> Result<(), AppError> {
         Command::Independence(args) => commands::studies::independence(&args),
         Command::WorkPrecision(args) => commands::studies::work_precision(&args),
         Command::Stiffness(args) => commands::studies::stiffness(&args),
+        Command::Sweep(args) => commands::sweep::run(&args),
         Command::Reproduce(args) => commands::reproduce::run(&args),
     }
 }

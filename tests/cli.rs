@@ -1150,3 +1150,70 @@ fn time_stepping_runs_rigs_and_chains_and_refuses_what_it_cannot_do() {
         "{e}"
     );
 }
+
+#[test]
+fn sweep_runs_a_grid_in_parallel_measures_the_settled_cycle_and_rejects_bad_axes() {
+    let dir = tempfile::tempdir().unwrap();
+    let sweep = |threads: &str, name: &str| {
+        let out = dir.path().join(name);
+        let o = friction_lab(&[
+            "sweep",
+            "belt",
+            "--model",
+            "static",
+            "--grid",
+            "v_belt=0.05,1",
+            "--grid",
+            "k=log:50:200:3",
+            "--t-end",
+            "40",
+            "--threads",
+            threads,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        std::fs::read_to_string(out.join("sweep.csv")).unwrap()
+    };
+    let csv = sweep("1", "one");
+    assert_eq!(csv, sweep("2", "two"), "rows depend on the thread count");
+    let rows: Vec<Vec<&str>> = csv.lines().map(|l| l.split(',').collect()).collect();
+    assert_eq!(
+        rows[0][..4],
+        ["v_belt", "k", "stick_phases", "stick_per_cycle"]
+    );
+    assert_eq!(
+        rows.len(),
+        1 + 2 * 3,
+        "the product of the axes, the first slowest"
+    );
+    assert_eq!((rows[1][0], rows[1][1], rows[3][1]), ("0.05", "50", "200"));
+    let col = |name: &str| rows[0].iter().position(|c| *c == name).unwrap();
+    // v_belt = 0.05, k = 100: the closed-form cycle of stick (2(F_s − F_c)/(k·v_b)) and slip
+    // ((π − 2φ)/ω, tan φ = −v_b·k/(ω·(F_s − F_c))), one stick phase per cycle.
+    let (f_s, f_c, k, v_b) = (7.5, 6.0, 100.0, 0.05);
+    let omega: f64 = f64::sqrt(k);
+    let phi = -(v_b / (omega * (f_s - f_c) / k)).atan();
+    let period = 2.0 * (f_s - f_c) / (k * v_b) + (std::f64::consts::PI - 2.0 * phi) / omega;
+    let measured: f64 = rows[2][col("period")].parse().unwrap();
+    assert!((measured - period).abs() < 1e-3, "{measured} vs {period}");
+    let per_cycle: f64 = rows[2][col("stick_per_cycle")].parse().unwrap();
+    assert!((per_cycle - 1.0).abs() < 0.05, "{per_cycle}");
+    // v_belt = 1 > F_c/√(k·m) at every k: steady sliding after the start, no stick phase.
+    for row in &rows[4..] {
+        assert_eq!(row[col("stick_phases")], "0", "{row:?}");
+    }
+    for (grid, message) in [
+        ("v_belt=abc", "`abc` is not a finite number"),
+        (
+            "v_belt=0:1:0",
+            "COUNT `0` is out of range: allowed [1, 1000]",
+        ),
+        ("k=log:0:10:3", "a log range needs START > 0"),
+        ("k=-5,10", "parameter `k` = -5 is out of range"),
+        ("nonsense=1", "nonsense"),
+    ] {
+        let e = rejected(&["sweep", "belt", "--model", "static", "--grid", grid]);
+        assert!(e.contains(message), "{grid}: {e}");
+    }
+}

@@ -6,4 +6,5 @@ pub mod phenomena;
 pub mod reproduce;
 pub mod simulate;
 pub mod studies;
+pub mod sweep;
 pub mod system;

@@ -135,7 +135,7 @@ impl std::str::FromStr for Target {
 }
 
 /// Options of `simulate`.
-#[derive(Args, Debug)]
+#[derive(Args, Clone, Debug)]
 pub struct SimulateArgs {
     /// paper-block, prescribed-motion, velocity-sweep, belt, free-vibration, oscillation,
     /// velocity-oscillation, force-ramp, presliding (one body), or chain (the Burridge–Knopoff chain of

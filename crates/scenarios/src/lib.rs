@@ -1,8 +1,10 @@
 //! The rigs on which friction models and solvers are run (`shared/spec/scenarios.md`), and
 //! the paper's own experiments.
 //!
-//! So far: the two curve rigs of Figures 2–7 ([`curves`]) and the catalogue of those
-//! figures with what the paper says of each ([`figures`]).
+//! The curve rigs of Figures 2–7 ([`curves`]) and the catalogue of those figures
+//! ([`figures`]); the rigs ([`scenario`], [`run`]); the paper's experiment ([`paper`]);
+//! Table 2 by simulation ([`phenomena`]); the solver studies ([`studies`], [`cases`]); the
+//! settled state a parameter sweep measures ([`settled`]).
 
 pub mod cases;
 pub mod curves;
@@ -13,6 +15,7 @@ pub mod params;
 pub mod phenomena;
 pub mod run;
 pub mod scenario;
+pub mod settled;
 pub mod studies;
 
 pub use params::ScenarioParams;

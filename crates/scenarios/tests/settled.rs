@@ -1,0 +1,67 @@
+//! The settled-state measures of a sweep against a trace whose answers are known.
+
+use scenarios::settled::{Settled, Trace};
+use std::f64::consts::PI;
+
+/// x = v̄·t + A·sin(ωt) sampled densely over 20 periods, friction c·v, one switch into stick
+/// at the top of every period.
+fn harmonic(v_bar: f64, a: f64, omega: f64, c: f64) -> Trace {
+    let period = 2.0 * PI / omega;
+    let n = 20_000;
+    let t_end = 20.0 * period;
+    let t: Vec<f64> = (0..=n).map(|i| t_end * i as f64 / n as f64).collect();
+    let x = t
+        .iter()
+        .map(|&t| v_bar * t + a * (omega * t).sin())
+        .collect();
+    let v: Vec<f64> = t
+        .iter()
+        .map(|&t| v_bar + a * omega * (omega * t).cos())
+        .collect();
+    Trace {
+        friction: v.iter().map(|v| c * v).collect(),
+        stick_entries: (0..20).map(|k| (k as f64 + 0.25) * period).collect(),
+        t,
+        x,
+        v,
+    }
+}
+
+#[test]
+fn a_harmonic_trace_gives_its_period_amplitudes_means_and_one_stick_per_cycle() {
+    let (v_bar, a, omega, c) = (0.3, 0.02, 7.0, 2.0);
+    let s = Settled::of(&harmonic(v_bar, a, omega, c), 0.5);
+    let period = 2.0 * PI / omega;
+    assert!((s.from - 10.0 * period).abs() < 1e-12, "{}", s.from);
+    assert!((s.period - period).abs() < 1e-6 * period, "{}", s.period);
+    assert!((s.x_amplitude - a).abs() < 1e-6, "{}", s.x_amplitude);
+    assert!(
+        (s.v_amplitude - a * omega).abs() < 1e-6,
+        "{}",
+        s.v_amplitude
+    );
+    assert!((s.v_mean - v_bar).abs() < 1e-9, "{}", s.v_mean);
+    assert!(
+        (s.friction_mean - c * v_bar).abs() < 1e-8,
+        "{}",
+        s.friction_mean
+    );
+    assert!((s.friction_peak - c * (v_bar + a * omega)).abs() < 1e-9);
+    assert_eq!(s.stick_phases, 10);
+    assert!(
+        (s.stick_per_cycle - 1.0).abs() < 1e-6,
+        "{}",
+        s.stick_per_cycle
+    );
+}
+
+#[test]
+fn steady_sliding_has_no_period_and_no_stick() {
+    let mut trace = harmonic(0.3, 0.0, 7.0, 2.0);
+    trace.stick_entries.clear();
+    let s = Settled::of(&trace, 0.5);
+    assert!(s.period.is_nan());
+    assert!(s.stick_per_cycle.is_nan());
+    assert_eq!(s.stick_phases, 0);
+    assert!(s.x_amplitude.abs() < 1e-12 && s.v_amplitude.abs() < 1e-12);
+}

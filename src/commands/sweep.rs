@@ -1,0 +1,402 @@
+//! `friction-lab sweep SCENARIO|chain --model M --grid NAME=VALUES ... --out DIR`: one run per
+//! point of a grid of parameters (the product of the `--grid` axes), in parallel, each reduced
+//! to its settled-state measures (`scenarios::settled`): `sweep.csv` (one row per point) and
+//! `sweep.json` (the grid, the options, the rows). The rows do not depend on `--threads`.
+
+use crate::artifacts::Artifacts;
+use crate::commands::phenomena::with_threads;
+use crate::commands::simulate::{spec, SimulateArgs, Target};
+use crate::commands::system::{chosen_bodies, system_of};
+use crate::error::AppError;
+use crate::output::{Cell, Table};
+use crate::progress::Progress;
+use crate::ranges;
+use clap::Args;
+use friction_systems::{simulate, STICK};
+use integrators::{Options, Output, Stats};
+use rayon::prelude::*;
+use scenarios::settled::{Settled, Trace};
+use serde::Serialize;
+
+/// Most values on one axis.
+const MAX_AXIS: usize = 1000;
+/// Most points in a grid.
+const MAX_POINTS: usize = 100_000;
+
+/// Options of `sweep`.
+#[derive(Args, Debug)]
+pub struct SweepArgs {
+    /// What to run at every point: the rig or chain, the model, the solver and the fixed
+    /// parameters, as `simulate` takes them.
+    #[command(flatten)]
+    pub run: SimulateArgs,
+    /// One axis of the grid, repeatable: NAME=V1,V2,... (a list), NAME=START:STOP:COUNT
+    /// (evenly spaced), or NAME=log:START:STOP:COUNT (evenly spaced in log); any friction,
+    /// scenario or chain parameter. The grid is the product of the axes, the first varying
+    /// slowest.
+    #[arg(long = "grid", value_name = "NAME=VALUES", required = true)]
+    pub grid: Vec<String>,
+    /// The measured, settled part of each run: its last fraction (0, 1] of the time span.
+    #[arg(
+        long,
+        value_name = "FRACTION",
+        default_value_t = 0.5,
+        allow_hyphen_values = true
+    )]
+    pub settle: f64,
+    /// Worker threads (default: all cores); the results do not depend on it.
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    pub threads: Option<i64>,
+}
+
+/// One axis of the grid.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Axis {
+    /// The parameter.
+    pub name: String,
+    /// Its values, in order.
+    pub values: Vec<f64>,
+}
+
+impl Axis {
+    /// Parses `NAME=V1,V2`, `NAME=START:STOP:COUNT` or `NAME=log:START:STOP:COUNT`.
+    pub fn parse(text: &str) -> Result<Axis, AppError> {
+        let bad = |why: String| AppError::Usage(format!("option `grid` = `{text}`: {why}"));
+        let (name, values) = text
+            .split_once('=')
+            .ok_or_else(|| bad("expected NAME=VALUES".into()))?;
+        let number = |s: &str| -> Result<f64, AppError> {
+            s.trim()
+                .parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite())
+                .ok_or_else(|| bad(format!("`{s}` is not a finite number")))
+        };
+        let (log, range) = match values.strip_prefix("log:") {
+            Some(rest) => (true, Some(rest)),
+            None => (false, values.contains(':').then_some(values)),
+        };
+        let values: Vec<f64> = match range {
+            Some(r) => {
+                let parts: Vec<&str> = r.split(':').collect();
+                let [start, stop, count] = parts[..] else {
+                    return Err(bad("a range is START:STOP:COUNT".into()));
+                };
+                let (start, stop) = (number(start)?, number(stop)?);
+                let count = count
+                    .trim()
+                    .parse::<usize>()
+                    .ok()
+                    .filter(|c| (1..=MAX_AXIS).contains(c))
+                    .ok_or_else(|| {
+                        bad(format!(
+                            "COUNT `{count}` is out of range: allowed [1, {MAX_AXIS}]"
+                        ))
+                    })?;
+                if log && !(start > 0.0 && stop > 0.0) {
+                    return Err(bad("a log range needs START > 0 and STOP > 0".into()));
+                }
+                let at = |i: usize| {
+                    let s = if count == 1 {
+                        0.0
+                    } else {
+                        i as f64 / (count - 1) as f64
+                    };
+                    // The ends exactly as given; the points between evenly spaced.
+                    if i == 0 {
+                        start
+                    } else if i + 1 == count {
+                        stop
+                    } else if log {
+                        (start.ln() + s * (stop.ln() - start.ln())).exp()
+                    } else {
+                        start + s * (stop - start)
+                    }
+                };
+                (0..count).map(at).collect()
+            }
+            None => values.split(',').map(number).collect::<Result<_, _>>()?,
+        };
+        if values.is_empty() || values.len() > MAX_AXIS {
+            return Err(bad(format!(
+                "{} values: allowed 1 to {MAX_AXIS}",
+                values.len()
+            )));
+        }
+        Ok(Axis {
+            name: name.trim().to_string(),
+            values,
+        })
+    }
+}
+
+/// The grid's points in order (the first axis varying slowest), as `NAME=VALUE` assignments.
+fn points(axes: &[Axis]) -> Vec<Vec<(String, f64)>> {
+    axes.iter().fold(vec![Vec::new()], |points, axis| {
+        points
+            .iter()
+            .flat_map(|p| {
+                axis.values.iter().map(move |&v| {
+                    let mut q = p.clone();
+                    q.push((axis.name.clone(), v));
+                    q
+                })
+            })
+            .collect()
+    })
+}
+
+/// One point's result.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PointResult {
+    /// The point: the value of every axis, in axis order.
+    pub values: Vec<f64>,
+    /// Its settled-state measures.
+    pub settled: Settled,
+    /// Solver statistics.
+    pub stats: Stats,
+    /// The solver's error, if the run failed (the measures are of what it computed).
+    pub error: Option<String>,
+}
+
+/// What `sweep.json` holds.
+#[derive(Serialize)]
+struct SweepFile<'a> {
+    target: String,
+    model: Option<String>,
+    settle: f64,
+    axes: &'a [Axis],
+    points: &'a [PointResult],
+}
+
+/// `args` with the point's assignments added after its own `--set`s.
+fn at_point(args: &SimulateArgs, point: &[(String, f64)]) -> SimulateArgs {
+    let mut a = args.clone();
+    a.model_options
+        .params
+        .set
+        .extend(point.iter().map(|(n, v)| format!("{n}={v}")));
+    a
+}
+
+/// A prepared run of one point: checked before any point runs.
+enum Prepared {
+    Rig(scenarios::RunSpec),
+    Chain {
+        described: crate::commands::system::Described,
+        body: usize,
+    },
+}
+
+fn prepare(args: &SimulateArgs) -> Result<Prepared, AppError> {
+    match args.scenario {
+        Some(Target::Rig(scenario)) => Ok(Prepared::Rig(spec(args, scenario)?)),
+        Some(Target::Chain) => {
+            let described = system_of(None, args.model, &args.model_options)?;
+            described.system.validate()?;
+            let body = chosen_bodies(&described.system, &args.bodies)?
+                .first()
+                .copied()
+                .unwrap_or(0);
+            args.solver.checked_step()?;
+            Ok(Prepared::Chain { described, body })
+        }
+        None => Err(AppError::Usage(
+            "sweep runs a rig or the chain: a system file has no parameters to sweep".into(),
+        )),
+    }
+}
+
+/// Runs one prepared point and measures its settled state.
+fn run_point(
+    args: &SimulateArgs,
+    prepared: Prepared,
+    settle: f64,
+) -> Result<PointResult, AppError> {
+    let (trace, stats, error) = match prepared {
+        Prepared::Rig(spec) => {
+            let o = scenarios::run(&spec, &mut |_| {})?;
+            let rows = o.rows.iter().filter(|r| {
+                // The grid rows only (the rows at events are recorded besides).
+                !o.events.iter().any(|e| e.t == r.t)
+            });
+            let mut trace = Trace::default();
+            for r in rows {
+                trace.t.push(r.t);
+                trace.x.push(r.x);
+                trace.v.push(r.v);
+                trace.friction.push(r.friction);
+            }
+            trace.stick_entries = o
+                .events
+                .iter()
+                .filter(|e| e.kind == "stick")
+                .map(|e| e.t)
+                .collect();
+            (trace, o.stats, o.error.map(|e| e.to_string()))
+        }
+        Prepared::Chain { described, body } => {
+            let t_end = args
+                .checked_t_end()?
+                .unwrap_or(crate::commands::system::CHAIN_T_END);
+            let points = args.checked_points()?.unwrap_or(2001);
+            let limits = args.solver.checked_limits()?;
+            let options = Options {
+                step: args.solver.checked_step()?,
+                max_steps: limits.max_steps,
+                time_limit: limits.time_limit,
+                output: Output::GridOnly(
+                    (0..points)
+                        .map(|i| t_end * i as f64 / (points - 1) as f64)
+                        .collect(),
+                ),
+                ..Options::adaptive(0.0, t_end, 1e-8, 1e-10)
+            };
+            let switching = args.solver.switching().with(&described.friction);
+            let run = simulate(
+                &described.system,
+                switching,
+                args.solver.solver,
+                options,
+                &mut |_| {},
+            )?;
+            let mut trace = Trace::default();
+            for b in run.body(body) {
+                trace.t.push(b.t);
+                trace.x.push(b.x);
+                trace.v.push(b.v);
+                trace.friction.push(b.friction);
+            }
+            trace.stick_entries = run
+                .contact_events()
+                .iter()
+                .filter(|e| e.body == body && e.to == STICK && e.from != STICK)
+                .map(|e| e.t)
+                .collect();
+            (trace, run.solution.stats, run.error.map(|e| e.to_string()))
+        }
+    };
+    Ok(PointResult {
+        values: Vec::new(),
+        settled: Settled::of(&trace, settle),
+        stats,
+        error,
+    })
+}
+
+/// Runs `sweep`.
+pub fn run(args: &SweepArgs) -> Result<(), AppError> {
+    let threads = ranges::threads(args.threads)?;
+    if !(args.settle > 0.0 && args.settle <= 1.0) {
+        return Err(AppError::Usage(format!(
+            "option `settle` = {} is out of range: allowed (0, 1]",
+            ranges::show(args.settle)
+        )));
+    }
+    let axes: Vec<Axis> = args
+        .grid
+        .iter()
+        .map(|g| Axis::parse(g))
+        .collect::<Result<_, _>>()?;
+    let grid = points(&axes);
+    if grid.len() > MAX_POINTS {
+        return Err(AppError::Usage(format!(
+            "option `grid` makes {} points: allowed at most {MAX_POINTS}",
+            grid.len()
+        )));
+    }
+    // Every point is checked (names, ranges, combinations) before any runs.
+    let runs: Vec<SimulateArgs> = grid.iter().map(|p| at_point(&args.run, p)).collect();
+    for a in &runs {
+        prepare(a)?;
+    }
+    let b = Progress::runs(runs.len(), "sweep");
+    let results: Vec<PointResult> = with_threads(threads, || {
+        runs.par_iter()
+            .zip(&grid)
+            .map(|(a, point)| {
+                let r = run_point(a, prepare(a)?, args.settle);
+                b.inc();
+                r.map(|r| PointResult {
+                    values: point.iter().map(|(_, v)| *v).collect(),
+                    ..r
+                })
+            })
+            .collect::<Result<Vec<_>, AppError>>()
+    })??;
+    b.finish();
+    let mut header: Vec<&str> = axes.iter().map(|a| a.name.as_str()).collect();
+    header.extend([
+        "stick_phases",
+        "stick_per_cycle",
+        "period",
+        "x_amplitude",
+        "v_amplitude",
+        "v_mean",
+        "friction_mean",
+        "friction_peak",
+        "steps",
+        "rhs_evals",
+        "events",
+        "status",
+    ]);
+    let mut table = Table::new(&header);
+    // An undefined measure (no oscillation) is an empty cell, never NaN.
+    let num = |x: f64| {
+        if x.is_nan() {
+            Cell::Text(String::new())
+        } else {
+            Cell::Num(x)
+        }
+    };
+    for r in &results {
+        let s = &r.settled;
+        let mut row: Vec<Cell> = r.values.iter().map(|&v| Cell::Num(v)).collect();
+        row.extend([
+            Cell::Num(s.stick_phases as f64),
+            num(s.stick_per_cycle),
+            num(s.period),
+            num(s.x_amplitude),
+            num(s.v_amplitude),
+            num(s.v_mean),
+            num(s.friction_mean),
+            num(s.friction_peak),
+            Cell::Num(r.stats.steps as f64),
+            Cell::Num(r.stats.rhs_evals as f64),
+            Cell::Num(r.stats.events as f64),
+            Cell::Text(r.error.clone().unwrap_or_else(|| "ok".into())),
+        ]);
+        table.rows.push(row);
+    }
+    let mut files = Artifacts::default();
+    let csv = args.run.out.join("sweep.csv");
+    files.add(csv.clone(), table.to_csv(&csv)?);
+    files.add_json(
+        args.run.out.join("sweep.json"),
+        &SweepFile {
+            target: match args.run.scenario {
+                Some(Target::Rig(s)) => s.name().to_string(),
+                _ => "chain".into(),
+            },
+            model: args.run.model.map(|m| m.name().to_string()),
+            settle: args.settle,
+            axes: &axes,
+            points: &results,
+        },
+    )?;
+    let written = with_threads(threads, || files.write(&args.run.out))??;
+    let failed = results.iter().filter(|r| r.error.is_some()).count();
+    println!(
+        "wrote {} files into {} ({} points, {failed} failed)",
+        written.len(),
+        args.run.out.display(),
+        results.len()
+    );
+    if failed > 0 {
+        return Err(AppError::StudyRun(format!(
+            "{failed} of {} runs failed; sweep.csv says which and why",
+            results.len()
+        )));
+    }
+    Ok(())
+}
