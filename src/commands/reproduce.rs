@@ -611,6 +611,8 @@ pub fn run(args: &ReproduceArgs) -> Result<(), AppError> {
         docs/phenomena.md.\n"
     );
     report_md += &add_studies(&mut files, &args.out, &friction, threads)?;
+    report_md +=
+        &crate::commands::stick_slip::add_stick_slip(&mut files, &args.out, &friction, threads)?;
     files.add(args.out.join("report.md"), report_md.into_bytes());
     let written = with_threads(threads, || files.write(&args.out))??;
     println!(

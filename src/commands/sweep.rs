@@ -216,24 +216,11 @@ fn run_point(
     let (trace, stats, error) = match prepared {
         Prepared::Rig(spec) => {
             let o = scenarios::run(&spec, &mut |_| {})?;
-            let rows = o.rows.iter().filter(|r| {
-                // The grid rows only (the rows at events are recorded besides).
-                !o.events.iter().any(|e| e.t == r.t)
-            });
-            let mut trace = Trace::default();
-            for r in rows {
-                trace.t.push(r.t);
-                trace.x.push(r.x);
-                trace.v.push(r.v);
-                trace.friction.push(r.friction);
-            }
-            trace.stick_entries = o
-                .events
-                .iter()
-                .filter(|e| e.kind == "stick")
-                .map(|e| e.t)
-                .collect();
-            (trace, o.stats, o.error.map(|e| e.to_string()))
+            (
+                Trace::of_outcome(&o),
+                o.stats,
+                o.error.map(|e| e.to_string()),
+            )
         }
         Prepared::Chain { described, body } => {
             let t_end = args
@@ -332,6 +319,7 @@ pub fn run(args: &SweepArgs) -> Result<(), AppError> {
         "period",
         "x_amplitude",
         "v_amplitude",
+        "v_amplitude_ratio",
         "v_mean",
         "friction_mean",
         "friction_peak",
@@ -358,6 +346,7 @@ pub fn run(args: &SweepArgs) -> Result<(), AppError> {
             num(s.period),
             num(s.x_amplitude),
             num(s.v_amplitude),
+            num(s.v_amplitude_ratio),
             num(s.v_mean),
             num(s.friction_mean),
             num(s.friction_peak),

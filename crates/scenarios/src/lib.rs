@@ -16,6 +16,7 @@ pub mod phenomena;
 pub mod run;
 pub mod scenario;
 pub mod settled;
+pub mod stick_slip;
 pub mod studies;
 
 pub use params::ScenarioParams;

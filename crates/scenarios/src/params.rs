@@ -22,6 +22,8 @@ parameters! {
         f_ex: "F_ex", "N", Range::FINITE, "constant external driving force";
         /// Spring stiffness.
         k: "k", "N/m", Range::NON_NEGATIVE, "stiffness of the spring holding the body";
+        /// Damping of the spring.
+        c: "c", "N*s/m", Range::NON_NEGATIVE, "damping in parallel with the spring holding the body";
         /// Belt velocity.
         v_belt: "v_belt", "m/s", Range::FINITE, "velocity of the belt under the body";
         /// Initial displacement.
@@ -52,6 +54,7 @@ impl Default for ScenarioParams {
             m: 1.0,
             f_ex: 15.0,
             k: 100.0,
+            c: 0.0,
             v_belt: 0.05,
             x0: 0.0,
             v0: 0.0,

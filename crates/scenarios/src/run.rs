@@ -306,7 +306,7 @@ pub fn body_system(spec: &RunSpec, model: Arc<dyn FrictionModel>) -> System {
         Scenario::PaperBlock => s.add_force(body, p.f_ex, Profile::None),
         Scenario::Belt | Scenario::FreeVibration => {
             let wall = s.add_anchor("wall", 0.0, 0.0);
-            s.add_spring(End::Body(body), End::Anchor(wall), p.k, 0.0);
+            s.add_spring(End::Body(body), End::Anchor(wall), p.k, p.c);
             if spec.scenario == Scenario::Belt {
                 surface_velocity = p.v_belt;
             }

@@ -77,8 +77,8 @@ impl Scenario {
             Scenario::PaperBlock => "m*v' = F_ex - F(v), from x0, v0 (rest)",
             Scenario::PrescribedMotion => "X(t) = t^3/3 + t^2/2 and X -> -X; the model's state follows its law",
             Scenario::VelocitySweep => "steady friction at constant v on +-v_max*k/20, k = 1..20",
-            Scenario::Belt => "m*x'' + k*x = -F(x' - v_belt), from x0, v0",
-            Scenario::FreeVibration => "m*x'' + k*x = -F(x'), released from x0 at v0",
+            Scenario::Belt => "m*x'' + c*x' + k*x = -F(x' - v_belt), from x0, v0",
+            Scenario::FreeVibration => "m*x'' + c*x' + k*x = -F(x'), released from x0 at v0",
             Scenario::Oscillation => "x = amplitude*sin(omega*t) prescribed",
             Scenario::VelocityOscillation => {
                 "v = v_mean + v_amplitude*cos(omega*t) prescribed, x(0) = 0, internal states from zero"
@@ -94,8 +94,8 @@ impl Scenario {
             Scenario::PaperBlock => &["m", "F_ex", "x0", "v0"],
             Scenario::PrescribedMotion => &[],
             Scenario::VelocitySweep => &["v_max"],
-            Scenario::Belt => &["m", "k", "v_belt", "x0", "v0"],
-            Scenario::FreeVibration => &["m", "k", "x0", "v0"],
+            Scenario::Belt => &["m", "k", "c", "v_belt", "x0", "v0"],
+            Scenario::FreeVibration => &["m", "k", "c", "x0", "v0"],
             Scenario::Oscillation => &["amplitude", "omega"],
             Scenario::VelocityOscillation => &["v_mean", "v_amplitude", "omega"],
             Scenario::ForceRamp => &["m", "rate"],

@@ -11,6 +11,7 @@
 //!   and per cycle they are divided by window / period;
 //! - the **friction** is its time mean over the window and the largest |F| in it.
 
+use crate::run::Outcome;
 use serde::Serialize;
 
 /// One body's sampled run: times, displacement, velocity, friction, and the times at which
@@ -29,6 +30,31 @@ pub struct Trace {
     pub stick_entries: Vec<f64>,
 }
 
+impl Trace {
+    /// The trace of a rig's outcome: its evenly spaced rows (the rows recorded at events are
+    /// left out) and its switches into stick.
+    pub fn of_outcome(o: &Outcome) -> Trace {
+        let mut trace = Trace::default();
+        for r in o
+            .rows
+            .iter()
+            .filter(|r| !o.events.iter().any(|e| e.t == r.t))
+        {
+            trace.t.push(r.t);
+            trace.x.push(r.x);
+            trace.v.push(r.v);
+            trace.friction.push(r.friction);
+        }
+        trace.stick_entries = o
+            .events
+            .iter()
+            .filter(|e| e.kind == "stick")
+            .map(|e| e.t)
+            .collect();
+        trace
+    }
+}
+
 /// The settled-state measures of a [`Trace`]; `NaN` where a measure is not defined (no
 /// oscillation: fewer than two crossings).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -45,6 +71,9 @@ pub struct Settled {
     pub x_amplitude: f64,
     /// Half the range of v, m/s.
     pub v_amplitude: f64,
+    /// Half the range of v over the second half of the window over that over the first: 1
+    /// for a sustained oscillation, below 1 for one that dies out.
+    pub v_amplitude_ratio: f64,
     /// Mean velocity v̄, m/s.
     pub v_mean: f64,
     /// Time mean of the friction force, N.
@@ -86,13 +115,14 @@ impl Settled {
                 period: f64::NAN,
                 x_amplitude: f64::NAN,
                 v_amplitude: f64::NAN,
+                v_amplitude_ratio: f64::NAN,
                 v_mean: f64::NAN,
                 friction_mean: f64::NAN,
                 friction_peak: f64::NAN,
             };
         }
         let v_mean = time_mean(t, &trace.v, &k);
-        let range = |f: &dyn Fn(usize) -> f64| {
+        let half_range = |k: &[usize], f: &dyn Fn(usize) -> f64| {
             let (lo, hi) = k
                 .iter()
                 .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &i| {
@@ -100,6 +130,9 @@ impl Settled {
                 });
             0.5 * (hi - lo)
         };
+        let range = |f: &dyn Fn(usize) -> f64| half_range(&k, f);
+        let (first, second) = k.split_at(k.len() / 2);
+        let v_of = |i: usize| trace.v[i];
         let crossings: Vec<f64> = k
             .windows(2)
             .filter(|w| trace.v[w[0]] < v_mean && trace.v[w[1]] >= v_mean)
@@ -112,6 +145,17 @@ impl Settled {
             0 | 1 => f64::NAN,
             n => (crossings[n - 1] - crossings[0]) / (n - 1) as f64,
         };
+        // Over whole cycles (first to last crossing) the mean velocity is exactly the mean
+        // motion: Δx/Δt, with x interpolated linearly at the crossings.
+        let x_at = |tc: f64| {
+            let j = t.partition_point(|&s| s < tc).clamp(1, t.len() - 1);
+            let w = (tc - t[j - 1]) / (t[j] - t[j - 1]);
+            trace.x[j - 1] + w * (trace.x[j] - trace.x[j - 1])
+        };
+        let v_mean = match crossings.len() {
+            0 | 1 => v_mean,
+            n => (x_at(crossings[n - 1]) - x_at(crossings[0])) / (crossings[n - 1] - crossings[0]),
+        };
         let stick_phases = trace
             .stick_entries
             .iter()
@@ -123,7 +167,8 @@ impl Settled {
             stick_per_cycle: stick_phases as f64 * period / (t1 - from),
             period,
             x_amplitude: range(&|i| trace.x[i] - v_mean * t[i]),
-            v_amplitude: range(&|i| trace.v[i]),
+            v_amplitude: range(&v_of),
+            v_amplitude_ratio: half_range(second, &v_of) / half_range(first, &v_of),
             v_mean,
             friction_mean: time_mean(t, &trace.friction, &k),
             friction_peak: k

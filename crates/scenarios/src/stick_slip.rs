@@ -1,0 +1,221 @@
+//! Where the belt rig sticks and slips: the stick–slip map over belt speed × stiffness, the
+//! linear stability boundary of steady sliding drawn over it, and the bifurcation diagram of
+//! the settled oscillation against belt speed from rest and from steady sliding.
+//!
+//! Steady sliding: the body at rest, v_rel = −v_b, held at `x_s = −F(−v_b)/k`. Linearised,
+//! `m·δẍ + (c + F'(−v_b))·δẋ + k·δx = 0`: steady sliding is unstable where the effective
+//! damping `c + dF/dv` at v = −v_b is negative (a falling friction branch stronger than the
+//! damper), whatever k and m. Where it is stable, stick–slip from rest can still coexist with
+//! it (a subcritical Hopf bifurcation): the two initial states of the bifurcation diagram show
+//! where.
+
+use crate::run::{run, RunSpec, ScenarioError};
+use crate::scenario::Scenario;
+use crate::settled::{Settled, Trace};
+use friction_models::{Direction, FrictionModel, SignLaw};
+use rayon::prelude::*;
+use serde::Serialize;
+
+/// Stick phases per cycle from which a settled run counts as stick–slip.
+pub const STICK_SLIP_THRESHOLD: f64 = 0.5;
+
+/// A velocity amplitude (relative to the belt speed) below which the settled state counts as
+/// steady sliding.
+pub const STEADY_AMPLITUDE: f64 = 1e-6;
+
+/// The ratio of the velocity amplitude over the second half of the window to that over the
+/// first above which an oscillation counts as sustained (below it, it dies out towards
+/// steady sliding).
+pub const SUSTAINED_RATIO: f64 = 0.95;
+
+/// The settled state of the belt at one point.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub enum Regime {
+    /// Sustained stick–slip: at least [`STICK_SLIP_THRESHOLD`] stick phases per cycle.
+    StickSlip,
+    /// A sustained oscillation that never sticks.
+    Oscillation,
+    /// Carried by the belt through the whole window (a cycle longer than the run).
+    Stuck,
+    /// Steady sliding: no oscillation left, or one dying out.
+    SteadySliding,
+}
+
+impl Regime {
+    /// The regime of a settled run on a belt at `v_belt`.
+    pub fn of(s: &Settled, v_belt: f64) -> Regime {
+        let carried = s.v_amplitude <= 1e-12 * v_belt.abs().max(1.0)
+            && (s.v_mean - v_belt).abs() <= 1e-9 * v_belt.abs().max(1.0);
+        if carried {
+            Regime::Stuck
+        } else if s.stick_per_cycle >= STICK_SLIP_THRESHOLD {
+            Regime::StickSlip
+        } else if s.v_amplitude > STEADY_AMPLITUDE * v_belt.abs().max(1e-3)
+            && s.v_amplitude_ratio > SUSTAINED_RATIO
+        {
+            Regime::Oscillation
+        } else {
+            Regime::SteadySliding
+        }
+    }
+}
+
+/// dF/dv of steady sliding at v_rel = −v_b (the slope of the friction curve there, with the
+/// internal state at its steady value).
+pub fn sliding_slope(model: &dyn FrictionModel, v_belt: f64) -> f64 {
+    let v = -v_belt;
+    let z = model.steady_state(v);
+    let law = SignLaw::Frozen(Direction::Negative);
+    let p = model.partials(0.0, v, z, law);
+    // Along steady states z(v): dF/dv = ∂F/∂v + ∂F/∂z·dz/dv, with dz/dv = −(∂ż/∂v)/(∂ż/∂z).
+    let dz_dv = if model.n_states() > 0 && p.rate_dz != 0.0 {
+        -p.rate_dv / p.rate_dz
+    } else {
+        0.0
+    };
+    p.force_dv + p.force_dz * dz_dv
+}
+
+/// The belt speeds in `[lo, hi]` where `c + dF/dv` changes sign (the linear stability
+/// boundary of steady sliding), located by bisection between `n` log-spaced samples.
+pub fn stability_boundary(
+    model: &dyn FrictionModel,
+    c: f64,
+    lo: f64,
+    hi: f64,
+    n: usize,
+) -> Vec<f64> {
+    let g = |v: f64| c + sliding_slope(model, v);
+    let samples: Vec<f64> = (0..n)
+        .map(|i| (lo.ln() + (hi.ln() - lo.ln()) * i as f64 / (n - 1) as f64).exp())
+        .collect();
+    samples
+        .windows(2)
+        .filter(|w| g(w[0]).signum() != g(w[1]).signum())
+        .map(|w| {
+            let (mut a, mut b) = (w[0], w[1]);
+            for _ in 0..100 {
+                let m = 0.5 * (a + b);
+                if g(m).signum() == g(a).signum() {
+                    a = m;
+                } else {
+                    b = m;
+                }
+            }
+            0.5 * (a + b)
+        })
+        .collect()
+}
+
+/// One run of the map.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct MapPoint {
+    /// Belt speed, m/s.
+    pub v_belt: f64,
+    /// Spring stiffness, N/m.
+    pub k: f64,
+    /// Its settled state.
+    pub settled: Settled,
+    /// Its regime.
+    pub regime: Regime,
+    /// Whether linear theory calls steady sliding unstable there (c + dF/dv < 0).
+    pub linearly_unstable: bool,
+}
+
+fn belt_spec(base: &RunSpec, v_belt: f64, k: f64, x0: f64) -> RunSpec {
+    let mut spec = base.clone();
+    spec.scenario = Scenario::Belt;
+    spec.params.v_belt = v_belt;
+    spec.params.k = k;
+    spec.params.x0 = x0;
+    spec.params.v0 = 0.0;
+    spec
+}
+
+fn settled(spec: &RunSpec, settle: f64) -> Result<Settled, ScenarioError> {
+    let o = run(spec, &mut |_| {})?;
+    if let Some(error) = o.error {
+        return Err(ScenarioError::Solver {
+            what: format!(
+                "the belt at v_belt = {}, k = {}",
+                spec.params.v_belt, spec.params.k
+            ),
+            error,
+        });
+    }
+    Ok(Settled::of(&Trace::of_outcome(&o), settle))
+}
+
+/// The map over `v_belts` × `ks` from rest (the base's other parameters), in parallel, rows
+/// in grid order (v_belt slowest).
+pub fn map(
+    base: &RunSpec,
+    v_belts: &[f64],
+    ks: &[f64],
+    settle: f64,
+) -> Result<Vec<MapPoint>, ScenarioError> {
+    let model = base.model.build(base.variant, &base.friction)?;
+    let points: Vec<(f64, f64)> = v_belts
+        .iter()
+        .flat_map(|&v| ks.iter().map(move |&k| (v, k)))
+        .collect();
+    points
+        .par_iter()
+        .map(|&(v_belt, k)| {
+            let s = settled(&belt_spec(base, v_belt, k, 0.0), settle)?;
+            Ok(MapPoint {
+                v_belt,
+                k,
+                settled: s,
+                regime: Regime::of(&s, v_belt),
+                linearly_unstable: base.params.c + sliding_slope(model.as_ref(), v_belt) < 0.0,
+            })
+        })
+        .collect()
+}
+
+/// One belt speed of the bifurcation diagram: the settled state from rest and from steady
+/// sliding (displaced by 1e-6 of its deflection, so that an unstable equilibrium is left).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Branches {
+    /// Belt speed, m/s.
+    pub v_belt: f64,
+    /// From rest (x0 = 0).
+    pub from_rest: Settled,
+    /// From steady sliding.
+    pub from_sliding: Settled,
+}
+
+/// The bifurcation diagram at the base's k, in parallel.
+pub fn bifurcation(
+    base: &RunSpec,
+    v_belts: &[f64],
+    settle: f64,
+) -> Result<Vec<Branches>, ScenarioError> {
+    let model = base.model.build(base.variant, &base.friction)?;
+    let k = base.params.k;
+    v_belts
+        .par_iter()
+        .map(|&v_belt| {
+            let v = -v_belt;
+            let force = model
+                .response(
+                    0.0,
+                    v,
+                    model.steady_state(v),
+                    SignLaw::Frozen(Direction::Negative),
+                )
+                .force;
+            let x_s = -force / k;
+            let (from_rest, from_sliding) = rayon::join(
+                || settled(&belt_spec(base, v_belt, k, 0.0), settle),
+                || settled(&belt_spec(base, v_belt, k, x_s * (1.0 + 1e-6)), settle),
+            );
+            Ok(Branches {
+                v_belt,
+                from_rest: from_rest?,
+                from_sliding: from_sliding?,
+            })
+        })
+        .collect()
+}

@@ -1,0 +1,85 @@
+//! The stick–slip map and the bifurcation diagram of the belt against linear stability theory.
+
+use friction_models::{FrictionParams, ModelId, Variant};
+use integrators::{Solver, StepControl};
+use scenarios::stick_slip::{bifurcation, map, sliding_slope, stability_boundary, Regime};
+use scenarios::{Limits, RunSpec, Scenario, SwitchingKind};
+
+fn cvs_belt() -> RunSpec {
+    RunSpec {
+        scenario: Scenario::Belt,
+        model: ModelId::Cvs,
+        variant: Variant::Odd,
+        friction: FrictionParams::paper(),
+        params: Scenario::Belt.defaults(),
+        solver: Solver::Dopri5,
+        switching: SwitchingKind::Event,
+        step: StepControl::Adaptive {
+            rtol: 1e-8,
+            atol: 1e-10,
+            h0: None,
+        },
+        t_end: Some(40.0),
+        output_points: 4001,
+        limits: Limits::default(),
+    }
+}
+
+/// CVS in steady sliding at v_rel = −v_b: F = −F_c − (F_s − F_c)·exp(−(v_b/v_s)²) − mu_v·v_b,
+/// so dF/dv = mu_v − 2·v_b·(F_s − F_c)·exp(−(v_b/v_s)²)/v_s².
+fn cvs_slope(v_b: f64) -> f64 {
+    let p = FrictionParams::paper();
+    p.mu_v - 2.0 * v_b * (p.f_s - p.f_c) * (-(v_b / p.v_s).powi(2)).exp() / (p.v_s * p.v_s)
+}
+
+#[test]
+fn the_sliding_slope_is_the_closed_form_and_the_boundary_its_zeros() {
+    let model = ModelId::Cvs
+        .build(Variant::Odd, &FrictionParams::paper())
+        .unwrap();
+    for v_b in [0.01, 0.1, 0.3, 1.0] {
+        let s = sliding_slope(model.as_ref(), v_b);
+        assert!((s - cvs_slope(v_b)).abs() < 1e-12, "{v_b}: {s}");
+    }
+    let roots = stability_boundary(model.as_ref(), 0.0, 1e-4, 2.0, 200);
+    assert_eq!(roots.len(), 2, "{roots:?}");
+    for r in &roots {
+        assert!(cvs_slope(*r).abs() < 1e-9, "{r}");
+    }
+    // A damper stabilises: with c = 5 N·s/m the falling branch (steepest −10.5 N·s/m near
+    // v_s) is still stronger only over a narrower band.
+    let damped = stability_boundary(model.as_ref(), 5.0, 1e-4, 2.0, 200);
+    assert_eq!(damped.len(), 2);
+    assert!(
+        damped[0] > roots[0] && damped[1] < roots[1],
+        "{damped:?} {roots:?}"
+    );
+}
+
+#[test]
+fn the_map_finds_stick_slip_where_sliding_is_unstable_and_none_on_a_fast_belt() {
+    let points = map(&cvs_belt(), &[0.05, 1.0], &[100.0], 0.5).unwrap();
+    assert!(points[0].linearly_unstable);
+    assert_eq!(points[0].regime, Regime::StickSlip, "{:?}", points[0]);
+    assert!(!points[1].linearly_unstable);
+    assert_eq!(points[1].regime, Regime::SteadySliding, "{:?}", points[1]);
+}
+
+#[test]
+fn stick_slip_from_rest_coexists_with_stable_steady_sliding() {
+    // v_b = 0.4: above the linear boundary (about 0.22 m/s, sliding is stable) and below
+    // F_c/√(k·m) = 0.6 m/s (a body started at rest still catches the belt and sticks).
+    let b = bifurcation(&cvs_belt(), &[0.4], 0.5).unwrap();
+    assert_eq!(
+        Regime::of(&b[0].from_rest, 0.4),
+        Regime::StickSlip,
+        "{:?}",
+        b[0].from_rest
+    );
+    assert_eq!(
+        Regime::of(&b[0].from_sliding, 0.4),
+        Regime::SteadySliding,
+        "{:?}",
+        b[0].from_sliding
+    );
+}
