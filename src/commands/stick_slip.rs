@@ -6,10 +6,8 @@ use crate::commands::phenomena::with_threads;
 use crate::error::AppError;
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Marker, Plot, Series, BLUE, PALETTE};
-use friction_models::{FrictionParams, ModelId, Variant};
-use integrators::{Solver, StepControl};
-use scenarios::stick_slip::{bifurcation, map, stability_boundary, Regime};
-use scenarios::{Limits, RunSpec, Scenario, SwitchingKind};
+use friction_models::{FrictionParams, ModelId};
+use scenarios::stick_slip::{belt_run, bifurcation, map, stability_boundary, Regime};
 use std::path::Path;
 
 /// The measured, settled part of each run (its last half).
@@ -22,28 +20,6 @@ fn log_space(lo: f64, hi: f64, n: usize) -> Vec<f64> {
         .collect()
 }
 
-/// The belt with CVS (Coulomb, viscous, static and Stribeck: a falling branch and a rising
-/// one) at the paper's parameters, 40 s, event switching.
-fn base(friction: &FrictionParams) -> RunSpec {
-    RunSpec {
-        scenario: Scenario::Belt,
-        model: ModelId::Cvs,
-        variant: Variant::Odd,
-        friction: *friction,
-        params: Scenario::Belt.defaults(),
-        solver: Solver::Dopri5,
-        switching: SwitchingKind::Event,
-        step: StepControl::Adaptive {
-            rtol: 1e-8,
-            atol: 1e-10,
-            h0: None,
-        },
-        t_end: Some(40.0),
-        output_points: 4001,
-        limits: Limits::default(),
-    }
-}
-
 /// Computes the map (belt speed × stiffness, from rest) and the bifurcation diagram (at
 /// k = 100 N/m, from rest and from steady sliding), adds their files under `out/stick-slip`,
 /// and returns the report section.
@@ -54,7 +30,8 @@ pub fn add_stick_slip(
     threads: Option<usize>,
 ) -> Result<String, AppError> {
     let dir = out.join("stick-slip");
-    let base = base(friction);
+    // CVS: Coulomb, viscous, static and Stribeck, a falling branch and a rising one.
+    let base = belt_run(ModelId::Cvs, friction);
     let model = base.model.build(base.variant, &base.friction)?;
     let (v_lo, v_hi) = (3e-3, 1.0);
     let v_belts = log_space(v_lo, v_hi, 16);

@@ -9,12 +9,36 @@
 //! it (a subcritical Hopf bifurcation): the two initial states of the bifurcation diagram show
 //! where.
 
-use crate::run::{run, RunSpec, ScenarioError};
+use crate::run::{run, Limits, RunSpec, ScenarioError, SwitchingKind};
 use crate::scenario::Scenario;
 use crate::settled::{Settled, Trace};
 use friction_models::{Direction, FrictionModel, SignLaw};
+use friction_models::{FrictionParams, ModelId, Variant};
+use integrators::{Solver, StepControl};
 use rayon::prelude::*;
 use serde::Serialize;
+
+/// The belt with `model` at `friction` as the map and the diagram run it: 40 s (the last half
+/// measured), event switching, Dormand–Prince at rtol 1e-8, 4001 output points.
+pub fn belt_run(model: ModelId, friction: &FrictionParams) -> RunSpec {
+    RunSpec {
+        scenario: Scenario::Belt,
+        model,
+        variant: Variant::Odd,
+        friction: *friction,
+        params: Scenario::Belt.defaults(),
+        solver: Solver::Dopri5,
+        switching: SwitchingKind::Event,
+        step: StepControl::Adaptive {
+            rtol: 1e-8,
+            atol: 1e-10,
+            h0: None,
+        },
+        t_end: Some(40.0),
+        output_points: 4001,
+        limits: Limits::default(),
+    }
+}
 
 /// Stick phases per cycle from which a settled run counts as stick–slip.
 pub const STICK_SLIP_THRESHOLD: f64 = 0.5;

@@ -1,28 +1,12 @@
 //! The stick–slip map and the bifurcation diagram of the belt against linear stability theory.
 
 use friction_models::{FrictionParams, ModelId, Variant};
-use integrators::{Solver, StepControl};
-use scenarios::stick_slip::{bifurcation, map, sliding_slope, stability_boundary, Regime};
-use scenarios::{Limits, RunSpec, Scenario, SwitchingKind};
+use scenarios::stick_slip::{
+    belt_run, bifurcation, map, sliding_slope, stability_boundary, Regime,
+};
 
-fn cvs_belt() -> RunSpec {
-    RunSpec {
-        scenario: Scenario::Belt,
-        model: ModelId::Cvs,
-        variant: Variant::Odd,
-        friction: FrictionParams::paper(),
-        params: Scenario::Belt.defaults(),
-        solver: Solver::Dopri5,
-        switching: SwitchingKind::Event,
-        step: StepControl::Adaptive {
-            rtol: 1e-8,
-            atol: 1e-10,
-            h0: None,
-        },
-        t_end: Some(40.0),
-        output_points: 4001,
-        limits: Limits::default(),
-    }
+fn cvs_belt() -> scenarios::RunSpec {
+    belt_run(ModelId::Cvs, &FrictionParams::paper())
 }
 
 /// CVS in steady sliding at v_rel = −v_b: F = −F_c − (F_s − F_c)·exp(−(v_b/v_s)²) − mu_v·v_b,
