@@ -1217,3 +1217,34 @@ fn sweep_runs_a_grid_in_parallel_measures_the_settled_cycle_and_rejects_bad_axes
         assert!(e.contains(message), "{grid}: {e}");
     }
 }
+
+#[test]
+fn phenomena_judges_the_chosen_models_at_the_given_parameters() {
+    let dir = tempfile::tempdir().unwrap();
+    let judge = |name: &str, extra: &[&str]| {
+        let out = dir.path().join(name);
+        let mut args = vec!["phenomena", "--model", "viscous", "--model", "coulomb"];
+        args.extend(extra);
+        args.extend(["--out", out.to_str().unwrap()]);
+        let o = friction_lab(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let table: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(out.join("table2.json")).unwrap()).unwrap();
+        let md = std::fs::read_to_string(out.join("table2.md")).unwrap();
+        (table, md)
+    };
+    let (own, md) = judge("own", &[]);
+    let models: Vec<&String> = own.as_object().unwrap().keys().collect();
+    assert_eq!(models, ["viscous", "coulomb"], "the models in the order given");
+    assert_eq!(own["viscous"]["viscous"]["measured"], true);
+    assert!(md.contains("parameter set `paper` (`lugre-1995` for lugre)"));
+    // Without its viscous coefficient the viscous model shows no viscous friction.
+    let (set, md) = judge("set", &["--set", "mu_v=0"]);
+    assert_eq!(set["viscous"]["viscous"]["measured"], false);
+    assert!(
+        md.contains("parameter set `paper`, `mu_v=0` for every model"),
+        "{md}"
+    );
+    let e = rejected(&["phenomena", "--model", "viscous", "--set", "mu_v=-1"]);
+    assert!(e.contains("mu_v"), "{e}");
+}

@@ -4,9 +4,10 @@
 
 use crate::artifacts::Artifacts;
 use crate::error::AppError;
+use crate::options::ParamOptions;
 use crate::ranges;
 use clap::Args;
-use friction_models::ModelId;
+use friction_models::{FrictionParams, ModelId};
 use integrators::{Solver, StepControl};
 use scenarios::phenomena::{table, thresholds, Phenomenon, Protocol, Row};
 use serde_json::{json, Map, Value};
@@ -42,6 +43,14 @@ pub struct PhenomenaArgs {
     /// The table does not depend on it.
     #[arg(long, value_name = "N", allow_hyphen_values = true)]
     pub threads: Option<i64>,
+    /// The models to judge, repeatable [default: every model].
+    #[arg(long = "model", value_name = "MODEL")]
+    pub models: Vec<ModelId>,
+    /// Parameters for every judged model (`--param-set`, `--params`, `--set`, friction
+    /// parameters only) [default: each model at its own set, `paper`, or `lugre-1995` for
+    /// lugre]. Naming `--param-set paper` alone is the default.
+    #[command(flatten)]
+    pub params: ParamOptions,
 }
 
 /// Runs `f` on a pool of `threads` workers (all cores when `None`).
@@ -87,11 +96,11 @@ fn mark(measured: bool, paper: Option<bool>) -> String {
 }
 
 /// Table 2 as markdown: the measured table beside the paper's, then the evidence.
-pub fn markdown(rows: &[(ModelId, Row)], protocol: &Protocol) -> String {
+pub fn markdown(rows: &[(ModelId, Row)], protocol: &Protocol, parameters: &str) -> String {
     let mut s = String::from("# Table 2, decided by simulation\n\n");
     s += &format!(
-        "Written by `friction-lab phenomena` with solver {} ({:?}), event switching, parameter set \
-         `paper` (`lugre-1995` for lugre). Each cell reads `measured = paper`; a disagreement is \
+        "Written by `friction-lab phenomena` with solver {} ({:?}), event switching, {parameters}. \
+         Each cell reads `measured = paper`; a disagreement is \
          bold, `measured ≠ paper`. The protocols and thresholds are in docs/phenomena.md.\n\n",
         protocol.solver.name(),
         protocol.step
@@ -163,17 +172,44 @@ pub fn markdown(rows: &[(ModelId, Row)], protocol: &Protocol) -> String {
     s
 }
 
+/// The parameters of Table 2 when none are given: each model at its own set.
+const OWN_PARAMETERS: &str = "parameter set `paper` (`lugre-1995` for lugre)";
+
+/// Which models Table 2 is decided for, and at which parameters.
+pub struct Judged<'a> {
+    /// The models, in column order.
+    pub models: &'a [ModelId],
+    /// Parameters for every model, with their description; `None`: each model at its own set.
+    pub parameters: Option<(FrictionParams, String)>,
+}
+
+impl Default for Judged<'_> {
+    /// Every model, each at its own parameter set.
+    fn default() -> Self {
+        Judged {
+            models: &ModelId::ALL,
+            parameters: None,
+        }
+    }
+}
+
 /// Computes Table 2 and adds `table2.md` and `table2.json` in `dir` to `files`.
 pub fn add_table(
     files: &mut Artifacts,
     dir: &Path,
     protocol: Protocol,
+    judged: &Judged,
     threads: Option<usize>,
 ) -> Result<Vec<(ModelId, Row)>, AppError> {
-    let rows = with_threads(threads, || table(&ModelId::ALL, protocol))?.map_err(AppError::from)?;
+    let parameters = judged.parameters.as_ref();
+    let rows = with_threads(threads, || {
+        table(judged.models, protocol, parameters.map(|p| &p.0))
+    })?
+    .map_err(AppError::from)?;
+    let described = parameters.map_or(OWN_PARAMETERS, |p| p.1.as_str());
     files.add(
         dir.join("table2.md"),
-        markdown(&rows, &protocol).into_bytes(),
+        markdown(&rows, &protocol, described).into_bytes(),
     );
     files.add_json(dir.join("table2.json"), &json_table(&rows))?;
     Ok(rows)
@@ -193,14 +229,37 @@ pub fn run(args: &PhenomenaArgs) -> Result<(), AppError> {
             args.solver.name()
         )));
     }
+    let p = &args.params;
+    let given = p.param_set != "paper" || p.params.is_some() || !p.set.is_empty();
+    let parameters = if given {
+        let mut described = format!("parameter set `{}`", p.param_set);
+        if let Some(file) = &p.params {
+            described += &format!(", file `{}`", file.display());
+        }
+        for s in &p.set {
+            described += &format!(", `{s}`");
+        }
+        Some((p.resolve()?, described + " for every model"))
+    } else {
+        None
+    };
     let start = Instant::now();
     let mut files = Artifacts::default();
+    let models = if args.models.is_empty() {
+        ModelId::ALL.to_vec()
+    } else {
+        args.models.clone()
+    };
     add_table(
         &mut files,
         &args.out,
         Protocol {
             solver: args.solver,
             step,
+        },
+        &Judged {
+            models: &models,
+            parameters,
         },
         threads,
     )?;

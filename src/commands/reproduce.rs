@@ -596,7 +596,13 @@ pub fn run(args: &ReproduceArgs) -> Result<(), AppError> {
         args.out.join("paper-experiment.md"),
         format!("# The paper's experiment\n\n{experiment_md}").into_bytes(),
     );
-    let table = add_table(&mut files, &args.out, Protocol::default(), threads)?;
+    let table = add_table(
+        &mut files,
+        &args.out,
+        Protocol::default(),
+        &Default::default(),
+        threads,
+    )?;
     let disagreements = table
         .iter()
         .flat_map(|(_, r)| r.iter())

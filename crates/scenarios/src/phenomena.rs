@@ -467,7 +467,11 @@ pub type Row = Vec<(Phenomenon, Cell)>;
 /// Table 2 for `models`: every protocol for every model, run in parallel on rayon's pool
 /// (the result does not depend on the number of threads: each cell is computed alone and
 /// collected in order).
-pub fn table(models: &[ModelId], protocol: Protocol) -> Result<Vec<(ModelId, Row)>, ScenarioError> {
+pub fn table(
+    models: &[ModelId],
+    protocol: Protocol,
+    parameters: Option<&FrictionParams>,
+) -> Result<Vec<(ModelId, Row)>, ScenarioError> {
     use rayon::prelude::*;
     let jobs: Vec<(ModelId, Phenomenon)> = models
         .iter()
@@ -476,7 +480,8 @@ pub fn table(models: &[ModelId], protocol: Protocol) -> Result<Vec<(ModelId, Row
     let cells: Vec<Result<Cell, ScenarioError>> = jobs
         .par_iter()
         .map(|&(model, phenomenon)| {
-            let v = decide(phenomenon, model, &parameters_for(model), protocol)?;
+            let p = parameters.copied().unwrap_or_else(|| parameters_for(model));
+            let v = decide(phenomenon, model, &p, protocol)?;
             Ok(Cell {
                 measured: v.measured,
                 paper: phenomenon.paper_claim(model),

@@ -93,7 +93,7 @@ fn static_maps_have_no_hysteresis_loop() {
 
 #[test]
 fn two_solvers_agree_on_every_cell() {
-    let dopri5 = table(&ModelId::ALL, Protocol::default()).unwrap();
+    let dopri5 = table(&ModelId::ALL, Protocol::default(), None).unwrap();
     let bdf = table(
         &ModelId::ALL,
         Protocol {
@@ -104,6 +104,7 @@ fn two_solvers_agree_on_every_cell() {
                 h0: None,
             },
         },
+        None,
     )
     .unwrap();
     for ((model, a), (_, b)) in dopri5.iter().zip(&bdf) {
