@@ -1235,7 +1235,11 @@ fn phenomena_judges_the_chosen_models_at_the_given_parameters() {
     };
     let (own, md) = judge("own", &[]);
     let models: Vec<&String> = own.as_object().unwrap().keys().collect();
-    assert_eq!(models, ["viscous", "coulomb"], "the models in the order given");
+    assert_eq!(
+        models,
+        ["viscous", "coulomb"],
+        "the models in the order given"
+    );
     assert_eq!(own["viscous"]["viscous"]["measured"], true);
     assert!(md.contains("parameter set `paper` (`lugre-1995` for lugre)"));
     // Without its viscous coefficient the viscous model shows no viscous friction.
@@ -1247,4 +1251,37 @@ fn phenomena_judges_the_chosen_models_at_the_given_parameters() {
     );
     let e = rejected(&["phenomena", "--model", "viscous", "--set", "mu_v=-1"]);
     assert!(e.contains("mu_v"), "{e}");
+}
+
+#[test]
+fn studies_of_a_chain_draw_regularised_bdf_and_time_stepping_beside_the_solvers() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("k");
+    let o = friction_lab(&[
+        "stiffness",
+        "chain",
+        "--model",
+        "coulomb",
+        "--set",
+        "n_bodies=3",
+        "--t-end",
+        "10",
+        "--values",
+        "1e-2,1e-3",
+        "--solvers",
+        "dopri5",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(out.join("stiffness.csv")).unwrap();
+    // At each width: the studied solver and the two peers.
+    assert_eq!(csv.lines().count(), 1 + 2 * 3, "{csv}");
+    for label in [
+        ",dopri5,",
+        ",bdf (regularized),",
+        ",moreau-jean (timestepping),true,",
+    ] {
+        assert_eq!(csv.matches(label).count(), 2, "{label}: {csv}");
+    }
 }
