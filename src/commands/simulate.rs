@@ -199,7 +199,7 @@ struct Summary<'a> {
     variant: friction_models::Variant,
     solver: &'a str,
     switching: &'a str,
-    step: String,
+    step: StepControl,
     t_end: f64,
     parameters: BTreeMap<&'a str, f64>,
     status: &'a str,
@@ -416,7 +416,7 @@ fn run_rig(args: &SimulateArgs, scenario: Scenario) -> Result<(), AppError> {
         variant: spec.variant,
         solver: method,
         switching: spec.switching.name(),
-        step: format!("{:?}", spec.step),
+        step: spec.step,
         t_end,
         parameters,
         status: if outcome.error.is_some() {

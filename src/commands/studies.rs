@@ -826,6 +826,7 @@ pub fn add_stiffness(
         "value",
         "solver",
         "implicit",
+        "reached",
         "resolution",
         "error",
         "rhs_evals",
@@ -839,8 +840,9 @@ pub fn add_stiffness(
                 Cell::Num(p.value),
                 Cell::Text(c.solver.clone()),
                 Cell::Text(c.implicit.to_string()),
-                c.resolution
-                    .map_or(Cell::Text("not reached".into()), Cell::Num),
+                Cell::Text(c.resolution.is_some().to_string()),
+                // Numeric columns hold numbers or nothing: `reached` says why one is empty.
+                c.resolution.map_or(Cell::Text(String::new()), Cell::Num),
                 if c.error.is_nan() {
                     Cell::Text(String::new())
                 } else {

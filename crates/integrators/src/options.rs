@@ -2,8 +2,11 @@
 
 use crate::error::SolverError;
 
-/// How the step size is chosen.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// How the step size is chosen. Serialised as plain numbers with a tag:
+/// `{"control": "fixed", "h": 0.001}` or
+/// `{"control": "adaptive", "rtol": 1e-8, "atol": 1e-10, "h0": null}`.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+#[serde(tag = "control", rename_all = "lowercase")]
 pub enum StepControl {
     /// Constant step `h` (the last step before the end or an event is shortened to land
     /// exactly on it, never overshooting).

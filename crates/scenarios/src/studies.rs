@@ -144,7 +144,7 @@ pub enum Reference {
         /// The solver.
         solver: &'static str,
         /// Its step control.
-        step: String,
+        step: StepControl,
         /// A second tight run by an independent solver, where the first one is also studied:
         /// the solver, and the largest difference of the two on the time grid (a bound on the
         /// reference's own error).
@@ -206,7 +206,7 @@ pub fn reference(
     Ok((
         Reference::Run {
             solver: solver.name(),
-            step: format!("{step:?}"),
+            step,
             cross_check,
         },
         measures,
