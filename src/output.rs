@@ -27,6 +27,18 @@ pub enum Cell {
     Text(String),
 }
 
+impl Cell {
+    /// A number, or an empty cell where it is undefined (NaN): numeric columns hold numbers
+    /// or nothing, never `NaN`.
+    pub fn num(x: f64) -> Cell {
+        if x.is_nan() {
+            Cell::Text(String::new())
+        } else {
+            Cell::Num(x)
+        }
+    }
+}
+
 /// A CSV table: a header row and rows of cells.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Table {

@@ -7,18 +7,11 @@ use crate::error::AppError;
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Marker, Plot, Series, BLUE, PALETTE};
 use friction_models::{FrictionParams, ModelId};
-use scenarios::stick_slip::{belt_run, bifurcation, map, stability_boundary, Regime};
+use scenarios::stick_slip::{belt_run, bifurcation, log_space, map, stability_boundary, Regime};
 use std::path::Path;
 
 /// The measured, settled part of each run (its last half).
 const SETTLE: f64 = 0.5;
-
-/// `n` values from `lo` to `hi`, evenly spaced in log.
-fn log_space(lo: f64, hi: f64, n: usize) -> Vec<f64> {
-    (0..n)
-        .map(|i| (lo.ln() + (hi.ln() - lo.ln()) * i as f64 / (n - 1) as f64).exp())
-        .collect()
-}
 
 /// Computes the map (belt speed × stiffness, from rest) and the bifurcation diagram (at
 /// k = 100 N/m, from rest and from steady sliding), adds their files under `out/stick-slip`,
@@ -48,13 +41,7 @@ pub fn add_stick_slip(
         "period",
         "x_amplitude",
     ]);
-    let num = |x: f64| {
-        if x.is_nan() {
-            Cell::Text(String::new())
-        } else {
-            Cell::Num(x)
-        }
-    };
+    let num = Cell::num;
     for p in &points {
         table.rows.push(vec![
             Cell::Num(p.v_belt),

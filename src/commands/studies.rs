@@ -209,13 +209,7 @@ fn runs_table(runs: &[StudyRun], path: &Path) -> Result<Vec<u8>, AppError> {
     ]);
     for r in runs {
         // A missing measure (no events to compare) is written as an empty cell, never NaN.
-        let num = |x: f64| {
-            if x.is_nan() {
-                Cell::Text(String::new())
-            } else {
-                Cell::Num(x)
-            }
-        };
+        let num = Cell::num;
         let s = r.stats;
         t.rows.push(vec![
             Cell::Text(r.solver.clone()),
@@ -843,11 +837,7 @@ pub fn add_stiffness(
                 Cell::Text(c.resolution.is_some().to_string()),
                 // Numeric columns hold numbers or nothing: `reached` says why one is empty.
                 c.resolution.map_or(Cell::Text(String::new()), Cell::Num),
-                if c.error.is_nan() {
-                    Cell::Text(String::new())
-                } else {
-                    Cell::Num(c.error)
-                },
+                Cell::num(c.error),
                 Cell::Num(c.stats.rhs_evals as f64),
                 Cell::Num(c.stats.jacobian_evals as f64),
                 Cell::Num(c.stats.lu_factorizations as f64),

@@ -6,14 +6,14 @@
 use crate::artifacts::Artifacts;
 use crate::commands::phenomena::with_threads;
 use crate::commands::simulate::{spec, SimulateArgs, Target};
-use crate::commands::system::{chosen_bodies, system_of};
+use crate::commands::system::{chosen_bodies, grid_options, system_of};
 use crate::error::AppError;
 use crate::output::{Cell, Table};
 use crate::progress::Progress;
 use crate::ranges;
 use clap::Args;
 use friction_systems::{simulate, STICK};
-use integrators::{Options, Output, Stats};
+use integrators::Stats;
 use rayon::prelude::*;
 use scenarios::settled::{Settled, Trace};
 use serde::Serialize;
@@ -227,18 +227,7 @@ fn run_point(
                 .checked_t_end()?
                 .unwrap_or(crate::commands::system::CHAIN_T_END);
             let points = args.checked_points()?.unwrap_or(2001);
-            let limits = args.solver.checked_limits()?;
-            let options = Options {
-                step: args.solver.checked_step()?,
-                max_steps: limits.max_steps,
-                time_limit: limits.time_limit,
-                output: Output::GridOnly(
-                    (0..points)
-                        .map(|i| t_end * i as f64 / (points - 1) as f64)
-                        .collect(),
-                ),
-                ..Options::adaptive(0.0, t_end, 1e-8, 1e-10)
-            };
+            let options = grid_options(args, t_end, points)?;
             let switching = args.solver.switching().with(&described.friction);
             let run = simulate(
                 &described.system,
@@ -330,13 +319,7 @@ pub fn run(args: &SweepArgs) -> Result<(), AppError> {
     ]);
     let mut table = Table::new(&header);
     // An undefined measure (no oscillation) is an empty cell, never NaN.
-    let num = |x: f64| {
-        if x.is_nan() {
-            Cell::Text(String::new())
-        } else {
-            Cell::Num(x)
-        }
-    };
+    let num = Cell::num;
     for r in &results {
         let s = &r.settled;
         let mut row: Vec<Cell> = r.values.iter().map(|&v| Cell::Num(v)).collect();

@@ -297,6 +297,23 @@ struct SystemSummary<'a> {
     stiffness_detected_at: Option<f64>,
 }
 
+/// The options of a system run from the command line: its step control and limits, checked,
+/// and `points` evenly spaced output times on [0, t_end] (a system records its grid only).
+pub fn grid_options(args: &SimulateArgs, t_end: f64, points: usize) -> Result<Options, AppError> {
+    let limits = args.solver.checked_limits()?;
+    Ok(Options {
+        step: args.solver.checked_step()?,
+        max_steps: limits.max_steps,
+        time_limit: limits.time_limit,
+        output: Output::GridOnly(
+            (0..points)
+                .map(|i| t_end * i as f64 / (points - 1) as f64)
+                .collect(),
+        ),
+        ..Options::adaptive(0.0, t_end, 1e-8, 1e-10)
+    })
+}
+
 /// Runs `simulate` on a system.
 pub fn run(args: &SimulateArgs) -> Result<(), AppError> {
     let Described {
@@ -321,19 +338,8 @@ pub fn run(args: &SimulateArgs) -> Result<(), AppError> {
     let points = args
         .checked_points()?
         .unwrap_or_else(|| default_points(dim));
-    let step = args.solver.checked_step()?;
-    let limits = args.solver.checked_limits()?;
-    let options = Options {
-        step,
-        max_steps: limits.max_steps,
-        time_limit: limits.time_limit,
-        output: Output::GridOnly(
-            (0..points)
-                .map(|i| t_end * i as f64 / (points - 1) as f64)
-                .collect(),
-        ),
-        ..Options::adaptive(0.0, t_end, 1e-8, 1e-10)
-    };
+    let options = grid_options(args, t_end, points)?;
+    let step = options.step;
     let method = args.solver.switching().method(args.solver.solver);
     let bar = Progress::time(t_end, &format!("{name} {method}"));
     let run =

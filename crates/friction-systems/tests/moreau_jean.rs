@@ -226,6 +226,7 @@ fn with_continuous_friction_at_break_away_the_order_is_two_at_theta_half_and_one
     for (case, h0) in cases(ModelId::Coulomb) {
         let half = observed_order(&case, 0.5, h0);
         let one = observed_order(&case, 1.0, h0);
+        println!("Coulomb {}: order {half:.2} at θ = 1/2, {one:.2} at θ = 1", case.name);
         assert!(
             (1.8..2.3).contains(&half),
             "{}: θ = 1/2 order {half}",
@@ -244,6 +245,7 @@ fn with_a_jump_from_stiction_to_sliding_friction_the_order_is_one_at_either_thet
     for (case, h0) in cases(ModelId::Static) {
         for theta in [0.5, 1.0] {
             let order = observed_order(&case, theta, h0);
+            println!("stiction {}: order {order:.2} at θ = {theta}", case.name);
             assert!(
                 (0.8..1.5).contains(&order),
                 "{}: θ = {theta} order {order}",
@@ -388,6 +390,7 @@ fn models_with_an_internal_state_converge_at_second_order_at_theta_half() {
         let coarse = deviation(&stepped(&system, 0.5, h0, t_end, &g), &reference, &g);
         let fine = deviation(&stepped(&system, 0.5, h0 / 4.0, t_end, &g), &reference, &g);
         let order = (coarse / fine).log(4.0);
+        println!("{model:?} on the belt: order {order:.2} at θ = 1/2");
         assert!(
             (1.8..2.3).contains(&order),
             "{model:?}: {coarse:e} -> {fine:e}, order {order}"

@@ -100,6 +100,13 @@ pub fn sliding_slope(model: &dyn FrictionModel, v_belt: f64) -> f64 {
     p.force_dv + p.force_dz * dz_dv
 }
 
+/// `n` values from `lo` to `hi` (both > 0), evenly spaced in log.
+pub fn log_space(lo: f64, hi: f64, n: usize) -> Vec<f64> {
+    (0..n)
+        .map(|i| (lo.ln() + (hi.ln() - lo.ln()) * i as f64 / (n - 1) as f64).exp())
+        .collect()
+}
+
 /// The belt speeds in `[lo, hi]` where `c + dF/dv` changes sign (the linear stability
 /// boundary of steady sliding), located by bisection between `n` log-spaced samples.
 pub fn stability_boundary(
@@ -110,9 +117,7 @@ pub fn stability_boundary(
     n: usize,
 ) -> Vec<f64> {
     let g = |v: f64| c + sliding_slope(model, v);
-    let samples: Vec<f64> = (0..n)
-        .map(|i| (lo.ln() + (hi.ln() - lo.ln()) * i as f64 / (n - 1) as f64).exp())
-        .collect();
+    let samples = log_space(lo, hi, n);
     samples
         .windows(2)
         .filter(|w| g(w[0]).signum() != g(w[1]).signum())
