@@ -226,7 +226,10 @@ fn with_continuous_friction_at_break_away_the_order_is_two_at_theta_half_and_one
     for (case, h0) in cases(ModelId::Coulomb) {
         let half = observed_order(&case, 0.5, h0);
         let one = observed_order(&case, 1.0, h0);
-        println!("Coulomb {}: order {half:.2} at θ = 1/2, {one:.2} at θ = 1", case.name);
+        println!(
+            "Coulomb {}: order {half:.2} at θ = 1/2, {one:.2} at θ = 1",
+            case.name
+        );
         assert!(
             (1.8..2.3).contains(&half),
             "{}: θ = 1/2 order {half}",
