@@ -98,6 +98,21 @@ impl Artifacts {
         Ok(())
     }
 
+    /// The data files (CSV, JSON), each by its path relative to `root`, in the order they were
+    /// added; figures are left undrawn. This is what the Python package reads, in memory.
+    pub fn data(&self, root: &Path) -> Vec<(PathBuf, &[u8])> {
+        self.files
+            .iter()
+            .filter_map(|(path, content)| match content {
+                Content::Bytes(bytes) => Some((
+                    path.strip_prefix(root).unwrap_or(path).to_path_buf(),
+                    bytes.as_slice(),
+                )),
+                _ => None,
+            })
+            .collect()
+    }
+
     /// Writes every file as the folder `root` (every path must lie inside it): into a temporary
     /// folder beside `root`, renamed into place once all files are written. Returns the paths.
     pub fn write(self, root: &Path) -> Result<Vec<PathBuf>, AppError> {
@@ -143,6 +158,38 @@ impl Artifacts {
         }
         swap_into_place(tmp, root)?;
         Ok(written)
+    }
+}
+
+/// What a command made: its files staged in memory (figures not drawn yet), the lines it
+/// prints once they are written, and the failure of a run whose partial results the files
+/// keep (a solver that stopped early, a sweep with failed points).
+#[derive(Debug, Default)]
+pub struct Made {
+    /// The files.
+    pub files: Artifacts,
+    /// Lines for the terminal, printed after the files are written.
+    pub notes: Vec<String>,
+    /// Advice about the run (a solver that found the problem stiff), printed on stderr.
+    pub warnings: Vec<String>,
+    /// The failure the files record, returned once they are written.
+    pub failure: Option<AppError>,
+}
+
+impl Made {
+    /// Writes the files as the folder `out` (figures drawn on `threads` threads, all cores
+    /// when `None`), prints what was written and the notes, and returns the failure.
+    pub fn deliver(self, out: &Path, threads: Option<usize>) -> Result<(), AppError> {
+        let files = self.files;
+        let written = crate::commands::phenomena::with_threads(threads, || files.write(out))??;
+        println!("wrote {} files into {}", written.len(), out.display());
+        for note in &self.notes {
+            println!("{note}");
+        }
+        for warning in &self.warnings {
+            eprintln!("note: {warning}");
+        }
+        self.failure.map_or(Ok(()), Err)
     }
 }
 

@@ -84,16 +84,51 @@ pub enum Command {
 
 /// Runs one parsed command.
 pub fn run(cli: Cli) -> Result<(), AppError> {
-    match cli.command {
-        Command::Models { json } => commands::models::run(json),
-        Command::Curve(args) => commands::curve::run(&args),
-        Command::Simulate(args) => commands::simulate::run(&args),
-        Command::Phenomena(args) => commands::phenomena::run(&args),
-        Command::Converge(args) => commands::studies::converge(&args),
-        Command::Independence(args) => commands::studies::independence(&args),
-        Command::WorkPrecision(args) => commands::studies::work_precision(&args),
-        Command::Stiffness(args) => commands::studies::stiffness(&args),
-        Command::Sweep(args) => commands::sweep::run(&args),
-        Command::Reproduce(args) => commands::reproduce::run(&args),
+    match &cli.command {
+        Command::Models { json } => commands::models::run(*json),
+        Command::Phenomena(args) => commands::phenomena::run(args),
+        Command::Reproduce(args) => commands::reproduce::run(args),
+        command => {
+            let (out, threads) = command.destination();
+            let threads = ranges::threads(threads)?;
+            make(command)?.deliver(out, threads)
+        }
+    }
+}
+
+impl Command {
+    /// The output folder and `--threads` of a command that makes one run's or one study's
+    /// files (the commands [`make`] runs).
+    fn destination(&self) -> (&std::path::Path, Option<i64>) {
+        match self {
+            Command::Curve(a) => (&a.out, None),
+            Command::Simulate(a) => (&a.out, None),
+            Command::Converge(a) => (&a.case.out, a.case.threads),
+            Command::Independence(a) => (&a.case.out, a.case.threads),
+            Command::WorkPrecision(a) => (&a.case.out, a.case.threads),
+            Command::Stiffness(a) => (&a.case.out, a.case.threads),
+            Command::Sweep(a) => (&a.run.out, a.threads),
+            Command::Models { .. } | Command::Phenomena(_) | Command::Reproduce(_) => {
+                (std::path::Path::new("."), None)
+            }
+        }
+    }
+}
+
+/// Runs `curve`, `simulate`, a study or `sweep`, and keeps its files in memory instead of
+/// writing them (figures undrawn): the command line writes them, the Python package reads
+/// them. `models`, `phenomena` and `reproduce` are refused here.
+pub fn make(command: &Command) -> Result<artifacts::Made, AppError> {
+    match command {
+        Command::Curve(args) => commands::curve::make(args),
+        Command::Simulate(args) => commands::simulate::make(args),
+        Command::Converge(args) => commands::studies::converge(args),
+        Command::Independence(args) => commands::studies::independence(args),
+        Command::WorkPrecision(args) => commands::studies::work_precision(args),
+        Command::Stiffness(args) => commands::studies::stiffness(args),
+        Command::Sweep(args) => commands::sweep::make(args),
+        Command::Models { .. } | Command::Phenomena(_) | Command::Reproduce(_) => Err(
+            AppError::Usage("models, phenomena and reproduce write no in-memory result".into()),
+        ),
     }
 }

@@ -1,7 +1,7 @@
 //! `friction-lab curve MODEL --out DIR`: one friction curve as CSV, PNG, SVG and a JSON
 //! summary of its key values.
 
-use crate::artifacts::Artifacts;
+use crate::artifacts::{Artifacts, Made};
 use crate::error::AppError;
 use crate::figure::Drawn;
 use crate::options::ModelOptions;
@@ -125,8 +125,8 @@ pub fn used_parameters(model: ModelId, p: &FrictionParams) -> BTreeMap<&'static 
         .collect()
 }
 
-/// Runs `curve`.
-pub fn run(args: &CurveArgs) -> Result<(), AppError> {
+/// Runs `curve`; its files in memory.
+pub fn make(args: &CurveArgs) -> Result<Made, AppError> {
     let params = args.model_options.params.resolve()?;
     let variant = args.model_options.variant;
     let extent = extent(args)?;
@@ -169,8 +169,8 @@ pub fn run(args: &CurveArgs) -> Result<(), AppError> {
             key_values: KeyValues::of(&curve),
         },
     )?;
-    for path in files.write(&args.out)? {
-        println!("wrote {}", path.display());
-    }
-    Ok(())
+    Ok(Made {
+        files,
+        ..Made::default()
+    })
 }

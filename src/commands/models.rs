@@ -177,14 +177,16 @@ fn text(l: &Listing) -> String {
     out
 }
 
+/// The listing as JSON, as `models --json` prints it.
+pub fn json() -> String {
+    serde_json::to_string_pretty(&listing()).expect("the listing serialises")
+}
+
 /// Prints the listing, as text or as JSON.
 pub fn run(json: bool) -> Result<(), AppError> {
     let l = listing();
     if json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&l).expect("the listing serialises")
-        );
+        println!("{}", self::json());
     } else {
         print!("{}", text(&l));
     }

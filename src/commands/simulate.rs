@@ -2,7 +2,7 @@
 //! written as `trajectory.csv`, `summary.json` and figures (time histories of x, v and
 //! friction; phase portrait; friction against velocity and against displacement).
 
-use crate::artifacts::Artifacts;
+use crate::artifacts::{Artifacts, Made};
 use crate::commands::curve::used_parameters;
 use crate::error::AppError;
 use crate::options::{LimitArgs, ModelOptions};
@@ -357,16 +357,21 @@ fn figures(o: &Outcome, name: &str) -> Vec<(&'static str, Plot)> {
         .collect()
 }
 
-/// Runs `simulate`: a rig, or a system (chain or file).
-pub fn run(args: &SimulateArgs) -> Result<(), AppError> {
+/// The advice given when `method` found the problem stiff at time `t` (Hairer's test).
+pub fn stiffness_warning(method: &str, t: f64) -> String {
+    format!("{method} found the problem stiff at t = {t:.6} s; an implicit solver (bdf, esdirk34) may be much faster")
+}
+
+/// Runs `simulate`: a rig, or a system (chain or file); its files in memory.
+pub fn make(args: &SimulateArgs) -> Result<Made, AppError> {
     match args.scenario {
-        Some(Target::Rig(scenario)) => run_rig(args, scenario),
-        _ => crate::commands::system::run(args),
+        Some(Target::Rig(scenario)) => make_rig(args, scenario),
+        _ => crate::commands::system::make(args),
     }
 }
 
 /// Runs `simulate` on a rig.
-fn run_rig(args: &SimulateArgs, scenario: Scenario) -> Result<(), AppError> {
+fn make_rig(args: &SimulateArgs, scenario: Scenario) -> Result<Made, AppError> {
     let spec = spec(args, scenario)?;
     let t_end = spec
         .t_end
@@ -448,13 +453,14 @@ fn run_rig(args: &SimulateArgs, scenario: Scenario) -> Result<(), AppError> {
         stiffness_detected_at: outcome.stiffness_detected_at,
     };
     files.add_json(args.out.join("summary.json"), &summary)?;
-    let written = files.write(&args.out)?;
-    println!("wrote {} files into {}", written.len(), args.out.display());
-    if let Some(t) = outcome.stiffness_detected_at {
-        eprintln!("note: {} found the problem stiff at t = {t:.6} s; an implicit solver (bdf, esdirk34) may be much faster", spec.solver.name());
-    }
-    match outcome.error {
-        Some(e) => Err(AppError::Solver(e)),
-        None => Ok(()),
-    }
+    Ok(Made {
+        files,
+        notes: Vec::new(),
+        warnings: outcome
+            .stiffness_detected_at
+            .map(|t| stiffness_warning(spec.solver.name(), t))
+            .into_iter()
+            .collect(),
+        failure: outcome.error.map(AppError::Solver),
+    })
 }

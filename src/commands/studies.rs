@@ -3,7 +3,7 @@
 //! collected in order, so the files do not depend on the thread count (wall times, which
 //! cannot be reproduced, go to a separate `*-timing.csv`).
 
-use crate::artifacts::Artifacts;
+use crate::artifacts::{Artifacts, Made};
 use crate::commands::phenomena::with_threads;
 use crate::commands::simulate::Target as Problem;
 use crate::commands::system::{chosen_bodies, system_of, FILE_T_END};
@@ -129,24 +129,26 @@ impl CaseArgs {
 }
 
 impl CaseArgs {
-    /// Sets up the case and the output, runs `study`, and writes its files.
-    fn run(
+    /// Sets up the case, runs `study` (which returns its lines for the terminal), and keeps
+    /// its files in memory.
+    fn make(
         &self,
-        study: impl FnOnce(&mut Target, &dyn StudyCase) -> Result<(), AppError>,
-    ) -> Result<(), AppError> {
+        study: impl FnOnce(&mut Target, &dyn StudyCase) -> Result<Vec<String>, AppError>,
+    ) -> Result<Made, AppError> {
         let case = self.case()?;
         let case = case.as_ref();
         let mut files = Artifacts::default();
-        let threads = ranges::threads(self.threads)?;
         let mut target = Target {
             files: &mut files,
             dir: &self.out,
-            threads,
+            threads: ranges::threads(self.threads)?,
         };
-        study(&mut target, case)?;
-        let written = with_threads(threads, || files.write(&self.out))??;
-        println!("wrote {} files into {}", written.len(), self.out.display());
-        Ok(())
+        let notes = study(&mut target, case)?;
+        Ok(Made {
+            files,
+            notes,
+            ..Made::default()
+        })
     }
 }
 
@@ -403,15 +405,17 @@ pub fn add_convergence(
     Ok(c)
 }
 
-/// Runs `converge`.
-pub fn converge(a: &ConvergeArgs) -> Result<(), AppError> {
-    a.case.run(|t, case| {
+/// Runs `converge`; its files in memory.
+pub fn converge(a: &ConvergeArgs) -> Result<Made, AppError> {
+    a.case.make(|t, case| {
         let c = add_convergence(t, "converge", case, &a.solvers, &a.dt_list, &a.tol_list)?;
-        for o in &c.orders {
-            let slope = o.fitted_slope.map_or("-".into(), |s| format!("{s:.3}"));
-            println!("{:15} {:16} fitted slope {slope}", o.solver, o.measure);
-        }
-        Ok(())
+        Ok(c.orders
+            .iter()
+            .map(|o| {
+                let slope = o.fitted_slope.map_or("-".into(), |s| format!("{s:.3}"));
+                format!("{:15} {:16} fitted slope {slope}", o.solver, o.measure)
+            })
+            .collect())
     })
 }
 
@@ -585,9 +589,9 @@ pub fn add_independence(
     Ok(s)
 }
 
-/// Runs `independence`.
-pub fn independence(a: &IndependenceArgs) -> Result<(), AppError> {
-    a.case.run(|t, case| {
+/// Runs `independence`; its files in memory.
+pub fn independence(a: &IndependenceArgs) -> Result<Made, AppError> {
+    a.case.make(|t, case| {
         let r = Refinement {
             start: a.start,
             ratio: a.ratio,
@@ -595,24 +599,28 @@ pub fn independence(a: &IndependenceArgs) -> Result<(), AppError> {
             tol: a.tol,
         };
         let s = add_independence(t, "independence", case, a.solver, r)?;
-        for o in &s.outputs {
-            let verdict = if o.independent {
-                "independent"
-            } else {
-                "NOT independent"
-            };
-            println!(
-                "{:24} remaining error {:.3e} {verdict}",
-                o.name, o.remaining_error
-            );
-        }
+        let mut notes: Vec<String> = s
+            .outputs
+            .iter()
+            .map(|o| {
+                let verdict = if o.independent {
+                    "independent"
+                } else {
+                    "NOT independent"
+                };
+                format!(
+                    "{:24} remaining error {:.3e} {verdict}",
+                    o.name, o.remaining_error
+                )
+            })
+            .collect();
         let verdict = if s.independent {
             "independent of"
         } else {
             "not independent of"
         };
-        println!("verdict: {verdict} the step size");
-        Ok(())
+        notes.push(format!("verdict: {verdict} the step size"));
+        Ok(notes)
     })
 }
 
@@ -704,9 +712,9 @@ pub fn add_work_precision(
     Ok(w)
 }
 
-/// Runs `work-precision`.
-pub fn work_precision(a: &WorkPrecisionArgs) -> Result<(), AppError> {
-    a.case.run(|t, case| {
+/// Runs `work-precision`; its files in memory.
+pub fn work_precision(a: &WorkPrecisionArgs) -> Result<Made, AppError> {
+    a.case.make(|t, case| {
         add_work_precision(
             t,
             "work-precision",
@@ -716,7 +724,7 @@ pub fn work_precision(a: &WorkPrecisionArgs) -> Result<(), AppError> {
             &a.tol_list,
             ranges::REPEATS.count(a.repeats)?,
         )?;
-        Ok(())
+        Ok(Vec::new())
     })
 }
 
@@ -914,9 +922,9 @@ pub fn add_stiffness(
     Ok(s)
 }
 
-/// Runs `stiffness`.
-pub fn stiffness(a: &StiffnessArgs) -> Result<(), AppError> {
-    a.case.run(|t, case| {
+/// Runs `stiffness`; its files in memory.
+pub fn stiffness(a: &StiffnessArgs) -> Result<Made, AppError> {
+    a.case.make(|t, case| {
         let sweep = studies::Sweep {
             parameter: &a.parameter,
             values: &a.values,
@@ -931,8 +939,7 @@ pub fn stiffness(a: &StiffnessArgs) -> Result<(), AppError> {
             &a.dt_list,
             &a.tol_list,
         )?;
-        println!("{}", s.verdict());
-        Ok(())
+        Ok(vec![s.verdict()])
     })
 }
 

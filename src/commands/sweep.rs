@@ -3,7 +3,7 @@
 //! to its settled-state measures (`scenarios::settled`): `sweep.csv` (one row per point) and
 //! `sweep.json` (the grid, the options, the rows). The rows do not depend on `--threads`.
 
-use crate::artifacts::Artifacts;
+use crate::artifacts::{Artifacts, Made};
 use crate::commands::phenomena::with_threads;
 use crate::commands::simulate::{spec, SimulateArgs, Target};
 use crate::commands::system::{chosen_bodies, grid_options, system_of};
@@ -47,6 +47,31 @@ pub struct SweepArgs {
     /// Worker threads (default: all cores); the results do not depend on it.
     #[arg(long, value_name = "N", allow_hyphen_values = true)]
     pub threads: Option<i64>,
+    /// Run only the grid points START <= i < END (0-based, in grid order): one part of the
+    /// sweep, for spreading it over machines or Dask tasks; its rows equal those of the whole
+    /// sweep. Every point of the grid is still checked first.
+    #[arg(long, value_name = "START:END")]
+    pub point_range: Option<String>,
+}
+
+/// The points `START:END` of a grid of `n` points.
+fn point_range(text: Option<&str>, n: usize) -> Result<std::ops::Range<usize>, AppError> {
+    let Some(text) = text else {
+        return Ok(0..n);
+    };
+    let bad = || {
+        AppError::Usage(format!(
+            "option `point-range` = `{text}` is out of range: allowed START:END with \
+             0 <= START <= END <= {n} (the grid's points)"
+        ))
+    };
+    let (start, end) = text.split_once(':').ok_or_else(bad)?;
+    let parse = |s: &str| s.trim().parse::<usize>().map_err(|_| bad());
+    let (start, end) = (parse(start)?, parse(end)?);
+    if start > end || end > n {
+        return Err(bad());
+    }
+    Ok(start..end)
 }
 
 /// One axis of the grid.
@@ -166,6 +191,10 @@ struct SweepFile<'a> {
     model: Option<String>,
     settle: f64,
     axes: &'a [Axis],
+    /// The number of points in the whole grid.
+    grid_points: usize,
+    /// The points run, `[start, end)` in grid order.
+    point_range: [usize; 2],
     points: &'a [PointResult],
 }
 
@@ -260,8 +289,8 @@ fn run_point(
     })
 }
 
-/// Runs `sweep`.
-pub fn run(args: &SweepArgs) -> Result<(), AppError> {
+/// Runs `sweep`; its files in memory.
+pub fn make(args: &SweepArgs) -> Result<Made, AppError> {
     let threads = ranges::threads(args.threads)?;
     if !(args.settle > 0.0 && args.settle <= 1.0) {
         return Err(AppError::Usage(format!(
@@ -286,10 +315,12 @@ pub fn run(args: &SweepArgs) -> Result<(), AppError> {
     for a in &runs {
         prepare(a)?;
     }
-    let b = Progress::runs(runs.len(), "sweep");
+    let range = point_range(args.point_range.as_deref(), grid.len())?;
+    let b = Progress::runs(range.len(), "sweep");
     let results: Vec<PointResult> = with_threads(threads, || {
-        runs.par_iter()
-            .zip(&grid)
+        runs[range.clone()]
+            .par_iter()
+            .zip(&grid[range.clone()])
             .map(|(a, point)| {
                 let r = run_point(a, prepare(a)?, args.settle);
                 b.inc();
@@ -353,22 +384,21 @@ pub fn run(args: &SweepArgs) -> Result<(), AppError> {
             model: args.run.model.map(|m| m.name().to_string()),
             settle: args.settle,
             axes: &axes,
+            grid_points: grid.len(),
+            point_range: [range.start, range.end],
             points: &results,
         },
     )?;
-    let written = with_threads(threads, || files.write(&args.run.out))??;
     let failed = results.iter().filter(|r| r.error.is_some()).count();
-    println!(
-        "wrote {} files into {} ({} points, {failed} failed)",
-        written.len(),
-        args.run.out.display(),
-        results.len()
-    );
-    if failed > 0 {
-        return Err(AppError::StudyRun(format!(
-            "{failed} of {} runs failed; sweep.csv says which and why",
-            results.len()
-        )));
-    }
-    Ok(())
+    Ok(Made {
+        files,
+        notes: vec![format!("{} points, {failed} failed", results.len())],
+        warnings: Vec::new(),
+        failure: (failed > 0).then(|| {
+            AppError::StudyRun(format!(
+                "{failed} of {} runs failed; sweep.csv says which and why",
+                results.len()
+            ))
+        }),
+    })
 }

@@ -3,7 +3,7 @@
 //! `trajectory.csv` of chosen bodies, `summary.json` and two figures (space–time picture of
 //! the contact modes; velocities of chosen bodies).
 
-use crate::artifacts::Artifacts;
+use crate::artifacts::{Artifacts, Made};
 use crate::commands::curve::used_parameters;
 use crate::commands::simulate::SimulateArgs;
 use crate::error::AppError;
@@ -314,8 +314,8 @@ pub fn grid_options(args: &SimulateArgs, t_end: f64, points: usize) -> Result<Op
     })
 }
 
-/// Runs `simulate` on a system.
-pub fn run(args: &SimulateArgs) -> Result<(), AppError> {
+/// Runs `simulate` on a system; its files in memory.
+pub fn make(args: &SimulateArgs) -> Result<Made, AppError> {
     let Described {
         system,
         name,
@@ -414,18 +414,21 @@ pub fn run(args: &SimulateArgs) -> Result<(), AppError> {
         stiffness_detected_at: run.solution.stiffness_detected_at,
     };
     files.add_json(args.out.join("summary.json"), &summary)?;
-    let written = files.write(&args.out)?;
-    println!(
-        "wrote {} files into {} ({} bodies, {} steps, {} events, {:.3} s)",
-        written.len(),
-        args.out.display(),
-        system.bodies.len(),
-        run.solution.stats.steps,
-        run.solution.stats.events,
-        run.wall_time_s
-    );
-    match run.error {
-        Some(e) => Err(AppError::Solver(e)),
-        None => Ok(()),
-    }
+    Ok(Made {
+        files,
+        notes: vec![format!(
+            "{} bodies, {} steps, {} events, {:.3} s",
+            system.bodies.len(),
+            run.solution.stats.steps,
+            run.solution.stats.events,
+            run.wall_time_s
+        )],
+        warnings: run
+            .solution
+            .stiffness_detected_at
+            .map(|t| crate::commands::simulate::stiffness_warning(method, t))
+            .into_iter()
+            .collect(),
+        failure: run.error.map(AppError::Solver),
+    })
 }

@@ -1,4 +1,4 @@
-//! The system file of `systems.md`: a TOML file of `[[body]]`, `[[anchor]]`, `[[spring]]`,
+//! The system file of `systems.md`: a TOML file (or the same keys as JSON, `.json`) of `[[body]]`, `[[anchor]]`, `[[spring]]`,
 //! `[[contact]]` and `[[force]]` tables, with an optional `param_set` that every contact
 //! starts from. Every error names the file, the table, the key and the allowed range.
 
@@ -108,12 +108,30 @@ pub fn read(path: &Path) -> Result<System, SystemFileError> {
             "larger than {MAX_FILE_BYTES} bytes, the most a system file may hold"
         )));
     }
-    parse(&text).map_err(error)
+    let json = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("json"));
+    if json {
+        parse_json(&text)
+    } else {
+        parse(&text)
+    }
+    .map_err(error)
 }
 
 /// Parses the text of a system file.
 pub fn parse(text: &str) -> Result<System, String> {
-    let file: FileSystem = toml::from_str(text).map_err(|e| e.to_string().trim().to_string())?;
+    build(toml::from_str(text).map_err(|e| e.to_string().trim().to_string())?)
+}
+
+/// Parses a system written as JSON with the keys and tables of the TOML file (each
+/// `[[table]]` an array of objects): how the Python package hands over `system=dict(...)`.
+pub fn parse_json(text: &str) -> Result<System, String> {
+    build(serde_json::from_str(text).map_err(|e| e.to_string())?)
+}
+
+/// The system a parsed file declares.
+fn build(file: FileSystem) -> Result<System, String> {
     let base = match &file.param_set {
         Some(name) => FrictionParams::named(name).map_err(|e| format!("`param_set`: {e}"))?,
         None => FrictionParams::paper(),

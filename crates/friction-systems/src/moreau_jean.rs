@@ -550,6 +550,9 @@ impl MoreauJean {
                 }
             }
             let t_k = t0 + k as f64 * h;
+            if integrators::interrupt::requested() {
+                return Err(SolverError::Interrupted { t: t_k });
+            }
             let t_next = if k + 1 == n_steps {
                 t_end
             } else {

@@ -1,6 +1,6 @@
 //! The system file: what it declares, and errors that name the table, the key and the range.
 
-use friction_systems::file::parse;
+use friction_systems::file::{parse, parse_json};
 use friction_systems::{End, Profile};
 
 const TWO_MASSES: &str = r#"
@@ -62,6 +62,35 @@ fn a_two_mass_file_declares_what_it_says() {
     assert_eq!(s.contacts[1].surface_velocity, 0.2);
     assert_eq!(s.contacts[1].model.n_states(), 1);
     assert_eq!(s.forces[0].profile, Profile::Ramp { rate: 0.5 });
+}
+
+/// `TWO_MASSES` with the same keys as JSON.
+const TWO_MASSES_JSON: &str = r#"{
+  "param_set": "paper",
+  "body": [{"name": "b1", "m": 1.0}, {"name": "b2", "m": 2.0, "x0": 0.1}],
+  "anchor": [{"name": "driver", "v": 0.1}],
+  "spring": [{"between": ["driver", "b1"], "k": 10.0},
+             {"between": ["b1", "b2"], "k": 100.0, "c": 0.5}],
+  "contact": [{"body": "b1", "model": "coulomb", "params": {"F_c": 1.0841}},
+              {"body": "b2", "surface_velocity": 0.2, "model": "lugre"}],
+  "force": [{"body": "b2", "constant": 1.0, "rate": 0.5}]
+}"#;
+
+#[test]
+fn the_same_system_as_json_declares_the_same() {
+    let (a, b) = (
+        parse(TWO_MASSES).unwrap(),
+        parse_json(TWO_MASSES_JSON).unwrap(),
+    );
+    assert_eq!(a.bodies, b.bodies);
+    assert_eq!(a.anchors, b.anchors);
+    assert_eq!(a.springs, b.springs);
+    assert_eq!(a.forces, b.forces);
+    assert_eq!(b.contacts[0].model.stick_interval(0.0, 0.0).upper, 1.0841);
+    assert_eq!(b.contacts[1].surface_velocity, 0.2);
+    // Unknown keys are refused in JSON as in TOML.
+    let e = parse_json(&TWO_MASSES_JSON.replace("\"x0\"", "\"x00\"")).unwrap_err();
+    assert!(e.contains("unknown field `x00`"), "{e}");
 }
 
 fn error_of(text: &str) -> String {

@@ -32,6 +32,12 @@ pub enum SolverError {
         /// The limit, s.
         limit: f64,
     },
+    /// A stop was requested from outside ([`crate::interrupt`]: Ctrl-C in the Python package).
+    #[error("interrupted at t = {t}")]
+    Interrupted {
+        /// Time reached.
+        t: f64,
+    },
     /// Newton's iteration failed even after the step was cut repeatedly.
     #[error(
         "Newton iteration diverged at t = {t} with h = {h:e} after {cuts} step-size cuts: {why}"

@@ -152,6 +152,11 @@ impl<'a> Integrator<'a> {
                 });
             }
         }
+        if crate::interrupt::requested() {
+            return Err(SolverError::Interrupted {
+                t: self.stepper.t(),
+            });
+        }
         let ode = Ode {
             problem: self.problem,
             modes: &self.modes,

@@ -19,6 +19,7 @@ pub mod error;
 pub mod events;
 pub mod implicit_euler;
 pub mod integrator;
+pub mod interrupt;
 pub mod linear;
 pub mod newton;
 pub mod options;

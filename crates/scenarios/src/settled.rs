@@ -72,7 +72,8 @@ pub struct Settled {
     /// Half the range of v, m/s.
     pub v_amplitude: f64,
     /// Half the range of v over the second half of the window over that over the first: 1
-    /// for a sustained oscillation, below 1 for one that dies out.
+    /// for a sustained oscillation, below 1 for one that dies out; undefined (NaN) when v is
+    /// constant over the first half (a motion that starts there is no decay).
     pub v_amplitude_ratio: f64,
     /// Mean velocity v̄, m/s.
     pub v_mean: f64,
@@ -80,6 +81,15 @@ pub struct Settled {
     pub friction_mean: f64,
     /// Largest |friction|, N.
     pub friction_peak: f64,
+}
+
+/// `late / early`, undefined (NaN) where `early` is zero.
+fn ratio(late: f64, early: f64) -> f64 {
+    if early > 0.0 {
+        late / early
+    } else {
+        f64::NAN
+    }
 }
 
 /// The time mean of `y` over the samples `k` of `t` (trapezoidal).
@@ -168,7 +178,7 @@ impl Settled {
             period,
             x_amplitude: range(&|i| trace.x[i] - v_mean * t[i]),
             v_amplitude: range(&v_of),
-            v_amplitude_ratio: half_range(second, &v_of) / half_range(first, &v_of),
+            v_amplitude_ratio: ratio(half_range(second, &v_of), half_range(first, &v_of)),
             v_mean,
             friction_mean: time_mean(t, &trace.friction, &k),
             friction_peak: k

@@ -65,3 +65,28 @@ fn steady_sliding_has_no_period_and_no_stick() {
     assert_eq!(s.stick_phases, 0);
     assert!(s.x_amplitude.abs() < 1e-12 && s.v_amplitude.abs() < 1e-12);
 }
+
+#[test]
+fn a_motion_that_starts_late_in_the_window_has_no_decay_ratio() {
+    // Stuck at v̄ over the first half of the settled window, oscillating in the second: the
+    // ratio of the halves' amplitudes is undefined (it was infinite, and sweep.csv refused
+    // to write it).
+    let mut trace = harmonic(0.3, 0.02, 7.0, 2.0);
+    let t_mid = 0.75 * trace.t.last().unwrap();
+    for (t, v) in trace.t.iter().zip(trace.v.iter_mut()) {
+        if *t < t_mid {
+            *v = 0.3;
+        }
+    }
+    let s = Settled::of(&trace, 0.5);
+    assert!(s.v_amplitude > 0.1, "{}", s.v_amplitude);
+    assert!(s.v_amplitude_ratio.is_nan(), "{}", s.v_amplitude_ratio);
+    // A decaying one keeps its ratio below one.
+    let mut decaying = harmonic(0.3, 0.02, 7.0, 2.0);
+    let t_end = *decaying.t.last().unwrap();
+    for (t, v) in decaying.t.iter().zip(decaying.v.iter_mut()) {
+        *v = 0.3 + (*v - 0.3) * (-t / t_end).exp();
+    }
+    let r = Settled::of(&decaying, 0.5).v_amplitude_ratio;
+    assert!(r > 0.5 && r < 1.0, "{r}");
+}

@@ -1,0 +1,99 @@
+"""friction_lab: dry-friction models and the solvers that integrate them, in a notebook.
+
+The same models, rigs, systems and solvers as the ``friction-lab`` command line, called in
+memory: keyword arguments are the command line's options (``rtol=1e-8`` is ``--rtol 1e-8``,
+``params={"v_belt": 0.1}`` is ``--set v_belt=0.1``), results are numpy arrays and pandas
+DataFrames with the columns of the files the command line writes (docs/files.md). Bad input
+raises ``ValueError`` with the command line's message; a solver failure raises
+:class:`SolverError`, whose ``result`` keeps what was computed. Long runs release the GIL,
+and Ctrl-C stops them. See docs/python.md.
+"""
+
+from __future__ import annotations
+
+import json
+from typing import Any, Dict, List, Optional
+
+import numpy as np
+
+from . import _native
+from ._command import SolverError, SystemFile, run, words
+from ._result import Result, Study
+from ._sweep import sweep
+
+
+__all__ = ["models", "curve", "simulate", "converge", "independence", "work_precision",
+           "stiffness", "sweep", "Result", "Study", "SolverError"]
+
+
+def models() -> List[Dict[str, Any]]:
+    """Every model: ``name``, ``title``, ``equation`` (and ``equation_printed`` where the
+    paper prints another), and ``parameters``, each a dict with ``name``, ``unit``,
+    ``default``, ``range`` (``min``, ``max``, inclusive flags) and ``range_text``."""
+    listing = json.loads(_native.models_json())
+    by_name = {p["name"]: p for p in listing["parameters"]}
+    keep = ("name", "unit", "meaning", "default", "range", "range_text")
+    return [dict(m, parameters=[{k: by_name[p][k] for k in keep} for p in m["parameters"]])
+            for m in listing["models"]]
+
+
+def curve(model: str, params: Optional[Dict[str, float]] = None, **options: Any) -> Dict[str, np.ndarray]:
+    """One friction curve, as ``friction-lab curve MODEL`` writes it: a dict of the CSV's
+    columns (``v`` or ``x``, ``F``, and the admissible band at rest where there is one).
+    Options: ``points``, ``v_max``, ``variant``, ``param_set``, ... (``friction-lab curve
+    --help``)."""
+    made = run(words("curve", model, params=params, **options))
+    name = next(n for n in made.files if n.endswith(".csv"))
+    frame = made.table(name)
+    return {c: frame[c].to_numpy() for c in frame.columns}
+
+
+def simulate(scenario: Optional[str] = None, *, system: Any = None,
+             params: Optional[Dict[str, float]] = None, **options: Any) -> Result:
+    """One run of a rig (``"belt"``, ``"paper-block"``, ...), of the chain (``"chain"``), or
+    of a system (``system=`` a TOML or JSON file, or a dict with the keys of systems.md).
+    Options: ``model``, ``solver``, ``switching``, ``theta``, ``t_end``, ``rtol``, ``atol``,
+    ``dt``, ``fixed_step``, ``points``, ``bodies``, ``variant``, ``param_set``,
+    ``max_steps``, ``time_limit`` (``friction-lab simulate --help``)."""
+    with SystemFile(system) if system is not None else _NoFile() as f:
+        made = run(words("simulate", scenario, system=f.path, params=params, **options))
+    result = Result(made)
+    if made.failure is not None:
+        raise SolverError(made.failure, result)
+    return result
+
+
+def _study(command: str, scenario: str, params: Optional[Dict[str, float]],
+           options: Dict[str, Any]) -> Study:
+    made = run(words(command, scenario, params=params, **options))
+    return Study(made, command)
+
+
+def converge(scenario: str, *, params: Optional[Dict[str, float]] = None, **options: Any) -> Study:
+    """Observed orders against a reference (``friction-lab converge --help``)."""
+    return _study("converge", scenario, params, options)
+
+
+def independence(scenario: str, *, params: Optional[Dict[str, float]] = None, **options: Any) -> Study:
+    """Step-size independence with a Richardson estimate (``friction-lab independence``)."""
+    return _study("independence", scenario, params, options)
+
+
+def work_precision(scenario: str, *, params: Optional[Dict[str, float]] = None, **options: Any) -> Study:
+    """Error against work for every solver (``friction-lab work-precision --help``)."""
+    return _study("work-precision", scenario, params, options)
+
+
+def stiffness(scenario: str, *, params: Optional[Dict[str, float]] = None, **options: Any) -> Study:
+    """Where the implicit solvers overtake the explicit ones (``friction-lab stiffness``)."""
+    return _study("stiffness", scenario, params, options)
+
+
+class _NoFile:
+    path = None
+
+    def __enter__(self) -> "_NoFile":
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        pass

@@ -1,0 +1,161 @@
+"""Keyword arguments to command-line words, and a command's files back as tables.
+
+Every function of the package runs a command of the ``friction-lab`` program in memory
+(``_native.run``): its keyword arguments become that command's options, so each default,
+range check and error message is the command line's own (docs/python.md lists them).
+"""
+
+from __future__ import annotations
+
+import io
+import json
+import math
+import numbers
+import os
+import tempfile
+import warnings
+from dataclasses import dataclass, field
+from typing import Any, Dict, List, Mapping, Optional, Union
+
+import pandas as pd
+
+from . import _native
+
+
+def _word(name: str, value: Any) -> str:
+    """One option value as the command line spells it; floats in their shortest round-trip
+    form, so the Rust side reads back the very same double."""
+    if isinstance(value, bool):
+        raise ValueError(f"option `{name}` = {value!r}: a number or a word is expected")
+    if isinstance(value, numbers.Integral):
+        return str(int(value))
+    if isinstance(value, numbers.Real):
+        return repr(float(value))
+    if isinstance(value, (str, os.PathLike)):
+        return os.fspath(value)
+    raise ValueError(f"option `{name}` = {value!r}: a number or a word is expected")
+
+
+def _flag(name: str) -> str:
+    return "--" + name.replace("_", "-")
+
+
+def words(command: str, *positional: Optional[str], **options: Any) -> List[str]:
+    """The words of ``friction-lab COMMAND [POSITIONAL] --option value ...``.
+
+    ``params`` (a mapping of parameter names to values) becomes ``--set NAME=VALUE`` for each
+    item and ``grid`` (a mapping of names to lists, or to range strings such as
+    ``"log:0.01:1:9"``) becomes ``--grid NAME=...``; ``True`` is a bare flag, ``False`` and
+    ``None`` leave the option out, and a list or tuple is written comma-separated.
+    """
+    argv = [command] + [p for p in positional if p is not None]
+    for name, value in options.items():
+        if value is None or value is False:
+            continue
+        if name == "params":
+            for key, v in dict(value).items():
+                argv += ["--set", f"{key}={_word(key, v)}"]
+        elif name == "grid":
+            for key, values in dict(value).items():
+                text = values if isinstance(values, str) else ",".join(_word(key, v) for v in values)
+                argv += ["--grid", f"{key}={text}"]
+        elif value is True:
+            argv.append(_flag(name))
+        elif isinstance(value, (list, tuple)):
+            argv += [_flag(name), ",".join(_word(name, v) for v in value)]
+        else:
+            argv += [_flag(name), _word(name, value)]
+    return argv
+
+
+#: pandas before 3 parses floats fast but not always exactly unless asked; from 3 on exact
+#: parsing is the default and the option is deprecated.
+EXACT_FLOATS = {"float_precision": "round_trip"} if int(pd.__version__.split(".")[0]) < 3 else {}
+
+
+def table(data: Union[bytes, str, os.PathLike]) -> pd.DataFrame:
+    """A CSV file of the command line (its bytes, or a path) as a DataFrame: numbers read
+    back exactly (the files hold each double in its shortest round-trip form), empty cells
+    as NaN."""
+    source = io.BytesIO(data) if isinstance(data, bytes) else data
+    return pd.read_csv(source, keep_default_na=False, na_values=[""], **EXACT_FLOATS)
+
+
+@dataclass
+class Made:
+    """What one command made: its data files by name, the lines it would print, and the
+    message of a run that failed part-way (the files keep what was computed)."""
+
+    files: Dict[str, bytes]
+    notes: List[str] = field(default_factory=list)
+    failure: Optional[str] = None
+
+    def table(self, name: str) -> pd.DataFrame:
+        """The CSV file ``name`` as a DataFrame."""
+        return table(self.files[name])
+
+    def json(self, name: str) -> Any:
+        """The JSON file ``name``, parsed."""
+        return json.loads(self.files[name])
+
+
+class SolverError(RuntimeError):
+    """A run failed in the solver, or a sweep had failed points; ``result`` keeps what was
+    computed (a :class:`Result`, a :class:`Study` or a sweep's DataFrame), or is ``None``
+    when the failure left nothing to keep."""
+
+    def __init__(self, message: str, result: Any = None):
+        super().__init__(message)
+        self.result = result
+
+
+def run(argv: List[str]) -> Made:
+    """Runs ``friction-lab ARGV`` in memory (GIL released, Ctrl-C honoured). Bad input raises
+    ``ValueError``; a failure with no result raises ``SolverError``."""
+    try:
+        files, notes, advice, failure = _native.run(argv)
+    except _native.SolverError as e:
+        raise SolverError(str(e)) from None
+    for line in advice:
+        warnings.warn(line, RuntimeWarning, stacklevel=3)
+    return Made(dict(files), list(notes), failure)
+
+
+class SystemFile:
+    """A system given as a path, or as a dict with the keys of ``systems.md`` (written as a
+    temporary JSON file for the duration of the call)."""
+
+    def __init__(self, system: Any):
+        self._temporary = None
+        if isinstance(system, Mapping):
+            self._temporary = tempfile.NamedTemporaryFile(
+                "w", suffix=".json", prefix="friction-lab-system-", delete=False)
+            json.dump(_plain(system), self._temporary)
+            self._temporary.close()
+            self.path = self._temporary.name
+        else:
+            self.path = os.fspath(system)
+
+    def __enter__(self) -> "SystemFile":
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        if self._temporary is not None:
+            os.unlink(self._temporary.name)
+
+
+def _plain(value: Any) -> Any:
+    """``value`` with numpy scalars and tuples made plain JSON; a non-finite number refused."""
+    if isinstance(value, Mapping):
+        return {str(k): _plain(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) for v in value]
+    if isinstance(value, bool) or isinstance(value, str):
+        return value
+    if isinstance(value, numbers.Integral):
+        return int(value)
+    if isinstance(value, numbers.Real):
+        if not math.isfinite(value):
+            raise ValueError(f"system: {value!r} is not a finite number")
+        return float(value)
+    return value

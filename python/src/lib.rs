@@ -1,0 +1,148 @@
+//! `friction_lab._native`: the friction-lab library called from Python, in memory.
+//!
+//! One entry point runs a command of the command line: its options arrive as the words of a
+//! command line (the Python layer turns keyword arguments into them), are parsed and checked
+//! by the same `clap` definitions and the same range checks, and the command's data files
+//! (CSV and JSON, the bytes the command line would write) come back in memory, with no figure
+//! drawn. So every default, every check and every message is the command line's, and no law,
+//! rig or solver exists twice. The run happens on a worker thread with the GIL released; the
+//! calling thread watches for Ctrl-C and stops the solvers through
+//! [`integrators::interrupt`].
+
+use clap::Parser;
+use friction_lab::error::AppError;
+use pyo3::create_exception;
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyBytes;
+use std::path::Path;
+use std::sync::{mpsc, Mutex};
+use std::time::Duration;
+
+create_exception!(
+    _native,
+    SolverError,
+    PyRuntimeError,
+    "A run failed in the solver (or a sweep had failed points); `result` keeps what was computed."
+);
+
+/// How often the calling thread looks for Ctrl-C while a run goes on.
+const SIGNAL_POLL: Duration = Duration::from_millis(50);
+
+/// The folder the commands are told to write into: only a prefix stripped from the names of
+/// the files returned; nothing is written.
+const IN_MEMORY: &str = ".";
+
+/// What a command made, for the Python layer: `(files, notes, warnings, failure)`, where
+/// `files` maps each data file's name (relative to the output folder, e.g. `trajectory.csv`)
+/// to its bytes, `notes` and `warnings` are the lines the command line prints on stdout and
+/// stderr, and `failure` is the message of a run that failed after computing part of its
+/// result (the files keep that part), or `None`.
+type Made = (
+    Vec<(String, Py<PyBytes>)>,
+    Vec<String>,
+    Vec<String>,
+    Option<String>,
+);
+
+/// Runs `friction-lab ARGV...` (the program name not included) in memory. Bad input raises
+/// `ValueError` with the command line's message; a failure without a result raises
+/// `SolverError`; Ctrl-C stops the solvers and raises `KeyboardInterrupt`.
+#[pyfunction]
+fn run(py: Python<'_>, argv: Vec<String>) -> PyResult<Made> {
+    let words = std::iter::once("friction-lab".to_string())
+        .chain(argv)
+        .chain(["--out".to_string(), IN_MEMORY.to_string()]);
+    let cli = friction_lab::Cli::try_parse_from(words).map_err(|e| usage(&e))?;
+    let made = interruptible(py, || friction_lab::make(&cli.command))?.map_err(to_python)?;
+    let files = made
+        .files
+        .data(Path::new(IN_MEMORY))
+        .into_iter()
+        .map(|(name, bytes)| (name.display().to_string(), PyBytes::new(py, bytes).unbind()))
+        .collect();
+    Ok((
+        files,
+        made.notes,
+        made.warnings,
+        made.failure.map(|e| e.to_string()),
+    ))
+}
+
+/// The listing of `friction-lab models --json`.
+#[pyfunction]
+fn models_json() -> String {
+    friction_lab::commands::models::json()
+}
+
+/// A command-line parse error as `ValueError`: clap's message without its `error: ` prefix
+/// and the closing hint about `--help`.
+fn usage(e: &clap::Error) -> PyErr {
+    let text = e.to_string();
+    let message: Vec<&str> = text
+        .lines()
+        .filter(|l| !l.starts_with("For more information"))
+        .collect();
+    let message = message.join("\n");
+    let message = message.trim().trim_start_matches("error: ");
+    PyValueError::new_err(message.to_string())
+}
+
+/// A failed command: bad input (exit code 2) as `ValueError`, anything else as `SolverError`;
+/// the message is the one the command line prints after `error: `.
+fn to_python(e: AppError) -> PyErr {
+    if e.exit_code() == 2 {
+        PyValueError::new_err(e.to_string())
+    } else {
+        SolverError::new_err(e.to_string())
+    }
+}
+
+/// Runs `work` on a worker thread with the GIL released, looking for Ctrl-C on the calling
+/// thread every [`SIGNAL_POLL`]: on `KeyboardInterrupt` (or any exception a signal handler
+/// raises) the solvers are asked to stop, the worker is awaited, and the exception is raised.
+fn interruptible<T: Send>(py: Python<'_>, work: impl FnOnce() -> T + Send) -> PyResult<T> {
+    std::thread::scope(|scope| {
+        let (done, finished) = mpsc::channel();
+        // Behind a lock only so that the closure handed to `detach` may borrow it.
+        let finished = Mutex::new(finished);
+        let worker = scope.spawn(move || {
+            let result = work();
+            // The receiver outlives the worker: the calling thread waits for it below.
+            let _ = done.send(());
+            result
+        });
+        let mut signal = None;
+        let wait = || {
+            let finished = finished.lock().unwrap_or_else(|e| e.into_inner());
+            finished.recv_timeout(SIGNAL_POLL)
+        };
+        while py.detach(wait).is_err() {
+            if signal.is_none() {
+                if let Err(e) = py.check_signals() {
+                    integrators::interrupt::request();
+                    signal = Some(e);
+                }
+            }
+            if worker.is_finished() {
+                break;
+            }
+        }
+        let result = py.detach(|| worker.join());
+        if let Some(e) = signal {
+            integrators::interrupt::clear();
+            return Err(e);
+        }
+        result
+            .map_err(|_| PyRuntimeError::new_err("friction-lab panicked (a bug: please report it)"))
+    })
+}
+
+/// The module `friction_lab._native`.
+#[pymodule]
+fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(run, m)?)?;
+    m.add_function(wrap_pyfunction!(models_json, m)?)?;
+    m.add("SolverError", m.py().get_type::<SolverError>())?;
+    Ok(())
+}

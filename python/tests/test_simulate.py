@@ -1,0 +1,119 @@
+"""simulate(): rigs and systems, equal to the command line's files and to closed forms."""
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import friction_lab as fl
+from friction_lab._command import table as read
+
+CHAIN_TOML = """
+[[body]]
+name = "b1"
+m = 1.0
+
+[[body]]
+name = "b2"
+m = 2.0
+
+[[anchor]]
+name = "driver"
+v = 0.1
+
+[[spring]]
+between = ["driver", "b1"]
+k = 10.0
+
+[[spring]]
+between = ["b1", "b2"]
+k = 100.0
+
+[[contact]]
+body = "b1"
+model = "coulomb"
+
+[[contact]]
+body = "b2"
+model = "coulomb"
+params = { F_c = 3.0 }
+"""
+
+CHAIN_DICT = {
+    "body": [{"name": "b1", "m": 1.0}, {"name": "b2", "m": 2.0}],
+    "anchor": [{"name": "driver", "v": 0.1}],
+    "spring": [{"between": ["driver", "b1"], "k": 10.0}, {"between": ["b1", "b2"], "k": 100.0}],
+    "contact": [{"body": "b1", "model": "coulomb"},
+                {"body": "b2", "model": "coulomb", "params": {"F_c": 3.0}}],
+}
+
+
+
+
+def test_a_rig_equals_the_command_lines_trajectory(cli, tmp_path):
+    r = fl.simulate("belt", model="CVS", solver="dopri5", switching="event",
+                    params={"v_belt": 0.1}, t_end=20.0, rtol=1e-8, atol=1e-10)
+    done = cli("simulate", "belt", "--model", "CVS", "--set", "v_belt=0.1", "--t-end", "20",
+               "--rtol", "1e-8", "--atol", "1e-10", "--out", tmp_path / "belt")
+    assert done.returncode == 0, done.stderr
+    pd.testing.assert_frame_equal(r.to_pandas(), read(tmp_path / "belt" / "trajectory.csv"),
+                                  check_exact=True)
+    assert r.t.shape == r.x.shape == r.v.shape == r.friction.shape == r.mode.shape
+    assert r.summary["status"] == "ok" and r.stats["events"] == len(r.events) > 10
+    assert list(r.events.columns) == ["t", "body", "from", "to"]
+    # During stick the block moves with the belt; each event leaves the mode the last one
+    # entered.
+    assert np.all(r.v[r.mode == "stick"] == 0.1)
+    assert (r.events["from"].iloc[1:].to_numpy() == r.events["to"].iloc[:-1].to_numpy()).all()
+
+
+def test_coulomb_block_pushed_past_friction_follows_the_closed_form():
+    # paper-block: m = 1 kg pushed by F_ex = 15 N against Coulomb F_c = 6 N from rest:
+    # a = 9 m/s², x = 4.5 t², until the end.
+    r = fl.simulate("paper-block", model="coulomb", params={"F_c": 6.0}, t_end=2.0)
+    assert r.summary["parameters"]["F_ex"] == 15.0
+    assert np.allclose(r.v, 9.0 * r.t, rtol=0, atol=1e-9)
+    assert np.allclose(r.x, 4.5 * r.t ** 2, rtol=0, atol=1e-9)
+
+
+def test_a_system_from_a_dict_equals_the_same_file_and_is_time_by_body(tmp_path):
+    path = tmp_path / "chain.toml"
+    path.write_text(CHAIN_TOML)
+    a = fl.simulate(system=str(path), t_end=10.0)
+    b = fl.simulate(system=CHAIN_DICT, t_end=10.0)
+    pd.testing.assert_frame_equal(a.to_pandas(), b.to_pandas(), check_exact=True)
+    assert b.bodies == ["b1", "b2"]
+    assert b.x.shape == (len(b.t), 2) and b.mode.shape == (len(b.t), 2)
+    assert np.array_equal(b.x[:, 1], b.to_pandas().query("body == 'b2'")["x"].to_numpy())
+    assert list(b.events.columns) == ["t", "body", "from", "to"] and len(b.events) > 0
+    assert set(b.events["body"]) <= {"b1", "b2"}
+
+
+def test_the_chain_by_name_time_stepped():
+    r = fl.simulate("chain", model="coulomb", params={"n_bodies": 30}, t_end=5.0,
+                    switching="timestepping", dt=1e-3, bodies=[1, 15, 30])
+    assert r.bodies == ["b1", "b15", "b30"]
+    assert r.x.shape == (len(r.t), 3)
+    assert r.summary["stats"]["steps"] == 5000
+
+
+def test_a_solver_failure_raises_solver_error_with_the_partial_result():
+    with pytest.raises(fl.SolverError) as e:
+        fl.simulate("belt", model="CVS", max_steps=50)
+    assert "too many steps" in str(e.value)
+    partial = e.value.result
+    assert partial.summary["status"] == "failed"
+    assert 0 < partial.t[-1] < 20.0 and partial.stats["steps"] == 50
+
+
+def test_bad_options_raise_value_error_naming_the_field(cli, tmp_path):
+    with pytest.raises(ValueError) as e:
+        fl.simulate("belt", model="CVS", rtol=-1.0)
+    assert str(e.value) == "option `rtol` = -1 is out of range: allowed [1e-14, 1]"
+    done = cli("simulate", "belt", "--model", "CVS", "--rtol", "-1", "--out", tmp_path / "x")
+    assert (done.returncode, done.stderr.strip()) == (2, f"error: {e.value}")
+    with pytest.raises(ValueError, match="v_belt"):
+        fl.simulate("belt", model="CVS", params={"v_belt": float("nan")})
+    with pytest.raises(ValueError, match="not a finite number"):
+        fl.simulate(system={"body": [{"name": "b", "m": float("inf")}]})
+    with pytest.raises(ValueError, match="unknown field `mass`"):
+        fl.simulate(system={"body": [{"name": "b", "mass": 1.0}]})

@@ -1,0 +1,94 @@
+"""sweep() in process and on Dask, the studies, the GIL and Ctrl-C."""
+
+import os
+import signal
+import threading
+import time
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import friction_lab as fl
+from friction_lab._command import table as read
+
+GRID = {"v_belt": [0.01, 0.02, 0.05, 0.1], "k": [10, 100, 1000]}
+
+
+
+
+def test_an_in_process_sweep_equals_the_command_lines(cli, tmp_path):
+    df = fl.sweep("belt", model="CVS", grid=GRID)
+    done = cli("sweep", "belt", "--model", "CVS", "--grid", "v_belt=0.01,0.02,0.05,0.1",
+               "--grid", "k=10,100,1000", "--out", tmp_path / "s")
+    assert done.returncode == 0, done.stderr
+    pd.testing.assert_frame_equal(df, read(tmp_path / "s" / "sweep.csv"), check_exact=True)
+    assert len(df) == 12 and list(df.columns[:2]) == ["v_belt", "k"]
+    # The grid's order: the first axis varies slowest.
+    assert df["v_belt"].tolist() == [v for v in GRID["v_belt"] for _ in GRID["k"]]
+    # Stick-slip at k = 100 below the Stribeck velocity: the closed-form period of the belt
+    # test (docs/sweep.md) is near one second at v_belt = 0.05.
+    row = df[(df.v_belt == 0.05) & (df.k == 100)].iloc[0]
+    assert row.stick_phases > 0 and 0.9 < row.period < 1.3
+    assert (df["status"] == "ok").all()
+
+
+def test_a_sweep_on_a_two_worker_local_cluster_equals_the_in_process_one():
+    distributed = pytest.importorskip("distributed")
+    local = fl.sweep("belt", model="CVS", grid=GRID, threads=1)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as cluster, \
+            distributed.Client(cluster) as client:
+        on_dask = fl.sweep("belt", model="CVS", grid=GRID, client=client, chunk_size=5)
+        # Bad input is refused before any task is sent.
+        with pytest.raises(ValueError, match="v_belt"):
+            fl.sweep("belt", model="CVS", grid={"v_belt": [0.1, -1.0e300 * 1e10]}, client=client)
+    pd.testing.assert_frame_equal(on_dask, local, check_exact=True)
+
+
+def test_sweep_checks_its_grid():
+    with pytest.raises(ValueError, match="option `grid`"):
+        fl.sweep("belt", model="CVS", grid={"v_belt": "1:2"})
+    with pytest.raises(ValueError, match="point-range"):
+        fl.sweep("belt", model="CVS", grid={"v_belt": [0.1]}, point_range="0:5")
+
+
+def test_a_convergence_study_measures_rk4s_fourth_order():
+    s = fl.converge("free-vibration", model="viscous", solvers=["rk4"],
+                    dt_list=[0.02, 0.01, 0.005, 0.0025], t_end=2.0)
+    assert "converge" in s.tables and len(s.runs) == 4
+    slopes = [o["fitted_slope"] for o in s.summary["orders"] if o["solver"] == "rk4"]
+    assert slopes and all(abs(p - 4.0) < 0.3 for p in slopes), slopes
+    assert any("fitted slope" in n for n in s.notes)
+
+
+def test_a_long_run_releases_the_gil():
+    counted = []
+
+    def work():
+        with pytest.raises(fl.SolverError, match="time limit"):
+            fl.simulate("chain", model="coulomb", params={"n_bodies": 2000}, t_end=1000.0,
+                        switching="timestepping", points=101, time_limit=1.0)
+
+    worker = threading.Thread(target=work)
+    worker.start()
+    n = 0
+    while worker.is_alive():
+        n += 1
+    worker.join()
+    counted.append(n)
+    # Python ran beside the solver: a held GIL would have allowed a few switches at most.
+    assert counted[0] > 100_000, counted
+
+
+def test_ctrl_c_stops_a_long_run_and_the_next_run_works():
+    timer = threading.Timer(0.5, os.kill, (os.getpid(), signal.SIGINT))
+    start = time.monotonic()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        # About a minute of work if nothing stopped it.
+        fl.simulate("chain", model="coulomb", params={"n_bodies": 2000}, t_end=1000.0,
+                    switching="timestepping", points=101)
+    assert time.monotonic() - start < 5.0
+    r = fl.simulate("belt", model="CVS", t_end=1.0)
+    assert r.summary["status"] == "ok" and np.isclose(r.t[-1], 1.0)
