@@ -54,9 +54,14 @@ def test_sweep_checks_its_grid():
 
 
 def test_a_convergence_study_measures_rk4s_fourth_order():
-    s = fl.converge("free-vibration", model="viscous", solvers=["rk4"],
-                    dt_list=[0.02, 0.01, 0.005, 0.0025], t_end=2.0)
-    assert "converge" in s.tables and len(s.runs) == 4
+    s = fl.converge("free-vibration", model="viscous", solvers=["rk4", "bdf"],
+                    dt_list=[0.02, 0.01, 0.005, 0.0025], tol_list=[1e-4, 1e-6], t_end=2.0)
+    assert "converge" in s.tables and len(s.runs) == 6
+    # A step size in `h`, a tolerance in `tol`: one quantity per column.
+    rk4, bdf = s.runs[s.runs.solver == "rk4"], s.runs[s.runs.solver == "bdf"]
+    assert rk4["h"].tolist() == [0.02, 0.01, 0.005, 0.0025] and rk4["tol"].isna().all()
+    assert bdf["tol"].tolist() == [1e-4, 1e-6] and bdf["h"].isna().all()
+    assert set(s.runs["step"]) == {"fixed", "adaptive"}
     slopes = [o["fitted_slope"] for o in s.summary["orders"] if o["solver"] == "rk4"]
     assert slopes and all(abs(p - 4.0) < 0.3 for p in slopes), slopes
     assert any("fitted slope" in n for n in s.notes)

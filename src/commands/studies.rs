@@ -189,12 +189,25 @@ fn study_error(e: scenarios::ScenarioError) -> AppError {
     AppError::from(e)
 }
 
-/// One CSV row per run: solver, resolution, the errors, the work.
+/// The columns `h` and `tol` of a run with `resolution` of kind `step` (`fixed`: a step
+/// size, `adaptive`: a tolerance): the one that applies, the other empty, so that each column
+/// holds one quantity.
+fn resolution_cells(step: Option<&str>, resolution: Option<f64>) -> [Cell; 2] {
+    let empty = || Cell::Text(String::new());
+    match (step, resolution) {
+        (Some("fixed"), Some(h)) => [Cell::Num(h), empty()],
+        (Some(_), Some(tol)) => [empty(), Cell::Num(tol)],
+        _ => [empty(), empty()],
+    }
+}
+
+/// One CSV row per run: solver, step size or tolerance, the errors, the work.
 fn runs_table(runs: &[StudyRun], path: &Path) -> Result<Vec<u8>, AppError> {
     let mut t = Table::new(&[
         "solver",
         "step",
-        "resolution",
+        "h",
+        "tol",
         "work",
         "error_final_state",
         "error_grid_max",
@@ -213,10 +226,12 @@ fn runs_table(runs: &[StudyRun], path: &Path) -> Result<Vec<u8>, AppError> {
         // A missing measure (no events to compare) is written as an empty cell, never NaN.
         let num = Cell::num;
         let s = r.stats;
+        let [h, tol] = resolution_cells(Some(r.step), Some(r.resolution));
         t.rows.push(vec![
             Cell::Text(r.solver.clone()),
             Cell::Text(r.step.into()),
-            Cell::Num(r.resolution),
+            h,
+            tol,
             Cell::Num(r.work as f64),
             num(r.errors.final_state),
             num(r.errors.grid_max),
@@ -522,7 +537,8 @@ pub fn add_independence(
     let mut table = Table::new(&[
         "output",
         "level",
-        "resolution",
+        "h",
+        "tol",
         "value",
         "difference_to_previous",
         "remaining_error",
@@ -530,10 +546,12 @@ pub fn add_independence(
     ]);
     for o in &s.outputs {
         for (i, v) in o.values.iter().enumerate() {
+            let [h, tol] = resolution_cells(Some(s.step), Some(s.resolutions[i]));
             table.rows.push(vec![
                 Cell::Text(o.name.clone()),
                 Cell::Num(i as f64),
-                Cell::Num(s.resolutions[i]),
+                h,
+                tol,
                 Cell::Num(*v),
                 if i == 0 {
                     Cell::Text(String::new())
@@ -689,13 +707,12 @@ pub fn add_work_precision(
     b.finish();
     let csv = dir.join(format!("{stem}.csv"));
     t.files.add(csv.clone(), runs_table(&w.runs, &csv)?);
-    let mut timing = Table::new(&["solver", "resolution", "wall_time_median_s"]);
+    let mut timing = Table::new(&["solver", "h", "tol", "wall_time_median_s"]);
     for (r, t) in w.runs.iter().zip(&w.wall_median_s) {
-        timing.rows.push(vec![
-            Cell::Text(r.solver.clone()),
-            Cell::Num(r.resolution),
-            Cell::Num(*t),
-        ]);
+        let [h, tol] = resolution_cells(Some(r.step), Some(r.resolution));
+        timing
+            .rows
+            .push(vec![Cell::Text(r.solver.clone()), h, tol, Cell::Num(*t)]);
     }
     let timing_csv = dir.join(format!("{stem}-timing.csv"));
     t.files.add(timing_csv.clone(), timing.to_csv(&timing_csv)?);
@@ -829,7 +846,8 @@ pub fn add_stiffness(
         "solver",
         "implicit",
         "reached",
-        "resolution",
+        "h",
+        "tol",
         "error",
         "rhs_evals",
         "jacobian_evals",
@@ -838,13 +856,15 @@ pub fn add_stiffness(
     ]);
     for p in &s.points {
         for c in &p.costs {
+            // Numeric columns hold numbers or nothing: `reached` says why both are empty.
+            let [h, tol] = resolution_cells(c.step, c.resolution);
             table.rows.push(vec![
                 Cell::Num(p.value),
                 Cell::Text(c.solver.clone()),
                 Cell::Text(c.implicit.to_string()),
                 Cell::Text(c.resolution.is_some().to_string()),
-                // Numeric columns hold numbers or nothing: `reached` says why one is empty.
-                c.resolution.map_or(Cell::Text(String::new()), Cell::Num),
+                h,
+                tol,
                 Cell::num(c.error),
                 Cell::Num(c.stats.rhs_evals as f64),
                 Cell::Num(c.stats.jacobian_evals as f64),
@@ -962,7 +982,8 @@ pub fn add_scaling(
     let mut table = Table::new(&[
         "bodies",
         "solver",
-        "resolution",
+        "h",
+        "tol",
         "steps",
         "work",
         "work_per_step",
@@ -972,12 +993,14 @@ pub fn add_scaling(
         "events",
         "status",
     ]);
-    let mut timing = Table::new(&["bodies", "solver", "resolution", "wall_time_s"]);
+    let mut timing = Table::new(&["bodies", "solver", "h", "tol", "wall_time_s"]);
     for r in &s.runs {
+        let [h, tol] = resolution_cells(Some(r.step), Some(r.resolution));
         table.rows.push(vec![
             Cell::Num(r.size as f64),
             Cell::Text(r.solver.clone()),
-            Cell::Num(r.resolution),
+            h.clone(),
+            tol.clone(),
             Cell::Num(r.stats.steps as f64),
             Cell::Num(r.work as f64),
             Cell::Num(r.work_per_step),
@@ -990,7 +1013,8 @@ pub fn add_scaling(
         timing.rows.push(vec![
             Cell::Num(r.size as f64),
             Cell::Text(r.solver.clone()),
-            Cell::Num(r.resolution),
+            h,
+            tol,
             Cell::Num(r.wall_time_s),
         ]);
     }

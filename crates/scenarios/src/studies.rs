@@ -213,6 +213,23 @@ pub fn reference(
     ))
 }
 
+/// The resolution of a run: its step size (fixed steps, s) or its tolerance (adaptive: rtol,
+/// equal to atol in the studies).
+pub fn resolution(step: StepControl) -> f64 {
+    match step {
+        StepControl::Fixed { h } => h,
+        StepControl::Adaptive { rtol, .. } => rtol,
+    }
+}
+
+/// Which a resolution is: `fixed` (a step size) or `adaptive` (a tolerance).
+pub fn step_kind(step: StepControl) -> &'static str {
+    match step {
+        StepControl::Fixed { .. } => "fixed",
+        StepControl::Adaptive { .. } => "adaptive",
+    }
+}
+
 /// One run of a study.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct StudyRun {
@@ -267,10 +284,6 @@ pub fn run_all(
     progress: &(dyn Fn() + Sync),
 ) -> Result<Vec<StudyRun>, ScenarioError> {
     let dim = case.dim()?;
-    let resolution = |step: StepControl| match step {
-        StepControl::Fixed { h } => h,
-        StepControl::Adaptive { rtol, .. } => rtol,
-    };
     let mut order: Vec<usize> = (0..jobs.len()).collect();
     order.sort_by(|&a, &b| resolution(jobs[a].1).total_cmp(&resolution(jobs[b].1)));
     let mut runs: Vec<(usize, StudyRun)> = order
@@ -283,10 +296,7 @@ pub fn run_all(
             let run = StudyRun {
                 solver: method.label(),
                 resolution: resolution(step),
-                step: match step {
-                    StepControl::Fixed { .. } => "fixed",
-                    StepControl::Adaptive { .. } => "adaptive",
-                },
+                step: step_kind(step),
                 errors: Errors {
                     final_state: f64::NAN,
                     grid_max: f64::NAN,
@@ -500,6 +510,8 @@ pub struct OutputCheck {
 pub struct Independence {
     /// The solver.
     pub solver: &'static str,
+    /// Which the resolutions are: `fixed` (step sizes) or `adaptive` (tolerances).
+    pub step: &'static str,
     /// The resolutions, coarse to fine (each the previous divided by `ratio`).
     pub resolutions: Vec<f64>,
     /// The refinement ratio.
@@ -613,6 +625,7 @@ pub fn independence(
     }
     Ok(Independence {
         solver: solver.name(),
+        step: runs.first().map_or("fixed", |r| r.step),
         independent: outputs.iter().all(|o| o.independent),
         resolutions,
         ratio,
@@ -689,6 +702,8 @@ pub struct Cost {
     pub implicit: bool,
     /// The resolution that first met the target (None: none did).
     pub resolution: Option<f64>,
+    /// Which that resolution is: `fixed` or `adaptive` (None: none met the target).
+    pub step: Option<&'static str>,
     /// Its error.
     pub error: f64,
     /// Its statistics.
@@ -816,6 +831,7 @@ pub fn stiffness(
                     solver: label,
                     implicit: m.is_implicit(),
                     resolution: met.map(|r| r.resolution),
+                    step: met.map(|r| r.step),
                     error: met.map_or(f64::NAN, |r| r.errors.grid_max),
                     stats: met.map_or(Stats::default(), |r| r.stats),
                     work: met.map_or(0, |r| r.work),
@@ -858,6 +874,8 @@ pub struct ScalingRun {
     pub solver: String,
     /// Its step size or tolerance.
     pub resolution: f64,
+    /// Which the resolution is: `fixed` or `adaptive`.
+    pub step: &'static str,
     /// Work done.
     pub stats: Stats,
     /// Work in right-hand-side evaluations ([`Stats::work`]).
@@ -905,10 +923,8 @@ pub fn scaling(
         let run = ScalingRun {
             size: *size,
             solver: method.label(),
-            resolution: match step {
-                StepControl::Fixed { h } => h,
-                StepControl::Adaptive { rtol, .. } => rtol,
-            },
+            resolution: resolution(step),
+            step: step_kind(step),
             stats: o.stats,
             work,
             work_per_step: work as f64 / o.stats.steps.max(1) as f64,
