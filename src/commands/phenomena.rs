@@ -156,11 +156,13 @@ pub fn markdown(rows: &[(ModelId, Row)], protocol: &Protocol, parameters: &str) 
         s += "\n";
     }
     s += &format!(
-        "Thresholds: stiction drift < {} m; pre-sliding x_max > {} m and recovery > {}; Stribeck \
+        "Thresholds: stiction: break-away force under a ramp of {}·max(F_s, F_c) per second \
+         above the kinetic level after it by more than {}; pre-sliding x_max > {} m and recovery > {}; Stribeck \
          and viscous relative change beyond {}; loop area > {} of F_max·2·v_max; stick–slip: at \
          least {} stick phases and a sticking fraction of at least {}; rising static friction: \
          break-away force change beyond {}.\n",
-        thresholds::STICTION_DRIFT,
+        thresholds::STICTION_RATE,
+        thresholds::STATIC_EXCESS,
         thresholds::PRESLIDING_MIN,
         thresholds::PRESLIDING_RECOVERY,
         thresholds::STEADY_CHANGE,
