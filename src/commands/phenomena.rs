@@ -158,7 +158,8 @@ pub fn markdown(rows: &[(ModelId, Row)], protocol: &Protocol, parameters: &str) 
     s += &format!(
         "Thresholds: stiction: break-away force under a ramp of {}·max(F_s, F_c) per second \
          above the kinetic level after it by more than {}; pre-sliding x_max > {} m and recovery > {}; Stribeck \
-         and viscous relative change beyond {}; loop area > {} of F_max·2·v_max; stick–slip: at \
+         and viscous relative change beyond {}; hysteresis: a friction–velocity loop wider than {} \
+         in sliding or a pre-sliding loss above {} per cycle; stick–slip: at \
          least {} stick phases and a sticking fraction of at least {}; rising static friction: \
          break-away force change beyond {}.\n",
         thresholds::STICTION_RATE,
@@ -166,7 +167,8 @@ pub fn markdown(rows: &[(ModelId, Row)], protocol: &Protocol, parameters: &str) 
         thresholds::PRESLIDING_MIN,
         thresholds::PRESLIDING_RECOVERY,
         thresholds::STEADY_CHANGE,
-        thresholds::LOOP_AREA,
+        thresholds::LAG_WIDTH,
+        thresholds::PRESLIDING_DISSIPATION,
         thresholds::STICK_PHASES,
         thresholds::STICK_FRACTION,
         thresholds::BREAKAWAY_CHANGE,

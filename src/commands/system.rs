@@ -305,11 +305,7 @@ pub fn grid_options(args: &SimulateArgs, t_end: f64, points: usize) -> Result<Op
         step: args.solver.checked_step()?,
         max_steps: limits.max_steps,
         time_limit: limits.time_limit,
-        output: Output::GridOnly(
-            (0..points)
-                .map(|i| t_end * i as f64 / (points - 1) as f64)
-                .collect(),
-        ),
+        output: Output::GridOnly(integrators::even_grid(0.0, t_end, points)),
         ..Options::adaptive(0.0, t_end, 1e-8, 1e-10)
     })
 }

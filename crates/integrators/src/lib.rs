@@ -36,7 +36,7 @@ pub use error::SolverError;
 pub use implicit_euler::ImplicitEuler;
 pub use integrator::{Integrator, StopReason};
 pub use newton::NewtonKind;
-pub use options::{Options, Output, StepControl, ZenoGuard};
+pub use options::{even_grid, Options, Output, StepControl, ZenoGuard};
 pub use problem::{Control, Crossing, Entry, EventSpec, Mode, OdeProblem};
 pub use rk4::Rk4;
 pub use solution::{EventRecord, Failure, ModeSwitch, Solution};

@@ -66,6 +66,21 @@ pub enum Output {
     GridOnly(Vec<f64>),
 }
 
+/// `n` evenly spaced times from `t0` to `t_end` (n ≥ 2), t_i = t0 + (t_end − t0)·i/(n − 1),
+/// with the ends exactly `t0` and `t_end`: computed so, the last point may land one rounding
+/// above `t_end`, where an integration that stops at `t_end` never records it.
+pub fn even_grid(t0: f64, t_end: f64, n: usize) -> Vec<f64> {
+    (0..n)
+        .map(|i| {
+            if i + 1 == n {
+                t_end
+            } else {
+                t0 + (t_end - t0) * i as f64 / (n - 1) as f64
+            }
+        })
+        .collect()
+}
+
 impl Output {
     /// The output times, for the grid outputs.
     pub fn grid(&self) -> Option<&[f64]> {

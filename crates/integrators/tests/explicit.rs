@@ -349,3 +349,22 @@ fn each_error_says_where_and_why() {
     assert!((t - 1.0).abs() < 1e-3, "failed at t = {t}: {f}");
     assert!(f.solution.len() > 10);
 }
+
+#[test]
+fn an_even_grid_ends_at_t_end_and_every_point_is_recorded() {
+    // 319 periods of ω = 100/6: computed as t_end·i/(n − 1), the last of 2001 points lands
+    // one rounding above t_end, and a run that stops at t_end never recorded it (the
+    // hysteresis protocol then read its integrals at the wrong time).
+    let t_end = 319.0 * 2.0 * std::f64::consts::PI / (100.0 / 6.0);
+    let n = 2001;
+    assert!(
+        t_end * (n - 1) as f64 / (n - 1) as f64 > t_end,
+        "the case still shows it"
+    );
+    let grid = integrators::even_grid(0.0, t_end, n);
+    assert_eq!((grid[0], grid[n - 1], grid.len()), (0.0, t_end, n));
+    let mut o = Options::adaptive(0.0, t_end, 1e-8, 1e-10);
+    o.output = Output::Grid(grid.clone());
+    let s = run(&Oscillator::plain(), dopri5(&o, 2), &[1.0, 0.0], o);
+    assert_eq!(s.t, grid);
+}

@@ -289,9 +289,10 @@ impl StudyCase for Case {
             }
             _ => return None,
         };
-        let grid = (0..GRID_POINTS)
-            .map(|i| {
-                let (x, v) = motion(self.t_end * i as f64 / (GRID_POINTS - 1) as f64);
+        let grid = integrators::even_grid(0.0, self.t_end, GRID_POINTS)
+            .into_iter()
+            .map(|t| {
+                let (x, v) = motion(t);
                 vec![x, v]
             })
             .collect();
@@ -398,9 +399,7 @@ impl StudyCase for SystemCase {
     fn measure(&self, solver: Solver, step: StepControl) -> Result<Measured, ScenarioError> {
         let mut friction = FrictionParams::paper();
         friction.epsilon = self.epsilon;
-        let grid = (0..GRID_POINTS)
-            .map(|i| self.t_end * i as f64 / (GRID_POINTS - 1) as f64)
-            .collect();
+        let grid = integrators::even_grid(0.0, self.t_end, GRID_POINTS);
         let options = Options {
             step,
             output: Output::GridOnly(grid),

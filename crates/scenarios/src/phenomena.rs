@@ -108,8 +108,11 @@ pub mod thresholds {
     pub const PRESLIDING_RECOVERY: f64 = 0.01;
     /// Stribeck and viscous: smallest relative change of steady friction.
     pub const STEADY_CHANGE: f64 = 0.01;
-    /// Hysteresis: smallest loop area ∮F dv relative to F_max·2·v_max.
-    pub const LOOP_AREA: f64 = 1e-3;
+    /// Hysteresis: smallest width of the friction–velocity loop under a velocity that
+    /// oscillates without reversing, |∮F dv| over F_max·2a.
+    pub const LAG_WIDTH: f64 = 1e-3;
+    /// Hysteresis: smallest energy lost per pre-sliding cycle, ∮F dx over F_max·4A.
+    pub const PRESLIDING_DISSIPATION: f64 = 1e-3;
     /// Stick–slip: |v_rel| below this fraction of v_belt counts as sticking.
     pub const STICKING_VELOCITY: f64 = 0.01;
     /// Stick–slip: sticking phases needed in the second half of the run.
@@ -155,6 +158,16 @@ pub fn parameters_for(model: ModelId) -> FrictionParams {
     } else {
         FrictionParams::paper()
     }
+}
+
+/// One period of a prescribed periodic motion.
+struct Cycle {
+    /// ∮F dx: the work done against friction, J.
+    work: f64,
+    /// ∮F dv: the friction–velocity loop's area, N·m/s.
+    area: f64,
+    /// The least and the largest friction, N.
+    range: (f64, f64),
 }
 
 /// A break-away under a force ramp.
@@ -316,57 +329,108 @@ impl Judge<'_> {
         self.steady_change(100.0 * self.p.v_s, 1000.0 * self.p.v_s, 1.0)
     }
 
-    fn hysteresis(&self) -> Result<Verdict, ScenarioError> {
-        let length = self.presliding_length();
-        let amplitude = if length > 0.0 { 2.0 * length } else { 0.1 };
-        let omega = 2.0 * std::f64::consts::PI;
-        let spec = self.spec(
-            Scenario::Oscillation,
-            ScenarioParams {
-                amplitude,
-                omega,
-                ..ScenarioParams::default()
-            },
-            3.0,
-            301,
-        );
-        let o = run_motion(
-            &spec,
-            self.built,
-            Motion::Sine { amplitude, omega },
-            3.0,
-            &mut |_| {},
-        );
-        if let Some(e) = o.error {
-            return Err(ScenarioError::Invalid(format!(
-                "{} oscillation: {e}",
-                self.model
-            )));
-        }
-        // The loop area of the last period: H(3) − H(2) from two runs' end values.
-        let o2 = run_motion(
-            &spec,
-            self.built,
-            Motion::Sine { amplitude, omega },
-            2.0,
-            &mut |_| {},
-        );
-        let area = o.loop_area.expect("motion runs report it")
-            - o2.loop_area.expect("motion runs report it");
-        let f_max = o
+    /// The last of `cycles` periods of the prescribed periodic `motion` (period `period`):
+    /// the work done against friction ∮F dx, the loop area ∮F dv (both integrated by the
+    /// solver, as the difference of a run over `cycles` and one over `cycles − 1` periods) and
+    /// the range of the friction force over that period.
+    fn last_cycle(
+        &self,
+        scenario: Scenario,
+        motion: Motion,
+        period: f64,
+        cycles: f64,
+    ) -> Result<Cycle, ScenarioError> {
+        let spec = self.spec(scenario, ScenarioParams::default(), 0.0, 2001);
+        let run = |t_end: f64| {
+            let o = run_motion(&spec, self.built, motion, t_end, &mut |_| {});
+            match &o.error {
+                Some(e) => Err(ScenarioError::Invalid(format!(
+                    "{} {scenario}: {e}",
+                    self.model
+                ))),
+                None => Ok(o),
+            }
+        };
+        let (whole, before) = (run(cycles * period)?, run((cycles - 1.0) * period)?);
+        let integral = |o: &crate::Outcome, f: fn(&crate::Outcome) -> Option<f64>| {
+            f(o).expect("motion runs report their integrals")
+        };
+        let last: Vec<f64> = whole
             .rows
             .iter()
-            .filter(|r| r.t >= 2.0)
-            .map(|r| r.friction.abs())
-            .fold(0.0, f64::max);
-        let v_max = amplitude * omega;
-        let relative = area.abs() / (f_max * 2.0 * v_max).max(f64::MIN_POSITIVE);
+            .filter(|r| r.t >= (cycles - 1.0) * period)
+            .map(|r| r.friction)
+            .collect();
+        let (lo, hi) = last
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &f| {
+                (lo.min(f), hi.max(f))
+            });
+        Ok(Cycle {
+            work: integral(&whole, |o| o.friction_work) - integral(&before, |o| o.friction_work),
+            area: integral(&whole, |o| o.loop_area) - integral(&before, |o| o.loop_area),
+            range: (lo, hi),
+        })
+    }
+
+    /// Frictional hysteresis, the two faces the literature names (Hess & Soom 1990;
+    /// Canudas de Wit et al. 1995; Al-Bender et al. 2005):
+    /// - frictional lag in sliding: under v = v̄ + a·cos ωt with v̄ = 2·v_s, a = v_s (the
+    ///   velocity never reverses), the width of the settled friction–velocity loop, |∮F dv|
+    ///   over F_max·2a, the largest over ω = 10^k/τ, k = −2…2, τ the internal state's time
+    ///   constant at v̄ (1 s for a model without state), after at least 20 τ. Zero for any
+    ///   single-valued F(v).
+    /// - a dissipative pre-sliding loop: under x = A·sin 2πt with A half the pre-sliding
+    ///   length (models with a bristle state), the energy lost per cycle ∮F dx over F_max·4A.
+    ///   Zero for an elastic element without loss, such as a Dahl contact whose F_c is so
+    ///   large that it stays a spring.
+    fn hysteresis(&self) -> Result<Verdict, ScenarioError> {
+        let (mean, amplitude) = (2.0 * self.p.v_s, self.p.v_s);
+        let tau = if self.built.n_states() > 0 {
+            settling_time(self.built, mean) / 20.0
+        } else {
+            1.0
+        };
+        let mut lag = (0.0_f64, 0.0);
+        for k in -2..=2 {
+            let omega = 10f64.powi(k) / tau;
+            let period = 2.0 * std::f64::consts::PI / omega;
+            let motion = Motion::VelocityOscillation {
+                mean,
+                amplitude,
+                omega,
+            };
+            // Settled first: at least 20 time constants, and five periods.
+            let cycles = (20.0 * tau / period).ceil().max(5.0);
+            let c = self.last_cycle(Scenario::VelocityOscillation, motion, period, cycles)?;
+            let f_max = c.range.0.abs().max(c.range.1.abs());
+            let width = c.area.abs() / (f_max * 2.0 * amplitude).max(f64::MIN_POSITIVE);
+            if width > lag.0 {
+                lag = (width, omega);
+            }
+        }
+        let length = self.presliding_length();
+        let dissipation = if length > 0.0 {
+            let a = 0.5 * length;
+            let omega = 2.0 * std::f64::consts::PI;
+            let motion = Motion::Sine {
+                amplitude: a,
+                omega,
+            };
+            let c = self.last_cycle(Scenario::Oscillation, motion, 1.0, 3.0)?;
+            let f_max = c.range.0.abs().max(c.range.1.abs());
+            c.work.abs() / (f_max * 4.0 * a).max(f64::MIN_POSITIVE)
+        } else {
+            0.0
+        };
         Ok(Verdict {
-            measured: relative > thresholds::LOOP_AREA,
+            measured: lag.0 > thresholds::LAG_WIDTH
+                || dissipation > thresholds::PRESLIDING_DISSIPATION,
             evidence: BTreeMap::from([
-                ("amplitude_m", amplitude),
-                ("loop_area_N_m_s", area),
-                ("relative_area", relative),
+                ("lag_width", lag.0),
+                ("lag_omega_rad_s", lag.1),
+                ("presliding_amplitude_m", 0.5 * length),
+                ("presliding_dissipation", dissipation),
             ]),
         })
     }

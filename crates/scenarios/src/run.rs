@@ -281,7 +281,7 @@ fn validate(spec: &RunSpec) -> Result<(), ScenarioError> {
 /// output times on [0, t_end].
 pub fn options(spec: &RunSpec, t_end: f64) -> Options {
     let n = spec.output_points;
-    let grid = (0..n).map(|i| t_end * i as f64 / (n - 1) as f64).collect();
+    let grid = integrators::even_grid(0.0, t_end, n);
     Options {
         step: spec.step,
         output: Output::Grid(grid),

@@ -131,12 +131,47 @@ fn static_maps_have_no_hysteresis_loop() {
         )
         .unwrap();
         assert!(!v.measured, "{model}: {:?}", v.evidence);
-        assert!(
-            v.evidence["relative_area"] < 1e-6,
-            "{model}: {:?}",
-            v.evidence
-        );
+        // A single-valued F(v) has no loop: zero to the integration's accuracy.
+        assert!(v.evidence["lag_width"] < 1e-6, "{model}: {:?}", v.evidence);
+        assert_eq!(v.evidence["presliding_dissipation"], 0.0);
     }
+}
+
+#[test]
+fn hysteresis_is_frictional_lag_or_a_lossy_presliding_loop_never_a_spring() {
+    let hysteresis = |model: ModelId, p: &FrictionParams| {
+        decide(Phenomenon::Hysteresis, model, p, Protocol::default()).unwrap()
+    };
+    // LuGre lags in sliding (Canudas de Wit et al. 1995, Fig. 4).
+    let lugre = hysteresis(ModelId::LuGre, &FrictionParams::lugre_1995());
+    assert!(
+        lugre.measured && lugre.evidence["lag_width"] > 1e-2,
+        "{:?}",
+        lugre.evidence
+    );
+    // Dahl's state saturates in one-way sliding: no lag; its pre-sliding loop loses energy.
+    let dahl = hysteresis(ModelId::Dahl, &FrictionParams::paper());
+    assert!(dahl.evidence["lag_width"] < 1e-6, "{:?}", dahl.evidence);
+    assert!(
+        dahl.evidence["presliding_dissipation"] > 0.1,
+        "{:?}",
+        dahl.evidence
+    );
+    assert!(dahl.measured);
+    // With F_c = 1e6 N, Dahl's contact is a spring F = σx at these displacements: it stores
+    // and returns its energy and must not score (the old loop test gave it 1500× the
+    // threshold).
+    let spring = FrictionParams {
+        f_c: 1e6,
+        ..FrictionParams::paper()
+    };
+    let v = hysteresis(ModelId::Dahl, &spring);
+    assert!(!v.measured, "{:?}", v.evidence);
+    assert!(
+        v.evidence["presliding_dissipation"] < 1e-4,
+        "{:?}",
+        v.evidence
+    );
 }
 
 #[test]
