@@ -108,6 +108,8 @@ pub mod thresholds {
     pub const PRESLIDING_RECOVERY: f64 = 0.01;
     /// Stribeck and viscous: smallest relative change of steady friction.
     pub const STEADY_CHANGE: f64 = 0.01;
+    /// Stribeck: velocities at which steady friction is sampled, 0.01·v_s to 5·v_s.
+    pub const STRIBECK_POINTS: usize = 25;
     /// Hysteresis: smallest width of the friction–velocity loop under a velocity that
     /// oscillates without reversing, |∮F dv| over F_max·2a.
     pub const LAG_WIDTH: f64 = 1e-3;
@@ -321,8 +323,39 @@ impl Judge<'_> {
         })
     }
 
+    /// The Stribeck effect as a falling branch of steady friction anywhere at low speed
+    /// (Armstrong-Hélouvry et al. 1994, §2.1): steady friction at
+    /// [`thresholds::STRIBECK_POINTS`] velocities spaced evenly in log from 0.01·v_s to
+    /// 5·v_s, and the deepest fall from the highest friction at a lower velocity,
+    /// (F_peak − F)/F_peak.
     fn stribeck(&self) -> Result<Verdict, ScenarioError> {
-        self.steady_change(0.2 * self.p.v_s, 3.0 * self.p.v_s, -1.0)
+        let n = thresholds::STRIBECK_POINTS;
+        let (lo, hi) = (0.01 * self.p.v_s, 5.0 * self.p.v_s);
+        let mut peak = (f64::NEG_INFINITY, 0.0);
+        let mut fall = (0.0, 0.0, 0.0, 0.0);
+        for i in 0..n {
+            let v = (lo.ln() + (hi.ln() - lo.ln()) * i as f64 / (n - 1) as f64).exp();
+            let f = self.steady(v)?;
+            if f > peak.0 {
+                peak = (f, v);
+            }
+            let drop = (peak.0 - f) / peak.0.abs().max(f64::MIN_POSITIVE);
+            if drop > fall.0 {
+                fall = (drop, peak.1, v, f);
+            }
+        }
+        let mut evidence = BTreeMap::from([("relative_fall", fall.0)]);
+        if fall.0 > 0.0 {
+            evidence.extend([
+                ("v_peak_m_s", fall.1),
+                ("v_low_m_s", fall.2),
+                ("F_low_N", fall.3),
+            ]);
+        }
+        Ok(Verdict {
+            measured: fall.0 > thresholds::STEADY_CHANGE,
+            evidence,
+        })
     }
 
     fn viscous(&self) -> Result<Verdict, ScenarioError> {

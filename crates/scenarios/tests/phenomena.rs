@@ -90,6 +90,43 @@ fn stiction_is_a_static_level_above_the_kinetic_one() {
 }
 
 #[test]
+fn stribeck_is_a_falling_branch_anywhere_at_low_speed() {
+    // CVS with strong viscous friction (mu_v = 5 N·s/m): F = F_c + mu_v v + C1 exp(−(v/v_s)²)
+    // still falls between its maximum near v = 0.0173 m/s and its minimum near 0.137 m/s,
+    // by 8.3 %; two fixed velocities (0.2 v_s, 3 v_s) missed it.
+    let p = FrictionParams {
+        mu_v: 5.0,
+        ..FrictionParams::paper()
+    };
+    let v = decide(Phenomenon::Stribeck, ModelId::Cvs, &p, Protocol::default()).unwrap();
+    let f = |v: f64| p.f_c + p.mu_v * v + p.c1 * (-(v / p.v_s).powi(2)).exp();
+    let (peak, low) = (v.evidence["v_peak_m_s"], v.evidence["v_low_m_s"]);
+    let expected = (f(peak) - f(low)) / f(peak);
+    assert!(v.measured, "{:?}", v.evidence);
+    assert!(
+        (v.evidence["relative_fall"] - expected).abs() < 1e-9,
+        "{:?}",
+        v.evidence
+    );
+    assert!(expected > 0.08 && expected < 0.085, "{expected}");
+    // Coulomb and viscous friction never fall.
+    for model in [ModelId::Coulomb, ModelId::Viscous] {
+        let v = decide(
+            Phenomenon::Stribeck,
+            model,
+            &FrictionParams::paper(),
+            Protocol::default(),
+        )
+        .unwrap();
+        assert!(
+            !v.measured && v.evidence["relative_fall"] < 1e-9,
+            "{model}: {:?}",
+            v.evidence
+        );
+    }
+}
+
+#[test]
 fn dahl_has_presliding_and_hysteresis() {
     assert!(measured(Phenomenon::Presliding, ModelId::Dahl));
     assert!(measured(Phenomenon::Hysteresis, ModelId::Dahl));
