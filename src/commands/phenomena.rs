@@ -160,7 +160,7 @@ pub fn markdown(rows: &[(ModelId, Row)], protocol: &Protocol, parameters: &str) 
          above the kinetic level after it by more than {}; pre-sliding x_max > {} m and recovery > {}; Stribeck \
          and viscous relative change beyond {}; hysteresis: a friction–velocity loop wider than {} \
          in sliding or a pre-sliding loss above {} per cycle; stick–slip: at \
-         least {} stick phases and a sticking fraction of at least {}; rising static friction: \
+         least {} stick phases in the settled half and {} per cycle; rising static friction: \
          break-away force change beyond {}.\n",
         thresholds::STICTION_RATE,
         thresholds::STATIC_EXCESS,
@@ -170,7 +170,7 @@ pub fn markdown(rows: &[(ModelId, Row)], protocol: &Protocol, parameters: &str) 
         thresholds::LAG_WIDTH,
         thresholds::PRESLIDING_DISSIPATION,
         thresholds::STICK_PHASES,
-        thresholds::STICK_FRACTION,
+        thresholds::STICK_PER_CYCLE,
         thresholds::BREAKAWAY_CHANGE,
     );
     s

@@ -127,6 +127,75 @@ fn stribeck_is_a_falling_branch_anywhere_at_low_speed() {
 }
 
 #[test]
+fn presliding_reports_the_models_own_scale() {
+    // LuGre (1995 set): stiffness at rest σ0 = 1e5 N/m, length F_s/σ0 = 15 µm; under half of
+    // F_s the body moves micrometres and more than half of it springs back.
+    let p = FrictionParams::lugre_1995();
+    let v = decide(
+        Phenomenon::Presliding,
+        ModelId::LuGre,
+        &p,
+        Protocol::default(),
+    )
+    .unwrap();
+    assert!(v.measured, "{:?}", v.evidence);
+    assert!((v.evidence["rest_stiffness_N_m"] / p.sigma0 - 1.0).abs() < 1e-6);
+    assert!((v.evidence["presliding_length_m"] - p.f_s / p.sigma0).abs() < 1e-12);
+    assert!(v.evidence["x_max_m"] < p.f_s / p.sigma0, "{:?}", v.evidence);
+    // A static map is rigid below break-away: no displacement, no scale.
+    let v = decide(
+        Phenomenon::Presliding,
+        ModelId::Cs,
+        &FrictionParams::paper(),
+        Protocol::default(),
+    )
+    .unwrap();
+    assert!(!v.measured);
+    assert_eq!(
+        (v.evidence["x_max_m"], v.evidence["rest_stiffness_N_m"]),
+        (0.0, 0.0)
+    );
+}
+
+#[test]
+fn stick_slip_is_counted_from_the_switching_log_once_settled() {
+    // Coulomb with stiction on the undamped belt: one stick per cycle, with the closed-form
+    // period 0.9785 s (docs/sweep.md).
+    let p = FrictionParams::paper();
+    let v = decide(
+        Phenomenon::StickSlip,
+        ModelId::Static,
+        &p,
+        Protocol::default(),
+    )
+    .unwrap();
+    assert!(v.measured, "{:?}", v.evidence);
+    assert!(
+        (v.evidence["period_s"] - 0.9785).abs() < 1e-3,
+        "{:?}",
+        v.evidence
+    );
+    assert!(
+        (v.evidence["stick_per_cycle"] - 1.0).abs() < 0.05,
+        "{:?}",
+        v.evidence
+    );
+    // Plain Coulomb (F_s = F_c): the slip only grazes the belt's speed; no stick phase.
+    let v = decide(
+        Phenomenon::StickSlip,
+        ModelId::Coulomb,
+        &p,
+        Protocol::default(),
+    )
+    .unwrap();
+    assert!(
+        !v.measured && v.evidence["stick_phases_settled"] == 0.0,
+        "{:?}",
+        v.evidence
+    );
+}
+
+#[test]
 fn dahl_has_presliding_and_hysteresis() {
     assert!(measured(Phenomenon::Presliding, ModelId::Dahl));
     assert!(measured(Phenomenon::Hysteresis, ModelId::Dahl));
@@ -136,25 +205,42 @@ fn dahl_has_presliding_and_hysteresis() {
 #[test]
 fn lugre_has_the_stribeck_effect_and_a_break_away_force_that_falls_with_the_rate() {
     assert!(measured(Phenomenon::Stribeck, ModelId::LuGre));
+    let p = FrictionParams::lugre_1995();
     let v = decide(
         Phenomenon::RisingStaticFriction,
         ModelId::LuGre,
-        &FrictionParams::lugre_1995(),
+        &p,
         Protocol::default(),
     )
     .unwrap();
-    assert!(v.measured);
-    assert!(
-        v.evidence["breakaway_fast_N"] < v.evidence["breakaway_slow_N"],
-        "{:?}",
-        v.evidence
-    );
-    // The slow ramp breaks away close to the static level F_s = 1.5 N.
-    assert!(
-        (v.evidence["breakaway_slow_N"] - 1.5).abs() < 0.1,
-        "{:?}",
-        v.evidence
-    );
+    assert!(v.measured, "{:?}", v.evidence);
+    // The state's time scale at v_s: g(v_s)/(σ0·v_s), g(v_s) = F_c + (F_s − F_c)/e.
+    let g = p.f_c + (p.f_s - p.f_c) * (-1.0f64).exp();
+    assert!((v.evidence["time_scale_s"] - g / (p.sigma0 * p.v_s)).abs() < 1e-9 * g);
+    // The break-away force falls as the rate rises, and the slowest ramp breaks away close to
+    // the static level F_s = 1.5 N.
+    let forces = [
+        v.evidence["breakaway_1000tau_N"],
+        v.evidence["breakaway_100tau_N"],
+        v.evidence["breakaway_10tau_N"],
+    ];
+    assert!(forces[0] > forces[1] && forces[1] > forces[2], "{forces:?}");
+    assert!((forces[0] - 1.5).abs() < 0.1, "{forces:?}");
+    // Rate-independent and static models: the same break-away at every rate.
+    for model in [ModelId::Dahl, ModelId::Cs] {
+        let v = decide(
+            Phenomenon::RisingStaticFriction,
+            model,
+            &parameters_for(model),
+            Protocol::default(),
+        )
+        .unwrap();
+        assert!(
+            !v.measured && v.evidence["relative_fall"].abs() < 1e-6,
+            "{model}: {:?}",
+            v.evidence
+        );
+    }
 }
 
 #[test]
