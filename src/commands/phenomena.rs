@@ -9,7 +9,7 @@ use crate::ranges;
 use clap::Args;
 use friction_models::{FrictionParams, ModelId};
 use integrators::{Solver, StepControl};
-use scenarios::phenomena::{table, thresholds, Phenomenon, Protocol, Row};
+use scenarios::phenomena::{table, thresholds, Cell, Phenomenon, Protocol, Row};
 use serde_json::{json, Map, Value};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -70,7 +70,9 @@ pub fn with_threads<T: Send>(
     Ok(pool.install(f))
 }
 
-/// Table 2 as `table2.json`: `{"<model>": {"<phenomenon>": {measured, paper, evidence}}}`.
+/// Table 2 as `table2.json`: `{"<model>": {"<phenomenon>": {measured, paper, evidence,
+/// region}}}`, `region` the verdict over the cell's grid of rig parameters (axes, points,
+/// fraction, flips, undecided).
 fn json_table(rows: &[(ModelId, Row)]) -> Value {
     let mut out = Map::new();
     for (model, row) in rows {
@@ -78,7 +80,12 @@ fn json_table(rows: &[(ModelId, Row)]) -> Value {
         for (p, c) in row {
             cells.insert(
                 p.name().into(),
-                json!({"measured": c.measured, "paper": c.paper, "evidence": c.evidence}),
+                json!({
+                    "measured": c.measured,
+                    "paper": c.paper,
+                    "evidence": c.evidence,
+                    "region": c.region,
+                }),
             );
         }
         out.insert(model.name().into(), Value::Object(cells));
@@ -86,13 +93,96 @@ fn json_table(rows: &[(ModelId, Row)]) -> Value {
     Value::Object(out)
 }
 
-fn mark(measured: bool, paper: Option<bool>) -> String {
-    let m = u8::from(measured);
-    match paper {
-        Some(p) if p != measured => format!("**{m}** ≠ {}", u8::from(p)),
+fn mark(c: &Cell) -> String {
+    let m = u8::from(c.measured);
+    let mark = match c.paper {
+        Some(p) if p != c.measured => format!("**{m}** ≠ {}", u8::from(p)),
         Some(p) => format!("{m} = {}", u8::from(p)),
         None => m.to_string(),
+    };
+    match &c.region {
+        Some(r) if r.depends() => format!("{mark} (depends: {:.0} %)", 100.0 * r.fraction),
+        _ => mark,
     }
+}
+
+/// Most flipping points listed per cell in `table2.md` (all are in `table2.json`).
+const FLIPS_LISTED: usize = 4;
+
+/// The section of `table2.md` on the verdicts over the grids of rig parameters.
+fn regions_markdown(rows: &[(ModelId, Row)]) -> String {
+    if !rows
+        .iter()
+        .any(|(_, r)| r.iter().any(|(_, c)| c.region.is_some()))
+    {
+        return String::new();
+    }
+    let mut s = String::from(
+        "## Over the rig's parameters\n\nEach cell is also decided at every point of a grid of \
+         the rig's parameters, the default rig among them; a cell marked `depends: P %` holds on \
+         P % of its grid (`table2.json` lists every point where it flips). The grids:\n\n",
+    );
+    for phenomenon in Phenomenon::ALL {
+        let axes: Vec<String> = phenomenon
+            .region()
+            .iter()
+            .map(|(name, values)| {
+                let v: Vec<String> = values.iter().map(|v| v.to_string()).collect();
+                format!("{name} ∈ {{{}}}", v.join(", "))
+            })
+            .collect();
+        s += &format!(
+            "- {}: {}\n",
+            phenomenon.label(),
+            if axes.is_empty() {
+                "no rig parameter (steady friction or a prescribed motion): the default rig only"
+                    .to_string()
+            } else {
+                axes.join(" × ")
+            }
+        );
+    }
+    s += "\n";
+    for (model, row) in rows {
+        for (phenomenon, c) in row {
+            let Some(r) = c
+                .region
+                .as_ref()
+                .filter(|r| r.depends() || !r.undecided.is_empty())
+            else {
+                continue;
+            };
+            let point = |p: &std::collections::BTreeMap<&str, f64>| {
+                p.iter()
+                    .map(|(k, v)| format!("{k} = {v}"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            };
+            let mut flips: Vec<String> = r.flips.iter().take(FLIPS_LISTED).map(point).collect();
+            if r.flips.len() > FLIPS_LISTED {
+                flips.push(format!("{} more", r.flips.len() - FLIPS_LISTED));
+            }
+            s += &format!(
+                "- {model}, {}: {} on {:.0} % of {} points; not {} at ({})",
+                phenomenon.label(),
+                u8::from(c.measured),
+                100.0
+                    * (if c.measured {
+                        r.fraction
+                    } else {
+                        1.0 - r.fraction
+                    }),
+                r.points - r.undecided.len(),
+                u8::from(c.measured),
+                flips.join("; ")
+            );
+            if !r.undecided.is_empty() {
+                s += &format!("; {} points undecided (the run failed)", r.undecided.len());
+            }
+            s += "\n";
+        }
+    }
+    s + "\n"
 }
 
 /// Table 2 as markdown: the measured table beside the paper's, then the evidence.
@@ -125,7 +215,7 @@ pub fn markdown(rows: &[(ModelId, Row)], protocol: &Protocol, parameters: &str) 
         s += &format!("| {} |", phenomenon.label());
         for (_, row) in rows {
             let c = &row[i].1;
-            s += &format!(" {} |", mark(c.measured, c.paper));
+            s += &format!(" {} |", mark(c));
         }
         s += "\n";
     }
@@ -134,7 +224,9 @@ pub fn markdown(rows: &[(ModelId, Row)], protocol: &Protocol, parameters: &str) 
         .flat_map(|(_, r)| r.iter())
         .filter(|(_, c)| c.paper.is_some_and(|p| p != c.measured))
         .count();
-    s += &format!("\n{disagreements} of the paper's 42 claims disagree with the simulations.\n\n## Evidence\n\n");
+    s += &format!("\n{disagreements} of the paper's 42 claims disagree with the simulations.\n\n");
+    s += &regions_markdown(rows);
+    s += "## Evidence\n\n";
     for (model, row) in rows {
         s += &format!(
             "### {model}\n\n| phenomenon | measured | paper | evidence |\n|---|---|---|---|\n"
@@ -207,7 +299,7 @@ pub fn add_table(
 ) -> Result<Vec<(ModelId, Row)>, AppError> {
     let parameters = judged.parameters.as_ref();
     let rows = with_threads(threads, || {
-        table(judged.models, protocol, parameters.map(|p| &p.0))
+        table(judged.models, protocol, parameters.map(|p| &p.0), true)
     })?
     .map_err(AppError::from)?;
     let described = parameters.map_or(OWN_PARAMETERS, |p| p.1.as_str());

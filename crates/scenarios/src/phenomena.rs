@@ -6,7 +6,7 @@ use crate::run::Limits;
 use crate::run::{run, run_motion, settling_time, RunSpec, ScenarioError, SwitchingKind};
 use crate::scenario::Scenario;
 use crate::ScenarioParams;
-use friction_models::{FrictionModel, FrictionParams, ModelId, Variant};
+use friction_models::{FrictionModel, FrictionParams, ModelId, Parameters, Variant};
 use integrators::{Solver, StepControl};
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -66,6 +66,23 @@ impl Phenomenon {
             Phenomenon::Hysteresis => "Hysteresis",
             Phenomenon::StickSlip => "Stick-slip",
             Phenomenon::RisingStaticFriction => "Rising static friction",
+        }
+    }
+
+    /// The grid of rig parameters a verdict is also decided over (docs/phenomena.md): each
+    /// axis a scenario parameter with its values, the grid their product, the default rig
+    /// among its points. Steady friction and prescribed motions have no rig parameter: the
+    /// Stribeck, viscous and hysteresis cells have a grid of one point.
+    pub fn region(self) -> &'static [(&'static str, &'static [f64])] {
+        match self {
+            Phenomenon::Stiction | Phenomenon::RisingStaticFriction => &[("m", &[0.1, 1.0, 10.0])],
+            Phenomenon::Presliding => &[("fraction", &[0.25, 0.5, 0.75]), ("m", &[0.1, 1.0, 10.0])],
+            Phenomenon::Stribeck | Phenomenon::Viscous | Phenomenon::Hysteresis => &[],
+            Phenomenon::StickSlip => &[
+                ("v_belt", &[0.01, 0.05, 0.2, 1.0]),
+                ("k", &[10.0, 100.0, 1000.0]),
+                ("c", &[0.0, 0.5, 2.0]),
+            ],
         }
     }
 
@@ -193,6 +210,8 @@ struct Judge<'a> {
     built: &'a dyn FrictionModel,
     p: FrictionParams,
     protocol: Protocol,
+    /// The rig's parameters the protocols start from (mass, belt, spring, load).
+    rig: ScenarioParams,
 }
 
 impl Judge<'_> {
@@ -303,11 +322,7 @@ impl Judge<'_> {
     /// unloading most of that displacement springs back. The scale is the model's: its
     /// stiffness at rest and the length F_s/k are reported beside the displacement.
     fn presliding(&self) -> Result<Verdict, ScenarioError> {
-        let params = ScenarioParams {
-            fraction: 0.5,
-            ..ScenarioParams::default()
-        };
-        let o = self.outcome(&self.spec(Scenario::Presliding, params, 4.0, 401))?;
+        let o = self.outcome(&self.spec(Scenario::Presliding, self.rig, 4.0, 401))?;
         let x_max = o
             .rows
             .iter()
@@ -500,12 +515,8 @@ impl Judge<'_> {
     /// records over the second half of 40 s, after the transient, and how many of the settled
     /// oscillation's cycles stick ([`crate::settled`], the measures `sweep` writes).
     fn stick_slip(&self) -> Result<Verdict, ScenarioError> {
-        let o = self.outcome(&self.spec(
-            Scenario::Belt,
-            ScenarioParams::default(),
-            thresholds::STICK_SLIP_T_END,
-            4001,
-        ))?;
+        let o =
+            self.outcome(&self.spec(Scenario::Belt, self.rig, thresholds::STICK_SLIP_T_END, 4001))?;
         let s = crate::settled::Settled::of(&crate::settled::Trace::of_outcome(&o), 0.5);
         let per_cycle = if s.stick_per_cycle.is_nan() {
             0.0
@@ -530,10 +541,7 @@ impl Judge<'_> {
     /// body never breaks away (or its peak friction stays under
     /// [`thresholds::BREAKAWAY_MIN`] of F_s: no static level at all).
     fn breakaway(&self, rate: f64) -> Result<Option<Breakaway>, ScenarioError> {
-        let params = ScenarioParams {
-            rate,
-            ..ScenarioParams::default()
-        };
+        let params = ScenarioParams { rate, ..self.rig };
         // The ramp ends at 1.5 times the larger level: a body that has not broken away by
         // then does not break away (and a stiff LuGre run costs in proportion to its length).
         let t_end = 1.5 * self.p.f_s.max(self.p.f_c) / rate;
@@ -606,12 +614,26 @@ impl Judge<'_> {
     }
 }
 
-/// Decides one cell: `phenomenon` for `model` with `p`, integrated as `protocol` says.
+/// Decides one cell: `phenomenon` for `model` with `p`, integrated as `protocol` says, on
+/// the rigs of docs/phenomena.md.
 pub fn decide(
     phenomenon: Phenomenon,
     model: ModelId,
     p: &FrictionParams,
     protocol: Protocol,
+) -> Result<Verdict, ScenarioError> {
+    decide_at(phenomenon, model, p, protocol, &ScenarioParams::default())
+}
+
+/// Decides one cell on rigs with the parameters `rig` (mass `m`, belt `v_belt`, spring `k`,
+/// damper `c`, pre-sliding load `fraction`; the protocols set their own ramp rates and
+/// motions).
+pub fn decide_at(
+    phenomenon: Phenomenon,
+    model: ModelId,
+    p: &FrictionParams,
+    protocol: Protocol,
+    rig: &ScenarioParams,
 ) -> Result<Verdict, ScenarioError> {
     let built = model.build(Variant::Odd, p)?;
     let judge = Judge {
@@ -619,6 +641,7 @@ pub fn decide(
         built: built.as_ref(),
         p: *p,
         protocol,
+        rig: *rig,
     };
     match phenomenon {
         Phenomenon::Stiction => judge.stiction(),
@@ -640,6 +663,94 @@ pub struct Cell {
     pub paper: Option<bool>,
     /// The numbers that decided it.
     pub evidence: BTreeMap<&'static str, f64>,
+    /// The verdict over the grid of rig parameters, when asked for.
+    pub region: Option<Region>,
+}
+
+/// A verdict over the grid of [`Phenomenon::region`].
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Region {
+    /// The grid's axes: parameter and values.
+    pub axes: BTreeMap<&'static str, &'static [f64]>,
+    /// Points of the grid.
+    pub points: usize,
+    /// The fraction of the decided points where the phenomenon is observed.
+    pub fraction: f64,
+    /// The points whose verdict differs from the verdict on the default rig, each as its
+    /// parameter values.
+    pub flips: Vec<BTreeMap<&'static str, f64>>,
+    /// Points whose run failed (left out of the fraction), with the failure.
+    pub undecided: Vec<(BTreeMap<&'static str, f64>, String)>,
+}
+
+impl Region {
+    /// Whether the verdict depends on the rig: observed on some points and not on others.
+    pub fn depends(&self) -> bool {
+        self.fraction > 0.0 && self.fraction < 1.0
+    }
+}
+
+/// Decides `phenomenon` for `model` at every point of its [`Phenomenon::region`]; `measured`
+/// is the verdict on the default rig, against which the flips are listed.
+pub fn region(
+    phenomenon: Phenomenon,
+    model: ModelId,
+    p: &FrictionParams,
+    protocol: Protocol,
+    measured: bool,
+) -> Result<Region, ScenarioError> {
+    let axes = phenomenon.region();
+    let grid: Vec<BTreeMap<&'static str, f64>> =
+        axes.iter()
+            .fold(vec![BTreeMap::new()], |points, (name, values)| {
+                points
+                    .iter()
+                    .flat_map(|point| {
+                        values.iter().map(move |&v| {
+                            let mut q = point.clone();
+                            q.insert(*name, v);
+                            q
+                        })
+                    })
+                    .collect()
+            });
+    use rayon::prelude::*;
+    let verdicts: Vec<Result<Verdict, ScenarioError>> = grid
+        .par_iter()
+        .map(|point| {
+            let mut rig = ScenarioParams::default();
+            for (name, value) in point {
+                rig.set(name, *value)?;
+            }
+            decide_at(phenomenon, model, p, protocol, &rig)
+        })
+        .collect();
+    let (mut observed, mut decided) = (0usize, 0usize);
+    let mut flips = Vec::new();
+    let mut undecided = Vec::new();
+    for (point, verdict) in grid.iter().zip(verdicts) {
+        match verdict {
+            Ok(v) => {
+                decided += 1;
+                observed += usize::from(v.measured);
+                if v.measured != measured {
+                    flips.push(point.clone());
+                }
+            }
+            Err(e) => undecided.push((point.clone(), e.to_string())),
+        }
+    }
+    Ok(Region {
+        axes: axes.iter().copied().collect(),
+        points: grid.len(),
+        fraction: if decided > 0 {
+            observed as f64 / decided as f64
+        } else {
+            f64::NAN
+        },
+        flips,
+        undecided,
+    })
 }
 
 /// One model's row of Table 2: each phenomenon with its cell.
@@ -648,10 +759,14 @@ pub type Row = Vec<(Phenomenon, Cell)>;
 /// Table 2 for `models`: every protocol for every model, run in parallel on rayon's pool
 /// (the result does not depend on the number of threads: each cell is computed alone and
 /// collected in order).
+///
+/// With `regions`, each cell is also decided over its grid of rig parameters
+/// ([`region`]): about 20 times the work.
 pub fn table(
     models: &[ModelId],
     protocol: Protocol,
     parameters: Option<&FrictionParams>,
+    regions: bool,
 ) -> Result<Vec<(ModelId, Row)>, ScenarioError> {
     use rayon::prelude::*;
     let jobs: Vec<(ModelId, Phenomenon)> = models
@@ -664,6 +779,9 @@ pub fn table(
             let p = parameters.copied().unwrap_or_else(|| parameters_for(model));
             let v = decide(phenomenon, model, &p, protocol)?;
             Ok(Cell {
+                region: regions
+                    .then(|| region(phenomenon, model, &p, protocol, v.measured))
+                    .transpose()?,
                 measured: v.measured,
                 paper: phenomenon.paper_claim(model),
                 evidence: v.evidence,

@@ -3,7 +3,8 @@
 
 use friction_models::{FrictionParams, ModelId};
 use integrators::{Solver, StepControl};
-use scenarios::phenomena::{decide, parameters_for, table, Phenomenon, Protocol};
+use scenarios::phenomena::{decide, parameters_for, region, table, Phenomenon, Protocol};
+use std::collections::BTreeMap;
 
 fn measured(phenomenon: Phenomenon, model: ModelId) -> bool {
     decide(
@@ -299,7 +300,7 @@ fn hysteresis_is_frictional_lag_or_a_lossy_presliding_loop_never_a_spring() {
 
 #[test]
 fn two_solvers_agree_on_every_cell() {
-    let dopri5 = table(&ModelId::ALL, Protocol::default(), None).unwrap();
+    let dopri5 = table(&ModelId::ALL, Protocol::default(), None, false).unwrap();
     let bdf = table(
         &ModelId::ALL,
         Protocol {
@@ -311,6 +312,7 @@ fn two_solvers_agree_on_every_cell() {
             },
         },
         None,
+        false,
     )
     .unwrap();
     for ((model, a), (_, b)) in dopri5.iter().zip(&bdf) {
@@ -325,4 +327,36 @@ fn two_solvers_agree_on_every_cell() {
             );
         }
     }
+}
+
+#[test]
+fn a_verdict_over_the_grid_says_where_it_flips() {
+    let p = FrictionParams::paper();
+    let r = region(
+        Phenomenon::StickSlip,
+        ModelId::Static,
+        &p,
+        Protocol::default(),
+        true,
+    )
+    .unwrap();
+    assert_eq!(r.points, 36);
+    assert!(r.depends() && r.undecided.is_empty(), "{r:?}");
+    // A 10 N/m spring dragged at 0.01 m/s needs F_s/(k·v_belt) = 75 s to reach break-away:
+    // the body is stuck for the whole 40 s run, with or without damping.
+    for c in [0.0, 0.5, 2.0] {
+        let stuck = BTreeMap::from([("c", c), ("k", 10.0), ("v_belt", 0.01)]);
+        assert!(r.flips.contains(&stuck), "{c}: {:?}", r.flips);
+    }
+    assert!((r.fraction - (36 - r.flips.len()) as f64 / 36.0).abs() < 1e-12);
+    // No rig parameter: a grid of one point, the default rig.
+    let r = region(
+        Phenomenon::Stribeck,
+        ModelId::Cvs,
+        &p,
+        Protocol::default(),
+        true,
+    )
+    .unwrap();
+    assert_eq!((r.points, r.fraction, r.flips.len()), (1, 1.0, 0));
 }
