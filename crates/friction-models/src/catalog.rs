@@ -37,6 +37,10 @@ pub enum ModelId {
     Karnopp,
     /// The LuGre model.
     LuGre,
+    /// LuGre with velocity-dependent damping σ1·exp(−(v/v_d)²).
+    LuGreVd,
+    /// The elasto-plastic model of Dupont et al. (2002).
+    ElastoPlastic,
 }
 
 /// How a model's curve is drawn (`friction-lab curve`).
@@ -51,7 +55,7 @@ pub enum CurveAxis {
 
 impl ModelId {
     /// Every model, the paper's six first.
-    pub const ALL: [ModelId; 13] = [
+    pub const ALL: [ModelId; 15] = [
         ModelId::Av,
         ModelId::Cs,
         ModelId::Cvs,
@@ -65,6 +69,8 @@ impl ModelId {
         ModelId::Dahl,
         ModelId::Karnopp,
         ModelId::LuGre,
+        ModelId::LuGreVd,
+        ModelId::ElastoPlastic,
     ];
 
     /// The paper's six models: the first six of [`ModelId::ALL`].
@@ -86,6 +92,8 @@ impl ModelId {
             ModelId::Dahl => "dahl",
             ModelId::Karnopp => "karnopp",
             ModelId::LuGre => "lugre",
+            ModelId::LuGreVd => "lugre-vd",
+            ModelId::ElastoPlastic => "elasto-plastic",
         }
     }
 
@@ -121,6 +129,8 @@ impl ModelId {
             ModelId::Dahl => "Dahl (1968)",
             ModelId::Karnopp => "Karnopp (1985) stick band",
             ModelId::LuGre => "LuGre (Canudas de Wit et al. 1995)",
+            ModelId::LuGreVd => "LuGre with velocity-dependent damping",
+            ModelId::ElastoPlastic => "elasto-plastic (Dupont et al. 2002)",
         }
     }
 
@@ -139,6 +149,10 @@ impl ModelId {
             ModelId::Dahl => "Dahl (1968, 1976)",
             ModelId::Karnopp => "Karnopp (1985)",
             ModelId::LuGre => "Canudas de Wit, Olsson, Astrom, Lischinsky (1995)",
+            ModelId::LuGreVd => {
+                "Canudas de Wit et al. (1995) eq. (10); Olsson, Astrom, Canudas de Wit, Gafvert, Lischinsky (1998)"
+            }
+            ModelId::ElastoPlastic => "Dupont, Hayward, Armstrong, Altpeter (2002), IEEE TAC 47(5)",
         }
     }
 
@@ -162,6 +176,8 @@ impl ModelId {
             ModelId::Dahl => "F = z, dz/dt = sigma*(v - |v|*z/F_c)",
             ModelId::Karnopp => "F = F_c*sign(v) + mu_v*v for |v| >= dv; F = clamp(F_applied, -F_s, F_s) for |v| < dv",
             ModelId::LuGre => "F = sigma0*z + sigma1*dz/dt + sigma2*v, dz/dt = v - sigma0*|v|*z/g(v), g(v) = F_c + (F_s - F_c)*exp(-(v/v_s)^2)",
+            ModelId::LuGreVd => "F = sigma0*z + sigma1*exp(-(v/v_d)^2)*dz/dt + sigma2*v, dz/dt = v - sigma0*|v|*z/g(v), g(v) = F_c + (F_s - F_c)*exp(-(v/v_s)^2)",
+            ModelId::ElastoPlastic => "F = sigma0*z + sigma1*dz/dt + sigma2*v, dz/dt = v - alpha(z,v)*sigma0*|v|*z/g(v); alpha = 0 for |z| <= z_ba = r_ba*min(F_c, F_s)/sigma0 or sign(z) != sign(v), 1 for |z| >= z_max = g(v)/sigma0, sin ramp between",
         }
     }
 
@@ -186,6 +202,8 @@ impl ModelId {
             ModelId::Dahl => &["sigma", "F_c"],
             ModelId::Karnopp => &["F_c", "F_s", "mu_v", "dv"],
             ModelId::LuGre => &["sigma0", "sigma1", "sigma2", "F_c", "F_s", "v_s"],
+            ModelId::LuGreVd => &["sigma0", "sigma1", "sigma2", "F_c", "F_s", "v_s", "v_d"],
+            ModelId::ElastoPlastic => &["sigma0", "sigma1", "sigma2", "F_c", "F_s", "v_s", "r_ba"],
         }
     }
 
@@ -268,7 +286,7 @@ impl ModelId {
                 band: p.dv,
                 ..base
             },
-            ModelId::LuGre => {
+            ModelId::LuGre | ModelId::LuGreVd | ModelId::ElastoPlastic => {
                 if p.f_s <= 0.0 {
                     return Err(ParamError::Invalid {
                         name: "F_s".into(),
@@ -279,12 +297,17 @@ impl ModelId {
                     });
                 }
                 return Ok(Box::new(LuGre {
+                    id: self,
                     sigma0: p.sigma0,
                     sigma1: p.sigma1,
                     sigma2: p.sigma2,
                     f_c: p.f_c,
                     f_s: p.f_s,
                     v_s: p.v_s,
+                    damping_decay: (self == ModelId::LuGreVd).then_some(p.v_d),
+                    // z_ba below z_max = g(v)/σ0 at every v: a fraction of min(F_c, F_s)/σ0.
+                    break_away: (self == ModelId::ElastoPlastic)
+                        .then_some(p.r_ba * p.f_c.min(p.f_s) / p.sigma0),
                 }));
             }
         };

@@ -26,6 +26,13 @@ impl Range {
         max: f64::INFINITY,
         max_inclusive: false,
     };
+    /// (0, 1): a fraction strictly between its ends.
+    pub const OPEN_UNIT: Range = Range {
+        min: 0.0,
+        min_inclusive: false,
+        max: 1.0,
+        max_inclusive: false,
+    };
     /// [0, ∞): non-negative and finite.
     pub const NON_NEGATIVE: Range = Range {
         min: 0.0,
@@ -247,6 +254,10 @@ parameters! {
         dv: "dv", "m/s", Range::POSITIVE, "Karnopp stick band half-width";
         /// Regularisation width ε of sign(v) ≈ tanh(v/ε).
         epsilon: "epsilon", "m/s", Range::POSITIVE, "regularisation width of sign(v) ~ tanh(v/epsilon)";
+        /// Decay velocity v_d of LuGre's velocity-dependent damping σ1·exp(−(v/v_d)²).
+        v_d: "v_d", "m/s", Range::POSITIVE, "decay velocity of LuGre's damping sigma1*exp(-(v/v_d)^2) (lugre-vd)";
+        /// The elasto-plastic break-away displacement z_ba as a fraction of min(F_c, F_s)/σ0.
+        r_ba: "r_ba", "1", Range::OPEN_UNIT, "elasto-plastic break-away displacement z_ba as a fraction of min(F_c, F_s)/sigma0";
     }
 }
 
@@ -270,6 +281,8 @@ impl FrictionParams {
             sigma2: 0.4,
             dv: 1e-3,
             epsilon: 1e-3,
+            v_d: 0.1,
+            r_ba: 0.5,
         }
     }
 
@@ -291,6 +304,8 @@ impl FrictionParams {
             sigma2: 0.4,
             dv: 1e-5,
             epsilon: 1e-5,
+            v_d: 1e-3,
+            r_ba: 0.5,
         }
     }
 
@@ -363,6 +378,7 @@ mod tests {
         let p = FrictionParams::paper();
         assert_eq!(p.value("C2"), Some(1.5));
         assert_eq!(p.value("F_s"), Some(7.5));
-        assert_eq!(FrictionParams::specs().len(), 12);
+        assert_eq!(FrictionParams::specs().len(), 14);
+        assert_eq!((p.value("v_d"), p.value("r_ba")), (Some(0.1), Some(0.5)));
     }
 }

@@ -144,16 +144,31 @@ fn analytic_partials_match_finite_differences() {
     ];
     let mut lugre_params = FrictionParams::lugre_1995();
     lugre_params.set("v_s", 0.1).unwrap(); // keep g(v) varying over the sampled velocities
+    lugre_params.set("v_d", 0.1).unwrap(); // and the damping σ1·exp(−(v/v_d)²)
+                                           // z_ba = 4e-6 m: no sampled z sits on the kink of α at |z| = z_ba (α is C¹ there, not C²).
+    lugre_params.set("r_ba", 0.4).unwrap();
     for id in ModelId::ALL {
         for variant in [Variant::Odd, Variant::Printed] {
-            let params = if id == ModelId::LuGre {
+            let lugre_family = matches!(
+                id,
+                ModelId::LuGre | ModelId::LuGreVd | ModelId::ElastoPlastic
+            );
+            let params = if lugre_family {
                 lugre_params
             } else {
                 FrictionParams::paper()
             };
             let m = id.build(variant, &params).unwrap();
             for law in laws {
-                for &(x, v, z) in &[(0.1, 0.07, 0.3), (-0.4, -0.12, -0.5e-5), (1.0, 0.02, 2e-6)] {
+                // For the elasto-plastic model the third point lies in its elastic range
+                // (|z| < z_ba) and the second and last in its transition to plastic sliding
+                // (z_ba < |z| < z_max).
+                for &(x, v, z) in &[
+                    (0.1, 0.07, 0.3),
+                    (-0.4, -0.12, -0.5e-5),
+                    (1.0, 0.02, 2e-6),
+                    (0.2, 0.05, 0.9e-5),
+                ] {
                     let p = m.partials(x, v, z, law);
                     let force = |u: [f64; 3]| m.response(u[0], u[1], u[2], law).force;
                     let rate = |u: [f64; 3]| m.response(u[0], u[1], u[2], law).state_rate;

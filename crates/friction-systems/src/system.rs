@@ -88,6 +88,13 @@ pub enum Profile {
         /// Fall time, s.
         fall: f64,
     },
+    /// `amplitude·sin(omega·t)`.
+    Sine {
+        /// Amplitude, N.
+        amplitude: f64,
+        /// Angular frequency, rad/s.
+        omega: f64,
+    },
 }
 
 impl Profile {
@@ -112,6 +119,7 @@ impl Profile {
                     0.0
                 }
             }
+            Profile::Sine { amplitude, omega } => amplitude * (omega * t).sin(),
         }
     }
 }
@@ -354,8 +362,13 @@ impl System {
                 });
             }
             check(what, "constant", f.constant, false)?;
-            if let Profile::Ramp { rate } = f.profile {
-                check(what, "rate", rate, false)?;
+            match f.profile {
+                Profile::Ramp { rate } => check(what, "rate", rate, false)?,
+                Profile::Sine { amplitude, omega } => {
+                    check(what, "amplitude", amplitude, false)?;
+                    check(what, "omega", omega, false)?;
+                }
+                Profile::None | Profile::Trapezoid { .. } => {}
             }
         }
         Ok(())

@@ -176,9 +176,12 @@ impl Default for Protocol {
 }
 
 /// The parameter set a model is judged with: the paper's for the six and the classical
-/// terms, the LuGre paper's for LuGre.
+/// terms, the LuGre paper's for LuGre and its two variants.
 pub fn parameters_for(model: ModelId) -> FrictionParams {
-    if model == ModelId::LuGre {
+    if matches!(
+        model,
+        ModelId::LuGre | ModelId::LuGreVd | ModelId::ElastoPlastic
+    ) {
         FrictionParams::lugre_1995()
     } else {
         FrictionParams::paper()
