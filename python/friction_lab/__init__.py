@@ -55,7 +55,7 @@ def simulate(scenario: Optional[str] = None, *, system: Any = None,
     Options: ``model``, ``solver``, ``switching``, ``theta``, ``t_end``, ``rtol``, ``atol``,
     ``dt``, ``fixed_step``, ``points``, ``bodies``, ``variant``, ``param_set``,
     ``max_steps``, ``time_limit`` (``friction-lab simulate --help``)."""
-    with SystemFile(system) if system is not None else _NoFile() as f:
+    with SystemFile(system) as f:
         made = run(words("simulate", scenario, system=f.path, params=params, **options))
     result = Result(made)
     if made.failure is not None:
@@ -87,13 +87,3 @@ def work_precision(scenario: str, *, params: Optional[Dict[str, float]] = None, 
 def stiffness(scenario: str, *, params: Optional[Dict[str, float]] = None, **options: Any) -> Study:
     """Where the implicit solvers overtake the explicit ones (``friction-lab stiffness``)."""
     return _study("stiffness", scenario, params, options)
-
-
-class _NoFile:
-    path = None
-
-    def __enter__(self) -> "_NoFile":
-        return self
-
-    def __exit__(self, *exc: Any) -> None:
-        pass

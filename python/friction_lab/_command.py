@@ -123,11 +123,13 @@ def run(argv: List[str]) -> Made:
 
 class SystemFile:
     """A system given as a path, or as a dict with the keys of ``systems.md`` (written as a
-    temporary JSON file for the duration of the call)."""
+    temporary JSON file for the duration of the call), or none (``path`` is ``None``)."""
 
     def __init__(self, system: Any):
         self._temporary = None
-        if isinstance(system, Mapping):
+        if system is None:
+            self.path = None
+        elif isinstance(system, Mapping):
             self._temporary = tempfile.NamedTemporaryFile(
                 "w", suffix=".json", prefix="friction-lab-system-", delete=False)
             json.dump(_plain(system), self._temporary)

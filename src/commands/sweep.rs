@@ -157,18 +157,11 @@ impl Axis {
 
 /// The grid's points in order (the first axis varying slowest), as `NAME=VALUE` assignments.
 fn points(axes: &[Axis]) -> Vec<Vec<(String, f64)>> {
-    axes.iter().fold(vec![Vec::new()], |points, axis| {
-        points
-            .iter()
-            .flat_map(|p| {
-                axis.values.iter().map(move |&v| {
-                    let mut q = p.clone();
-                    q.push((axis.name.clone(), v));
-                    q
-                })
-            })
-            .collect()
-    })
+    let axes: Vec<(String, &[f64])> = axes
+        .iter()
+        .map(|a| (a.name.clone(), a.values.as_slice()))
+        .collect();
+    scenarios::grid::product(&axes)
 }
 
 /// One point's result.

@@ -9,6 +9,7 @@
 pub mod cases;
 pub mod curves;
 pub mod figures;
+pub mod grid;
 pub mod motion;
 pub mod paper;
 pub mod params;

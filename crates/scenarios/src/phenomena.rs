@@ -703,20 +703,10 @@ pub fn region(
     measured: bool,
 ) -> Result<Region, ScenarioError> {
     let axes = phenomenon.region();
-    let grid: Vec<BTreeMap<&'static str, f64>> =
-        axes.iter()
-            .fold(vec![BTreeMap::new()], |points, (name, values)| {
-                points
-                    .iter()
-                    .flat_map(|point| {
-                        values.iter().map(move |&v| {
-                            let mut q = point.clone();
-                            q.insert(*name, v);
-                            q
-                        })
-                    })
-                    .collect()
-            });
+    let grid: Vec<BTreeMap<&'static str, f64>> = crate::grid::product(axes)
+        .into_iter()
+        .map(|point| point.into_iter().collect())
+        .collect();
     use rayon::prelude::*;
     let verdicts: Vec<Result<Verdict, ScenarioError>> = grid
         .par_iter()
