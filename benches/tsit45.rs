@@ -86,9 +86,7 @@ fn diffsol_tsit45(model: &dyn FrictionModel, tol: f64) -> ([f64; 2], usize) {
             dy[1] = 0.0;
         }
         Mode::Slip(d) => {
-            let f = model
-                .response(y[0], y[1] - V_BELT, 0.0, SignLaw::Frozen(d))
-                .force;
+            let f = model.force(y[0], y[1] - V_BELT, &[], SignLaw::Frozen(d));
             dy[0] = y[1];
             dy[1] = (-K * y[0] - f) / M;
         }
@@ -96,7 +94,7 @@ fn diffsol_tsit45(model: &dyn FrictionModel, tol: f64) -> ([f64; 2], usize) {
     // Slipping: v_rel = 0. Stuck: the holding force −k·x leaving the stick interval.
     let root = |y: &[f64], _p: &[f64], _t: f64, g: &mut [f64]| match mode.get() {
         Mode::Stick => {
-            let s = model.stick_interval(y[0], 0.0);
+            let s = model.stick_interval(y[0], &[]);
             let held = -K * y[0];
             g[0] = s.upper - held;
             g[1] = held - s.lower;
@@ -147,7 +145,7 @@ fn diffsol_tsit45(model: &dyn FrictionModel, tol: f64) -> ([f64; 2], usize) {
             Mode::Stick => Mode::Slip(Direction::Negative),
             Mode::Slip(_) => {
                 v = V_BELT;
-                let s = model.stick_interval(x, 0.0);
+                let s = model.stick_interval(x, &[]);
                 let held = -K * x;
                 if s.contains(held) {
                     Mode::Stick

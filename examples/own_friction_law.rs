@@ -8,7 +8,9 @@
 //!
 //! Run: `cargo run --release --example own_friction_law`.
 
-use friction_lab::friction_models::{FrictionModel, Partials, Response, SignLaw, StickInterval};
+use friction_lab::friction_models::{
+    FrictionModel, Partials, SignLaw, StatePartials, StickInterval,
+};
 use friction_lab::friction_systems::{simulate, End, Switching, System, STICK};
 use friction_lab::integrators::{Options, Solver};
 use friction_lab::scenarios::studies::{self, SystemCase};
@@ -38,41 +40,37 @@ impl FrictionModel for Tustin {
     }
 
     /// `F = (F_c + (F_s − F_c)·e^(−|v|/v_s))·sign(v) + b·v`, with sign(v) and |v| = v·sign(v)
-    /// evaluated by the law the integration asks for.
-    fn response(&self, _x: f64, v: f64, _z: f64, law: SignLaw) -> Response {
+    /// evaluated by the law the integration asks for; no internal state, so no rate.
+    fn response(&self, _x: f64, v: f64, _z: &[f64], law: SignLaw, _rate: &mut [f64]) -> f64 {
         let sign = law.branches(v).sign();
         let level = self.f_c + (self.f_s - self.f_c) * (-(v * sign) / self.v_s).exp();
-        Response {
-            force: level * sign + self.b * v,
-            state_rate: 0.0,
-        }
+        level * sign + self.b * v
     }
 
-    fn partials(&self, _x: f64, v: f64, _z: f64, law: SignLaw) -> Partials {
+    fn partials(
+        &self,
+        _x: f64,
+        v: f64,
+        _z: &[f64],
+        law: SignLaw,
+        _states: &mut [StatePartials],
+    ) -> Partials {
         let br = law.branches(v);
         let (sign, dsign) = (br.sign(), br.dsign_dv());
         let decay = (self.f_s - self.f_c) * (-(v * sign) / self.v_s).exp();
         // d|v|/dv = sign + v·dsign.
         let dabs = sign + v * dsign;
         Partials {
+            force_dx: 0.0,
             force_dv: (self.f_c + decay) * dsign - decay * dabs / self.v_s * sign + self.b,
-            ..Partials::default()
         }
     }
 
-    fn stick_interval(&self, _x: f64, _z: f64) -> StickInterval {
+    fn stick_interval(&self, _x: f64, _z: &[f64]) -> StickInterval {
         StickInterval {
             lower: -self.f_s,
             upper: self.f_s,
         }
-    }
-
-    fn steady_state(&self, _v: f64) -> f64 {
-        0.0
-    }
-
-    fn state_after_displacement(&self, _z0: f64, _dx: f64) -> Option<f64> {
-        None
     }
 }
 

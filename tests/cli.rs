@@ -237,6 +237,15 @@ fn bad_parameters_are_rejected_with_name_value_and_range() {
             &["reproduce", "--set", "mu_v=-0.5"],
             "parameter `mu_v` = -0.5 is out of range: allowed [0, inf) N*s/m",
         ),
+        (
+            &["curve", "gms", "--set", "n_gms=17"],
+            "parameter `n_gms` = 17 is out of range: allowed [1, 16] 1",
+        ),
+        (
+            &["curve", "gms", "--set", "n_gms=2.5"],
+            "parameter `n_gms` = 2.5 is not allowed here: the number of slip blocks must be a \
+             whole number in [1, 16]",
+        ),
     ];
     for (args, message) in cases {
         let text = rejected(args);
@@ -1136,6 +1145,20 @@ fn time_stepping_runs_rigs_and_chains_and_refuses_what_it_cannot_do() {
         "timestepping",
     ]);
     assert!(e.contains("no body to time-step"), "{e}");
+    let e = rejected(&[
+        "simulate",
+        "belt",
+        "--model",
+        "gms",
+        "--switching",
+        "timestepping",
+    ]);
+    assert!(
+        e.contains(
+            "model `gms` has 4 internal states; time-stepping (Moreau-Jean) takes at most 1"
+        ),
+        "{e}"
+    );
     let e = rejected(&[
         "simulate",
         "belt",

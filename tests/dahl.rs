@@ -14,10 +14,7 @@ impl OdeProblem for PrescribedDahl<'_> {
     }
     fn rhs(&self, t: f64, y: &[f64], _m: &[Mode], f: &mut [f64]) {
         let (x, v) = (t.powi(3) / 3.0 + t * t / 2.0, t * (t + 1.0));
-        f[0] = self
-            .0
-            .response(x, v, y[0], SignLaw::Discontinuous)
-            .state_rate;
+        self.0.response(x, v, y, SignLaw::Discontinuous, f);
     }
 }
 

@@ -152,7 +152,7 @@ struct BodyTable<'r> {
 
 impl<'r> BodyTable<'r> {
     fn new(run: &'r Run<'r>, with_time: bool) -> Self {
-        let states = run.problem.layout.z.iter().any(Option::is_some);
+        let states = run.problem.layout.has_states();
         let columns = ["t", "body", "x", "v", "friction", "mode", "z"];
         let columns = &columns[usize::from(!with_time)..columns.len() - usize::from(!states)];
         BodyTable {

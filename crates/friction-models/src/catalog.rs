@@ -2,6 +2,7 @@
 //! built from a [`FrictionParams`].
 
 use crate::composite::{Composite, Dahl};
+use crate::gms::Gms;
 use crate::lugre::LuGre;
 use crate::model::{FrictionModel, Variant};
 use crate::params::{FrictionParams, ParamError, Parameters};
@@ -41,6 +42,8 @@ pub enum ModelId {
     LuGreVd,
     /// The elasto-plastic model of Dupont et al. (2002).
     ElastoPlastic,
+    /// The generalized Maxwell-slip model of Al-Bender, Lampaert and Swevers (2005).
+    Gms,
 }
 
 /// How a model's curve is drawn (`friction-lab curve`).
@@ -55,7 +58,7 @@ pub enum CurveAxis {
 
 impl ModelId {
     /// Every model, the paper's six first.
-    pub const ALL: [ModelId; 15] = [
+    pub const ALL: [ModelId; 16] = [
         ModelId::Av,
         ModelId::Cs,
         ModelId::Cvs,
@@ -71,6 +74,7 @@ impl ModelId {
         ModelId::LuGre,
         ModelId::LuGreVd,
         ModelId::ElastoPlastic,
+        ModelId::Gms,
     ];
 
     /// The paper's six models: the first six of [`ModelId::ALL`].
@@ -94,6 +98,7 @@ impl ModelId {
             ModelId::LuGre => "lugre",
             ModelId::LuGreVd => "lugre-vd",
             ModelId::ElastoPlastic => "elasto-plastic",
+            ModelId::Gms => "gms",
         }
     }
 
@@ -131,6 +136,7 @@ impl ModelId {
             ModelId::LuGre => "LuGre (Canudas de Wit et al. 1995)",
             ModelId::LuGreVd => "LuGre with velocity-dependent damping",
             ModelId::ElastoPlastic => "elasto-plastic (Dupont et al. 2002)",
+            ModelId::Gms => "generalized Maxwell-slip (Al-Bender et al. 2005)",
         }
     }
 
@@ -153,6 +159,7 @@ impl ModelId {
                 "Canudas de Wit et al. (1995) eq. (10); Olsson, Astrom, Canudas de Wit, Gafvert, Lischinsky (1998)"
             }
             ModelId::ElastoPlastic => "Dupont, Hayward, Armstrong, Altpeter (2002), IEEE TAC 47(5)",
+            ModelId::Gms => "Al-Bender, Lampaert, Swevers (2005), IEEE TAC 50(11)",
         }
     }
 
@@ -178,6 +185,7 @@ impl ModelId {
             ModelId::LuGre => "F = sigma0*z + sigma1*dz/dt + sigma2*v, dz/dt = v - sigma0*|v|*z/g(v), g(v) = F_c + (F_s - F_c)*exp(-(v/v_s)^2)",
             ModelId::LuGreVd => "F = sigma0*z + sigma1*exp(-(v/v_d)^2)*dz/dt + sigma2*v, dz/dt = v - sigma0*|v|*z/g(v), g(v) = F_c + (F_s - F_c)*exp(-(v/v_s)^2)",
             ModelId::ElastoPlastic => "F = sigma0*z + sigma1*dz/dt + sigma2*v, dz/dt = v - alpha(z,v)*sigma0*|v|*z/g(v); alpha = 0 for |z| <= z_ba = r_ba*min(F_c, F_s)/sigma0 or sign(z) != sign(v), 1 for |z| >= z_max = g(v)/sigma0, sin ramp between",
+            ModelId::Gms => "F = sum_i (k_i*z_i + sigma_i*dz_i/dt) + sigma2*v, dz_i/dt = sign(v)*min(|v|, (C/k_i)*(alpha_i - k_i*z_i*sign(v)/g(v))), k_i = sigma0/n, alpha_i = (2i-1)/n^2, sigma_i = sigma1/n, n = n_gms, C = C_gms",
         }
     }
 
@@ -204,6 +212,9 @@ impl ModelId {
             ModelId::LuGre => &["sigma0", "sigma1", "sigma2", "F_c", "F_s", "v_s"],
             ModelId::LuGreVd => &["sigma0", "sigma1", "sigma2", "F_c", "F_s", "v_s", "v_d"],
             ModelId::ElastoPlastic => &["sigma0", "sigma1", "sigma2", "F_c", "F_s", "v_s", "r_ba"],
+            ModelId::Gms => &[
+                "sigma0", "sigma1", "sigma2", "F_c", "F_s", "v_s", "n_gms", "C_gms",
+            ],
         }
     }
 
@@ -286,15 +297,20 @@ impl ModelId {
                 band: p.dv,
                 ..base
             },
-            ModelId::LuGre | ModelId::LuGreVd | ModelId::ElastoPlastic => {
+            ModelId::LuGre | ModelId::LuGreVd | ModelId::ElastoPlastic | ModelId::Gms => {
                 if p.f_s <= 0.0 {
                     return Err(ParamError::Invalid {
                         name: "F_s".into(),
                         value: p.f_s,
-                        reason: "LuGre divides by g(v) = F_c + (F_s - F_c)*exp(-(v/v_s)^2), \
-                                 which needs F_s in (0, inf) N"
-                            .into(),
+                        reason: format!(
+                            "{} divides by g(v) = F_c + (F_s - F_c)*exp(-(v/v_s)^2), \
+                             which needs F_s in (0, inf) N",
+                            self.name()
+                        ),
                     });
+                }
+                if self == ModelId::Gms {
+                    return gms(p);
                 }
                 return Ok(Box::new(LuGre {
                     id: self,
@@ -313,6 +329,25 @@ impl ModelId {
         };
         Ok(Box::new(model))
     }
+}
+
+/// GMS from the parameters: `n_gms` must be a whole number of blocks.
+fn gms(p: &FrictionParams) -> Result<Box<dyn FrictionModel>, ParamError> {
+    if p.n_gms.fract() != 0.0 {
+        return Err(ParamError::Invalid {
+            name: "n_gms".into(),
+            value: p.n_gms,
+            reason: "the number of slip blocks must be a whole number in [1, 16]".into(),
+        });
+    }
+    Ok(Box::new(Gms {
+        blocks: Gms::blocks(p.n_gms as usize, p.sigma0, p.sigma1),
+        attraction: p.c_gms,
+        sigma2: p.sigma2,
+        f_c: p.f_c,
+        f_s: p.f_s,
+        v_s: p.v_s,
+    }))
 }
 
 impl fmt::Display for ModelId {

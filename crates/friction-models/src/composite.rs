@@ -6,7 +6,7 @@
 //! Dahl, Karnopp) are all values of this one struct; see [`crate::catalog`].
 
 use crate::catalog::{CurveAxis, ModelId};
-use crate::model::{FrictionModel, Partials, Response, StickInterval};
+use crate::model::{FrictionModel, Partials, StatePartials, StickInterval};
 use crate::sign::{Direction, SignLaw};
 use crate::terms::{self, Term};
 
@@ -85,49 +85,61 @@ impl FrictionModel for Composite {
         usize::from(self.dahl.is_some())
     }
 
-    fn response(&self, x: f64, v: f64, z: f64, law: SignLaw) -> Response {
-        self.evaluate(x, v, z, law).0
+    fn response(&self, x: f64, v: f64, z: &[f64], law: SignLaw, rate: &mut [f64]) -> f64 {
+        self.evaluate(
+            x,
+            v,
+            z,
+            law,
+            rate,
+            &mut [StatePartials::default(); 1][..rate.len()],
+        )
+        .0
     }
 
-    fn partials(&self, x: f64, v: f64, z: f64, law: SignLaw) -> Partials {
-        self.evaluate(x, v, z, law).1
+    fn partials(
+        &self,
+        x: f64,
+        v: f64,
+        z: &[f64],
+        law: SignLaw,
+        states: &mut [StatePartials],
+    ) -> Partials {
+        self.evaluate(x, v, z, law, &mut [0.0; 1][..states.len()], states)
+            .1
     }
 
     /// `F = F_memoryless(v) + z`, `ż` of Dahl's law (eq. 4) when the model has it.
-    fn evaluate(&self, _x: f64, v: f64, z: f64, law: SignLaw) -> (Response, Partials) {
+    fn evaluate(
+        &self,
+        _x: f64,
+        v: f64,
+        z: &[f64],
+        law: SignLaw,
+        rate: &mut [f64],
+        states: &mut [StatePartials],
+    ) -> (f64, Partials) {
         let f = self.memoryless(v, law);
-        match self.dahl {
-            Some(d) => {
-                let rate = terms::dahl_rate(d.sigma, d.f_c, v, z, &law.branches(v));
-                (
-                    Response {
-                        force: f.value + z,
-                        state_rate: rate.rate,
-                    },
-                    Partials {
-                        force_dv: f.dv,
-                        force_dz: 1.0,
-                        rate_dv: rate.dv,
-                        rate_dz: rate.dz,
-                        ..Partials::default()
-                    },
-                )
-            }
-            None => (
-                Response {
-                    force: f.value,
-                    state_rate: 0.0,
-                },
-                Partials {
-                    force_dv: f.dv,
-                    ..Partials::default()
-                },
-            ),
-        }
+        let partials = Partials {
+            force_dx: 0.0,
+            force_dv: f.dv,
+        };
+        let Some(d) = self.dahl else {
+            return (f.value, partials);
+        };
+        let r = terms::dahl_rate(d.sigma, d.f_c, v, z[0], &law.branches(v));
+        rate[0] = r.rate;
+        states[0] = StatePartials {
+            force_dz: 1.0,
+            rate_dx: 0.0,
+            rate_dv: r.dv,
+            rate_dz: r.dz,
+        };
+        (f.value + z[0], partials)
     }
 
-    fn stick_interval(&self, x: f64, z: f64) -> StickInterval {
-        let at_rest = |law| self.response(x, 0.0, z, law).force;
+    fn stick_interval(&self, x: f64, z: &[f64]) -> StickInterval {
+        let at_rest = |law| self.force(x, 0.0, z, law);
         match self.break_away {
             Some(level) => {
                 let smooth = at_rest(SignLaw::Discontinuous);
@@ -143,14 +155,16 @@ impl FrictionModel for Composite {
         }
     }
 
-    fn steady_state(&self, v: f64) -> f64 {
-        self.dahl
-            .map_or(0.0, |d| d.f_c * SignLaw::Discontinuous.branches(v).sign())
+    fn steady_state(&self, v: f64, z: &mut [f64]) {
+        if let Some(d) = self.dahl {
+            z[0] = d.f_c * SignLaw::Discontinuous.branches(v).sign();
+        }
     }
 
-    fn state_after_displacement(&self, z0: f64, dx: f64) -> Option<f64> {
-        self.dahl
-            .map(|d| terms::dahl_after_displacement(d.sigma, d.f_c, z0, dx))
+    fn state_after_displacement(&self, z0: &[f64], dx: f64, z: &mut [f64]) -> bool {
+        let Some(d) = self.dahl else { return false };
+        z[0] = terms::dahl_after_displacement(d.sigma, d.f_c, z0[0], dx);
+        true
     }
 
     fn stick_band(&self) -> f64 {

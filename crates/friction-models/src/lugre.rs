@@ -14,8 +14,9 @@
 //!   z and v have opposite signs (unloading is elastic).
 
 use crate::catalog::ModelId;
-use crate::model::{FrictionModel, Partials, Response, StickInterval};
+use crate::model::{FrictionModel, Partials, StatePartials, StickInterval};
 use crate::sign::SignLaw;
+use crate::terms;
 
 /// LuGre parameters, and which variant.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -51,12 +52,8 @@ struct Rate {
 impl LuGre {
     /// The Stribeck curve g(v) and its derivative.
     fn g(&self, v: f64) -> (f64, f64) {
-        let e = (-(v / self.v_s).powi(2)).exp();
-        let amplitude = self.f_s - self.f_c;
-        (
-            self.f_c + amplitude * e,
-            -2.0 * v / (self.v_s * self.v_s) * amplitude * e,
-        )
+        let g = terms::stribeck_level(self.f_c, self.f_s, self.v_s, v);
+        (g.value, g.dv)
     }
 
     /// The elasto-plastic weight α(z, v) and its partial derivatives (∂α/∂z, ∂α/∂v), given
@@ -121,46 +118,55 @@ impl FrictionModel for LuGre {
         1
     }
 
-    fn response(&self, x: f64, v: f64, z: f64, law: SignLaw) -> Response {
-        self.evaluate(x, v, z, law).0
+    fn response(&self, x: f64, v: f64, z: &[f64], law: SignLaw, rate: &mut [f64]) -> f64 {
+        self.evaluate(x, v, z, law, rate, &mut [StatePartials::default()])
+            .0
     }
 
-    fn partials(&self, x: f64, v: f64, z: f64, law: SignLaw) -> Partials {
-        self.evaluate(x, v, z, law).1
+    fn partials(
+        &self,
+        x: f64,
+        v: f64,
+        z: &[f64],
+        law: SignLaw,
+        states: &mut [StatePartials],
+    ) -> Partials {
+        self.evaluate(x, v, z, law, &mut [0.0], states).1
     }
 
-    fn evaluate(&self, _x: f64, v: f64, z: f64, law: SignLaw) -> (Response, Partials) {
-        let r = self.rate(v, z, law);
+    fn evaluate(
+        &self,
+        _x: f64,
+        v: f64,
+        z: &[f64],
+        law: SignLaw,
+        rate: &mut [f64],
+        states: &mut [StatePartials],
+    ) -> (f64, Partials) {
+        let r = self.rate(v, z[0], law);
         let (sigma1, dsigma1) = self.damping(v);
+        rate[0] = r.rate;
+        states[0] = StatePartials {
+            force_dz: self.sigma0 + sigma1 * r.dz,
+            rate_dx: 0.0,
+            rate_dv: r.dv,
+            rate_dz: r.dz,
+        };
         (
-            Response {
-                force: self.sigma0 * z + sigma1 * r.rate + self.sigma2 * v,
-                state_rate: r.rate,
-            },
+            self.sigma0 * z[0] + sigma1 * r.rate + self.sigma2 * v,
             Partials {
+                force_dx: 0.0,
                 force_dv: dsigma1 * r.rate + sigma1 * r.dv + self.sigma2,
-                force_dz: self.sigma0 + sigma1 * r.dz,
-                rate_dv: r.dv,
-                rate_dz: r.dz,
-                ..Partials::default()
             },
         )
     }
 
-    fn stick_interval(&self, x: f64, z: f64) -> StickInterval {
+    fn stick_interval(&self, x: f64, z: &[f64]) -> StickInterval {
         // LuGre is smooth at v = 0: the admissible set is the single force σ0·z.
-        let force = self.response(x, 0.0, z, SignLaw::Discontinuous).force;
-        StickInterval {
-            lower: force,
-            upper: force,
-        }
+        StickInterval::point(self.force(x, 0.0, z, SignLaw::Discontinuous))
     }
 
-    fn steady_state(&self, v: f64) -> f64 {
-        self.g(v).0 * SignLaw::Discontinuous.branches(v).sign() / self.sigma0
-    }
-
-    fn state_after_displacement(&self, _z0: f64, _dx: f64) -> Option<f64> {
-        None
+    fn steady_state(&self, v: f64, z: &mut [f64]) {
+        z[0] = self.g(v).0 * SignLaw::Discontinuous.branches(v).sign() / self.sigma0;
     }
 }

@@ -5,30 +5,40 @@ use crate::sign::SignLaw;
 use serde::Serialize;
 use std::fmt;
 
-/// The friction force and the rate of the internal state at one point (x, v, z).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Response {
-    /// Friction force F(x, v, z), N, acting against the motion for positive v.
-    pub force: f64,
-    /// dz/dt of the internal state (0 for models without one).
-    pub state_rate: f64,
+/// The most internal states a model may have (GMS with its most elements has 16): the
+/// size of the stack buffers [`FrictionModel::force`] and the solvers use.
+pub const MAX_STATES: usize = 16;
+
+/// The one number output files report for a model's internal states: the state itself, or the
+/// mean of several (for GMS's blocks of equal stiffness, σ0 times it is the spring force, as
+/// σ0·z is LuGre's); `None` without states.
+pub fn reported_state(z: &[f64]) -> Option<f64> {
+    (!z.is_empty()).then(|| z.iter().sum::<f64>() / z.len() as f64)
 }
 
-/// The analytic partial derivatives of the force F and of the state rate ż = g(x, v, z),
-/// as implicit solvers need them for their Newton Jacobians.
+/// The analytic partial derivatives of the force F(x, v, z) in x and v, as implicit solvers
+/// need them for their Newton Jacobians (those in the states are [`StatePartials`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Partials {
     /// ∂F/∂x.
     pub force_dx: f64,
     /// ∂F/∂v.
     pub force_dv: f64,
-    /// ∂F/∂z.
+}
+
+/// The partial derivatives that involve one internal state z_i with rate ż_i = g_i(x, v, z_i).
+/// The states of a model are coupled only through x and v (∂g_i/∂z_j = 0 for i ≠ j), as in
+/// Dahl's, LuGre's and the Maxwell-slip elements' laws, so the state block of the Jacobian is
+/// diagonal.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct StatePartials {
+    /// ∂F/∂z_i.
     pub force_dz: f64,
-    /// ∂ż/∂x.
+    /// ∂ż_i/∂x.
     pub rate_dx: f64,
-    /// ∂ż/∂v.
+    /// ∂ż_i/∂v.
     pub rate_dv: f64,
-    /// ∂ż/∂z.
+    /// ∂ż_i/∂z_i.
     pub rate_dz: f64,
 }
 
@@ -43,6 +53,14 @@ pub struct StickInterval {
 }
 
 impl StickInterval {
+    /// The admissible set of a law continuous at rest (LuGre, GMS): the single force `force`.
+    pub fn point(force: f64) -> Self {
+        StickInterval {
+            lower: force,
+            upper: force,
+        }
+    }
+
     /// Whether a body needing friction `force` to stay at rest can stick.
     pub fn contains(&self, force: f64) -> bool {
         self.lower <= force && force <= self.upper
@@ -93,13 +111,16 @@ impl std::str::FromStr for Variant {
     }
 }
 
-/// A friction model: a force law F(x, v, z) with an optional internal state z.
+/// A friction model: a force law F(x, v, z) with internal states z = (z_1, …, z_n),
+/// n = [`n_states`](FrictionModel::n_states) (0 for static maps, 1 for Dahl and LuGre, the
+/// number of elements for the generalized Maxwell-slip model).
 ///
-/// - the slip force for v ≠ 0 is `response(x, v, z, SignLaw::Discontinuous).force`, or with
+/// - the slip force for v ≠ 0 is `response(x, v, z, SignLaw::Discontinuous, ż)`, or with
 ///   `SignLaw::Frozen(direction)` inside a slip mode;
-/// - the smooth regularised form of width ε is `response(x, v, z, SignLaw::Smooth { epsilon })`;
+/// - the smooth regularised form of width ε is `response(x, v, z, SignLaw::Smooth { epsilon }, ż)`;
 /// - the admissible forces at rest are [`stick_interval`](FrictionModel::stick_interval);
-/// - the state obeys `ż = response(..).state_rate` and, while stuck (v = 0), does not move.
+/// - the states obey `ż = g(x, v, z)` (written by `response`) and, while stuck (v = 0), do
+///   not move.
 ///
 /// The trait is public so that a model written in another crate runs in every rig, system
 /// and study of friction-lab (see `examples/own_friction_law.rs`).
@@ -113,32 +134,68 @@ pub trait FrictionModel: fmt::Debug + Send + Sync {
         CurveAxis::Velocity
     }
 
-    /// Number of internal states: 0, or 1 for Dahl-type and LuGre models.
+    /// Number of internal states n, at most [`MAX_STATES`].
     fn n_states(&self) -> usize;
 
-    /// Force and state rate at (x, v, z) with sign(v) evaluated by `law`.
-    fn response(&self, x: f64, v: f64, z: f64, law: SignLaw) -> Response;
+    /// The force F(x, v, z) with sign(v) evaluated by `law`; writes the state rates
+    /// ż = g(x, v, z) into `rate` (length n).
+    fn response(&self, x: f64, v: f64, z: &[f64], law: SignLaw, rate: &mut [f64]) -> f64;
 
-    /// Analytic partial derivatives of force and state rate at (x, v, z) under `law`.
-    fn partials(&self, x: f64, v: f64, z: f64, law: SignLaw) -> Partials;
+    /// The analytic partial derivatives at (x, v, z) under `law`: returns ∂F/∂x and ∂F/∂v,
+    /// and writes each state's partials into `states` (length n).
+    fn partials(
+        &self,
+        x: f64,
+        v: f64,
+        z: &[f64],
+        law: SignLaw,
+        states: &mut [StatePartials],
+    ) -> Partials;
 
     /// [`response`](FrictionModel::response) and [`partials`](FrictionModel::partials) at
     /// one point together, for solvers that need both (the Newton iterations of
     /// time-stepping); a model overrides it to share the work of the two.
-    fn evaluate(&self, x: f64, v: f64, z: f64, law: SignLaw) -> (Response, Partials) {
-        (self.response(x, v, z, law), self.partials(x, v, z, law))
+    fn evaluate(
+        &self,
+        x: f64,
+        v: f64,
+        z: &[f64],
+        law: SignLaw,
+        rate: &mut [f64],
+        states: &mut [StatePartials],
+    ) -> (f64, Partials) {
+        (
+            self.response(x, v, z, law, rate),
+            self.partials(x, v, z, law, states),
+        )
     }
 
-    /// The admissible friction forces at rest with state `z`.
-    fn stick_interval(&self, x: f64, z: f64) -> StickInterval;
+    /// The force F(x, v, z) alone (the state rates computed into a scratch buffer).
+    fn force(&self, x: f64, v: f64, z: &[f64], law: SignLaw) -> f64 {
+        let n = self.n_states();
+        if n <= MAX_STATES {
+            self.response(x, v, z, law, &mut [0.0; MAX_STATES][..n])
+        } else {
+            self.response(x, v, z, law, &mut vec![0.0; n])
+        }
+    }
 
-    /// The internal state reached by steady sliding at velocity `v` (0 for stateless models).
-    fn steady_state(&self, v: f64) -> f64;
+    /// The admissible friction forces at rest with states `z`.
+    fn stick_interval(&self, x: f64, z: &[f64]) -> StickInterval;
 
-    /// The state after a displacement `dx` in one direction from state `z0`, for a
-    /// rate-independent state (Dahl); `None` when the state depends on the rate (LuGre) or
-    /// there is none.
-    fn state_after_displacement(&self, z0: f64, dx: f64) -> Option<f64>;
+    /// Writes into `z` the internal states reached by steady sliding at velocity `v`
+    /// (nothing for a model without states).
+    fn steady_state(&self, v: f64, z: &mut [f64]) {
+        let _ = (v, z);
+    }
+
+    /// For rate-independent states (Dahl), writes into `z` the states after a displacement
+    /// `dx` in one direction from `z0` and returns true; returns false when the states depend
+    /// on the rate (LuGre) or there are none.
+    fn state_after_displacement(&self, z0: &[f64], dx: f64, z: &mut [f64]) -> bool {
+        let _ = (z0, dx, z);
+        false
+    }
 
     /// Half-width of a stick band |v| < Δv inside which the stick law applies (Karnopp);
     /// 0 for models that stick only at v = 0.

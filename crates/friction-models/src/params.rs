@@ -33,6 +33,13 @@ impl Range {
         max: 1.0,
         max_inclusive: false,
     };
+    /// [1, 16]: the number of GMS slip blocks ([`crate::MAX_STATES`] at most).
+    pub const GMS_BLOCKS: Range = Range {
+        min: 1.0,
+        min_inclusive: true,
+        max: crate::model::MAX_STATES as f64,
+        max_inclusive: true,
+    };
     /// [0, ∞): non-negative and finite.
     pub const NON_NEGATIVE: Range = Range {
         min: 0.0,
@@ -258,6 +265,10 @@ parameters! {
         v_d: "v_d", "m/s", Range::POSITIVE, "decay velocity of LuGre's damping sigma1*exp(-(v/v_d)^2) (lugre-vd)";
         /// The elasto-plastic break-away displacement z_ba as a fraction of min(F_c, F_s)/σ0.
         r_ba: "r_ba", "1", Range::OPEN_UNIT, "elasto-plastic break-away displacement z_ba as a fraction of min(F_c, F_s)/sigma0";
+        /// Number n of GMS slip blocks (an integer).
+        n_gms: "n_gms", "1", Range::GMS_BLOCKS, "number of slip blocks of GMS (an integer, 1 to 16)";
+        /// Attraction C of GMS's slip law dF_i/dt = sign(v)*C*(alpha_i - F_i/s(v)).
+        c_gms: "C_gms", "N/s", Range::POSITIVE, "attraction of GMS's slip law dF_i/dt = sign(v)*C*(alpha_i - F_i/s(v))";
     }
 }
 
@@ -283,13 +294,16 @@ impl FrictionParams {
             epsilon: 1e-3,
             v_d: 0.1,
             r_ba: 0.5,
+            n_gms: 4.0,
+            c_gms: 1e4 * 7.5,
         }
     }
 
     /// Canudas de Wit, Olsson, Åström and Lischinsky (1995), IEEE TAC 40(3), section II:
     /// σ0 = 1e5 N/m, σ1 = √1e5 N·s/m, σ2 = 0.4 N·s/m, F_c = 1 N, F_s = 1.5 N, v_s = 1e-3 m/s.
     /// The other models read the same levels: μ_v = σ2, σ = σ0, C1 = C2 = F_s − F_c, and
-    /// the widths dv and ε are a hundredth of v_s.
+    /// the widths dv and ε are a hundredth of v_s. GMS takes four blocks and C = 1e4·F_s per
+    /// second (its slip law relaxes in 0.1 ms), in both sets.
     pub fn lugre_1995() -> Self {
         FrictionParams {
             f_s: 1.5,
@@ -306,6 +320,8 @@ impl FrictionParams {
             epsilon: 1e-5,
             v_d: 1e-3,
             r_ba: 0.5,
+            n_gms: 4.0,
+            c_gms: 1e4 * 1.5,
         }
     }
 
@@ -378,7 +394,7 @@ mod tests {
         let p = FrictionParams::paper();
         assert_eq!(p.value("C2"), Some(1.5));
         assert_eq!(p.value("F_s"), Some(7.5));
-        assert_eq!(FrictionParams::specs().len(), 14);
+        assert_eq!(FrictionParams::specs().len(), 16);
         assert_eq!((p.value("v_d"), p.value("r_ba")), (Some(0.1), Some(0.5)));
     }
 }

@@ -72,6 +72,17 @@ pub fn stribeck(c1: f64, c2: f64, v_s: f64, v: f64, b: &Branches) -> Term {
     }
 }
 
+/// The Stribeck curve of LuGre and GMS, `g(v) = F_c + (F_s − F_c)·exp(−(v/v_s)²)` (the
+/// steady friction level at speed |v|), with its derivative in v.
+pub fn stribeck_level(f_c: f64, f_s: f64, v_s: f64, v: f64) -> Term {
+    let e = (-(v / v_s).powi(2)).exp();
+    let amplitude = f_s - f_c;
+    Term {
+        value: f_c + amplitude * e,
+        dv: -2.0 * v / (v_s * v_s) * amplitude * e,
+    }
+}
+
 /// Dahl's differential law, `dz/dt = σ·(v − |v|·z/F_c)` with `|v| = v·sign(v)`:
 /// the state's rate and its partial derivatives with respect to v and z.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -3,7 +3,8 @@
 
 use approx::assert_relative_eq;
 use friction_models::{
-    Direction, FrictionModel, FrictionParams, ModelId, ParamError, Parameters, SignLaw, Variant,
+    Direction, FrictionModel, FrictionParams, ModelId, ParamError, Parameters, SignLaw,
+    StatePartials, Variant,
 };
 
 fn build(id: ModelId, variant: Variant) -> Box<dyn FrictionModel> {
@@ -11,9 +12,19 @@ fn build(id: ModelId, variant: Variant) -> Box<dyn FrictionModel> {
 }
 
 fn slip(id: ModelId, variant: Variant, v: f64, z: f64) -> f64 {
-    build(id, variant)
-        .response(0.0, v, z, SignLaw::Discontinuous)
-        .force
+    let m = build(id, variant);
+    m.force(0.0, v, &states(&*m, z), SignLaw::Discontinuous)
+}
+
+/// Every internal state of `m` set to `z`.
+fn states(m: &dyn FrictionModel, z: f64) -> Vec<f64> {
+    vec![z; m.n_states()]
+}
+
+/// F and ż at (x, v, z).
+fn response(m: &dyn FrictionModel, x: f64, v: f64, z: &[f64], law: SignLaw) -> (f64, Vec<f64>) {
+    let mut rate = vec![0.0; m.n_states()];
+    (m.response(x, v, z, law, &mut rate), rate)
 }
 
 #[test]
@@ -43,7 +54,10 @@ fn slip_forces_match_hand_computation_with_table_1() {
 #[test]
 fn stick_intervals_are_those_of_models_md() {
     let z = 0.8;
-    let interval = |id, variant| build(id, variant).stick_interval(0.0, z);
+    let interval = |id, variant| {
+        let m = build(id, variant);
+        m.stick_interval(0.0, &states(&*m, z))
+    };
     let odd = Variant::Odd;
     let check = |id, variant, lower: f64, upper: f64| {
         let s = interval(id, variant);
@@ -70,17 +84,17 @@ fn asymmetric_stribeck_amplitudes_set_the_av_limits() {
     p.set("C1", 1.0).unwrap();
     p.set("C2", 2.0).unwrap();
     let av = ModelId::Av.build(Variant::Odd, &p).unwrap();
-    let s = av.stick_interval(0.0, 0.0);
+    let s = av.stick_interval(0.0, &[]);
     assert_eq!((s.lower, s.upper), (-9.5, 8.5));
     // The frozen law gives the one-sided limits of the slip force.
-    let up = av.response(0.0, 0.0, 0.0, SignLaw::Frozen(Direction::Positive));
-    assert_eq!(up.force, 8.5);
+    let up = av.force(0.0, 0.0, &[], SignLaw::Frozen(Direction::Positive));
+    assert_eq!(up, 8.5);
 }
 
 #[test]
 fn stick_law_clamps_the_applied_force() {
     let cs = build(ModelId::Cs, Variant::Odd);
-    let s = cs.stick_interval(0.0, 0.0);
+    let s = cs.stick_interval(0.0, &[]);
     assert_eq!(s.clamp(5.0), 5.0);
     assert_eq!(s.clamp(-15.0), -7.5);
     assert!(s.contains(7.5) && !s.contains(7.6));
@@ -91,10 +105,12 @@ fn odd_models_are_odd() {
     for id in ModelId::ALL {
         let m = build(id, Variant::Odd);
         for &(v, z) in &[(0.03, 0.4), (0.7, 5.0), (2.0, -1.0)] {
-            let plus = m.response(0.0, v, z, SignLaw::Discontinuous);
-            let minus = m.response(0.0, -v, -z, SignLaw::Discontinuous);
-            assert_relative_eq!(plus.force, -minus.force, max_relative = 1e-14);
-            assert_relative_eq!(plus.state_rate, -minus.state_rate, max_relative = 1e-14);
+            let plus = response(&*m, 0.0, v, &states(&*m, z), SignLaw::Discontinuous);
+            let minus = response(&*m, 0.0, -v, &states(&*m, -z), SignLaw::Discontinuous);
+            assert_relative_eq!(plus.0, -minus.0, max_relative = 1e-14);
+            for (p, q) in plus.1.iter().zip(&minus.1) {
+                assert_relative_eq!(*p, -q, max_relative = 1e-14);
+            }
         }
     }
 }
@@ -104,23 +120,17 @@ fn regularised_force_tends_to_the_slip_force() {
     for id in ModelId::ALL {
         let m = build(id, Variant::Odd);
         let v = 0.05;
-        let z = m.steady_state(v) * 0.5;
-        let exact = m.response(0.0, v, z, SignLaw::Discontinuous).force;
-        let smooth = m
-            .response(0.0, v, z, SignLaw::Smooth { epsilon: 1e-4 })
-            .force;
+        let mut z = states(&*m, 0.0);
+        m.steady_state(v, &mut z);
+        z.iter_mut().for_each(|z| *z *= 0.5);
+        let exact = m.force(0.0, v, &z, SignLaw::Discontinuous);
+        let smooth = m.force(0.0, v, &z, SignLaw::Smooth { epsilon: 1e-4 });
         assert_relative_eq!(smooth, exact, max_relative = 1e-12);
         // and is smooth through zero: no jump between ±1e-12
         let eps = SignLaw::Smooth { epsilon: 1e-3 };
-        let jump = m.response(0.0, 1e-12, z, eps).force - m.response(0.0, -1e-12, z, eps).force;
+        let jump = m.force(0.0, 1e-12, &z, eps) - m.force(0.0, -1e-12, &z, eps);
         assert!(jump.abs() < 1e-6, "{id}: jump {jump}");
     }
-}
-
-/// Central difference of `f` at `u`, step scaled to `u`.
-fn central(f: impl Fn(f64) -> f64, u: f64) -> f64 {
-    let h = 1e-6 * u.abs().max(1e-3);
-    (f(u + h) - f(u - h)) / (2.0 * h)
 }
 
 fn assert_close(analytic: f64, numeric: f64, what: &str) {
@@ -130,9 +140,6 @@ fn assert_close(analytic: f64, numeric: f64, what: &str) {
         "{what}: analytic {analytic} vs finite difference {numeric}"
     );
 }
-
-/// A force or rate as a function of the point (x, v, z).
-type Of<'a> = dyn Fn([f64; 3]) -> f64 + 'a;
 
 #[test]
 fn analytic_partials_match_finite_differences() {
@@ -151,7 +158,7 @@ fn analytic_partials_match_finite_differences() {
         for variant in [Variant::Odd, Variant::Printed] {
             let lugre_family = matches!(
                 id,
-                ModelId::LuGre | ModelId::LuGreVd | ModelId::ElastoPlastic
+                ModelId::LuGre | ModelId::LuGreVd | ModelId::ElastoPlastic | ModelId::Gms
             );
             let params = if lugre_family {
                 lugre_params
@@ -159,45 +166,65 @@ fn analytic_partials_match_finite_differences() {
                 FrictionParams::paper()
             };
             let m = id.build(variant, &params).unwrap();
+            let n = m.n_states();
             for law in laws {
                 // For the elasto-plastic model the third point lies in its elastic range
                 // (|z| < z_ba) and the second and last in its transition to plastic sliding
-                // (z_ba < |z| < z_max).
+                // (z_ba < |z| < z_max); GMS's blocks are on both sides of their switch at
+                // the third and last.
                 for &(x, v, z) in &[
                     (0.1, 0.07, 0.3),
                     (-0.4, -0.12, -0.5e-5),
                     (1.0, 0.02, 2e-6),
                     (0.2, 0.05, 0.9e-5),
                 ] {
-                    let p = m.partials(x, v, z, law);
-                    let force = |u: [f64; 3]| m.response(u[0], u[1], u[2], law).force;
-                    let rate = |u: [f64; 3]| m.response(u[0], u[1], u[2], law).state_rate;
-                    let checks: [(&str, f64, &Of, usize); 6] = [
-                        ("dF/dx", p.force_dx, &force, 0),
-                        ("dF/dv", p.force_dv, &force, 1),
-                        ("dF/dz", p.force_dz, &force, 2),
-                        ("dzdot/dx", p.rate_dx, &rate, 0),
-                        ("dzdot/dv", p.rate_dv, &rate, 1),
-                        ("dzdot/dz", p.rate_dz, &rate, 2),
-                    ];
-                    for (name, analytic, f, i) in checks {
-                        let at = [x, v, z];
-                        let numeric = central(
+                    // Unequal states: z_i = z·(1 + i/10).
+                    let z: Vec<f64> = (0..n).map(|i| z * (1.0 + 0.1 * i as f64)).collect();
+                    let mut d = vec![StatePartials::default(); n];
+                    let p = m.partials(x, v, &z, law, &mut d);
+                    let at = |x: f64, v: f64, z: &[f64]| response(&*m, x, v, z, law);
+                    let what = |name: &str| {
+                        format!("{name} of {id} {variant} {law:?} at x = {x}, v = {v}, z = {z:?}")
+                    };
+                    // Derivatives in x and v of F and of every ż_i.
+                    let dx = central_all(|u| at(u, v, &z), x);
+                    let dv = central_all(|u| at(x, u, &z), v);
+                    assert_close(p.force_dx, dx.0, &what("dF/dx"));
+                    assert_close(p.force_dv, dv.0, &what("dF/dv"));
+                    for i in 0..n {
+                        assert_close(d[i].rate_dx, dx.1[i], &what(&format!("dz{i}dot/dx")));
+                        assert_close(d[i].rate_dv, dv.1[i], &what(&format!("dz{i}dot/dv")));
+                        let dz = central_all(
                             |u| {
-                                let mut point = at;
-                                point[i] = u;
-                                f(point)
+                                let mut z = z.clone();
+                                z[i] = u;
+                                at(x, v, &z)
                             },
-                            at[i],
+                            z[i],
                         );
-                        let what =
-                            format!("{name} of {id} {variant} {law:?} at (x, v, z) = {at:?}");
-                        assert_close(analytic, numeric, &what);
+                        assert_close(d[i].force_dz, dz.0, &what(&format!("dF/dz{i}")));
+                        for (j, numeric) in dz.1.iter().enumerate() {
+                            // The state block is diagonal.
+                            let analytic = if i == j { d[i].rate_dz } else { 0.0 };
+                            assert_close(analytic, *numeric, &what(&format!("dz{j}dot/dz{i}")));
+                        }
                     }
                 }
             }
         }
     }
+}
+
+/// Central differences of the force and of every state rate at `u`, step scaled to `u`.
+fn central_all(f: impl Fn(f64) -> (f64, Vec<f64>), u: f64) -> (f64, Vec<f64>) {
+    let h = 1e-6 * u.abs().max(1e-3);
+    let (plus, minus) = (f(u + h), f(u - h));
+    let rates = plus
+        .1
+        .iter()
+        .zip(&minus.1)
+        .map(|(p, m)| (p - m) / (2.0 * h));
+    ((plus.0 - minus.0) / (2.0 * h), rates.collect())
 }
 
 #[test]
@@ -208,16 +235,15 @@ fn dahl_state_reproduces_the_closed_form_under_the_paper_motion() {
     for id in [ModelId::Dv, ModelId::Sd, ModelId::Sv, ModelId::Dahl] {
         let m = build(id, Variant::Odd);
         let position = |t: f64| t.powi(3) / 3.0 + t * t / 2.0;
-        let mut z = 0.0;
+        let mut z = [0.0];
         let n = 2000;
         for i in 1..=n {
             let (t0, t1) = ((i - 1) as f64 * 2.0 / n as f64, i as f64 * 2.0 / n as f64);
-            z = m
-                .state_after_displacement(z, position(t1) - position(t0))
-                .unwrap();
+            let z0 = z;
+            assert!(m.state_after_displacement(&z0, position(t1) - position(t0), &mut z));
             let closed =
                 friction_models::terms::dahl_closed_form(p.sigma, p.f_c, position(t1), 1.0);
-            assert_relative_eq!(z, closed, max_relative = 1e-10);
+            assert_relative_eq!(z[0], closed, max_relative = 1e-10);
         }
     }
 }
@@ -225,15 +251,23 @@ fn dahl_state_reproduces_the_closed_form_under_the_paper_motion() {
 #[test]
 fn lugre_steady_state_is_the_stribeck_curve() {
     let p = FrictionParams::lugre_1995();
-    let m = ModelId::LuGre.build(Variant::Odd, &p).unwrap();
-    for &v in &[-0.01, -1e-3, 2e-4, 5e-3, 0.1] {
-        let z = m.steady_state(v);
-        let r = m.response(0.0, v, z, SignLaw::Discontinuous);
-        let g = p.f_c + (p.f_s - p.f_c) * (-(v / p.v_s).powi(2)).exp();
-        assert!(r.state_rate.abs() < 1e-12 * v.abs().max(1e-12) * 1e3);
-        assert_relative_eq!(r.force, g * v.signum() + p.sigma2 * v, max_relative = 1e-12);
+    for id in [ModelId::LuGre, ModelId::Gms] {
+        let m = id.build(Variant::Odd, &p).unwrap();
+        for &v in &[-0.01, -1e-3, 2e-4, 5e-3, 0.1] {
+            let mut z = states(&*m, 0.0);
+            m.steady_state(v, &mut z);
+            let (force, rate) = response(&*m, 0.0, v, &z, SignLaw::Discontinuous);
+            let g = p.f_c + (p.f_s - p.f_c) * (-(v / p.v_s).powi(2)).exp();
+            for rate in rate {
+                assert!(
+                    rate.abs() < 1e-12 * v.abs().max(1e-12) * 1e3,
+                    "{id}: {rate}"
+                );
+            }
+            assert_relative_eq!(force, g * v.signum() + p.sigma2 * v, max_relative = 1e-12);
+        }
+        assert!(!m.state_after_displacement(&[0.0], 1.0, &mut [0.0]));
     }
-    assert!(m.state_after_displacement(0.0, 1.0).is_none());
 }
 
 #[test]

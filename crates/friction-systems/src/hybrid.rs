@@ -21,7 +21,7 @@
 use crate::layout::Layout;
 use crate::switching::{mode_of_velocity, Switching, SLIP_NEGATIVE, SLIP_POSITIVE, STICK};
 use crate::system::{End, System};
-use friction_models::{Direction, StickInterval};
+use friction_models::{Direction, StatePartials, StickInterval, MAX_STATES};
 use integrators::{Control, Crossing, Entry, EventSpec, Mode, OdeProblem};
 
 const SLIP_POSITIVE_EVENT: EventSpec = EventSpec {
@@ -192,40 +192,42 @@ impl<'a> FrictionSystem<'a> {
         external
     }
 
-    fn z(&self, i: usize, y: &[f64]) -> f64 {
-        self.layout.z[i].map_or(0.0, |k| y[k])
-    }
-
     /// The admissible friction forces of contact `j` at rest, in state y.
     pub fn stick_interval(&self, j: usize, y: &[f64]) -> StickInterval {
         let c = &self.system.contacts[j];
         c.model
-            .stick_interval(y[self.layout.x[c.body]], self.z(c.body, y))
+            .stick_interval(y[self.layout.x[c.body]], self.layout.states(c.body, y))
     }
 
-    /// Friction force and internal-state rate of contact `j` in `mode`, given the other
-    /// forces `other` on its body.
-    fn contact_force(&self, j: usize, y: &[f64], mode: Mode, other: f64) -> (f64, f64) {
+    /// Friction force of contact `j` in `mode`, given the other forces `other` on its body;
+    /// writes the rates of its internal states into `rate` (zero while it sticks).
+    fn contact_force(&self, j: usize, y: &[f64], mode: Mode, other: f64, rate: &mut [f64]) -> f64 {
         let c = &self.system.contacts[j];
         let i = c.body;
         let x = y[self.layout.x[i]];
         let v_rel = y[self.layout.v(i)] - c.surface_velocity;
-        let z = self.z(i, y);
+        let z = self.layout.states(i, y);
         match self.switching {
-            s if s.has_modes() && mode == STICK => return (other, 0.0),
+            s if s.has_modes() && mode == STICK => {
+                rate.fill(0.0);
+                return other;
+            }
             Switching::Naive if v_rel == 0.0 || v_rel.abs() < c.model.stick_band() => {
-                return (c.model.stick_interval(x, z).clamp(other), 0.0)
+                rate.fill(0.0);
+                return c.model.stick_interval(x, z).clamp(other);
             }
             _ => {}
         }
-        let r = c.model.response(x, v_rel, z, self.switching.law(mode));
-        (r.force, r.state_rate)
+        c.model
+            .response(x, v_rel, z, self.switching.law(mode), rate)
     }
 
     /// The friction force of contact `j` at (t, y) in `modes`, as the right-hand side uses it.
     pub fn friction(&self, j: usize, t: f64, y: &[f64], modes: &[Mode]) -> f64 {
-        let other = self.other_force(self.system.contacts[j].body, t, y);
-        self.contact_force(j, y, modes[j], other).0
+        let body = self.system.contacts[j].body;
+        let other = self.other_force(body, t, y);
+        let rate = &mut [0.0; MAX_STATES][..self.layout.z[body].len()];
+        self.contact_force(j, y, modes[j], other, rate)
     }
 
     /// The mode contact `j` is in at (t, y): by the sign of v_rel, and at v_rel = 0 by the
@@ -305,18 +307,15 @@ impl OdeProblem for FrictionSystem<'_> {
                 continue;
             };
             let surface = self.system.contacts[j].surface_velocity;
-            let (force, rate) = self.contact_force(j, y, modes[j], dy[v]);
+            let other = dy[v];
+            let force = self.contact_force(j, y, modes[j], other, &mut dy[l.z[i].clone()]);
             dissipated += force * (y[v] - surface);
             belt -= force * surface;
-            let stuck = self.switching.has_modes() && modes[j] == STICK;
-            if stuck {
+            if self.switching.has_modes() && modes[j] == STICK {
                 dy[l.x[i]] = surface;
                 dy[v] = 0.0;
             } else {
-                dy[v] = (dy[v] - force) / body.m;
-            }
-            if let Some(z) = l.z[i] {
-                dy[z] = if stuck { 0.0 } else { rate };
+                dy[v] = (other - force) / body.m;
             }
         }
         let a = l.accumulators;
@@ -352,20 +351,22 @@ impl OdeProblem for FrictionSystem<'_> {
         for (j, contact) in self.system.contacts.iter().enumerate() {
             let i = contact.body;
             let (x, v) = (l.x[i], l.v(i));
+            let states = &mut [StatePartials::default(); MAX_STATES][..l.z[i].len()];
             let p = contact.model.partials(
                 y[x],
                 y[v] - contact.surface_velocity,
-                self.z(i, y),
+                l.states(i, y),
                 self.switching.law(modes[j]),
+                states,
             );
             let (w, state) = (live(i), moving(i));
             jac.push((v, x, -p.force_dx * w));
             jac.push((v, v, -p.force_dv * w));
-            if let Some(z) = l.z[i] {
-                jac.push((v, z, -p.force_dz * w));
-                jac.push((z, x, p.rate_dx * state));
-                jac.push((z, v, p.rate_dv * state));
-                jac.push((z, z, p.rate_dz * state));
+            for (z, d) in l.z[i].clone().zip(states.iter()) {
+                jac.push((v, z, -d.force_dz * w));
+                jac.push((z, x, d.rate_dx * state));
+                jac.push((z, v, d.rate_dv * state));
+                jac.push((z, z, d.rate_dz * state));
             }
         }
         true

@@ -1,17 +1,18 @@
 //! Where each unknown of a system lives in the state vector `y`: per body `x_i`, `v_i` and,
-//! at a contact whose model has one, the internal state `z_i`, body after body (so that the
+//! at a contact whose model has them, the internal states `z_i`, body after body (so that the
 //! Jacobian of a chain is banded); then the three energy accumulators (see
 //! [`crate::energy`]).
 
 use crate::system::System;
+use std::ops::Range;
 
 /// The state layout of a system.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Layout {
-    /// Index of `x_i`; `v_i` follows it, then `z_i` where there is one.
+    /// Index of `x_i`; `v_i` follows it, then the states `z_i`.
     pub x: Vec<usize>,
-    /// Index of `z_i` for a body whose contact model has an internal state.
-    pub z: Vec<Option<usize>>,
+    /// Indices of the internal states of each body's contact model (empty without one).
+    pub z: Vec<Range<usize>>,
     /// The contact of each body, by index.
     pub contact: Vec<Option<usize>>,
     /// Index of the first energy accumulator; the state has three more unknowns.
@@ -31,7 +32,7 @@ impl Layout {
             x.push(next);
             next += 2;
             let states = c.map_or(0, |j| system.contacts[j].model.n_states());
-            z.push((states > 0).then_some(next));
+            z.push(next..next + states);
             next += states;
         }
         Layout {
@@ -45,6 +46,16 @@ impl Layout {
     /// Index of `v_i`.
     pub fn v(&self, body: usize) -> usize {
         self.x[body] + 1
+    }
+
+    /// The internal states of body `i`'s contact in `y`.
+    pub fn states<'y>(&self, i: usize, y: &'y [f64]) -> &'y [f64] {
+        &y[self.z[i].clone()]
+    }
+
+    /// Whether some contact has an internal state.
+    pub fn has_states(&self) -> bool {
+        self.z.iter().any(|z| !z.is_empty())
     }
 
     /// Number of unknowns, accumulators included.

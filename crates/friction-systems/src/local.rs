@@ -15,7 +15,7 @@
 //! law of direction d, and `R(u) = Ŵ·(u + v_s) + P − b = 0` is solved for u on the side of d by
 //! Newton's method safeguarded by bisection (Press et al., *Numerical Recipes*, `rtsafe`).
 
-use friction_models::{Direction, FrictionModel, SignLaw, StickInterval};
+use friction_models::{Direction, FrictionModel, Partials, SignLaw, StatePartials, StickInterval};
 
 /// Most Newton iterations of the sliding equation, or of the internal state, before the
 /// step is declared unsolved.
@@ -111,6 +111,17 @@ impl Local<'_> {
         self.x_hat + self.h * self.theta * (u + self.v_s)
     }
 
+    /// F, ż, the partials in x and v and those in z at (x, u, z), for a model with at most
+    /// one internal state (the scheme's restriction, checked by [`crate::simulate`]).
+    fn law_at(&self, x: f64, u: f64, z: f64, law: SignLaw) -> (f64, f64, Partials, StatePartials) {
+        let n = usize::from(self.has_state);
+        let (mut rate, mut states) = ([0.0], [StatePartials::default()]);
+        let (force, p) =
+            self.model
+                .evaluate(x, u, &[z][..n], law, &mut rate[..n], &mut states[..n]);
+        (force, rate[0], p, states[0])
+    }
+
     /// z(u) from the state equation and F(x(u), u, z(u)) with dF/du, under `law`.
     fn point(&self, u: f64, law: SignLaw) -> Result<Point, String> {
         let x = self.x(u);
@@ -120,8 +131,8 @@ impl Local<'_> {
         if self.has_state {
             let known = self.z0 + self.h * (1.0 - self.theta) * self.rate0;
             loop {
-                let (r, p) = self.model.evaluate(x, u, z, law);
-                let dz = (z - known - ht * r.state_rate) / (1.0 - ht * p.rate_dz);
+                let (_, rate, _, d) = self.law_at(x, u, z, law);
+                let dz = (z - known - ht * rate) / (1.0 - ht * d.rate_dz);
                 z -= dz;
                 iterations += 1;
                 if dz.abs() <= LOCAL_ROUNDOFF * z.abs() {
@@ -134,16 +145,16 @@ impl Local<'_> {
                 }
             }
         }
-        let (r, p) = self.model.evaluate(x, u, z, law);
+        let (force, _, p, d) = self.law_at(x, u, z, law);
         let dz_du = if self.has_state {
-            ht * (p.rate_dv + p.rate_dx * ht) / (1.0 - ht * p.rate_dz)
+            ht * (d.rate_dv + d.rate_dx * ht) / (1.0 - ht * d.rate_dz)
         } else {
             0.0
         };
         Ok(Point {
             z,
-            force: r.force,
-            dforce: p.force_dv + p.force_dx * ht + p.force_dz * dz_du,
+            force,
+            dforce: p.force_dv + p.force_dx * ht + d.force_dz * dz_du,
             dz: dz_du,
             iterations,
         })
@@ -165,7 +176,8 @@ impl Local<'_> {
         } else {
             (self.z0, 0)
         };
-        let rest = (self.model.stick_interval(self.x(0.0), z), z);
+        let n = usize::from(self.has_state);
+        let rest = (self.model.stick_interval(self.x(0.0), &[z][..n]), z);
         cache.rest = Some(rest);
         Ok((rest, iterations))
     }

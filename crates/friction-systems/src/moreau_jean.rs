@@ -35,6 +35,7 @@
 use crate::hybrid::{FrictionSystem, Point};
 use crate::local::{Local, Solved, StepCache};
 use crate::switching::{SLIP_NEGATIVE, SLIP_POSITIVE, STICK};
+use crate::system::{System, SystemError};
 use friction_models::{Direction, SignLaw};
 use integrators::{
     EventRecord, Failure, Mode, ModeSwitch, Options, Output, Solution, SolverError, StepControl,
@@ -53,6 +54,25 @@ const CLOCK_EVERY: usize = 64;
 
 /// The scheme's name in solutions and summaries.
 pub const NAME: &str = "moreau-jean";
+
+/// The scheme solves the state equation of a contact together with its velocity for one
+/// internal state; a contact whose model has more (GMS) is refused with a clear error.
+pub fn check_states(system: &System) -> Result<(), SystemError> {
+    for (j, c) in system.contacts.iter().enumerate() {
+        let n = c.model.n_states();
+        if n > 1 {
+            return Err(SystemError::Invalid {
+                what: format!("[[contact]] {}", j + 1),
+                why: format!(
+                    "model `{}` has {n} internal states; time-stepping (Moreau-Jean) takes \
+                     at most 1: use --switching event or regularized",
+                    c.model.name()
+                ),
+            });
+        }
+    }
+    Ok(())
+}
 
 /// Moreau–Jean time-stepping with weight θ of the end of the step on the smooth forces.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -148,7 +168,7 @@ impl<'p, 'a> Stepper<'p, 'a> {
             .enumerate()
             .map(|(j, c)| Solved {
                 u: y0[l.v(c.body)] - c.surface_velocity,
-                z: l.z[c.body].map_or(0.0, |z| y0[z]),
+                z: l.states(c.body, y0).first().copied().unwrap_or(0.0),
                 force: p.friction(j, 0.0, y0, modes0),
                 impulse: 0.0,
                 direction: None,
@@ -186,13 +206,18 @@ impl<'p, 'a> Stepper<'p, 'a> {
     fn state_rate(&self, j: usize, y: &[f64], mode: Mode) -> f64 {
         let c = &self.p.system.contacts[j];
         let l = &self.p.layout;
-        let Some(z) = l.z[c.body] else { return 0.0 };
+        let z = l.states(c.body, y);
+        if z.is_empty() {
+            return 0.0;
+        }
         let law = match mode {
             STICK => SignLaw::Discontinuous,
             m => self.p.switching.law(m),
         };
         let u = y[l.v(c.body)] - c.surface_velocity;
-        c.model.response(y[l.x[c.body]], u, y[z], law).state_rate
+        let mut rate = [0.0];
+        c.model.response(y[l.x[c.body]], u, z, law, &mut rate);
+        rate[0]
     }
 
     /// One step from t0 to t0 + h.
@@ -285,9 +310,9 @@ impl<'p, 'a> Stepper<'p, 'a> {
                             b,
                             v_s: c.surface_velocity,
                             x_hat: self.x_hat[i],
-                            z0: l.z[i].map_or(0.0, |z| self.y[z]),
+                            z0: l.states(i, &self.y).first().copied().unwrap_or(0.0),
                             rate0: self.rate[j],
-                            has_state: l.z[i].is_some(),
+                            has_state: !l.z[i].is_empty(),
                         };
                         let previous = match self.modes_prev[j] {
                             SLIP_POSITIVE => Some((Direction::Positive, self.force_start[j])),
@@ -354,7 +379,7 @@ impl<'p, 'a> Stepper<'p, 'a> {
         }
         for (j, c) in p.system.contacts.iter().enumerate() {
             let s = self.solved[j];
-            if let Some(z) = l.z[c.body] {
+            if let Some(z) = l.z[c.body].clone().next() {
                 self.y[z] = s.z;
             }
             self.modes[j] = match s.direction {

@@ -4,7 +4,7 @@
 
 use crate::energy::EnergyBalance;
 use crate::hybrid::FrictionSystem;
-use crate::moreau_jean::MoreauJean;
+use crate::moreau_jean::{self, MoreauJean};
 use crate::switching::Switching;
 use crate::system::{System, SystemError};
 use integrators::{Failure, Mode, Options, Solution, Solver, SolverError};
@@ -38,7 +38,8 @@ pub struct BodyState {
     pub friction: f64,
     /// Contact mode (`None` without a contact).
     pub mode: Option<Mode>,
-    /// Internal state of its contact model, if any.
+    /// Internal state of its contact model (the mean of its states when it has several), if
+    /// any.
     pub z: Option<f64>,
 }
 
@@ -71,6 +72,9 @@ pub fn simulate<'a>(
     observe: &mut dyn FnMut(f64),
 ) -> Result<Run<'a>, SystemError> {
     system.validate()?;
+    if let Switching::TimeStepping { .. } = switching {
+        moreau_jean::check_states(system)?;
+    }
     let problem = FrictionSystem::new(system, switching);
     let t0 = options.t0;
     let y0 = problem.initial_state();
@@ -110,7 +114,7 @@ impl Run<'_> {
             v: y[p.layout.v(i)],
             friction: contact.map_or(0.0, |j| p.friction(j, t, y, modes)),
             mode: contact.map(|j| p.reported_mode(j, y, modes)),
-            z: p.layout.z[i].map(|z| y[z]),
+            z: friction_models::reported_state(p.layout.states(i, y)),
         }
     }
 

@@ -6,7 +6,7 @@
 //! with `F_f,i = F(x_i, v_i − v_surf,i, z_i)` and `ż_i = g(x_i, v_i − v_surf,i, z_i)` at a
 //! contact, and an anchor's position `x0 + v·t`.
 
-use friction_models::FrictionModel;
+use friction_models::{FrictionModel, MAX_STATES};
 use serde::Serialize;
 use std::sync::Arc;
 use thiserror::Error;
@@ -352,6 +352,16 @@ impl System {
             }
             *seen = true;
             check(what, "surface_velocity", c.surface_velocity, false)?;
+            let states = c.model.n_states();
+            if states > MAX_STATES {
+                return Err(SystemError::Invalid {
+                    what: what(),
+                    why: format!(
+                        "model `{}` has {states} internal states; allowed at most {MAX_STATES}",
+                        c.model.name()
+                    ),
+                });
+            }
         }
         for (i, f) in self.forces.iter().enumerate() {
             let what = || format!("[[force]] {}", i + 1);

@@ -65,14 +65,12 @@ struct RegularisedBlock<'a> {
 
 impl RegularisedBlock<'_> {
     fn friction(&self, v: f64) -> f64 {
-        self.model
-            .response(
-                0.0,
-                v,
-                0.0,
-                friction_models::SignLaw::Smooth { epsilon: 1e-2 },
-            )
-            .force
+        self.model.force(
+            0.0,
+            v,
+            &[],
+            friction_models::SignLaw::Smooth { epsilon: 1e-2 },
+        )
     }
 }
 

@@ -58,7 +58,7 @@ fn a_two_mass_file_declares_what_it_says() {
     assert_eq!((s.springs[1].k, s.springs[1].c), (100.0, 0.5));
     assert_eq!(s.contacts[0].model.name(), "coulomb");
     // Coulomb at rest holds up to F_c, as overridden.
-    assert_eq!(s.contacts[0].model.stick_interval(0.0, 0.0).upper, 1.0841);
+    assert_eq!(s.contacts[0].model.stick_interval(0.0, &[]).upper, 1.0841);
     assert_eq!(s.contacts[1].surface_velocity, 0.2);
     assert_eq!(s.contacts[1].model.n_states(), 1);
     assert_eq!(s.forces[0].profile, Profile::Ramp { rate: 0.5 });
@@ -86,7 +86,7 @@ fn the_same_system_as_json_declares_the_same() {
     assert_eq!(a.anchors, b.anchors);
     assert_eq!(a.springs, b.springs);
     assert_eq!(a.forces, b.forces);
-    assert_eq!(b.contacts[0].model.stick_interval(0.0, 0.0).upper, 1.0841);
+    assert_eq!(b.contacts[0].model.stick_interval(0.0, &[]).upper, 1.0841);
     assert_eq!(b.contacts[1].surface_velocity, 0.2);
     // Unknown keys are refused in JSON as in TOML.
     let e = parse_json(&TWO_MASSES_JSON.replace("\"x0\"", "\"x00\"")).unwrap_err();

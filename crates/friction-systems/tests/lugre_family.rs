@@ -1,6 +1,8 @@
 //! The two LuGre variants the literature uses, each against a property from its paper.
 
-use friction_models::{FrictionModel, FrictionParams, ModelId, SignLaw, Variant};
+use friction_models::{
+    steady, FrictionModel, FrictionParams, ModelId, SignLaw, StatePartials, Variant,
+};
 use friction_systems::{simulate, Profile, Switching, System};
 use integrators::{Options, Solver};
 use std::sync::Arc;
@@ -68,7 +70,10 @@ fn velocity_dependent_damping_acts_at_rest_and_fades_in_sliding() {
     let lugre = ModelId::LuGre.build(Variant::Odd, &p).unwrap();
     let law = SignLaw::Discontinuous;
     // At rest with a relaxed bristle: dF/dv = σ1·dż/dv + σ2 = σ1 + σ2 for both.
-    let slope = |m: &dyn FrictionModel, v: f64, z: f64| m.partials(0.0, v, z, law).force_dv;
+    let slope = |m: &dyn FrictionModel, v: f64, z: f64| {
+        m.partials(0.0, v, &[z], law, &mut [StatePartials::default()])
+            .force_dv
+    };
     assert!((slope(vd.as_ref(), 0.0, 0.0) - (p.sigma1 + p.sigma2)).abs() < 1e-9);
     assert!((slope(lugre.as_ref(), 0.0, 0.0) - (p.sigma1 + p.sigma2)).abs() < 1e-9);
     // At v = 10·v_d, off the steady state (z = 0): LuGre's slope still carries σ1, LuGre-vd's
@@ -78,8 +83,10 @@ fn velocity_dependent_damping_acts_at_rest_and_fades_in_sliding() {
     assert!((slope(lugre.as_ref(), v, 0.0) - (p.sigma1 + p.sigma2)).abs() < 1e-9);
     // Both share LuGre's steady state (the damping multiplies ż = 0 there).
     for v in [1e-4, 1e-3, 1e-2] {
-        let (a, b) = (vd.steady_state(v), lugre.steady_state(v));
+        let (a, b) = (steady::states(&*vd, v), steady::states(&*lugre, v));
         assert_eq!(a, b);
-        assert!(vd.response(0.0, v, a, law).state_rate.abs() < 1e-12);
+        let mut rate = [0.0];
+        vd.response(0.0, v, &a, law, &mut rate);
+        assert!(rate[0].abs() < 1e-12);
     }
 }

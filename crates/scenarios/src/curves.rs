@@ -15,7 +15,8 @@ pub struct Sample {
     pub x: f64,
     /// Velocity, m/s.
     pub v: f64,
-    /// Internal state (the Dahl force), N (0 for stateless models).
+    /// Internal state (the Dahl force, N; the bristle deflection, m; see
+    /// [`friction_models::reported_state`]), 0 for stateless models.
     pub z: f64,
     /// Friction force, N.
     pub force: f64,
@@ -85,10 +86,20 @@ fn check_points(points: usize) -> Result<(), CurveError> {
     }
 }
 
-/// The one-sided limits of the force at rest with state `z`.
-fn limits_at_rest(model: &dyn FrictionModel, z: f64) -> (f64, f64) {
-    let limit = |d| model.response(0.0, 0.0, z, SignLaw::Frozen(d)).force;
+/// The one-sided limits of the force at rest with states `z`.
+fn limits_at_rest(model: &dyn FrictionModel, z: &[f64]) -> (f64, f64) {
+    let limit = |d| model.force(0.0, 0.0, z, SignLaw::Frozen(d));
     (limit(Direction::Negative), limit(Direction::Positive))
+}
+
+fn sample(model: &dyn FrictionModel, t: f64, x: f64, v: f64, z: &[f64]) -> Sample {
+    Sample {
+        t,
+        x,
+        v,
+        z: friction_models::reported_state(z).unwrap_or(0.0),
+        force: model.force(x, v, z, SignLaw::Discontinuous),
+    }
 }
 
 /// Friction against velocity in steady sliding, `points` samples per branch on
@@ -103,27 +114,22 @@ pub fn velocity_sweep(
     check_points(points)?;
     let band = model.stick_band().min(v_max);
     let branch = |sign: f64| -> Vec<Sample> {
+        let mut z = vec![0.0; model.n_states()];
         (1..=points)
             .map(|k| {
                 let v = sign * (band + (v_max - band) * k as f64 / points as f64);
-                let z = model.steady_state(v);
-                let force = model.response(0.0, v, z, SignLaw::Discontinuous).force;
-                Sample {
-                    t: 0.0,
-                    x: 0.0,
-                    v,
-                    z,
-                    force,
-                }
+                model.steady_state(v, &mut z);
+                sample(model, 0.0, 0.0, v, &z)
             })
             .collect()
     };
-    let (left_of_zero, right_of_zero) = limits_at_rest(model, 0.0);
+    let rest = vec![0.0; model.n_states()];
+    let (left_of_zero, right_of_zero) = limits_at_rest(model, &rest);
     Ok(Curve {
         axis: CurveAxis::Velocity,
         negative: branch(-1.0),
         positive: branch(1.0),
-        at_rest: model.stick_interval(0.0, 0.0),
+        at_rest: model.stick_interval(0.0, &rest),
         left_of_zero,
         right_of_zero,
     })
@@ -146,28 +152,29 @@ pub fn prescribed_motion(
     check_range("t_end", t_end)?;
     check_points(points)?;
     let branch = |sign: f64| -> Result<Vec<Sample>, CurveError> {
-        let mut z = 0.0;
+        let mut z = vec![0.0; model.n_states()];
         let mut x_prev = 0.0;
         (1..=points)
             .map(|k| {
                 let t = t_end * k as f64 / points as f64;
                 let (x, v) = paper_motion(t);
                 let (x, v) = (sign * x, sign * v);
-                z = model
-                    .state_after_displacement(z, x - x_prev)
-                    .ok_or_else(|| CurveError::RateDependentState(model.name().to_string()))?;
+                let z0 = z.clone();
+                if !model.state_after_displacement(&z0, x - x_prev, &mut z) {
+                    return Err(CurveError::RateDependentState(model.name().to_string()));
+                }
                 x_prev = x;
-                let force = model.response(x, v, z, SignLaw::Discontinuous).force;
-                Ok(Sample { t, x, v, z, force })
+                Ok(sample(model, t, x, v, &z))
             })
             .collect()
     };
-    let (left_of_zero, right_of_zero) = limits_at_rest(model, 0.0);
+    let rest = vec![0.0; model.n_states()];
+    let (left_of_zero, right_of_zero) = limits_at_rest(model, &rest);
     Ok(Curve {
         axis: CurveAxis::Displacement,
         negative: branch(-1.0)?,
         positive: branch(1.0)?,
-        at_rest: model.stick_interval(0.0, 0.0),
+        at_rest: model.stick_interval(0.0, &rest),
         left_of_zero,
         right_of_zero,
     })

@@ -5,7 +5,7 @@
 //!
 //! State: `y = [z, W, H]` for a model with an internal state, `[W, H]` without one.
 
-use friction_models::{Direction, FrictionModel};
+use friction_models::{Direction, FrictionModel, StatePartials, MAX_STATES};
 use friction_systems::{Switching, SLIP_NEGATIVE, SLIP_POSITIVE};
 use integrators::{Control, Crossing, Entry, EventSpec, Mode, OdeProblem};
 
@@ -111,21 +111,15 @@ impl Kinematic<'_> {
         }
     }
 
-    /// The internal state in y.
-    pub fn z(&self, y: &[f64]) -> f64 {
-        if self.model.n_states() > 0 {
-            y[0]
-        } else {
-            0.0
-        }
+    /// The internal states in y.
+    pub fn z<'y>(&self, y: &'y [f64]) -> &'y [f64] {
+        &y[..self.work_index()]
     }
 
     /// The friction force at (t, y) in `mode`.
     pub fn friction(&self, t: f64, y: &[f64], mode: Mode) -> f64 {
         let (x, v, _) = self.motion.at(t);
-        self.model
-            .response(x, v, self.z(y), self.switching.law(mode))
-            .force
+        self.model.force(x, v, self.z(y), self.switching.law(mode))
     }
 }
 
@@ -136,27 +130,25 @@ impl OdeProblem for Kinematic<'_> {
 
     fn rhs(&self, t: f64, y: &[f64], modes: &[Mode], dy: &mut [f64]) {
         let (x, v, a) = self.motion.at(t);
-        let r = self
-            .model
-            .response(x, v, self.z(y), self.switching.law(modes[0]));
         let w = self.work_index();
-        if w > 0 {
-            dy[0] = r.state_rate;
-        }
-        dy[w] = r.force * v;
-        dy[w + 1] = r.force * a;
+        let force =
+            self.model
+                .response(x, v, self.z(y), self.switching.law(modes[0]), &mut dy[..w]);
+        dy[w] = force * v;
+        dy[w + 1] = force * a;
     }
 
     fn jacobian(&self, t: f64, y: &[f64], modes: &[Mode], jac: &mut Vec<Entry>) -> bool {
-        if self.model.n_states() > 0 {
-            let (x, v, a) = self.motion.at(t);
-            let p = self
-                .model
-                .partials(x, v, self.z(y), self.switching.law(modes[0]));
+        let (x, v, a) = self.motion.at(t);
+        let w = self.work_index();
+        let states = &mut [StatePartials::default(); MAX_STATES][..w];
+        self.model
+            .partials(x, v, self.z(y), self.switching.law(modes[0]), states);
+        for (i, d) in states.iter().enumerate() {
             jac.extend([
-                (0, 0, p.rate_dz),
-                (1, 0, p.force_dz * v),
-                (2, 0, p.force_dz * a),
+                (i, i, d.rate_dz),
+                (w, i, d.force_dz * v),
+                (w + 1, i, d.force_dz * a),
             ]);
         }
         true

@@ -176,11 +176,12 @@ impl Default for Protocol {
 }
 
 /// The parameter set a model is judged with: the paper's for the six and the classical
-/// terms, the LuGre paper's for LuGre and its two variants.
+/// terms, the LuGre paper's for the bristle models (LuGre, its two variants and GMS), whose
+/// stiffness σ0 = 1e5 N/m sets a micrometre pre-sliding scale only with its levels.
 pub fn parameters_for(model: ModelId) -> FrictionParams {
     if matches!(
         model,
-        ModelId::LuGre | ModelId::LuGreVd | ModelId::ElastoPlastic
+        ModelId::LuGre | ModelId::LuGreVd | ModelId::ElastoPlastic | ModelId::Gms
     ) {
         FrictionParams::lugre_1995()
     } else {
@@ -274,13 +275,7 @@ impl Judge<'_> {
     /// (∂F/∂z)·(ż/v) at z = 0, v → 0⁺: σ for the Dahl models, σ0 for LuGre; zero for a model
     /// without internal state (it is rigid below break-away).
     fn rest_stiffness(&self) -> f64 {
-        if self.built.n_states() == 0 {
-            return 0.0;
-        }
-        let v = 1e-9 * self.p.v_s;
-        let law = friction_models::SignLaw::Discontinuous;
-        let rate = self.built.response(0.0, v, 0.0, law).state_rate;
-        self.built.partials(0.0, v, 0.0, law).force_dz * rate / v
+        friction_models::steady::rest_stiffness(self.built, 1e-9 * self.p.v_s)
     }
 
     /// The pre-sliding length the model sets: F_s over its stiffness at rest (zero for a

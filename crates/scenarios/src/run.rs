@@ -415,7 +415,7 @@ pub fn run_motion(
                 v,
                 friction: k.friction(s.t[i], y, s.modes_at(i)[0]),
                 mode: mode_name(s.modes_at(i)[0]),
-                z: (w > 0).then(|| y[0]),
+                z: friction_models::reported_state(&y[..w]),
             }
         })
         .collect();
@@ -482,18 +482,10 @@ fn run_sweep(spec: &RunSpec, model: &dyn FrictionModel, observe: &mut dyn FnMut(
     out
 }
 
-/// Twenty time constants of the internal state at steady sliding with velocity v (1 ms for
-/// a stateless model).
+/// Twenty time constants of the internal states on their way to steady sliding at velocity v
+/// ([`friction_models::steady::time_constant`]; 1 ms for a stateless model).
 pub fn settling_time(model: &dyn FrictionModel, v: f64) -> f64 {
-    if model.n_states() == 0 {
-        return 1e-3;
-    }
-    let z = model.steady_state(v);
-    let rate = model
-        .partials(0.0, v, z, friction_models::SignLaw::Discontinuous)
-        .rate_dz
-        .abs();
-    20.0 / rate
+    friction_models::steady::time_constant(model, v).map_or(1e-3, |tau| 20.0 * tau)
 }
 
 /// Runs the simulation `spec` describes; `observe` is told the time after each step.

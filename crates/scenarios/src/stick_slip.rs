@@ -12,7 +12,7 @@
 use crate::run::{run, Limits, RunSpec, ScenarioError, SwitchingKind};
 use crate::scenario::Scenario;
 use crate::settled::{Settled, Trace};
-use friction_models::{Direction, FrictionModel, SignLaw};
+use friction_models::{steady, Direction, FrictionModel, SignLaw};
 use friction_models::{FrictionParams, ModelId, Variant};
 use integrators::{Solver, StepControl};
 use rayon::prelude::*;
@@ -87,17 +87,7 @@ impl Regime {
 /// dF/dv of steady sliding at v_rel = −v_b (the slope of the friction curve there, with the
 /// internal state at its steady value).
 pub fn sliding_slope(model: &dyn FrictionModel, v_belt: f64) -> f64 {
-    let v = -v_belt;
-    let z = model.steady_state(v);
-    let law = SignLaw::Frozen(Direction::Negative);
-    let p = model.partials(0.0, v, z, law);
-    // Along steady states z(v): dF/dv = ∂F/∂v + ∂F/∂z·dz/dv, with dz/dv = −(∂ż/∂v)/(∂ż/∂z).
-    let dz_dv = if model.n_states() > 0 && p.rate_dz != 0.0 {
-        -p.rate_dv / p.rate_dz
-    } else {
-        0.0
-    };
-    p.force_dv + p.force_dz * dz_dv
+    steady::slope(model, -v_belt, SignLaw::Frozen(Direction::Negative))
 }
 
 /// `n` values from `lo` to `hi` (both > 0), evenly spaced in log.
@@ -227,14 +217,7 @@ pub fn bifurcation(
         .par_iter()
         .map(|&v_belt| {
             let v = -v_belt;
-            let force = model
-                .response(
-                    0.0,
-                    v,
-                    model.steady_state(v),
-                    SignLaw::Frozen(Direction::Negative),
-                )
-                .force;
+            let force = steady::force(model.as_ref(), v, SignLaw::Frozen(Direction::Negative));
             let x_s = -force / k;
             let (from_rest, from_sliding) = rayon::join(
                 || settled(&belt_spec(base, v_belt, k, 0.0), settle),
