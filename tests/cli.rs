@@ -1265,7 +1265,8 @@ fn phenomena_judges_the_chosen_models_at_the_given_parameters() {
         "the models in the order given"
     );
     assert_eq!(own["viscous"]["viscous"]["measured"], true);
-    assert!(md.contains("parameter set `paper` (`lugre-1995` for lugre)"));
+    assert!(md
+        .contains("parameter set `paper` (`lugre-1995` for lugre, lugre-vd, elasto-plastic, gms)"));
     // Without its viscous coefficient the viscous model shows no viscous friction.
     let (set, md) = judge("set", &["--set", "mu_v=0"]);
     assert_eq!(set["viscous"]["viscous"]["measured"], false);

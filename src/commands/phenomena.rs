@@ -48,7 +48,8 @@ pub struct PhenomenaArgs {
     pub models: Vec<ModelId>,
     /// Parameters for every judged model (`--param-set`, `--params`, `--set`, friction
     /// parameters only) [default: each model at its own set, `paper`, or `lugre-1995` for
-    /// lugre]. Naming `--param-set paper` alone is the default.
+    /// the bristle models lugre, lugre-vd, elasto-plastic and gms]. Naming `--param-set paper`
+    /// alone is the default.
     #[command(flatten)]
     pub params: ParamOptions,
 }
@@ -268,8 +269,19 @@ pub fn markdown(rows: &[(ModelId, Row)], protocol: &Protocol, parameters: &str) 
     s
 }
 
-/// The parameters of Table 2 when none are given: each model at its own set.
-const OWN_PARAMETERS: &str = "parameter set `paper` (`lugre-1995` for lugre)";
+/// The parameters of Table 2 when none are given: each model at its own set
+/// ([`phenomena::parameters_for`]).
+fn own_parameters() -> String {
+    let lugre: Vec<&str> = ModelId::ALL
+        .iter()
+        .filter(|&&m| scenarios::phenomena::parameters_for(m) == FrictionParams::lugre_1995())
+        .map(|m| m.name())
+        .collect();
+    format!(
+        "parameter set `paper` (`lugre-1995` for {})",
+        lugre.join(", ")
+    )
+}
 
 /// Which models Table 2 is decided for, and at which parameters.
 pub struct Judged<'a> {
@@ -302,7 +314,8 @@ pub fn add_table(
         table(judged.models, protocol, parameters.map(|p| &p.0), true)
     })?
     .map_err(AppError::from)?;
-    let described = parameters.map_or(OWN_PARAMETERS, |p| p.1.as_str());
+    let own = own_parameters();
+    let described = parameters.map_or(own.as_str(), |p| p.1.as_str());
     files.add(
         dir.join("table2.md"),
         markdown(&rows, &protocol, described).into_bytes(),
