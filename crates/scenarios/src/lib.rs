@@ -16,6 +16,7 @@ pub mod params;
 pub mod phenomena;
 pub mod run;
 pub mod scenario;
+pub mod schedule;
 pub mod settled;
 pub mod stick_slip;
 pub mod studies;

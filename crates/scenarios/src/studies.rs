@@ -4,8 +4,8 @@
 
 pub use crate::cases::{Case, Measured, Measures, StudyCase, SystemCase, GRID_POINTS};
 use crate::run::{ScenarioError, SwitchingKind};
+use crate::schedule;
 use integrators::{DiffsolMethod, Solver, Stats, StepControl};
-use rayon::prelude::*;
 use serde::Serialize;
 
 /// How a study integrates its case: a solver under the case's own treatment of v = 0, or a
@@ -286,33 +286,29 @@ pub fn run_all(
     let dim = case.dim()?;
     let mut order: Vec<usize> = (0..jobs.len()).collect();
     order.sort_by(|&a, &b| resolution(jobs[a].1).total_cmp(&resolution(jobs[b].1)));
-    let mut runs: Vec<(usize, StudyRun)> = order
-        .par_iter()
-        .map(|&i| {
-            let (method, step) = jobs[i];
-            let o = method.measure(case, step)?;
-            progress();
-            let measures = o.measures;
-            let run = StudyRun {
-                solver: method.label(),
-                resolution: resolution(step),
-                step: step_kind(step),
-                errors: Errors {
-                    final_state: f64::NAN,
-                    grid_max: f64::NAN,
-                    event_times: f64::NAN,
-                    stick_durations: f64::NAN,
-                },
-                measures,
-                stats: o.stats,
-                work: o.stats.work(dim),
-                failure: o.error.map(|e| e.to_string()),
-                wall_time_s: o.wall_time_s,
-            };
-            Ok((i, run))
-        })
-        .collect::<Result<_, ScenarioError>>()?;
-    runs.sort_by_key(|(i, _)| *i);
+    let runs = schedule::in_order(&order, |i| {
+        let (method, step) = jobs[i];
+        let o = method.measure(case, step)?;
+        progress();
+        let measures = o.measures;
+        let run = StudyRun {
+            solver: method.label(),
+            resolution: resolution(step),
+            step: step_kind(step),
+            errors: Errors {
+                final_state: f64::NAN,
+                grid_max: f64::NAN,
+                event_times: f64::NAN,
+                stick_durations: f64::NAN,
+            },
+            measures,
+            stats: o.stats,
+            work: o.stats.work(dim),
+            failure: o.error.map(|e| e.to_string()),
+            wall_time_s: o.wall_time_s,
+        };
+        Ok::<_, ScenarioError>(run)
+    })?;
     Ok(runs.into_iter().map(|(_, r)| r).collect())
 }
 
@@ -913,7 +909,7 @@ pub fn scaling(
         .collect();
     let mut order: Vec<usize> = (0..jobs.len()).collect();
     order.sort_by_key(|&j| std::cmp::Reverse(cases[jobs[j].0].0));
-    let run = |j: usize| -> Result<(usize, ScalingRun), ScenarioError> {
+    let run = |j: usize| -> Result<ScalingRun, ScenarioError> {
         let (c, m) = jobs[j];
         let (size, case) = (&cases[c].0, cases[c].1.as_ref());
         let (method, step) = methods[m];
@@ -931,16 +927,12 @@ pub fn scaling(
             failure: o.error.map(|e| e.to_string()),
             wall_time_s: o.wall_time_s,
         };
-        Ok((j, run))
+        Ok(run)
     };
-    let mut runs: Vec<(usize, ScalingRun)> = order
-        .par_iter()
-        .map(|&j| run(j))
-        .collect::<Result<_, _>>()?;
-    runs.sort_by_key(|(j, _)| *j);
+    let runs = schedule::in_order(&order, run)?;
     let mut runs: Vec<ScalingRun> = runs.into_iter().map(|(_, r)| r).collect();
     for (j, r) in runs.iter_mut().enumerate() {
-        r.wall_time_s = run(j)?.1.wall_time_s;
+        r.wall_time_s = run(j)?.wall_time_s;
     }
     let exponents = methods
         .iter()
