@@ -56,6 +56,193 @@ pub enum CurveAxis {
     Displacement,
 }
 
+/// What the catalog knows of one model: the text every listing, figure and file prints, and
+/// how its curve is drawn. One entry per model, in the order of [`ModelId::ALL`] (the enum's
+/// declaration order), so that a model is described in one place.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Entry {
+    /// The name the command line takes and prints.
+    pub name: &'static str,
+    /// What the model combines, in words.
+    pub title: &'static str,
+    /// The equations of the paper the model implements, or its literature source.
+    pub source: &'static str,
+    /// The model's equation as implemented, in plain text (the `odd` reading).
+    pub equation: &'static str,
+    /// The equation exactly as printed, for the models whose printed form differs.
+    pub printed: Option<&'static str>,
+    /// The parameters the model reads.
+    pub parameters: &'static [&'static str],
+    /// How the model's curve is drawn.
+    pub axis: CurveAxis,
+}
+
+/// The catalog, indexed by `ModelId as usize`.
+const ENTRIES: [Entry; 16] = [
+    // ModelId::Av
+    Entry {
+        name: "AV",
+        title: "adhesion (static) + viscous + Stribeck",
+        source: "paper eqs. (1)-(4)",
+        equation: "F = F_s*sign(v) + mu_v*v + S(v); at rest F in [-(F_s + C2), F_s + C1]",
+        printed: Some("F = F_s + mu_v*v + S(v); at rest F in [F_s - C2, F_s + C1]"),
+        parameters: &["F_s", "mu_v", "C1", "C2", "v_s"],
+        axis: CurveAxis::Velocity,
+    },
+    // ModelId::Cs
+    Entry {
+        name: "CS",
+        title: "Coulomb + static + Stribeck",
+        source: "paper eqs. (5)-(6)",
+        equation: "F = F_c*sign(v) + S(v); at rest |F| <= F_s",
+        printed: None,
+        parameters: &["F_c", "F_s", "C1", "C2", "v_s"],
+        axis: CurveAxis::Velocity,
+    },
+    // ModelId::Cvs
+    Entry {
+        name: "CVS",
+        title: "Coulomb + viscous + static + Stribeck",
+        source: "paper eq. (7)",
+        equation: "F = F_c*sign(v) + mu_v*v + S(v); at rest |F| <= F_s",
+        printed: None,
+        parameters: &["F_c", "F_s", "mu_v", "C1", "C2", "v_s"],
+        axis: CurveAxis::Velocity,
+    },
+    // ModelId::Dv
+    Entry {
+        name: "DV",
+        title: "Dahl + viscous",
+        source: "paper eqs. (8)-(9)",
+        equation: "F = mu_v*v + z, dz/dt = sigma*(v - |v|*z/F_c); at rest F = z",
+        printed: None,
+        parameters: &["mu_v", "sigma", "F_c"],
+        axis: CurveAxis::Displacement,
+    },
+    // ModelId::Sd
+    Entry {
+        name: "SD",
+        title: "static + Dahl",
+        source: "paper eq. (10)",
+        equation: "F = F_s*sign(v) + z, dz/dt = sigma*(v - |v|*z/F_c); at rest F in [z - F_s, z + F_s]",
+        printed: Some("F = F_s + z, dz/dt = sigma*(v - |v|*z/F_c); at rest F = F_s + z"),
+        parameters: &["F_s", "sigma", "F_c"],
+        axis: CurveAxis::Displacement,
+    },
+    // ModelId::Sv
+    Entry {
+        name: "SV",
+        title: "static + viscous + Dahl",
+        source: "paper eq. (11)",
+        equation: "F = F_s*sign(v) + mu_v*v + z, dz/dt = sigma*(v - |v|*z/F_c); at rest F in [z - F_s, z + F_s]",
+        printed: Some("F = F_s + mu_v*v + z, dz/dt = sigma*(v - |v|*z/F_c); at rest F = F_s + z"),
+        parameters: &["F_s", "mu_v", "sigma", "F_c"],
+        axis: CurveAxis::Displacement,
+    },
+    // ModelId::Coulomb
+    Entry {
+        name: "coulomb",
+        title: "Coulomb",
+        source: "classical term",
+        equation: "F = F_c*sign(v); at rest |F| <= F_c",
+        printed: None,
+        parameters: &["F_c"],
+        axis: CurveAxis::Velocity,
+    },
+    // ModelId::Viscous
+    Entry {
+        name: "viscous",
+        title: "viscous",
+        source: "classical term",
+        equation: "F = mu_v*v",
+        printed: None,
+        parameters: &["mu_v"],
+        axis: CurveAxis::Velocity,
+    },
+    // ModelId::Static
+    Entry {
+        name: "static",
+        title: "Coulomb with stiction",
+        source: "classical stiction model (Armstrong-Helouvry et al. 1994)",
+        equation: "F = F_c*sign(v); at rest |F| <= F_s",
+        printed: None,
+        parameters: &["F_c", "F_s"],
+        axis: CurveAxis::Velocity,
+    },
+    // ModelId::Stribeck
+    Entry {
+        name: "stribeck",
+        title: "Stribeck curve with stiction and viscous friction",
+        source: "Armstrong-Helouvry et al. (1994), Olsson et al. (1998)",
+        equation: "F = (F_c + (F_s - F_c)*exp(-(v/v_s)^2))*sign(v) + mu_v*v; at rest |F| <= F_s",
+        printed: None,
+        parameters: &["F_c", "F_s", "mu_v", "v_s"],
+        axis: CurveAxis::Velocity,
+    },
+    // ModelId::Dahl
+    Entry {
+        name: "dahl",
+        title: "Dahl (1968)",
+        source: "Dahl (1968, 1976)",
+        equation: "F = z, dz/dt = sigma*(v - |v|*z/F_c)",
+        printed: None,
+        parameters: &["sigma", "F_c"],
+        axis: CurveAxis::Displacement,
+    },
+    // ModelId::Karnopp
+    Entry {
+        name: "karnopp",
+        title: "Karnopp (1985) stick band",
+        source: "Karnopp (1985)",
+        equation: "F = F_c*sign(v) + mu_v*v for |v| >= dv; F = clamp(F_applied, -F_s, F_s) for |v| < dv",
+        printed: None,
+        parameters: &["F_c", "F_s", "mu_v", "dv"],
+        axis: CurveAxis::Velocity,
+    },
+    // ModelId::LuGre
+    Entry {
+        name: "lugre",
+        title: "LuGre (Canudas de Wit et al. 1995)",
+        source: "Canudas de Wit, Olsson, Astrom, Lischinsky (1995)",
+        equation: "F = sigma0*z + sigma1*dz/dt + sigma2*v, dz/dt = v - sigma0*|v|*z/g(v), g(v) = F_c + (F_s - F_c)*exp(-(v/v_s)^2)",
+        printed: None,
+        parameters: &["sigma0", "sigma1", "sigma2", "F_c", "F_s", "v_s"],
+        axis: CurveAxis::Velocity,
+    },
+    // ModelId::LuGreVd
+    Entry {
+        name: "lugre-vd",
+        title: "LuGre with velocity-dependent damping",
+        source: "Canudas de Wit et al. (1995) eq. (10); Olsson, Astrom, Canudas de Wit, Gafvert, Lischinsky (1998)",
+        equation: "F = sigma0*z + sigma1*exp(-(v/v_d)^2)*dz/dt + sigma2*v, dz/dt = v - sigma0*|v|*z/g(v), g(v) = F_c + (F_s - F_c)*exp(-(v/v_s)^2)",
+        printed: None,
+        parameters: &["sigma0", "sigma1", "sigma2", "F_c", "F_s", "v_s", "v_d"],
+        axis: CurveAxis::Velocity,
+    },
+    // ModelId::ElastoPlastic
+    Entry {
+        name: "elasto-plastic",
+        title: "elasto-plastic (Dupont et al. 2002)",
+        source: "Dupont, Hayward, Armstrong, Altpeter (2002), IEEE TAC 47(5)",
+        equation: "F = sigma0*z + sigma1*dz/dt + sigma2*v, dz/dt = v - alpha(z,v)*sigma0*|v|*z/g(v); alpha = 0 for |z| <= z_ba = r_ba*min(F_c, F_s)/sigma0 or sign(z) != sign(v), 1 for |z| >= z_max = g(v)/sigma0, sin ramp between",
+        printed: None,
+        parameters: &["sigma0", "sigma1", "sigma2", "F_c", "F_s", "v_s", "r_ba"],
+        axis: CurveAxis::Velocity,
+    },
+    // ModelId::Gms
+    Entry {
+        name: "gms",
+        title: "generalized Maxwell-slip (Al-Bender et al. 2005)",
+        source: "Al-Bender, Lampaert, Swevers (2005), IEEE TAC 50(11)",
+        equation: "F = sum_i (k_i*z_i + sigma_i*dz_i/dt) + sigma2*v, dz_i/dt = sign(v)*min(|v|, (C/k_i)*(alpha_i - k_i*z_i*sign(v)/g(v))), k_i = sigma0/n, alpha_i = (2i-1)/n^2, sigma_i = sigma1/n, n = n_gms, C = C_gms",
+        printed: None,
+        parameters: &[
+                "sigma0", "sigma1", "sigma2", "F_c", "F_s", "v_s", "n_gms", "C_gms",
+            ],
+        axis: CurveAxis::Velocity,
+    },
+];
+
 impl ModelId {
     /// Every model, the paper's six first.
     pub const ALL: [ModelId; 16] = [
@@ -80,26 +267,14 @@ impl ModelId {
     /// The paper's six models: the first six of [`ModelId::ALL`].
     pub const PAPER: &'static [ModelId] = ModelId::ALL.split_at(6).0;
 
+    /// The model's catalog entry.
+    pub fn entry(self) -> &'static Entry {
+        &ENTRIES[self as usize]
+    }
+
     /// The name the command line takes and prints.
     pub fn name(self) -> &'static str {
-        match self {
-            ModelId::Av => "AV",
-            ModelId::Cs => "CS",
-            ModelId::Cvs => "CVS",
-            ModelId::Dv => "DV",
-            ModelId::Sd => "SD",
-            ModelId::Sv => "SV",
-            ModelId::Coulomb => "coulomb",
-            ModelId::Viscous => "viscous",
-            ModelId::Static => "static",
-            ModelId::Stribeck => "stribeck",
-            ModelId::Dahl => "dahl",
-            ModelId::Karnopp => "karnopp",
-            ModelId::LuGre => "lugre",
-            ModelId::LuGreVd => "lugre-vd",
-            ModelId::ElastoPlastic => "elasto-plastic",
-            ModelId::Gms => "gms",
-        }
+        self.entry().name
     }
 
     /// The model called `name` (case-insensitive).
@@ -120,111 +295,36 @@ impl ModelId {
 
     /// What the model combines, in words.
     pub fn title(self) -> &'static str {
-        match self {
-            ModelId::Av => "adhesion (static) + viscous + Stribeck",
-            ModelId::Cs => "Coulomb + static + Stribeck",
-            ModelId::Cvs => "Coulomb + viscous + static + Stribeck",
-            ModelId::Dv => "Dahl + viscous",
-            ModelId::Sd => "static + Dahl",
-            ModelId::Sv => "static + viscous + Dahl",
-            ModelId::Coulomb => "Coulomb",
-            ModelId::Viscous => "viscous",
-            ModelId::Static => "Coulomb with stiction",
-            ModelId::Stribeck => "Stribeck curve with stiction and viscous friction",
-            ModelId::Dahl => "Dahl (1968)",
-            ModelId::Karnopp => "Karnopp (1985) stick band",
-            ModelId::LuGre => "LuGre (Canudas de Wit et al. 1995)",
-            ModelId::LuGreVd => "LuGre with velocity-dependent damping",
-            ModelId::ElastoPlastic => "elasto-plastic (Dupont et al. 2002)",
-            ModelId::Gms => "generalized Maxwell-slip (Al-Bender et al. 2005)",
-        }
+        self.entry().title
     }
 
     /// The equations of the paper the model implements, or its literature source.
     pub fn source(self) -> &'static str {
-        match self {
-            ModelId::Av => "paper eqs. (1)-(4)",
-            ModelId::Cs => "paper eqs. (5)-(6)",
-            ModelId::Cvs => "paper eq. (7)",
-            ModelId::Dv => "paper eqs. (8)-(9)",
-            ModelId::Sd => "paper eq. (10)",
-            ModelId::Sv => "paper eq. (11)",
-            ModelId::Coulomb | ModelId::Viscous => "classical term",
-            ModelId::Static => "classical stiction model (Armstrong-Helouvry et al. 1994)",
-            ModelId::Stribeck => "Armstrong-Helouvry et al. (1994), Olsson et al. (1998)",
-            ModelId::Dahl => "Dahl (1968, 1976)",
-            ModelId::Karnopp => "Karnopp (1985)",
-            ModelId::LuGre => "Canudas de Wit, Olsson, Astrom, Lischinsky (1995)",
-            ModelId::LuGreVd => {
-                "Canudas de Wit et al. (1995) eq. (10); Olsson, Astrom, Canudas de Wit, Gafvert, Lischinsky (1998)"
-            }
-            ModelId::ElastoPlastic => "Dupont, Hayward, Armstrong, Altpeter (2002), IEEE TAC 47(5)",
-            ModelId::Gms => "Al-Bender, Lampaert, Swevers (2005), IEEE TAC 50(11)",
-        }
+        self.entry().source
     }
 
     /// The model's equation as implemented, in plain text, for the given variant.
     pub fn equation(self, variant: Variant) -> &'static str {
-        let printed = variant == Variant::Printed;
-        match self {
-            ModelId::Av if printed => "F = F_s + mu_v*v + S(v); at rest F in [F_s - C2, F_s + C1]",
-            ModelId::Av => "F = F_s*sign(v) + mu_v*v + S(v); at rest F in [-(F_s + C2), F_s + C1]",
-            ModelId::Cs => "F = F_c*sign(v) + S(v); at rest |F| <= F_s",
-            ModelId::Cvs => "F = F_c*sign(v) + mu_v*v + S(v); at rest |F| <= F_s",
-            ModelId::Dv => "F = mu_v*v + z, dz/dt = sigma*(v - |v|*z/F_c); at rest F = z",
-            ModelId::Sd if printed => "F = F_s + z, dz/dt = sigma*(v - |v|*z/F_c); at rest F = F_s + z",
-            ModelId::Sd => "F = F_s*sign(v) + z, dz/dt = sigma*(v - |v|*z/F_c); at rest F in [z - F_s, z + F_s]",
-            ModelId::Sv if printed => "F = F_s + mu_v*v + z, dz/dt = sigma*(v - |v|*z/F_c); at rest F = F_s + z",
-            ModelId::Sv => "F = F_s*sign(v) + mu_v*v + z, dz/dt = sigma*(v - |v|*z/F_c); at rest F in [z - F_s, z + F_s]",
-            ModelId::Coulomb => "F = F_c*sign(v); at rest |F| <= F_c",
-            ModelId::Viscous => "F = mu_v*v",
-            ModelId::Static => "F = F_c*sign(v); at rest |F| <= F_s",
-            ModelId::Stribeck => "F = (F_c + (F_s - F_c)*exp(-(v/v_s)^2))*sign(v) + mu_v*v; at rest |F| <= F_s",
-            ModelId::Dahl => "F = z, dz/dt = sigma*(v - |v|*z/F_c)",
-            ModelId::Karnopp => "F = F_c*sign(v) + mu_v*v for |v| >= dv; F = clamp(F_applied, -F_s, F_s) for |v| < dv",
-            ModelId::LuGre => "F = sigma0*z + sigma1*dz/dt + sigma2*v, dz/dt = v - sigma0*|v|*z/g(v), g(v) = F_c + (F_s - F_c)*exp(-(v/v_s)^2)",
-            ModelId::LuGreVd => "F = sigma0*z + sigma1*exp(-(v/v_d)^2)*dz/dt + sigma2*v, dz/dt = v - sigma0*|v|*z/g(v), g(v) = F_c + (F_s - F_c)*exp(-(v/v_s)^2)",
-            ModelId::ElastoPlastic => "F = sigma0*z + sigma1*dz/dt + sigma2*v, dz/dt = v - alpha(z,v)*sigma0*|v|*z/g(v); alpha = 0 for |z| <= z_ba = r_ba*min(F_c, F_s)/sigma0 or sign(z) != sign(v), 1 for |z| >= z_max = g(v)/sigma0, sin ramp between",
-            ModelId::Gms => "F = sum_i (k_i*z_i + sigma_i*dz_i/dt) + sigma2*v, dz_i/dt = sign(v)*min(|v|, (C/k_i)*(alpha_i - k_i*z_i*sign(v)/g(v))), k_i = sigma0/n, alpha_i = (2i-1)/n^2, sigma_i = sigma1/n, n = n_gms, C = C_gms",
+        match (variant, self.entry().printed) {
+            (Variant::Printed, Some(printed)) => printed,
+            _ => self.entry().equation,
         }
     }
 
     /// Whether the printed form differs from the sign-consistent one (AV, SD, SV).
     pub fn has_printed_form(self) -> bool {
-        matches!(self, ModelId::Av | ModelId::Sd | ModelId::Sv)
+        self.entry().printed.is_some()
     }
 
     /// The parameters the model reads.
     pub fn parameters(self) -> &'static [&'static str] {
-        match self {
-            ModelId::Av => &["F_s", "mu_v", "C1", "C2", "v_s"],
-            ModelId::Cs => &["F_c", "F_s", "C1", "C2", "v_s"],
-            ModelId::Cvs => &["F_c", "F_s", "mu_v", "C1", "C2", "v_s"],
-            ModelId::Dv => &["mu_v", "sigma", "F_c"],
-            ModelId::Sd => &["F_s", "sigma", "F_c"],
-            ModelId::Sv => &["F_s", "mu_v", "sigma", "F_c"],
-            ModelId::Coulomb => &["F_c"],
-            ModelId::Viscous => &["mu_v"],
-            ModelId::Static => &["F_c", "F_s"],
-            ModelId::Stribeck => &["F_c", "F_s", "mu_v", "v_s"],
-            ModelId::Dahl => &["sigma", "F_c"],
-            ModelId::Karnopp => &["F_c", "F_s", "mu_v", "dv"],
-            ModelId::LuGre => &["sigma0", "sigma1", "sigma2", "F_c", "F_s", "v_s"],
-            ModelId::LuGreVd => &["sigma0", "sigma1", "sigma2", "F_c", "F_s", "v_s", "v_d"],
-            ModelId::ElastoPlastic => &["sigma0", "sigma1", "sigma2", "F_c", "F_s", "v_s", "r_ba"],
-            ModelId::Gms => &[
-                "sigma0", "sigma1", "sigma2", "F_c", "F_s", "v_s", "n_gms", "C_gms",
-            ],
-        }
+        self.entry().parameters
     }
 
     /// How the model's curve is drawn: Dahl-type models against displacement, the rest
-    /// against velocity (LuGre in steady sliding).
+    /// against velocity (LuGre, its variants and GMS in steady sliding).
     pub fn curve_axis(self) -> CurveAxis {
-        match self {
-            ModelId::Dv | ModelId::Sd | ModelId::Sv | ModelId::Dahl => CurveAxis::Displacement,
-            _ => CurveAxis::Velocity,
-        }
+        self.entry().axis
     }
 
     /// Builds the model from validated parameters.

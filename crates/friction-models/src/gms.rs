@@ -107,7 +107,7 @@ impl FrictionModel for Gms {
         rate: &mut [f64],
         states: &mut [StatePartials],
     ) -> (f64, Partials) {
-        let b = law.branches(v);
+        let b = law.released(v).branches(v);
         let (s, ds) = (b.sign(), b.dsign_dv());
         let g = terms::stribeck_level(self.f_c, self.f_s, self.v_s, v);
         let u = v * s;

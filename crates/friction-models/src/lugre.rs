@@ -94,7 +94,7 @@ impl LuGre {
     }
 
     fn rate(&self, v: f64, z: f64, law: SignLaw) -> Rate {
-        let b = law.branches(v);
+        let b = law.released(v).branches(v);
         let (s, ds) = (b.sign(), b.dsign_dv());
         let (g, dg) = self.g(v);
         let abs_v = v * s;

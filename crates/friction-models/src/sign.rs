@@ -80,6 +80,19 @@ impl Branches {
 }
 
 impl SignLaw {
+    /// The law with the frozen direction released where v lies strictly on the other side of
+    /// zero: `Frozen(d)` evaluates sign(v) = d there, a smooth extension that only a law with a
+    /// true stick law needs (the events end the mode at the crossing). A law continuous at rest
+    /// (LuGre, GMS: sign(v) only enters through |v| = v·sign(v)) takes this instead, so that a
+    /// mode left behind at an equilibrium, where the sign of v is rounding, never evaluates
+    /// |v| = −v.
+    pub fn released(self, v: f64) -> SignLaw {
+        match self {
+            SignLaw::Frozen(d) if v * d.sign() < 0.0 => SignLaw::Discontinuous,
+            law => law,
+        }
+    }
+
     /// The branch weights at velocity `v`.
     pub fn branches(self, v: f64) -> Branches {
         let (plus, minus) = match self {

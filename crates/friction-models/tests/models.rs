@@ -292,6 +292,29 @@ fn model_names_round_trip_and_unknown_names_are_listed() {
 }
 
 #[test]
+fn the_catalog_lists_every_model_at_its_own_index() {
+    // The catalog's entries are indexed by `ModelId as usize`: ALL must list the models in
+    // their declaration order, and each entry must be its model's.
+    for (i, id) in ModelId::ALL.into_iter().enumerate() {
+        assert_eq!(id as usize, i, "{id}");
+    }
+    assert_eq!(ModelId::Gms.entry().name, "gms");
+    assert_eq!(
+        ModelId::Sd.curve_axis(),
+        friction_models::CurveAxis::Displacement
+    );
+    assert!(ModelId::Sv.has_printed_form() && !ModelId::Cvs.has_printed_form());
+    assert_ne!(
+        ModelId::Av.equation(Variant::Printed),
+        ModelId::Av.equation(Variant::Odd)
+    );
+    assert_eq!(
+        ModelId::Cs.equation(Variant::Printed),
+        ModelId::Cs.equation(Variant::Odd)
+    );
+}
+
+#[test]
 fn every_model_declares_parameters_that_exist() {
     for id in ModelId::ALL {
         for name in id.parameters() {

@@ -202,6 +202,18 @@ pub struct Row {
     pub z: Option<f64>,
 }
 
+impl Row {
+    /// Whether every number of the row is finite. A failed run's last states are finite (the
+    /// solvers check them) but the friction there may not be: the law overflows at a state
+    /// that only the next step would have rejected. The rows end before the first such row,
+    /// so that a partial trajectory never holds a non-finite value.
+    pub fn is_finite(&self) -> bool {
+        [self.t, self.x, self.v, self.friction, self.z.unwrap_or(0.0)]
+            .iter()
+            .all(|x| x.is_finite())
+    }
+}
+
 /// An event, as `summary.json` lists it.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct EventEntry {
@@ -360,6 +372,7 @@ fn run_body(
             mode: mode_name(b.mode.unwrap_or(STICK)),
             z: b.z,
         })
+        .take_while(Row::is_finite)
         .collect();
     Ok(Outcome {
         rows,
@@ -418,6 +431,7 @@ pub fn run_motion(
                 z: friction_models::reported_state(&y[..w]),
             }
         })
+        .take_while(Row::is_finite)
         .collect();
     let last = s.last().map(|(_, y)| (y[w], y[w + 1]));
     Outcome {
