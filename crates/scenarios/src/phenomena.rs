@@ -7,7 +7,7 @@ use crate::run::{run, run_motion, settling_time, RunSpec, ScenarioError, Switchi
 use crate::scenario::Scenario;
 use crate::ScenarioParams;
 use friction_models::{FrictionModel, FrictionParams, ModelId, Parameters, Variant};
-use integrators::{Solver, StepControl};
+use integrators::{DiffsolMethod, Solver, StepControl};
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -163,9 +163,12 @@ pub struct Protocol {
 }
 
 impl Default for Protocol {
+    /// diffsol's BDF at rtol = 1e-10, atol = 1e-12: the bristle models (LuGre, its variants,
+    /// GMS) are stiff, and Dormand–Prince, which gives the same verdicts and regions, takes
+    /// four times as long over the whole table (docs/performance.md).
     fn default() -> Self {
         Protocol {
-            solver: Solver::Dopri5,
+            solver: Solver::Diffsol(DiffsolMethod::Bdf),
             step: StepControl::Adaptive {
                 rtol: 1e-10,
                 atol: 1e-12,
