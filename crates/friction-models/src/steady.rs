@@ -1,7 +1,7 @@
 //! Steady sliding of any model: its internal states, force and slope at a constant relative
 //! velocity, and the rates of its states around it.
 
-use crate::model::{FrictionModel, StatePartials};
+use crate::model::{FrictionModel, Partials, StatePartials};
 use crate::sign::SignLaw;
 
 /// The internal states z*(v) of steady sliding at velocity v.
@@ -16,12 +16,22 @@ pub fn force(model: &dyn FrictionModel, v: f64, law: SignLaw) -> f64 {
     model.force(0.0, v, &states(model, v), law)
 }
 
-/// The slope dF/dv of steady sliding under `law`, along the steady states:
-/// `∂F/∂v + Σ_i ∂F/∂z_i·dz_i*/dv`, with `dz_i*/dv = −(∂ż_i/∂v)/(∂ż_i/∂z_i)`.
-pub fn slope(model: &dyn FrictionModel, v: f64, law: SignLaw) -> f64 {
+/// The steady states z*(v) with the partials there under `law`.
+fn linearised(
+    model: &dyn FrictionModel,
+    v: f64,
+    law: SignLaw,
+) -> (Vec<f64>, Partials, Vec<StatePartials>) {
     let z = states(model, v);
     let mut d = vec![StatePartials::default(); z.len()];
     let p = model.partials(0.0, v, &z, law, &mut d);
+    (z, p, d)
+}
+
+/// The slope dF/dv of steady sliding under `law`, along the steady states:
+/// `∂F/∂v + Σ_i ∂F/∂z_i·dz_i*/dv`, with `dz_i*/dv = −(∂ż_i/∂v)/(∂ż_i/∂z_i)`.
+pub fn slope(model: &dyn FrictionModel, v: f64, law: SignLaw) -> f64 {
+    let (_, p, d) = linearised(model, v, law);
     p.force_dv
         + d.iter()
             .filter(|d| d.rate_dz != 0.0)
@@ -36,9 +46,7 @@ pub fn slope(model: &dyn FrictionModel, v: f64, law: SignLaw) -> f64 {
 /// about g(v)/(σ0·|v|); GMS's blocks stick, ∂ż_i/∂z_i = 0, until they have slid that length).
 /// `None` for a model without states.
 pub fn time_constant(model: &dyn FrictionModel, v: f64) -> Option<f64> {
-    let z = states(model, v);
-    let mut d = vec![StatePartials::default(); z.len()];
-    model.partials(0.0, v, &z, SignLaw::Discontinuous, &mut d);
+    let (z, _, d) = linearised(model, v, SignLaw::Discontinuous);
     let slowest = d.iter().map(|d| d.rate_dz.abs()).reduce(f64::min)?;
     let at_rest = |z: &[f64]| model.force(0.0, 0.0, z, SignLaw::Discontinuous);
     let carried = at_rest(&z) - at_rest(&vec![0.0; z.len()]);
