@@ -708,11 +708,14 @@ pub fn add_work_precision(
     let csv = dir.join(format!("{stem}.csv"));
     t.files.add(csv.clone(), runs_table(&w.runs, &csv)?);
     let mut timing = Table::new(&["solver", "h", "tol", "wall_time_median_s"]);
-    for (r, t) in w.runs.iter().zip(&w.wall_median_s) {
+    for r in &w.runs {
         let [h, tol] = resolution_cells(Some(r.step), Some(r.resolution));
-        timing
-            .rows
-            .push(vec![Cell::Text(r.solver.clone()), h, tol, Cell::Num(*t)]);
+        timing.rows.push(vec![
+            Cell::Text(r.solver.clone()),
+            h,
+            tol,
+            Cell::Num(r.wall_time_s),
+        ]);
     }
     let timing_csv = dir.join(format!("{stem}-timing.csv"));
     t.files.add(timing_csv.clone(), timing.to_csv(&timing_csv)?);

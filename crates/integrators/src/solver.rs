@@ -67,6 +67,18 @@ impl Solver {
         )
     }
 
+    /// The order p of the method: its global error ∝ h^p (BDF: its highest order, 5).
+    pub fn order(self) -> usize {
+        match self {
+            Solver::Rk4 => 4,
+            Solver::Dopri5 | Solver::Diffsol(DiffsolMethod::Tsit45) => 5,
+            Solver::ImplicitEuler => 1,
+            Solver::Diffsol(DiffsolMethod::Bdf) => 5,
+            Solver::Diffsol(DiffsolMethod::TrBdf2) => 2,
+            Solver::Diffsol(DiffsolMethod::Esdirk34) => 3,
+        }
+    }
+
     /// Whether the method needs a fixed step (`--dt`) rather than tolerances.
     pub fn is_fixed_step(self) -> bool {
         self == Solver::Rk4

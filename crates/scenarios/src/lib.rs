@@ -6,6 +6,7 @@
 //! Table 2 by simulation ([`phenomena`]); the solver studies ([`studies`], [`cases`]); the
 //! settled state a parameter sweep measures ([`settled`]).
 
+pub mod batch;
 pub mod cases;
 pub mod curves;
 pub mod figures;

@@ -2,10 +2,12 @@
 //! explicit/implicit crossover. Every study is a list of independent runs evaluated on
 //! rayon's pool and collected in order, so its results do not depend on the thread count.
 
+use crate::batch;
+pub use crate::batch::reference;
 pub use crate::cases::{Case, Measured, Measures, StudyCase, SystemCase, GRID_POINTS};
 use crate::run::{ScenarioError, SwitchingKind};
 use crate::schedule;
-use integrators::{DiffsolMethod, Solver, Stats, StepControl};
+use integrators::{Solver, Stats, StepControl};
 use serde::Serialize;
 
 /// How a study integrates its case: a solver under the case's own treatment of v = 0, or a
@@ -114,6 +116,14 @@ fn max_diff(a: &[f64], b: &[f64]) -> f64 {
 }
 
 impl Errors {
+    /// Not measured (yet): every error NaN.
+    pub const UNMEASURED: Errors = Errors {
+        final_state: f64::NAN,
+        grid_max: f64::NAN,
+        event_times: f64::NAN,
+        stick_durations: f64::NAN,
+    };
+
     /// The errors of `m` against `reference`.
     pub fn between(m: &Measures, reference: &Measures) -> Errors {
         let grid_max = if m.grid.len() == reference.grid.len() {
@@ -155,64 +165,6 @@ pub enum Reference {
 /// The tolerance of a reference run, rtol = atol.
 pub const REFERENCE_TOLERANCE: f64 = 1e-13;
 
-/// The reference of a case for a study of `studied` solvers: the closed form where one
-/// exists; otherwise a run at rtol = atol = 1e-13 of Dormand–Prince, or, when Dormand–Prince
-/// itself is studied, of diffsol's Tsit45 (an independent 5(4) pair); when both are studied,
-/// Dormand–Prince's tight run cross-checked by Tsit45's (their difference is reported). Event
-/// switching for a naive study (the exact solution of the discontinuous problem it
-/// approximates), the study's own switching otherwise. The reference runs concurrently
-/// with each other.
-pub fn reference(
-    case: &dyn StudyCase,
-    studied: &[Solver],
-) -> Result<(Reference, Measures), ScenarioError> {
-    if let Some((name, m)) = case.closed_form() {
-        return Ok((Reference::ClosedForm(name), m));
-    }
-    let tsit45 = Solver::Diffsol(DiffsolMethod::Tsit45);
-    let (solver, check) = match (studied.contains(&Solver::Dopri5), studied.contains(&tsit45)) {
-        (false, _) => (Solver::Dopri5, None),
-        (true, false) => (tsit45, None),
-        (true, true) => (Solver::Dopri5, Some(tsit45)),
-    };
-    let step = StepControl::Adaptive {
-        rtol: REFERENCE_TOLERANCE,
-        atol: REFERENCE_TOLERANCE,
-        h0: None,
-    };
-    // Naive stepping approximates the discontinuous problem, whose exact solution event
-    // switching computes; a regularized problem is its own (smooth) ODE.
-    let switching = match case.switching() {
-        SwitchingKind::Naive => SwitchingKind::Event,
-        other => other,
-    };
-    let own = case.with_switching(switching);
-    let tight = |solver: Solver| -> Result<Measures, ScenarioError> {
-        let o = own.measure(solver, step)?;
-        match o.error {
-            Some(error) => Err(ScenarioError::Solver {
-                what: format!("the reference run ({})", solver.name()),
-                error,
-            }),
-            None => Ok(o.measures),
-        }
-    };
-    let (measures, checked) = rayon::join(|| tight(solver), || check.map(tight));
-    let measures = measures?;
-    let cross_check = match (check, checked) {
-        (Some(other), Some(m)) => Some((other.name(), Errors::between(&m?, &measures).grid_max)),
-        _ => None,
-    };
-    Ok((
-        Reference::Run {
-            solver: solver.name(),
-            step,
-            cross_check,
-        },
-        measures,
-    ))
-}
-
 /// The resolution of a run: its step size (fixed steps, s) or its tolerance (adaptive: rtol,
 /// equal to atol in the studies).
 pub fn resolution(step: StepControl) -> f64 {
@@ -250,66 +202,23 @@ pub struct StudyRun {
     pub work: usize,
     /// The solver's error, if it failed.
     pub failure: Option<String>,
-    /// Wall time of the run, s (not deterministic: kept out of the study's main files).
+    /// Wall time of the run, s: the median over it and its timing repeats (not
+    /// deterministic: kept out of the study's main files).
     #[serde(skip)]
     pub wall_time_s: f64,
 }
 
-/// Runs `case` with each (solver, step) in parallel, and computes the reference alongside
-/// (`rayon::join`), then measures each run against it.
+/// Runs `case` with each (method, step) against its reference for a study of `studied`
+/// solvers, the reference runs and the runs in one list ([`batch`]).
 pub fn run_against_reference(
     case: &dyn StudyCase,
     studied: &[Solver],
     jobs: &[(Method, StepControl)],
     progress: &(dyn Fn() + Sync),
 ) -> Result<(Reference, Measures, Vec<StudyRun>), ScenarioError> {
-    let (reference, runs) = rayon::join(
-        || reference(case, studied),
-        || run_all(case, jobs, progress),
-    );
-    let (reference, measures) = reference?;
-    let mut runs = runs?;
-    for r in &mut runs {
-        r.errors = Errors::between(&r.measures, &measures);
-    }
-    Ok((reference, measures, runs))
-}
-
-/// Runs `case` with each (method, step) in parallel (errors still to be measured), the
-/// finest resolutions first (the longest runs, started first, do not leave one core idle at
-/// the end); the runs are returned in the order of `jobs`.
-pub fn run_all(
-    case: &dyn StudyCase,
-    jobs: &[(Method, StepControl)],
-    progress: &(dyn Fn() + Sync),
-) -> Result<Vec<StudyRun>, ScenarioError> {
-    let dim = case.dim()?;
-    let mut order: Vec<usize> = (0..jobs.len()).collect();
-    order.sort_by(|&a, &b| resolution(jobs[a].1).total_cmp(&resolution(jobs[b].1)));
-    let runs = schedule::in_order(&order, |i| {
-        let (method, step) = jobs[i];
-        let o = method.measure(case, step)?;
-        progress();
-        let measures = o.measures;
-        let run = StudyRun {
-            solver: method.label(),
-            resolution: resolution(step),
-            step: step_kind(step),
-            errors: Errors {
-                final_state: f64::NAN,
-                grid_max: f64::NAN,
-                event_times: f64::NAN,
-                stick_durations: f64::NAN,
-            },
-            measures,
-            stats: o.stats,
-            work: o.stats.work(dim),
-            failure: o.error.map(|e| e.to_string()),
-            wall_time_s: o.wall_time_s,
-        };
-        Ok::<_, ScenarioError>(run)
-    })?;
-    Ok(runs.into_iter().map(|(_, r)| r).collect())
+    let c = batch::run_cases(&[case], Some(studied), jobs, 0, progress)?.remove(0);
+    let (reference, measures) = c.reference.expect("a reference was asked for");
+    Ok((reference, measures, c.runs))
 }
 
 /// The observed order between two refinements: log(e_i/e_(i+1)) / log(h_i/h_(i+1)), which
@@ -558,7 +467,9 @@ pub fn independence(
 ) -> Result<Independence, ScenarioError> {
     let resolutions: Vec<f64> = (0..levels).map(|i| start / ratio.powi(i as i32)).collect();
     let jobs = Method::jobs(&[Method::of(solver)], &resolutions, &resolutions, false);
-    let runs = run_all(case, &jobs, progress)?;
+    let runs = batch::run_cases(&[case], None, &jobs, 0, progress)?
+        .remove(0)
+        .runs;
     if let Some(f) = runs.iter().find_map(|r| r.failure.clone()) {
         return Err(ScenarioError::RunFailed(format!(
             "a run of the independence study failed: {f}"
@@ -639,15 +550,13 @@ pub fn independence(
 pub struct WorkPrecision {
     /// The reference.
     pub reference: Reference,
-    /// Every run.
+    /// Every run, its wall time the median over the repetitions.
     pub runs: Vec<StudyRun>,
-    /// Median wall time of each run over the repetitions, s (same order as `runs`).
-    #[serde(skip)]
-    pub wall_median_s: Vec<f64>,
 }
 
 /// Runs every method over its step sizes or tolerances, `repeats` times each for the
-/// median wall time. The reference is the one of the methods' solvers under the case's own
+/// median wall time, the repetitions in the same list as the runs (each run alone on its
+/// core: see docs/performance.md for what a neighbour costs a small problem). The reference is the one of the methods' solvers under the case's own
 /// treatment.
 pub fn work_precision(
     case: &dyn StudyCase,
@@ -663,29 +572,11 @@ pub fn work_precision(
         .filter(|m| m.switching.is_none())
         .map(|m| m.solver)
         .collect();
-    let (reference, _, runs) = run_against_reference(case, &own, &jobs, progress)?;
-    // Timing repeats run one after another, so that they do not compete for the cores.
-    let wall_median_s = jobs
-        .iter()
-        .zip(&runs)
-        .map(|(&(method, step), first)| {
-            let mut times = vec![first.wall_time_s];
-            for _ in 1..repeats.max(1) {
-                times.push(
-                    method
-                        .measure(case, step)
-                        .map(|o| o.wall_time_s)
-                        .unwrap_or(f64::NAN),
-                );
-            }
-            times.sort_by(f64::total_cmp);
-            times[times.len() / 2]
-        })
-        .collect();
+    let c = batch::run_cases(&[case], Some(&own), &jobs, repeats.max(1) - 1, progress)?.remove(0);
+    let (reference, _) = c.reference.expect("a reference was asked for");
     Ok(WorkPrecision {
         reference,
-        runs,
-        wall_median_s,
+        runs: c.runs,
     })
 }
 
@@ -788,7 +679,7 @@ pub struct Sweep<'a> {
     pub target: f64,
 }
 
-/// Sweeps the parameter over its values and finds, for each solver, the cheapest
+/// Sweeps the parameter over its values (every value's runs in one list) and finds, for each solver, the cheapest
 /// resolution in `step_sizes` (or `tolerances`) whose grid error meets the target.
 pub fn stiffness(
     case: &dyn StudyCase,
@@ -808,11 +699,17 @@ pub fn stiffness(
         values,
         target,
     } = sweep;
+    let cases = values
+        .iter()
+        .map(|&value| case.with_parameter(parameter, value))
+        .collect::<Result<Vec<_>, _>>()?;
+    let cases: Vec<&dyn StudyCase> = cases.iter().map(|c| c.as_ref()).collect();
+    let jobs = Method::jobs(methods, step_sizes, tolerances, false);
+    // Every value's runs and references in one list: no value waits for the last run of
+    // the one before.
+    let done = batch::run_cases(&cases, Some(&own), &jobs, 0, progress)?;
     let mut points = Vec::new();
-    for &value in values {
-        let c = case.with_parameter(parameter, value)?;
-        let jobs = Method::jobs(methods, step_sizes, tolerances, false);
-        let (_, _, runs) = run_against_reference(c.as_ref(), &own, &jobs, progress)?;
+    for (&value, batch::CaseRuns { runs, .. }) in values.iter().zip(done) {
         let costs: Vec<Cost> = methods
             .iter()
             .map(|m| {

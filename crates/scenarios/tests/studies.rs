@@ -249,3 +249,59 @@ fn a_system_study_draws_regularised_bdf_and_time_stepping_beside_its_solvers() {
         "{regularized:?} {dopri5:?}"
     );
 }
+
+/// Every result of a sweep study is that of its case run alone, whatever the number of
+/// threads and with the timing repeats in the same list.
+#[test]
+fn a_sweep_in_one_list_gives_each_case_its_own_results_on_one_or_two_threads() {
+    use scenarios::batch::{expected_steps, run_cases};
+    use scenarios::studies::{run_against_reference, Method, StudyCase};
+    let belt = switched_belt();
+    let stiff = belt.with_parameter("k", 400.0).unwrap();
+    let cases: [&dyn StudyCase; 2] = [&belt, stiff.as_ref()];
+    let solvers = [Solver::Rk4, Solver::Dopri5, Solver::ImplicitEuler];
+    let methods = solvers.map(Method::of);
+    let jobs = Method::jobs(&methods, &[0.01, 0.005], &[1e-4, 1e-6], false);
+    assert_eq!(jobs.len(), 6);
+    // The list's order: implicit Euler (order 1) at 1e-6 expects 5·1e3 steps, RK4 at
+    // h = 0.005 expects 1e3, Dormand–Prince at 1e-6 5·10 = 50.
+    let steps = |j: usize| expected_steps(&jobs[j].0, jobs[j].1, 5.0);
+    assert!((steps(5) - 5e3).abs() < 1e-9, "{}", steps(5));
+    assert!((steps(1) - 1e3).abs() < 1e-9, "{}", steps(1));
+    assert!((steps(3) - 50.0).abs() < 1e-9, "{}", steps(3));
+    // Debug text compares NaN errors (event counts that differ) as equal.
+    let without_times = |mut runs: Vec<scenarios::studies::StudyRun>| {
+        runs.iter_mut().for_each(|r| r.wall_time_s = 0.0);
+        format!("{runs:?}")
+    };
+    let alone: Vec<_> = cases
+        .iter()
+        .map(|&c| {
+            let (r, m, runs) = run_against_reference(c, &solvers, &jobs, &|| {}).unwrap();
+            (r, m, without_times(runs))
+        })
+        .collect();
+    for threads in [1, 2] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let counted = std::sync::atomic::AtomicUsize::new(0);
+        let together = pool
+            .install(|| {
+                run_cases(&cases, Some(&solvers), &jobs, 2, &|| {
+                    counted.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                })
+            })
+            .unwrap();
+        // Progress counts the measured runs, not the timing repeats.
+        assert_eq!(counted.into_inner(), 2 * jobs.len());
+        for (c, (r, m, runs)) in together.into_iter().zip(&alone) {
+            assert_eq!(c.reference.as_ref(), Some(&(r.clone(), m.clone())));
+            assert!(c.runs.iter().all(|r| r.errors.grid_max.is_finite()));
+            assert_eq!(&without_times(c.runs), runs, "{threads} threads");
+        }
+    }
+    // The stiffer belt is a different problem: its reference differs.
+    assert_ne!(alone[0].1, alone[1].1);
+}

@@ -1,0 +1,257 @@
+//! A study's runs as one list on the pool: every case of the study (one, or one per value of
+//! a stiffness sweep), the reference runs of each, each (method, step) and its timing repeats,
+//! handed to the workers by a greedy list schedule ([`schedule::in_order`]), the longest
+//! expected first (Graham 1969's LPT rule: a makespan of at most 4/3 of the optimum). A study
+//! that ran its cases one after the other, or its reference beside its runs, or its timing
+//! repeats after them, waited at each of those barriers for its longest run.
+//!
+//! The expected cost only orders the list: every result depends on its run alone, so the
+//! results are the same for any number of threads and any order.
+
+use crate::cases::{Measures, StudyCase};
+use crate::run::{ScenarioError, SwitchingKind};
+use crate::schedule;
+use crate::studies::REFERENCE_TOLERANCE;
+use crate::studies::{resolution, step_kind, Errors, Method, Reference, StudyRun};
+use integrators::{DiffsolMethod, Solver, StepControl};
+
+/// The steps a run is expected to take, to order the list: `T/h` with a fixed step;
+/// `T·tol^(−1/(p+1))` with a tolerance, for a method of order p whose error per step is
+/// held at the tolerance (steps ∝ h⁻¹, local error ∝ h^(p+1)), on a unit time scale.
+pub fn expected_steps(method: &Method, step: StepControl, t_span: f64) -> f64 {
+    let order = if method.switching.is_some_and(|s| s.is_time_stepping()) {
+        1
+    } else {
+        method.solver.order()
+    };
+    match step {
+        StepControl::Fixed { h } => t_span / h,
+        StepControl::Adaptive { rtol, .. } => t_span * rtol.powf(-1.0 / (order as f64 + 1.0)),
+    }
+}
+
+/// How a case's reference is obtained.
+enum Plan {
+    /// Its closed form.
+    Exact(Reference, Measures),
+    /// A tight run of a solver under a treatment of v = 0, and maybe a second solver's
+    /// tight run to cross-check it.
+    Runs {
+        own: Box<dyn StudyCase>,
+        solver: Solver,
+        check: Option<Solver>,
+    },
+}
+
+/// The step of a reference run.
+const REFERENCE_STEP: StepControl = StepControl::Adaptive {
+    rtol: REFERENCE_TOLERANCE,
+    atol: REFERENCE_TOLERANCE,
+    h0: None,
+};
+
+/// The reference of `case` for a study of `studied` solvers: the closed form where one
+/// exists; otherwise a run at rtol = atol = [`REFERENCE_TOLERANCE`] of Dormand–Prince, or,
+/// when Dormand–Prince itself is studied, of diffsol's Tsit45 (an independent 5(4) pair);
+/// when both are studied, Dormand–Prince's tight run cross-checked by Tsit45's. Event
+/// switching for a naive study (the exact solution of the discontinuous problem it
+/// approximates), the study's own switching otherwise.
+fn plan(case: &dyn StudyCase, studied: &[Solver]) -> Plan {
+    if let Some((name, m)) = case.closed_form() {
+        return Plan::Exact(Reference::ClosedForm(name), m);
+    }
+    let tsit45 = Solver::Diffsol(DiffsolMethod::Tsit45);
+    let (solver, check) = match (studied.contains(&Solver::Dopri5), studied.contains(&tsit45)) {
+        (false, _) => (Solver::Dopri5, None),
+        (true, false) => (tsit45, None),
+        (true, true) => (Solver::Dopri5, Some(tsit45)),
+    };
+    // Naive stepping approximates the discontinuous problem, whose exact solution event
+    // switching computes; a regularized problem is its own (smooth) ODE.
+    let switching = match case.switching() {
+        SwitchingKind::Naive => SwitchingKind::Event,
+        other => other,
+    };
+    Plan::Runs {
+        own: case.with_switching(switching),
+        solver,
+        check,
+    }
+}
+
+/// One tight run of a reference; a failure is the study's error.
+fn reference_run(own: &dyn StudyCase, solver: Solver) -> Result<Measures, ScenarioError> {
+    let o = own.measure(solver, REFERENCE_STEP)?;
+    match o.error {
+        Some(error) => Err(ScenarioError::Solver {
+            what: format!("the reference run ({})", solver.name()),
+            error,
+        }),
+        None => Ok(o.measures),
+    }
+}
+
+/// The reference of `case` for a study of `studied` solvers (see [`plan`]), its runs
+/// concurrent.
+pub fn reference(
+    case: &dyn StudyCase,
+    studied: &[Solver],
+) -> Result<(Reference, Measures), ScenarioError> {
+    let mut out = run_cases(&[case], Some(studied), &[], 0, &|| {})?;
+    Ok(out.remove(0).reference.expect("a reference was asked for"))
+}
+
+/// What a study computed on one case.
+pub struct CaseRuns {
+    /// The reference and its measures, if one was asked for.
+    pub reference: Option<(Reference, Measures)>,
+    /// Every (method, step) in the order of the jobs, errors measured against the
+    /// reference (NaN without one).
+    pub runs: Vec<StudyRun>,
+}
+
+/// One entry of the list.
+#[derive(Clone, Copy)]
+enum Task {
+    /// A reference run of case `case` by `solver`.
+    Reference { case: usize, solver: Solver },
+    /// Job `job` of case `case`, its `repeat`-th time (0: the measured run; after it,
+    /// timing repeats).
+    Run {
+        case: usize,
+        job: usize,
+        repeat: usize,
+    },
+}
+
+/// What an entry of the list gave.
+enum Done {
+    Reference(Measures),
+    Run(Box<StudyRun>),
+    Time(f64),
+}
+
+/// Runs `jobs` on every case of `cases`, each `1 + repeats` times (the repeats only for their
+/// wall time: [`StudyRun::wall_time_s`] is the median), with each case's reference when `studied` gives
+/// the solvers of the study, as one list (see the module). `progress` is told of every
+/// measured run. Errors: the first failing reference (by case), then the first run that could
+/// not be set up.
+pub fn run_cases(
+    cases: &[&dyn StudyCase],
+    studied: Option<&[Solver]>,
+    jobs: &[(Method, StepControl)],
+    repeats: usize,
+    progress: &(dyn Fn() + Sync),
+) -> Result<Vec<CaseRuns>, ScenarioError> {
+    let plans: Vec<Option<Plan>> = cases.iter().map(|&c| studied.map(|s| plan(c, s))).collect();
+    let dims = cases
+        .iter()
+        .map(|c| c.dim())
+        .collect::<Result<Vec<_>, _>>()?;
+    let mut tasks = Vec::new();
+    for (case, p) in plans.iter().enumerate() {
+        if let Some(Plan::Runs { solver, check, .. }) = p {
+            for solver in std::iter::once(*solver).chain(*check) {
+                tasks.push(Task::Reference { case, solver });
+            }
+        }
+    }
+    for case in 0..cases.len() {
+        for job in 0..jobs.len() {
+            for repeat in 0..=repeats {
+                tasks.push(Task::Run { case, job, repeat });
+            }
+        }
+    }
+    let cost = |t: &Task| match *t {
+        Task::Reference { case, solver } => {
+            expected_steps(&Method::of(solver), REFERENCE_STEP, cases[case].t_end())
+        }
+        Task::Run { case, job, .. } => {
+            let (method, step) = jobs[job];
+            expected_steps(&method, step, cases[case].t_end())
+        }
+    };
+    let mut order: Vec<usize> = (0..tasks.len()).collect();
+    order.sort_by(|&a, &b| cost(&tasks[b]).total_cmp(&cost(&tasks[a])));
+    let done = schedule::in_order(&order, |i| match tasks[i] {
+        Task::Reference { case, solver } => {
+            let Some(Plan::Runs { own, .. }) = &plans[case] else {
+                unreachable!("reference tasks come from run plans")
+            };
+            reference_run(own.as_ref(), solver).map(Done::Reference)
+        }
+        Task::Run { case, job, repeat } => {
+            let (method, step) = jobs[job];
+            let o = method.measure(cases[case], step)?;
+            if repeat > 0 {
+                return Ok(Done::Time(o.wall_time_s));
+            }
+            progress();
+            Ok(Done::Run(Box::new(StudyRun {
+                solver: method.label(),
+                resolution: resolution(step),
+                step: step_kind(step),
+                errors: Errors::UNMEASURED,
+                measures: o.measures,
+                stats: o.stats,
+                work: o.stats.work(dims[case]),
+                failure: o.error.map(|e| e.to_string()),
+                wall_time_s: o.wall_time_s,
+            })))
+        }
+    })?;
+    let mut done = done.into_iter().map(|(_, d)| d);
+    let mut out: Vec<CaseRuns> = Vec::with_capacity(cases.len());
+    let mut references: Vec<Vec<Measures>> = vec![Vec::new(); cases.len()];
+    for t in &tasks {
+        if let Task::Reference { case, .. } = *t {
+            let Some(Done::Reference(m)) = done.next() else {
+                unreachable!("results come back in the order of the tasks")
+            };
+            references[case].push(m);
+        }
+    }
+    for (case, plan) in plans.into_iter().enumerate() {
+        let reference = match plan {
+            None => None,
+            Some(Plan::Exact(r, m)) => Some((r, m)),
+            Some(Plan::Runs { solver, check, .. }) => {
+                let mut tight = std::mem::take(&mut references[case]).into_iter();
+                let measures = tight.next().expect("one run per reference solver");
+                let cross_check = check
+                    .zip(tight.next())
+                    .map(|(other, m)| (other.name(), Errors::between(&m, &measures).grid_max));
+                Some((
+                    Reference::Run {
+                        solver: solver.name(),
+                        step: REFERENCE_STEP,
+                        cross_check,
+                    },
+                    measures,
+                ))
+            }
+        };
+        let mut runs = Vec::with_capacity(jobs.len());
+        for _ in jobs {
+            let Some(Done::Run(mut run)) = done.next() else {
+                unreachable!("results come back in the order of the tasks")
+            };
+            let mut times = vec![run.wall_time_s];
+            for _ in 0..repeats {
+                let Some(Done::Time(t)) = done.next() else {
+                    unreachable!("results come back in the order of the tasks")
+                };
+                times.push(t);
+            }
+            times.sort_by(f64::total_cmp);
+            run.wall_time_s = times[times.len() / 2];
+            if let Some((_, m)) = &reference {
+                run.errors = Errors::between(&run.measures, m);
+            }
+            runs.push(*run);
+        }
+        out.push(CaseRuns { reference, runs });
+    }
+    Ok(out)
+}
