@@ -111,41 +111,53 @@ fn study_threads(c: &mut Criterion) {
         t_end: 10.0,
         limits: Limits::default(),
     };
-    let all = [
+    let four = [
         Solver::Rk4,
         Solver::Dopri5,
         Solver::ImplicitEuler,
         Solver::from_name("bdf").unwrap(),
     ]
     .map(studies::Method::of);
-    let mut group = c.benchmark_group("work-precision sweep (belt CS, 28 runs)");
-    group.sample_size(10);
-    for threads in [1, 2] {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        group.bench_function(format!("{threads} thread(s)"), |b| {
-            b.iter(|| {
-                pool.install(|| {
-                    black_box(
-                        studies::work_precision(
-                            &case,
-                            &all,
-                            &[0.01, 0.003, 0.001, 0.0003],
-                            &[1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8],
-                            1,
-                            &|| {},
+    // The command's defaults: `friction-lab work-precision belt --model CS`.
+    let seven = Solver::ALL.map(studies::Method::of);
+    let configurations: [(&str, &[studies::Method], usize); 2] = [
+        ("work-precision sweep (belt CS, 28 runs)", &four, 1),
+        (
+            "work-precision study (belt CS, 40 runs, 3 repeats)",
+            &seven,
+            3,
+        ),
+    ];
+    for (name, methods, repeats) in configurations {
+        let mut group = c.benchmark_group(name);
+        group.sample_size(10);
+        for threads in [1, 2] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            group.bench_function(format!("{threads} thread(s)"), |b| {
+                b.iter(|| {
+                    pool.install(|| {
+                        black_box(
+                            studies::work_precision(
+                                &case,
+                                methods,
+                                &[0.01, 0.003, 0.001, 0.0003],
+                                &[1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8],
+                                repeats,
+                                &|| {},
+                            )
+                            .unwrap()
+                            .runs
+                            .len(),
                         )
-                        .unwrap()
-                        .runs
-                        .len(),
-                    )
+                    })
                 })
-            })
-        });
+            });
+        }
+        group.finish();
     }
-    group.finish();
 }
 
 criterion_group!(benches, solvers, study_threads);
