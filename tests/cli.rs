@@ -495,12 +495,40 @@ fn bad_scenario_input_is_rejected_and_writes_nothing() {
     }
 }
 
+/// Runs a study command on one and on two threads into `dir` and asserts that `files` are
+/// identical; returns the one-thread folder.
+fn identical_on_one_and_two_threads(
+    dir: &std::path::Path,
+    args: &[&str],
+    files: &[&str],
+) -> std::path::PathBuf {
+    let run = |threads: &str| {
+        let out = dir.join(format!("{}-t{threads}", args[0]));
+        let mut all = args.to_vec();
+        all.extend(["--threads", threads, "--out", out.to_str().unwrap()]);
+        let o = friction_lab(&all);
+        assert!(o.status.success(), "{}", stderr(&o));
+        out
+    };
+    let (one, two) = (run("1"), run("2"));
+    for name in files {
+        let a = std::fs::read(one.join(name)).unwrap();
+        assert_eq!(
+            a,
+            std::fs::read(two.join(name)).unwrap(),
+            "{name} of {} differs between 1 and 2 threads",
+            args[0]
+        );
+    }
+    one
+}
+
 #[test]
 fn studies_on_one_and_two_threads_write_identical_files() {
     let dir = tempfile::tempdir().unwrap();
-    let run = |threads: &str| {
-        let out = dir.path().join(format!("t{threads}"));
-        let o = friction_lab(&[
+    let one = identical_on_one_and_two_threads(
+        dir.path(),
+        &[
             "converge",
             "free-vibration",
             "--model",
@@ -511,34 +539,66 @@ fn studies_on_one_and_two_threads_write_identical_files() {
             "rk4,dopri5,bdf",
             "--t-end",
             "2",
-            "--threads",
-            threads,
-            "--out",
-            out.to_str().unwrap(),
-        ]);
-        assert!(o.status.success(), "{}", stderr(&o));
-        out
-    };
-    let (one, two) = (run("1"), run("2"));
-    for name in [
-        "converge.csv",
-        "converge.json",
-        "converge.png",
-        "converge.svg",
-    ] {
-        let a = std::fs::read(one.join(name)).unwrap();
-        assert_eq!(
-            a,
-            std::fs::read(two.join(name)).unwrap(),
-            "{name} differs between 1 and 2 threads"
-        );
-    }
+        ],
+        &[
+            "converge.csv",
+            "converge.json",
+            "converge.png",
+            "converge.svg",
+        ],
+    );
     let json: serde_json::Value =
         serde_json::from_slice(&std::fs::read(one.join("converge.json")).unwrap()).unwrap();
     assert_eq!(json["runs"].as_array().unwrap().len(), 4 + 4 + 3);
     assert!(
         json["reference"]["Run"]["solver"].is_string(),
         "the reference solver is named"
+    );
+    // A sweep's values and a study's timing repeats share one list of runs.
+    let one = identical_on_one_and_two_threads(
+        dir.path(),
+        &[
+            "stiffness",
+            "belt",
+            "--model",
+            "CS",
+            "--parameter",
+            "k",
+            "--values",
+            "100,400",
+            "--solvers",
+            "dopri5,bdf",
+            "--tol-list",
+            "1e-4,1e-6",
+            "--t-end",
+            "2",
+        ],
+        &["stiffness.csv", "stiffness.json", "stiffness.svg"],
+    );
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(one.join("stiffness.json")).unwrap()).unwrap();
+    assert_eq!(json["points"].as_array().unwrap().len(), 2);
+    identical_on_one_and_two_threads(
+        dir.path(),
+        &[
+            "work-precision",
+            "belt",
+            "--model",
+            "CS",
+            "--solvers",
+            "rk4,dopri5",
+            "--dt-list",
+            "0.01,0.005",
+            "--tol-list",
+            "1e-4,1e-6",
+            "--t-end",
+            "2",
+        ],
+        &[
+            "work-precision.csv",
+            "work-precision.json",
+            "work-precision.svg",
+        ],
     );
 }
 
