@@ -699,7 +699,7 @@ pub fn add_work_precision(
         .chain(case.peers())
         .collect();
     let jobs = Method::jobs(&methods, steps, tols, false).len();
-    let b = Progress::runs(jobs, "work-precision");
+    let b = Progress::runs(jobs * repeats, "work-precision");
     let w = with_threads(threads, || {
         studies::work_precision(case, &methods, steps, tols, repeats, &|| b.inc())
     })?

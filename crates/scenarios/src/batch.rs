@@ -134,7 +134,7 @@ enum Done {
 /// Runs `jobs` on every case of `cases`, each `1 + repeats` times (the repeats only for their
 /// wall time: [`StudyRun::wall_time_s`] is the median), with each case's reference when `studied` gives
 /// the solvers of the study, as one list (see the module). `progress` is told of every
-/// measured run. Errors: the first failing reference (by case), then the first run that could
+/// run and repeat (not of the reference runs). Errors: the first failing reference (by case), then the first run that could
 /// not be set up.
 pub fn run_cases(
     cases: &[&dyn StudyCase],
@@ -184,10 +184,10 @@ pub fn run_cases(
         Task::Run { case, job, repeat } => {
             let (method, step) = jobs[job];
             let o = method.measure(cases[case], step)?;
+            progress();
             if repeat > 0 {
                 return Ok(Done::Time(o.wall_time_s));
             }
-            progress();
             Ok(Done::Run(Box::new(StudyRun {
                 solver: method.label(),
                 resolution: resolution(step),

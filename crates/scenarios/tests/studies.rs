@@ -294,8 +294,8 @@ fn a_sweep_in_one_list_gives_each_case_its_own_results_on_one_or_two_threads() {
                 })
             })
             .unwrap();
-        // Progress counts the measured runs, not the timing repeats.
-        assert_eq!(counted.into_inner(), 2 * jobs.len());
+        // Progress counts the runs and their timing repeats, not the reference runs.
+        assert_eq!(counted.into_inner(), 2 * jobs.len() * 3);
         for (c, (r, m, runs)) in together.into_iter().zip(&alone) {
             assert_eq!(c.reference.as_ref(), Some(&(r.clone(), m.clone())));
             assert!(c.runs.iter().all(|r| r.errors.grid_max.is_finite()));
