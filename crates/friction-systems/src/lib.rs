@@ -4,7 +4,7 @@
 //! The layers, as in Siconos, keep the declaration apart from the scheme that integrates it:
 //!
 //! - [`system`]: the declaration ([`System`]: bodies, anchors, springs, contacts, forces),
-//!   built in code or read from a TOML file ([`file`]), or generated ([`chain`]);
+//!   built in code or read from a TOML file ([`mod@file`]), or generated ([`chain`]);
 //! - [`hybrid`]: the system as a hybrid ODE ([`FrictionSystem`], an
 //!   [`integrators::OdeProblem`]): the state layout ([`layout`]), one stick/slip mode per
 //!   contact, two event functions per contact, the analytic sparse Jacobian, the energy

@@ -1,5 +1,5 @@
 //! Moreau–Jean time-stepping (Moreau 1988; Jean 1999; Acary & Brogliato 2008, ch. 10;
-//! Siconos's `MoreauJeanOSI`) for a friction [`System`](crate::System): fixed steps, no event
+//! Siconos's `MoreauJeanOSI`) for a friction [`crate::System`]: fixed steps, no event
 //! located, every contact's friction impulse and mode found at the end of each step from its
 //! set-valued law.
 //!
@@ -15,7 +15,7 @@
 //! `P_i` the friction impulse of the step. `F_o` is linear in (x, v), so eliminating x' leaves
 //! one equation per body in the end velocities, `Ŵ·v' = b − P`, with
 //! `Ŵ = M − h·θ·(C + h·θ·K)`: the pattern of the springs, symmetric, diagonally dominant.
-//! Each contact's impulse obeys its set-valued law at the end of the step ([`crate::local`]):
+//! Each contact's impulse obeys its set-valued law at the end of the step (the private module `local`):
 //! at rest if the force that holds the body lies in the stick interval, otherwise sliding with
 //! `P = h·F(u')`; a contact that slid the same way through the previous step and still does
 //! has the θ-method on its friction too, `P = h·[θ·F(u') + (1−θ)·F(u)]` (identical for a

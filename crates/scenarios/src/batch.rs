@@ -91,14 +91,37 @@ fn reference_run(own: &dyn StudyCase, solver: Solver) -> Result<Measures, Scenar
     }
 }
 
-/// The reference of `case` for a study of `studied` solvers (see [`plan`]), its runs
-/// concurrent.
+/// The reference of `case` for a study of `studied` solvers: the closed form where one
+/// exists; otherwise a run at rtol = atol = [`REFERENCE_TOLERANCE`] of Dormand–Prince, or,
+/// when Dormand–Prince itself is studied, of diffsol's Tsit45; when both are studied,
+/// Dormand–Prince's tight run cross-checked by Tsit45's. Its runs are concurrent.
 pub fn reference(
     case: &dyn StudyCase,
     studied: &[Solver],
 ) -> Result<(Reference, Measures), ScenarioError> {
     let mut out = run_cases(&[case], Some(studied), &[], 0, &|| {})?;
     Ok(out.remove(0).reference.expect("a reference was asked for"))
+}
+
+/// The reference a plan gives with the measures of its tight runs (`tight`: the reference
+/// solver's, then the cross-check's), the cross-check's difference on the time grid.
+fn reference_of(plan: Plan, tight: Vec<Measures>) -> (Reference, Measures) {
+    match plan {
+        Plan::Exact(r, m) => (r, m),
+        Plan::Runs { solver, check, .. } => {
+            let mut tight = tight.into_iter();
+            let measures = tight.next().expect("one run per reference solver");
+            let cross_check = check
+                .zip(tight.next())
+                .map(|(other, m)| (other.name(), Errors::between(&m, &measures).grid_max));
+            let reference = Reference::Run {
+                solver: solver.name(),
+                step: REFERENCE_STEP,
+                cross_check,
+            };
+            (reference, measures)
+        }
+    }
 }
 
 /// What a study computed on one case.
@@ -132,10 +155,10 @@ enum Done {
 }
 
 /// Runs `jobs` on every case of `cases`, each `1 + repeats` times (the repeats only for their
-/// wall time: [`StudyRun::wall_time_s`] is the median), with each case's reference when `studied` gives
-/// the solvers of the study, as one list (see the module). `progress` is told of every
-/// run and repeat (not of the reference runs). Errors: the first failing reference (by case), then the first run that could
-/// not be set up.
+/// wall time: [`StudyRun::wall_time_s`] is the median), with each case's reference when
+/// `studied` gives the solvers of the study, as one list (see the module). `progress` is told
+/// of every run and repeat (not of the reference runs). Errors: the first failing reference
+/// (by case), then the first run that could not be set up.
 pub fn run_cases(
     cases: &[&dyn StudyCase],
     studied: Option<&[Solver]>,
@@ -202,48 +225,28 @@ pub fn run_cases(
         }
     })?;
     let mut done = done.into_iter().map(|(_, d)| d);
-    let mut out: Vec<CaseRuns> = Vec::with_capacity(cases.len());
-    let mut references: Vec<Vec<Measures>> = vec![Vec::new(); cases.len()];
+    let mut tight: Vec<Vec<Measures>> = vec![Vec::new(); cases.len()];
     for t in &tasks {
         if let Task::Reference { case, .. } = *t {
             let Some(Done::Reference(m)) = done.next() else {
                 unreachable!("results come back in the order of the tasks")
             };
-            references[case].push(m);
+            tight[case].push(m);
         }
     }
-    for (case, plan) in plans.into_iter().enumerate() {
-        let reference = match plan {
-            None => None,
-            Some(Plan::Exact(r, m)) => Some((r, m)),
-            Some(Plan::Runs { solver, check, .. }) => {
-                let mut tight = std::mem::take(&mut references[case]).into_iter();
-                let measures = tight.next().expect("one run per reference solver");
-                let cross_check = check
-                    .zip(tight.next())
-                    .map(|(other, m)| (other.name(), Errors::between(&m, &measures).grid_max));
-                Some((
-                    Reference::Run {
-                        solver: solver.name(),
-                        step: REFERENCE_STEP,
-                        cross_check,
-                    },
-                    measures,
-                ))
-            }
-        };
+    let mut out: Vec<CaseRuns> = Vec::with_capacity(cases.len());
+    for (plan, tight) in plans.into_iter().zip(tight) {
+        let reference = plan.map(|p| reference_of(p, tight));
         let mut runs = Vec::with_capacity(jobs.len());
         for _ in jobs {
             let Some(Done::Run(mut run)) = done.next() else {
                 unreachable!("results come back in the order of the tasks")
             };
             let mut times = vec![run.wall_time_s];
-            for _ in 0..repeats {
-                let Some(Done::Time(t)) = done.next() else {
-                    unreachable!("results come back in the order of the tasks")
-                };
-                times.push(t);
-            }
+            times.extend(done.by_ref().take(repeats).map(|d| match d {
+                Done::Time(t) => t,
+                _ => unreachable!("results come back in the order of the tasks"),
+            }));
             times.sort_by(f64::total_cmp);
             run.wall_time_s = times[times.len() / 2];
             if let Some((_, m)) = &reference {

@@ -2,9 +2,9 @@
 //! the paper's own experiments.
 //!
 //! The curve rigs of Figures 2–7 ([`curves`]) and the catalogue of those figures
-//! ([`figures`]); the rigs ([`scenario`], [`run`]); the paper's experiment ([`paper`]);
-//! Table 2 by simulation ([`phenomena`]); the solver studies ([`studies`], [`cases`]); the
-//! settled state a parameter sweep measures ([`settled`]).
+//! ([`figures`]); the rigs ([`scenario`], [`mod@run`]); the paper's experiment ([`paper`]);
+//! Table 2 by simulation ([`phenomena`]); the solver studies ([`studies`], [`cases`], their
+//! runs as one list: [`batch`]); the settled state a parameter sweep measures ([`settled`]).
 
 pub mod batch;
 pub mod cases;
