@@ -236,43 +236,51 @@ pub struct PairOrder {
     pub to: f64,
     /// Observed order.
     pub order: f64,
-    /// The finer error is at the round-off floor (below 1e-12 of the solution's scale) or
-    /// did not decrease: the pair says nothing of the order.
+    /// The finer error is at the round-off floor (below 1e-12 of the solution's scale), or an
+    /// error of the pair is missing (not finite): the pair says nothing of the order.
     pub round_off: bool,
+    /// Above that floor, the finer error did not decrease: the refinement has not reached the
+    /// asymptotic range, or the error has saturated (a limit cycle's phase drift, for one,
+    /// holds it at the cycle's amplitude): the pair says nothing of the order either.
+    pub stalled: bool,
     /// Outside the asymptotic range: the order differs by more than 0.5 from the median of
     /// the usable pairs.
     pub pre_asymptotic: bool,
 }
 
 /// Orders of successive pairs of (resolution, error), and the least-squares slope of
-/// log(error) against log(resolution) over the pairs that are neither round-off nor
+/// log(error) against log(resolution) over the pairs that are neither round-off, stalled nor
 /// pre-asymptotic.
 pub fn orders(points: &[(f64, f64)], scale: f64) -> (Vec<PairOrder>, Option<f64>) {
     let mut pairs: Vec<PairOrder> = points
         .windows(2)
-        .map(|w| PairOrder {
-            from: w[0].0,
-            to: w[1].0,
-            order: observed_order((w[0].1, w[1].1), (w[0].0, w[1].0)),
-            round_off: w[1].1 <= 1e-12 * scale || w[1].1 >= w[0].1 || !w[1].1.is_finite(),
-            pre_asymptotic: false,
+        .map(|w| {
+            let round_off = w[1].1 <= 1e-12 * scale || !(w[0].1.is_finite() && w[1].1.is_finite());
+            PairOrder {
+                from: w[0].0,
+                to: w[1].0,
+                order: observed_order((w[0].1, w[1].1), (w[0].0, w[1].0)),
+                round_off,
+                stalled: !round_off && w[1].1 >= w[0].1,
+                pre_asymptotic: false,
+            }
         })
         .collect();
     let mut usable: Vec<f64> = pairs
         .iter()
-        .filter(|p| !p.round_off)
+        .filter(|p| !p.round_off && !p.stalled)
         .map(|p| p.order)
         .collect();
     usable.sort_by(f64::total_cmp);
     if let Some(&median) = usable.get(usable.len() / 2) {
-        for p in pairs.iter_mut().filter(|p| !p.round_off) {
+        for p in pairs.iter_mut().filter(|p| !p.round_off && !p.stalled) {
             p.pre_asymptotic = (p.order - median).abs() > 0.5;
         }
     }
     // Least squares over the points joined by good pairs.
     let mut xs = Vec::new();
     for (i, p) in pairs.iter().enumerate() {
-        if !p.round_off && !p.pre_asymptotic {
+        if !p.round_off && !p.stalled && !p.pre_asymptotic {
             for point in [points[i], points[i + 1]] {
                 let xy = (point.0.ln(), point.1.ln());
                 if !xs.contains(&xy) {

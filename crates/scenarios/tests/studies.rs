@@ -305,3 +305,52 @@ fn a_sweep_in_one_list_gives_each_case_its_own_results_on_one_or_two_threads() {
     // The stiffer belt is a different problem: its reference differs.
     assert_ne!(alone[0].1, alone[1].1);
 }
+
+/// A pair whose error does not decrease far above round-off is stalled, not round-off; one at
+/// the floor is round-off; neither enters the fitted slope.
+#[test]
+fn pairs_at_the_floor_are_round_off_and_pairs_that_do_not_decrease_are_stalled() {
+    use scenarios::studies::orders;
+    // Second order down to h = 0.025, then at the floor (scale 1: below 1e-12).
+    let floor = [
+        (0.1, 1e-2),
+        (0.05, 2.5e-3),
+        (0.025, 6.25e-4),
+        (0.0125, 1e-13),
+    ];
+    let (pairs, slope) = orders(&floor, 1.0);
+    let flags: Vec<(bool, bool)> = pairs.iter().map(|p| (p.round_off, p.stalled)).collect();
+    assert_eq!(flags, [(false, false), (false, false), (true, false)]);
+    assert!((slope.unwrap() - 2.0).abs() < 1e-12, "{slope:?}");
+    // An error saturated at 0.21 (a limit cycle's phase drift), then first order.
+    let saturated = [
+        (0.04, 0.21),
+        (0.02, 0.21),
+        (0.01, 0.1),
+        (0.005, 0.05),
+        (0.0025, 0.025),
+    ];
+    let (pairs, slope) = orders(&saturated, 1.0);
+    let flags: Vec<(bool, bool)> = pairs.iter().map(|p| (p.round_off, p.stalled)).collect();
+    assert_eq!(
+        flags,
+        [
+            (false, true),
+            (false, false),
+            (false, false),
+            (false, false)
+        ]
+    );
+    // The stalled pair is left out; the other three lie on a slope of 1 (0.21 → 0.1 is 1.07).
+    assert!((slope.unwrap() - 1.0).abs() < 0.03, "{slope:?}");
+    // A missing error (event counts that differ from the reference's) leaves its pairs out.
+    let missing = [
+        (0.02, f64::NAN),
+        (0.01, 0.04),
+        (0.005, 0.02),
+        (0.0025, 0.01),
+    ];
+    let (pairs, slope) = orders(&missing, 1.0);
+    assert!(pairs[0].round_off && !pairs[1].round_off);
+    assert!((slope.unwrap() - 1.0).abs() < 1e-12, "{slope:?}");
+}
