@@ -5,6 +5,10 @@
 mod own_friction_law;
 
 #[allow(dead_code)]
+#[path = "../examples/own_solver.rs"]
+mod own_solver;
+
+#[allow(dead_code)]
 #[path = "../examples/two_mass_system.rs"]
 mod two_mass_system;
 
@@ -37,4 +41,23 @@ fn an_own_two_mass_system_runs_event_driven_regularised_and_in_a_study() {
     assert!(dopri5 < 1e-5, "dopri5: {dopri5}");
     assert!(implicit_euler < 1e-2, "implicit-euler: {implicit_euler}");
     assert!(dopri5 < implicit_euler / 100.0);
+}
+
+#[test]
+fn an_own_solver_runs_through_simulation_and_two_studies() {
+    let r = own_solver::run();
+    // Both methods find the same stick-slip history, and agree to their tolerance 1e-8.
+    assert_eq!(r.switches.0, r.switches.1);
+    assert!(r.switches.0 >= 30, "{} switches", r.switches.0);
+    assert!(r.final_gap < 1e-6, "{}", r.final_gap);
+    // Third order at fixed steps, on the event times (located on its Hermite dense output)
+    // as on the final state.
+    for order in [r.event_order, r.final_order] {
+        let order = order.expect("an order is observed");
+        assert!((order - 3.0).abs() < 0.3, "bs23 order {order}");
+    }
+    // At 1e-8 the fifth-order pair reaches a smaller error with fewer evaluations.
+    let [(e3, w3), (e5, w5)] = r.at_1e8;
+    assert!(e3 < 1e-6 && e5 < 1e-7, "errors {e3}, {e5}");
+    assert!(e5 < e3 && w5 < w3, "bs23 {e3} in {w3}, dopri5 {e5} in {w5}");
 }

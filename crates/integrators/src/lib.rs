@@ -12,6 +12,8 @@
 //!
 //! A problem implements [`OdeProblem`]; an [`Integrator`] drives a [`Stepper`] over it and
 //! returns a [`Solution`] with its [`Stats`], or a [`Failure`] that keeps what was computed.
+//! A method written elsewhere implements [`Stepper`] and [`OneStepMethod`] and runs as
+//! [`Solver::Own`] wherever a built-in solver runs.
 
 pub mod diffsol_backend;
 pub mod dopri5;
@@ -40,6 +42,6 @@ pub use options::{even_grid, Options, Output, StepControl, ZenoGuard};
 pub use problem::{Control, Crossing, Entry, EventSpec, Mode, OdeProblem};
 pub use rk4::Rk4;
 pub use solution::{EventRecord, Failure, ModeSwitch, Solution};
-pub use solver::Solver;
+pub use solver::{OneStepMethod, Solver};
 pub use stats::Stats;
 pub use stepper::{Ode, Stepper};

@@ -6,7 +6,7 @@
 
 use crate::error::SolverError;
 use crate::stats::Stats;
-use crate::stepper::{check_finite, next_grid_point, Ode, Stepper};
+use crate::stepper::{check_finite, hermite_cubic, next_grid_point, Ode, Stepper};
 
 /// RK4 with constant step `h`.
 #[derive(Clone, Debug)]
@@ -109,23 +109,14 @@ impl Stepper for Rk4 {
         self.h
     }
 
-    /// `u(θ) = (1−θ)·y0 + θ·y1 + θ(θ−1)·((1−2θ)(y1−y0) + (θ−1)·h·f0 + θ·h·f1)`.
+    /// The cubic Hermite interpolant of the step's ends ([`hermite_cubic`]).
     fn dense_output(&self, t: f64, out: &mut [f64]) {
-        let h = self.t - self.t_prev;
-        if h == 0.0 {
-            out.copy_from_slice(&self.y);
-            return;
-        }
-        let th = (t - self.t_prev) / h;
-        for (i, o) in out.iter_mut().enumerate() {
-            let (y0, y1) = (self.y_prev[i], self.y[i]);
-            *o = (1.0 - th) * y0
-                + th * y1
-                + th * (th - 1.0)
-                    * ((1.0 - 2.0 * th) * (y1 - y0)
-                        + (th - 1.0) * h * self.f_prev[i]
-                        + th * h * self.f[i]);
-        }
+        hermite_cubic(
+            (self.t_prev, &self.y_prev, &self.f_prev),
+            (self.t, &self.y, &self.f),
+            t,
+            out,
+        );
     }
 
     fn stats(&self) -> Stats {

@@ -1,4 +1,5 @@
-//! Every solver by the name the command line uses, behind one call.
+//! Every solver by the name the command line uses, behind one call, and the [`OneStepMethod`] trait
+//! through which a method written outside friction-lab joins them ([`Solver::Own`]).
 
 use crate::diffsol_backend::{self, DiffsolMethod};
 use crate::error::SolverError;
@@ -10,8 +11,38 @@ use crate::solution::{Failure, Solution};
 use crate::stepper::Stepper;
 use crate::{Dopri5, ImplicitEuler, Rk4};
 
+/// A one-step method written in a user's own crate, run and studied like a built-in one: it
+/// names itself, says its order and how it takes its steps, and makes a [`Stepper`] that the
+/// [`Integrator`] drives (event location on its dense output, mode switching, output grid,
+/// step cap and wall-clock limit included). Wrapped as [`Solver::Own`], it goes wherever a
+/// [`Solver`] goes: `simulate`, the rigs and every study (see `examples/own_solver.rs`).
+pub trait OneStepMethod: std::fmt::Debug + Send + Sync {
+    /// The method's name in solutions, files and tables; unique among the methods of a study.
+    fn name(&self) -> &'static str;
+
+    /// The order p of the method: its global error ∝ h^p (the studies order their runs by
+    /// the expected number of steps, T·tol^(−1/(p+1)) at a tolerance).
+    fn order(&self) -> usize;
+
+    /// Whether a step solves a nonlinear system (the studies report explicit and implicit
+    /// methods apart).
+    fn is_implicit(&self) -> bool;
+
+    /// Whether the method takes only fixed steps (`--dt`), as RK4.
+    fn is_fixed_step(&self) -> bool;
+
+    /// Whether the method also takes fixed steps when a study asks for observed orders.
+    fn takes_fixed_steps(&self) -> bool {
+        self.is_fixed_step()
+    }
+
+    /// A fresh stepper for `dim` unknowns under `options` (their step control, largest step
+    /// and step cap), or why the options do not suit the method.
+    fn stepper(&self, options: &Options, dim: usize) -> Result<Box<dyn Stepper>, SolverError>;
+}
+
 /// A solver of friction-lab.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug)]
 pub enum Solver {
     /// Classical Runge–Kutta, fixed step.
     Rk4,
@@ -21,7 +52,23 @@ pub enum Solver {
     ImplicitEuler,
     /// One of diffsol's methods (adaptive).
     Diffsol(DiffsolMethod),
+    /// A method of the user's own (not named on the command line).
+    Own(&'static dyn OneStepMethod),
 }
+
+/// Built-in solvers are equal when they are the same variant; an own method is equal to an
+/// own method of the same name (its identity in a study's tables), never to a built-in one.
+impl PartialEq for Solver {
+    fn eq(&self, other: &Solver) -> bool {
+        match (self, other) {
+            (Solver::Own(a), Solver::Own(b)) => a.name() == b.name(),
+            (Solver::Own(_), _) | (_, Solver::Own(_)) => false,
+            (a, b) => a.name() == b.name(),
+        }
+    }
+}
+
+impl Eq for Solver {}
 
 impl Solver {
     /// Every solver, in listing order.
@@ -42,6 +89,7 @@ impl Solver {
             Solver::Dopri5 => "dopri5",
             Solver::ImplicitEuler => "implicit-euler",
             Solver::Diffsol(m) => m.name(),
+            Solver::Own(m) => m.name(),
         }
     }
 
@@ -61,10 +109,13 @@ impl Solver {
 
     /// Whether the method is implicit (solves a nonlinear system per step).
     pub fn is_implicit(self) -> bool {
-        !matches!(
-            self,
-            Solver::Rk4 | Solver::Dopri5 | Solver::Diffsol(DiffsolMethod::Tsit45)
-        )
+        match self {
+            Solver::Own(m) => m.is_implicit(),
+            _ => !matches!(
+                self,
+                Solver::Rk4 | Solver::Dopri5 | Solver::Diffsol(DiffsolMethod::Tsit45)
+            ),
+        }
     }
 
     /// The order p of the method: its global error ∝ h^p (BDF: its highest order, 5).
@@ -76,12 +127,25 @@ impl Solver {
             Solver::Diffsol(DiffsolMethod::Bdf) => 5,
             Solver::Diffsol(DiffsolMethod::TrBdf2) => 2,
             Solver::Diffsol(DiffsolMethod::Esdirk34) => 3,
+            Solver::Own(m) => m.order(),
         }
     }
 
     /// Whether the method needs a fixed step (`--dt`) rather than tolerances.
     pub fn is_fixed_step(self) -> bool {
-        self == Solver::Rk4
+        match self {
+            Solver::Own(m) => m.is_fixed_step(),
+            _ => self == Solver::Rk4,
+        }
+    }
+
+    /// Whether the method takes fixed steps when a study asks for observed orders (every
+    /// hand-written method; diffsol's take tolerances only).
+    pub fn takes_fixed_steps(self) -> bool {
+        match self {
+            Solver::Own(m) => m.takes_fixed_steps(),
+            _ => !matches!(self, Solver::Diffsol(_)),
+        }
     }
 
     /// Integrates `problem` from `y0` in `modes` with `options`.
@@ -131,6 +195,16 @@ impl Solver {
                     problem, method, y0, modes, options, observe,
                 )
             }
+            (Solver::Own(method), _) => method.stepper(&options, n).map_err(|error| Failure {
+                error,
+                solution: Box::new(Solution::new(method.name(), n, modes.len())),
+            })?,
+        };
+        // The solution carries the solver's name, whatever its stepper calls itself (an own
+        // method may wrap a built-in stepper).
+        let named = |mut s: Solution| {
+            s.solver = self.name();
+            s
         };
         Integrator::new(problem, stepper, y0, modes, options)
             .map_err(|error| Failure {
@@ -138,6 +212,11 @@ impl Solver {
                 solution: Box::new(Solution::new(self.name(), n, modes.len())),
             })?
             .solve_observed(observe)
+            .map(named)
+            .map_err(|f| Failure {
+                error: f.error,
+                solution: Box::new(named(*f.solution)),
+            })
     }
 }
 

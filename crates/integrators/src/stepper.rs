@@ -146,3 +146,28 @@ pub fn linear_interpolation(t0: f64, y0: &[f64], t1: f64, y1: &[f64], t: f64, ou
         *o = y0[i] + th * (y1[i] - y0[i]);
     }
 }
+
+/// The cubic Hermite interpolant of (t0, y0, f0) and (t1, y1, f1) at t (Hairer, Nørsett,
+/// Wanner, *Solving ODEs I*, sec. II.6, eq. (6.7)), with θ = (t − t0)/h, h = t1 − t0:
+/// `u(θ) = (1−θ)·y0 + θ·y1 + θ(θ−1)·((1−2θ)(y1−y0) + (θ−1)·h·f0 + θ·h·f1)`; y1 when h = 0.
+/// The dense output of third order of any method that knows f at both ends of its step.
+pub fn hermite_cubic(
+    (t0, y0, f0): (f64, &[f64], &[f64]),
+    (t1, y1, f1): (f64, &[f64], &[f64]),
+    t: f64,
+    out: &mut [f64],
+) {
+    let h = t1 - t0;
+    if h == 0.0 {
+        out.copy_from_slice(y1);
+        return;
+    }
+    let th = (t - t0) / h;
+    for (i, o) in out.iter_mut().enumerate() {
+        let (a, b) = (y0[i], y1[i]);
+        *o = (1.0 - th) * a
+            + th * b
+            + th * (th - 1.0)
+                * ((1.0 - 2.0 * th) * (b - a) + (th - 1.0) * h * f0[i] + th * h * f1[i]);
+    }
+}

@@ -146,3 +146,92 @@ fn a_non_finite_state_and_a_step_size_underflow_are_reported() {
         ref e => panic!("expected an underflow, got: {e}"),
     }
 }
+
+/// A user's method that is RK4 under another name, or that refuses adaptive steps.
+#[derive(Debug)]
+struct Renamed;
+
+impl integrators::OneStepMethod for Renamed {
+    fn name(&self) -> &'static str {
+        "my-rk4"
+    }
+    fn order(&self) -> usize {
+        4
+    }
+    fn is_implicit(&self) -> bool {
+        false
+    }
+    fn is_fixed_step(&self) -> bool {
+        true
+    }
+    fn stepper(
+        &self,
+        options: &Options,
+        dim: usize,
+    ) -> Result<Box<dyn integrators::Stepper>, SolverError> {
+        match options.step {
+            StepControl::Fixed { h } => Ok(Box::new(integrators::Rk4::new(h, dim))),
+            StepControl::Adaptive { .. } => Err(SolverError::Unsupported {
+                solver: "my-rk4",
+                why: "fixed steps only".into(),
+            }),
+        }
+    }
+}
+
+static RENAMED: Renamed = Renamed;
+
+#[test]
+fn an_own_method_is_driven_like_a_built_in_one() {
+    let own = Solver::Own(&RENAMED);
+    assert_eq!(own.name(), "my-rk4");
+    assert_eq!((own.order(), own.is_implicit()), (4, false));
+    assert!(own.is_fixed_step() && own.takes_fixed_steps());
+    assert_eq!(own, Solver::Own(&RENAMED));
+    assert_ne!(own, Solver::Rk4);
+    // The same steps, events and dense output as the built-in RK4 it wraps, bit for bit.
+    let problem = Oscillator::watching(Crossing::Either, Control::Continue);
+    let run = |solver: Solver| {
+        solver
+            .solve(
+                &problem,
+                &[1.0, 0.0],
+                &[Mode(0)],
+                Options::fixed(0.0, 5.0, 0.01),
+            )
+            .unwrap()
+    };
+    let (mine, theirs) = (run(own), run(Solver::Rk4));
+    assert_eq!(mine.solver, "my-rk4");
+    assert_eq!(
+        (mine.t.clone(), mine.stats),
+        (theirs.t.clone(), theirs.stats)
+    );
+    let t_events: Vec<f64> = mine.events.iter().map(|e| e.t).collect();
+    assert_eq!(t_events.len(), 2);
+    for (t, exact) in t_events.iter().zip([0.5, 1.5]) {
+        assert!((t - exact * std::f64::consts::PI).abs() < 1e-8, "{t}");
+    }
+    // What the method refuses comes back as its error, with an empty solution.
+    let refused = own
+        .solve(
+            &problem,
+            &[1.0, 0.0],
+            &[Mode(0)],
+            Options::adaptive(0.0, 1.0, 1e-6, 1e-6),
+        )
+        .unwrap_err();
+    assert!(
+        matches!(
+            refused.error,
+            SolverError::Unsupported {
+                solver: "my-rk4",
+                ..
+            }
+        ),
+        "{:?}",
+        refused.error
+    );
+    assert_eq!(refused.solution.solver, "my-rk4");
+    assert!(refused.solution.t.is_empty());
+}

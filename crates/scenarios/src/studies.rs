@@ -293,16 +293,16 @@ pub fn orders(points: &[(f64, f64)], scale: f64) -> (Vec<PairOrder>, Option<f64>
     (pairs, slope)
 }
 
-/// The steps or tolerances a study runs a solver at: RK4 always takes the step sizes; with
-/// `fixed`, so do Dormand–Prince and implicit Euler (for observed orders); otherwise they and
-/// diffsol's methods take the tolerances.
+/// The steps or tolerances a study runs a solver at: a fixed-step method (RK4) always takes
+/// the step sizes; with `fixed`, so does every method that can (Dormand–Prince, implicit Euler,
+/// for observed orders); otherwise they and diffsol's methods take the tolerances.
 pub fn steps_for(
     solver: Solver,
     step_sizes: &[f64],
     tolerances: &[f64],
     fixed: bool,
 ) -> Vec<StepControl> {
-    let steps = solver.is_fixed_step() || (fixed && !matches!(solver, Solver::Diffsol(_)));
+    let steps = solver.is_fixed_step() || (fixed && solver.takes_fixed_steps());
     match steps {
         true => step_sizes
             .iter()
