@@ -3,7 +3,7 @@
 //! printed once before it is timed.
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use friction_lab::friction_models::{FrictionParams, ModelId, Variant};
+use friction_lab::friction_models::{FrictionParams, ModelId};
 use friction_lab::integrators::{Solver, StepControl};
 use friction_lab::scenarios::studies::{self, Case};
 use friction_lab::scenarios::{run, Limits, RunSpec, Scenario, SwitchingKind};
@@ -20,8 +20,7 @@ fn spec(
 ) -> RunSpec {
     RunSpec {
         scenario,
-        model,
-        variant: Variant::Odd,
+        law: model.into(),
         friction,
         params: scenario.defaults(),
         solver: Solver::from_name(solver).unwrap(),
@@ -104,7 +103,7 @@ fn solvers(c: &mut Criterion) {
 fn study_threads(c: &mut Criterion) {
     let case = Case {
         scenario: Scenario::Belt,
-        model: ModelId::Cs,
+        law: ModelId::Cs.into(),
         friction: FrictionParams::paper(),
         params: Scenario::Belt.defaults(),
         switching: SwitchingKind::Event,

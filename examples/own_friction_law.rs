@@ -3,18 +3,20 @@
 //! Tustin's exponential law (Tustin 1947; Armstrong-Hélouvry et al. 1994, eq. 2.3):
 //! `F(v) = (F_c + (F_s − F_c)·exp(−|v|/v_s))·sign(v) + b·v`, at rest any force in
 //! `[−F_s, F_s]`. It implements the public `FrictionModel` trait, sits at the contact of a
-//! one-body belt system, is simulated with event-driven stick–slip switching, and goes through
-//! a convergence study, without a line of friction-lab changed.
+//! one-body belt system, is simulated with event-driven stick–slip switching, goes through a
+//! convergence study, runs on the belt rig (`Law::Own`) and is judged by the protocols of
+//! Table 2, without a line of friction-lab changed.
 //!
 //! Run: `cargo run --release --example own_friction_law`.
 
 use friction_lab::friction_models::{
-    FrictionModel, Partials, SignLaw, StatePartials, StickInterval,
+    FrictionModel, FrictionParams, Partials, SignLaw, StatePartials, StickInterval,
 };
 use friction_lab::friction_systems::{simulate, End, Switching, System, STICK};
-use friction_lab::integrators::{Options, Solver};
+use friction_lab::integrators::{Options, Solver, StepControl};
+use friction_lab::scenarios::phenomena::{self, Phenomenon, Protocol};
 use friction_lab::scenarios::studies::{self, SystemCase};
-use friction_lab::scenarios::{Limits, SwitchingKind};
+use friction_lab::scenarios::{Law, Limits, RunSpec, Scenario, ScenarioParams, SwitchingKind};
 use std::sync::Arc;
 
 /// Tustin's law.
@@ -84,6 +86,21 @@ pub struct Report {
     pub energy_residual: f64,
     /// RK4's fitted convergence order on the event times.
     pub rk4_order: Option<f64>,
+    /// The belt rig run with the law: its first break-away time, s, and F_s/(k·v_belt).
+    pub rig_break_away: (f64, f64),
+    /// Table 2's verdict on every phenomenon, in the order of `Phenomenon::ALL`.
+    pub table2: Vec<(Phenomenon, bool)>,
+}
+
+/// Tustin's law at the levels of the paper's Table 1 (F_c = 6 N, F_s = 7.5 N, v_s = 0.1 m/s,
+/// b = μ_v = 0.5 N·s/m).
+pub fn law() -> Arc<dyn FrictionModel> {
+    Arc::new(Tustin {
+        f_c: 6.0,
+        f_s: 7.5,
+        v_s: 0.1,
+        b: 0.5,
+    })
 }
 
 /// A body (m = 1 kg) held by a spring (k = 100 N/m) on a belt at 0.05 m/s, with Tustin's law,
@@ -93,14 +110,42 @@ pub fn belt() -> System {
     let body = s.add_body("block", 1.0, 0.0, 0.05);
     let wall = s.add_anchor("wall", 0.0, 0.0);
     s.add_spring(End::Body(body), End::Anchor(wall), 100.0, 0.0);
-    let law = Tustin {
-        f_c: 6.0,
-        f_s: 7.5,
-        v_s: 0.1,
-        b: 0.5,
-    };
-    s.add_contact(body, 0.05, Arc::new(law));
+    s.add_contact(body, 0.05, law());
     s
+}
+
+/// The belt rig with the law: the rig's own parameters (k = 100 N/m), the belt at 0.05 m/s,
+/// the block starting at rest relative to it; the paper's parameters give the rig its scales.
+fn rig_break_away() -> (f64, f64) {
+    let params = ScenarioParams {
+        v_belt: 0.05,
+        v0: 0.05,
+        ..Scenario::Belt.defaults()
+    };
+    let spec = RunSpec {
+        scenario: Scenario::Belt,
+        law: Law::Own(law()),
+        friction: FrictionParams::paper(),
+        params,
+        solver: Solver::Dopri5,
+        switching: SwitchingKind::Event,
+        step: StepControl::Adaptive {
+            rtol: 1e-10,
+            atol: 1e-12,
+            h0: None,
+        },
+        t_end: Some(3.0),
+        output_points: 11,
+        limits: Limits::default(),
+    };
+    let o = friction_lab::scenarios::run(&spec, &mut |_| {}).expect("a valid rig");
+    assert!(o.error.is_none(), "{:?}", o.error);
+    let first = o
+        .events
+        .iter()
+        .find(|e| e.kind.starts_with("slip"))
+        .map_or(f64::NAN, |e| e.t);
+    (first, 7.5 / (params.k * params.v_belt))
 }
 
 /// Simulates the belt and studies RK4's convergence on it.
@@ -142,11 +187,26 @@ pub fn run() -> Report {
         .iter()
         .find(|o| o.measure == "event_times")
         .and_then(|o| o.fitted_slope);
+    let table2 = Phenomenon::ALL
+        .iter()
+        .map(|&phenomenon| {
+            let verdict = phenomena::decide(
+                phenomenon,
+                &Law::Own(law()),
+                &FrictionParams::paper(),
+                Protocol::default(),
+            )
+            .expect("the protocol runs");
+            (phenomenon, verdict.measured)
+        })
+        .collect();
     Report {
         first_break_away: (first, 7.5 / (100.0 * 0.05)),
         stick_phases: events.iter().filter(|e| e.to == STICK).count(),
         energy_residual: r.energy().map_or(f64::NAN, |e| e.relative_residual),
         rk4_order,
+        rig_break_away: rig_break_away(),
+        table2,
     }
 }
 
@@ -162,4 +222,11 @@ fn main() {
         r.energy_residual
     );
     println!("RK4 observed order on the event times: {:?}", r.rk4_order);
+    println!(
+        "belt rig: first break-away at t = {:.12} s (exact {} s)",
+        r.rig_break_away.0, r.rig_break_away.1
+    );
+    for (phenomenon, measured) in &r.table2 {
+        println!("Table 2, {}: {measured}", phenomenon.name());
+    }
 }

@@ -22,6 +22,23 @@ fn an_own_friction_law_runs_through_simulation_and_a_study() {
     assert!(r.energy_residual < 1e-8, "{}", r.energy_residual);
     let order = r.rk4_order.expect("an order is observed");
     assert!((order - 4.0).abs() < 0.5, "RK4 order {order}");
+    // The belt rig runs the law too (Law::Own), and breaks away at F_s/(k·v_belt).
+    let (t, exact) = r.rig_break_away;
+    assert!((t - exact).abs() < 1e-9, "rig: {t} vs {exact}");
+    // Table 2's protocols judge it by what its equation says: a static level above the
+    // kinetic one, a falling Stribeck branch, a viscous term and the stick-slip they make on
+    // the belt; no internal state, hence no pre-sliding, no frictional lag, no dwell time.
+    let expected = [
+        ("stiction", true),
+        ("presliding", false),
+        ("stribeck", true),
+        ("viscous", true),
+        ("hysteresis", false),
+        ("stick_slip", true),
+        ("rising_static_friction", false),
+    ];
+    let measured: Vec<(&str, bool)> = r.table2.iter().map(|(p, m)| (p.name(), *m)).collect();
+    assert_eq!(measured, expected);
 }
 
 #[test]

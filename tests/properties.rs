@@ -5,7 +5,7 @@
 
 use clap::Parser;
 use friction_lab::commands::simulate::spec;
-use friction_lab::friction_models::{FrictionParams, Parameters};
+use friction_lab::friction_models::{FrictionParams, ModelId, Parameters};
 use friction_lab::ranges::{self, OptionRange};
 use friction_lab::scenarios::{Scenario, ScenarioParams};
 use friction_lab::{Cli, Command};
@@ -187,8 +187,7 @@ proptest! {
         };
         let spec = RunSpec {
             scenario: Scenario::Belt,
-            model: model.parse().unwrap(),
-            variant: Default::default(),
+            law: model.parse::<ModelId>().unwrap().into(),
             friction: FrictionParams::paper(),
             params,
             solver,

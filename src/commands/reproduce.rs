@@ -209,7 +209,7 @@ fn case(
 ) -> Case {
     Case {
         scenario,
-        model,
+        law: model.into(),
         friction: *friction,
         params: scenario.defaults(),
         switching,

@@ -14,7 +14,7 @@ use clap::Args;
 use friction_models::{ModelId, Parameters};
 use integrators::{Solver, StepControl};
 use scenarios::run::{EventEntry, Outcome};
-use scenarios::{Limits, RunSpec, Scenario, SwitchingKind};
+use scenarios::{Law, Limits, RunSpec, Scenario, SwitchingKind};
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -228,13 +228,18 @@ impl SimulateArgs {
     }
 }
 
-/// The spec of a run of rig `scenario` from the command line.
-pub fn spec(args: &SimulateArgs, scenario: Scenario) -> Result<RunSpec, AppError> {
-    let model = args.model.ok_or_else(|| {
+/// The model `--model` names, which a rig requires.
+fn model_of(args: &SimulateArgs, scenario: Scenario) -> Result<ModelId, AppError> {
+    args.model.ok_or_else(|| {
         AppError::Usage(format!(
             "option `--model` is required for scenario {scenario}: e.g. --model CS"
         ))
-    })?;
+    })
+}
+
+/// The spec of a run of rig `scenario` from the command line.
+pub fn spec(args: &SimulateArgs, scenario: Scenario) -> Result<RunSpec, AppError> {
+    let model = model_of(args, scenario)?;
     if !args.bodies.is_empty() {
         return Err(AppError::Usage(
             "option `--bodies` applies to systems (chain, --system), not to a rig".into(),
@@ -245,8 +250,10 @@ pub fn spec(args: &SimulateArgs, scenario: Scenario) -> Result<RunSpec, AppError
     let step = args.solver.checked_step()?;
     Ok(RunSpec {
         scenario,
-        model,
-        variant: args.model_options.variant,
+        law: Law::Catalog {
+            model,
+            variant: args.model_options.variant,
+        },
         friction,
         params,
         solver: args.solver.solver,
@@ -373,11 +380,12 @@ pub fn make(args: &SimulateArgs) -> Result<Made, AppError> {
 /// Runs `simulate` on a rig.
 fn make_rig(args: &SimulateArgs, scenario: Scenario) -> Result<Made, AppError> {
     let spec = spec(args, scenario)?;
+    let (model, variant) = (model_of(args, scenario)?, args.model_options.variant);
     let t_end = spec
         .t_end
         .unwrap_or_else(|| spec.scenario.default_t_end(&spec.params, &spec.friction));
     let method = spec.switching.method(spec.solver);
-    let what = format!("{} {} {method}", spec.scenario, spec.model);
+    let what = format!("{} {model} {method}", spec.scenario);
     let bar = Progress::time(t_end, &what);
     let outcome = scenarios::run(&spec, &mut |t| {
         if t_end > 0.0 {
@@ -387,12 +395,10 @@ fn make_rig(args: &SimulateArgs, scenario: Scenario) -> Result<Made, AppError> {
     .map_err(AppError::from)?;
     bar.finish();
 
-    let model = spec.model.build(spec.variant, &spec.friction)?;
-    let has_state = model.n_states() > 0;
+    let has_state = spec.law.build(&spec.friction)?.n_states() > 0;
     let name = format!(
-        "{} with {} ({method}, {} switching)",
+        "{} with {model} ({method}, {} switching)",
         spec.scenario,
-        spec.model,
         spec.switching.name()
     );
     let mut files = Artifacts::default();
@@ -401,7 +407,7 @@ fn make_rig(args: &SimulateArgs, scenario: Scenario) -> Result<Made, AppError> {
     for (stem, p) in figures(&outcome, &name) {
         files.add_plot(&args.out.join(stem), &p)?;
     }
-    let mut parameters = used_parameters(spec.model, &spec.friction);
+    let mut parameters = used_parameters(model, &spec.friction);
     for &p in spec.scenario.parameters() {
         parameters.insert(p, spec.params.value(p).expect("scenario parameters exist"));
     }
@@ -417,8 +423,8 @@ fn make_rig(args: &SimulateArgs, scenario: Scenario) -> Result<Made, AppError> {
     let s = outcome.stats;
     let summary = Summary {
         scenario: spec.scenario.name(),
-        model: spec.model.name(),
-        variant: spec.variant,
+        model: model.name(),
+        variant,
         solver: method,
         switching: spec.switching.name(),
         step: spec.step,

@@ -25,7 +25,7 @@ pub fn add_stick_slip(
     let dir = out.join("stick-slip");
     // CVS: Coulomb, viscous, static and Stribeck, a falling branch and a rising one.
     let base = belt_run(ModelId::Cvs, friction);
-    let model = base.model.build(base.variant, &base.friction)?;
+    let model = base.law.build(&base.friction)?;
     let (v_lo, v_hi) = (3e-3, 1.0);
     let v_belts = log_space(v_lo, v_hi, 16);
     let ks = log_space(10.0, 1000.0, 9);

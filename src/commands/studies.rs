@@ -118,7 +118,7 @@ impl CaseArgs {
         )?;
         Ok(Box::new(Case {
             scenario,
-            model,
+            law: model.into(),
             friction,
             params,
             switching: self.switching,

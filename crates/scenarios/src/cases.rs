@@ -3,11 +3,11 @@
 //! ([`SystemCase`]), or a user's own problem through the public [`StudyCase`] trait.
 
 use crate::run::Limits;
-use crate::run::{run, Outcome, RunSpec, ScenarioError, SwitchingKind, DEFAULT_THETA};
+use crate::run::{run, Law, Outcome, RunSpec, ScenarioError, SwitchingKind, DEFAULT_THETA};
 use crate::scenario::Scenario;
 use crate::studies::Method;
 use crate::ScenarioParams;
-use friction_models::{FrictionParams, ModelId, Parameters, Variant};
+use friction_models::{FrictionParams, ModelId, Parameters};
 use friction_systems::{simulate, Run, System, STICK};
 use integrators::{DiffsolMethod, Options, Output, Solver, SolverError, Stats, StepControl};
 use serde::Serialize;
@@ -168,8 +168,8 @@ impl Measures {
 pub struct Case {
     /// The rig.
     pub scenario: Scenario,
-    /// The friction model.
-    pub model: ModelId,
+    /// The friction law at its contact.
+    pub law: Law,
     /// Friction parameters.
     pub friction: FrictionParams,
     /// Scenario parameters.
@@ -187,8 +187,7 @@ impl Case {
     pub fn spec(&self, solver: Solver, step: StepControl) -> RunSpec {
         RunSpec {
             scenario: self.scenario,
-            model: self.model,
-            variant: Variant::Odd,
+            law: self.law.clone(),
             friction: self.friction,
             params: self.params,
             solver,
@@ -209,7 +208,7 @@ impl StudyCase for Case {
         format!(
             "{} with {} ({} switching)",
             self.scenario,
-            self.model,
+            self.law,
             self.switching.name()
         )
     }
@@ -224,7 +223,7 @@ impl StudyCase for Case {
 
     /// The body's x, v and internal state, and the three energy accumulators.
     fn dim(&self) -> Result<usize, ScenarioError> {
-        let model = self.model.build(Variant::Odd, &self.friction)?;
+        let model = self.law.build(&self.friction)?;
         Ok(if self.scenario.has_body() {
             2 + model.n_states() + 3
         } else {
@@ -266,8 +265,8 @@ impl StudyCase for Case {
             return None;
         }
         let (m, f, p) = (self.params.m, self.params.f_ex, &self.friction);
-        let (name, motion): (&str, ExactMotion) = match self.model {
-            ModelId::Viscous => {
+        let (name, motion): (&str, ExactMotion) = match self.law.catalog() {
+            Some(ModelId::Viscous) => {
                 let tau = m / p.mu_v;
                 let vt = f / p.mu_v;
                 (
@@ -280,7 +279,7 @@ impl StudyCase for Case {
                     }),
                 )
             }
-            ModelId::Coulomb | ModelId::Static if f > p.f_s.max(p.f_c) => {
+            Some(ModelId::Coulomb | ModelId::Static) if f > p.f_s.max(p.f_c) => {
                 let a = (f - p.f_c) / m;
                 (
                     "x = a t^2/2, v = a t, a = (F_ex - F_c)/m",
@@ -297,8 +296,8 @@ impl StudyCase for Case {
             })
             .collect();
         let (x, v) = motion(self.t_end);
-        let peak = match self.model {
-            ModelId::Viscous => f * (1.0 - (-self.t_end * p.mu_v / m).exp()),
+        let peak = match self.law.catalog() {
+            Some(ModelId::Viscous) => f * (1.0 - (-self.t_end * p.mu_v / m).exp()),
             _ => p.f_c,
         };
         Some((

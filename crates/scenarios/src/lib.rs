@@ -23,5 +23,5 @@ pub mod stick_slip;
 pub mod studies;
 
 pub use params::ScenarioParams;
-pub use run::{run, Limits, Outcome, Row, RunSpec, ScenarioError, SwitchingKind};
+pub use run::{run, Law, Limits, Outcome, Row, RunSpec, ScenarioError, SwitchingKind};
 pub use scenario::Scenario;

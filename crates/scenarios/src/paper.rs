@@ -13,7 +13,7 @@ use crate::run::Limits;
 use crate::run::{run, RunSpec, ScenarioError, SwitchingKind};
 use crate::scenario::Scenario;
 use crate::ScenarioParams;
-use friction_models::{FrictionParams, ModelId, Variant};
+use friction_models::{FrictionParams, ModelId};
 use integrators::{Solver, StepControl};
 use serde::Serialize;
 
@@ -76,8 +76,7 @@ fn spec(
 ) -> RunSpec {
     RunSpec {
         scenario: Scenario::PaperBlock,
-        model,
-        variant: Variant::Odd,
+        law: model.into(),
         friction: *p,
         params: *s,
         solver: Solver::Dopri5,

@@ -3,10 +3,10 @@
 
 use crate::motion::Motion;
 use crate::run::Limits;
-use crate::run::{run, run_motion, settling_time, RunSpec, ScenarioError, SwitchingKind};
+use crate::run::{run, run_motion, settling_time, Law, RunSpec, ScenarioError, SwitchingKind};
 use crate::scenario::Scenario;
 use crate::ScenarioParams;
-use friction_models::{FrictionModel, FrictionParams, ModelId, Parameters, Variant};
+use friction_models::{FrictionModel, FrictionParams, ModelId, Parameters};
 use integrators::{DiffsolMethod, Solver, StepControl};
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -213,7 +213,7 @@ struct Breakaway {
 }
 
 struct Judge<'a> {
-    model: ModelId,
+    law: &'a Law,
     built: &'a dyn FrictionModel,
     p: FrictionParams,
     protocol: Protocol,
@@ -231,8 +231,7 @@ impl Judge<'_> {
     ) -> RunSpec {
         RunSpec {
             scenario,
-            model: self.model,
-            variant: Variant::Odd,
+            law: self.law.clone(),
             friction: self.p,
             params,
             solver: self.protocol.solver,
@@ -249,7 +248,7 @@ impl Judge<'_> {
         match &o.error {
             Some(e) => Err(ScenarioError::Invalid(format!(
                 "{} {}: {e}",
-                self.model, spec.scenario
+                self.law, spec.scenario
             ))),
             None => Ok(o),
         }
@@ -268,7 +267,7 @@ impl Judge<'_> {
         match o.error {
             Some(e) => Err(ScenarioError::Invalid(format!(
                 "{} steady state at v = {v}: {e}",
-                self.model
+                self.law
             ))),
             None => Ok(o.last().expect("end recorded").friction),
         }
@@ -422,7 +421,7 @@ impl Judge<'_> {
             match &o.error {
                 Some(e) => Err(ScenarioError::Invalid(format!(
                     "{} {scenario}: {e}",
-                    self.model
+                    self.law
                 ))),
                 None => Ok(o),
             }
@@ -615,15 +614,16 @@ impl Judge<'_> {
     }
 }
 
-/// Decides one cell: `phenomenon` for `model` with `p`, integrated as `protocol` says, on
-/// the rigs of docs/phenomena.md.
+/// Decides one cell: `phenomenon` for `law` (a model of the catalog, or a law of the user's
+/// own) with `p` (the catalog model's parameters, and the scales of the protocols: F_s, F_c,
+/// v_s), integrated as `protocol` says, on the rigs of docs/phenomena.md.
 pub fn decide(
     phenomenon: Phenomenon,
-    model: ModelId,
+    law: &Law,
     p: &FrictionParams,
     protocol: Protocol,
 ) -> Result<Verdict, ScenarioError> {
-    decide_at(phenomenon, model, p, protocol, &ScenarioParams::default())
+    decide_at(phenomenon, law, p, protocol, &ScenarioParams::default())
 }
 
 /// Decides one cell on rigs with the parameters `rig` (mass `m`, belt `v_belt`, spring `k`,
@@ -631,14 +631,14 @@ pub fn decide(
 /// motions).
 pub fn decide_at(
     phenomenon: Phenomenon,
-    model: ModelId,
+    law: &Law,
     p: &FrictionParams,
     protocol: Protocol,
     rig: &ScenarioParams,
 ) -> Result<Verdict, ScenarioError> {
-    let built = model.build(Variant::Odd, p)?;
+    let built = law.build(p)?;
     let judge = Judge {
-        model,
+        law,
         built: built.as_ref(),
         p: *p,
         protocol,
@@ -691,11 +691,11 @@ impl Region {
     }
 }
 
-/// Decides `phenomenon` for `model` at every point of its [`Phenomenon::region`]; `measured`
+/// Decides `phenomenon` for `law` at every point of its [`Phenomenon::region`]; `measured`
 /// is the verdict on the default rig, against which the flips are listed.
 pub fn region(
     phenomenon: Phenomenon,
-    model: ModelId,
+    law: &Law,
     p: &FrictionParams,
     protocol: Protocol,
     measured: bool,
@@ -713,7 +713,7 @@ pub fn region(
             for (name, value) in point {
                 rig.set(name, *value)?;
             }
-            decide_at(phenomenon, model, p, protocol, &rig)
+            decide_at(phenomenon, law, p, protocol, &rig)
         })
         .collect();
     let (mut observed, mut decided) = (0usize, 0usize);
@@ -768,10 +768,11 @@ pub fn table(
         .par_iter()
         .map(|&(model, phenomenon)| {
             let p = parameters.copied().unwrap_or_else(|| parameters_for(model));
-            let v = decide(phenomenon, model, &p, protocol)?;
+            let law = Law::from(model);
+            let v = decide(phenomenon, &law, &p, protocol)?;
             Ok(Cell {
                 region: regions
-                    .then(|| region(phenomenon, model, &p, protocol, v.measured))
+                    .then(|| region(phenomenon, &law, &p, protocol, v.measured))
                     .transpose()?,
                 measured: v.measured,
                 paper: phenomenon.paper_claim(model),

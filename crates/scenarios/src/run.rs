@@ -113,16 +113,88 @@ impl std::str::FromStr for SwitchingKind {
     }
 }
 
+/// The friction law at a rig's contact: a model of the catalog, built from the run's friction
+/// parameters, or a law of the user's own (see `examples/own_friction_law.rs`).
+#[derive(Clone, Debug)]
+pub enum Law {
+    /// A model `friction-lab models` lists, in one of its readings.
+    Catalog {
+        /// The model.
+        model: ModelId,
+        /// Its reading.
+        variant: Variant,
+    },
+    /// A law written outside friction-lab; the run's friction parameters then set only the
+    /// rig's scales (its default end time, the protocols' rates and speeds).
+    Own(Arc<dyn FrictionModel>),
+}
+
+impl Law {
+    /// The law, built from `p` for a model of the catalog.
+    pub fn build(&self, p: &FrictionParams) -> Result<Arc<dyn FrictionModel>, ParamError> {
+        match self {
+            Law::Catalog { model, variant } => Ok(Arc::from(model.build(*variant, p)?)),
+            Law::Own(law) => Ok(Arc::clone(law)),
+        }
+    }
+
+    /// The model of the catalog, if the law is one.
+    pub fn catalog(&self) -> Option<ModelId> {
+        match self {
+            Law::Catalog { model, .. } => Some(*model),
+            Law::Own(_) => None,
+        }
+    }
+}
+
+/// A model of the catalog in its sign-consistent reading.
+impl From<ModelId> for Law {
+    fn from(model: ModelId) -> Law {
+        Law::Catalog {
+            model,
+            variant: Variant::Odd,
+        }
+    }
+}
+
+/// Laws of the catalog are equal when model and reading are; an own law only to itself.
+impl PartialEq for Law {
+    fn eq(&self, other: &Law) -> bool {
+        match (self, other) {
+            (
+                Law::Catalog {
+                    model: a,
+                    variant: u,
+                },
+                Law::Catalog {
+                    model: b,
+                    variant: w,
+                },
+            ) => a == b && u == w,
+            (Law::Own(a), Law::Own(b)) => Arc::ptr_eq(a, b),
+            _ => false,
+        }
+    }
+}
+
+/// The model's name as `friction-lab models` lists it, or the own law's name.
+impl std::fmt::Display for Law {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Law::Catalog { model, .. } => write!(f, "{model}"),
+            Law::Own(law) => f.write_str(law.name()),
+        }
+    }
+}
+
 /// Everything a simulation needs.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RunSpec {
     /// The rig.
     pub scenario: Scenario,
-    /// The friction model.
-    pub model: ModelId,
-    /// Its reading.
-    pub variant: Variant,
-    /// Friction parameters.
+    /// The friction law at its contact.
+    pub law: Law,
+    /// Friction parameters (of a law of the catalog, and the rig's scales).
     pub friction: FrictionParams,
     /// Scenario parameters.
     pub params: ScenarioParams,
@@ -270,13 +342,13 @@ fn validate(spec: &RunSpec) -> Result<(), ScenarioError> {
         )));
     }
     if !spec.scenario.has_body() {
-        let model = spec.model.build(spec.variant, &spec.friction)?;
+        let model = spec.law.build(&spec.friction)?;
         if model.stick_band() > 0.0 {
             return Err(ScenarioError::Invalid(format!(
                 "model `{}` cannot run in {}: its stick band holds the body against the applied \
                  force, and here the motion is imposed (there is no applied force); use a body \
                  scenario such as belt or force-ramp",
-                spec.model, spec.scenario
+                spec.law, spec.scenario
             )));
         }
     }
@@ -505,12 +577,11 @@ pub fn settling_time(model: &dyn FrictionModel, v: f64) -> f64 {
 /// Runs the simulation `spec` describes; `observe` is told the time after each step.
 pub fn run(spec: &RunSpec, observe: &mut dyn FnMut(f64)) -> Result<Outcome, ScenarioError> {
     validate(spec)?;
-    let model = spec.model.build(spec.variant, &spec.friction)?;
+    let model = spec.law.build(&spec.friction)?;
     let t_end = spec
         .t_end
         .unwrap_or_else(|| spec.scenario.default_t_end(&spec.params, &spec.friction));
     let p = &spec.params;
-    let model: Arc<dyn FrictionModel> = Arc::from(model);
     Ok(match spec.scenario {
         Scenario::VelocitySweep => run_sweep(spec, model.as_ref(), observe),
         Scenario::PrescribedMotion => run_motion(

@@ -13,7 +13,7 @@ use crate::run::{run, Limits, RunSpec, ScenarioError, SwitchingKind};
 use crate::scenario::Scenario;
 use crate::settled::{Settled, Trace};
 use friction_models::{steady, Direction, FrictionModel, SignLaw};
-use friction_models::{FrictionParams, ModelId, Variant};
+use friction_models::{FrictionParams, ModelId};
 use integrators::{Solver, StepControl};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -23,8 +23,7 @@ use serde::Serialize;
 pub fn belt_run(model: ModelId, friction: &FrictionParams) -> RunSpec {
     RunSpec {
         scenario: Scenario::Belt,
-        model,
-        variant: Variant::Odd,
+        law: model.into(),
         friction: *friction,
         params: Scenario::Belt.defaults(),
         solver: Solver::Dopri5,
@@ -173,7 +172,7 @@ pub fn map(
     ks: &[f64],
     settle: f64,
 ) -> Result<Vec<MapPoint>, ScenarioError> {
-    let model = base.model.build(base.variant, &base.friction)?;
+    let model = base.law.build(&base.friction)?;
     let points: Vec<(f64, f64)> = v_belts
         .iter()
         .flat_map(|&v| ks.iter().map(move |&k| (v, k)))
@@ -211,7 +210,7 @@ pub fn bifurcation(
     v_belts: &[f64],
     settle: f64,
 ) -> Result<Vec<Branches>, ScenarioError> {
-    let model = base.model.build(base.variant, &base.friction)?;
+    let model = base.law.build(&base.friction)?;
     let k = base.params.k;
     v_belts
         .par_iter()

@@ -1,14 +1,13 @@
 //! The energy balance kept by the solver closes to the solver's tolerance.
 
-use friction_models::{FrictionParams, ModelId, Variant};
+use friction_models::{FrictionParams, ModelId};
 use integrators::{Solver, StepControl};
 use scenarios::{run, Limits, RunSpec, Scenario, SwitchingKind};
 
 fn belt(model: ModelId, switching: SwitchingKind, rtol: f64) -> friction_systems::EnergyBalance {
     let spec = RunSpec {
         scenario: Scenario::Belt,
-        model,
-        variant: Variant::Odd,
+        law: model.into(),
         friction: FrictionParams::paper(),
         params: Scenario::Belt.defaults(),
         solver: Solver::Dopri5,

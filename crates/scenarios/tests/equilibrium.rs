@@ -5,7 +5,7 @@
 //! the fix it ended the pre-sliding test at 0.16 µm instead of 12.57 µm: 99 % "recovered"
 //! against the true 40 %).
 
-use friction_models::{FrictionParams, ModelId, Parameters, Variant};
+use friction_models::{FrictionParams, ModelId, Parameters};
 use integrators::{DiffsolMethod, Solver, StepControl};
 use scenarios::{run, Limits, RunSpec, Scenario, SwitchingKind};
 
@@ -14,8 +14,7 @@ fn end_displacement(solver: Solver, step: StepControl) -> f64 {
     params.set("fraction", 0.75).unwrap();
     let spec = RunSpec {
         scenario: Scenario::Presliding,
-        model: ModelId::LuGre,
-        variant: Variant::Odd,
+        law: ModelId::LuGre.into(),
         friction: FrictionParams::lugre_1995(),
         params,
         solver,

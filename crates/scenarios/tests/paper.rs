@@ -1,6 +1,6 @@
 //! The paper's experiment against closed forms.
 
-use friction_models::{FrictionParams, ModelId, Parameters, Variant};
+use friction_models::{FrictionParams, ModelId, Parameters};
 use integrators::{Solver, StepControl};
 use scenarios::paper::{experiment, Asymptote};
 use scenarios::{run, Limits, RunSpec, Scenario, ScenarioParams, SwitchingKind};
@@ -37,8 +37,7 @@ fn terminal_velocities_and_accelerations_match_their_closed_forms() {
 fn paper_block(model: ModelId, p: FrictionParams) -> Vec<(f64, f64, f64)> {
     let spec = RunSpec {
         scenario: Scenario::PaperBlock,
-        model,
-        variant: Variant::Odd,
+        law: model.into(),
         friction: p,
         params: ScenarioParams::default(),
         solver: Solver::Dopri5,

@@ -4,12 +4,13 @@
 use friction_models::{FrictionParams, ModelId};
 use integrators::{Solver, StepControl};
 use scenarios::phenomena::{decide, parameters_for, region, table, Phenomenon, Protocol};
+use scenarios::Law;
 use std::collections::BTreeMap;
 
 fn measured(phenomenon: Phenomenon, model: ModelId) -> bool {
     decide(
         phenomenon,
-        model,
+        &Law::from(model),
         &parameters_for(model),
         Protocol::default(),
     )
@@ -31,7 +32,7 @@ fn coulomb_with_stiction_sticks_and_slips_but_has_no_stribeck_effect() {
 fn viscous_friction_has_no_stiction() {
     let v = decide(
         Phenomenon::Stiction,
-        ModelId::Viscous,
+        &Law::from(ModelId::Viscous),
         &FrictionParams::paper(),
         Protocol::default(),
     )
@@ -49,7 +50,7 @@ fn stiction_is_a_static_level_above_the_kinetic_one() {
     let p = FrictionParams::paper();
     let v = decide(
         Phenomenon::Stiction,
-        ModelId::Static,
+        &Law::from(ModelId::Static),
         &p,
         Protocol::default(),
     )
@@ -64,7 +65,7 @@ fn stiction_is_a_static_level_above_the_kinetic_one() {
     // held by it stays put under half its level.
     let v = decide(
         Phenomenon::Stiction,
-        ModelId::Coulomb,
+        &Law::from(ModelId::Coulomb),
         &p,
         Protocol::default(),
     )
@@ -82,7 +83,7 @@ fn stiction_is_a_static_level_above_the_kinetic_one() {
     };
     let v = decide(
         Phenomenon::Stiction,
-        ModelId::Dv,
+        &Law::from(ModelId::Dv),
         &stiff,
         Protocol::default(),
     )
@@ -99,7 +100,13 @@ fn stribeck_is_a_falling_branch_anywhere_at_low_speed() {
         mu_v: 5.0,
         ..FrictionParams::paper()
     };
-    let v = decide(Phenomenon::Stribeck, ModelId::Cvs, &p, Protocol::default()).unwrap();
+    let v = decide(
+        Phenomenon::Stribeck,
+        &Law::from(ModelId::Cvs),
+        &p,
+        Protocol::default(),
+    )
+    .unwrap();
     let f = |v: f64| p.f_c + p.mu_v * v + p.c1 * (-(v / p.v_s).powi(2)).exp();
     let (peak, low) = (v.evidence["v_peak_m_s"], v.evidence["v_low_m_s"]);
     let expected = (f(peak) - f(low)) / f(peak);
@@ -114,7 +121,7 @@ fn stribeck_is_a_falling_branch_anywhere_at_low_speed() {
     for model in [ModelId::Coulomb, ModelId::Viscous] {
         let v = decide(
             Phenomenon::Stribeck,
-            model,
+            &Law::from(model),
             &FrictionParams::paper(),
             Protocol::default(),
         )
@@ -134,7 +141,7 @@ fn presliding_reports_the_models_own_scale() {
     let p = FrictionParams::lugre_1995();
     let v = decide(
         Phenomenon::Presliding,
-        ModelId::LuGre,
+        &Law::from(ModelId::LuGre),
         &p,
         Protocol::default(),
     )
@@ -146,7 +153,7 @@ fn presliding_reports_the_models_own_scale() {
     // A static map is rigid below break-away: no displacement, no scale.
     let v = decide(
         Phenomenon::Presliding,
-        ModelId::Cs,
+        &Law::from(ModelId::Cs),
         &FrictionParams::paper(),
         Protocol::default(),
     )
@@ -165,7 +172,7 @@ fn stick_slip_is_counted_from_the_switching_log_once_settled() {
     let p = FrictionParams::paper();
     let v = decide(
         Phenomenon::StickSlip,
-        ModelId::Static,
+        &Law::from(ModelId::Static),
         &p,
         Protocol::default(),
     )
@@ -184,7 +191,7 @@ fn stick_slip_is_counted_from_the_switching_log_once_settled() {
     // Plain Coulomb (F_s = F_c): the slip only grazes the belt's speed; no stick phase.
     let v = decide(
         Phenomenon::StickSlip,
-        ModelId::Coulomb,
+        &Law::from(ModelId::Coulomb),
         &p,
         Protocol::default(),
     )
@@ -209,7 +216,7 @@ fn lugre_has_the_stribeck_effect_and_a_break_away_force_that_falls_with_the_rate
     let p = FrictionParams::lugre_1995();
     let v = decide(
         Phenomenon::RisingStaticFriction,
-        ModelId::LuGre,
+        &Law::from(ModelId::LuGre),
         &p,
         Protocol::default(),
     )
@@ -231,7 +238,7 @@ fn lugre_has_the_stribeck_effect_and_a_break_away_force_that_falls_with_the_rate
     for model in [ModelId::Dahl, ModelId::Cs] {
         let v = decide(
             Phenomenon::RisingStaticFriction,
-            model,
+            &Law::from(model),
             &parameters_for(model),
             Protocol::default(),
         )
@@ -249,7 +256,7 @@ fn static_maps_have_no_hysteresis_loop() {
     for model in [ModelId::Av, ModelId::Cs, ModelId::Cvs, ModelId::Coulomb] {
         let v = decide(
             Phenomenon::Hysteresis,
-            model,
+            &Law::from(model),
             &FrictionParams::paper(),
             Protocol::default(),
         )
@@ -264,7 +271,13 @@ fn static_maps_have_no_hysteresis_loop() {
 #[test]
 fn hysteresis_is_frictional_lag_or_a_lossy_presliding_loop_never_a_spring() {
     let hysteresis = |model: ModelId, p: &FrictionParams| {
-        decide(Phenomenon::Hysteresis, model, p, Protocol::default()).unwrap()
+        decide(
+            Phenomenon::Hysteresis,
+            &Law::from(model),
+            p,
+            Protocol::default(),
+        )
+        .unwrap()
     };
     // LuGre lags in sliding (Canudas de Wit et al. 1995, Fig. 4).
     let lugre = hysteresis(ModelId::LuGre, &FrictionParams::lugre_1995());
@@ -334,7 +347,7 @@ fn a_verdict_over_the_grid_says_where_it_flips() {
     let p = FrictionParams::paper();
     let r = region(
         Phenomenon::StickSlip,
-        ModelId::Static,
+        &Law::from(ModelId::Static),
         &p,
         Protocol::default(),
         true,
@@ -352,7 +365,7 @@ fn a_verdict_over_the_grid_says_where_it_flips() {
     // No rig parameter: a grid of one point, the default rig.
     let r = region(
         Phenomenon::Stribeck,
-        ModelId::Cvs,
+        &Law::from(ModelId::Cvs),
         &p,
         Protocol::default(),
         true,

@@ -10,7 +10,7 @@ use scenarios::{Limits, Scenario, SwitchingKind};
 fn viscous_block() -> Case {
     Case {
         scenario: Scenario::PaperBlock,
-        model: ModelId::Viscous,
+        law: ModelId::Viscous.into(),
         friction: FrictionParams::paper(),
         params: Scenario::PaperBlock.defaults(),
         switching: SwitchingKind::Event,
@@ -53,7 +53,7 @@ fn the_study_recovers_the_orders_of_the_methods_on_a_smooth_problem() {
 fn coulomb_vibration(switching: SwitchingKind) -> Case {
     Case {
         scenario: Scenario::FreeVibration,
-        model: ModelId::Static,
+        law: ModelId::Static.into(),
         friction: FrictionParams::paper(),
         params: Scenario::FreeVibration.defaults(),
         switching,
@@ -163,7 +163,7 @@ fn the_stiffness_verdict_names_a_crossover_only_inside_the_sweep() {
 fn switched_belt() -> Case {
     Case {
         scenario: Scenario::Belt,
-        model: ModelId::Cs,
+        law: ModelId::Cs.into(),
         friction: FrictionParams::paper(),
         params: Scenario::Belt.defaults(),
         switching: SwitchingKind::Event,

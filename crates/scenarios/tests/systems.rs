@@ -1,6 +1,6 @@
 //! A rig is a system of one body: the same system written as a file runs to the same numbers.
 
-use friction_models::{FrictionParams, ModelId, Variant};
+use friction_models::{FrictionParams, ModelId};
 use friction_systems::{file, simulate};
 use integrators::{Solver, StepControl};
 use scenarios::run::options;
@@ -10,8 +10,7 @@ use scenarios::{run, Limits, RunSpec, Scenario, SwitchingKind};
 fn a_one_body_system_file_equals_the_belt_rig() {
     let spec = RunSpec {
         scenario: Scenario::Belt,
-        model: ModelId::Cvs,
-        variant: Variant::Odd,
+        law: ModelId::Cvs.into(),
         friction: FrictionParams::paper(),
         params: Scenario::Belt.defaults(),
         solver: Solver::Dopri5,

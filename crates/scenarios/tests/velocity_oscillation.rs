@@ -1,6 +1,6 @@
 //! The velocity-oscillation rig, v = v_mean + v_amplitude·cos(omega·t), against closed forms.
 
-use friction_models::{FrictionParams, ModelId, Variant};
+use friction_models::{FrictionParams, ModelId};
 use integrators::{Solver, StepControl};
 use scenarios::{run, Limits, Outcome, RunSpec, Scenario, SwitchingKind};
 use std::f64::consts::PI;
@@ -8,8 +8,7 @@ use std::f64::consts::PI;
 fn oscillate(model: ModelId) -> Outcome {
     let spec = RunSpec {
         scenario: Scenario::VelocityOscillation,
-        model,
-        variant: Variant::Odd,
+        law: model.into(),
         friction: FrictionParams::paper(),
         params: Scenario::VelocityOscillation.defaults(),
         solver: Solver::Dopri5,
