@@ -154,11 +154,32 @@ enum Done {
     Time(f64),
 }
 
+/// Refuses two different methods with the same label.
+fn check_labels(jobs: &[(Method, StepControl)]) -> Result<(), ScenarioError> {
+    for (i, (a, _)) in jobs.iter().enumerate() {
+        if let Some((b, _)) = jobs[..i]
+            .iter()
+            .find(|(b, _)| b != a && b.label() == a.label())
+        {
+            return Err(ScenarioError::Invalid(format!(
+                "two methods of the study are both named `{}` ({:?} and {:?}): give a method of \
+                 your own a name no other method of the study has",
+                a.label(),
+                b.solver,
+                a.solver
+            )));
+        }
+    }
+    Ok(())
+}
+
 /// Runs `jobs` on every case of `cases`, each `1 + repeats` times (the repeats only for their
 /// wall time: [`StudyRun::wall_time_s`] is the median), with each case's reference when
 /// `studied` gives the solvers of the study, as one list (see the module). `progress` is told
 /// of every run and repeat (not of the reference runs). Errors: the first failing reference
-/// (by case), then the first run that could not be set up.
+/// (by case), then the first run that could not be set up; before any run, two different
+/// methods under one label (an own method named like a built-in one), whose rows no table could
+/// tell apart.
 pub fn run_cases(
     cases: &[&dyn StudyCase],
     studied: Option<&[Solver]>,
@@ -166,6 +187,7 @@ pub fn run_cases(
     repeats: usize,
     progress: &(dyn Fn() + Sync),
 ) -> Result<Vec<CaseRuns>, ScenarioError> {
+    check_labels(jobs)?;
     let plans: Vec<Option<Plan>> = cases.iter().map(|&c| studied.map(|s| plan(c, s))).collect();
     let dims = cases
         .iter()

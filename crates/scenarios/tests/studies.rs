@@ -354,3 +354,56 @@ fn pairs_at_the_floor_are_round_off_and_pairs_that_do_not_decrease_are_stalled()
     assert!(pairs[0].round_off && !pairs[1].round_off);
     assert!((slope.unwrap() - 1.0).abs() < 1e-12, "{slope:?}");
 }
+
+/// Dormand–Prince under a name of the user's choosing.
+#[derive(Debug)]
+struct Named(&'static str);
+
+impl integrators::OneStepMethod for Named {
+    fn name(&self) -> &'static str {
+        self.0
+    }
+    fn order(&self) -> usize {
+        5
+    }
+    fn is_implicit(&self) -> bool {
+        false
+    }
+    fn is_fixed_step(&self) -> bool {
+        false
+    }
+    fn stepper(
+        &self,
+        options: &integrators::Options,
+        dim: usize,
+    ) -> Result<Box<dyn integrators::Stepper>, integrators::SolverError> {
+        let d = integrators::Dopri5::new(options.step, options.h_max(), options.max_steps, dim);
+        Ok(Box::new(d))
+    }
+}
+
+static CLASH: Named = Named("dopri5");
+static MINE: Named = Named("my-dopri5");
+
+#[test]
+fn an_own_method_is_studied_beside_the_built_ins_under_its_own_name_only() {
+    use scenarios::studies::{work_precision, Method};
+    let case = switched_belt();
+    let tolerances = [1e-6, 1e-8];
+    let run = |own: &'static Named| {
+        let methods = [Method::of(Solver::Dopri5), Method::of(Solver::Own(own))];
+        work_precision(&case, &methods, &[], &tolerances, 0, &|| {})
+    };
+    // Under a name of its own: the same runs as the built-in method it wraps.
+    let wp = run(&MINE).unwrap();
+    let of = |name: &str| -> Vec<_> {
+        let runs = wp.runs.iter().filter(|r| r.solver == name);
+        runs.map(|r| (r.resolution, r.stats, r.errors.final_state))
+            .collect()
+    };
+    assert_eq!(of("my-dopri5").len(), 2);
+    assert_eq!(of("my-dopri5"), of("dopri5"));
+    // Under a built-in method's name: refused before any run, naming the clash.
+    let message = run(&CLASH).unwrap_err().to_string();
+    assert!(message.contains("both named `dopri5`"), "{message}");
+}
