@@ -17,7 +17,7 @@ use friction_lab::integrators::stepper::{
     check_finite, check_limits, hermite_cubic, next_grid_point, wrms,
 };
 use friction_lab::integrators::{
-    Ode, OneStepMethod, Options, Solver, SolverError, Stats, StepControl, Stepper,
+    Ode, OneStepMethod, Options, Solver, SolverError, Stats, StepControl, Stepper, StepperState,
 };
 use friction_lab::scenarios::studies::{self, Method, SystemCase};
 use friction_lab::scenarios::{Limits, SwitchingKind};
@@ -86,12 +86,10 @@ pub struct Bs23Stepper {
     h_max: f64,
     max_steps: usize,
     attempts: usize,
-    h: f64,
     t_start: f64,
-    t_prev: f64,
-    t: f64,
+    /// Where the method stands.
+    state: StepperState,
     y_prev: Vec<f64>,
-    y: Vec<f64>,
     y1: Vec<f64>,
     /// k[0] = f(t, y) (FSAL), k[1], k[2] the next stages, k[3] = f(t + h, y1).
     k: [Vec<f64>; 4],
@@ -109,12 +107,9 @@ impl Bs23Stepper {
             h_max: options.h_max(),
             max_steps: options.max_steps,
             attempts: 0,
-            h: 0.0,
             t_start: 0.0,
-            t_prev: 0.0,
-            t: 0.0,
+            state: StepperState::new(dim),
             y_prev: v(),
-            y: v(),
             y1: v(),
             k: [v(), v(), v(), v()],
             f_prev: v(),
@@ -126,7 +121,7 @@ impl Bs23Stepper {
     /// The stages of a step of size h from (t, y): y1, f(t + h, y1) in k[3], and the error
     /// estimate `err = h·Σ E_i·k_i`.
     fn stages(&mut self, ode: &Ode, h: f64) {
-        let (t, y) = (self.t, &self.y);
+        let (t, y) = (self.state.t, &self.state.y);
         let [k1, k2, k3, k4] = &mut self.k;
         let y1 = &mut self.y1;
         for i in 0..y.len() {
@@ -148,14 +143,14 @@ impl Bs23Stepper {
 
     /// Accepts the step to `t_new`: the new point, FSAL, the dense output's data.
     fn accept(&mut self, h: f64, t_new: f64) -> Result<(), SolverError> {
-        check_finite(&self.y1, self.t, h, "Bogacki-Shampine step result")?;
-        std::mem::swap(&mut self.y_prev, &mut self.y);
-        std::mem::swap(&mut self.y, &mut self.y1);
+        check_finite(&self.y1, self.state.t, h, "Bogacki-Shampine step result")?;
+        std::mem::swap(&mut self.y_prev, &mut self.state.y);
+        std::mem::swap(&mut self.state.y, &mut self.y1);
         let [k1, .., k4] = &mut self.k;
         std::mem::swap(&mut self.f_prev, k1);
         std::mem::swap(k1, k4);
-        self.t_prev = self.t;
-        self.t = t_new;
+        self.state.t_prev = self.state.t;
+        self.state.t = t_new;
         self.stats.steps += 1;
         Ok(())
     }
@@ -163,15 +158,15 @@ impl Bs23Stepper {
     /// A first step from the sizes of y and f: 1 % of the time y would take to change by its
     /// own size at the rate f (the first half of Hairer's HINIT), within the largest step.
     fn initial_step(&self, rtol: f64, atol: f64, t_stop: f64) -> f64 {
-        let zero = vec![0.0; self.y.len()];
-        let d0 = wrms(&self.y, &self.y, &zero, rtol, atol);
-        let d1 = wrms(&self.k[0], &self.y, &zero, rtol, atol);
+        let zero = vec![0.0; self.state.y.len()];
+        let d0 = wrms(&self.state.y, &self.state.y, &zero, rtol, atol);
+        let d1 = wrms(&self.k[0], &self.state.y, &zero, rtol, atol);
         let h = if d0 < 1e-5 || d1 < 1e-5 {
             1e-6
         } else {
             0.01 * d0 / d1
         };
-        h.min(self.h_max).min(t_stop - self.t)
+        h.min(self.h_max).min(t_stop - self.state.t)
     }
 }
 
@@ -183,13 +178,13 @@ impl Stepper for Bs23Stepper {
     fn start(&mut self, ode: &Ode, t: f64, y: &[f64]) -> Result<(), SolverError> {
         ode.require_regular_mass(BS23.name())?;
         self.t_start = t;
-        self.t_prev = t;
-        self.t = t;
-        self.y.copy_from_slice(y);
+        self.state.t_prev = t;
+        self.state.t = t;
+        self.state.y.copy_from_slice(y);
         self.y_prev.copy_from_slice(y);
         ode.explicit_rhs(t, y, &mut self.k[0], &mut self.stats);
         self.f_prev.copy_from_slice(&self.k[0]);
-        self.h = match self.control {
+        self.state.h = match self.control {
             StepControl::Fixed { h } | StepControl::Adaptive { h0: Some(h), .. } => h,
             StepControl::Adaptive { h0: None, .. } => 0.0,
         };
@@ -199,61 +194,53 @@ impl Stepper for Bs23Stepper {
     fn step(&mut self, ode: &Ode, t_stop: f64) -> Result<(), SolverError> {
         let (rtol, atol) = match self.control {
             StepControl::Fixed { h } => {
-                let t_new = next_grid_point(self.t_start, h, self.t, t_stop);
-                let step = t_new - self.t;
+                let t_new = next_grid_point(self.t_start, h, self.state.t, t_stop);
+                let step = t_new - self.state.t;
                 self.attempts += 1;
-                check_limits(self.attempts, self.max_steps, self.t, step)?;
+                check_limits(self.attempts, self.max_steps, self.state.t, step)?;
                 self.stages(ode, step);
                 return self.accept(step, t_new);
             }
             StepControl::Adaptive { rtol, atol, .. } => (rtol, atol),
         };
-        if self.h == 0.0 {
-            self.h = self.initial_step(rtol, atol, t_stop);
+        if self.state.h == 0.0 {
+            self.state.h = self.initial_step(rtol, atol, t_stop);
         }
         loop {
             self.attempts += 1;
-            check_limits(self.attempts, self.max_steps, self.t, self.h)?;
-            let last = self.t + self.h >= t_stop;
-            let h = if last { t_stop - self.t } else { self.h };
+            check_limits(self.attempts, self.max_steps, self.state.t, self.state.h)?;
+            let last = self.state.t + self.state.h >= t_stop;
+            let h = if last {
+                t_stop - self.state.t
+            } else {
+                self.state.h
+            };
             self.stages(ode, h);
-            let err = wrms(&self.err, &self.y, &self.y1, rtol, atol);
+            let err = wrms(&self.err, &self.state.y, &self.y1, rtol, atol);
             let factor = if err.is_finite() {
                 (SAFETY * err.powf(-EXPONENT)).clamp(MIN_FACTOR, MAX_FACTOR)
             } else {
                 MIN_FACTOR
             };
             if err <= 1.0 {
-                self.accept(h, if last { t_stop } else { self.t + h })?;
-                self.h = (h * factor).min(self.h_max);
+                self.accept(h, if last { t_stop } else { self.state.t + h })?;
+                self.state.h = (h * factor).min(self.h_max);
                 return Ok(());
             }
             self.stats.rejected_error += 1;
-            self.h = h * factor.min(1.0);
+            self.state.h = h * factor.min(1.0);
         }
     }
 
-    fn t_prev(&self) -> f64 {
-        self.t_prev
-    }
-
-    fn t(&self) -> f64 {
-        self.t
-    }
-
-    fn y(&self) -> &[f64] {
-        &self.y
-    }
-
-    fn h(&self) -> f64 {
-        self.h
+    fn state(&self) -> &StepperState {
+        &self.state
     }
 
     /// The cubic Hermite interpolant of the step's ends (third order, as the method).
     fn dense_output(&self, t: f64, out: &mut [f64]) {
         hermite_cubic(
-            (self.t_prev, &self.y_prev, &self.f_prev),
-            (self.t, &self.y, &self.k[0]),
+            (self.state.t_prev, &self.y_prev, &self.f_prev),
+            (self.state.t, &self.state.y, &self.k[0]),
             t,
             out,
         );

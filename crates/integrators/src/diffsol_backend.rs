@@ -24,7 +24,7 @@ use crate::options::{Options, StepControl};
 use crate::problem::{Mode, OdeProblem};
 use crate::solution::{Failure, Solution};
 use crate::stats::Stats;
-use crate::stepper::{linear_interpolation, Ode, Stepper};
+use crate::stepper::{linear_interpolation, Ode, Stepper, StepperState};
 use diffsol::{
     BdfState, DiffsolError, FaerSparseLU, FaerSparseMat, NalgebraLU, NalgebraMat, NonLinearOp,
     OdeBuilder, OdeEquations, OdeSolverMethod, OdeSolverProblem, OdeSolverState, RkState, Vector,
@@ -136,10 +136,9 @@ struct DiffsolStepper<'p, Eqn: OdeEquations, S, F> {
     make: F,
     solver: Option<S>,
     stop_set: bool,
-    t_prev: f64,
-    t: f64,
+    /// Where the method stands (`h` read from diffsol's state after each step).
+    state: StepperState,
     y_prev: Vec<f64>,
-    y: Vec<f64>,
     /// Statistics of the solvers already replaced.
     finished: Stats,
 }
@@ -187,7 +186,7 @@ where
     fn error(&self, e: DiffsolError) -> SolverError {
         SolverError::Diffsol {
             solver: self.method.name(),
-            t: self.t,
+            t: self.state.t,
             message: e.to_string(),
         }
     }
@@ -209,11 +208,13 @@ where
         if let Some(old) = self.solver.take() {
             self.finished += self.stats_of(&old);
         }
-        self.t_prev = t;
-        self.t = t;
-        self.y = y.to_vec();
+        self.state.t_prev = t;
+        self.state.t = t;
+        self.state.y = y.to_vec();
         self.y_prev = y.to_vec();
-        self.solver = Some((self.make)(self.problem, t).map_err(|e| self.error(e))?);
+        let solver = (self.make)(self.problem, t).map_err(|e| self.error(e))?;
+        self.state.h = solver.state().h;
+        self.solver = Some(solver);
         self.stop_set = false;
         Ok(())
     }
@@ -231,34 +232,30 @@ where
         }
         self.stop_set = true;
         let state = self.solver.as_ref().expect("started").state();
-        self.t_prev = self.t;
-        self.t = state.t;
-        std::mem::swap(&mut self.y_prev, &mut self.y);
-        self.y = state.y.clone_as_vec();
+        self.state.t_prev = self.state.t;
+        self.state.t = state.t;
+        std::mem::swap(&mut self.y_prev, &mut self.state.y);
+        self.state.y = state.y.clone_as_vec();
+        self.state.h = state.h;
         Ok(())
     }
 
-    fn t_prev(&self) -> f64 {
-        self.t_prev
-    }
-
-    fn t(&self) -> f64 {
-        self.t
-    }
-
-    fn y(&self) -> &[f64] {
-        &self.y
-    }
-
-    fn h(&self) -> f64 {
-        self.solver.as_ref().map_or(0.0, |s| s.state().h)
+    fn state(&self) -> &StepperState {
+        &self.state
     }
 
     fn dense_output(&self, t: f64, out: &mut [f64]) {
         match self.solver.as_ref().map(|s| s.interpolate(t)) {
             Some(Ok(v)) => out.copy_from_slice(&v.clone_as_vec()),
             // Outside diffsol's interpolation window (never expected): the linear interpolant.
-            _ => linear_interpolation(self.t_prev, &self.y_prev, self.t, &self.y, t, out),
+            _ => linear_interpolation(
+                self.state.t_prev,
+                &self.y_prev,
+                self.state.t,
+                &self.state.y,
+                t,
+                out,
+            ),
         }
     }
 
@@ -267,7 +264,7 @@ where
         if let Some(solver) = &self.solver {
             s += self.stats_of(solver);
         }
-        let n = self.y.len().max(1);
+        let n = self.state.y.len().max(1);
         s.rhs_evals = self.shared.rhs_evals.get();
         // A dense Jacobian costs n products; report whole Jacobians.
         s.jacobian_evals = self.shared.jacobian_products.get().div_ceil(n);
@@ -310,10 +307,12 @@ where
         make,
         solver: None,
         stop_set: false,
-        t_prev: options.t0,
-        t: options.t0,
+        state: StepperState {
+            t_prev: options.t0,
+            t: options.t0,
+            ..StepperState::new(n)
+        },
         y_prev: vec![0.0; n],
-        y: vec![0.0; n],
         finished: Stats::default(),
     };
     let failure = |error| Failure {

@@ -7,7 +7,9 @@
 use crate::error::SolverError;
 use crate::options::StepControl;
 use crate::stats::Stats;
-use crate::stepper::{check_finite, check_limits, next_grid_point, wrms, Ode, Stepper};
+use crate::stepper::{
+    check_finite, check_limits, next_grid_point, wrms, Ode, Stepper, StepperState,
+};
 
 // Runge–Kutta coefficients of Dormand and Prince (1980), subroutine CDOPRI of dopri5.f.
 const C2: f64 = 0.2;
@@ -78,11 +80,9 @@ pub struct Dopri5 {
     control: StepControl,
     h_max: f64,
     max_steps: usize,
-    h: f64,
     t_start: f64,
-    t_prev: f64,
-    t: f64,
-    y: Vec<f64>,
+    /// Where the method stands.
+    state: StepperState,
     y1: Vec<f64>,
     ysti: Vec<f64>,
     /// k[0] = f(t, y) (FSAL), k[1..6] stages 2..6, k[6] = f(t + h, y1).
@@ -108,11 +108,8 @@ impl Dopri5 {
             control,
             h_max,
             max_steps,
-            h: 0.0,
             t_start: 0.0,
-            t_prev: 0.0,
-            t: 0.0,
-            y: v(),
+            state: StepperState::new(dim),
             y1: v(),
             ysti: v(),
             k: [v(), v(), v(), v(), v(), v(), v()],
@@ -131,7 +128,7 @@ impl Dopri5 {
     /// HINIT of dopri5.f: an explicit Euler step of size 0.01·‖y0‖/‖f0‖ estimates the second
     /// derivative; h is chosen so that h⁵·max(‖f0‖, ‖y''‖) = 0.01.
     fn hinit(&mut self, ode: &Ode, rtol: f64, atol: f64, t_stop: f64) -> f64 {
-        let (y, f0) = (&self.y, &self.k[0]);
+        let (y, f0) = (&self.state.y, &self.k[0]);
         let sk = |i: usize| atol + rtol * y[i].abs();
         let dnf: f64 = (0..y.len()).map(|i| (f0[i] / sk(i)).powi(2)).sum();
         let dny: f64 = (0..y.len()).map(|i| (y[i] / sk(i)).powi(2)).sum();
@@ -140,12 +137,12 @@ impl Dopri5 {
         } else {
             (dny / dnf).sqrt() * 0.01
         };
-        h = h.min(self.h_max).min(t_stop - self.t);
+        h = h.min(self.h_max).min(t_stop - self.state.t);
         for i in 0..y.len() {
             self.y1[i] = y[i] + h * f0[i];
         }
         let (y1, f1) = (&self.y1, &mut self.k[1]);
-        ode.explicit_rhs(self.t + h, y1, f1, &mut self.stats);
+        ode.explicit_rhs(self.state.t + h, y1, f1, &mut self.stats);
         let der2: f64 = (0..y.len())
             .map(|i| ((self.k[1][i] - self.k[0][i]) / sk(i)).powi(2))
             .sum::<f64>()
@@ -163,9 +160,9 @@ impl Dopri5 {
     /// The six stages, the fifth-order solution `y1`, f at its end (`k[6]`, FSAL) and the
     /// error estimate `err = h·Σ E_i k_i`.
     fn stages(&mut self, ode: &Ode, h: f64) {
-        let n = self.y.len();
-        let t = self.t;
-        let y = &self.y;
+        let n = self.state.y.len();
+        let t = self.state.t;
+        let y = &self.state.y;
         let [k1, k2, k3, k4, k5, k6, k7] = &mut self.k;
         let y1 = &mut self.y1;
         for i in 0..n {
@@ -227,7 +224,7 @@ impl Dopri5 {
             self.nonsti = 0;
             self.iasti += 1;
             if self.iasti == STIFF_COUNT && self.stiff_at.is_none() {
-                self.stiff_at = Some(self.t);
+                self.stiff_at = Some(self.state.t);
             }
         } else {
             self.nonsti += 1;
@@ -239,13 +236,13 @@ impl Dopri5 {
 
     /// Accepts the step just computed: dense output coefficients, FSAL, new time.
     fn accept(&mut self, h: f64, t_new: f64) -> Result<(), SolverError> {
-        check_finite(&self.y1, self.t, h, "Dormand-Prince step result")?;
+        check_finite(&self.y1, self.state.t, h, "Dormand-Prince step result")?;
         let [c0, c1, c2, c3, c4] = &mut self.cont;
         let k = &self.k;
-        for i in 0..self.y.len() {
-            let ydiff = self.y1[i] - self.y[i];
+        for i in 0..self.state.y.len() {
+            let ydiff = self.y1[i] - self.state.y[i];
             let bspl = h * k[0][i] - ydiff;
-            c0[i] = self.y[i];
+            c0[i] = self.state.y[i];
             c1[i] = ydiff;
             c2[i] = bspl;
             c3[i] = -h * k[6][i] + ydiff - bspl;
@@ -259,9 +256,9 @@ impl Dopri5 {
         }
         let [k1, .., k7] = &mut self.k;
         std::mem::swap(k1, k7);
-        std::mem::swap(&mut self.y, &mut self.y1);
-        self.t_prev = self.t;
-        self.t = t_new;
+        std::mem::swap(&mut self.state.y, &mut self.y1);
+        self.state.t_prev = self.state.t;
+        self.state.t = t_new;
         self.stats.steps += 1;
         Ok(())
     }
@@ -275,15 +272,15 @@ impl Stepper for Dopri5 {
     fn start(&mut self, ode: &Ode, t: f64, y: &[f64]) -> Result<(), SolverError> {
         ode.require_regular_mass("dopri5")?;
         self.t_start = t;
-        self.t_prev = t;
-        self.t = t;
-        self.y.copy_from_slice(y);
+        self.state.t_prev = t;
+        self.state.t = t;
+        self.state.y.copy_from_slice(y);
         self.facold = FACOLD_MIN;
         self.reject = false;
         self.iasti = 0;
         self.nonsti = 0;
         ode.explicit_rhs(t, y, &mut self.k[0], &mut self.stats);
-        self.h = match self.control {
+        self.state.h = match self.control {
             StepControl::Fixed { h } => h,
             StepControl::Adaptive { h0: Some(h), .. } => h,
             StepControl::Adaptive { h0: None, .. } => 0.0,
@@ -294,33 +291,33 @@ impl Stepper for Dopri5 {
     fn step(&mut self, ode: &Ode, t_stop: f64) -> Result<(), SolverError> {
         let (rtol, atol) = match self.control {
             StepControl::Fixed { h } => {
-                let t_new = next_grid_point(self.t_start, h, self.t, t_stop);
-                let step = t_new - self.t;
+                let t_new = next_grid_point(self.t_start, h, self.state.t, t_stop);
+                let step = t_new - self.state.t;
                 self.attempts += 1;
-                check_limits(self.attempts, self.max_steps, self.t, step)?;
+                check_limits(self.attempts, self.max_steps, self.state.t, step)?;
                 self.stages(ode, step);
                 return self.accept(step, t_new);
             }
             StepControl::Adaptive { rtol, atol, .. } => (rtol, atol),
         };
-        if self.h == 0.0 {
-            self.h = self.hinit(ode, rtol, atol, t_stop);
+        if self.state.h == 0.0 {
+            self.state.h = self.hinit(ode, rtol, atol, t_stop);
         }
         loop {
-            let mut h = self.h;
+            let mut h = self.state.h;
             self.attempts += 1;
-            check_limits(self.attempts, self.max_steps, self.t, h)?;
-            let last = self.t + 1.01 * h - t_stop > 0.0;
+            check_limits(self.attempts, self.max_steps, self.state.t, h)?;
+            let last = self.state.t + 1.01 * h - t_stop > 0.0;
             if last {
-                h = t_stop - self.t;
+                h = t_stop - self.state.t;
             }
             self.stages(ode, h);
-            let err = wrms(&self.err, &self.y, &self.y1, rtol, atol);
+            let err = wrms(&self.err, &self.state.y, &self.y1, rtol, atol);
             if !err.is_finite() {
                 // A NaN error estimate cannot steer the step: cut it as FAC1 would.
                 self.stats.rejected_error += 1;
                 self.reject = true;
-                self.h = h * FAC1;
+                self.state.h = h * FAC1;
                 continue;
             }
             let fac11 = err.powf(EXPO1);
@@ -330,9 +327,9 @@ impl Stepper for Dopri5 {
             if err <= 1.0 {
                 self.facold = err.max(FACOLD_MIN);
                 self.stiffness_test(h);
-                self.accept(h, if last { t_stop } else { self.t + h })?;
+                self.accept(h, if last { t_stop } else { self.state.t + h })?;
                 // On the last step DOPCOR returns H = HNEW before the HMAX and REJECT limits.
-                self.h = if last {
+                self.state.h = if last {
                     h_new
                 } else if self.reject {
                     h_new.min(self.h_max).min(h)
@@ -344,34 +341,22 @@ impl Stepper for Dopri5 {
             }
             self.reject = true;
             self.stats.rejected_error += 1;
-            self.h = h / (1.0 / FAC1).min(fac11 / SAFE);
+            self.state.h = h / (1.0 / FAC1).min(fac11 / SAFE);
         }
     }
 
-    fn t_prev(&self) -> f64 {
-        self.t_prev
-    }
-
-    fn t(&self) -> f64 {
-        self.t
-    }
-
-    fn y(&self) -> &[f64] {
-        &self.y
-    }
-
-    fn h(&self) -> f64 {
-        self.h
+    fn state(&self) -> &StepperState {
+        &self.state
     }
 
     /// CONTD5: `u(θ) = c0 + θ(c1 + (1−θ)(c2 + θ(c3 + (1−θ)c4)))`, θ = (t − t_old)/h.
     fn dense_output(&self, t: f64, out: &mut [f64]) {
-        let h = self.t - self.t_prev;
+        let h = self.state.t - self.state.t_prev;
         if h == 0.0 {
-            out.copy_from_slice(&self.y);
+            out.copy_from_slice(&self.state.y);
             return;
         }
-        let th = (t - self.t_prev) / h;
+        let th = (t - self.state.t_prev) / h;
         let th1 = 1.0 - th;
         let [c0, c1, c2, c3, c4] = &self.cont;
         for (i, o) in out.iter_mut().enumerate() {

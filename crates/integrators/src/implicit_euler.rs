@@ -14,6 +14,7 @@ use crate::problem::Entry;
 use crate::stats::Stats;
 use crate::stepper::{
     check_finite, check_limits, linear_interpolation, next_grid_point, wrms, Ode, Stepper,
+    StepperState,
 };
 
 // Step-size control: the defaults of radau5.f.
@@ -50,12 +51,10 @@ pub struct ImplicitEuler {
     newton: NewtonKind,
     h_max: f64,
     max_steps: usize,
-    h: f64,
     t_start: f64,
-    t_prev: f64,
-    t: f64,
+    /// Where the method stands.
+    state: StepperState,
     y_prev: Vec<f64>,
-    y: Vec<f64>,
     /// f(t, y) at the current point, valid when `f_known`.
     f: Vec<f64>,
     f_known: bool,
@@ -92,12 +91,9 @@ impl ImplicitEuler {
             newton,
             h_max,
             max_steps,
-            h: 0.0,
             t_start: 0.0,
-            t_prev: 0.0,
-            t: 0.0,
+            state: StepperState::new(dim),
             y_prev: vec![0.0; dim],
-            y: vec![0.0; dim],
             f: vec![0.0; dim],
             f_known: false,
             y_new: vec![0.0; dim],
@@ -128,7 +124,7 @@ impl ImplicitEuler {
     /// Makes f at the current point known, evaluating it if needed.
     fn f_here(&mut self, ode: &Ode) {
         if !self.f_known {
-            ode.rhs(self.t, &self.y, &mut self.f, &mut self.stats);
+            ode.rhs(self.state.t, &self.state.y, &mut self.f, &mut self.stats);
             self.f_known = true;
         }
     }
@@ -138,7 +134,7 @@ impl ImplicitEuler {
         let (y, f) = if at_iterate {
             (&self.y_new, &self.f_new)
         } else {
-            (&self.y, &self.f)
+            (&self.state.y, &self.f)
         };
         newton::jacobian(ode, t, y, f, &mut self.jac, &mut self.stats);
         self.jac_valid = true;
@@ -153,7 +149,7 @@ impl ImplicitEuler {
         if (self.lu_h - h).abs() <= REFACTOR_TOLERANCE * h {
             return Ok(());
         }
-        let n = self.y.len();
+        let n = self.state.y.len();
         newton::iteration_matrix(ode.problem.mass(), n, h, &self.jac, &mut self.matrix);
         if self.lu.name() != linear::choice(n, self.matrix.len()) {
             self.lu = linear::for_size(n, self.matrix.len());
@@ -161,7 +157,7 @@ impl ImplicitEuler {
         self.stats.lu_factorizations += 1;
         if !self.lu.factor(n, &self.matrix) {
             self.lu_h = 0.0;
-            return Err(SolverError::SingularMatrix { t: self.t, h });
+            return Err(SolverError::SingularMatrix { t: self.state.t, h });
         }
         self.lu_h = h;
         Ok(())
@@ -171,10 +167,10 @@ impl ImplicitEuler {
     /// Jacobian at every iterate when `full`). Leaves the solution in `y_new` and `f(t1, Y)`
     /// in `f_new`, or says why it failed.
     fn newton(&mut self, ode: &Ode, t1: f64, h: f64, full: bool) -> Result<(), String> {
-        let n = self.y.len();
+        let n = self.state.y.len();
         let (rtol, atol, kappa) = self.tolerances();
         let mass = ode.problem.mass();
-        self.y_new.copy_from_slice(&self.y);
+        self.y_new.copy_from_slice(&self.state.y);
         let mut norm_prev = 0.0;
         for k in 0..MAX_NEWTON_ITERATIONS {
             ode.rhs(t1, &self.y_new, &mut self.f_new, &mut self.stats);
@@ -184,7 +180,7 @@ impl ImplicitEuler {
             }
             for i in 0..n {
                 let m = mass.map_or(1.0, |m| m[i]);
-                self.delta[i] = -(m * (self.y_new[i] - self.y[i]) - h * self.f_new[i]);
+                self.delta[i] = -(m * (self.y_new[i] - self.state.y[i]) - h * self.f_new[i]);
             }
             self.stats.newton_iterations += 1;
             if !self.lu.solve(&mut self.delta) {
@@ -193,7 +189,7 @@ impl ImplicitEuler {
             for i in 0..n {
                 self.y_new[i] += self.delta[i];
             }
-            let norm = wrms(&self.delta, &self.y_new, &self.y, rtol, atol);
+            let norm = wrms(&self.delta, &self.y_new, &self.state.y, rtol, atol);
             let eta = if k == 0 {
                 self.eta.max(crate::stepper::UROUND).powf(0.8)
             } else {
@@ -229,17 +225,17 @@ impl Stepper for ImplicitEuler {
 
     fn start(&mut self, _ode: &Ode, t: f64, y: &[f64]) -> Result<(), SolverError> {
         self.t_start = t;
-        self.t_prev = t;
-        self.t = t;
-        self.y.copy_from_slice(y);
+        self.state.t_prev = t;
+        self.state.t = t;
+        self.state.y.copy_from_slice(y);
         self.y_prev.copy_from_slice(y);
         self.f_known = false;
         self.jac_valid = false;
         self.lu_h = 0.0;
         self.eta = 1.0;
         self.reject = false;
-        if self.h == 0.0 || matches!(self.control, StepControl::Fixed { .. }) {
-            self.h = match self.control {
+        if self.state.h == 0.0 || matches!(self.control, StepControl::Fixed { .. }) {
+            self.state.h = match self.control {
                 StepControl::Fixed { h } | StepControl::Adaptive { h0: Some(h), .. } => h,
                 // Without a given step: INITIAL_FRACTION of the largest step (the whole
                 // interval by default); the controller grows it by up to FACMAX per step.
@@ -257,22 +253,22 @@ impl Stepper for ImplicitEuler {
             self.attempts += 1;
             let (t1, h) = match self.control {
                 StepControl::Fixed { h } => {
-                    let t1 = next_grid_point(self.t_start, h, self.t, t_stop);
-                    (t1, t1 - self.t)
+                    let t1 = next_grid_point(self.t_start, h, self.state.t, t_stop);
+                    (t1, t1 - self.state.t)
                 }
                 StepControl::Adaptive { .. } => {
-                    let h = if self.t + 1.01 * self.h - t_stop > 0.0 {
-                        t_stop - self.t
+                    let h = if self.state.t + 1.01 * self.state.h - t_stop > 0.0 {
+                        t_stop - self.state.t
                     } else {
-                        self.h
+                        self.state.h
                     };
-                    (self.t + h, h)
+                    (self.state.t + h, h)
                 }
             };
-            check_limits(self.attempts, self.max_steps, self.t, h)?;
+            check_limits(self.attempts, self.max_steps, self.state.t, h)?;
             if !self.jac_valid || self.newton == NewtonKind::Full {
                 self.f_here(ode);
-                self.evaluate_jacobian(ode, self.t, false);
+                self.evaluate_jacobian(ode, self.state.t, false);
             }
             if let Err(e) = self.factor(ode, h) {
                 if !adaptive || cuts >= MAX_NEWTON_CUTS {
@@ -280,7 +276,7 @@ impl Stepper for ImplicitEuler {
                 }
                 cuts += 1;
                 self.stats.rejected_newton += 1;
-                self.h = h * NEWTON_CUT;
+                self.state.h = h * NEWTON_CUT;
                 continue;
             }
             let full = self.newton == NewtonKind::Full || full_fallback;
@@ -300,18 +296,18 @@ impl Stepper for ImplicitEuler {
                     }
                     if !adaptive || cuts >= MAX_NEWTON_CUTS {
                         return Err(SolverError::NewtonDivergence {
-                            t: self.t,
+                            t: self.state.t,
                             h,
                             cuts,
                             why,
                         });
                     }
                     cuts += 1;
-                    self.h = h * NEWTON_CUT;
+                    self.state.h = h * NEWTON_CUT;
                     continue;
                 }
             };
-            check_finite(&self.y_new, self.t, h, "implicit Euler step result")?;
+            check_finite(&self.y_new, self.state.t, h, "implicit Euler step result")?;
             let mut h_new = h;
             if let StepControl::Adaptive { rtol, atol, .. } = self.control {
                 self.f_here(ode);
@@ -319,14 +315,14 @@ impl Stepper for ImplicitEuler {
                     self.err[i] = 0.5 * h * (self.f_new[i] - self.f[i]);
                 }
                 if !self.lu.solve(&mut self.err) {
-                    return Err(SolverError::SingularMatrix { t: self.t, h });
+                    return Err(SolverError::SingularMatrix { t: self.state.t, h });
                 }
-                let err = wrms(&self.err, &self.y, &self.y_new, rtol, atol);
+                let err = wrms(&self.err, &self.state.y, &self.y_new, rtol, atol);
                 let fac = (SAFE / err.sqrt()).clamp(FACMIN, FACMAX);
                 if err > 1.0 {
                     self.stats.rejected_error += 1;
                     self.reject = true;
-                    self.h = h * fac.min(1.0);
+                    self.state.h = h * fac.min(1.0);
                     continue;
                 }
                 h_new = (h * fac).min(self.h_max);
@@ -335,39 +331,34 @@ impl Stepper for ImplicitEuler {
                 }
                 self.reject = false;
             }
-            std::mem::swap(&mut self.y_prev, &mut self.y);
-            std::mem::swap(&mut self.y, &mut self.y_new);
+            std::mem::swap(&mut self.y_prev, &mut self.state.y);
+            std::mem::swap(&mut self.state.y, &mut self.y_new);
             std::mem::swap(&mut self.f, &mut self.f_new);
             self.f_known = true;
-            self.t_prev = self.t;
-            self.t = t1;
+            self.state.t_prev = self.state.t;
+            self.state.t = t1;
             self.jac_fresh = false;
             self.stats.steps += 1;
             if adaptive {
-                self.h = h_new;
+                self.state.h = h_new;
             }
             return Ok(());
         }
     }
 
-    fn t_prev(&self) -> f64 {
-        self.t_prev
-    }
-
-    fn t(&self) -> f64 {
-        self.t
-    }
-
-    fn y(&self) -> &[f64] {
-        &self.y
-    }
-
-    fn h(&self) -> f64 {
-        self.h
+    fn state(&self) -> &StepperState {
+        &self.state
     }
 
     fn dense_output(&self, t: f64, out: &mut [f64]) {
-        linear_interpolation(self.t_prev, &self.y_prev, self.t, &self.y, t, out);
+        linear_interpolation(
+            self.state.t_prev,
+            &self.y_prev,
+            self.state.t,
+            &self.state.y,
+            t,
+            out,
+        );
     }
 
     fn stats(&self) -> Stats {

@@ -111,7 +111,7 @@ impl<'a> Integrator<'a> {
 
     /// The current time.
     pub fn t(&self) -> f64 {
-        self.stepper.t()
+        self.stepper.state().t
     }
 
     /// Records the grid points in `(t_prev, t]` from the dense output of the last step.
@@ -139,22 +139,22 @@ impl<'a> Integrator<'a> {
         self.steps += 1;
         if self.steps > self.options.max_steps {
             return Err(SolverError::TooManySteps {
-                t: self.stepper.t(),
-                h: self.stepper.h(),
+                t: self.stepper.state().t,
+                h: self.stepper.state().h,
                 max: self.options.max_steps,
             });
         }
         if let Some(limit) = self.options.time_limit {
             if self.clock.elapsed().as_secs_f64() > limit {
                 return Err(SolverError::TimeLimit {
-                    t: self.stepper.t(),
+                    t: self.stepper.state().t,
                     limit,
                 });
             }
         }
         if crate::interrupt::requested() {
             return Err(SolverError::Interrupted {
-                t: self.stepper.t(),
+                t: self.stepper.state().t,
             });
         }
         let ode = Ode {
@@ -162,19 +162,19 @@ impl<'a> Integrator<'a> {
             modes: &self.modes,
         };
         self.stepper.step(&ode, t_end)?;
-        let (t0, t1) = (self.stepper.t_prev(), self.stepper.t());
+        let (t0, t1) = (self.stepper.state().t_prev, self.stepper.state().t);
         let stepper = &self.stepper;
         let found = self.watch.check(
             self.problem,
             &self.modes,
             t0,
             t1,
-            stepper.y(),
+            &stepper.state().y,
             &mut |t, y| stepper.dense_output(t, y),
         );
         let Some(found) = found else {
             match self.options.output {
-                Output::Steps => self.solution.push(t1, self.stepper.y(), &self.modes),
+                Output::Steps => self.solution.push(t1, &self.stepper.state().y, &self.modes),
                 _ => self.record_grid_until(t1, true),
             }
             if t1 >= t_end {

@@ -44,4 +44,4 @@ pub use rk4::Rk4;
 pub use solution::{EventRecord, Failure, ModeSwitch, Solution};
 pub use solver::{OneStepMethod, Solver};
 pub use stats::Stats;
-pub use stepper::{Ode, Stepper};
+pub use stepper::{Ode, Stepper, StepperState};

@@ -6,17 +6,15 @@
 
 use crate::error::SolverError;
 use crate::stats::Stats;
-use crate::stepper::{check_finite, hermite_cubic, next_grid_point, Ode, Stepper};
+use crate::stepper::{check_finite, hermite_cubic, next_grid_point, Ode, Stepper, StepperState};
 
 /// RK4 with constant step `h`.
 #[derive(Clone, Debug)]
 pub struct Rk4 {
-    h: f64,
     t_start: f64,
-    t_prev: f64,
-    t: f64,
+    /// Where the method stands (`h` is the constant step).
+    state: StepperState,
     y_prev: Vec<f64>,
-    y: Vec<f64>,
     /// f at the start of the last step.
     f_prev: Vec<f64>,
     /// f at the current point (the next step's first stage).
@@ -31,12 +29,12 @@ impl Rk4 {
     pub fn new(h: f64, dim: usize) -> Self {
         let v = || vec![0.0; dim];
         Rk4 {
-            h,
             t_start: 0.0,
-            t_prev: 0.0,
-            t: 0.0,
+            state: StepperState {
+                h,
+                ..StepperState::new(dim)
+            },
             y_prev: v(),
-            y: v(),
             f_prev: v(),
             f: v(),
             k: [v(), v(), v()],
@@ -54,20 +52,20 @@ impl Stepper for Rk4 {
     fn start(&mut self, ode: &Ode, t: f64, y: &[f64]) -> Result<(), SolverError> {
         ode.require_regular_mass("rk4")?;
         self.t_start = t;
-        self.t_prev = t;
-        self.t = t;
-        self.y.copy_from_slice(y);
+        self.state.t_prev = t;
+        self.state.t = t;
+        self.state.y.copy_from_slice(y);
         ode.explicit_rhs(t, y, &mut self.f, &mut self.stats);
         Ok(())
     }
 
     fn step(&mut self, ode: &Ode, t_stop: f64) -> Result<(), SolverError> {
-        let t0 = self.t;
-        let t1 = next_grid_point(self.t_start, self.h, t0, t_stop);
+        let t0 = self.state.t;
+        let t1 = next_grid_point(self.t_start, self.state.h, t0, t_stop);
         let h = t1 - t0;
-        let n = self.y.len();
+        let n = self.state.y.len();
         let [k2, k3, k4] = &mut self.k;
-        let (y, k1, s) = (&self.y, &self.f, &mut self.stage);
+        let (y, k1, s) = (&self.state.y, &self.f, &mut self.stage);
         for i in 0..n {
             s[i] = y[i] + 0.5 * h * k1[i];
         }
@@ -80,40 +78,28 @@ impl Stepper for Rk4 {
             s[i] = y[i] + h * k3[i];
         }
         ode.explicit_rhs(t1, s, k4, &mut self.stats);
-        self.y_prev.copy_from_slice(&self.y);
+        self.y_prev.copy_from_slice(&self.state.y);
         for i in 0..n {
-            self.y[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+            self.state.y[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
         }
-        check_finite(&self.y, t0, h, "RK4 step result")?;
+        check_finite(&self.state.y, t0, h, "RK4 step result")?;
         std::mem::swap(&mut self.f_prev, &mut self.f);
-        ode.explicit_rhs(t1, &self.y, &mut self.f, &mut self.stats);
-        self.t_prev = t0;
-        self.t = t1;
+        ode.explicit_rhs(t1, &self.state.y, &mut self.f, &mut self.stats);
+        self.state.t_prev = t0;
+        self.state.t = t1;
         self.stats.steps += 1;
         Ok(())
     }
 
-    fn t_prev(&self) -> f64 {
-        self.t_prev
-    }
-
-    fn t(&self) -> f64 {
-        self.t
-    }
-
-    fn y(&self) -> &[f64] {
-        &self.y
-    }
-
-    fn h(&self) -> f64 {
-        self.h
+    fn state(&self) -> &StepperState {
+        &self.state
     }
 
     /// The cubic Hermite interpolant of the step's ends ([`hermite_cubic`]).
     fn dense_output(&self, t: f64, out: &mut [f64]) {
         hermite_cubic(
-            (self.t_prev, &self.y_prev, &self.f_prev),
-            (self.t, &self.y, &self.f),
+            (self.state.t_prev, &self.y_prev, &self.f_prev),
+            (self.state.t, &self.state.y, &self.f),
             t,
             out,
         );

@@ -42,6 +42,31 @@ impl Ode<'_> {
     }
 }
 
+/// Where a one-step method stands after an accepted step, as diffsol's `OdeSolverState`:
+/// the step `[t_prev, t]` just taken, the state `y(t)`, and the step size `h` it would try
+/// next. A method keeps one and updates it as it steps; the driver reads it.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct StepperState {
+    /// Start of the last accepted step.
+    pub t_prev: f64,
+    /// Current time (end of the last accepted step).
+    pub t: f64,
+    /// Current state.
+    pub y: Vec<f64>,
+    /// The step size the method would try next.
+    pub h: f64,
+}
+
+impl StepperState {
+    /// At rest at t = 0 with `dim` unknowns, zero, and no step size yet.
+    pub fn new(dim: usize) -> Self {
+        StepperState {
+            y: vec![0.0; dim],
+            ..StepperState::default()
+        }
+    }
+}
+
 /// A one-step method, driven step by step by [`crate::Integrator`].
 pub trait Stepper {
     /// The method's name as the command line takes it.
@@ -55,17 +80,9 @@ pub trait Stepper {
     /// is within reach). Rejected attempts are retried inside and counted.
     fn step(&mut self, ode: &Ode, t_stop: f64) -> Result<(), SolverError>;
 
-    /// Start of the last accepted step.
-    fn t_prev(&self) -> f64;
-
-    /// Current time (end of the last accepted step).
-    fn t(&self) -> f64;
-
-    /// Current state.
-    fn y(&self) -> &[f64];
-
-    /// The step size the method would try next.
-    fn h(&self) -> f64;
+    /// Where the method stands: the last accepted step, the state at its end, the next step
+    /// size.
+    fn state(&self) -> &StepperState;
 
     /// The method's dense output at `t` in `[t_prev, t]`.
     fn dense_output(&self, t: f64, y: &mut [f64]);
