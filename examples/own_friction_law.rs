@@ -42,30 +42,27 @@ impl FrictionModel for Tustin {
     }
 
     /// `F = (F_c + (F_s − F_c)·e^(−|v|/v_s))·sign(v) + b·v`, with sign(v) and |v| = v·sign(v)
-    /// evaluated by the law the integration asks for; no internal state, so no rate.
-    fn response(&self, _x: f64, v: f64, _z: &[f64], law: SignLaw, _rate: &mut [f64]) -> f64 {
-        let sign = law.branches(v).sign();
-        let level = self.f_c + (self.f_s - self.f_c) * (-(v * sign) / self.v_s).exp();
-        level * sign + self.b * v
-    }
-
-    fn partials(
+    /// evaluated by the law the integration asks for, and `∂F/∂v`; no internal state, so no
+    /// rate and no state partials.
+    fn evaluate(
         &self,
         _x: f64,
         v: f64,
         _z: &[f64],
         law: SignLaw,
+        _rate: &mut [f64],
         _states: &mut [StatePartials],
-    ) -> Partials {
+    ) -> (f64, Partials) {
         let br = law.branches(v);
         let (sign, dsign) = (br.sign(), br.dsign_dv());
         let decay = (self.f_s - self.f_c) * (-(v * sign) / self.v_s).exp();
         // d|v|/dv = sign + v·dsign.
         let dabs = sign + v * dsign;
-        Partials {
+        let partials = Partials {
             force_dx: 0.0,
             force_dv: (self.f_c + decay) * dsign - decay * dabs / self.v_s * sign + self.b,
-        }
+        };
+        ((self.f_c + decay) * sign + self.b * v, partials)
     }
 
     fn stick_interval(&self, _x: f64, _z: &[f64]) -> StickInterval {

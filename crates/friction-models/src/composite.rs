@@ -85,30 +85,6 @@ impl FrictionModel for Composite {
         usize::from(self.dahl.is_some())
     }
 
-    fn response(&self, x: f64, v: f64, z: &[f64], law: SignLaw, rate: &mut [f64]) -> f64 {
-        self.evaluate(
-            x,
-            v,
-            z,
-            law,
-            rate,
-            &mut [StatePartials::default(); 1][..rate.len()],
-        )
-        .0
-    }
-
-    fn partials(
-        &self,
-        x: f64,
-        v: f64,
-        z: &[f64],
-        law: SignLaw,
-        states: &mut [StatePartials],
-    ) -> Partials {
-        self.evaluate(x, v, z, law, &mut [0.0; 1][..states.len()], states)
-            .1
-    }
-
     /// `F = F_memoryless(v) + z`, `ż` of Dahl's law (eq. 4) when the model has it.
     fn evaluate(
         &self,

@@ -23,7 +23,7 @@
 //! at deflections (2i − 1)·F_s/(n·σ0), and damping σ_i = σ1/n.
 
 use crate::catalog::ModelId;
-use crate::model::{FrictionModel, Partials, StatePartials, StickInterval, MAX_STATES};
+use crate::model::{FrictionModel, Partials, StatePartials, StickInterval};
 use crate::sign::SignLaw;
 use crate::terms;
 
@@ -41,7 +41,7 @@ pub struct Block {
 /// The generalized Maxwell-slip model.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Gms {
-    /// The slip blocks, at most [`MAX_STATES`].
+    /// The slip blocks, at most [`MAX_STATES`](crate::MAX_STATES).
     pub blocks: Vec<Block>,
     /// Attraction C of the slip law, N/s.
     pub attraction: f64,
@@ -56,7 +56,7 @@ pub struct Gms {
 }
 
 impl Gms {
-    /// The blocks of friction-lab's GMS with n ≤ [`MAX_STATES`] blocks: k_i = σ0/n,
+    /// The blocks of friction-lab's GMS with n ≤ [`MAX_STATES`](crate::MAX_STATES) blocks: k_i = σ0/n,
     /// α_i = (2i − 1)/n², σ_i = σ1/n.
     pub fn blocks(n: usize, sigma0: f64, sigma1: f64) -> Vec<Block> {
         let nf = n as f64;
@@ -77,23 +77,6 @@ impl FrictionModel for Gms {
 
     fn n_states(&self) -> usize {
         self.blocks.len()
-    }
-
-    fn response(&self, x: f64, v: f64, z: &[f64], law: SignLaw, rate: &mut [f64]) -> f64 {
-        let mut states = [StatePartials::default(); MAX_STATES];
-        self.evaluate(x, v, z, law, rate, &mut states[..z.len()]).0
-    }
-
-    fn partials(
-        &self,
-        x: f64,
-        v: f64,
-        z: &[f64],
-        law: SignLaw,
-        states: &mut [StatePartials],
-    ) -> Partials {
-        self.evaluate(x, v, z, law, &mut [0.0; MAX_STATES][..z.len()], states)
-            .1
     }
 
     /// Block by block, `ż_i = s·min(u, q_i)` with s = sign(v), u = v·s and

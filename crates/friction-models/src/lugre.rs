@@ -118,22 +118,6 @@ impl FrictionModel for LuGre {
         1
     }
 
-    fn response(&self, x: f64, v: f64, z: &[f64], law: SignLaw, rate: &mut [f64]) -> f64 {
-        self.evaluate(x, v, z, law, rate, &mut [StatePartials::default()])
-            .0
-    }
-
-    fn partials(
-        &self,
-        x: f64,
-        v: f64,
-        z: &[f64],
-        law: SignLaw,
-        states: &mut [StatePartials],
-    ) -> Partials {
-        self.evaluate(x, v, z, law, &mut [0.0], states).1
-    }
-
     fn evaluate(
         &self,
         _x: f64,

@@ -111,6 +111,17 @@ impl std::str::FromStr for Variant {
     }
 }
 
+/// Runs `f` on a zeroed scratch slice of length `n` ≤ [`MAX_STATES`] on the stack; one entry
+/// for the laws with at most one state, so that the right-hand side of a static map does not
+/// clear a full buffer at every evaluation.
+fn scratch<T: Copy + Default, R>(n: usize, f: impl FnOnce(&mut [T]) -> R) -> R {
+    if n <= 1 {
+        f(&mut [T::default(); 1][..n])
+    } else {
+        f(&mut [T::default(); MAX_STATES][..n])
+    }
+}
+
 /// A friction model: a force law F(x, v, z) with internal states z = (z_1, …, z_n),
 /// n = [`n_states`](FrictionModel::n_states) (0 for static maps, 1 for Dahl and LuGre, the
 /// number of elements for the generalized Maxwell-slip model).
@@ -137,24 +148,11 @@ pub trait FrictionModel: fmt::Debug + Send + Sync {
     /// Number of internal states n, at most [`MAX_STATES`].
     fn n_states(&self) -> usize;
 
-    /// The force F(x, v, z) with sign(v) evaluated by `law`; writes the state rates
-    /// ż = g(x, v, z) into `rate` (length n).
-    fn response(&self, x: f64, v: f64, z: &[f64], law: SignLaw, rate: &mut [f64]) -> f64;
-
-    /// The analytic partial derivatives at (x, v, z) under `law`: returns ∂F/∂x and ∂F/∂v,
-    /// and writes each state's partials into `states` (length n).
-    fn partials(
-        &self,
-        x: f64,
-        v: f64,
-        z: &[f64],
-        law: SignLaw,
-        states: &mut [StatePartials],
-    ) -> Partials;
-
-    /// [`response`](FrictionModel::response) and [`partials`](FrictionModel::partials) at
-    /// one point together, for solvers that need both (the Newton iterations of
-    /// time-stepping); a model overrides it to share the work of the two.
+    /// The force F(x, v, z) with sign(v) evaluated by `law`, and its analytic partial
+    /// derivatives at that point: returns F with ∂F/∂x and ∂F/∂v, writes the state rates
+    /// ż = g(x, v, z) into `rate` and each state's partials into `states` (both of length n).
+    /// The one method a law must compute; [`response`](FrictionModel::response) and
+    /// [`partials`](FrictionModel::partials) read its two halves.
     fn evaluate(
         &self,
         x: f64,
@@ -163,11 +161,30 @@ pub trait FrictionModel: fmt::Debug + Send + Sync {
         law: SignLaw,
         rate: &mut [f64],
         states: &mut [StatePartials],
-    ) -> (f64, Partials) {
-        (
-            self.response(x, v, z, law, rate),
-            self.partials(x, v, z, law, states),
-        )
+    ) -> (f64, Partials);
+
+    /// The force F(x, v, z) under `law`, with the state rates ż = g(x, v, z) written into
+    /// `rate` (length n): the first half of [`evaluate`](FrictionModel::evaluate).
+    fn response(&self, x: f64, v: f64, z: &[f64], law: SignLaw, rate: &mut [f64]) -> f64 {
+        scratch(rate.len(), |states| {
+            self.evaluate(x, v, z, law, rate, states).0
+        })
+    }
+
+    /// The analytic partial derivatives at (x, v, z) under `law`: returns ∂F/∂x and ∂F/∂v,
+    /// and writes each state's partials into `states` (length n): the second half of
+    /// [`evaluate`](FrictionModel::evaluate).
+    fn partials(
+        &self,
+        x: f64,
+        v: f64,
+        z: &[f64],
+        law: SignLaw,
+        states: &mut [StatePartials],
+    ) -> Partials {
+        scratch(states.len(), |rate| {
+            self.evaluate(x, v, z, law, rate, states).1
+        })
     }
 
     /// The force F(x, v, z) alone (the state rates computed into a scratch buffer).
