@@ -184,10 +184,8 @@ impl Stepper for Bs23Stepper {
         self.y_prev.copy_from_slice(y);
         ode.explicit_rhs(t, y, &mut self.k[0], &mut self.stats);
         self.f_prev.copy_from_slice(&self.k[0]);
-        self.state.h = match self.control {
-            StepControl::Fixed { h } | StepControl::Adaptive { h0: Some(h), .. } => h,
-            StepControl::Adaptive { h0: None, .. } => 0.0,
-        };
+        // Zero: the initial-step estimate chooses the first step.
+        self.state.h = self.control.given_step().unwrap_or(0.0);
         Ok(())
     }
 

@@ -280,11 +280,8 @@ impl Stepper for Dopri5 {
         self.iasti = 0;
         self.nonsti = 0;
         ode.explicit_rhs(t, y, &mut self.k[0], &mut self.stats);
-        self.state.h = match self.control {
-            StepControl::Fixed { h } => h,
-            StepControl::Adaptive { h0: Some(h), .. } => h,
-            StepControl::Adaptive { h0: None, .. } => 0.0,
-        };
+        // Zero: HINIT chooses the first step.
+        self.state.h = self.control.given_step().unwrap_or(0.0);
         Ok(())
     }
 

@@ -235,12 +235,12 @@ impl Stepper for ImplicitEuler {
         self.eta = 1.0;
         self.reject = false;
         if self.state.h == 0.0 || matches!(self.control, StepControl::Fixed { .. }) {
-            self.state.h = match self.control {
-                StepControl::Fixed { h } | StepControl::Adaptive { h0: Some(h), .. } => h,
-                // Without a given step: INITIAL_FRACTION of the largest step (the whole
-                // interval by default); the controller grows it by up to FACMAX per step.
-                StepControl::Adaptive { h0: None, .. } => INITIAL_FRACTION * self.h_max,
-            };
+            // Without a given step: INITIAL_FRACTION of the largest step (the whole interval
+            // by default); the controller grows it by up to FACMAX per step.
+            self.state.h = self
+                .control
+                .given_step()
+                .unwrap_or(INITIAL_FRACTION * self.h_max);
         }
         Ok(())
     }

@@ -25,6 +25,17 @@ pub enum StepControl {
     },
 }
 
+impl StepControl {
+    /// The step the run prescribes: the fixed step `h`, or an adaptive run's `h0`; `None`
+    /// when the method is to choose its first step.
+    pub fn given_step(&self) -> Option<f64> {
+        match *self {
+            StepControl::Fixed { h } | StepControl::Adaptive { h0: Some(h), .. } => Some(h),
+            StepControl::Adaptive { h0: None, .. } => None,
+        }
+    }
+}
+
 /// Guard against chattering: an error when more than `max_events` event instants fall
 /// within a window of `window` times the problem's own time scale
 /// ([`crate::OdeProblem::time_scale`], its shortest natural period; seconds for a problem
