@@ -114,6 +114,7 @@ impl std::str::FromStr for Variant {
 /// Runs `f` on a zeroed scratch slice of length `n` ≤ [`MAX_STATES`] on the stack; one entry
 /// for the laws with at most one state, so that the right-hand side of a static map does not
 /// clear a full buffer at every evaluation.
+#[inline(always)]
 fn scratch<T: Copy + Default, R>(n: usize, f: impl FnOnce(&mut [T]) -> R) -> R {
     if n <= 1 {
         f(&mut [T::default(); 1][..n])

@@ -74,6 +74,26 @@ const STIFF_HLAMB: f64 = 3.25;
 const STIFF_COUNT: usize = 15;
 const NONSTIFF_COUNT: usize = 6;
 
+/// `Σ_j a_j·k_j[i]`, summed left to right as `dopri5.f` writes its stage sums.
+#[inline(always)]
+fn weighted<const S: usize>(a: &[f64; S], k: &[&[f64]; S], i: usize) -> f64 {
+    let mut sum = a[0] * k[0][i];
+    for j in 1..S {
+        sum += a[j] * k[j][i];
+    }
+    sum
+}
+
+/// A stage's argument `out = y + h·Σ_j a_j·k_j`, component by component.
+#[inline(always)]
+fn stage<const S: usize>(out: &mut [f64], y: &[f64], h: f64, a: [f64; S], k: [&Vec<f64>; S]) {
+    let n = out.len();
+    let (y, k) = (&y[..n], k.map(|k| &k[..n]));
+    for (i, o) in out.iter_mut().enumerate() {
+        *o = y[i] + h * weighted(&a, &k, i);
+    }
+}
+
 /// Hairer's Dormand–Prince 5(4), adaptive or with fixed steps.
 #[derive(Clone, Debug)]
 pub struct Dopri5 {
@@ -158,42 +178,38 @@ impl Dopri5 {
     }
 
     /// The six stages, the fifth-order solution `y1`, f at its end (`k[6]`, FSAL) and the
-    /// error estimate `err = h·Σ E_i k_i`.
+    /// error estimate `err = h·Σ E_i k_i`, each sum taken in `dopri5.f`'s order.
     fn stages(&mut self, ode: &Ode, h: f64) {
-        let n = self.state.y.len();
         let t = self.state.t;
-        let y = &self.state.y;
+        let y = &self.state.y[..];
         let [k1, k2, k3, k4, k5, k6, k7] = &mut self.k;
-        let y1 = &mut self.y1;
-        for i in 0..n {
-            y1[i] = y[i] + h * A21 * k1[i];
+        let k1 = &*k1;
+        let y1 = &mut self.y1[..];
+        // Y1 = Y + H*A21*K1: (H*A21) first, as the Fortran multiplies.
+        let (ha21, k1s, ys) = (h * A21, &k1[..y1.len()], &y[..y1.len()]);
+        for (i, out) in y1.iter_mut().enumerate() {
+            *out = ys[i] + ha21 * k1s[i];
         }
         ode.explicit_rhs(t + C2 * h, y1, k2, &mut self.stats);
-        for i in 0..n {
-            y1[i] = y[i] + h * (A31 * k1[i] + A32 * k2[i]);
-        }
+        let k2 = &*k2;
+        stage(y1, y, h, [A31, A32], [k1, k2]);
         ode.explicit_rhs(t + C3 * h, y1, k3, &mut self.stats);
-        for i in 0..n {
-            y1[i] = y[i] + h * (A41 * k1[i] + A42 * k2[i] + A43 * k3[i]);
-        }
+        let k3 = &*k3;
+        stage(y1, y, h, [A41, A42, A43], [k1, k2, k3]);
         ode.explicit_rhs(t + C4 * h, y1, k4, &mut self.stats);
-        for i in 0..n {
-            y1[i] = y[i] + h * (A51 * k1[i] + A52 * k2[i] + A53 * k3[i] + A54 * k4[i]);
-        }
+        let k4 = &*k4;
+        stage(y1, y, h, [A51, A52, A53, A54], [k1, k2, k3, k4]);
         ode.explicit_rhs(t + C5 * h, y1, k5, &mut self.stats);
-        for i in 0..n {
-            self.ysti[i] =
-                y[i] + h * (A61 * k1[i] + A62 * k2[i] + A63 * k3[i] + A64 * k4[i] + A65 * k5[i]);
-        }
-        ode.explicit_rhs(t + h, &self.ysti, k6, &mut self.stats);
-        for i in 0..n {
-            y1[i] =
-                y[i] + h * (A71 * k1[i] + A73 * k3[i] + A74 * k4[i] + A75 * k5[i] + A76 * k6[i]);
-        }
+        let k5 = &*k5;
+        let ysti = &mut self.ysti[..];
+        stage(ysti, y, h, [A61, A62, A63, A64, A65], [k1, k2, k3, k4, k5]);
+        ode.explicit_rhs(t + h, ysti, k6, &mut self.stats);
+        let k6 = &*k6;
+        stage(y1, y, h, [A71, A73, A74, A75, A76], [k1, k3, k4, k5, k6]);
         ode.explicit_rhs(t + h, y1, k7, &mut self.stats);
-        for i in 0..n {
-            self.err[i] =
-                h * (E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i] + E7 * k7[i]);
+        let k = [k1, k3, k4, k5, k6, &*k7].map(|k| &k[..]);
+        for (i, e) in self.err.iter_mut().enumerate() {
+            *e = h * weighted(&[E1, E3, E4, E5, E6, E7], &k, i);
         }
     }
 
