@@ -228,6 +228,8 @@ where
         }
         .and_then(|_| solver.step());
         if let Err(e) = result {
+            // The step size diffsol had reached when it failed, for the error report.
+            self.state.h = solver.state().h;
             return Err(self.error(e));
         }
         self.stop_set = true;
