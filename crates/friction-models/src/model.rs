@@ -111,15 +111,17 @@ impl std::str::FromStr for Variant {
     }
 }
 
-/// Runs `f` on a zeroed scratch slice of length `n` ≤ [`MAX_STATES`] on the stack; one entry
-/// for the laws with at most one state, so that the right-hand side of a static map does not
-/// clear a full buffer at every evaluation.
+/// Runs `f` on a zeroed scratch slice of length `n`: on the stack up to [`MAX_STATES`] (one
+/// entry for the laws with at most one state, so that the right-hand side of a static map does
+/// not clear a full buffer at every evaluation), on the heap beyond.
 #[inline(always)]
 fn scratch<T: Copy + Default, R>(n: usize, f: impl FnOnce(&mut [T]) -> R) -> R {
     if n <= 1 {
         f(&mut [T::default(); 1][..n])
-    } else {
+    } else if n <= MAX_STATES {
         f(&mut [T::default(); MAX_STATES][..n])
+    } else {
+        f(&mut vec![T::default(); n])
     }
 }
 
@@ -190,12 +192,7 @@ pub trait FrictionModel: fmt::Debug + Send + Sync {
 
     /// The force F(x, v, z) alone (the state rates computed into a scratch buffer).
     fn force(&self, x: f64, v: f64, z: &[f64], law: SignLaw) -> f64 {
-        let n = self.n_states();
-        if n <= MAX_STATES {
-            self.response(x, v, z, law, &mut [0.0; MAX_STATES][..n])
-        } else {
-            self.response(x, v, z, law, &mut vec![0.0; n])
-        }
+        scratch(self.n_states(), |rate| self.response(x, v, z, law, rate))
     }
 
     /// The admissible friction forces at rest with states `z`.
