@@ -146,4 +146,9 @@ impl FrictionModel for Composite {
     fn stick_band(&self) -> f64 {
         self.band
     }
+
+    /// The classical terms are functions of v (and Dahl's state), never of x.
+    fn depends_on_position(&self) -> bool {
+        false
+    }
 }

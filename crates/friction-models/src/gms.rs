@@ -134,6 +134,11 @@ impl FrictionModel for Gms {
         StickInterval::point(self.force(x, 0.0, z, SignLaw::Discontinuous))
     }
 
+    /// The bristles' law involves v and z only.
+    fn depends_on_position(&self) -> bool {
+        false
+    }
+
     /// Every block at its limit: `k_i·z_i = α_i·sign(v)·g(v)`.
     fn steady_state(&self, v: f64, z: &mut [f64]) {
         let s = SignLaw::Discontinuous.branches(v).sign();

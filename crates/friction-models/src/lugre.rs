@@ -150,6 +150,11 @@ impl FrictionModel for LuGre {
         StickInterval::point(self.force(x, 0.0, z, SignLaw::Discontinuous))
     }
 
+    /// The bristles' law involves v and z only.
+    fn depends_on_position(&self) -> bool {
+        false
+    }
+
     fn steady_state(&self, v: f64, z: &mut [f64]) {
         z[0] = self.g(v).0 * SignLaw::Discontinuous.branches(v).sign() / self.sigma0;
     }

@@ -217,4 +217,13 @@ pub trait FrictionModel: fmt::Debug + Send + Sync {
     fn stick_band(&self) -> f64 {
         0.0
     }
+
+    /// Whether F(x, v, z), its partials and the stick interval depend on the position x.
+    /// The default, `true`, is always safe; a law that returns `false` promises
+    /// `∂F/∂x = 0` everywhere, and a static map (no internal state) that does so has a stick
+    /// interval and one-sided forces at v = 0± that never change, which time-stepping then
+    /// evaluates once per run instead of once per step.
+    fn depends_on_position(&self) -> bool {
+        true
+    }
 }

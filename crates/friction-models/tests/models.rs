@@ -322,3 +322,44 @@ fn every_model_declares_parameters_that_exist() {
         }
     }
 }
+
+#[test]
+fn a_law_that_says_it_ignores_x_gives_the_same_force_partials_and_stick_interval_at_any_x() {
+    let mut checked = 0;
+    for params in [FrictionParams::paper(), FrictionParams::lugre_1995()] {
+        for id in ModelId::ALL {
+            let Ok(m) = id.build(Variant::Odd, &params) else {
+                continue;
+            };
+            if m.depends_on_position() {
+                continue;
+            }
+            let n = m.n_states();
+            let z = vec![0.3; n];
+            for law in [
+                SignLaw::Discontinuous,
+                SignLaw::Frozen(Direction::Negative),
+                SignLaw::Smooth { epsilon: 1e-3 },
+            ] {
+                for v in [-0.2, 0.0, 1e-4, 0.3] {
+                    let at = |x: f64| {
+                        let (mut rate, mut d) = (vec![0.0; n], vec![StatePartials::default(); n]);
+                        let (f, p) = m.evaluate(x, v, &z, law, &mut rate, &mut d);
+                        (f, p, rate, d)
+                    };
+                    let (a, b) = (at(0.0), at(-3.7));
+                    assert_eq!(a, b, "{id:?} at v = {v} under {law:?}");
+                    assert_eq!(a.1.force_dx, 0.0, "{id:?}");
+                    checked += 1;
+                }
+            }
+            assert_eq!(
+                m.stick_interval(0.0, &z),
+                m.stick_interval(2.5, &z),
+                "{id:?}"
+            );
+        }
+    }
+    // The 16 models of the catalog all ignore x; some are built under both parameter sets.
+    assert!(checked >= 16 * 12, "{checked} points checked");
+}

@@ -92,10 +92,32 @@ pub(crate) struct StepCache {
     edge: [Option<Point>; 2],
     /// The stick interval and the internal state at rest.
     rest: Option<(StickInterval, f64)>,
+    /// Whether each side (index as `edge`) has been visited in this step: the first visit
+    /// starts Newton's iteration from the edge, a later one from the last solution.
+    visited: [bool; 2],
     /// The last sliding solution: direction, weight θ_f, w = |u|, and the law there (after a
     /// linearised update, the linearised law), from which a later visit starts Newton's
     /// iteration without evaluating the law again.
     last: Option<(Direction, f64, f64, Point)>,
+}
+
+impl StepCache {
+    /// Forgets what belongs to the step just ended. A contact whose law is `invariant` (a
+    /// static map that does not depend on x: see
+    /// [`FrictionModel::depends_on_position`]) keeps its law at v_rel = 0± and its stick
+    /// interval, which are then the same at every step.
+    pub fn next_step(&mut self, invariant: bool) {
+        let (edge, rest) = if invariant {
+            (self.edge, self.rest)
+        } else {
+            ([None; 2], None)
+        };
+        *self = StepCache {
+            edge,
+            rest,
+            ..StepCache::default()
+        };
+    }
 }
 
 fn side(d: Direction) -> usize {
@@ -266,7 +288,7 @@ impl Local<'_> {
             (s * r, self.w + self.h * theta_f * p.dforce)
         };
         let mut iterations = 0;
-        let first_visit = cache.edge[side(d)].is_none();
+        let first_visit = !std::mem::replace(&mut cache.visited[side(d)], true);
         let edge = match cache.edge[side(d)] {
             Some(p) => p,
             None => {

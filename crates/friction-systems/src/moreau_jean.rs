@@ -83,12 +83,20 @@ pub struct MoreauJean {
 }
 
 /// The iteration matrix `Ŵ = M − h·θ·(C + h·θ·K)` of one step size, row by row: its
-/// diagonal and the couplings `h·θ·(c + h·θ·k)` to other bodies.
+/// diagonal and the couplings `h·θ·(c + h·θ·k)` to other bodies; and the order in which
+/// Gauss–Seidel visits the bodies.
 struct Matrix {
     h: f64,
     diagonal: Vec<f64>,
     start: Vec<usize>,
     coupling: Vec<(usize, f64)>,
+    /// The bodies colour by colour (a greedy colouring of the coupling graph: no two
+    /// coupled bodies share a colour), in index order within a colour. The visits of one
+    /// colour read only velocities of other colours, so they do not wait on each other and
+    /// the processor overlaps them; on a chain this is the red–black order, whose
+    /// Gauss–Seidel converges as fast as the lexicographic one (Young 1971, consistently
+    /// ordered matrices).
+    order: Vec<usize>,
 }
 
 impl Matrix {
@@ -108,6 +116,7 @@ impl Matrix {
                 }
             }
         }
+        let order = colour_order(&rows);
         let mut start = vec![0];
         let mut coupling = Vec::new();
         for row in rows {
@@ -119,12 +128,27 @@ impl Matrix {
             diagonal,
             start,
             coupling,
+            order,
         }
     }
 
     fn row(&self, i: usize) -> &[(usize, f64)] {
         &self.coupling[self.start[i]..self.start[i + 1]]
     }
+}
+
+/// The bodies grouped by a greedy colouring of the coupling graph `rows` (each body takes
+/// the smallest colour none of its earlier-indexed neighbours has), colour after colour,
+/// ascending within a colour.
+fn colour_order(rows: &[Vec<(usize, f64)>]) -> Vec<usize> {
+    let mut colour = vec![usize::MAX; rows.len()];
+    for (i, row) in rows.iter().enumerate() {
+        let taken: Vec<usize> = row.iter().map(|&(o, _)| colour[o]).collect();
+        colour[i] = (0..).find(|c| !taken.contains(c)).expect("a free colour");
+    }
+    let mut order: Vec<usize> = (0..rows.len()).collect();
+    order.sort_by_key(|&i| colour[i]);
+    order
 }
 
 /// The scheme's working state between steps.
@@ -153,6 +177,9 @@ struct Stepper<'p, 'a> {
     force_start: Vec<f64>,
     /// Per contact: what its problem keeps through the sweeps of the step.
     cache: Vec<StepCache>,
+    /// Per contact: whether its law is a static map that does not depend on x (its problem
+    /// then keeps the law at v_rel = 0± and the stick interval from step to step).
+    invariant: Vec<bool>,
     sweeps: usize,
     iterations: usize,
 }
@@ -192,6 +219,12 @@ impl<'p, 'a> Stepper<'p, 'a> {
             rate: vec![0.0; p.system.contacts.len()],
             force_start: vec![0.0; p.system.contacts.len()],
             cache: vec![StepCache::default(); p.system.contacts.len()],
+            invariant: p
+                .system
+                .contacts
+                .iter()
+                .map(|c| c.model.n_states() == 0 && !c.model.depends_on_position())
+                .collect(),
             solved,
             sweeps: 0,
             iterations: 0,
@@ -288,7 +321,8 @@ impl<'p, 'a> Stepper<'p, 'a> {
             }
             sweeps += 1;
             pending = false;
-            for i in 0..self.v.len() {
+            for k in 0..self.v.len() {
+                let i = self.matrix.order[k];
                 if !self.dirty[i] {
                     continue;
                 }
@@ -322,7 +356,7 @@ impl<'p, 'a> Stepper<'p, 'a> {
                         let cache = &mut self.cache[j];
                         if sweeps == 1 {
                             // The first visit of the step (sweep 1 visits every body).
-                            *cache = StepCache::default();
+                            cache.next_step(self.invariant[j]);
                         }
                         let s = local
                             .solve(cache, previous, self.solved[j].u)
@@ -637,5 +671,37 @@ fn event_record(t: f64, switches: Vec<ModeSwitch>) -> EventRecord {
         fired,
         names,
         switches,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::colour_order;
+
+    /// Rows of a coupling graph from its undirected edges.
+    fn rows(n: usize, edges: &[(usize, usize)]) -> Vec<Vec<(usize, f64)>> {
+        let mut rows = vec![Vec::new(); n];
+        for &(a, b) in edges {
+            rows[a].push((b, 1.0));
+            rows[b].push((a, 1.0));
+        }
+        rows
+    }
+
+    #[test]
+    fn a_chain_is_visited_red_black() {
+        let chain: Vec<(usize, usize)> = (0..6).map(|i| (i, i + 1)).collect();
+        assert_eq!(colour_order(&rows(7, &chain)), [0, 2, 4, 6, 1, 3, 5]);
+    }
+
+    #[test]
+    fn no_two_coupled_bodies_share_a_colour_and_every_body_is_visited_once() {
+        // A triangle, a star and a free body: three colours, then the order by colour.
+        let edges = [(0, 1), (1, 2), (2, 0), (3, 4), (3, 5), (3, 6)];
+        let order = colour_order(&rows(8, &edges));
+        assert_eq!(order, [0, 3, 7, 1, 4, 5, 6, 2]);
+        let mut sorted = order.clone();
+        sorted.sort_unstable();
+        assert_eq!(sorted, (0..8).collect::<Vec<_>>());
     }
 }

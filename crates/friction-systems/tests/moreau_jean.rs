@@ -400,3 +400,61 @@ fn models_with_an_internal_state_converge_at_second_order_at_theta_half() {
         );
     }
 }
+
+/// A catalog law behind the trait's defaults: it does not say that it ignores x, so
+/// time-stepping evaluates its stick interval and its forces at v_rel = 0± at every step.
+#[derive(Debug)]
+struct Opaque(Box<dyn friction_models::FrictionModel>);
+
+impl friction_models::FrictionModel for Opaque {
+    fn name(&self) -> &str {
+        "opaque"
+    }
+    fn n_states(&self) -> usize {
+        self.0.n_states()
+    }
+    fn evaluate(
+        &self,
+        x: f64,
+        v: f64,
+        z: &[f64],
+        law: friction_models::SignLaw,
+        rate: &mut [f64],
+        states: &mut [friction_models::StatePartials],
+    ) -> (f64, friction_models::Partials) {
+        self.0.evaluate(x, v, z, law, rate, states)
+    }
+    fn stick_interval(&self, x: f64, z: &[f64]) -> friction_models::StickInterval {
+        self.0.stick_interval(x, z)
+    }
+}
+
+#[test]
+fn a_static_map_kept_from_step_to_step_gives_the_same_steps_bit_for_bit() {
+    // CVS (stiction, Stribeck, viscous) on a 30-block chain that sticks and slips: the law
+    // at rest evaluated once per run (the catalog's law says it ignores x) against once per
+    // step (the same law behind the trait's defaults).
+    let chain = |opaque: bool| {
+        ChainParams {
+            n_bodies: 30,
+            ..ChainParams::default()
+        }
+        .build(&FrictionParams::paper(), |p| {
+            let law = ModelId::Cvs.build(Variant::Odd, p)?;
+            Ok::<_, friction_models::ParamError>(if opaque {
+                Arc::new(Opaque(law)) as Arc<dyn friction_models::FrictionModel>
+            } else {
+                Arc::from(law)
+            })
+        })
+        .unwrap()
+    };
+    let (kept, evaluated) = (chain(false), chain(true));
+    let g = grid(30.0, 300);
+    let a = stepped(&kept, 0.5, 1e-3, 30.0, &g);
+    let b = stepped(&evaluated, 0.5, 1e-3, 30.0, &g);
+    assert!(a.solution.stats.events > 30, "{:?}", a.solution.stats);
+    assert_eq!(a.solution.y, b.solution.y);
+    assert_eq!(a.solution.modes, b.solution.modes);
+    assert_eq!(a.solution.stats, b.solution.stats);
+}
