@@ -16,6 +16,7 @@
 //! Newton's method safeguarded by bisection (Press et al., *Numerical Recipes*, `rtsafe`).
 
 use friction_models::{Direction, FrictionModel, Partials, SignLaw, StatePartials, StickInterval};
+use std::fmt;
 
 /// Most Newton iterations of the sliding equation, or of the internal state, before the
 /// step is declared unsolved.
@@ -70,6 +71,48 @@ pub(crate) struct Solved {
     pub direction: Option<Direction>,
     /// Newton iterations spent.
     pub iterations: usize,
+}
+
+/// Why one contact's problem has no solution (formatted only when a step fails).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Unsolved {
+    /// The internal state's equation did not converge at this relative velocity.
+    State { u: f64, update: f64 },
+    /// The sliding force at rest lies outside the stick interval, so neither rest nor
+    /// sliding in direction `d` solves the problem.
+    OutsideInterval {
+        d: Direction,
+        lower: f64,
+        upper: f64,
+    },
+    /// The sliding residual does not change sign at any speed in direction `d`.
+    NoSpeed { d: Direction },
+    /// Newton's iteration in direction `d` did not converge in the bracket `[lo, hi]`.
+    NoConvergence { d: Direction, lo: f64, hi: f64 },
+}
+
+impl fmt::Display for Unsolved {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Unsolved::State { u, update } => write!(
+                f,
+                "the internal state did not converge at v_rel = {u:e} (last update {update:e})"
+            ),
+            Unsolved::OutsideInterval { d, lower, upper } => write!(
+                f,
+                "no sliding solution in direction {d:?}: the model's sliding force at v_rel = 0 \
+                 lies outside its stick interval [{lower}, {upper}]"
+            ),
+            Unsolved::NoSpeed { d } => {
+                write!(f, "no sliding solution in direction {d:?} at any speed")
+            }
+            Unsolved::NoConvergence { d, lo, hi } => write!(
+                f,
+                "the sliding equation in direction {d:?} did not converge in \
+                 {MAX_LOCAL_ITERATIONS} iterations (bracket [{lo:e}, {hi:e}] m/s)"
+            ),
+        }
+    }
 }
 
 /// The law at one relative velocity: the end state z(u), the force, and dF/du along z(u).
@@ -145,7 +188,7 @@ impl Local<'_> {
     }
 
     /// z(u) from the state equation and F(x(u), u, z(u)) with dF/du, under `law`.
-    fn point(&self, u: f64, law: SignLaw) -> Result<Point, String> {
+    fn point(&self, u: f64, law: SignLaw) -> Result<Point, Unsolved> {
         let x = self.x(u);
         let ht = self.h * self.theta;
         let mut z = self.z0;
@@ -161,9 +204,7 @@ impl Local<'_> {
                     break;
                 }
                 if !dz.is_finite() || iterations == MAX_LOCAL_ITERATIONS {
-                    return Err(format!(
-                        "the internal state did not converge at v_rel = {u:e} (last update {dz:e})"
-                    ));
+                    return Err(Unsolved::State { u, update: dz });
                 }
             }
         }
@@ -188,7 +229,7 @@ impl Local<'_> {
     }
 
     /// The stick interval and the internal state at rest, computed once per step.
-    fn rest(&self, cache: &mut StepCache) -> Result<((StickInterval, f64), usize), String> {
+    fn rest(&self, cache: &mut StepCache) -> Result<((StickInterval, f64), usize), Unsolved> {
         if let Some(rest) = cache.rest {
             return Ok((rest, 0));
         }
@@ -204,7 +245,8 @@ impl Local<'_> {
         Ok((rest, iterations))
     }
 
-    /// Solves the problem: first, if the contact slid in `previous` (direction, force F_k)
+    /// Solves the problem into `out`, adding the Newton iterations spent to
+    /// `out.iterations`: first, if the contact slid in `previous` (direction, force F_k)
     /// through the step before, with the θ-method on friction if it still slides that way (or
     /// either way, for a law continuous at rest: a stick interval of zero width, as LuGre's);
     /// otherwise at rest if λ* is admissible, else sliding with the impulse implicit.
@@ -214,63 +256,59 @@ impl Local<'_> {
         cache: &mut StepCache,
         previous: Option<(Direction, f64)>,
         u_guess: f64,
-    ) -> Result<Solved, String> {
-        let mut iterations = 0;
+        out: &mut Solved,
+    ) -> Result<(), Unsolved> {
         if let Some((d, f_k)) = previous.filter(|_| self.theta < 1.0) {
-            let (found, n) = self.slide(cache, d, self.theta, f_k, u_guess)?;
-            iterations += n;
-            if let Some(s) = found {
-                return Ok(Solved { iterations, ..s });
+            if self.slide(cache, d, self.theta, f_k, u_guess, out)? {
+                return Ok(());
             }
             let ((interval, _), n) = self.rest(cache)?;
-            iterations += n;
+            out.iterations += n;
             if interval.upper == interval.lower {
                 let reversed = match d {
                     Direction::Positive => Direction::Negative,
                     Direction::Negative => Direction::Positive,
                 };
-                let (found, n) = self.slide(cache, reversed, self.theta, f_k, u_guess)?;
-                iterations += n;
-                if let Some(s) = found {
-                    return Ok(Solved { iterations, ..s });
+                if self.slide(cache, reversed, self.theta, f_k, u_guess, out)? {
+                    return Ok(());
                 }
             }
         }
         let ((interval, z_rest), n) = self.rest(cache)?;
-        iterations += n;
+        out.iterations += n;
         let held = self.holding_force();
         if interval.contains(held) {
-            return Ok(Solved {
+            *out = Solved {
                 u: 0.0,
                 z: z_rest,
                 force: held,
                 impulse: self.h * held,
                 direction: None,
-                iterations,
-            });
+                iterations: out.iterations,
+            };
+            return Ok(());
         }
         let d = if held > interval.upper {
             Direction::Positive
         } else {
             Direction::Negative
         };
-        match self.slide(cache, d, 1.0, 0.0, u_guess)? {
-            (Some(s), n) => Ok(Solved {
-                iterations: n + iterations,
-                ..s
-            }),
-            (None, _) => Err(format!(
-                "no sliding solution in direction {d:?}: the model's sliding force at v_rel = 0 \
-                 lies outside its stick interval [{}, {}]",
-                interval.lower, interval.upper
-            )),
+        if self.slide(cache, d, 1.0, 0.0, u_guess, out)? {
+            Ok(())
+        } else {
+            Err(Unsolved::OutsideInterval {
+                d,
+                lower: interval.lower,
+                upper: interval.upper,
+            })
         }
     }
 
     /// The sliding solution in direction `d` with weight `theta_f` on the end force and
-    /// `f_k` at the start, if one exists on that side (`None` when R does not change sign
-    /// there), with the iterations spent. Newton's iteration starts from u = 0 at the first
-    /// visit of the step, from `u_guess` after it.
+    /// `f_k` at the start, written into `out` if one exists on that side (`false` when R
+    /// does not change sign there); the iterations spent are added to `out.iterations`
+    /// either way. Newton's iteration starts from u = 0 at the first visit of the step, from
+    /// `u_guess` after it.
     fn slide(
         &self,
         cache: &mut StepCache,
@@ -278,7 +316,8 @@ impl Local<'_> {
         theta_f: f64,
         f_k: f64,
         u_guess: f64,
-    ) -> Result<(Option<Solved>, usize), String> {
+        out: &mut Solved,
+    ) -> Result<bool, Unsolved> {
         let law = SignLaw::Frozen(d);
         let s = d.sign();
         let impulse = |force: f64| self.h * (theta_f * force + (1.0 - theta_f) * f_k);
@@ -287,7 +326,7 @@ impl Local<'_> {
             let r = self.w * (s * w + self.v_s) + impulse(p.force) - self.b;
             (s * r, self.w + self.h * theta_f * p.dforce)
         };
-        let mut iterations = 0;
+        let mut iterations = out.iterations;
         let first_visit = !std::mem::replace(&mut cache.visited[side(d)], true);
         let edge = match cache.edge[side(d)] {
             Some(p) => p,
@@ -300,7 +339,8 @@ impl Local<'_> {
         };
         let (r0, dr0) = residual(0.0, &edge);
         if r0 >= 0.0 {
-            return Ok((None, iterations));
+            out.iterations = iterations;
+            return Ok(false);
         }
         let (mut lo, mut hi) = (0.0, f64::INFINITY);
         let guess = s * u_guess;
@@ -344,16 +384,16 @@ impl Local<'_> {
                     force: p.force + p.dforce * du,
                     ..p
                 };
-                let solved = Solved {
+                *out = Solved {
                     u: s * w + du,
                     z: at.z,
                     force: at.force,
                     impulse: impulse(at.force),
                     direction: Some(d),
-                    iterations: 0,
+                    iterations,
                 };
-                cache.last = Some((d, theta_f, s * solved.u, at));
-                return Ok((Some(solved), iterations));
+                cache.last = Some((d, theta_f, s * out.u, at));
+                return Ok(true);
             }
             w = if dr > 0.0 && newton > lo && newton < hi {
                 newton
@@ -363,14 +403,9 @@ impl Local<'_> {
                 2.0 * w
             };
             if !w.is_finite() {
-                return Err(format!(
-                    "no sliding solution in direction {d:?} at any speed"
-                ));
+                return Err(Unsolved::NoSpeed { d });
             }
         }
-        Err(format!(
-            "the sliding equation in direction {d:?} did not converge in {MAX_LOCAL_ITERATIONS} \
-             iterations (bracket [{lo:e}, {hi:e}] m/s)"
-        ))
+        Err(Unsolved::NoConvergence { d, lo, hi })
     }
 }

@@ -175,6 +175,9 @@ struct Stepper<'p, 'a> {
     rate: Vec<f64>,
     /// Per contact: its friction force at the start of the step.
     force_start: Vec<f64>,
+    /// Per spring: its force on end `a` and `v_b − v_a` at the start of the step (those at
+    /// the end of the step before, kept from its energy accumulation).
+    link_force: Vec<(f64, f64)>,
     /// Per contact: what its problem keeps through the sweeps of the step.
     cache: Vec<StepCache>,
     /// Per contact: whether its law is a static map that does not depend on x (its problem
@@ -185,7 +188,13 @@ struct Stepper<'p, 'a> {
 }
 
 impl<'p, 'a> Stepper<'p, 'a> {
-    fn new(p: &'p FrictionSystem<'a>, theta: f64, h: f64, y0: &[f64], modes0: &[Mode]) -> Self {
+    fn new(
+        p: &'p FrictionSystem<'a>,
+        theta: f64,
+        (t0, h): (f64, f64),
+        y0: &[f64],
+        modes0: &[Mode],
+    ) -> Self {
         let n = p.system.bodies.len();
         let l = &p.layout;
         let solved: Vec<Solved> = p
@@ -218,6 +227,7 @@ impl<'p, 'a> Stepper<'p, 'a> {
             drift: vec![0.0; n],
             rate: vec![0.0; p.system.contacts.len()],
             force_start: vec![0.0; p.system.contacts.len()],
+            link_force: p.links.iter().map(|link| link.force(t0, y0)).collect(),
             cache: vec![StepCache::default(); p.system.contacts.len()],
             invariant: p
                 .system
@@ -269,7 +279,17 @@ impl<'p, 'a> Stepper<'p, 'a> {
         // The known part of b: m·v + h·(1−θ)·F_o(t_k) + h·θ·F_o(t_{k+1}) at zero end velocities.
         let known = &mut self.known;
         known.fill(0.0);
-        p.applied_forces(t0, &self.y, |i, f| known[i] += f);
+        for f in &p.system.forces {
+            known[f.body] += f.constant + f.profile.at(t0);
+        }
+        for (link, &(f, _)) in p.links.iter().zip(&self.link_force) {
+            if let Point::State { body, .. } = link.a {
+                known[body] += f;
+            }
+            if let Point::State { body, .. } = link.b {
+                known[body] -= f;
+            }
+        }
         for (i, b) in p.system.bodies.iter().enumerate() {
             let (x, v) = (self.y[l.x[i]], self.y[l.v(i)]);
             self.x_hat[i] = x + h * (1.0 - theta) * v;
@@ -358,9 +378,12 @@ impl<'p, 'a> Stepper<'p, 'a> {
                             // The first visit of the step (sweep 1 visits every body).
                             cache.next_step(self.invariant[j]);
                         }
-                        let s = local
-                            .solve(cache, previous, self.solved[j].u)
-                            .map_err(|why| SolverError::ContactProblem {
+                        // The last solution is Newton's starting point and is overwritten.
+                        let solved = &mut self.solved[j];
+                        let u_guess = solved.u;
+                        solved.iterations = 0;
+                        if let Err(why) = local.solve(cache, previous, u_guess, solved) {
+                            return Err(SolverError::ContactProblem {
                                 t: t0,
                                 h,
                                 why: format!(
@@ -368,10 +391,10 @@ impl<'p, 'a> Stepper<'p, 'a> {
                                     j + 1,
                                     p.system.bodies[i].name
                                 ),
-                            })?;
-                        self.iterations += s.iterations;
-                        self.solved[j] = s;
-                        s.u + c.surface_velocity
+                            });
+                        }
+                        self.iterations += solved.iterations;
+                        solved.u + c.surface_velocity
                     }
                 };
                 if !v.is_finite() {
@@ -442,8 +465,9 @@ impl<'p, 'a> Stepper<'p, 'a> {
             let i = impulse(f.constant + f.profile.at(t0), f.constant + f.profile.at(t1));
             external += i * mean(f.body);
         }
-        for link in &p.links {
-            let ((f0, dv0), (f1, dv1)) = (link.force(t0, y0), link.force(t1, y1));
+        for (link, start) in p.links.iter().zip(&mut self.link_force) {
+            let ((f0, dv0), (f1, dv1)) = (*start, link.force(t1, y1));
+            *start = (f1, dv1);
             let i = impulse(f0, f1);
             external -= link.c * impulse(dv0, dv1) * 0.5 * (dv0 + dv1);
             if let Point::Moving { v, .. } = link.a {
@@ -584,7 +608,7 @@ impl MoreauJean {
         }
         let n_steps = n_steps as usize;
         let clock = std::time::Instant::now();
-        let mut s = Stepper::new(problem, self.theta, h, y0, modes0);
+        let mut s = Stepper::new(problem, self.theta, (t0, h), y0, modes0);
         let mut recorder = Recorder {
             output: &options.output,
             next: 0,

@@ -458,3 +458,68 @@ fn a_static_map_kept_from_step_to_step_gives_the_same_steps_bit_for_bit() {
     assert_eq!(a.solution.modes, b.solution.modes);
     assert_eq!(a.solution.stats, b.solution.stats);
 }
+
+/// A law whose sliding force at rest (10 N) lies outside its stick interval [−1, 1] N.
+#[derive(Debug)]
+struct Inconsistent;
+
+impl friction_models::FrictionModel for Inconsistent {
+    fn name(&self) -> &str {
+        "inconsistent"
+    }
+    fn n_states(&self) -> usize {
+        0
+    }
+    fn evaluate(
+        &self,
+        _x: f64,
+        v: f64,
+        _z: &[f64],
+        law: friction_models::SignLaw,
+        _rate: &mut [f64],
+        _states: &mut [friction_models::StatePartials],
+    ) -> (f64, friction_models::Partials) {
+        (
+            10.0 * law.branches(v).sign(),
+            friction_models::Partials::default(),
+        )
+    }
+    fn stick_interval(&self, _x: f64, _z: &[f64]) -> friction_models::StickInterval {
+        friction_models::StickInterval {
+            lower: -1.0,
+            upper: 1.0,
+        }
+    }
+}
+
+#[test]
+fn a_contact_without_a_solution_fails_the_step_with_where_and_why() {
+    // The driver spring (10 N/m at 0.1 m/s) needs 1 N after 1 s: then neither rest nor
+    // sliding forwards (10 N at once) balances it.
+    let system = ChainParams {
+        n_bodies: 1,
+        ..ChainParams::default()
+    }
+    .build(&FrictionParams::paper(), |_| {
+        Ok::<_, friction_models::ParamError>(Arc::new(Inconsistent) as _)
+    })
+    .unwrap();
+    let options = Options::fixed(0.0, 3.0, 1e-3);
+    let switching = Switching::TimeStepping { theta: 0.5 };
+    let run = simulate(&system, switching, Solver::Rk4, options, &mut |_| {}).unwrap();
+    let Some(SolverError::ContactProblem { t, why, .. }) = &run.error else {
+        panic!("{:?}", run.error);
+    };
+    assert!((*t - 1.0).abs() < 2e-3, "failed at t = {t}");
+    assert!(
+        why.contains("contact 1") && why.contains("no sliding solution in direction Positive"),
+        "{why}"
+    );
+    assert!(why.contains("stick interval [-1, 1]"), "{why}");
+    // What was computed before the failure is kept.
+    assert!(
+        run.solution.t.last().is_some_and(|&last| last > 0.99),
+        "{:?}",
+        run.solution.t.last()
+    );
+}
