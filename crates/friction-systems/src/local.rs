@@ -150,16 +150,12 @@ impl StepCache {
     /// [`FrictionModel::depends_on_position`]) keeps its law at v_rel = 0± and its stick
     /// interval, which are then the same at every step.
     pub fn next_step(&mut self, invariant: bool) {
-        let (edge, rest) = if invariant {
-            (self.edge, self.rest)
-        } else {
-            ([None; 2], None)
-        };
-        *self = StepCache {
-            edge,
-            rest,
-            ..StepCache::default()
-        };
+        self.visited = [false; 2];
+        self.last = None;
+        if !invariant {
+            self.edge = [None; 2];
+            self.rest = None;
+        }
     }
 }
 
