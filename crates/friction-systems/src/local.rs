@@ -128,7 +128,8 @@ pub(crate) struct Point {
 }
 
 /// What a contact's problem keeps through the sweeps of one step: everything that does not
-/// depend on b (on the neighbours' velocities), computed at the first visit.
+/// depend on b (on the neighbours' velocities), computed at the first visit; for a static map
+/// that ignores x, the law at rest is kept through the whole run ([`StepCache::next_step`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct StepCache {
     /// The law at u = 0+ (index 0) and u = 0− (index 1), under the frozen sign.
@@ -224,7 +225,8 @@ impl Local<'_> {
         (self.b - self.w * self.v_s) / self.h
     }
 
-    /// The stick interval and the internal state at rest, computed once per step.
+    /// The stick interval and the internal state at rest, computed once per step (once per
+    /// run for a static map that ignores x).
     fn rest(&self, cache: &mut StepCache) -> Result<((StickInterval, f64), usize), Unsolved> {
         if let Some(rest) = cache.rest {
             return Ok((rest, 0));
