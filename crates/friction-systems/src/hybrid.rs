@@ -73,8 +73,12 @@ impl Link {
     /// The force on end `a`, and `v_b − v_a`.
     #[inline]
     pub(crate) fn force(&self, t: f64, y: &[f64]) -> (f64, f64) {
-        let (xa, va) = self.a.at(t, y);
-        let (xb, vb) = self.b.at(t, y);
+        self.force_between(self.a.at(t, y), self.b.at(t, y))
+    }
+
+    /// The force on end `a`, and `v_b − v_a`, with the ends at `(x_a, v_a)` and `(x_b, v_b)`.
+    #[inline]
+    pub(crate) fn force_between(&self, (xa, va): (f64, f64), (xb, vb): (f64, f64)) -> (f64, f64) {
         let dv = vb - va;
         (self.k * (xb - xa) + self.c * dv, dv)
     }

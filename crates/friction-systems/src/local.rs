@@ -173,14 +173,11 @@ impl Local<'_> {
         self.x_hat + self.h * self.theta * (u + self.v_s)
     }
 
-    /// F, ż, the partials in x and v and those in z at (x, u, z), for a model with at most
-    /// one internal state (the scheme's restriction, checked by [`crate::simulate`]).
+    /// F, ż, the partials in x and v and those in z at (x, u, z), for a model with one
+    /// internal state (the scheme takes at most one, checked by [`crate::simulate`]).
     fn law_at(&self, x: f64, u: f64, z: f64, law: SignLaw) -> (f64, f64, Partials, StatePartials) {
-        let n = usize::from(self.has_state);
         let (mut rate, mut states) = ([0.0], [StatePartials::default()]);
-        let (force, p) =
-            self.model
-                .evaluate(x, u, &[z][..n], law, &mut rate[..n], &mut states[..n]);
+        let (force, p) = self.model.evaluate(x, u, &[z], law, &mut rate, &mut states);
         (force, rate[0], p, states[0])
     }
 
@@ -188,29 +185,33 @@ impl Local<'_> {
     fn point(&self, u: f64, law: SignLaw) -> Result<Point, Unsolved> {
         let x = self.x(u);
         let ht = self.h * self.theta;
-        let mut z = self.z0;
-        let mut iterations = 0;
-        if self.has_state {
-            let known = self.z0 + self.h * (1.0 - self.theta) * self.rate0;
-            loop {
-                let (_, rate, _, d) = self.law_at(x, u, z, law);
-                let dz = (z - known - ht * rate) / (1.0 - ht * d.rate_dz);
-                z -= dz;
-                iterations += 1;
-                if dz.abs() <= LOCAL_ROUNDOFF * z.abs() {
-                    break;
-                }
-                if !dz.is_finite() || iterations == MAX_LOCAL_ITERATIONS {
-                    return Err(Unsolved::State { u, update: dz });
-                }
+        if !self.has_state {
+            let (force, p) = self.model.evaluate(x, u, &[], law, &mut [], &mut []);
+            return Ok(Point {
+                z: self.z0,
+                force,
+                dforce: p.force_dv + p.force_dx * ht,
+                dz: 0.0,
+                iterations: 0,
+            });
+        }
+        // With an internal state: z(u) from the state equation by Newton's method first.
+        let known = self.z0 + self.h * (1.0 - self.theta) * self.rate0;
+        let (mut z, mut iterations) = (self.z0, 0);
+        loop {
+            let (_, rate, _, d) = self.law_at(x, u, z, law);
+            let dz = (z - known - ht * rate) / (1.0 - ht * d.rate_dz);
+            z -= dz;
+            iterations += 1;
+            if dz.abs() <= LOCAL_ROUNDOFF * z.abs() {
+                break;
+            }
+            if !dz.is_finite() || iterations == MAX_LOCAL_ITERATIONS {
+                return Err(Unsolved::State { u, update: dz });
             }
         }
         let (force, _, p, d) = self.law_at(x, u, z, law);
-        let dz_du = if self.has_state {
-            ht * (d.rate_dv + d.rate_dx * ht) / (1.0 - ht * d.rate_dz)
-        } else {
-            0.0
-        };
+        let dz_du = ht * (d.rate_dv + d.rate_dx * ht) / (1.0 - ht * d.rate_dz);
         Ok(Point {
             z,
             force,

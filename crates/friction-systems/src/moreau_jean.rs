@@ -36,7 +36,7 @@ use crate::hybrid::{FrictionSystem, Point};
 use crate::local::{Local, Solved, StepCache};
 use crate::switching::{SLIP_NEGATIVE, SLIP_POSITIVE, STICK};
 use crate::system::{System, SystemError};
-use friction_models::{Direction, SignLaw};
+use friction_models::{Direction, FrictionModel, SignLaw};
 use integrators::{
     EventRecord, Failure, Mode, ModeSwitch, Options, Output, Solution, SolverError, StepControl,
 };
@@ -151,6 +151,19 @@ fn colour_order(rows: &[Vec<(usize, f64)>]) -> Vec<usize> {
     order
 }
 
+/// What a contact's problem needs that does not change through the run.
+struct ContactData<'p> {
+    body: usize,
+    /// Surface velocity v_s.
+    v_s: f64,
+    model: &'p dyn FrictionModel,
+    /// Index of the internal state z in y; `None` for a model without one.
+    state: Option<usize>,
+    /// Whether the law is a static map that does not depend on x (its problem then keeps the
+    /// law at v_rel = 0± and the stick interval from step to step).
+    invariant: bool,
+}
+
 /// The scheme's working state between steps.
 struct Stepper<'p, 'a> {
     p: &'p FrictionSystem<'a>,
@@ -162,7 +175,10 @@ struct Stepper<'p, 'a> {
     modes_prev: Vec<Mode>,
     /// Per body: forces but friction at the start of the step, then the known part of b.
     known: Vec<f64>,
+    /// Per body: the position at the end of the last step.
+    x: Vec<f64>,
     x_hat: Vec<f64>,
+    /// Per body: the velocity at the end of the last step, then Gauss–Seidel's iterate.
     v: Vec<f64>,
     /// Velocities at the start of the step (the extrapolation's older point).
     v_last: Vec<f64>,
@@ -180,9 +196,8 @@ struct Stepper<'p, 'a> {
     link_force: Vec<(f64, f64)>,
     /// Per contact: what its problem keeps through the sweeps of the step.
     cache: Vec<StepCache>,
-    /// Per contact: whether its law is a static map that does not depend on x (its problem
-    /// then keeps the law at v_rel = 0± and the stick interval from step to step).
-    invariant: Vec<bool>,
+    /// Per contact: what the run does not change.
+    contacts: Vec<ContactData<'p>>,
     sweeps: usize,
     iterations: usize,
 }
@@ -220,8 +235,9 @@ impl<'p, 'a> Stepper<'p, 'a> {
             modes: modes0.to_vec(),
             modes_prev: modes0.to_vec(),
             known: vec![0.0; n],
+            x: (0..n).map(|i| y0[l.x[i]]).collect(),
             x_hat: vec![0.0; n],
-            v: vec![0.0; n],
+            v: (0..n).map(|i| y0[l.v(i)]).collect(),
             v_last: (0..n).map(|i| y0[p.layout.v(i)]).collect(),
             dirty: vec![false; n],
             drift: vec![0.0; n],
@@ -229,11 +245,17 @@ impl<'p, 'a> Stepper<'p, 'a> {
             force_start: vec![0.0; p.system.contacts.len()],
             link_force: p.links.iter().map(|link| link.force(t0, y0)).collect(),
             cache: vec![StepCache::default(); p.system.contacts.len()],
-            invariant: p
+            contacts: p
                 .system
                 .contacts
                 .iter()
-                .map(|c| c.model.n_states() == 0 && !c.model.depends_on_position())
+                .map(|c| ContactData {
+                    body: c.body,
+                    v_s: c.surface_velocity,
+                    model: c.model.as_ref(),
+                    state: l.z[c.body].clone().next(),
+                    invariant: c.model.n_states() == 0 && !c.model.depends_on_position(),
+                })
                 .collect(),
             solved,
             sweeps: 0,
@@ -245,28 +267,26 @@ impl<'p, 'a> Stepper<'p, 'a> {
         s
     }
 
-    /// ż of contact j's model at y in `mode`.
+    /// ż of contact j's model at y in `mode` (0 for a model without an internal state).
     fn state_rate(&self, j: usize, y: &[f64], mode: Mode) -> f64 {
-        let c = &self.p.system.contacts[j];
-        let l = &self.p.layout;
-        let z = l.states(c.body, y);
-        if z.is_empty() {
+        let c = &self.contacts[j];
+        let Some(z) = c.state else {
             return 0.0;
-        }
+        };
         let law = match mode {
             STICK => SignLaw::Discontinuous,
             m => self.p.switching.law(m),
         };
-        let u = y[l.v(c.body)] - c.surface_velocity;
+        let x = self.p.layout.x[c.body];
         let mut rate = [0.0];
-        c.model.response(y[l.x[c.body]], u, z, law, &mut rate);
+        c.model
+            .response(y[x], y[x + 1] - c.v_s, &y[z..z + 1], law, &mut rate);
         rate[0]
     }
 
     /// One step from t0 to t0 + h.
     fn step(&mut self, t0: f64, h: f64) -> Result<(), SolverError> {
         let (p, theta) = (self.p, self.theta);
-        let l = &p.layout;
         let t1 = t0 + h;
         if h != self.matrix.h {
             self.matrix = Matrix::new(p, h, theta);
@@ -291,7 +311,7 @@ impl<'p, 'a> Stepper<'p, 'a> {
             }
         }
         for (i, b) in p.system.bodies.iter().enumerate() {
-            let (x, v) = (self.y[l.x[i]], self.y[l.v(i)]);
+            let (x, v) = (self.x[i], self.v[i]);
             self.x_hat[i] = x + h * (1.0 - theta) * v;
             known[i] = b.m * v + h * (1.0 - theta) * known[i];
             // The first guess of v': extrapolated from the last two step ends (a body that
@@ -309,8 +329,7 @@ impl<'p, 'a> Stepper<'p, 'a> {
             Point::Moving { x0, v } => (x0 + v * t1, v),
         };
         for link in &p.links {
-            let ((xa, va), (xb, vb)) = (end(link.a), end(link.b));
-            let f = ht * (link.k * (xb - xa) + link.c * (vb - va));
+            let f = ht * link.force_between(end(link.a), end(link.b)).0;
             if let Point::State { body, .. } = link.a {
                 known[body] += f;
             }
@@ -355,18 +374,18 @@ impl<'p, 'a> Stepper<'p, 'a> {
                 let v = match l.contact[i] {
                     None => b / w,
                     Some(j) => {
-                        let c = &p.system.contacts[j];
+                        let c = &self.contacts[j];
                         let local = Local {
-                            model: c.model.as_ref(),
+                            model: c.model,
                             h,
                             theta: self.theta,
                             w,
                             b,
-                            v_s: c.surface_velocity,
+                            v_s: c.v_s,
                             x_hat: self.x_hat[i],
-                            z0: l.states(i, &self.y).first().copied().unwrap_or(0.0),
+                            z0: c.state.map_or(0.0, |z| self.y[z]),
                             rate0: self.rate[j],
-                            has_state: !l.z[i].is_empty(),
+                            has_state: c.state.is_some(),
                         };
                         let previous = match self.modes_prev[j] {
                             SLIP_POSITIVE => Some((Direction::Positive, self.force_start[j])),
@@ -376,7 +395,7 @@ impl<'p, 'a> Stepper<'p, 'a> {
                         let cache = &mut self.cache[j];
                         if sweeps == 1 {
                             // The first visit of the step (sweep 1 visits every body).
-                            cache.next_step(self.invariant[j]);
+                            cache.next_step(c.invariant);
                         }
                         // The last solution is Newton's starting point and is overwritten.
                         let solved = &mut self.solved[j];
@@ -394,7 +413,7 @@ impl<'p, 'a> Stepper<'p, 'a> {
                             });
                         }
                         self.iterations += solved.iterations;
-                        solved.u + c.surface_velocity
+                        solved.u + c.v_s
                     }
                 };
                 if !v.is_finite() {
@@ -431,22 +450,24 @@ impl<'p, 'a> Stepper<'p, 'a> {
         let (p, theta) = (self.p, self.theta);
         let l = &p.layout;
         for i in 0..self.v.len() {
-            self.y[l.x[i]] = self.x_hat[i] + h * theta * self.v[i];
+            self.x[i] = self.x_hat[i] + h * theta * self.v[i];
+            self.y[l.x[i]] = self.x[i];
             self.y[l.v(i)] = self.v[i];
         }
-        for (j, c) in p.system.contacts.iter().enumerate() {
-            let s = self.solved[j];
-            if let Some(z) = l.z[c.body].clone().next() {
+        for ((c, s), mode) in self.contacts.iter().zip(&self.solved).zip(&mut self.modes) {
+            if let Some(z) = c.state {
                 self.y[z] = s.z;
             }
-            self.modes[j] = match s.direction {
+            *mode = match s.direction {
                 Some(Direction::Positive) => SLIP_POSITIVE,
                 Some(Direction::Negative) => SLIP_NEGATIVE,
                 None => STICK,
             };
         }
-        for j in 0..p.system.contacts.len() {
-            self.rate[j] = self.state_rate(j, &self.y, self.modes[j]);
+        for j in 0..self.contacts.len() {
+            if self.contacts[j].state.is_some() {
+                self.rate[j] = self.state_rate(j, &self.y, self.modes[j]);
+            }
         }
         self.accumulate(t0, h);
     }
@@ -457,8 +478,13 @@ impl<'p, 'a> Stepper<'p, 'a> {
         let (p, theta) = (self.p, self.theta);
         let l = &p.layout;
         let t1 = t0 + h;
-        let (y0, y1) = (&self.y_prev, &self.y);
-        let mean = |i: usize| 0.5 * (y0[l.v(i)] + y1[l.v(i)]);
+        let y0 = &self.y_prev;
+        let (x1, v0, v1) = (&self.x, &self.v_last, &self.v);
+        let mean = |i: usize| 0.5 * (v0[i] + v1[i]);
+        let end = |point: Point| match point {
+            Point::State { body, .. } => (x1[body], v1[body]),
+            Point::Moving { x0, v } => (x0 + v * t1, v),
+        };
         let impulse = |f0: f64, f1: f64| h * (theta * f1 + (1.0 - theta) * f0);
         let mut external = 0.0;
         for f in &p.system.forces {
@@ -466,22 +492,23 @@ impl<'p, 'a> Stepper<'p, 'a> {
             external += i * mean(f.body);
         }
         for (link, start) in p.links.iter().zip(&mut self.link_force) {
-            let ((f0, dv0), (f1, dv1)) = (*start, link.force(t1, y1));
+            let ((f0, dv0), (f1, dv1)) = (*start, link.force_between(end(link.a), end(link.b)));
             *start = (f1, dv1);
-            let i = impulse(f0, f1);
-            external -= link.c * impulse(dv0, dv1) * 0.5 * (dv0 + dv1);
+            // A spring between two bodies without a damper does no work that is not stored.
+            if link.c != 0.0 {
+                external -= link.c * impulse(dv0, dv1) * 0.5 * (dv0 + dv1);
+            }
             if let Point::Moving { v, .. } = link.a {
-                external -= i * v;
+                external -= impulse(f0, f1) * v;
             }
             if let Point::Moving { v, .. } = link.b {
-                external += i * v;
+                external += impulse(f0, f1) * v;
             }
         }
         let (mut dissipated, mut belt) = (0.0, 0.0);
-        for (j, c) in p.system.contacts.iter().enumerate() {
-            let i = self.solved[j].impulse;
-            dissipated += i * (mean(c.body) - c.surface_velocity);
-            belt -= i * c.surface_velocity;
+        for (c, s) in self.contacts.iter().zip(&self.solved) {
+            dissipated += s.impulse * (mean(c.body) - c.v_s);
+            belt -= s.impulse * c.v_s;
         }
         let a = l.accumulators;
         self.y[a] = y0[a] + external;
