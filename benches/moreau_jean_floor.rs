@@ -6,11 +6,12 @@
 //! The kernel keeps everything that makes the result the scheme's: the tridiagonal coupling
 //! `Ŵ = M − h·θ·(C + h·θ·K)`, red–black nonsmooth Gauss–Seidel with the same tolerances and
 //! revisit rule, each contact's problem solved exactly (at rest if the holding force is in the
-//! stick interval, else Newton on its sliding equation through `FrictionModel::evaluate`, the
-//! θ-method on a contact that keeps sliding), the energy accumulators. It drops what the
-//! general scheme owes other systems: springs resolved through their ends, laws that depend on
-//! x or carry a state, the step cache, typed failures, output. Before timing, its final
-//! state must agree with the general scheme's to 1e-12 and its sweeps must be the same count.
+//! stick interval, else its sliding equation, linear for Coulomb's law, solved in closed form
+//! as the general scheme solves it; the θ-method on a contact that keeps sliding), the energy
+//! accumulators. It drops what the general scheme owes other systems: springs resolved
+//! through their ends, laws that depend on x, carry a state or need Newton's method, the step
+//! cache, typed failures, output. Before timing, its final state must agree with the general
+//! scheme's to 1e-12 and its sweeps must be the same count.
 //!
 //! Run: `cargo bench --bench moreau_jean_floor`.
 
@@ -29,9 +30,6 @@ const THETA: f64 = 0.5;
 /// The general scheme's Gauss–Seidel tolerances (`moreau_jean::SWEEP_RTOL`, `SWEEP_ATOL`).
 const SWEEP_RTOL: f64 = 1e-12;
 const SWEEP_ATOL: f64 = 1e-14;
-/// The local problem's linearised-update and roundoff thresholds (`local.rs`).
-const LINEAR_UPDATE: f64 = 1e-8;
-const ROUNDOFF: f64 = 4.0 * f64::EPSILON;
 
 /// The chain's laws, block by block, as `ChainParams::build` scales them.
 fn laws(chain: &ChainParams) -> Vec<Box<dyn FrictionModel>> {
@@ -63,42 +61,24 @@ fn general(chain: &ChainParams) -> (Vec<(f64, f64)>, usize) {
     (states, run.solution.stats.rhs_evals)
 }
 
-/// One sliding point of a contact: the force and dF/du.
-#[derive(Clone, Copy)]
-struct Slip {
-    force: f64,
-    dforce: f64,
-}
-
-/// A contact of the kernel: its law, the law at u = 0± and its stick interval (the same at
-/// every step for a law that ignores x), and what the sweeps of one step keep.
+/// A contact of the kernel: its law at u = 0± (force and slope, the same at every step for a
+/// law that ignores x) and its stick interval.
 struct Contact {
-    law: Box<dyn FrictionModel>,
-    edge: [Slip; 2],
+    edge: [(f64, f64); 2],
     interval: (f64, f64),
-    visited: [bool; 2],
-    last: Option<(usize, f64, f64, Slip)>,
 }
 
 impl Contact {
-    fn new(law: Box<dyn FrictionModel>) -> Contact {
-        let at = |d| slip(law.as_ref(), d, 0.0);
+    fn new(law: &dyn FrictionModel) -> Contact {
+        let at = |d| {
+            let (force, p) = law.evaluate(0.0, 0.0, &[], SignLaw::Frozen(d), &mut [], &mut []);
+            (force, p.force_dv)
+        };
         let s = law.stick_interval(0.0, &[]);
         Contact {
             edge: [at(Direction::Positive), at(Direction::Negative)],
             interval: (s.lower, s.upper),
-            law,
-            visited: [false; 2],
-            last: None,
         }
-    }
-}
-
-fn slip(law: &dyn FrictionModel, d: Direction, u: f64) -> Slip {
-    let (force, p) = law.evaluate(0.0, u, &[], SignLaw::Frozen(d), &mut [], &mut []);
-    Slip {
-        force,
-        dforce: p.force_dv + p.force_dx * H * THETA,
     }
 }
 
@@ -106,82 +86,29 @@ fn slip(law: &dyn FrictionModel, d: Direction, u: f64) -> Slip {
 type Solution = (f64, f64, f64, Option<Direction>);
 
 /// The sliding solution on side `d` of `w·u + h·[θ_f·F(u) + (1−θ_f)·f_k] = b` (the surface at
-/// rest), by Newton's method safeguarded by bisection, as `local.rs` solves it.
-fn slide(
-    c: &mut Contact,
-    d: Direction,
-    theta_f: f64,
-    f_k: f64,
-    guess: f64,
-    w: f64,
-    b: f64,
-) -> Option<Solution> {
-    let side = usize::from(d == Direction::Negative);
+/// rest), if there is one: for Coulomb's law, affine in u on each side, the residual is linear
+/// and its root is closed-form, as the general scheme solves it
+/// (`FrictionModel::affine_in_velocity`).
+fn slide(c: &Contact, d: Direction, theta_f: f64, f_k: f64, w: f64, b: f64) -> Option<Solution> {
     let s = d.sign();
+    let (f0, slope) = c.edge[usize::from(d == Direction::Negative)];
     let impulse = |force: f64| H * (theta_f * force + (1.0 - theta_f) * f_k);
-    let residual = |u: f64, p: &Slip| {
-        (
-            s * (w * (s * u) + impulse(p.force) - b),
-            w + H * theta_f * p.dforce,
-        )
-    };
-    let first = !std::mem::replace(&mut c.visited[side], true);
-    let (r0, dr0) = residual(0.0, &c.edge[side]);
+    let r0 = s * (impulse(f0) - b);
     if r0 >= 0.0 {
         return None;
     }
-    let (mut lo, mut hi) = (0.0, f64::INFINITY);
-    let mut u = if !first && s * guess > 0.0 {
-        s * guess
-    } else if dr0 > 0.0 {
-        -r0 / dr0
-    } else {
-        (b / w).abs()
-    };
-    let mut known = c
-        .last
-        .filter(|l| l.0 == side && l.1 == theta_f && l.2 == u)
-        .map(|l| l.3);
-    loop {
-        let p = known
-            .take()
-            .unwrap_or_else(|| slip(c.law.as_ref(), d, s * u));
-        let (r, dr) = residual(u, &p);
-        if r < 0.0 {
-            lo = u;
-        } else {
-            hi = u;
-        }
-        let newton = u - r / dr;
-        let step = newton - u;
-        if r == 0.0 || step.abs() <= LINEAR_UPDATE * u {
-            let du = if step.abs() <= ROUNDOFF * u {
-                0.0
-            } else {
-                s * step
-            };
-            let at = Slip {
-                force: p.force + p.dforce * du,
-                ..p
-            };
-            let end = s * u + du;
-            c.last = Some((side, theta_f, s * end, at));
-            return Some((end, at.force, impulse(at.force), Some(d)));
-        }
-        u = if dr > 0.0 && newton > lo && newton < hi {
-            newton
-        } else if hi.is_finite() {
-            0.5 * (lo + hi)
-        } else {
-            2.0 * u
-        };
-    }
+    let u = s * (-r0 / (w + H * theta_f * slope));
+    let force = f0 + slope * u;
+    Some((u, force, impulse(force), Some(d)))
 }
 
 /// The kernel: final (x, v) of every block and its sweep count.
 fn kernel(chain: &ChainParams) -> (Vec<(f64, f64)>, usize) {
     let n = chain.n_bodies;
-    let mut contacts: Vec<Contact> = laws(chain).into_iter().map(Contact::new).collect();
+    let contacts: Vec<Contact> = laws(chain)
+        .iter()
+        .map(|l| Contact::new(l.as_ref()))
+        .collect();
     let ht = H * THETA;
     let (wc, wd) = (ht * (ht * chain.k_chain), ht * (ht * chain.k_driver));
     let diagonal: Vec<f64> = (0..n)
@@ -241,12 +168,9 @@ fn kernel(chain: &ChainParams) -> (Vec<(f64, f64)>, usize) {
                 if i + 1 < n {
                     b += wc * v[i + 1];
                 }
-                let (c, w) = (&mut contacts[i], diagonal[i]);
-                if sweep == 1 {
-                    (c.visited, c.last) = ([false; 2], None);
-                }
+                let (c, w) = (&contacts[i], diagonal[i]);
                 let (f_k, previous) = start[i];
-                let kept = previous.and_then(|d| slide(c, d, THETA, f_k, v[i], w, b));
+                let kept = previous.and_then(|d| slide(c, d, THETA, f_k, w, b));
                 let s = kept.unwrap_or_else(|| {
                     let held = b / H;
                     if (c.interval.0..=c.interval.1).contains(&held) {
@@ -257,7 +181,7 @@ fn kernel(chain: &ChainParams) -> (Vec<(f64, f64)>, usize) {
                         } else {
                             Direction::Negative
                         };
-                        slide(c, d, 1.0, 0.0, v[i], w, b).expect("a sliding solution")
+                        slide(c, d, 1.0, 0.0, w, b).expect("a sliding solution")
                     }
                 });
                 solved[i] = s;

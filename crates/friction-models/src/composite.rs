@@ -151,4 +151,10 @@ impl FrictionModel for Composite {
     fn depends_on_position(&self) -> bool {
         false
     }
+
+    /// `static + F_c·sign(v) + μ_v·v` is affine in v on each side of rest; the Stribeck
+    /// exponential and Dahl's state are not.
+    fn affine_in_velocity(&self) -> bool {
+        self.stribeck == (0.0, 0.0) && self.dahl.is_none()
+    }
 }

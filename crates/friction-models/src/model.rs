@@ -226,4 +226,14 @@ pub trait FrictionModel: fmt::Debug + Send + Sync {
     fn depends_on_position(&self) -> bool {
         true
     }
+
+    /// Whether, in each direction of sliding, the force is affine in the velocity:
+    /// `F(x, v, z; Frozen(d)) = F(x, 0, z; Frozen(d)) + ∂F/∂v(x, 0, z; Frozen(d))·v` for every v,
+    /// as Coulomb's `F_c·sign(v)`, the viscous `μ_v·v` and their sums are. The default,
+    /// `false`, is always safe; a static map that returns `true` and ignores x has a sliding
+    /// equation that time-stepping solves in closed form (one division, no evaluation of the
+    /// law) instead of by Newton's method.
+    fn affine_in_velocity(&self) -> bool {
+        false
+    }
 }

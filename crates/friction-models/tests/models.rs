@@ -363,3 +363,46 @@ fn a_law_that_says_it_ignores_x_gives_the_same_force_partials_and_stick_interval
     // The 16 models of the catalog all ignore x; some are built under both parameter sets.
     assert!(checked >= 16 * 12, "{checked} points checked");
 }
+
+/// A law that says it is affine in v gives, in each direction of sliding, the force on the
+/// line through its value and slope at rest (to rounding), at speeds from 1e-6 to 30 m/s;
+/// and the laws that say so are exactly those without a Stribeck term or a state.
+#[test]
+fn a_law_that_says_it_is_affine_in_v_lies_on_its_tangent_at_rest() {
+    let mut affine = Vec::new();
+    for id in ModelId::ALL {
+        let m = build(id, Variant::Odd);
+        if !m.affine_in_velocity() {
+            continue;
+        }
+        affine.push(id);
+        let z = states(&*m, 0.0);
+        for d in [Direction::Positive, Direction::Negative] {
+            let law = SignLaw::Frozen(d);
+            let at = |v: f64| {
+                let (mut rate, mut s) = (z.clone(), vec![StatePartials::default(); z.len()]);
+                m.evaluate(0.0, v, &z, law, &mut rate, &mut s)
+            };
+            let (f0, p0) = at(0.0);
+            for speed in [1e-6, 0.05, 1.0, 30.0] {
+                let v = d.sign() * speed;
+                let line = f0 + p0.force_dv * v;
+                let (f, p) = at(v);
+                assert!(
+                    (f - line).abs() <= 8.0 * f64::EPSILON * f.abs().max(1.0),
+                    "{id:?} at v = {v}: {f} off the line {line}"
+                );
+                assert_eq!(p.force_dv, p0.force_dv, "{id:?} at v = {v}");
+            }
+        }
+    }
+    assert_eq!(
+        affine,
+        [
+            ModelId::Coulomb,
+            ModelId::Viscous,
+            ModelId::Static,
+            ModelId::Karnopp
+        ]
+    );
+}

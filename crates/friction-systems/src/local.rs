@@ -54,6 +54,10 @@ pub(crate) struct Local<'a> {
     pub rate0: f64,
     /// Whether the model has an internal state.
     pub has_state: bool,
+    /// Whether the model is a static map that ignores x and is affine in v on each side of
+    /// rest ([`FrictionModel::affine_in_velocity`]): R is then linear in u and its root is
+    /// one Newton step from u = 0.
+    pub affine: bool,
 }
 
 /// The solution of one contact's problem.
@@ -341,6 +345,20 @@ impl Local<'_> {
             out.iterations = iterations;
             return Ok(false);
         }
+        if self.affine && dr0 > 0.0 {
+            // R(w) = r0 + dr0·w exactly: its root in closed form, the force on the line.
+            let u = s * (-r0 / dr0);
+            let force = edge.force + edge.dforce * u;
+            *out = Solved {
+                u,
+                z: edge.z,
+                force,
+                impulse: impulse(force),
+                direction: Some(d),
+                iterations,
+            };
+            return Ok(true);
+        }
         let (mut lo, mut hi) = (0.0, f64::INFINITY);
         let guess = s * u_guess;
         let mut w = if !first_visit && guess > 0.0 {
@@ -406,5 +424,102 @@ impl Local<'_> {
             }
         }
         Err(Unsolved::NoConvergence { d, lo, hi })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Local, Solved, StepCache};
+    use friction_models::{Direction, FrictionModel, FrictionParams, ModelId, SignLaw, Variant};
+
+    /// Karnopp's law with F_c = 1 N, μ_v = 0.4 N·s/m and break-away at F_s = 7.5 N: Coulomb
+    /// plus viscous friction, affine in v on each side of rest.
+    fn law() -> Box<dyn FrictionModel> {
+        let p = FrictionParams {
+            f_c: 1.0,
+            mu_v: 0.4,
+            ..FrictionParams::paper()
+        };
+        ModelId::Karnopp.build(Variant::Odd, &p).expect("valid")
+    }
+
+    fn problem(model: &dyn FrictionModel, b: f64, affine: bool) -> Local<'_> {
+        Local {
+            model,
+            h: 1e-2,
+            theta: 0.5,
+            w: 2.0,
+            b,
+            v_s: 0.3,
+            x_hat: 0.0,
+            z0: 0.0,
+            rate0: 0.0,
+            has_state: false,
+            affine,
+        }
+    }
+
+    fn solve(local: &Local, previous: Option<(Direction, f64)>) -> Solved {
+        let mut out = Solved {
+            u: 0.0,
+            z: 0.0,
+            force: 0.0,
+            impulse: 0.0,
+            direction: None,
+            iterations: 0,
+        };
+        local
+            .solve(&mut StepCache::default(), previous, 0.0, &mut out)
+            .expect("solvable");
+        out
+    }
+
+    /// The closed form of an affine law solves `Ŵ·(u + v_s) + P − b = 0` with the impulse
+    /// of the law evaluated at its u, to rounding, and agrees with Newton's iteration (the
+    /// path every other law takes) to rounding: sliding either way from rest, and keeping a
+    /// direction under the θ-method on friction.
+    #[test]
+    fn an_affine_law_slides_in_closed_form_at_newtons_root() {
+        let model = law();
+        for (b, previous) in [
+            (1.5, None),
+            (-1.0, None),
+            (1.5, Some((Direction::Positive, 1.1))),
+            (-2.0, Some((Direction::Negative, -1.2))),
+        ] {
+            let closed = solve(&problem(model.as_ref(), b, true), previous);
+            let newton = solve(&problem(model.as_ref(), b, false), previous);
+            let d = closed.direction.expect("slides");
+            let theta_f = if previous.is_some() { 0.5 } else { 1.0 };
+            let f_k = previous.map_or(0.0, |p| p.1);
+            let force = model.force(0.0, closed.u, &[], SignLaw::Frozen(d));
+            let residual =
+                2.0 * (closed.u + 0.3) + 1e-2 * (theta_f * force + (1.0 - theta_f) * f_k) - b;
+            assert!(
+                residual.abs() <= 4.0 * f64::EPSILON * b.abs(),
+                "{b}: R = {residual:e}"
+            );
+            assert!((closed.force - force).abs() <= 4.0 * f64::EPSILON, "{b}");
+            assert_eq!(closed.iterations, 0, "{b}: no Newton iteration");
+            assert!(newton.iterations > 0, "{b}");
+            assert_eq!(newton.direction, closed.direction, "{b}");
+            assert!(
+                (newton.u - closed.u).abs() <= 4.0 * f64::EPSILON * closed.u.abs(),
+                "{b}: {} against {}",
+                newton.u,
+                closed.u
+            );
+        }
+    }
+
+    /// A holding force inside the stick interval still sticks: the closed form only replaces
+    /// the sliding equation.
+    #[test]
+    fn an_affine_law_at_rest_sticks() {
+        let model = law();
+        let b = 2.0 * 0.3 + 1e-2 * 0.5;
+        let s = solve(&problem(model.as_ref(), b, true), None);
+        assert_eq!((s.u, s.direction), (0.0, None));
+        assert!((s.force - 0.5).abs() < 1e-12);
     }
 }

@@ -162,6 +162,9 @@ struct ContactData<'p> {
     /// Whether the law is a static map that does not depend on x (its problem then keeps the
     /// law at v_rel = 0± and the stick interval from step to step).
     invariant: bool,
+    /// Whether the law is also affine in v on each side of rest
+    /// ([`FrictionModel::affine_in_velocity`]): its sliding equation is then linear.
+    affine: bool,
 }
 
 /// The scheme's working state between steps.
@@ -249,12 +252,16 @@ impl<'p, 'a> Stepper<'p, 'a> {
                 .system
                 .contacts
                 .iter()
-                .map(|c| ContactData {
-                    body: c.body,
-                    v_s: c.surface_velocity,
-                    model: c.model.as_ref(),
-                    state: l.z[c.body].clone().next(),
-                    invariant: c.model.n_states() == 0 && !c.model.depends_on_position(),
+                .map(|c| {
+                    let invariant = c.model.n_states() == 0 && !c.model.depends_on_position();
+                    ContactData {
+                        body: c.body,
+                        v_s: c.surface_velocity,
+                        model: c.model.as_ref(),
+                        state: l.z[c.body].clone().next(),
+                        invariant,
+                        affine: invariant && c.model.affine_in_velocity(),
+                    }
                 })
                 .collect(),
             solved,
@@ -386,6 +393,7 @@ impl<'p, 'a> Stepper<'p, 'a> {
                             z0: c.state.map_or(0.0, |z| self.y[z]),
                             rate0: self.rate[j],
                             has_state: c.state.is_some(),
+                            affine: c.affine,
                         };
                         let previous = match self.modes_prev[j] {
                             SLIP_POSITIVE => Some((Direction::Positive, self.force_start[j])),
