@@ -307,11 +307,24 @@ impl Local<'_> {
         }
     }
 
+    /// The impulse of a step that ends sliding with `force` on `side`.
+    fn impulse(&self, side: Sliding, force: f64) -> f64 {
+        self.h * (side.theta_f * force + (1.0 - side.theta_f) * side.f_k)
+    }
+
+    /// R along `side` as a function of w = s·u ≥ 0 (increasing through its root), and dR/dw,
+    /// with the law at w given by `p`.
+    fn residual(&self, side: Sliding, w: f64, p: &Point) -> (f64, f64) {
+        let s = side.d.sign();
+        let r = self.w * (s * w + self.v_s) + self.impulse(side, p.force) - self.b;
+        (s * r, self.w + self.h * side.theta_f * p.dforce)
+    }
+
     /// The sliding solution in direction `d` with weight `theta_f` on the end force and
     /// `f_k` at the start, written into `out` if one exists on that side (`false` when R
     /// does not change sign there); the iterations spent are added to `out.iterations`
-    /// either way. Newton's iteration starts from u = 0 at the first visit of the step, from
-    /// `u_guess` after it.
+    /// either way. In closed form for an affine law, else by [`Local::newton`].
+    #[inline]
     fn slide(
         &self,
         cache: &mut StepCache,
@@ -321,53 +334,60 @@ impl Local<'_> {
         u_guess: f64,
         out: &mut Solved,
     ) -> Result<bool, Unsolved> {
-        let law = SignLaw::Frozen(d);
-        let s = d.sign();
-        let impulse = |force: f64| self.h * (theta_f * force + (1.0 - theta_f) * f_k);
-        // R along the side of d, as a function of w = s·u ≥ 0: increasing through its root.
-        let residual = |w: f64, p: &Point| {
-            let r = self.w * (s * w + self.v_s) + impulse(p.force) - self.b;
-            (s * r, self.w + self.h * theta_f * p.dforce)
-        };
-        let mut iterations = out.iterations;
+        let sliding = Sliding { d, theta_f, f_k };
         let first_visit = !std::mem::replace(&mut cache.visited[side(d)], true);
         let edge = match cache.edge[side(d)] {
             Some(p) => p,
             None => {
-                let p = self.point(0.0, law)?;
-                iterations += p.iterations;
+                let p = self.point(0.0, SignLaw::Frozen(d))?;
+                out.iterations += p.iterations;
                 cache.edge[side(d)] = Some(p);
                 p
             }
         };
-        let (r0, dr0) = residual(0.0, &edge);
+        let (r0, dr0) = self.residual(sliding, 0.0, &edge);
         if r0 >= 0.0 {
-            out.iterations = iterations;
             return Ok(false);
         }
         if self.affine && dr0 > 0.0 {
             // R(w) = r0 + dr0·w exactly: its root in closed form, the force on the line.
-            let u = s * (-r0 / dr0);
+            let u = d.sign() * (-r0 / dr0);
             let force = edge.force + edge.dforce * u;
             *out = Solved {
                 u,
                 z: edge.z,
                 force,
-                impulse: impulse(force),
+                impulse: self.impulse(sliding, force),
                 direction: Some(d),
-                iterations,
+                iterations: out.iterations,
             };
             return Ok(true);
         }
-        let (mut lo, mut hi) = (0.0, f64::INFINITY);
-        let guess = s * u_guess;
-        let mut w = if !first_visit && guess > 0.0 {
+        let guess = d.sign() * u_guess;
+        let w = if !first_visit && guess > 0.0 {
             guess
         } else if dr0 > 0.0 {
             -r0 / dr0
         } else {
             (self.b / self.w - self.v_s).abs().max(f64::MIN_POSITIVE)
         };
+        self.newton(cache, sliding, w, out)
+    }
+
+    /// Newton's iteration on `sliding`'s equation from w = s·u > 0 (the root lies on that
+    /// side), safeguarded by bisection; a start at the last solution of the step takes the
+    /// law kept there instead of evaluating it.
+    fn newton(
+        &self,
+        cache: &mut StepCache,
+        sliding: Sliding,
+        mut w: f64,
+        out: &mut Solved,
+    ) -> Result<bool, Unsolved> {
+        let Sliding { d, theta_f, .. } = sliding;
+        let (law, s) = (SignLaw::Frozen(d), d.sign());
+        let mut iterations = out.iterations;
+        let (mut lo, mut hi) = (0.0, f64::INFINITY);
         let mut known = cache
             .last
             .filter(|&(dl, tl, wl, _)| dl == d && tl == theta_f && wl == w)
@@ -381,7 +401,7 @@ impl Local<'_> {
                     p
                 }
             };
-            let (r, dr) = residual(w, &p);
+            let (r, dr) = self.residual(sliding, w, &p);
             if r < 0.0 {
                 lo = w;
             } else {
@@ -405,7 +425,7 @@ impl Local<'_> {
                     u: s * w + du,
                     z: at.z,
                     force: at.force,
-                    impulse: impulse(at.force),
+                    impulse: self.impulse(sliding, at.force),
                     direction: Some(d),
                     iterations,
                 };
@@ -425,6 +445,15 @@ impl Local<'_> {
         }
         Err(Unsolved::NoConvergence { d, lo, hi })
     }
+}
+
+/// One side's sliding equation: direction d, weight θ_f of the force at the end of the step
+/// and the force F_k at its start.
+#[derive(Clone, Copy)]
+struct Sliding {
+    d: Direction,
+    theta_f: f64,
+    f_k: f64,
 }
 
 #[cfg(test)]
