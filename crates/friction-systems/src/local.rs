@@ -13,7 +13,9 @@
 //! the model's stick interval (a projection onto a closed interval: the relay problem of one
 //! contact). Sliding in direction d, `P = h·[θ_f·F_d(x, u, z) + (1−θ_f)·F_k]` with the frozen
 //! law of direction d, and `R(u) = Ŵ·(u + v_s) + P − b = 0` is solved for u on the side of d by
-//! Newton's method safeguarded by bisection (Press et al., *Numerical Recipes*, `rtsafe`).
+//! Newton's method safeguarded by bisection (Press et al., *Numerical Recipes*, `rtsafe`)
+//! ([`Newton`]), or, for a law affine in v that ignores x and has no state, in closed form
+//! ([`Affine`]). Which of rest and sliding holds is decided once for both, by [`solve`].
 
 use friction_models::{Direction, FrictionModel, Partials, SignLaw, StatePartials, StickInterval};
 use std::fmt;
@@ -32,10 +34,9 @@ const LOCAL_ROUNDOFF: f64 = 4.0 * f64::EPSILON;
 /// scale of u (a Stribeck curve varies on v_s).
 const LINEAR_UPDATE: f64 = 1e-8;
 
-/// One contact's problem in one sweep.
-pub(crate) struct Local<'a> {
-    /// The contact's law.
-    pub model: &'a dyn FrictionModel,
+/// The momentum equation of one body in one sweep, `Ŵ·(u + v_s) = b − P`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Momentum {
     /// Step size h, s.
     pub h: f64,
     /// θ of the smooth forces (and of the internal state).
@@ -46,6 +47,44 @@ pub(crate) struct Local<'a> {
     pub b: f64,
     /// Surface velocity v_s, m/s.
     pub v_s: f64,
+}
+
+impl Momentum {
+    /// The force that holds the body at rest, `λ* = (b − Ŵ·v_s)/h`.
+    fn holding_force(&self) -> f64 {
+        (self.b - self.w * self.v_s) / self.h
+    }
+
+    /// The impulse `P = h·[θ_f·F + (1−θ_f)·F_k]` of a step that ends sliding with `force`.
+    fn impulse(&self, sliding: Sliding, force: f64) -> f64 {
+        self.h * (sliding.theta_f * force + (1.0 - sliding.theta_f) * sliding.f_k)
+    }
+
+    /// R along the side of sliding as a function of w = s·u ≥ 0 (increasing through its
+    /// root), and dR/dw, with the law's force and dF/du there.
+    fn residual(&self, sliding: Sliding, w: f64, force: f64, dforce: f64) -> (f64, f64) {
+        let s = sliding.d.sign();
+        let r = self.w * (s * w + self.v_s) + self.impulse(sliding, force) - self.b;
+        (s * r, self.w + self.h * sliding.theta_f * dforce)
+    }
+}
+
+/// One side's sliding equation: direction d, weight θ_f of the force at the end of the step
+/// and the force F_k at its start.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Sliding {
+    d: Direction,
+    theta_f: f64,
+    f_k: f64,
+}
+
+/// One contact's problem in one sweep, for any law: the law called through
+/// [`FrictionModel::evaluate`], its internal state solved with the velocity.
+pub(crate) struct Local<'a> {
+    /// The contact's law.
+    pub model: &'a dyn FrictionModel,
+    /// The body's momentum equation.
+    pub eq: Momentum,
     /// End position with the body's own end velocity left out, m.
     pub x_hat: f64,
     /// Internal state at the start of the step (0 without one).
@@ -54,10 +93,6 @@ pub(crate) struct Local<'a> {
     pub rate0: f64,
     /// Whether the model has an internal state.
     pub has_state: bool,
-    /// Whether the model is a static map that ignores x and is affine in v on each side of
-    /// rest ([`FrictionModel::affine_in_velocity`]): R is then linear in u and its root is
-    /// one Newton step from u = 0.
-    pub affine: bool,
 }
 
 /// The solution of one contact's problem.
@@ -174,7 +209,7 @@ fn side(d: Direction) -> usize {
 impl Local<'_> {
     /// The end position for relative velocity u.
     fn x(&self, u: f64) -> f64 {
-        self.x_hat + self.h * self.theta * (u + self.v_s)
+        self.x_hat + self.eq.h * self.eq.theta * (u + self.eq.v_s)
     }
 
     /// F, ż, the partials in x and v and those in z at (x, u, z), for a model with one
@@ -188,7 +223,8 @@ impl Local<'_> {
     /// z(u) from the state equation and F(x(u), u, z(u)) with dF/du, under `law`.
     fn point(&self, u: f64, law: SignLaw) -> Result<Point, Unsolved> {
         let x = self.x(u);
-        let ht = self.h * self.theta;
+        let (h, theta) = (self.eq.h, self.eq.theta);
+        let ht = h * theta;
         if !self.has_state {
             let (force, p) = self.model.evaluate(x, u, &[], law, &mut [], &mut []);
             return Ok(Point {
@@ -200,7 +236,7 @@ impl Local<'_> {
             });
         }
         // With an internal state: z(u) from the state equation by Newton's method first.
-        let known = self.z0 + self.h * (1.0 - self.theta) * self.rate0;
+        let known = self.z0 + h * (1.0 - theta) * self.rate0;
         let (mut z, mut iterations) = (self.z0, 0);
         loop {
             let (_, rate, _, d) = self.law_at(x, u, z, law);
@@ -224,171 +260,167 @@ impl Local<'_> {
             iterations,
         })
     }
+}
 
-    /// The force that holds the body at rest, λ*.
-    fn holding_force(&self) -> f64 {
-        (self.b - self.w * self.v_s) / self.h
-    }
+/// What distinguishes one law's contact problem from another's: its law at rest and the
+/// solution of its sliding equation on one side. Which of them holds is decided by
+/// [`solve`], the same for every law.
+pub(crate) trait ContactProblem {
+    /// The body's momentum equation.
+    fn eq(&self) -> &Momentum;
 
-    /// The stick interval and the internal state at rest, computed once per step (once per
-    /// run for a static map that ignores x).
-    fn rest(&self, cache: &mut StepCache) -> Result<((StickInterval, f64), usize), Unsolved> {
-        if let Some(rest) = cache.rest {
-            return Ok((rest, 0));
-        }
-        let (z, iterations) = if self.has_state {
-            let rest = self.point(0.0, SignLaw::Discontinuous)?;
-            (rest.z, rest.iterations)
-        } else {
-            (self.z0, 0)
+    /// The stick interval and the internal state at rest, adding the Newton iterations
+    /// spent to `out.iterations`.
+    fn rest(&mut self, out: &mut Solved) -> Result<(StickInterval, f64), Unsolved>;
+
+    /// The sliding solution on `sliding`'s side written into `out`, if one exists there
+    /// (`false` when R does not change sign on that side); the iterations spent are added to
+    /// `out.iterations` either way.
+    fn slide(&mut self, sliding: Sliding, out: &mut Solved) -> Result<bool, Unsolved>;
+}
+
+/// Solves `problem` into `out`, adding the Newton iterations spent to `out.iterations`:
+/// first, if the contact slid in `previous` (direction, force F_k) through the step before,
+/// with the θ-method on friction if it still slides that way (or either way, for a law
+/// continuous at rest: a stick interval of zero width, as LuGre's); otherwise at rest if λ*
+/// is admissible, else sliding with the impulse implicit.
+#[inline]
+pub(crate) fn solve<P: ContactProblem>(
+    problem: &mut P,
+    previous: Option<(Direction, f64)>,
+    out: &mut Solved,
+) -> Result<(), Unsolved> {
+    let theta = problem.eq().theta;
+    if let Some((d, f_k)) = previous.filter(|_| theta < 1.0) {
+        let sliding = Sliding {
+            d,
+            theta_f: theta,
+            f_k,
         };
-        let n = usize::from(self.has_state);
-        let rest = (self.model.stick_interval(self.x(0.0), &[z][..n]), z);
-        cache.rest = Some(rest);
-        Ok((rest, iterations))
-    }
-
-    /// Solves the problem into `out`, adding the Newton iterations spent to
-    /// `out.iterations`: first, if the contact slid in `previous` (direction, force F_k)
-    /// through the step before, with the θ-method on friction if it still slides that way (or
-    /// either way, for a law continuous at rest: a stick interval of zero width, as LuGre's);
-    /// otherwise at rest if λ* is admissible, else sliding with the impulse implicit.
-    /// `u_guess` starts Newton's iteration on a visit after the first (`cache` filled).
-    pub fn solve(
-        &self,
-        cache: &mut StepCache,
-        previous: Option<(Direction, f64)>,
-        u_guess: f64,
-        out: &mut Solved,
-    ) -> Result<(), Unsolved> {
-        if let Some((d, f_k)) = previous.filter(|_| self.theta < 1.0) {
-            if self.slide(cache, d, self.theta, f_k, u_guess, out)? {
-                return Ok(());
-            }
-            let ((interval, _), n) = self.rest(cache)?;
-            out.iterations += n;
-            if interval.upper == interval.lower {
-                let reversed = match d {
-                    Direction::Positive => Direction::Negative,
-                    Direction::Negative => Direction::Positive,
-                };
-                if self.slide(cache, reversed, self.theta, f_k, u_guess, out)? {
-                    return Ok(());
-                }
-            }
-        }
-        let ((interval, z_rest), n) = self.rest(cache)?;
-        out.iterations += n;
-        let held = self.holding_force();
-        if interval.contains(held) {
-            *out = Solved {
-                u: 0.0,
-                z: z_rest,
-                force: held,
-                impulse: self.h * held,
-                direction: None,
-                iterations: out.iterations,
-            };
+        if problem.slide(sliding, out)? {
             return Ok(());
         }
-        let d = if held > interval.upper {
-            Direction::Positive
-        } else {
-            Direction::Negative
-        };
-        if self.slide(cache, d, 1.0, 0.0, u_guess, out)? {
-            Ok(())
-        } else {
-            Err(Unsolved::OutsideInterval {
-                d,
-                lower: interval.lower,
-                upper: interval.upper,
-            })
+        let interval = problem.rest(out)?.0;
+        if interval.upper == interval.lower {
+            let reversed = match d {
+                Direction::Positive => Direction::Negative,
+                Direction::Negative => Direction::Positive,
+            };
+            if problem.slide(
+                Sliding {
+                    d: reversed,
+                    ..sliding
+                },
+                out,
+            )? {
+                return Ok(());
+            }
         }
     }
+    let (interval, z_rest) = problem.rest(out)?;
+    let eq = *problem.eq();
+    let held = eq.holding_force();
+    if interval.contains(held) {
+        *out = Solved {
+            u: 0.0,
+            z: z_rest,
+            force: held,
+            impulse: eq.h * held,
+            direction: None,
+            iterations: out.iterations,
+        };
+        return Ok(());
+    }
+    let d = if held > interval.upper {
+        Direction::Positive
+    } else {
+        Direction::Negative
+    };
+    let sliding = Sliding {
+        d,
+        theta_f: 1.0,
+        f_k: 0.0,
+    };
+    if problem.slide(sliding, out)? {
+        Ok(())
+    } else {
+        Err(Unsolved::OutsideInterval {
+            d,
+            lower: interval.lower,
+            upper: interval.upper,
+        })
+    }
+}
 
-    /// The impulse of a step that ends sliding with `force` on `side`.
-    fn impulse(&self, side: Sliding, force: f64) -> f64 {
-        self.h * (side.theta_f * force + (1.0 - side.theta_f) * side.f_k)
+/// A contact's problem for any law: the sliding equation by Newton's method safeguarded by
+/// bisection, with what the sweeps of the step keep in `cache`; `u_guess` (the last
+/// solution) starts Newton's iteration on a visit after the first.
+pub(crate) struct Newton<'l, 'c> {
+    /// The contact's problem.
+    pub local: &'l Local<'l>,
+    /// What the sweeps of the step keep.
+    pub cache: &'c mut StepCache,
+    /// The contact's last relative velocity.
+    pub u_guess: f64,
+}
+
+impl ContactProblem for Newton<'_, '_> {
+    fn eq(&self) -> &Momentum {
+        &self.local.eq
     }
 
-    /// R along `side` as a function of w = s·u ≥ 0 (increasing through its root), and dR/dw,
-    /// with the law at w given by `p`.
-    fn residual(&self, side: Sliding, w: f64, p: &Point) -> (f64, f64) {
-        let s = side.d.sign();
-        let r = self.w * (s * w + self.v_s) + self.impulse(side, p.force) - self.b;
-        (s * r, self.w + self.h * side.theta_f * p.dforce)
+    /// Computed once per step (once per run for a static map that ignores x).
+    fn rest(&mut self, out: &mut Solved) -> Result<(StickInterval, f64), Unsolved> {
+        if let Some(rest) = self.cache.rest {
+            return Ok(rest);
+        }
+        let local = self.local;
+        let z = if local.has_state {
+            let rest = local.point(0.0, SignLaw::Discontinuous)?;
+            out.iterations += rest.iterations;
+            rest.z
+        } else {
+            local.z0
+        };
+        let n = usize::from(local.has_state);
+        let rest = (local.model.stick_interval(local.x(0.0), &[z][..n]), z);
+        self.cache.rest = Some(rest);
+        Ok(rest)
     }
 
-    /// The sliding solution in direction `d` with weight `theta_f` on the end force and
-    /// `f_k` at the start, written into `out` if one exists on that side (`false` when R
-    /// does not change sign there); the iterations spent are added to `out.iterations`
-    /// either way. In closed form for an affine law, else by [`Local::newton`].
-    #[inline]
-    fn slide(
-        &self,
-        cache: &mut StepCache,
-        d: Direction,
-        theta_f: f64,
-        f_k: f64,
-        u_guess: f64,
-        out: &mut Solved,
-    ) -> Result<bool, Unsolved> {
-        let sliding = Sliding { d, theta_f, f_k };
-        let first_visit = !std::mem::replace(&mut cache.visited[side(d)], true);
-        let edge = match cache.edge[side(d)] {
+    /// Newton's iteration starts from u = 0 at the first visit of the step, from `u_guess`
+    /// after it; a start at the last solution of the step takes the law kept there instead
+    /// of evaluating it.
+    fn slide(&mut self, sliding: Sliding, out: &mut Solved) -> Result<bool, Unsolved> {
+        let (local, eq) = (self.local, &self.local.eq);
+        let Sliding { d, theta_f, .. } = sliding;
+        let (law, s) = (SignLaw::Frozen(d), d.sign());
+        let first_visit = !std::mem::replace(&mut self.cache.visited[side(d)], true);
+        let edge = match self.cache.edge[side(d)] {
             Some(p) => p,
             None => {
-                let p = self.point(0.0, SignLaw::Frozen(d))?;
+                let p = local.point(0.0, law)?;
                 out.iterations += p.iterations;
-                cache.edge[side(d)] = Some(p);
+                self.cache.edge[side(d)] = Some(p);
                 p
             }
         };
-        let (r0, dr0) = self.residual(sliding, 0.0, &edge);
+        let (r0, dr0) = eq.residual(sliding, 0.0, edge.force, edge.dforce);
         if r0 >= 0.0 {
             return Ok(false);
         }
-        if self.affine && dr0 > 0.0 {
-            // R(w) = r0 + dr0·w exactly: its root in closed form, the force on the line.
-            let u = d.sign() * (-r0 / dr0);
-            let force = edge.force + edge.dforce * u;
-            *out = Solved {
-                u,
-                z: edge.z,
-                force,
-                impulse: self.impulse(sliding, force),
-                direction: Some(d),
-                iterations: out.iterations,
-            };
-            return Ok(true);
-        }
-        let guess = d.sign() * u_guess;
-        let w = if !first_visit && guess > 0.0 {
+        let guess = s * self.u_guess;
+        let mut w = if !first_visit && guess > 0.0 {
             guess
         } else if dr0 > 0.0 {
             -r0 / dr0
         } else {
-            (self.b / self.w - self.v_s).abs().max(f64::MIN_POSITIVE)
+            (eq.b / eq.w - eq.v_s).abs().max(f64::MIN_POSITIVE)
         };
-        self.newton(cache, sliding, w, out)
-    }
-
-    /// Newton's iteration on `sliding`'s equation from w = s·u > 0 (the root lies on that
-    /// side), safeguarded by bisection; a start at the last solution of the step takes the
-    /// law kept there instead of evaluating it.
-    fn newton(
-        &self,
-        cache: &mut StepCache,
-        sliding: Sliding,
-        mut w: f64,
-        out: &mut Solved,
-    ) -> Result<bool, Unsolved> {
-        let Sliding { d, theta_f, .. } = sliding;
-        let (law, s) = (SignLaw::Frozen(d), d.sign());
         let mut iterations = out.iterations;
         let (mut lo, mut hi) = (0.0, f64::INFINITY);
-        let mut known = cache
+        let mut known = self
+            .cache
             .last
             .filter(|&(dl, tl, wl, _)| dl == d && tl == theta_f && wl == w)
             .map(|(.., p)| p);
@@ -396,12 +428,12 @@ impl Local<'_> {
             let p = match known.take() {
                 Some(p) => p,
                 None => {
-                    let p = self.point(s * w, law)?;
+                    let p = local.point(s * w, law)?;
                     iterations += p.iterations + 1;
                     p
                 }
             };
-            let (r, dr) = self.residual(sliding, w, &p);
+            let (r, dr) = eq.residual(sliding, w, p.force, p.dforce);
             if r < 0.0 {
                 lo = w;
             } else {
@@ -425,11 +457,11 @@ impl Local<'_> {
                     u: s * w + du,
                     z: at.z,
                     force: at.force,
-                    impulse: self.impulse(sliding, at.force),
+                    impulse: eq.impulse(sliding, at.force),
                     direction: Some(d),
                     iterations,
                 };
-                cache.last = Some((d, theta_f, s * out.u, at));
+                self.cache.last = Some((d, theta_f, s * out.u, at));
                 return Ok(true);
             }
             w = if dr > 0.0 && newton > lo && newton < hi {
@@ -447,18 +479,78 @@ impl Local<'_> {
     }
 }
 
-/// One side's sliding equation: direction d, weight θ_f of the force at the end of the step
-/// and the force F_k at its start.
-#[derive(Clone, Copy)]
-struct Sliding {
-    d: Direction,
-    theta_f: f64,
-    f_k: f64,
+/// A law affine in v on each side of rest that ignores x and has no internal state
+/// ([`FrictionModel::affine_in_velocity`], [`FrictionModel::depends_on_position`]), read
+/// once per run: `F(u) = F(0±) + F'(0±)·u` in each direction, and its stick interval.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct AffineLaw {
+    /// F and dF/du at u = 0+ (index 0) and u = 0− (index 1), under the frozen sign.
+    edge: [(f64, f64); 2],
+    interval: StickInterval,
+}
+
+impl AffineLaw {
+    /// The law of `model`, if it is one.
+    pub fn new(model: &dyn FrictionModel) -> Option<AffineLaw> {
+        if model.n_states() > 0 || model.depends_on_position() || !model.affine_in_velocity() {
+            return None;
+        }
+        let at = |d| {
+            let (force, p) = model.evaluate(0.0, 0.0, &[], SignLaw::Frozen(d), &mut [], &mut []);
+            (force, p.force_dv)
+        };
+        Some(AffineLaw {
+            edge: [at(Direction::Positive), at(Direction::Negative)],
+            interval: model.stick_interval(0.0, &[]),
+        })
+    }
+}
+
+/// A contact's problem for an [`AffineLaw`]: its sliding residual is linear in u,
+/// `R(u) = R(0±) + R'(0±)·u`, and its root is taken in closed form, with no call of the law.
+pub(crate) struct Affine<'a> {
+    /// The contact's law.
+    pub law: &'a AffineLaw,
+    /// The body's momentum equation.
+    pub eq: Momentum,
+}
+
+impl ContactProblem for Affine<'_> {
+    fn eq(&self) -> &Momentum {
+        &self.eq
+    }
+
+    fn rest(&mut self, _: &mut Solved) -> Result<(StickInterval, f64), Unsolved> {
+        Ok((self.law.interval, 0.0))
+    }
+
+    fn slide(&mut self, sliding: Sliding, out: &mut Solved) -> Result<bool, Unsolved> {
+        let (force0, slope) = self.law.edge[side(sliding.d)];
+        let (r0, dr0) = self.eq.residual(sliding, 0.0, force0, slope);
+        if r0 >= 0.0 {
+            return Ok(false);
+        }
+        if dr0 <= 0.0 {
+            // A slope that cancels Ŵ: R stays negative on the whole side.
+            return Err(Unsolved::NoSpeed { d: sliding.d });
+        }
+        let u = sliding.d.sign() * (-r0 / dr0);
+        let force = force0 + slope * u;
+        *out = Solved {
+            u,
+            z: 0.0,
+            force,
+            impulse: self.eq.impulse(sliding, force),
+            direction: Some(sliding.d),
+            iterations: out.iterations,
+        };
+        Ok(true)
+    }
 }
 
 #[cfg(test)]
 mod tests {
-    use super::{Local, Solved, StepCache};
+    use super::{solve, Affine, AffineLaw, Local, Momentum, Newton, Solved, StepCache};
     use friction_models::{Direction, FrictionModel, FrictionParams, ModelId, SignLaw, Variant};
 
     /// Karnopp's law with F_c = 1 N, μ_v = 0.4 N·s/m and break-away at F_s = 7.5 N: Coulomb
@@ -472,34 +564,60 @@ mod tests {
         ModelId::Karnopp.build(Variant::Odd, &p).expect("valid")
     }
 
-    fn problem(model: &dyn FrictionModel, b: f64, affine: bool) -> Local<'_> {
-        Local {
-            model,
+    fn eq(b: f64) -> Momentum {
+        Momentum {
             h: 1e-2,
             theta: 0.5,
             w: 2.0,
             b,
             v_s: 0.3,
-            x_hat: 0.0,
-            z0: 0.0,
-            rate0: 0.0,
-            has_state: false,
-            affine,
         }
     }
 
-    fn solve(local: &Local, previous: Option<(Direction, f64)>) -> Solved {
-        let mut out = Solved {
+    fn empty() -> Solved {
+        Solved {
             u: 0.0,
             z: 0.0,
             force: 0.0,
             impulse: 0.0,
             direction: None,
             iterations: 0,
+        }
+    }
+
+    /// The problem solved by Newton's method, as for any law.
+    fn by_newton(model: &dyn FrictionModel, b: f64, previous: Option<(Direction, f64)>) -> Solved {
+        let local = Local {
+            model,
+            eq: eq(b),
+            x_hat: 0.0,
+            z0: 0.0,
+            rate0: 0.0,
+            has_state: false,
         };
-        local
-            .solve(&mut StepCache::default(), previous, 0.0, &mut out)
-            .expect("solvable");
+        let mut problem = Newton {
+            local: &local,
+            cache: &mut StepCache::default(),
+            u_guess: 0.0,
+        };
+        let mut out = empty();
+        solve(&mut problem, previous, &mut out).expect("solvable");
+        out
+    }
+
+    /// The problem solved in closed form.
+    fn closed(model: &dyn FrictionModel, b: f64, previous: Option<(Direction, f64)>) -> Solved {
+        let law = AffineLaw::new(model).expect("an affine law");
+        let mut out = empty();
+        solve(
+            &mut Affine {
+                law: &law,
+                eq: eq(b),
+            },
+            previous,
+            &mut out,
+        )
+        .expect("solvable");
         out
     }
 
@@ -516,8 +634,8 @@ mod tests {
             (1.5, Some((Direction::Positive, 1.1))),
             (-2.0, Some((Direction::Negative, -1.2))),
         ] {
-            let closed = solve(&problem(model.as_ref(), b, true), previous);
-            let newton = solve(&problem(model.as_ref(), b, false), previous);
+            let closed = closed(model.as_ref(), b, previous);
+            let newton = by_newton(model.as_ref(), b, previous);
             let d = closed.direction.expect("slides");
             let theta_f = if previous.is_some() { 0.5 } else { 1.0 };
             let f_k = previous.map_or(0.0, |p| p.1);
@@ -541,14 +659,27 @@ mod tests {
         }
     }
 
-    /// A holding force inside the stick interval still sticks: the closed form only replaces
-    /// the sliding equation.
+    /// A holding force inside the stick interval sticks, in closed form as by Newton.
     #[test]
     fn an_affine_law_at_rest_sticks() {
         let model = law();
         let b = 2.0 * 0.3 + 1e-2 * 0.5;
-        let s = solve(&problem(model.as_ref(), b, true), None);
-        assert_eq!((s.u, s.direction), (0.0, None));
-        assert!((s.force - 0.5).abs() < 1e-12);
+        for s in [
+            closed(model.as_ref(), b, None),
+            by_newton(model.as_ref(), b, None),
+        ] {
+            assert_eq!((s.u, s.direction), (0.0, None));
+            assert!((s.force - 0.5).abs() < 1e-12);
+        }
+    }
+
+    /// Only a law that says it is affine, ignores x and has no state is read as one.
+    #[test]
+    fn only_an_affine_static_map_is_an_affine_law() {
+        let p = FrictionParams::paper();
+        let is =
+            |id: ModelId| AffineLaw::new(id.build(Variant::Odd, &p).unwrap().as_ref()).is_some();
+        assert!(is(ModelId::Coulomb) && is(ModelId::Viscous) && is(ModelId::Karnopp));
+        assert!(!is(ModelId::Cvs) && !is(ModelId::Dv) && !is(ModelId::LuGre));
     }
 }

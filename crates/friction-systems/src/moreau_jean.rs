@@ -33,7 +33,7 @@
 //! numerical dissipation. Points between step ends (a grid output) are linear interpolations.
 
 use crate::hybrid::{FrictionSystem, Point};
-use crate::local::{Local, Solved, StepCache};
+use crate::local::{self, Affine, AffineLaw, Local, Momentum, Newton, Solved, StepCache};
 use crate::switching::{SLIP_NEGATIVE, SLIP_POSITIVE, STICK};
 use crate::system::{System, SystemError};
 use friction_models::{Direction, FrictionModel, SignLaw};
@@ -162,9 +162,9 @@ struct ContactData<'p> {
     /// Whether the law is a static map that does not depend on x (its problem then keeps the
     /// law at v_rel = 0± and the stick interval from step to step).
     invariant: bool,
-    /// Whether the law is also affine in v on each side of rest
+    /// The law read once, if it is also affine in v on each side of rest
     /// ([`FrictionModel::affine_in_velocity`]): its sliding equation is then linear.
-    affine: bool,
+    affine: Option<AffineLaw>,
 }
 
 /// The scheme's working state between steps.
@@ -252,16 +252,13 @@ impl<'p, 'a> Stepper<'p, 'a> {
                 .system
                 .contacts
                 .iter()
-                .map(|c| {
-                    let invariant = c.model.n_states() == 0 && !c.model.depends_on_position();
-                    ContactData {
-                        body: c.body,
-                        v_s: c.surface_velocity,
-                        model: c.model.as_ref(),
-                        state: l.z[c.body].clone().next(),
-                        invariant,
-                        affine: invariant && c.model.affine_in_velocity(),
-                    }
+                .map(|c| ContactData {
+                    body: c.body,
+                    v_s: c.surface_velocity,
+                    model: c.model.as_ref(),
+                    state: l.z[c.body].clone().next(),
+                    invariant: c.model.n_states() == 0 && !c.model.depends_on_position(),
+                    affine: AffineLaw::new(c.model.as_ref()),
                 })
                 .collect(),
             solved,
@@ -382,34 +379,47 @@ impl<'p, 'a> Stepper<'p, 'a> {
                     None => b / w,
                     Some(j) => {
                         let c = &self.contacts[j];
-                        let local = Local {
-                            model: c.model,
+                        let eq = Momentum {
                             h,
                             theta: self.theta,
                             w,
                             b,
                             v_s: c.v_s,
-                            x_hat: self.x_hat[i],
-                            z0: c.state.map_or(0.0, |z| self.y[z]),
-                            rate0: self.rate[j],
-                            has_state: c.state.is_some(),
-                            affine: c.affine,
                         };
                         let previous = match self.modes_prev[j] {
                             SLIP_POSITIVE => Some((Direction::Positive, self.force_start[j])),
                             SLIP_NEGATIVE => Some((Direction::Negative, self.force_start[j])),
                             _ => None,
                         };
-                        let cache = &mut self.cache[j];
-                        if sweeps == 1 {
-                            // The first visit of the step (sweep 1 visits every body).
-                            cache.next_step(c.invariant);
-                        }
-                        // The last solution is Newton's starting point and is overwritten.
                         let solved = &mut self.solved[j];
-                        let u_guess = solved.u;
                         solved.iterations = 0;
-                        if let Err(why) = local.solve(cache, previous, u_guess, solved) {
+                        let result = match &c.affine {
+                            Some(law) => local::solve(&mut Affine { law, eq }, previous, solved),
+                            None => {
+                                let cache = &mut self.cache[j];
+                                if sweeps == 1 {
+                                    // The first visit of the step (sweep 1 visits every body).
+                                    cache.next_step(c.invariant);
+                                }
+                                let local = Local {
+                                    model: c.model,
+                                    eq,
+                                    x_hat: self.x_hat[i],
+                                    z0: c.state.map_or(0.0, |z| self.y[z]),
+                                    rate0: self.rate[j],
+                                    has_state: c.state.is_some(),
+                                };
+                                // The last solution is Newton's starting point.
+                                let u_guess = solved.u;
+                                let mut problem = Newton {
+                                    local: &local,
+                                    cache,
+                                    u_guess,
+                                };
+                                local::solve(&mut problem, previous, solved)
+                            }
+                        };
+                        if let Err(why) = result {
                             return Err(SolverError::ContactProblem {
                                 t: t0,
                                 h,
