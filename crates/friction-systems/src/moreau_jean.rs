@@ -289,6 +289,7 @@ impl<'p, 'a> Stepper<'p, 'a> {
     }
 
     /// One step from t0 to t0 + h.
+    #[inline(never)]
     fn step(&mut self, t0: f64, h: f64) -> Result<(), SolverError> {
         let (p, theta) = (self.p, self.theta);
         let t1 = t0 + h;
@@ -347,6 +348,12 @@ impl<'p, 'a> Stepper<'p, 'a> {
     }
 
     /// Nonsmooth Gauss–Seidel over the bodies until no velocity changes.
+    ///
+    /// Kept out of line, as are the step's other phases (`step`, `finish_step`, `accumulate`,
+    /// `switches`): inlined into one function they took 12 % more instructions (callgrind,
+    /// 100-block chain over 50 s: 3.92e9 against 3.46e9) and about 13 % more time (paired
+    /// runs on 1000 blocks), and out of line a profile names each phase.
+    #[inline(never)]
     fn sweep_to_convergence(&mut self, t0: f64, h: f64) -> Result<(), SolverError> {
         let p = self.p;
         let l = &p.layout;
@@ -464,6 +471,7 @@ impl<'p, 'a> Stepper<'p, 'a> {
     }
 
     /// Writes the end state, the modes and the energy accumulators.
+    #[inline(never)]
     fn finish_step(&mut self, t0: f64, h: f64) {
         let (p, theta) = (self.p, self.theta);
         let l = &p.layout;
@@ -492,6 +500,7 @@ impl<'p, 'a> Stepper<'p, 'a> {
 
     /// The energy accumulators: each impulse of the step from t0 to t0 + h times the mean
     /// velocity it acts on.
+    #[inline(never)]
     fn accumulate(&mut self, t0: f64, h: f64) {
         let (p, theta) = (self.p, self.theta);
         let l = &p.layout;
@@ -710,6 +719,7 @@ impl MoreauJean {
 }
 
 /// The contacts whose mode changed between `before` and `after`.
+#[inline(never)]
 fn switches(before: &[Mode], after: &[Mode]) -> Vec<ModeSwitch> {
     before
         .iter()
