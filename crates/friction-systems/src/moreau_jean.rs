@@ -23,7 +23,8 @@
 //!
 //! The coupled problem is solved by nonsmooth Gauss–Seidel (Jean 1999; Acary & Brogliato
 //! 2008, §13.4; Siconos's NSGS): each body's problem solved exactly with its neighbours'
-//! velocities fixed, in index order, sweeping until no velocity changes by more than
+//! velocities fixed, colour by colour (red–black on a chain: see `Matrix::order`), sweeping
+//! until no velocity changes by more than
 //! [`SWEEP_ATOL`]` + `[`SWEEP_RTOL`]`·|v|`; only the neighbours of a body that moved are
 //! visited again. One sweep costs one pass over the springs and contacts: O(N) on a chain.
 //!
