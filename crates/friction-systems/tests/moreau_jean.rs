@@ -429,27 +429,30 @@ impl friction_models::FrictionModel for Opaque {
     }
 }
 
+/// The 30-block chain with `model` on every block, its law behind [`Opaque`] (the trait's
+/// defaults: depends on x, not affine) if `opaque`.
+fn chain_of(model: ModelId, opaque: bool) -> System {
+    ChainParams {
+        n_bodies: 30,
+        ..ChainParams::default()
+    }
+    .build(&FrictionParams::paper(), |p| {
+        let law = model.build(Variant::Odd, p)?;
+        Ok::<_, friction_models::ParamError>(if opaque {
+            Arc::new(Opaque(law)) as Arc<dyn friction_models::FrictionModel>
+        } else {
+            Arc::from(law)
+        })
+    })
+    .unwrap()
+}
+
 #[test]
 fn a_static_map_kept_from_step_to_step_gives_the_same_steps_bit_for_bit() {
     // CVS (stiction, Stribeck, viscous) on a 30-block chain that sticks and slips: the law
     // at rest evaluated once per run (the catalog's law says it ignores x) against once per
     // step (the same law behind the trait's defaults).
-    let chain = |opaque: bool| {
-        ChainParams {
-            n_bodies: 30,
-            ..ChainParams::default()
-        }
-        .build(&FrictionParams::paper(), |p| {
-            let law = ModelId::Cvs.build(Variant::Odd, p)?;
-            Ok::<_, friction_models::ParamError>(if opaque {
-                Arc::new(Opaque(law)) as Arc<dyn friction_models::FrictionModel>
-            } else {
-                Arc::from(law)
-            })
-        })
-        .unwrap()
-    };
-    let (kept, evaluated) = (chain(false), chain(true));
+    let (kept, evaluated) = (chain_of(ModelId::Cvs, false), chain_of(ModelId::Cvs, true));
     let g = grid(30.0, 300);
     let a = stepped(&kept, 0.5, 1e-3, 30.0, &g);
     let b = stepped(&evaluated, 0.5, 1e-3, 30.0, &g);
@@ -457,6 +460,38 @@ fn a_static_map_kept_from_step_to_step_gives_the_same_steps_bit_for_bit() {
     assert_eq!(a.solution.y, b.solution.y);
     assert_eq!(a.solution.modes, b.solution.modes);
     assert_eq!(a.solution.stats, b.solution.stats);
+}
+
+#[test]
+fn an_affine_law_in_closed_form_takes_newtons_steps_without_a_newton_iteration() {
+    // Coulomb (69 switches) and Karnopp (Coulomb, viscous and stiction: 768) on the 30-block
+    // chain over 30 s: the sliding equation in closed form against Newton's iteration on the
+    // same law behind the trait's defaults. The same sweeps, switches and modes; the states
+    // within the sweeps' tolerance; no Newton iteration in closed form.
+    for model in [ModelId::Coulomb, ModelId::Karnopp] {
+        let (closed, newton) = (chain_of(model, false), chain_of(model, true));
+        let g = grid(30.0, 300);
+        let a = stepped(&closed, 0.5, 1e-3, 30.0, &g);
+        let b = stepped(&newton, 0.5, 1e-3, 30.0, &g);
+        let (sa, sb) = (&a.solution.stats, &b.solution.stats);
+        assert!(sa.events > 50, "{model:?}: {sa:?}");
+        assert_eq!(sa.newton_iterations, 0, "{model:?}");
+        assert!(sb.newton_iterations > sa.steps, "{model:?}: {sb:?}");
+        assert_eq!(
+            (sa.steps, sa.rhs_evals, sa.events),
+            (sb.steps, sb.rhs_evals, sb.events),
+            "{model:?}"
+        );
+        assert_eq!(a.solution.modes, b.solution.modes, "{model:?}");
+        let gap = a
+            .solution
+            .y
+            .iter()
+            .zip(&b.solution.y)
+            .map(|(p, q)| (p - q).abs() / p.abs().max(1.0))
+            .fold(0.0, f64::max);
+        assert!(gap < 1e-10, "{model:?}: {gap:e}");
+    }
 }
 
 /// A law whose sliding force at rest (10 N) lies outside its stick interval [−1, 1] N.
