@@ -489,18 +489,40 @@ pub(crate) struct AffineLaw {
     interval: StickInterval,
 }
 
+/// Speeds, m/s, at which [`AffineLaw::new`] holds a law's promise to be affine against the
+/// law itself, in each direction.
+const AFFINE_CHECK_SPEEDS: [f64; 3] = [1e-3, 1.0, 1e3];
+
+/// The relative distance from the line through the law at rest within which a force at
+/// [`AFFINE_CHECK_SPEEDS`] keeps the promise: rounding of a few operations.
+const AFFINE_CHECK_RTOL: f64 = 1e-12;
+
 impl AffineLaw {
-    /// The law of `model`, if it is one.
+    /// The law of `model`, if it is one: a static map that ignores x and says it is affine
+    /// in v, whose forces at ±[`AFFINE_CHECK_SPEEDS`] lie on the line through its force and
+    /// slope at rest. A law that breaks its promise there is solved by Newton's method
+    /// instead: a wrong promise costs speed, not the solution.
     pub fn new(model: &dyn FrictionModel) -> Option<AffineLaw> {
         if model.n_states() > 0 || model.depends_on_position() || !model.affine_in_velocity() {
             return None;
         }
-        let at = |d| {
-            let (force, p) = model.evaluate(0.0, 0.0, &[], SignLaw::Frozen(d), &mut [], &mut []);
+        let at = |d, u| {
+            let (force, p) = model.evaluate(0.0, u, &[], SignLaw::Frozen(d), &mut [], &mut []);
             (force, p.force_dv)
         };
+        let sides = [Direction::Positive, Direction::Negative];
+        let edge = sides.map(|d| at(d, 0.0));
+        for (d, (force0, slope)) in sides.into_iter().zip(edge) {
+            for speed in AFFINE_CHECK_SPEEDS {
+                let u = d.sign() * speed;
+                let (line, force) = (force0 + slope * u, at(d, u).0);
+                if (force - line).abs() > AFFINE_CHECK_RTOL * force.abs().max(force0.abs()) {
+                    return None;
+                }
+            }
+        }
         Some(AffineLaw {
-            edge: [at(Direction::Positive), at(Direction::Negative)],
+            edge,
             interval: model.stick_interval(0.0, &[]),
         })
     }
@@ -681,5 +703,57 @@ mod tests {
             |id: ModelId| AffineLaw::new(id.build(Variant::Odd, &p).unwrap().as_ref()).is_some();
         assert!(is(ModelId::Coulomb) && is(ModelId::Viscous) && is(ModelId::Karnopp));
         assert!(!is(ModelId::Cvs) && !is(ModelId::Dv) && !is(ModelId::LuGre));
+    }
+
+    /// Coulomb's law of 1 N plus `q·v·|v|`, which says it is affine in v.
+    #[derive(Debug)]
+    struct Quadratic {
+        q: f64,
+    }
+
+    impl FrictionModel for Quadratic {
+        fn name(&self) -> &str {
+            "quadratic"
+        }
+        fn n_states(&self) -> usize {
+            0
+        }
+        fn evaluate(
+            &self,
+            _x: f64,
+            v: f64,
+            _z: &[f64],
+            law: SignLaw,
+            _rate: &mut [f64],
+            _states: &mut [friction_models::StatePartials],
+        ) -> (f64, friction_models::Partials) {
+            let partials = friction_models::Partials {
+                force_dx: 0.0,
+                force_dv: 2.0 * self.q * v.abs(),
+            };
+            (law.branches(v).sign() + self.q * v * v.abs(), partials)
+        }
+        fn stick_interval(&self, _x: f64, _z: &[f64]) -> friction_models::StickInterval {
+            friction_models::StickInterval {
+                lower: -1.0,
+                upper: 1.0,
+            }
+        }
+        fn depends_on_position(&self) -> bool {
+            false
+        }
+        fn affine_in_velocity(&self) -> bool {
+            true
+        }
+    }
+
+    /// A law that breaks its promise to be affine is not read as one (it is then solved by
+    /// Newton's method), even when its quadratic term is 1e-9 of the force at 1 m/s; without
+    /// the term it is.
+    #[test]
+    fn a_law_that_breaks_its_affine_promise_is_not_read_as_one() {
+        assert!(AffineLaw::new(&Quadratic { q: 0.0 }).is_some());
+        assert!(AffineLaw::new(&Quadratic { q: 1e-9 }).is_none());
+        assert!(AffineLaw::new(&Quadratic { q: 0.3 }).is_none());
     }
 }
