@@ -222,7 +222,9 @@ pub trait FrictionModel: fmt::Debug + Send + Sync {
     /// The default, `true`, is always safe; a law that returns `false` promises
     /// `∂F/∂x = 0` everywhere, and a static map (no internal state) that does so has a stick
     /// interval and one-sided forces at v = 0± that never change, which time-stepping then
-    /// evaluates once per run instead of once per step.
+    /// evaluates once per run instead of once per step (once it has found them the same to
+    /// the bit at x = 0 and x = ±1e3 m; a law that breaks the promise there is evaluated at
+    /// every step).
     fn depends_on_position(&self) -> bool {
         true
     }

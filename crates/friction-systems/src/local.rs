@@ -497,13 +497,38 @@ const AFFINE_CHECK_SPEEDS: [f64; 3] = [1e-3, 1.0, 1e3];
 /// [`AFFINE_CHECK_SPEEDS`] keeps the promise: rounding of a few operations.
 const AFFINE_CHECK_RTOL: f64 = 1e-12;
 
+/// Positions, m, at which [`invariant_at_rest`] holds a law's promise to ignore x against
+/// the law at x = 0.
+const INVARIANT_CHECK_POSITIONS: [f64; 2] = [-1e3, 1e3];
+
+/// Whether `model` is a static map whose law at rest is the same at every step: it has no
+/// internal state, says it ignores x ([`FrictionModel::depends_on_position`]), and its
+/// stick interval and its force and slope at v_rel = 0± are the same to the bit at x = 0 and
+/// at [`INVARIANT_CHECK_POSITIONS`]. A law that breaks its promise there has its law at rest
+/// evaluated at every step instead: a wrong promise costs speed, not the solution.
+pub(crate) fn invariant_at_rest(model: &dyn FrictionModel) -> bool {
+    if model.n_states() > 0 || model.depends_on_position() {
+        return false;
+    }
+    let at_rest = |x| {
+        let edge = [Direction::Positive, Direction::Negative]
+            .map(|d| model.evaluate(x, 0.0, &[], SignLaw::Frozen(d), &mut [], &mut []));
+        (model.stick_interval(x, &[]), edge)
+    };
+    let origin = at_rest(0.0);
+    INVARIANT_CHECK_POSITIONS
+        .into_iter()
+        .all(|x| at_rest(x) == origin)
+}
+
 impl AffineLaw {
-    /// The law of `model`, if it is one: a static map that ignores x and says it is affine
-    /// in v, whose forces at ±[`AFFINE_CHECK_SPEEDS`] lie on the line through its force and
-    /// slope at rest. A law that breaks its promise there is solved by Newton's method
-    /// instead: a wrong promise costs speed, not the solution.
+    /// The law of `model`, if it is one: a law whose law at rest is the same at every step
+    /// ([`invariant_at_rest`]) and that says it is affine in v, whose forces at
+    /// ±[`AFFINE_CHECK_SPEEDS`] lie on the line through its force and slope at rest. A law
+    /// that breaks its promise there is solved by Newton's method instead: a wrong promise
+    /// costs speed, not the solution.
     pub fn new(model: &dyn FrictionModel) -> Option<AffineLaw> {
-        if model.n_states() > 0 || model.depends_on_position() || !model.affine_in_velocity() {
+        if !model.affine_in_velocity() || !invariant_at_rest(model) {
             return None;
         }
         let at = |d, u| {
@@ -572,7 +597,9 @@ impl ContactProblem for Affine<'_> {
 
 #[cfg(test)]
 mod tests {
-    use super::{solve, Affine, AffineLaw, Local, Momentum, Newton, Solved, StepCache};
+    use super::{
+        invariant_at_rest, solve, Affine, AffineLaw, Local, Momentum, Newton, Solved, StepCache,
+    };
     use friction_models::{Direction, FrictionModel, FrictionParams, ModelId, SignLaw, Variant};
 
     /// Karnopp's law with F_c = 1 N, μ_v = 0.4 N·s/m and break-away at F_s = 7.5 N: Coulomb
@@ -745,6 +772,61 @@ mod tests {
         fn affine_in_velocity(&self) -> bool {
             true
         }
+    }
+
+    /// A law whose stick interval grows with |x| (a law of 1 N at x = 0) and says it ignores x.
+    #[derive(Debug)]
+    struct Creeping;
+
+    impl FrictionModel for Creeping {
+        fn name(&self) -> &str {
+            "creeping"
+        }
+        fn n_states(&self) -> usize {
+            0
+        }
+        fn evaluate(
+            &self,
+            _x: f64,
+            v: f64,
+            _z: &[f64],
+            law: SignLaw,
+            _rate: &mut [f64],
+            _states: &mut [friction_models::StatePartials],
+        ) -> (f64, friction_models::Partials) {
+            (law.branches(v).sign(), friction_models::Partials::default())
+        }
+        fn stick_interval(&self, x: f64, _z: &[f64]) -> friction_models::StickInterval {
+            let level = 1.0 + 1e-6 * x.abs();
+            friction_models::StickInterval {
+                lower: -level,
+                upper: level,
+            }
+        }
+        fn depends_on_position(&self) -> bool {
+            false
+        }
+        fn affine_in_velocity(&self) -> bool {
+            true
+        }
+    }
+
+    /// A law that breaks its promise to ignore x has its law at rest evaluated at every step
+    /// and is not read as an affine law; the catalog's static maps keep theirs.
+    #[test]
+    fn a_law_that_breaks_its_promise_to_ignore_x_is_evaluated_at_every_step() {
+        assert!(!invariant_at_rest(&Creeping));
+        assert!(AffineLaw::new(&Creeping).is_none());
+        let p = FrictionParams::paper();
+        for id in [ModelId::Coulomb, ModelId::Cvs, ModelId::Av] {
+            assert!(
+                invariant_at_rest(id.build(Variant::Odd, &p).unwrap().as_ref()),
+                "{id:?}"
+            );
+        }
+        assert!(!invariant_at_rest(
+            ModelId::Dv.build(Variant::Odd, &p).unwrap().as_ref()
+        ));
     }
 
     /// A law that breaks its promise to be affine is not read as one (it is then solved by

@@ -160,8 +160,8 @@ struct ContactData<'p> {
     model: &'p dyn FrictionModel,
     /// Index of the internal state z in y; `None` for a model without one.
     state: Option<usize>,
-    /// Whether the law is a static map that does not depend on x (its problem then keeps the
-    /// law at v_rel = 0± and the stick interval from step to step).
+    /// Whether the law at rest is the same at every step ([`local::invariant_at_rest`]): its
+    /// problem then keeps the law at v_rel = 0± and the stick interval from step to step.
     invariant: bool,
     /// The law read once, if it is also affine in v on each side of rest
     /// ([`FrictionModel::affine_in_velocity`]): its sliding equation is then linear.
@@ -258,7 +258,7 @@ impl<'p, 'a> Stepper<'p, 'a> {
                     v_s: c.surface_velocity,
                     model: c.model.as_ref(),
                     state: l.z[c.body].clone().next(),
-                    invariant: c.model.n_states() == 0 && !c.model.depends_on_position(),
+                    invariant: local::invariant_at_rest(c.model.as_ref()),
                     affine: AffineLaw::new(c.model.as_ref()),
                 })
                 .collect(),
