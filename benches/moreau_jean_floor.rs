@@ -20,6 +20,7 @@ use friction_lab::friction_models::{
     Direction, FrictionModel, FrictionParams, ModelId, SignLaw, Variant,
 };
 use friction_lab::friction_systems::chain::{scale_levels, ChainParams};
+use friction_lab::friction_systems::moreau_jean::{SWEEP_ATOL, SWEEP_RTOL};
 use friction_lab::friction_systems::{simulate, Switching};
 use friction_lab::integrators::{Options, Output, Solver};
 use std::hint::black_box;
@@ -27,9 +28,6 @@ use std::hint::black_box;
 const T_END: f64 = 50.0;
 const H: f64 = 1e-3;
 const THETA: f64 = 0.5;
-/// The general scheme's Gauss–Seidel tolerances (`moreau_jean::SWEEP_RTOL`, `SWEEP_ATOL`).
-const SWEEP_RTOL: f64 = 1e-12;
-const SWEEP_ATOL: f64 = 1e-14;
 
 /// The chain's laws, block by block, as `ChainParams::build` scales them.
 fn laws(chain: &ChainParams) -> Vec<Box<dyn FrictionModel>> {

@@ -732,15 +732,18 @@ mod tests {
         assert!(!is(ModelId::Cvs) && !is(ModelId::Dv) && !is(ModelId::LuGre));
     }
 
-    /// Coulomb's law of 1 N plus `q·v·|v|`, which says it is affine in v.
+    /// Coulomb's law of 1 N plus `q·v·|v|`, with the stick interval `±(1 + creep·|x|)` N,
+    /// which says it is affine in v and ignores x: each promise is broken when its
+    /// coefficient is not zero.
     #[derive(Debug)]
-    struct Quadratic {
+    struct Promising {
         q: f64,
+        creep: f64,
     }
 
-    impl FrictionModel for Quadratic {
+    impl FrictionModel for Promising {
         fn name(&self) -> &str {
-            "quadratic"
+            "promising"
         }
         fn n_states(&self) -> usize {
             0
@@ -760,44 +763,8 @@ mod tests {
             };
             (law.branches(v).sign() + self.q * v * v.abs(), partials)
         }
-        fn stick_interval(&self, _x: f64, _z: &[f64]) -> friction_models::StickInterval {
-            friction_models::StickInterval {
-                lower: -1.0,
-                upper: 1.0,
-            }
-        }
-        fn depends_on_position(&self) -> bool {
-            false
-        }
-        fn affine_in_velocity(&self) -> bool {
-            true
-        }
-    }
-
-    /// A law whose stick interval grows with |x| (a law of 1 N at x = 0) and says it ignores x.
-    #[derive(Debug)]
-    struct Creeping;
-
-    impl FrictionModel for Creeping {
-        fn name(&self) -> &str {
-            "creeping"
-        }
-        fn n_states(&self) -> usize {
-            0
-        }
-        fn evaluate(
-            &self,
-            _x: f64,
-            v: f64,
-            _z: &[f64],
-            law: SignLaw,
-            _rate: &mut [f64],
-            _states: &mut [friction_models::StatePartials],
-        ) -> (f64, friction_models::Partials) {
-            (law.branches(v).sign(), friction_models::Partials::default())
-        }
         fn stick_interval(&self, x: f64, _z: &[f64]) -> friction_models::StickInterval {
-            let level = 1.0 + 1e-6 * x.abs();
+            let level = 1.0 + self.creep * x.abs();
             friction_models::StickInterval {
                 lower: -level,
                 upper: level,
@@ -815,8 +782,12 @@ mod tests {
     /// and is not read as an affine law; the catalog's static maps keep theirs.
     #[test]
     fn a_law_that_breaks_its_promise_to_ignore_x_is_evaluated_at_every_step() {
-        assert!(!invariant_at_rest(&Creeping));
-        assert!(AffineLaw::new(&Creeping).is_none());
+        let creeping = Promising {
+            q: 0.0,
+            creep: 1e-6,
+        };
+        assert!(!invariant_at_rest(&creeping));
+        assert!(AffineLaw::new(&creeping).is_none());
         let p = FrictionParams::paper();
         for id in [ModelId::Coulomb, ModelId::Cvs, ModelId::Av] {
             assert!(
@@ -834,8 +805,9 @@ mod tests {
     /// the term it is.
     #[test]
     fn a_law_that_breaks_its_affine_promise_is_not_read_as_one() {
-        assert!(AffineLaw::new(&Quadratic { q: 0.0 }).is_some());
-        assert!(AffineLaw::new(&Quadratic { q: 1e-9 }).is_none());
-        assert!(AffineLaw::new(&Quadratic { q: 0.3 }).is_none());
+        let law = |q| Promising { q, creep: 0.0 };
+        assert!(AffineLaw::new(&law(0.0)).is_some());
+        assert!(AffineLaw::new(&law(1e-9)).is_none());
+        assert!(AffineLaw::new(&law(0.3)).is_none());
     }
 }

@@ -230,6 +230,7 @@ impl<'p, 'a> Stepper<'p, 'a> {
                 iterations: 0,
             })
             .collect();
+        let v0: Vec<f64> = (0..n).map(|i| y0[l.v(i)]).collect();
         let mut s = Stepper {
             p,
             theta,
@@ -241,8 +242,8 @@ impl<'p, 'a> Stepper<'p, 'a> {
             known: vec![0.0; n],
             x: (0..n).map(|i| y0[l.x[i]]).collect(),
             x_hat: vec![0.0; n],
-            v: (0..n).map(|i| y0[l.v(i)]).collect(),
-            v_last: (0..n).map(|i| y0[p.layout.v(i)]).collect(),
+            v: v0.clone(),
+            v_last: v0,
             dirty: vec![false; n],
             drift: vec![0.0; n],
             rate: vec![0.0; p.system.contacts.len()],
