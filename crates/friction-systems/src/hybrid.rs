@@ -73,14 +73,20 @@ impl Link {
     /// The force on end `a`, and `v_b − v_a`.
     #[inline]
     pub(crate) fn force(&self, t: f64, y: &[f64]) -> (f64, f64) {
-        self.force_between(self.a.at(t, y), self.b.at(t, y))
+        Self::force_of(self.k, self.c, self.a.at(t, y), self.b.at(t, y))
     }
 
-    /// The force on end `a`, and `v_b − v_a`, with the ends at `(x_a, v_a)` and `(x_b, v_b)`.
+    /// The force `k·(x_b − x_a) + c·(v_b − v_a)` on end `a` of a spring k with damper c, and
+    /// `v_b − v_a`.
     #[inline]
-    pub(crate) fn force_between(&self, (xa, va): (f64, f64), (xb, vb): (f64, f64)) -> (f64, f64) {
+    pub(crate) fn force_of(
+        k: f64,
+        c: f64,
+        (xa, va): (f64, f64),
+        (xb, vb): (f64, f64),
+    ) -> (f64, f64) {
         let dv = vb - va;
-        (self.k * (xb - xa) + self.c * dv, dv)
+        (k * (xb - xa) + c * dv, dv)
     }
 }
 

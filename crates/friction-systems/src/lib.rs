@@ -27,6 +27,7 @@ pub mod layout;
 mod local;
 pub mod moreau_jean;
 pub mod run;
+mod springs;
 pub mod switching;
 pub mod system;
 

@@ -1,0 +1,174 @@
+//! The springs of a system sorted once by what their ends are, as the passes of a
+//! time-stepping scheme read them ([`crate::moreau_jean`]): between two bodies, or between a
+//! body and an anchor (a spring between two anchors is refused by [`crate::System`]). Each
+//! pass then runs over its springs with no test of their ends.
+
+use crate::hybrid::{Link, Point};
+
+/// A spring between bodies `a` and `b`: force `f = k·(x_b − x_a) + c·(v_b − v_a)` on `a`,
+/// `−f` on `b`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Pair {
+    pub a: usize,
+    pub b: usize,
+    /// Stiffness k, N/m.
+    pub k: f64,
+    /// Damping c, N·s/m.
+    pub c: f64,
+}
+
+impl Pair {
+    /// The force on `a`, and `v_b − v_a`, with the ends at `(x_a, v_a)` and `(x_b, v_b)`.
+    #[inline]
+    pub fn force(&self, (xa, va): (f64, f64), (xb, vb): (f64, f64)) -> (f64, f64) {
+        Link::force_of(self.k, self.c, (xa, va), (xb, vb))
+    }
+}
+
+/// A spring between a body and an anchor moving as `x0 + v·t`: force on the body
+/// `f = k·(x_anchor − x) + c·(v_anchor − v)`, whichever end of the declared spring the
+/// anchor is (the force on the other end negated, to the bit).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Anchored {
+    pub body: usize,
+    /// The anchor's position at t = 0, m.
+    pub x0: f64,
+    /// The anchor's velocity, m/s.
+    pub v: f64,
+    /// Stiffness k, N/m.
+    pub k: f64,
+    /// Damping c, N·s/m.
+    pub c: f64,
+}
+
+impl Anchored {
+    /// The force on the body at time `t` with the body at `(x, v)`, and `v_anchor − v`.
+    #[inline]
+    pub fn force(&self, t: f64, body: (f64, f64)) -> (f64, f64) {
+        Link::force_of(self.k, self.c, body, (self.x0 + self.v * t, self.v))
+    }
+}
+
+/// A system's springs by kind, each kind in the order the system declares them.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub(crate) struct Springs {
+    pub pairs: Vec<Pair>,
+    pub anchored: Vec<Anchored>,
+}
+
+impl Springs {
+    /// The springs of `links`.
+    pub fn of(links: &[Link]) -> Springs {
+        let mut springs = Springs::default();
+        for link in links {
+            match (link.a, link.b) {
+                (Point::State { body: a, .. }, Point::State { body: b, .. }) => {
+                    springs.pairs.push(Pair {
+                        a,
+                        b,
+                        k: link.k,
+                        c: link.c,
+                    })
+                }
+                (Point::State { body, .. }, Point::Moving { x0, v })
+                | (Point::Moving { x0, v }, Point::State { body, .. }) => {
+                    springs.anchored.push(Anchored {
+                        body,
+                        x0,
+                        v,
+                        k: link.k,
+                        c: link.c,
+                    })
+                }
+                // No force on a body (and refused by `System::validate`).
+                (Point::Moving { .. }, Point::Moving { .. }) => {}
+            }
+        }
+        springs
+    }
+
+    /// The same springs with body i renumbered `at[i]`.
+    pub fn renumbered(&self, at: &[usize]) -> Springs {
+        Springs {
+            pairs: self
+                .pairs
+                .iter()
+                .map(|s| Pair {
+                    a: at[s.a],
+                    b: at[s.b],
+                    ..*s
+                })
+                .collect(),
+            anchored: self
+                .anchored
+                .iter()
+                .map(|s| Anchored {
+                    body: at[s.body],
+                    ..*s
+                })
+                .collect(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Anchored, Pair, Springs};
+    use crate::hybrid::{Link, Point};
+
+    fn body(i: usize) -> Point {
+        Point::State { body: i, x: 2 * i }
+    }
+
+    #[test]
+    fn springs_are_sorted_by_their_ends_in_declared_order() {
+        let anchor = Point::Moving { x0: 0.5, v: 2.0 };
+        let link = |a, b, k| Link { a, b, k, c: 0.1 };
+        let links = [
+            link(anchor, body(0), 1.0),
+            link(body(0), body(1), 2.0),
+            link(body(1), anchor, 3.0),
+            link(anchor, anchor, 4.0),
+        ];
+        let springs = Springs::of(&links);
+        assert_eq!(
+            springs.pairs,
+            [Pair {
+                a: 0,
+                b: 1,
+                k: 2.0,
+                c: 0.1
+            }]
+        );
+        let bodies: Vec<(usize, f64)> = springs.anchored.iter().map(|s| (s.body, s.k)).collect();
+        assert_eq!(bodies, [(0, 1.0), (1, 3.0)]);
+        let renumbered = springs.renumbered(&[1, 0]);
+        assert_eq!((renumbered.pairs[0].a, renumbered.pairs[0].b), (1, 0));
+        assert_eq!(renumbered.anchored[0].body, 1);
+    }
+
+    #[test]
+    fn an_anchored_spring_pulls_its_body_as_the_declared_spring_does_to_the_bit() {
+        let (x0, v, k, c) = (0.3, 0.7, 123.456, 0.789);
+        let (t, xb, vb) = (1.234567, 0.987654, -0.3456);
+        let anchored = Anchored {
+            body: 0,
+            x0,
+            v,
+            k,
+            c,
+        };
+        let (f, dv) = anchored.force(t, (xb, vb));
+        let anchor = (x0 + v * t, v);
+        // Anchor at end a: the body, end b, takes minus the force on a.
+        let (fa, dva) = Link::force_of(k, c, anchor, (xb, vb));
+        assert_eq!(
+            (f.to_bits(), dv.to_bits()),
+            ((-fa).to_bits(), (-dva).to_bits())
+        );
+        // Anchor at end b: the body is end a.
+        let (fb, dvb) = Link::force_of(k, c, (xb, vb), anchor);
+        assert_eq!((f.to_bits(), dv.to_bits()), (fb.to_bits(), dvb.to_bits()));
+        assert_eq!(f, k * (anchor.0 - xb) + c * (v - vb));
+    }
+}
