@@ -1,0 +1,113 @@
+//! No heap allocation on a Moreau–Jean step that neither records nor switches: a counting
+//! global allocator (counting only on the test's own thread) watches 1000 steps after 50 of
+//! warm-up, on a system that exercises every path of the step: springs between bodies and to
+//! anchors with dampers, an external force with a profile, and contacts solved in closed form
+//! (Coulomb), by Newton's method (CVS) and with an internal state (LuGre).
+
+use friction_models::{FrictionParams, ModelId, Variant};
+use friction_systems::{simulate, End, Profile, Switching, System};
+use integrators::{Options, Output, Solver};
+use std::alloc::{GlobalAlloc, Layout, System as Heap};
+use std::cell::Cell;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Arc;
+
+struct Counting;
+
+static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+
+thread_local! {
+    static COUNTING: Cell<bool> = const { Cell::new(false) };
+}
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        if COUNTING.with(Cell::get) {
+            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        }
+        unsafe { Heap.alloc(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        unsafe { Heap.dealloc(ptr, layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        if COUNTING.with(Cell::get) {
+            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        }
+        unsafe { Heap.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+const WARM_UP: usize = 50;
+const WATCHED: usize = 1000;
+
+/// Five blocks on a belt running at −5 m/s (so each slides forward throughout), each held by
+/// a damped spring to a wall, neighbours joined by damped springs, the middle one pushed by a
+/// ramp; laws Coulomb, CVS, LuGre, CVS, Coulomb.
+fn sliding_chain() -> System {
+    let p = FrictionParams::paper();
+    let mut s = System::default();
+    let wall = s.add_anchor("wall", 0.0, 0.0);
+    let laws = [
+        ModelId::Coulomb,
+        ModelId::Cvs,
+        ModelId::LuGre,
+        ModelId::Cvs,
+        ModelId::Coulomb,
+    ];
+    for (i, law) in laws.into_iter().enumerate() {
+        let body = s.add_body(format!("b{i}"), 1.0, 0.0, 0.0);
+        s.add_spring(End::Anchor(wall), End::Body(body), 100.0, 0.5);
+        if i > 0 {
+            s.add_spring(End::Body(body - 1), End::Body(body), 50.0, 0.2);
+        }
+        let model = law.build(Variant::Odd, &p).expect("paper parameters");
+        s.add_contact(body, -5.0, Arc::from(model));
+    }
+    s.add_force(2, 1.0, Profile::Ramp { rate: 0.5 });
+    s
+}
+
+/// Allocations during steps WARM_UP + 1 ..= WARM_UP + WATCHED of the time-stepped run at θ,
+/// and the run's number of switching steps.
+fn allocations(theta: f64) -> (usize, usize) {
+    let system = sliding_chain();
+    let (h, t_end) = (1e-3, 2.0);
+    let options = Options {
+        output: Output::GridOnly(vec![t_end]),
+        ..Options::fixed(0.0, t_end, h)
+    };
+    let mut steps = 0;
+    let mut observe = |_t: f64| {
+        steps += 1;
+        if steps == WARM_UP {
+            ALLOCATIONS.store(0, Ordering::Relaxed);
+            COUNTING.with(|c| c.set(true));
+        } else if steps == WARM_UP + WATCHED {
+            COUNTING.with(|c| c.set(false));
+        }
+    };
+    let switching = Switching::TimeStepping { theta };
+    let run = simulate(&system, switching, Solver::Rk4, options, &mut observe).expect("valid");
+    assert!(run.error.is_none(), "{:?}", run.error);
+    assert_eq!(run.solution.stats.steps, 2000);
+    (
+        ALLOCATIONS.load(Ordering::Relaxed),
+        run.solution.stats.events,
+    )
+}
+
+#[test]
+fn a_step_that_neither_records_nor_switches_allocates_nothing() {
+    for theta in [0.5, 1.0] {
+        let (allocations, switches) = allocations(theta);
+        assert_eq!(switches, 0, "θ = {theta}: every block slides throughout");
+        assert_eq!(
+            allocations, 0,
+            "θ = {theta}: allocations in {WATCHED} steps"
+        );
+    }
+}
