@@ -85,28 +85,31 @@ pub struct MoreauJean {
 }
 
 /// The iteration matrix `Ŵ = M − h·θ·(C + h·θ·K)` of one step size, row by row in the
-/// sweep order (the bodies numbered by their place in it: see [`colour_order`]): its diagonal
-/// and the couplings `h·θ·(c + h·θ·k)` to other bodies.
+/// sweep order (the bodies numbered by their place in it: see [`colour_order`]): the
+/// couplings `h·θ·(c + h·θ·k)` to other bodies (its diagonal is kept with each body,
+/// [`BodyStep::w`]).
 struct Matrix {
     h: f64,
-    diagonal: Vec<f64>,
     start: Vec<usize>,
     coupling: Vec<(usize, f64)>,
 }
 
 impl Matrix {
-    /// The matrix of the bodies of masses `mass` joined by `springs`, numbered alike.
-    fn new(mass: &[f64], springs: &Springs, h: f64, theta: f64) -> Matrix {
-        let mut diagonal = mass.to_vec();
+    /// The matrix of `bodies` joined by `springs`, numbered alike; writes its diagonal into
+    /// the bodies.
+    fn new(bodies: &mut [BodyStep], springs: &Springs, h: f64, theta: f64) -> Matrix {
+        for b in bodies.iter_mut() {
+            b.w = b.m;
+        }
         let weight = |k: f64, c: f64| h * theta * (c + h * theta * k);
         for s in &springs.anchored {
-            diagonal[s.body] += weight(s.k, s.c);
+            bodies[s.body].w += weight(s.k, s.c);
         }
-        let mut rows = vec![Vec::new(); mass.len()];
+        let mut rows = vec![Vec::new(); bodies.len()];
         for s in &springs.pairs {
             let w = weight(s.k, s.c);
             for (me, other) in [(s.a, s.b), (s.b, s.a)] {
-                diagonal[me] += w;
+                bodies[me].w += w;
                 rows[me].push((other, w));
             }
         }
@@ -116,12 +119,7 @@ impl Matrix {
             coupling.extend(row);
             start.push(coupling.len());
         }
-        Matrix {
-            h,
-            diagonal,
-            start,
-            coupling,
-        }
+        Matrix { h, start, coupling }
     }
 
     fn row(&self, k: usize) -> &[(usize, f64)] {
@@ -169,34 +167,44 @@ struct ContactData<'p> {
     affine: Option<AffineLaw>,
 }
 
-/// The scheme's working state between steps. Per-body vectors are in the sweep order
+/// What a step reads and writes of one body, kept together: Gauss–Seidel's visit of a body
+/// touches it and its neighbours' only.
+#[derive(Clone, Debug, Default)]
+struct BodyStep {
+    /// Mass m, and the diagonal Ŵ of the body's row of the iteration matrix, kg.
+    m: f64,
+    w: f64,
+    /// Position at the end of the last step, m.
+    x: f64,
+    /// Velocity at the end of the last step, then Gauss–Seidel's iterate, m/s.
+    v: f64,
+    /// Velocity at the start of the step (the extrapolation's older point), m/s.
+    v_last: f64,
+    /// End position with the body's own end velocity left out, `x + h·(1−θ)·v`, m.
+    x_hat: f64,
+    /// Forces but friction at the start of the step, then the known part of b.
+    known: f64,
+    /// The change of b since the body's last visit, and whether it waits for a visit.
+    drift: f64,
+    dirty: bool,
+    /// Index of x in y (v follows), and the body's contact.
+    x_index: usize,
+    contact: Option<usize>,
+}
+
+/// The scheme's working state between steps. The bodies are in the sweep order
 /// ([`colour_order`]): body `body_of[k]` is at place k, body i at place `at[i]`.
 struct Stepper<'p, 'a> {
     p: &'p FrictionSystem<'a>,
     theta: f64,
     body_of: Vec<usize>,
     at: Vec<usize>,
-    /// Per place: the body's mass, the index of its x in y, its contact.
-    mass: Vec<f64>,
-    x_index: Vec<usize>,
-    contact_at: Vec<Option<usize>>,
+    bodies: Vec<BodyStep>,
     matrix: Matrix,
     y: Vec<f64>,
     y_prev: Vec<f64>,
     modes: Vec<Mode>,
     modes_prev: Vec<Mode>,
-    /// Per body: forces but friction at the start of the step, then the known part of b.
-    known: Vec<f64>,
-    /// Per body: the position at the end of the last step.
-    x: Vec<f64>,
-    x_hat: Vec<f64>,
-    /// Per body: the velocity at the end of the last step, then Gauss–Seidel's iterate.
-    v: Vec<f64>,
-    /// Velocities at the start of the step (the extrapolation's older point).
-    v_last: Vec<f64>,
-    dirty: Vec<bool>,
-    /// Per body: the change of its b since its last visit.
-    drift: Vec<f64>,
     /// Per contact: the last local solution, its force F at the end of the step and its
     /// state rate there.
     solved: Vec<Solved>,
@@ -250,39 +258,44 @@ impl<'p, 'a> Stepper<'p, 'a> {
             at[i] = k;
         }
         let springs = springs.renumbered(&at);
-        let x_index: Vec<usize> = body_of.iter().map(|&i| l.x[i]).collect();
-        let mass: Vec<f64> = body_of.iter().map(|&i| p.system.bodies[i].m).collect();
-        let x0: Vec<f64> = x_index.iter().map(|&x| y0[x]).collect();
-        let v0: Vec<f64> = x_index.iter().map(|&x| y0[x + 1]).collect();
+        let mut bodies: Vec<BodyStep> = body_of
+            .iter()
+            .map(|&i| {
+                let x = l.x[i];
+                BodyStep {
+                    m: p.system.bodies[i].m,
+                    x: y0[x],
+                    v: y0[x + 1],
+                    v_last: y0[x + 1],
+                    x_index: x,
+                    contact: l.contact[i],
+                    ..BodyStep::default()
+                }
+            })
+            .collect();
+        let state = |k: usize| (bodies[k].x, bodies[k].v);
+        let pair_force = springs
+            .pairs
+            .iter()
+            .map(|s| s.force(state(s.a), state(s.b)))
+            .collect();
+        let anchored_force = springs
+            .anchored
+            .iter()
+            .map(|s| s.force(t0, state(s.body)))
+            .collect();
         let mut s = Stepper {
             p,
             theta,
-            matrix: Matrix::new(&mass, &springs, h, theta),
-            contact_at: body_of.iter().map(|&i| l.contact[i]).collect(),
-            mass,
-            x_index,
+            matrix: Matrix::new(&mut bodies, &springs, h, theta),
+            bodies,
             y: y0.to_vec(),
             y_prev: y0.to_vec(),
             modes: modes0.to_vec(),
             modes_prev: modes0.to_vec(),
-            known: vec![0.0; n],
-            pair_force: springs
-                .pairs
-                .iter()
-                .map(|s| s.force((x0[s.a], v0[s.a]), (x0[s.b], v0[s.b])))
-                .collect(),
-            anchored_force: springs
-                .anchored
-                .iter()
-                .map(|s| s.force(t0, (x0[s.body], v0[s.body])))
-                .collect(),
+            pair_force,
+            anchored_force,
             springs,
-            x: x0,
-            x_hat: vec![0.0; n],
-            v: v0.clone(),
-            v_last: v0,
-            dirty: vec![false; n],
-            drift: vec![0.0; n],
             rate: vec![0.0; p.system.contacts.len()],
             force_start: vec![0.0; p.system.contacts.len()],
             cache: vec![StepCache::default(); p.system.contacts.len()],
@@ -335,7 +348,7 @@ impl<'p, 'a> Stepper<'p, 'a> {
         let (p, theta) = (self.p, self.theta);
         let t1 = t0 + h;
         if h != self.matrix.h {
-            self.matrix = Matrix::new(&self.mass, &self.springs, h, theta);
+            self.matrix = Matrix::new(&mut self.bodies, &self.springs, h, theta);
         }
         self.y_prev.copy_from_slice(&self.y);
         self.modes_prev.copy_from_slice(&self.modes);
@@ -343,40 +356,44 @@ impl<'p, 'a> Stepper<'p, 'a> {
             *f = s.force;
         }
         // The known part of b: m·v + h·(1−θ)·F_o(t_k) + h·θ·F_o(t_{k+1}) at zero end velocities.
-        let known = &mut self.known;
-        known.fill(0.0);
+        let bodies = &mut self.bodies;
+        for b in bodies.iter_mut() {
+            b.known = 0.0;
+        }
         for f in &p.system.forces {
-            known[self.at[f.body]] += f.constant + f.profile.at(t0);
+            bodies[self.at[f.body]].known += f.constant + f.profile.at(t0);
         }
         let springs = &self.springs;
         for (s, &(f, _)) in springs.anchored.iter().zip(&self.anchored_force) {
-            known[s.body] += f;
+            bodies[s.body].known += f;
         }
         for (s, &(f, _)) in springs.pairs.iter().zip(&self.pair_force) {
-            known[s.a] += f;
-            known[s.b] -= f;
+            bodies[s.a].known += f;
+            bodies[s.b].known -= f;
         }
-        for (i, &m) in self.mass.iter().enumerate() {
-            let (x, v) = (self.x[i], self.v[i]);
-            self.x_hat[i] = x + h * (1.0 - theta) * v;
-            known[i] = m * v + h * (1.0 - theta) * known[i];
+        for b in bodies.iter_mut() {
+            let (x, v) = (b.x, b.v);
+            b.x_hat = x + h * (1.0 - theta) * v;
+            b.known = b.m * v + h * (1.0 - theta) * b.known;
             // The first guess of v': extrapolated from the last two step ends (a body that
             // was at rest at both stays there).
-            self.v[i] = 2.0 * v - self.v_last[i];
-            self.v_last[i] = v;
+            b.v = 2.0 * v - b.v_last;
+            b.v_last = v;
         }
         let ht = h * theta;
         for f in &p.system.forces {
-            known[self.at[f.body]] += ht * (f.constant + f.profile.at(t1));
+            bodies[self.at[f.body]].known += ht * (f.constant + f.profile.at(t1));
         }
-        let x_hat = &self.x_hat;
         for s in &springs.anchored {
-            known[s.body] += ht * s.force(t1, (x_hat[s.body], 0.0)).0;
+            let b = &mut bodies[s.body];
+            b.known += ht * s.force(t1, (b.x_hat, 0.0)).0;
         }
         for s in &springs.pairs {
-            let f = ht * s.force((x_hat[s.a], 0.0), (x_hat[s.b], 0.0)).0;
-            known[s.a] += f;
-            known[s.b] -= f;
+            let f = ht
+                * s.force((bodies[s.a].x_hat, 0.0), (bodies[s.b].x_hat, 0.0))
+                    .0;
+            bodies[s.a].known += f;
+            bodies[s.b].known -= f;
         }
         self.sweep_to_convergence(t0, h)?;
         self.finish_step(t0, h);
@@ -392,8 +409,10 @@ impl<'p, 'a> Stepper<'p, 'a> {
     #[inline(never)]
     fn sweep_to_convergence(&mut self, t0: f64, h: f64) -> Result<(), SolverError> {
         let p = self.p;
-        self.dirty.fill(true);
-        self.drift.fill(0.0);
+        for b in self.bodies.iter_mut() {
+            b.dirty = true;
+            b.drift = 0.0;
+        }
         let mut pending = true;
         let mut sweeps = 0;
         while pending {
@@ -406,17 +425,18 @@ impl<'p, 'a> Stepper<'p, 'a> {
             }
             sweeps += 1;
             pending = false;
-            for i in 0..self.v.len() {
-                if !self.dirty[i] {
+            for i in 0..self.bodies.len() {
+                let body = &mut self.bodies[i];
+                if !body.dirty {
                     continue;
                 }
-                self.dirty[i] = false;
+                body.dirty = false;
+                let (known, w, x_hat, contact) = (body.known, body.w, body.x_hat, body.contact);
                 let row = self.matrix.row(i);
                 let b = row
                     .iter()
-                    .fold(self.known[i], |b, &(o, w)| b + w * self.v[o]);
-                let w = self.matrix.diagonal[i];
-                let v = match self.contact_at[i] {
+                    .fold(known, |b, &(o, w)| b + w * self.bodies[o].v);
+                let v = match contact {
                     None => b / w,
                     Some(j) => {
                         let c = &self.contacts[j];
@@ -445,7 +465,7 @@ impl<'p, 'a> Stepper<'p, 'a> {
                                 let local = Local {
                                     model: c.model,
                                     eq,
-                                    x_hat: self.x_hat[i],
+                                    x_hat,
                                     z0: c.state.map_or(0.0, |z| self.y[z]),
                                     rate0: self.rate[j],
                                     has_state: c.state.is_some(),
@@ -488,15 +508,17 @@ impl<'p, 'a> Stepper<'p, 'a> {
                 // The change reaches each neighbour's b through its coupling; the neighbour is
                 // visited again once the changes since its last visit could move its own
                 // velocity by more than the tolerance.
-                let dv = v - self.v[i];
-                self.v[i] = v;
-                self.drift[i] = 0.0;
+                let body = &mut self.bodies[i];
+                let dv = v - body.v;
+                body.v = v;
+                body.drift = 0.0;
                 if dv != 0.0 {
                     for &(o, w) in row {
-                        self.drift[o] += w * dv;
-                        let tolerance = SWEEP_ATOL + SWEEP_RTOL * self.v[o].abs();
-                        if self.drift[o].abs() > self.matrix.diagonal[o] * tolerance {
-                            self.dirty[o] = true;
+                        let other = &mut self.bodies[o];
+                        other.drift += w * dv;
+                        let tolerance = SWEEP_ATOL + SWEEP_RTOL * other.v.abs();
+                        if other.drift.abs() > other.w * tolerance {
+                            other.dirty = true;
                             pending = true;
                         }
                     }
@@ -511,11 +533,10 @@ impl<'p, 'a> Stepper<'p, 'a> {
     #[inline(never)]
     fn finish_step(&mut self, t0: f64, h: f64) {
         let theta = self.theta;
-        for i in 0..self.v.len() {
-            self.x[i] = self.x_hat[i] + h * theta * self.v[i];
-            let x = self.x_index[i];
-            self.y[x] = self.x[i];
-            self.y[x + 1] = self.v[i];
+        for b in self.bodies.iter_mut() {
+            b.x = b.x_hat + h * theta * b.v;
+            self.y[b.x_index] = b.x;
+            self.y[b.x_index + 1] = b.v;
         }
         for ((c, s), mode) in self.contacts.iter().zip(&self.solved).zip(&mut self.modes) {
             if let Some(z) = c.state {
@@ -543,8 +564,9 @@ impl<'p, 'a> Stepper<'p, 'a> {
         let l = &p.layout;
         let t1 = t0 + h;
         let y0 = &self.y_prev;
-        let (x1, v0, v1) = (&self.x, &self.v_last, &self.v);
-        let mean = |i: usize| 0.5 * (v0[i] + v1[i]);
+        let bodies = &self.bodies;
+        let end = |k: usize| (bodies[k].x, bodies[k].v);
+        let mean = |k: usize| 0.5 * (bodies[k].v_last + bodies[k].v);
         let impulse = |f0: f64, f1: f64| h * (theta * f1 + (1.0 - theta) * f0);
         let mut external = 0.0;
         for f in &p.system.forces {
@@ -553,7 +575,7 @@ impl<'p, 'a> Stepper<'p, 'a> {
         }
         let damper = |c: f64, dv0: f64, dv1: f64| c * impulse(dv0, dv1) * 0.5 * (dv0 + dv1);
         for (s, start) in self.springs.anchored.iter().zip(&mut self.anchored_force) {
-            let ((f0, dv0), (f1, dv1)) = (*start, s.force(t1, (x1[s.body], v1[s.body])));
+            let ((f0, dv0), (f1, dv1)) = (*start, s.force(t1, end(s.body)));
             *start = (f1, dv1);
             if s.c != 0.0 {
                 external -= damper(s.c, dv0, dv1);
@@ -561,7 +583,7 @@ impl<'p, 'a> Stepper<'p, 'a> {
             external += impulse(f0, f1) * s.v;
         }
         for (s, start) in self.springs.pairs.iter().zip(&mut self.pair_force) {
-            let (dv0, (f1, dv1)) = (start.1, s.force((x1[s.a], v1[s.a]), (x1[s.b], v1[s.b])));
+            let (dv0, (f1, dv1)) = (start.1, s.force(end(s.a), end(s.b)));
             *start = (f1, dv1);
             // A spring between two bodies without a damper does no work that is not stored.
             if s.c != 0.0 {
