@@ -95,7 +95,7 @@ fn slide(c: &Contact, d: Direction, theta_f: f64, f_k: f64, w: f64, b: f64) -> O
     if r0 >= 0.0 {
         return None;
     }
-    let u = s * (-r0 / (w + H * theta_f * slope));
+    let u = s * (-r0 * (1.0 / (w + H * theta_f * slope)));
     let force = f0 + slope * u;
     Some((u, force, impulse(force), Some(d)))
 }
@@ -170,7 +170,7 @@ fn kernel(chain: &ChainParams) -> (Vec<(f64, f64)>, usize) {
                 let (f_k, previous) = start[i];
                 let kept = previous.and_then(|d| slide(c, d, THETA, f_k, w, b));
                 let s = kept.unwrap_or_else(|| {
-                    let held = b / H;
+                    let held = b * (1.0 / H);
                     if (c.interval.0..=c.interval.1).contains(&held) {
                         (0.0, held, H * held, None)
                     } else {

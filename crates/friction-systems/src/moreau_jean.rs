@@ -437,7 +437,8 @@ impl<'p, 'a> Stepper<'p, 'a> {
                     .iter()
                     .fold(known, |b, &(o, w)| b + w * self.bodies[o].v);
                 let v = match contact {
-                    None => b / w,
+                    // Times 1/Ŵ, whose division does not wait for b (as in `local`).
+                    None => b * (1.0 / w),
                     Some(j) => {
                         let c = &self.contacts[j];
                         let eq = Momentum {
