@@ -19,6 +19,7 @@
 //! forces that already see all of them.
 
 use crate::layout::Layout;
+use crate::springs::Springs;
 use crate::switching::{mode_of_velocity, Switching, SLIP_NEGATIVE, SLIP_POSITIVE, STICK};
 use crate::system::{End, System};
 use friction_models::{Direction, StatePartials, StickInterval, MAX_STATES};
@@ -100,6 +101,8 @@ pub struct FrictionSystem<'a> {
     pub switching: Switching,
     /// The springs with their ends resolved to state indices and anchor motions.
     pub(crate) links: Vec<Link>,
+    /// The same springs sorted by their ends.
+    pub(crate) springs: Springs,
     /// The springs at each body, by index.
     springs_at: Vec<Vec<usize>>,
     /// The external forces on each body, by index.
@@ -136,7 +139,7 @@ impl<'a> FrictionSystem<'a> {
                 }
             }
         };
-        let links = system
+        let links: Vec<Link> = system
             .springs
             .iter()
             .map(|s| Link {
@@ -150,6 +153,7 @@ impl<'a> FrictionSystem<'a> {
             system,
             layout,
             switching,
+            springs: Springs::of(&links),
             links,
             springs_at,
             forces_at,
@@ -187,17 +191,22 @@ impl<'a> FrictionSystem<'a> {
             add(f.body, force);
             external += force * y[self.layout.v(f.body)];
         }
-        for link in &self.links {
-            let (force, dv) = link.force(t, y);
-            external -= link.c * dv * dv;
-            match link.a {
-                Point::State { body, .. } => add(body, force),
-                Point::Moving { v, .. } => external -= force * v,
-            }
-            match link.b {
-                Point::State { body, .. } => add(body, -force),
-                Point::Moving { v, .. } => external += force * v,
-            }
+        // The springs to anchors, then the pairs (at a body whose springs to anchors are
+        // declared before its pairs, as in the chain, in the declared order); an anchor's
+        // power `−F_anchor·v_anchor` is `F_body·v_anchor`.
+        let l = &self.layout;
+        let state = |body: usize| (y[l.x[body]], y[l.x[body] + 1]);
+        for s in &self.springs.anchored {
+            let (force, dv) = s.force(t, state(s.body));
+            external -= s.c * dv * dv;
+            add(s.body, force);
+            external += force * s.v;
+        }
+        for s in &self.springs.pairs {
+            let (force, dv) = s.force(state(s.a), state(s.b));
+            external -= s.c * dv * dv;
+            add(s.a, force);
+            add(s.b, -force);
         }
         external
     }

@@ -250,14 +250,13 @@ impl<'p, 'a> Stepper<'p, 'a> {
                 iterations: 0,
             })
             .collect();
-        let springs = Springs::of(&p.links);
-        let edges: Vec<(usize, usize)> = springs.pairs.iter().map(|s| (s.a, s.b)).collect();
+        let edges: Vec<(usize, usize)> = p.springs.pairs.iter().map(|s| (s.a, s.b)).collect();
         let body_of = colour_order(n, &edges);
         let mut at = vec![0; n];
         for (k, &i) in body_of.iter().enumerate() {
             at[i] = k;
         }
-        let springs = springs.renumbered(&at);
+        let springs = p.springs.renumbered(&at);
         let mut bodies: Vec<BodyStep> = body_of
             .iter()
             .map(|&i| {
