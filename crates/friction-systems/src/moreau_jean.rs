@@ -29,9 +29,10 @@
 //! visited again. One sweep costs one pass over the springs and contacts: O(N) on a chain.
 //!
 //! The energy accumulators of [`crate::energy`] are the work of each step's impulses on the
-//! mean velocity `(v + v')/2`; at θ = 1/2 the discrete balance then holds to rounding (the
-//! scheme conserves what the system conserves), for θ > 1/2 its residual is the scheme's own
-//! numerical dissipation. Points between step ends (a grid output) are linear interpolations.
+//! mean velocity `(v + v')/2`; at θ = 1/2 the discrete balance then holds to rounding and to
+//! the sweeps' tolerance (the scheme conserves what the system conserves; the sweeps leave
+//! each body's momentum equation off by less than `Ŵ_i·(SWEEP_ATOL + SWEEP_RTOL·|v_i|)`), for
+//! θ > 1/2 its residual is the scheme's own numerical dissipation. Points between step ends (a grid output) are linear interpolations.
 
 use crate::hybrid::FrictionSystem;
 use crate::local::{self, Affine, AffineLaw, Local, Momentum, Newton, Solved, StepCache};

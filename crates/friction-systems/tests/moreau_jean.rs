@@ -6,7 +6,8 @@ mod common;
 use common::{belt, one_block_exact};
 use friction_models::{FrictionParams, ModelId, Variant};
 use friction_systems::chain::ChainParams;
-use friction_systems::{simulate, Run, Switching, System, STICK};
+use friction_systems::moreau_jean::{SWEEP_ATOL, SWEEP_RTOL};
+use friction_systems::{simulate, End, Run, Switching, System, STICK};
 use integrators::{Options, Output, Solver, SolverError, StepControl};
 use std::f64::consts::PI;
 use std::sync::Arc;
@@ -556,5 +557,60 @@ fn a_contact_without_a_solution_fails_the_step_with_where_and_why() {
         run.solution.t.last().is_some_and(|&last| last > 0.99),
         "{:?}",
         run.solution.t.last()
+    );
+}
+
+/// Two free bodies (no contact) joined by a spring, m1 = 1 kg at 1 m/s and m2 = 2 kg at rest:
+/// the centre of mass moves at V = 1/3 m/s and the separation r = x2 − x1 oscillates,
+/// r = −sin(ω t)/ω with ω = √(k/μ), μ = m1·m2/(m1 + m2). Returns the system and (x1, x2) at t.
+fn free_pair() -> (System, impl Fn(f64) -> (f64, f64)) {
+    let (m1, m2, k) = (1.0, 2.0, 50.0);
+    let mut s = System::default();
+    let a = s.add_body("a", m1, 0.0, 1.0);
+    let b = s.add_body("b", m2, 0.0, 0.0);
+    s.add_spring(End::Body(a), End::Body(b), k, 0.0);
+    let (total, mu) = (m1 + m2, m1 * m2 / (m1 + m2));
+    let omega = (k / mu).sqrt();
+    let exact = move |t: f64| {
+        let (centre, r) = (t / 3.0, -(omega * t).sin() / omega);
+        (centre - m2 / total * r, centre + m1 / total * r)
+    };
+    (s, exact)
+}
+
+#[test]
+fn free_bodies_keep_momentum_and_energy_to_the_sweeps_tolerance_and_converge_at_order_two() {
+    let (system, exact) = free_pair();
+    let t_end = 2.0;
+    let deviation = |h: f64| {
+        let run = stepped(&system, 0.5, h, t_end, &[]);
+        let (a, b) = (run.body(0), run.body(1));
+        // The scheme conserves momentum; the sweeps leave each step a residual below
+        // Σ Ŵ_i·(SWEEP_ATOL + SWEEP_RTOL·|v_i|) ≤ 3·(1e-14 + 1e-12) (Ŵ ≈ m, |v| ≤ 1).
+        let per_step = 3.0 * (SWEEP_ATOL + SWEEP_RTOL);
+        let mut worst: f64 = 0.0;
+        for (k, (pa, pb)) in a.iter().zip(&b).enumerate() {
+            let drift = (pa.v + 2.0 * pb.v - 1.0).abs();
+            assert!(
+                drift <= k as f64 * per_step,
+                "momentum drift {drift:e} after {k} steps"
+            );
+            let (xa, xb) = exact(pa.t);
+            worst = worst.max((pa.x - xa).abs()).max((pb.x - xb).abs());
+        }
+        // The same residuals, times velocities of at most 1 m/s, are the energy balance's.
+        let balance = run.energy().unwrap();
+        let steps = a.len() - 1;
+        assert!(
+            balance.residual.abs() <= steps as f64 * per_step,
+            "{balance:?}"
+        );
+        worst
+    };
+    let (coarse, fine) = (deviation(2e-3), deviation(1e-3));
+    let order = (coarse / fine).log2();
+    assert!(
+        (1.9..2.1).contains(&order),
+        "order {order} ({coarse:e}, {fine:e})"
     );
 }
