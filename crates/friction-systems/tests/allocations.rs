@@ -6,37 +6,9 @@
 
 use friction_models::{FrictionParams, ModelId, Variant};
 use friction_systems::{simulate, End, Profile, Switching, System};
+use integrators::counting::Counting;
 use integrators::{Options, Output, Solver};
-use std::alloc::{GlobalAlloc, Layout, System as Heap};
-use std::cell::Cell;
-use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Arc;
-
-struct Counting;
-
-static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
-
-thread_local! {
-    static COUNTING: Cell<bool> = const { Cell::new(false) };
-}
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        if COUNTING.with(Cell::get) {
-            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
-        }
-        unsafe { Heap.alloc(layout) }
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        unsafe { Heap.dealloc(ptr, layout) }
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        if COUNTING.with(Cell::get) {
-            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
-        }
-        unsafe { Heap.realloc(ptr, layout, new_size) }
-    }
-}
 
 #[global_allocator]
 static GLOBAL: Counting = Counting;
@@ -80,24 +52,20 @@ fn allocations(theta: f64) -> (usize, usize) {
         output: Output::GridOnly(vec![t_end]),
         ..Options::fixed(0.0, t_end, h)
     };
-    let mut steps = 0;
+    let (mut steps, mut allocations) = (0, usize::MAX);
     let mut observe = |_t: f64| {
         steps += 1;
         if steps == WARM_UP {
-            ALLOCATIONS.store(0, Ordering::Relaxed);
-            COUNTING.with(|c| c.set(true));
+            Counting::start();
         } else if steps == WARM_UP + WATCHED {
-            COUNTING.with(|c| c.set(false));
+            allocations = Counting::stop();
         }
     };
     let switching = Switching::TimeStepping { theta };
     let run = simulate(&system, switching, Solver::Rk4, options, &mut observe).expect("valid");
     assert!(run.error.is_none(), "{:?}", run.error);
     assert_eq!(run.solution.stats.steps, 2000);
-    (
-        ALLOCATIONS.load(Ordering::Relaxed),
-        run.solution.stats.events,
-    )
+    (allocations, run.solution.stats.events)
 }
 
 #[test]

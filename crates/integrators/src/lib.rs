@@ -15,6 +15,7 @@
 //! A method written elsewhere implements [`Stepper`] and [`OneStepMethod`] and runs as
 //! [`Solver::Own`] wherever a built-in solver runs.
 
+pub mod counting;
 pub mod diffsol_backend;
 pub mod dopri5;
 pub mod error;

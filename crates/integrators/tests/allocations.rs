@@ -2,39 +2,11 @@
 //! counting global allocator (counting only on the test's own thread) watches a stretch of
 //! steps after the first ones, with output on a sparse grid and events being watched.
 
+use integrators::counting::Counting;
 use integrators::{
     Control, Crossing, Dopri5, Entry, EventSpec, ImplicitEuler, Integrator, Mode, NewtonKind,
     OdeProblem, Options, Output, Rk4, Stepper,
 };
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
-use std::sync::atomic::{AtomicUsize, Ordering};
-
-struct Counting;
-
-static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
-
-thread_local! {
-    static COUNTING: Cell<bool> = const { Cell::new(false) };
-}
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        if COUNTING.with(Cell::get) {
-            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
-        }
-        unsafe { System.alloc(layout) }
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        unsafe { System.dealloc(ptr, layout) }
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        if COUNTING.with(Cell::get) {
-            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
-        }
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-}
 
 #[global_allocator]
 static GLOBAL: Counting = Counting;
@@ -84,13 +56,11 @@ fn allocations(stepper: Box<dyn Stepper>, options: Options, steps: usize) -> usi
     for _ in 0..50 {
         run.step().unwrap();
     }
-    ALLOCATIONS.store(0, Ordering::Relaxed);
-    COUNTING.with(|c| c.set(true));
+    Counting::start();
     for _ in 0..steps {
         run.step().unwrap();
     }
-    COUNTING.with(|c| c.set(false));
-    ALLOCATIONS.load(Ordering::Relaxed)
+    Counting::stop()
 }
 
 #[test]
