@@ -214,10 +214,10 @@ struct Stepper<'p, 'a> {
     force_start: Vec<f64>,
     /// The springs by kind, their bodies by place.
     springs: Springs,
-    /// Per spring of `springs.pairs`, then of `springs.anchored`: its force on end `a` (on
-    /// the body) and the velocity of its other end relative to that one, at the start of the
-    /// step (those at the end of the step before, kept from its energy accumulation).
+    /// Per pair: its force on end a and `v_b − v_a` at the start of the step (those at the
+    /// end of the step before, kept from its energy accumulation).
     pair_force: Vec<(f64, f64)>,
+    /// Per spring to an anchor: its force on the body and `v_anchor − v`, likewise.
     anchored_force: Vec<(f64, f64)>,
     /// Per contact: what its problem keeps through the sweeps of the step.
     cache: Vec<StepCache>,
