@@ -210,7 +210,8 @@ struct Stepper<'p, 'a> {
     /// state rate there.
     solved: Vec<Solved>,
     rate: Vec<f64>,
-    /// Per contact: its friction force at the start of the step.
+    /// Per contact: its friction force at the start of the step (written at the end of the
+    /// step before).
     force_start: Vec<f64>,
     /// The springs by kind, their bodies by place.
     springs: Springs,
@@ -297,7 +298,7 @@ impl<'p, 'a> Stepper<'p, 'a> {
             anchored_force,
             springs,
             rate: vec![0.0; p.system.contacts.len()],
-            force_start: vec![0.0; p.system.contacts.len()],
+            force_start: solved.iter().map(|s| s.force).collect(),
             cache: vec![StepCache::default(); p.system.contacts.len()],
             contacts: p
                 .system
@@ -352,9 +353,6 @@ impl<'p, 'a> Stepper<'p, 'a> {
         }
         self.y_prev.copy_from_slice(&self.y);
         self.modes_prev.copy_from_slice(&self.modes);
-        for (f, s) in self.force_start.iter_mut().zip(&self.solved) {
-            *f = s.force;
-        }
         // The known part of b: m·v + h·(1−θ)·F_o(t_k) + h·θ·F_o(t_{k+1}) at zero end velocities.
         let bodies = &mut self.bodies;
         for b in bodies.iter_mut() {
@@ -539,28 +537,37 @@ impl<'p, 'a> Stepper<'p, 'a> {
             self.y[b.x_index] = b.x;
             self.y[b.x_index + 1] = b.v;
         }
-        for ((c, s), mode) in self.contacts.iter().zip(&self.solved).zip(&mut self.modes) {
+        // Each contact's end state, force and mode, and its impulse's work on the mean velocity:
+        // dissipated `P·(v̄ − v_s)` and done by the belt `−P·v_s`.
+        let (mut dissipated, mut belt) = (0.0, 0.0);
+        let bodies = &self.bodies;
+        let contacts = self.contacts.iter().zip(&self.solved);
+        for (((c, s), mode), force) in contacts.zip(&mut self.modes).zip(&mut self.force_start) {
             if let Some(z) = c.state {
                 self.y[z] = s.z;
             }
+            *force = s.force;
             *mode = match s.direction {
                 Some(Direction::Positive) => SLIP_POSITIVE,
                 Some(Direction::Negative) => SLIP_NEGATIVE,
                 None => STICK,
             };
+            let mean = 0.5 * (bodies[c.at].v_last + bodies[c.at].v);
+            dissipated += s.impulse * (mean - c.v_s);
+            belt -= s.impulse * c.v_s;
         }
         for j in 0..self.contacts.len() {
             if self.contacts[j].state.is_some() {
                 self.rate[j] = self.state_rate(j, &self.y, self.modes[j]);
             }
         }
-        self.accumulate(t0, h);
+        self.accumulate(t0, h, dissipated, belt);
     }
 
     /// The energy accumulators: each impulse of the step from t0 to t0 + h times the mean
-    /// velocity it acts on.
+    /// velocity it acts on; the contacts' work, `dissipated` and `belt`, summed by the caller.
     #[inline(never)]
-    fn accumulate(&mut self, t0: f64, h: f64) {
+    fn accumulate(&mut self, t0: f64, h: f64, dissipated: f64, belt: f64) {
         let (p, theta) = (self.p, self.theta);
         let l = &p.layout;
         let t1 = t0 + h;
@@ -590,11 +597,6 @@ impl<'p, 'a> Stepper<'p, 'a> {
             if s.c != 0.0 {
                 external -= damper(s.c, dv0, dv1);
             }
-        }
-        let (mut dissipated, mut belt) = (0.0, 0.0);
-        for (c, s) in self.contacts.iter().zip(&self.solved) {
-            dissipated += s.impulse * (mean(c.at) - c.v_s);
-            belt -= s.impulse * c.v_s;
         }
         let a = l.accumulators;
         self.y[a] = y0[a] + external;
