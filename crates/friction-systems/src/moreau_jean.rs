@@ -354,10 +354,8 @@ impl<'p, 'a> Stepper<'p, 'a> {
         self.y_prev.copy_from_slice(&self.y);
         self.modes_prev.copy_from_slice(&self.modes);
         // The known part of b: m·v + h·(1−θ)·F_o(t_k) + h·θ·F_o(t_{k+1}) at zero end velocities.
+        // (Each body's `known` is zero here: `finish_step` leaves it so.)
         let bodies = &mut self.bodies;
-        for b in bodies.iter_mut() {
-            b.known = 0.0;
-        }
         for f in &p.system.forces {
             bodies[self.at[f.body]].known += f.constant + f.profile.at(t0);
         }
@@ -377,6 +375,9 @@ impl<'p, 'a> Stepper<'p, 'a> {
             // was at rest at both stays there).
             b.v = 2.0 * v - b.v_last;
             b.v_last = v;
+            // Every body waits for the first sweep, with no change of b yet.
+            b.dirty = true;
+            b.drift = 0.0;
         }
         let ht = h * theta;
         for f in &p.system.forces {
@@ -407,10 +408,6 @@ impl<'p, 'a> Stepper<'p, 'a> {
     #[inline(never)]
     fn sweep_to_convergence(&mut self, t0: f64, h: f64) -> Result<(), SolverError> {
         let p = self.p;
-        for b in self.bodies.iter_mut() {
-            b.dirty = true;
-            b.drift = 0.0;
-        }
         let mut pending = true;
         let mut sweeps = 0;
         while pending {
@@ -536,6 +533,8 @@ impl<'p, 'a> Stepper<'p, 'a> {
             b.x = b.x_hat + h * theta * b.v;
             self.y[b.x_index] = b.x;
             self.y[b.x_index + 1] = b.v;
+            // The next step's sums start from zero.
+            b.known = 0.0;
         }
         // Each contact's end state, force and mode, and its impulse's work on the mean velocity:
         // dissipated `P·(v̄ − v_s)` and done by the belt `−P·v_s`.
