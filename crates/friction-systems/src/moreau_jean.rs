@@ -202,9 +202,12 @@ struct Stepper<'p, 'a> {
     at: Vec<usize>,
     bodies: Vec<BodyStep>,
     matrix: Matrix,
+    /// The state and modes at the end of the last step.
     y: Vec<f64>,
-    y_prev: Vec<f64>,
     modes: Vec<Mode>,
+    /// The state and modes at the start of the last step, kept only for a step the recorder
+    /// interpolates in.
+    y_prev: Vec<f64>,
     modes_prev: Vec<Mode>,
     /// Per contact: the last local solution, its force F at the end of the step and its
     /// state rate there.
@@ -224,6 +227,10 @@ struct Stepper<'p, 'a> {
     cache: Vec<StepCache>,
     /// Per contact: what the run does not change.
     contacts: Vec<ContactData<'p>>,
+    /// The contacts whose model has an internal state.
+    stateful: Vec<usize>,
+    /// The contacts whose mode the last step switched.
+    switches: Vec<ModeSwitch>,
     sweeps: usize,
     iterations: usize,
 }
@@ -315,6 +322,11 @@ impl<'p, 'a> Stepper<'p, 'a> {
                 })
                 .collect(),
             solved,
+            stateful: (0..l.z.len())
+                .filter(|&i| !l.z[i].is_empty())
+                .filter_map(|i| l.contact[i])
+                .collect(),
+            switches: Vec::new(),
             body_of,
             at,
             sweeps: 0,
@@ -343,16 +355,19 @@ impl<'p, 'a> Stepper<'p, 'a> {
         rate[0]
     }
 
-    /// One step from t0 to t0 + h.
+    /// One step from t0 to t0 + h, keeping its start in `y_prev` and `modes_prev` if
+    /// `keep_start` (the recorder interpolates in it).
     #[inline(never)]
-    fn step(&mut self, t0: f64, h: f64) -> Result<(), SolverError> {
+    fn step(&mut self, t0: f64, h: f64, keep_start: bool) -> Result<(), SolverError> {
         let (p, theta) = (self.p, self.theta);
         let t1 = t0 + h;
         if h != self.matrix.h {
             self.matrix = Matrix::new(&mut self.bodies, &self.springs, h, theta);
         }
-        self.y_prev.copy_from_slice(&self.y);
-        self.modes_prev.copy_from_slice(&self.modes);
+        if keep_start {
+            self.y_prev.copy_from_slice(&self.y);
+            self.modes_prev.copy_from_slice(&self.modes);
+        }
         // The known part of b: m·v + h·(1−θ)·F_o(t_k) + h·θ·F_o(t_{k+1}) at zero end velocities.
         // (Each body's `known` is zero here: `finish_step` leaves it so.)
         let bodies = &mut self.bodies;
@@ -443,7 +458,8 @@ impl<'p, 'a> Stepper<'p, 'a> {
                             b,
                             v_s: c.v_s,
                         };
-                        let previous = match self.modes_prev[j] {
+                        // The mode the step started in (`finish_step` writes the new one).
+                        let previous = match self.modes[j] {
                             SLIP_POSITIVE => Some((Direction::Positive, self.force_start[j])),
                             SLIP_NEGATIVE => Some((Direction::Negative, self.force_start[j])),
                             _ => None,
@@ -540,25 +556,33 @@ impl<'p, 'a> Stepper<'p, 'a> {
         // dissipated `P·(v̄ − v_s)` and done by the belt `−P·v_s`.
         let (mut dissipated, mut belt) = (0.0, 0.0);
         let bodies = &self.bodies;
+        self.switches.clear();
         let contacts = self.contacts.iter().zip(&self.solved);
-        for (((c, s), mode), force) in contacts.zip(&mut self.modes).zip(&mut self.force_start) {
+        let modes = self.modes.iter_mut().zip(&mut self.force_start);
+        for (component, ((c, s), (mode, force))) in contacts.zip(modes).enumerate() {
             if let Some(z) = c.state {
                 self.y[z] = s.z;
             }
             *force = s.force;
-            *mode = match s.direction {
+            let to = match s.direction {
                 Some(Direction::Positive) => SLIP_POSITIVE,
                 Some(Direction::Negative) => SLIP_NEGATIVE,
                 None => STICK,
             };
+            if to != *mode {
+                self.switches.push(ModeSwitch {
+                    component,
+                    from: *mode,
+                    to,
+                });
+                *mode = to;
+            }
             let mean = 0.5 * (bodies[c.at].v_last + bodies[c.at].v);
             dissipated += s.impulse * (mean - c.v_s);
             belt -= s.impulse * c.v_s;
         }
-        for j in 0..self.contacts.len() {
-            if self.contacts[j].state.is_some() {
-                self.rate[j] = self.state_rate(j, &self.y, self.modes[j]);
-            }
+        for &j in &self.stateful {
+            self.rate[j] = self.state_rate(j, &self.y, self.modes[j]);
         }
         self.accumulate(t0, h, dissipated, belt);
     }
@@ -570,7 +594,6 @@ impl<'p, 'a> Stepper<'p, 'a> {
         let (p, theta) = (self.p, self.theta);
         let l = &p.layout;
         let t1 = t0 + h;
-        let y0 = &self.y_prev;
         let bodies = &self.bodies;
         let end = |k: usize| (bodies[k].x, bodies[k].v);
         let mean = |k: usize| 0.5 * (bodies[k].v_last + bodies[k].v);
@@ -598,9 +621,9 @@ impl<'p, 'a> Stepper<'p, 'a> {
             }
         }
         let a = l.accumulators;
-        self.y[a] = y0[a] + external;
-        self.y[a + 1] = y0[a + 1] + dissipated;
-        self.y[a + 2] = y0[a + 2] + belt;
+        self.y[a] += external;
+        self.y[a + 1] += dissipated;
+        self.y[a + 2] += belt;
     }
 }
 
@@ -613,6 +636,14 @@ struct Recorder<'o> {
 }
 
 impl Recorder<'_> {
+    /// Whether the next step, ending at t1, has a grid point strictly inside it, which the
+    /// recorder interpolates from the step's start.
+    fn interpolates_before(&self, t1: f64) -> bool {
+        self.output
+            .grid()
+            .is_some_and(|grid| self.next < grid.len() && grid[self.next] < t1)
+    }
+
     /// Records the start (t0, y0) of the run.
     fn start(&mut self, solution: &mut Solution, t0: f64, y0: &[f64], modes: &[Mode]) {
         match self.output.grid() {
@@ -756,13 +787,16 @@ impl MoreauJean {
                 t0 + (k + 1) as f64 * h
             };
             let step = if k + 1 == n_steps { t_end - t_k } else { h };
-            s.step(t_k, step)?;
-            let switches = switches(&s.modes_prev, &s.modes);
-            let switched = !switches.is_empty();
+            s.step(t_k, step, recorder.interpolates_before(t_next))?;
+            let switched = !s.switches.is_empty();
             if switched {
-                solution.events.push(event_record(t_next, switches));
+                solution
+                    .events
+                    .push(event_record(t_next, s.switches.clone()));
                 solution.stats.events += 1;
             }
+            // (y_prev and modes_prev are the step's start only when the recorder asked for them;
+            // it reads them only then.)
             recorder.step(
                 solution,
                 (t_k, &s.y_prev, &s.modes_prev),
@@ -776,22 +810,6 @@ impl MoreauJean {
         solution.stats.newton_iterations = s.iterations;
         Ok(())
     }
-}
-
-/// The contacts whose mode changed between `before` and `after`.
-#[inline(never)]
-fn switches(before: &[Mode], after: &[Mode]) -> Vec<ModeSwitch> {
-    before
-        .iter()
-        .zip(after)
-        .enumerate()
-        .filter(|(_, (from, to))| from != to)
-        .map(|(component, (&from, &to))| ModeSwitch {
-            component,
-            from,
-            to,
-        })
-        .collect()
 }
 
 /// A step's switches as an event record with the names of event switching: `v_rel=0` for a
