@@ -282,16 +282,24 @@ impl<'p, 'a> Stepper<'p, 'a> {
             })
             .collect();
         let state = |k: usize| (bodies[k].x, bodies[k].v);
-        let pair_force = springs
+        let pair_force: Vec<(f64, f64)> = springs
             .pairs
             .iter()
             .map(|s| s.force(state(s.a), state(s.b)))
             .collect();
-        let anchored_force = springs
+        let anchored_force: Vec<(f64, f64)> = springs
             .anchored
             .iter()
             .map(|s| s.force(t0, state(s.body)))
             .collect();
+        // The first step's spring forces at t0, as `accumulate` adds them for the others.
+        for (s, &(f, _)) in springs.anchored.iter().zip(&anchored_force) {
+            bodies[s.body].known += f;
+        }
+        for (s, &(f, _)) in springs.pairs.iter().zip(&pair_force) {
+            bodies[s.a].known += f;
+            bodies[s.b].known -= f;
+        }
         let mut s = Stepper {
             p,
             theta,
@@ -370,18 +378,13 @@ impl<'p, 'a> Stepper<'p, 'a> {
         }
         // The known part of b: m·v + h·(1−θ)·F_o(t_k) + h·θ·F_o(t_{k+1}) at zero end velocities.
         // (Each body's `known` is zero here: `finish_step` leaves it so.)
+        // Each body's `known` holds its springs' forces at t0 here (added by `accumulate` at
+        // the end of the step before, or by `Stepper::new`).
         let bodies = &mut self.bodies;
         for f in &p.system.forces {
             bodies[self.at[f.body]].known += f.constant + f.profile.at(t0);
         }
         let springs = &self.springs;
-        for (s, &(f, _)) in springs.anchored.iter().zip(&self.anchored_force) {
-            bodies[s.body].known += f;
-        }
-        for (s, &(f, _)) in springs.pairs.iter().zip(&self.pair_force) {
-            bodies[s.a].known += f;
-            bodies[s.b].known -= f;
-        }
         for b in bodies.iter_mut() {
             let (x, v) = (b.x, b.v);
             b.x_hat = x + h * (1.0 - theta) * v;
@@ -592,35 +595,40 @@ impl<'p, 'a> Stepper<'p, 'a> {
     #[inline(never)]
     fn accumulate(&mut self, t0: f64, h: f64, dissipated: f64, belt: f64) {
         let (p, theta) = (self.p, self.theta);
-        let l = &p.layout;
         let t1 = t0 + h;
-        let bodies = &self.bodies;
-        let end = |k: usize| (bodies[k].x, bodies[k].v);
-        let mean = |k: usize| 0.5 * (bodies[k].v_last + bodies[k].v);
         let impulse = |f0: f64, f1: f64| h * (theta * f1 + (1.0 - theta) * f0);
+        let bodies = &mut self.bodies;
         let mut external = 0.0;
         for f in &p.system.forces {
             let i = impulse(f.constant + f.profile.at(t0), f.constant + f.profile.at(t1));
-            external += i * mean(self.at[f.body]);
+            let b = &bodies[self.at[f.body]];
+            external += i * (0.5 * (b.v_last + b.v));
         }
+        // Each spring's force at t1 is also the next step's start force: added to the
+        // bodies' `known` (which `finish_step` cleared) and kept for the next accumulation.
         let damper = |c: f64, dv0: f64, dv1: f64| c * impulse(dv0, dv1) * 0.5 * (dv0 + dv1);
         for (s, start) in self.springs.anchored.iter().zip(&mut self.anchored_force) {
-            let ((f0, dv0), (f1, dv1)) = (*start, s.force(t1, end(s.body)));
+            let b = &mut bodies[s.body];
+            let ((f0, dv0), (f1, dv1)) = (*start, s.force(t1, (b.x, b.v)));
             *start = (f1, dv1);
+            b.known += f1;
             if s.c != 0.0 {
                 external -= damper(s.c, dv0, dv1);
             }
             external += impulse(f0, f1) * s.v;
         }
         for (s, start) in self.springs.pairs.iter().zip(&mut self.pair_force) {
+            let end = |k: usize| (bodies[k].x, bodies[k].v);
             let (dv0, (f1, dv1)) = (start.1, s.force(end(s.a), end(s.b)));
             *start = (f1, dv1);
+            bodies[s.a].known += f1;
+            bodies[s.b].known -= f1;
             // A spring between two bodies without a damper does no work that is not stored.
             if s.c != 0.0 {
                 external -= damper(s.c, dv0, dv1);
             }
         }
-        let a = l.accumulators;
+        let a = p.layout.accumulators;
         self.y[a] += external;
         self.y[a + 1] += dissipated;
         self.y[a + 2] += belt;
