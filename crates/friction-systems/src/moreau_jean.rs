@@ -216,8 +216,10 @@ struct Stepper<'p, 'a> {
     /// Per contact: its friction force at the start of the step (written at the end of the
     /// step before).
     force_start: Vec<f64>,
-    /// The springs by kind, their bodies by place.
+    /// The springs by kind, their bodies by place, those to anchors sorted by place: place
+    /// k's are `springs.anchored[anchored_start[k]..anchored_start[k + 1]]`.
     springs: Springs,
+    anchored_start: Vec<usize>,
     /// Per pair: its force on end a and `v_b − v_a` at the start of the step (those at the
     /// end of the step before, kept from its energy accumulation).
     pair_force: Vec<(f64, f64)>,
@@ -265,7 +267,8 @@ impl<'p, 'a> Stepper<'p, 'a> {
         for (k, &i) in body_of.iter().enumerate() {
             at[i] = k;
         }
-        let springs = p.springs.renumbered(&at);
+        let mut springs = p.springs.renumbered(&at);
+        let anchored_start = springs.sort_anchored_by_body(n);
         let mut bodies: Vec<BodyStep> = body_of
             .iter()
             .map(|&i| {
@@ -312,6 +315,7 @@ impl<'p, 'a> Stepper<'p, 'a> {
             pair_force,
             anchored_force,
             springs,
+            anchored_start,
             rate: vec![0.0; p.system.contacts.len()],
             force_start: solved.iter().map(|s| s.force).collect(),
             cache: vec![StepCache::default(); p.system.contacts.len()],
@@ -384,11 +388,16 @@ impl<'p, 'a> Stepper<'p, 'a> {
         for f in &p.system.forces {
             bodies[self.at[f.body]].known += f.constant + f.profile.at(t0);
         }
-        let springs = &self.springs;
-        for b in bodies.iter_mut() {
+        let (springs, ht) = (&self.springs, h * theta);
+        let anchored_at = self.anchored_start.windows(2).map(|w| w[0]..w[1]);
+        for (b, anchored) in bodies.iter_mut().zip(anchored_at) {
             let (x, v) = (b.x, b.v);
             b.x_hat = x + h * (1.0 - theta) * v;
             b.known = b.m * v + h * (1.0 - theta) * b.known;
+            // The body's springs to anchors at its predicted position, at t1.
+            for s in &springs.anchored[anchored] {
+                b.known += ht * s.force(t1, (b.x_hat, 0.0)).0;
+            }
             // The first guess of v': extrapolated from the last two step ends (a body that
             // was at rest at both stays there).
             b.v = 2.0 * v - b.v_last;
@@ -397,13 +406,8 @@ impl<'p, 'a> Stepper<'p, 'a> {
             b.dirty = true;
             b.drift = 0.0;
         }
-        let ht = h * theta;
         for f in &p.system.forces {
             bodies[self.at[f.body]].known += ht * (f.constant + f.profile.at(t1));
-        }
-        for s in &springs.anchored {
-            let b = &mut bodies[s.body];
-            b.known += ht * s.force(t1, (b.x_hat, 0.0)).0;
         }
         for s in &springs.pairs {
             let f = ht

@@ -87,6 +87,21 @@ impl Springs {
         springs
     }
 
+    /// Sorts the springs to anchors by body (keeping the declared order at each body) and
+    /// returns where each of `n` bodies' starts, its end last: body k's are
+    /// `anchored[start[k]..start[k + 1]]`.
+    pub fn sort_anchored_by_body(&mut self, n: usize) -> Vec<usize> {
+        self.anchored.sort_by_key(|s| s.body);
+        let mut start = vec![0; n + 1];
+        for s in &self.anchored {
+            start[s.body + 1] += 1;
+        }
+        for k in 0..n {
+            start[k + 1] += start[k];
+        }
+        start
+    }
+
     /// The same springs with body i renumbered `at[i]`.
     pub fn renumbered(&self, at: &[usize]) -> Springs {
         Springs {
@@ -142,9 +157,14 @@ mod tests {
         );
         let bodies: Vec<(usize, f64)> = springs.anchored.iter().map(|s| (s.body, s.k)).collect();
         assert_eq!(bodies, [(0, 1.0), (1, 3.0)]);
-        let renumbered = springs.renumbered(&[1, 0]);
+        let mut renumbered = springs.renumbered(&[1, 0]);
         assert_eq!((renumbered.pairs[0].a, renumbered.pairs[0].b), (1, 0));
         assert_eq!(renumbered.anchored[0].body, 1);
+        let start = renumbered.sort_anchored_by_body(3);
+        let by_body: Vec<(usize, f64)> =
+            renumbered.anchored.iter().map(|s| (s.body, s.k)).collect();
+        assert_eq!(by_body, [(0, 3.0), (1, 1.0)]);
+        assert_eq!(start, [0, 1, 2, 2]);
     }
 
     #[test]
