@@ -423,8 +423,9 @@ impl<'p, 'a> Stepper<'p, 'a> {
 
     /// Nonsmooth Gauss–Seidel over the bodies until no velocity changes.
     ///
-    /// Kept out of line, as are the step's other phases (`step`, `finish_step`, `accumulate`,
-    /// `switches`): inlined into one function they took 12 % more instructions (callgrind,
+    /// Kept out of line, as are the step's other phases (`step`, `finish_step`, `accumulate`;
+    /// then also a pass that listed the switches): inlined into one function they took 12 %
+    /// more instructions (callgrind,
     /// 100-block chain over 50 s: 3.92e9 against 3.46e9) and about 13 % more time (paired
     /// runs on 1000 blocks), and out of line a profile names each phase.
     #[inline(never)]
