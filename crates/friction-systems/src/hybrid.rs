@@ -19,7 +19,7 @@
 //! forces that already see all of them.
 
 use crate::layout::Layout;
-use crate::springs::Springs;
+use crate::springs::{Sorted, Springs};
 use crate::switching::{mode_of_velocity, Switching, SLIP_NEGATIVE, SLIP_POSITIVE, STICK};
 use crate::system::{End, System};
 use friction_models::{Direction, StatePartials, StickInterval, MAX_STATES};
@@ -42,55 +42,6 @@ const BREAK_AWAY_NEGATIVE: EventSpec = EventSpec {
     crossing: Crossing::Falling,
 };
 
-/// A spring end as the right-hand side reads it: a body with the index of its x in y (its v
-/// follows), or an anchor's motion `x0 + v·t`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) enum Point {
-    State { body: usize, x: usize },
-    Moving { x0: f64, v: f64 },
-}
-
-impl Point {
-    /// Position and velocity at (t, y).
-    #[inline]
-    fn at(self, t: f64, y: &[f64]) -> (f64, f64) {
-        match self {
-            Point::State { x, .. } => (y[x], y[x + 1]),
-            Point::Moving { x0, v } => (x0 + v * t, v),
-        }
-    }
-}
-
-/// A spring with its ends resolved: `f = k·(x_b − x_a) + c·(v_b − v_a)` on `a`, `−f` on `b`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Link {
-    pub(crate) a: Point,
-    pub(crate) b: Point,
-    pub(crate) k: f64,
-    pub(crate) c: f64,
-}
-
-impl Link {
-    /// The force on end `a`, and `v_b − v_a`.
-    #[inline]
-    pub(crate) fn force(&self, t: f64, y: &[f64]) -> (f64, f64) {
-        Self::force_of(self.k, self.c, self.a.at(t, y), self.b.at(t, y))
-    }
-
-    /// The force `k·(x_b − x_a) + c·(v_b − v_a)` on end `a` of a spring k with damper c, and
-    /// `v_b − v_a`.
-    #[inline]
-    pub(crate) fn force_of(
-        k: f64,
-        c: f64,
-        (xa, va): (f64, f64),
-        (xb, vb): (f64, f64),
-    ) -> (f64, f64) {
-        let dv = vb - va;
-        (k * (xb - xa) + c * dv, dv)
-    }
-}
-
 /// A system with a treatment of v_rel = 0, ready for any solver.
 pub struct FrictionSystem<'a> {
     /// The system.
@@ -99,12 +50,10 @@ pub struct FrictionSystem<'a> {
     pub layout: Layout,
     /// The treatment of v_rel = 0.
     pub switching: Switching,
-    /// The springs with their ends resolved to state indices and anchor motions.
-    pub(crate) links: Vec<Link>,
-    /// The same springs sorted by their ends.
+    /// The springs sorted by their ends.
     pub(crate) springs: Springs,
-    /// The springs at each body, by index.
-    springs_at: Vec<Vec<usize>>,
+    /// The springs at each body, in the declared order.
+    springs_at: Vec<Vec<Sorted>>,
     /// The external forces on each body, by index.
     forces_at: Vec<Vec<usize>>,
 }
@@ -112,49 +61,16 @@ pub struct FrictionSystem<'a> {
 impl<'a> FrictionSystem<'a> {
     /// The problem of `system` (which must be valid) under `switching`.
     pub fn new(system: &'a System, switching: Switching) -> Self {
-        let n = system.bodies.len();
-        let mut springs_at = vec![Vec::new(); n];
-        for (s, spring) in system.springs.iter().enumerate() {
-            for end in [spring.a, spring.b] {
-                if let End::Body(i) = end {
-                    springs_at[i].push(s);
-                }
-            }
-        }
-        let mut forces_at = vec![Vec::new(); n];
+        let mut forces_at = vec![Vec::new(); system.bodies.len()];
         for (f, force) in system.forces.iter().enumerate() {
             forces_at[force.body].push(f);
         }
-        let layout = Layout::of(system);
-        let point = |end| match end {
-            End::Body(i) => Point::State {
-                body: i,
-                x: layout.x[i],
-            },
-            End::Anchor(a) => {
-                let anchor = &system.anchors[a];
-                Point::Moving {
-                    x0: anchor.x0,
-                    v: anchor.v,
-                }
-            }
-        };
-        let links: Vec<Link> = system
-            .springs
-            .iter()
-            .map(|s| Link {
-                a: point(s.a),
-                b: point(s.b),
-                k: s.k,
-                c: s.c,
-            })
-            .collect();
+        let (springs, springs_at) = Springs::of(system);
         FrictionSystem {
             system,
-            layout,
+            layout: Layout::of(system),
             switching,
-            springs: Springs::of(&links),
-            links,
+            springs,
             springs_at,
             forces_at,
         }
@@ -169,12 +85,20 @@ impl<'a> FrictionSystem<'a> {
                 g.constant + g.profile.at(t)
             })
             .sum();
+        let l = &self.layout;
+        let state = |body: usize| (y[l.x[body]], y[l.x[body] + 1]);
         for &s in &self.springs_at[i] {
-            let link = &self.links[s];
-            let (force, _) = link.force(t, y);
-            f += match link.a {
-                Point::State { body, .. } if body == i => force,
-                _ => -force,
+            f += match s {
+                Sorted::Anchored(s) => self.springs.anchored[s].force(t, state(i)).0,
+                Sorted::Pair(s) => {
+                    let s = &self.springs.pairs[s];
+                    let force = s.force(state(s.a), state(s.b)).0;
+                    if s.a == i {
+                        force
+                    } else {
+                        -force
+                    }
+                }
             };
         }
         f

@@ -1,9 +1,18 @@
-//! The springs of a system sorted once by what their ends are, as the passes of a
-//! time-stepping scheme read them ([`crate::moreau_jean`]): between two bodies, or between a
-//! body and an anchor (a spring between two anchors is refused by [`crate::System`]). Each
-//! pass then runs over its springs with no test of their ends.
+//! The springs of a system sorted once by what their ends are, as the right-hand side
+//! ([`crate::hybrid`]) and the passes of a time-stepping scheme ([`crate::moreau_jean`]) read
+//! them: between two bodies, or between a body and an anchor (a spring between two anchors is
+//! refused by [`crate::System`]). Each pass then runs over its springs with no test of their
+//! ends.
 
-use crate::hybrid::{Link, Point};
+use crate::system::{End, System};
+
+/// The force `k·(x_b − x_a) + c·(v_b − v_a)` on end `a` of a spring k with damper c, and
+/// `v_b − v_a`.
+#[inline]
+fn spring_force(k: f64, c: f64, (xa, va): (f64, f64), (xb, vb): (f64, f64)) -> (f64, f64) {
+    let dv = vb - va;
+    (k * (xb - xa) + c * dv, dv)
+}
 
 /// A spring between bodies `a` and `b`: force `f = k·(x_b − x_a) + c·(v_b − v_a)` on `a`,
 /// `−f` on `b`.
@@ -21,7 +30,7 @@ impl Pair {
     /// The force on `a`, and `v_b − v_a`, with the ends at `(x_a, v_a)` and `(x_b, v_b)`.
     #[inline]
     pub fn force(&self, (xa, va): (f64, f64), (xb, vb): (f64, f64)) -> (f64, f64) {
-        Link::force_of(self.k, self.c, (xa, va), (xb, vb))
+        spring_force(self.k, self.c, (xa, va), (xb, vb))
     }
 }
 
@@ -45,7 +54,7 @@ impl Anchored {
     /// The force on the body at time `t` with the body at `(x, v)`, and `v_anchor − v`.
     #[inline]
     pub fn force(&self, t: f64, body: (f64, f64)) -> (f64, f64) {
-        Link::force_of(self.k, self.c, body, (self.x0 + self.v * t, self.v))
+        spring_force(self.k, self.c, body, (self.x0 + self.v * t, self.v))
     }
 }
 
@@ -56,35 +65,44 @@ pub(crate) struct Springs {
     pub anchored: Vec<Anchored>,
 }
 
+/// Where a spring went in [`Springs`]: its index among the pairs or among the springs to
+/// anchors.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Sorted {
+    Pair(usize),
+    Anchored(usize),
+}
+
 impl Springs {
-    /// The springs of `links`.
-    pub fn of(links: &[Link]) -> Springs {
+    /// The springs of `system`, and the springs at each of its bodies in the declared order.
+    pub fn of(system: &System) -> (Springs, Vec<Vec<Sorted>>) {
         let mut springs = Springs::default();
-        for link in links {
-            match (link.a, link.b) {
-                (Point::State { body: a, .. }, Point::State { body: b, .. }) => {
-                    springs.pairs.push(Pair {
-                        a,
-                        b,
-                        k: link.k,
-                        c: link.c,
-                    })
+        let mut at = vec![Vec::new(); system.bodies.len()];
+        for s in &system.springs {
+            let (k, c) = (s.k, s.c);
+            match (s.a, s.b) {
+                (End::Body(a), End::Body(b)) => {
+                    for end in [a, b] {
+                        at[end].push(Sorted::Pair(springs.pairs.len()));
+                    }
+                    springs.pairs.push(Pair { a, b, k, c });
                 }
-                (Point::State { body, .. }, Point::Moving { x0, v })
-                | (Point::Moving { x0, v }, Point::State { body, .. }) => {
+                (End::Body(body), End::Anchor(anchor)) | (End::Anchor(anchor), End::Body(body)) => {
+                    let anchor = &system.anchors[anchor];
+                    at[body].push(Sorted::Anchored(springs.anchored.len()));
                     springs.anchored.push(Anchored {
                         body,
-                        x0,
-                        v,
-                        k: link.k,
-                        c: link.c,
-                    })
+                        x0: anchor.x0,
+                        v: anchor.v,
+                        k,
+                        c,
+                    });
                 }
                 // No force on a body (and refused by `System::validate`).
-                (Point::Moving { .. }, Point::Moving { .. }) => {}
+                (End::Anchor(_), End::Anchor(_)) => {}
             }
         }
-        springs
+        (springs, at)
     }
 
     /// Sorts the springs to anchors by body (keeping the declared order at each body) and
@@ -128,24 +146,21 @@ impl Springs {
 
 #[cfg(test)]
 mod tests {
-    use super::{Anchored, Pair, Springs};
-    use crate::hybrid::{Link, Point};
-
-    fn body(i: usize) -> Point {
-        Point::State { body: i, x: 2 * i }
-    }
+    use super::{spring_force, Anchored, Pair, Sorted, Springs};
+    use crate::system::{End, System};
 
     #[test]
     fn springs_are_sorted_by_their_ends_in_declared_order() {
-        let anchor = Point::Moving { x0: 0.5, v: 2.0 };
-        let link = |a, b, k| Link { a, b, k, c: 0.1 };
-        let links = [
-            link(anchor, body(0), 1.0),
-            link(body(0), body(1), 2.0),
-            link(body(1), anchor, 3.0),
-            link(anchor, anchor, 4.0),
-        ];
-        let springs = Springs::of(&links);
+        let mut system = System::default();
+        let anchor = End::Anchor(system.add_anchor("wall", 0.5, 2.0));
+        let (b0, b1) = (End::Body(0), End::Body(1));
+        for name in ["b0", "b1"] {
+            system.add_body(name, 1.0, 0.0, 0.0);
+        }
+        system.add_spring(anchor, b0, 1.0, 0.1);
+        system.add_spring(b0, b1, 2.0, 0.1);
+        system.add_spring(b1, anchor, 3.0, 0.1);
+        let (springs, at) = Springs::of(&system);
         assert_eq!(
             springs.pairs,
             [Pair {
@@ -155,8 +170,16 @@ mod tests {
                 c: 0.1
             }]
         );
+        assert_eq!(
+            at,
+            [
+                [Sorted::Anchored(0), Sorted::Pair(0)],
+                [Sorted::Pair(0), Sorted::Anchored(1)]
+            ]
+        );
         let bodies: Vec<(usize, f64)> = springs.anchored.iter().map(|s| (s.body, s.k)).collect();
         assert_eq!(bodies, [(0, 1.0), (1, 3.0)]);
+        assert_eq!((springs.anchored[1].x0, springs.anchored[1].v), (0.5, 2.0));
         let mut renumbered = springs.renumbered(&[1, 0]);
         assert_eq!((renumbered.pairs[0].a, renumbered.pairs[0].b), (1, 0));
         assert_eq!(renumbered.anchored[0].body, 1);
@@ -181,13 +204,13 @@ mod tests {
         let (f, dv) = anchored.force(t, (xb, vb));
         let anchor = (x0 + v * t, v);
         // Anchor at end a: the body, end b, takes minus the force on a.
-        let (fa, dva) = Link::force_of(k, c, anchor, (xb, vb));
+        let (fa, dva) = spring_force(k, c, anchor, (xb, vb));
         assert_eq!(
             (f.to_bits(), dv.to_bits()),
             ((-fa).to_bits(), (-dva).to_bits())
         );
         // Anchor at end b: the body is end a.
-        let (fb, dvb) = Link::force_of(k, c, (xb, vb), anchor);
+        let (fb, dvb) = spring_force(k, c, (xb, vb), anchor);
         assert_eq!((f.to_bits(), dv.to_bits()), (fb.to_bits(), dvb.to_bits()));
         assert_eq!(f, k * (anchor.0 - xb) + c * (v - vb));
     }
