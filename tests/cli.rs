@@ -785,7 +785,11 @@ fn bad_system_input_is_rejected_and_writes_nothing() {
         ),
         (
             &["simulate", "chain", "--model", "CS", "--set", "n_bodies=0"],
-            "`n_bodies` = 0 is out of range: allowed [1, 1000000], a whole number",
+            "error: chain: `n_bodies` = 0 is out of range: allowed [1, 1000000], a whole number",
+        ),
+        (
+            &["simulate", "chain", "--model", "CS", "--set", "m=0"],
+            "error: chain: `m` = 0 is out of range: allowed (0, inf) kg",
         ),
         (
             &["simulate", "chain", "--model", "CS", "--set", "spread=1.5"],

@@ -96,7 +96,7 @@ pub fn system_of(
         .into_iter()
         .map(|(k, v)| (k.to_string(), v))
         .collect();
-    for (name, _, _) in CHAIN_PARAMETERS {
+    for (name, _) in CHAIN_PARAMETERS {
         let value = match name {
             "n_bodies" => chain.n_bodies as f64,
             "m" => chain.m,

@@ -23,7 +23,7 @@
 //!
 //! The coupled problem is solved by nonsmooth Gauss–Seidel (Jean 1999; Acary & Brogliato
 //! 2008, §13.4; Siconos's NSGS): each body's problem solved exactly with its neighbours'
-//! velocities fixed, colour by colour (red–black on a chain: see `Matrix::order`), sweeping
+//! velocities fixed, colour by colour (red–black on a chain: see `colour_order`), sweeping
 //! until no velocity changes by more than
 //! [`SWEEP_ATOL`]` + `[`SWEEP_RTOL`]`·|v|`; only the neighbours of a body that moved are
 //! visited again. One sweep costs one pass over the springs and contacts: O(N) on a chain.
@@ -381,9 +381,8 @@ impl<'p, 'a> Stepper<'p, 'a> {
             self.modes_prev.copy_from_slice(&self.modes);
         }
         // The known part of b: m·v + h·(1−θ)·F_o(t_k) + h·θ·F_o(t_{k+1}) at zero end velocities.
-        // (Each body's `known` is zero here: `finish_step` leaves it so.)
-        // Each body's `known` holds its springs' forces at t0 here (added by `accumulate` at
-        // the end of the step before, or by `Stepper::new`).
+        // Each body's `known` holds its springs' forces at t0 here (`finish_step` cleared it,
+        // then `accumulate` added them at the end of the step before, or `Stepper::new`).
         let bodies = &mut self.bodies;
         for f in &p.system.forces {
             bodies[self.at[f.body]].known += f.constant + f.profile.at(t0);
