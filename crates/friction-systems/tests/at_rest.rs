@@ -1,0 +1,48 @@
+//! A body at rest on a fixed surface with nothing pushing it stays at rest: x = v = 0 and
+//! every internal state 0 for all t, whatever the friction law. Event-driven, a state model
+//! (LuGre, Dahl, …) starts in a sliding mode exactly at v_rel = 0, with its event function
+//! sitting at zero through the whole run; event location once walked back from the end of
+//! the first step by its time tolerance, one evaluation at a time, and never ended (this test
+//! then hangs: the run's time limit is checked between steps).
+
+use friction_models::{FrictionParams, ModelId, Variant};
+use friction_systems::{simulate, Switching, System};
+use integrators::{Options, Solver};
+use std::sync::Arc;
+
+#[test]
+fn a_body_at_rest_under_no_force_stays_at_rest_with_every_model_and_solver() {
+    for model in ModelId::ALL {
+        let law = model
+            .build(Variant::Odd, &FrictionParams::paper())
+            .expect("valid parameters");
+        // Time-stepping takes models of at most one internal state (GMS is refused).
+        let time_steps = law.n_states() <= 1;
+        let mut system = System::default();
+        let body = system.add_body("body", 1.0, 0.0, 0.0);
+        system.add_contact(body, 0.0, Arc::from(law));
+        for (solver, switching) in [
+            ("dopri5", Switching::Event),
+            ("bdf", Switching::Event),
+            ("dopri5", Switching::TimeStepping { theta: 0.5 }),
+        ] {
+            if matches!(switching, Switching::TimeStepping { .. }) && !time_steps {
+                continue;
+            }
+            let options = match switching {
+                Switching::TimeStepping { .. } => Options::fixed(0.0, 2.0, 1e-3),
+                _ => Options::adaptive(0.0, 2.0, 1e-8, 1e-10),
+            };
+            let solver = Solver::from_name(solver).expect("a solver");
+            let run =
+                simulate(&system, switching, solver, options, &mut |_| {}).expect("a valid system");
+            let case = format!("{model:?}, {switching:?}, {solver:?}");
+            assert!(run.error.is_none(), "{case}: {:?}", run.error);
+            assert_eq!(run.solution.t.last(), Some(&2.0), "{case}");
+            // Every unknown at every recorded time: positions, velocities, internal states and
+            // the energy accumulators.
+            let moved = run.solution.y.iter().find(|&&u| u != 0.0);
+            assert_eq!(moved, None, "{case}");
+        }
+    }
+}
