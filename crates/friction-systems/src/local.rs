@@ -43,6 +43,16 @@ const LOCAL_ROUNDOFF: f64 = 4.0 * f64::EPSILON;
 /// scale of u (a Stribeck curve varies on v_s).
 const LINEAR_UPDATE: f64 = 1e-8;
 
+/// The rounding error of a sum of `terms`, to the same [`LOCAL_ROUNDOFF`]: a residual of that
+/// size is zero to rounding, and a Newton update computed from it is noise. Near rest, where
+/// the unknown is far smaller than the terms of its equation (a sliding velocity of 1e-17 m/s
+/// against a belt at 0.1 m/s; a bristle deflection where the state equation cancels), an update
+/// relative to the unknown never falls below rounding, and this is the test that ends the
+/// iteration.
+fn rounding(terms: &[f64]) -> f64 {
+    LOCAL_ROUNDOFF * terms.iter().map(|t| t.abs()).sum::<f64>()
+}
+
 /// The momentum equation of one body in one sweep, `Ŵ·(u + v_s) = b − P`.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Momentum {
@@ -71,6 +81,16 @@ impl Momentum {
     /// The impulse `P = h·[θ_f·F + (1−θ_f)·F_k]` of a step that ends sliding with `force`.
     fn impulse(&self, sliding: Sliding, force: f64) -> f64 {
         self.h * (sliding.theta_f * force + (1.0 - sliding.theta_f) * sliding.f_k)
+    }
+
+    /// The rounding error of R at w with the law's `force` there ([`rounding`] of its terms).
+    fn rounding(&self, sliding: Sliding, w: f64, force: f64) -> f64 {
+        let s = sliding.d.sign();
+        rounding(&[
+            self.w * (s * w + self.v_s),
+            self.impulse(sliding, force),
+            self.b,
+        ])
     }
 
     /// R along the side of sliding as a function of w = s·u ≥ 0 (increasing through its
@@ -253,10 +273,11 @@ impl Local<'_> {
         let (mut z, mut iterations) = (self.z0, 0);
         loop {
             let (_, rate, _, d) = self.law_at(x, u, z, law);
-            let dz = (z - known - ht * rate) / (1.0 - ht * d.rate_dz);
+            let (terms, slope) = ([z, known, ht * rate], 1.0 - ht * d.rate_dz);
+            let dz = (terms[0] - terms[1] - terms[2]) / slope;
             z -= dz;
             iterations += 1;
-            if dz.abs() <= LOCAL_ROUNDOFF * z.abs() {
+            if dz.abs() <= LOCAL_ROUNDOFF * z.abs() || dz.abs() <= rounding(&terms) / slope.abs() {
                 break;
             }
             if !dz.is_finite() || iterations == MAX_LOCAL_ITERATIONS {
@@ -454,7 +475,10 @@ impl ContactProblem for Newton<'_, '_> {
             }
             let newton = w - r / dr;
             let step = newton - w;
-            if r == 0.0 || step.abs() <= LINEAR_UPDATE * w {
+            if r == 0.0
+                || step.abs() <= LINEAR_UPDATE * w
+                || r.abs() <= eq.rounding(sliding, w, p.force)
+            {
                 // At w itself to rounding, or one linearised Newton step from it.
                 let du = if step.abs() <= LOCAL_ROUNDOFF * w {
                     0.0
