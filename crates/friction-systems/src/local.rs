@@ -78,6 +78,14 @@ impl Momentum {
         (self.b - self.w * self.v_s) * (1.0 / self.h)
     }
 
+    /// The rounding error of the holding force λ* compared with a force `bound` of the law
+    /// ([`rounding`] of the terms of both tests: λ* against the stick interval, and the sliding
+    /// residual at rest, `h·F(0±) + Ŵ·v_s − b`).
+    fn holding_rounding(&self, bound: f64) -> f64 {
+        let per_h = 1.0 / self.h;
+        rounding(&[self.b * per_h, self.w * self.v_s * per_h, bound])
+    }
+
     /// The impulse `P = h·[θ_f·F + (1−θ_f)·F_k]` of a step that ends sliding with `force`.
     fn impulse(&self, sliding: Sliding, force: f64) -> f64 {
         self.h * (sliding.theta_f * force + (1.0 - sliding.theta_f) * sliding.f_k)
@@ -376,14 +384,31 @@ pub(crate) fn solve<P: ContactProblem>(
         f_k: 0.0,
     };
     if problem.slide(sliding, out)? {
-        Ok(())
-    } else {
-        Err(Unsolved::OutsideInterval {
-            d,
-            lower: interval.lower,
-            upper: interval.upper,
-        })
+        return Ok(());
     }
+    // No sliding solution: the sliding force at rest would hold the body. A holding force
+    // outside the stick interval by no more than rounding (a law whose sliding force at rest
+    // is the interval's bound, as AV's F_s + C1) leaves the body at rest on that bound.
+    let bound = match d {
+        Direction::Positive => interval.upper,
+        Direction::Negative => interval.lower,
+    };
+    if (held - bound).abs() <= eq.holding_rounding(bound) {
+        *out = Solved {
+            u: 0.0,
+            z: z_rest,
+            force: held,
+            impulse: eq.h * held,
+            direction: None,
+            iterations: out.iterations,
+        };
+        return Ok(());
+    }
+    Err(Unsolved::OutsideInterval {
+        d,
+        lower: interval.lower,
+        upper: interval.upper,
+    })
 }
 
 /// A contact's problem for any law: the sliding equation by Newton's method safeguarded by
@@ -758,6 +783,58 @@ mod tests {
             assert_eq!((s.u, s.direction), (0.0, None));
             assert!((s.force - 0.5).abs() < 1e-12);
         }
+    }
+
+    /// AV's sliding force at rest is its stick interval's bound, F_s + C1 = 9 N: a holding
+    /// force on that bound to rounding either way leaves the body at rest there or sliding
+    /// off at a speed of rounding, never without a solution (a free body of 1 kg on a force
+    /// ramp time-stepped at h = 1e-3, θ = 1 found none at t = 8.999 s until 2026-11-24).
+    #[test]
+    fn a_holding_force_on_the_bound_to_rounding_has_a_solution() {
+        let av = ModelId::Av
+            .build(Variant::Odd, &FrictionParams::paper())
+            .expect("valid");
+        assert_eq!(av.stick_interval(0.0, &[]).upper, 9.0);
+        let h = 1e-3;
+        // λ* = b/h = 9 N at b = 9·h; 64 floats either side of it.
+        let mut b = 9.0 * h - 64.0 * f64::EPSILON * 9.0 * h;
+        let mut at_rest = 0;
+        for _ in 0..129 {
+            let local = Local {
+                model: av.as_ref(),
+                eq: Momentum {
+                    h,
+                    theta: 1.0,
+                    w: 1.0,
+                    b,
+                    v_s: 0.0,
+                },
+                x_hat: 0.0,
+                z0: 0.0,
+                rate0: 0.0,
+                has_state: false,
+            };
+            let mut problem = Newton {
+                local: &local,
+                cache: &mut StepCache::default(),
+                u_guess: 0.0,
+            };
+            let mut s = empty();
+            let solved = solve(&mut problem, None, &mut s);
+            assert_eq!(solved, Ok(()), "b = {b:e}");
+            match s.direction {
+                None => {
+                    at_rest += 1;
+                    assert!((s.force - 9.0).abs() <= 1e-12, "{b:e}: {s:?}");
+                }
+                Some(d) => {
+                    assert_eq!(d, Direction::Positive, "{b:e}");
+                    assert!(s.u > 0.0 && s.u <= 1e-12, "{b:e}: {s:?}");
+                }
+            }
+            b = b.next_up();
+        }
+        assert!(at_rest > 0, "some of them rest on the bound");
     }
 
     /// Only a law that says it is affine, ignores x and has no state is read as one.
