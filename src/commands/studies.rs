@@ -44,8 +44,13 @@ pub struct CaseArgs {
     /// (names or 1-based indices) [default: the first body]; every body's final state is.
     #[arg(long, value_name = "LIST", value_delimiter = ',')]
     pub bodies: Vec<String>,
-    /// event, regularized or naive.
-    #[arg(long, value_name = "event|regularized|naive", default_value = "event")]
+    /// event, regularized, naive, or timestepping (Moreau–Jean at θ = 1/2, the study's one
+    /// method: over the step sizes, --solvers unused; its reference is event-driven).
+    #[arg(
+        long,
+        value_name = "event|regularized|naive|timestepping",
+        default_value = "event"
+    )]
     pub switching: SwitchingKind,
     /// End time, s [default: the scenario's; 50 for the chain; 20 for a system file].
     #[arg(long, value_name = "T", allow_hyphen_values = true)]
@@ -509,7 +514,7 @@ pub fn add_independence(
     }
     let levels = levels as usize;
     // Every level is a step size (fixed-step solvers) or a tolerance, in that option's range.
-    let resolution = if solver.is_fixed_step() {
+    let resolution = if solver.is_fixed_step() || case.switching().is_time_stepping() {
         ranges::DT
     } else {
         ranges::RTOL
@@ -693,9 +698,8 @@ pub fn add_work_precision(
     let (dir, threads) = (t.dir, t.threads);
     ranges::DT.list("dt-list", steps)?;
     ranges::RTOL.list("tol-list", tols)?;
-    let methods: Vec<Method> = solvers
-        .iter()
-        .map(|&s| Method::of(s))
+    let methods: Vec<Method> = Method::studied(case, solvers)
+        .into_iter()
         .chain(case.peers())
         .collect();
     let jobs = Method::jobs(&methods, steps, tols, false).len();
@@ -821,9 +825,8 @@ pub fn add_stiffness(
             values.len()
         )));
     }
-    let methods: Vec<Method> = solvers
-        .iter()
-        .map(|&s| Method::of(s))
+    let methods: Vec<Method> = Method::studied(case, solvers)
+        .into_iter()
         .chain(case.peers())
         .collect();
     let per_value = Method::jobs(&methods, steps, tols, false).len();

@@ -54,8 +54,8 @@ const REFERENCE_STEP: StepControl = StepControl::Adaptive {
 /// exists; otherwise a run at rtol = atol = [`REFERENCE_TOLERANCE`] of Dormand–Prince, or,
 /// when Dormand–Prince itself is studied, of diffsol's Tsit45 (an independent 5(4) pair);
 /// when both are studied, Dormand–Prince's tight run cross-checked by Tsit45's. Event
-/// switching for a naive study (the exact solution of the discontinuous problem it
-/// approximates), the study's own switching otherwise.
+/// switching for a naive or a time-stepped study (the exact solution of the discontinuous
+/// problem both approximate), the study's own switching otherwise.
 fn plan(case: &dyn StudyCase, studied: &[Solver]) -> Plan {
     if let Some((name, m)) = case.closed_form() {
         return Plan::Exact(Reference::ClosedForm(name), m);
@@ -66,10 +66,11 @@ fn plan(case: &dyn StudyCase, studied: &[Solver]) -> Plan {
         (true, false) => (tsit45, None),
         (true, true) => (Solver::Dopri5, Some(tsit45)),
     };
-    // Naive stepping approximates the discontinuous problem, whose exact solution event
-    // switching computes; a regularized problem is its own (smooth) ODE.
+    // Naive stepping and time-stepping approximate the discontinuous problem, whose exact
+    // solution event switching computes (time-stepping takes no tolerance, so it could not
+    // compute a tight reference of its own); a regularized problem is its own (smooth) ODE.
     let switching = match case.switching() {
-        SwitchingKind::Naive => SwitchingKind::Event,
+        SwitchingKind::Naive | SwitchingKind::TimeStepping { .. } => SwitchingKind::Event,
         other => other,
     };
     Plan::Runs {

@@ -31,6 +31,31 @@ impl Method {
         }
     }
 
+    /// The solvers of `methods` that run under the case's own treatment of v = 0: those its
+    /// reference must be independent of (a peer's or time-stepping's placeholder solver is
+    /// not one).
+    pub fn own_solvers(methods: &[Method]) -> Vec<Solver> {
+        methods
+            .iter()
+            .filter(|m| m.switching.is_none())
+            .map(|m| m.solver)
+            .collect()
+    }
+
+    /// The methods a study of `solvers` runs on `case`: each solver under the case's own
+    /// treatment of v = 0, or, for a time-stepped case, the one scheme that treatment is
+    /// (Moreau–Jean takes no solver: every solver would name the same runs), labelled
+    /// `moreau-jean (timestepping)` and stepped over the study's step sizes.
+    pub fn studied(case: &dyn StudyCase, solvers: &[Solver]) -> Vec<Method> {
+        match case.switching() {
+            s @ SwitchingKind::TimeStepping { .. } => vec![Method {
+                solver: Solver::Rk4,
+                switching: Some(s),
+            }],
+            _ => solvers.iter().map(|&s| Method::of(s)).collect(),
+        }
+    }
+
     /// The name tables and legends give it: the solver's (`dopri5`), or a peer's with its
     /// treatment (`bdf (regularized)`, `moreau-jean (timestepping)`).
     pub fn label(&self) -> String {
@@ -332,8 +357,8 @@ fn scale(reference: &Measures) -> f64 {
 /// Orders for one solver and one error measure.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct OrderTable {
-    /// The solver.
-    pub solver: &'static str,
+    /// The method's label ([`Method::label`]).
+    pub solver: String,
     /// Which error: `final_state`, `grid_max`, `event_times`, `stick_durations`.
     pub measure: &'static str,
     /// Each refinement pair.
@@ -362,13 +387,15 @@ pub fn convergence(
     tolerances: &[f64],
     progress: &(dyn Fn() + Sync),
 ) -> Result<Convergence, ScenarioError> {
-    let methods: Vec<Method> = solvers.iter().map(|&s| Method::of(s)).collect();
+    let methods = Method::studied(case, solvers);
     let jobs = Method::jobs(&methods, step_sizes, tolerances, true);
-    let (reference, ref_measures, runs) = run_against_reference(case, solvers, &jobs, progress)?;
+    let own = Method::own_solvers(&methods);
+    let (reference, ref_measures, runs) = run_against_reference(case, &own, &jobs, progress)?;
     let sc = scale(&ref_measures);
     let mut tables = Vec::new();
-    for &solver in solvers {
-        let mine: Vec<&StudyRun> = runs.iter().filter(|r| r.solver == solver.name()).collect();
+    for method in &methods {
+        let label = method.label();
+        let mine: Vec<&StudyRun> = runs.iter().filter(|r| r.solver == label).collect();
         type Pick = fn(&Errors) -> f64;
         let measures: [(&str, Pick); 4] = [
             ("final_state", |e| e.final_state),
@@ -386,7 +413,7 @@ pub fn convergence(
             }
             let (pairs, fitted_slope) = orders(&points, sc);
             tables.push(OrderTable {
-                solver: solver.name(),
+                solver: label.clone(),
                 measure: name,
                 pairs,
                 fitted_slope,
@@ -421,8 +448,8 @@ pub struct OutputCheck {
 /// A step-size independence study.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Independence {
-    /// The solver.
-    pub solver: &'static str,
+    /// The method's label ([`Method::label`]).
+    pub solver: String,
     /// Which the resolutions are: `fixed` (step sizes) or `adaptive` (tolerances).
     pub step: &'static str,
     /// The resolutions, coarse to fine (each the previous divided by `ratio`).
@@ -474,7 +501,8 @@ pub fn independence(
     progress: &(dyn Fn() + Sync),
 ) -> Result<Independence, ScenarioError> {
     let resolutions: Vec<f64> = (0..levels).map(|i| start / ratio.powi(i as i32)).collect();
-    let jobs = Method::jobs(&[Method::of(solver)], &resolutions, &resolutions, false);
+    let method = Method::studied(case, &[solver]);
+    let jobs = Method::jobs(&method, &resolutions, &resolutions, false);
     let runs = batch::run_cases(&[case], None, &jobs, 0, progress)?
         .remove(0)
         .runs;
@@ -539,7 +567,7 @@ pub fn independence(
         });
     }
     Ok(Independence {
-        solver: solver.name(),
+        solver: method[0].label(),
         step: runs.first().map_or("fixed", |r| r.step),
         independent: outputs.iter().all(|o| o.independent),
         resolutions,
@@ -575,11 +603,7 @@ pub fn work_precision(
     progress: &(dyn Fn() + Sync),
 ) -> Result<WorkPrecision, ScenarioError> {
     let jobs = Method::jobs(methods, step_sizes, tolerances, false);
-    let own: Vec<Solver> = methods
-        .iter()
-        .filter(|m| m.switching.is_none())
-        .map(|m| m.solver)
-        .collect();
+    let own = Method::own_solvers(methods);
     let c = batch::run_cases(&[case], Some(&own), &jobs, repeats.max(1) - 1, progress)?.remove(0);
     let (reference, _) = c.reference.expect("a reference was asked for");
     Ok(WorkPrecision {
@@ -697,11 +721,7 @@ pub fn stiffness(
     tolerances: &[f64],
     progress: &(dyn Fn() + Sync),
 ) -> Result<Stiffness, ScenarioError> {
-    let own: Vec<Solver> = methods
-        .iter()
-        .filter(|m| m.switching.is_none())
-        .map(|m| m.solver)
-        .collect();
+    let own = Method::own_solvers(methods);
     let Sweep {
         parameter,
         values,

@@ -407,3 +407,60 @@ fn an_own_method_is_studied_beside_the_built_ins_under_its_own_name_only() {
     let message = run(&CLASH).unwrap_err().to_string();
     assert!(message.contains("both named `dopri5`"), "{message}");
 }
+
+/// A time-stepped study runs one method, Moreau–Jean (it takes no solver: the three asked
+/// for would name the same runs), over the step sizes, against the case's closed form; on
+/// the smooth viscous block θ = 1/2 is the trapezoidal rule (order 2) and θ = 1 implicit
+/// Euler (order 1).
+#[test]
+fn a_time_stepped_study_measures_moreau_jeans_order_under_its_own_name() {
+    let solvers = [Solver::Rk4, Solver::Dopri5, Solver::ImplicitEuler];
+    let steps = [0.04, 0.02, 0.01, 0.005];
+    for (theta, order) in [(0.5, 2.0), (1.0, 1.0)] {
+        let case = Case {
+            switching: SwitchingKind::TimeStepping { theta },
+            ..viscous_block()
+        };
+        let c = convergence(&case, &solvers, &steps, &[1e-6], &|| {}).unwrap();
+        assert!(matches!(c.reference, Reference::ClosedForm(_)));
+        let labels: Vec<&str> = c.runs.iter().map(|r| r.solver.as_str()).collect();
+        assert_eq!(labels, ["moreau-jean (timestepping)"; 4], "θ = {theta}");
+        assert!(c
+            .runs
+            .iter()
+            .all(|r| r.failure.is_none() && r.step == "fixed"));
+        let grid = c.orders.iter().find(|t| t.measure == "grid_max").unwrap();
+        assert_eq!(grid.solver, "moreau-jean (timestepping)");
+        let p = grid.fitted_slope.unwrap();
+        println!("θ = {theta}: observed order {p:.3}");
+        assert!((p - order).abs() < 0.15, "θ = {theta}: order {p}");
+    }
+}
+
+/// Without a closed form, a time-stepped study's reference is the event-driven solution of
+/// the same nonsmooth problem (time-stepping takes no tolerance, so a tight run of its own
+/// cannot exist: the study once failed on it), and the event-driven reference agrees with the
+/// reference of the event-switched study to the bit.
+#[test]
+fn a_time_stepped_study_without_a_closed_form_takes_the_event_driven_reference() {
+    use scenarios::studies::reference;
+    let stepped = Case {
+        switching: SwitchingKind::TimeStepping { theta: 0.5 },
+        ..switched_belt()
+    };
+    let c = convergence(&stepped, &[Solver::Dopri5], &[0.01, 0.005], &[1e-6], &|| {}).unwrap();
+    let Reference::Run { solver, .. } = c.reference else {
+        panic!("{:?}", c.reference)
+    };
+    assert_eq!(
+        solver, "dopri5",
+        "the time-stepped method is not a solver studied"
+    );
+    assert!(c.runs.iter().all(|r| r.failure.is_none()));
+    let (_, stepped_reference) = reference(&stepped, &[]).unwrap();
+    let (_, event_reference) = reference(&switched_belt(), &[]).unwrap();
+    assert_eq!(
+        stepped_reference.final_state, event_reference.final_state,
+        "the same run"
+    );
+}
