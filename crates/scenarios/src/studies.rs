@@ -268,37 +268,40 @@ pub struct PairOrder {
     /// asymptotic range, or the error has saturated (a limit cycle's phase drift, for one,
     /// holds it at the cycle's amplitude): the pair says nothing of the order either.
     pub stalled: bool,
-    /// Outside the asymptotic range: the order differs by more than 0.5 from the median of
-    /// the usable pairs.
+    /// Outside the asymptotic range: the coarser error is as large as the solution's scale
+    /// (the run has no correct digit: an unstable or unresolved step), or the order differs by
+    /// more than 0.5 from the median of the other usable pairs.
     pub pre_asymptotic: bool,
 }
 
 /// Orders of successive pairs of (resolution, error), and the least-squares slope of
 /// log(error) against log(resolution) over the pairs that are neither round-off, stalled nor
-/// pre-asymptotic.
+/// pre-asymptotic (see [`PairOrder`]; `scale` is the solution's).
 pub fn orders(points: &[(f64, f64)], scale: f64) -> (Vec<PairOrder>, Option<f64>) {
     let mut pairs: Vec<PairOrder> = points
         .windows(2)
         .map(|w| {
             let round_off = w[1].1 <= 1e-12 * scale || !(w[0].1.is_finite() && w[1].1.is_finite());
+            let stalled = !round_off && w[1].1 >= w[0].1;
             PairOrder {
                 from: w[0].0,
                 to: w[1].0,
                 order: observed_order((w[0].1, w[1].1), (w[0].0, w[1].0)),
                 round_off,
-                stalled: !round_off && w[1].1 >= w[0].1,
-                pre_asymptotic: false,
+                stalled,
+                pre_asymptotic: !round_off && !stalled && w[0].1 >= scale,
             }
         })
         .collect();
-    let mut usable: Vec<f64> = pairs
+    let usable = |p: &PairOrder| !p.round_off && !p.stalled && !p.pre_asymptotic;
+    let mut orders: Vec<f64> = pairs
         .iter()
-        .filter(|p| !p.round_off && !p.stalled)
+        .filter(|p| usable(p))
         .map(|p| p.order)
         .collect();
-    usable.sort_by(f64::total_cmp);
-    if let Some(&median) = usable.get(usable.len() / 2) {
-        for p in pairs.iter_mut().filter(|p| !p.round_off && !p.stalled) {
+    orders.sort_by(f64::total_cmp);
+    if let Some(&median) = orders.get(orders.len() / 2) {
+        for p in pairs.iter_mut().filter(|p| usable(p)) {
             p.pre_asymptotic = (p.order - median).abs() > 0.5;
         }
     }

@@ -353,6 +353,20 @@ fn pairs_at_the_floor_are_round_off_and_pairs_that_do_not_decrease_are_stalled()
     let (pairs, slope) = orders(&missing, 1.0);
     assert!(pairs[0].round_off && !pairs[1].round_off);
     assert!((slope.unwrap() - 1.0).abs() < 1e-12, "{slope:?}");
+    // RK4 past its stability bound at the coarsest step (the belt at h = 0.5, k = 100: an
+    // error of 1e51), then fourth order: the unstable run has no correct digit and its pair
+    // is pre-asymptotic, even where it is the only other pair (no median to stand against).
+    for unstable in [
+        &[(0.5, 1e51), (0.25, 0.16), (0.125, 0.01)][..],
+        &[(0.5, 1e51), (0.25, 0.16)][..],
+    ] {
+        let (pairs, slope) = orders(unstable, 1.0);
+        assert!(pairs[0].pre_asymptotic, "{pairs:?}");
+        assert_eq!(slope.is_some(), unstable.len() == 3, "{slope:?}");
+        if let Some(p) = slope {
+            assert!((p - 4.0).abs() < 1e-12, "{p}");
+        }
+    }
 }
 
 /// Dormand–Prince under a name of the user's choosing.
