@@ -266,11 +266,12 @@ impl EventWatch {
 /// the function arrives at (the state there has crossed), once the bracket is narrower than
 /// `tol`.
 ///
-/// A value of exactly zero counts as arrived, as in [`Crossing::crossed`], and is not taken as
-/// the root at once: an event function can reach zero and stay there (a body that comes to rest
-/// on its surface and is held there by nothing), and the root sought is where it arrives, the
-/// earliest zero. Where the secant point would be a bracket end (a zero end), the step is a
-/// bisection.
+/// A value of exactly zero counts as arrived, as in [`Crossing::crossed`]. An event function
+/// can reach zero and stay there (a body that comes to rest on its surface and is held there by
+/// nothing), and the root sought is where it arrives, the earliest zero: a zero at the end of
+/// the bracket is not taken as the root, and a zero inside it only if the function is still
+/// before the crossing a tolerance earlier (one more evaluation). Where the secant point would
+/// be a bracket end (a zero end), the step is a bisection.
 pub fn illinois(g: &mut dyn FnMut(f64) -> f64, a: f64, ga: f64, b: f64, gb: f64, tol: f64) -> f64 {
     // The sign of the side the function arrives at; a zero is on it.
     let after = -ga.signum();
@@ -288,6 +289,14 @@ pub fn illinois(g: &mut dyn FnMut(f64) -> f64, a: f64, ga: f64, b: f64, gb: f64,
             0.5 * (a + b)
         };
         let gc = g(c);
+        // An exact zero is the root if the function is still before the crossing a time
+        // tolerance earlier (or the bracket ends there): an isolated root, as a secant step
+        // lands on a linear function's. Otherwise it sits at zero there too, and the earliest
+        // zero lies before c.
+        let lo = a.min(b);
+        if gc == 0.0 && (c - tol <= lo || side(g(c - tol)) != after) {
+            return c;
+        }
         if side(gc) == side(gb) {
             ga *= 0.5;
         } else {
@@ -332,8 +341,23 @@ mod tests {
             0.0,
             "the state at the root has arrived"
         );
-        // Bisection halves 1 s to below 1e-12 s in at most 40 steps.
-        assert!(evaluations <= 40, "{evaluations} evaluations");
+        // Bisection halves 1 s to below 1e-12 s in 40 steps, and each zero it meets is probed
+        // once a tolerance earlier.
+        assert!(evaluations <= 80, "{evaluations} evaluations");
+    }
+
+    #[test]
+    fn a_secant_step_onto_a_linear_functions_root_ends_the_iteration_there() {
+        // The bracket of an event at t = 10 s of a force ramp (as `reproduce` meets it): the
+        // secant lands on the root exactly; one probe a tolerance earlier confirms it.
+        let (a, b) = (9.437152000000003, 10.485728000000003);
+        let mut evaluations = 0;
+        let mut g = |t: f64| {
+            evaluations += 1;
+            10.0 - t
+        };
+        let root = illinois(&mut g, a, 10.0 - a, b, 10.0 - b, 1e-11);
+        assert_eq!((root, evaluations), (10.0, 2));
     }
 
     #[test]
