@@ -1374,3 +1374,43 @@ fn studies_of_a_chain_draw_regularised_bdf_and_time_stepping_beside_the_solvers(
         assert_eq!(csv.matches(label).count(), 2, "{label}: {csv}");
     }
 }
+
+#[test]
+fn stiffness_of_a_rig_over_epsilon_is_regularized_unless_told_otherwise() {
+    // The regularisation width changes nothing under event switching (every value would give
+    // the same runs); without --switching the study of a rig over epsilon is regularized, so
+    // Dormand–Prince's cost grows as epsilon shrinks. With --switching event it does not.
+    let evals = |switching: Option<&str>| -> Vec<f64> {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("s");
+        let mut args = vec![
+            "stiffness",
+            "belt",
+            "--model",
+            "CS",
+            "--values",
+            "1e-1,1e-3",
+            "--solvers",
+            "dopri5",
+            "--t-end",
+            "2",
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        if let Some(s) = switching {
+            args.extend(["--switching", s]);
+        }
+        let o = friction_lab(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let csv = std::fs::read_to_string(out.join("stiffness.csv")).unwrap();
+        let mut rows = csv.lines();
+        let header: Vec<&str> = rows.next().unwrap().split(',').collect();
+        let column = header.iter().position(|&h| h == "rhs_evals").unwrap();
+        rows.map(|r| r.split(',').nth(column).unwrap().parse().unwrap())
+            .collect()
+    };
+    let default = evals(None);
+    assert!(default[1] > 5.0 * default[0], "{default:?}");
+    let event = evals(Some("event"));
+    assert_eq!(event[0], event[1], "{event:?}");
+}

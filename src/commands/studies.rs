@@ -45,13 +45,10 @@ pub struct CaseArgs {
     #[arg(long, value_name = "LIST", value_delimiter = ',')]
     pub bodies: Vec<String>,
     /// event, regularized, naive, or timestepping (Moreau–Jean at θ = 1/2, the study's one
-    /// method: over the step sizes, --solvers unused; its reference is event-driven).
-    #[arg(
-        long,
-        value_name = "event|regularized|naive|timestepping",
-        default_value = "event"
-    )]
-    pub switching: SwitchingKind,
+    /// method: over the step sizes, --solvers unused; its reference is event-driven)
+    /// [default: event; for `stiffness` of a rig over epsilon, regularized]
+    #[arg(long, value_name = "event|regularized|naive|timestepping")]
+    pub switching: Option<SwitchingKind>,
     /// End time, s [default: the scenario's; 50 for the chain; 20 for a system file].
     #[arg(long, value_name = "T", allow_hyphen_values = true)]
     pub t_end: Option<f64>,
@@ -92,7 +89,7 @@ impl CaseArgs {
                 return Ok(Box::new(SystemCase {
                     name: described.name,
                     system: described.system,
-                    switching: self.switching,
+                    switching: self.switching.unwrap_or(SwitchingKind::Event),
                     epsilon: described.friction.epsilon,
                     t_end: check_t_end(self.t_end.unwrap_or(default_t_end))?,
                     bodies,
@@ -126,7 +123,7 @@ impl CaseArgs {
             law: model.into(),
             friction,
             params,
-            switching: self.switching,
+            switching: self.switching.unwrap_or(SwitchingKind::Event),
             t_end,
             limits: self.limits.limits()?,
         }))
@@ -948,9 +945,19 @@ pub fn add_stiffness(
     Ok(s)
 }
 
-/// Runs `stiffness`; its files in memory.
+/// Runs `stiffness`; its files in memory. Without `--switching`, a rig swept over `epsilon`
+/// is regularized: the width changes nothing else (under event switching every value would
+/// give the same runs), while a system keeps event switching, whose regularised BDF peer is
+/// the method that depends on it.
 pub fn stiffness(a: &StiffnessArgs) -> Result<Made, AppError> {
-    a.case.make(|t, case| {
+    let mut case = a.case.clone();
+    if case.switching.is_none()
+        && a.parameter == "epsilon"
+        && matches!(case.scenario, Some(Problem::Rig(_)))
+    {
+        case.switching = Some(SwitchingKind::Regularized);
+    }
+    case.make(|t, case| {
         let sweep = studies::Sweep {
             parameter: &a.parameter,
             values: &a.values,
