@@ -655,8 +655,17 @@ pub struct Stiffness {
     pub target: f64,
     /// Every value.
     pub points: Vec<StiffnessPoint>,
-    /// The first value (in sweep order) from which the implicit solvers win.
+    /// The crossover ([`crossover`]), as the verdict names it.
     pub crossover: Option<f64>,
+}
+
+/// The first value (in sweep order) from which the implicit solvers win, where the explicit
+/// ones won before it and the implicit ones win at every value from it on; `None` where one
+/// kind wins at every value or the winner changes more than once (as [`Stiffness::verdict`]
+/// says).
+pub fn crossover(points: &[StiffnessPoint]) -> Option<f64> {
+    let k = points.iter().position(|p| p.implicit_wins)?;
+    (k > 0 && points[k..].iter().all(|p| p.implicit_wins)).then(|| points[k].value)
 }
 
 impl Stiffness {
@@ -780,12 +789,11 @@ pub fn stiffness(
             implicit_wins,
         });
     }
-    let crossover = points.iter().find(|p| p.implicit_wins).map(|p| p.value);
     Ok(Stiffness {
         parameter: parameter.to_string(),
         target,
+        crossover: crossover(&points),
         points,
-        crossover,
     })
 }
 

@@ -124,11 +124,9 @@ fn the_independence_verdict_is_negative_for_a_coarse_step_and_positive_for_a_fin
 
 #[test]
 fn the_stiffness_verdict_names_a_crossover_only_inside_the_sweep() {
-    use scenarios::studies::{Stiffness, StiffnessPoint};
-    let sweep = |wins: &[bool]| Stiffness {
-        parameter: "epsilon".into(),
-        target: 1e-3,
-        points: wins
+    use scenarios::studies::{crossover, Stiffness, StiffnessPoint};
+    let sweep = |wins: &[bool]| {
+        let points: Vec<StiffnessPoint> = wins
             .iter()
             .enumerate()
             .map(|(i, &w)| StiffnessPoint {
@@ -136,12 +134,25 @@ fn the_stiffness_verdict_names_a_crossover_only_inside_the_sweep() {
                 costs: vec![],
                 implicit_wins: w,
             })
-            .collect(),
-        crossover: wins
-            .iter()
-            .position(|&w| w)
-            .map(|i| 10f64.powi(-(i as i32))),
+            .collect();
+        Stiffness {
+            parameter: "epsilon".into(),
+            target: 1e-3,
+            crossover: crossover(&points),
+            points,
+        }
     };
+    // The crossover of the files is the verdict's: none where one kind wins everywhere (the
+    // JSON once named the first value then) or the winner changes twice.
+    let named: Vec<Option<f64>> = [
+        &[true, true, true][..],
+        &[false, true, true],
+        &[false, true, false],
+    ]
+    .iter()
+    .map(|w| sweep(w).crossover)
+    .collect();
+    assert_eq!(named, [None, Some(0.1), None]);
     assert_eq!(
         sweep(&[true, true, true]).verdict(),
         "the implicit solvers win at every epsilon of the sweep: no crossover in this range"
