@@ -554,6 +554,14 @@ fn studies_on_one_and_two_threads_write_identical_files() {
         json["reference"]["Run"]["solver"].is_string(),
         "the reference solver is named"
     );
+    // The file says what it studied.
+    assert_eq!(json["case"]["switching"], "naive");
+    assert_eq!(json["case"]["t_end"], 2.0);
+    let description = json["case"]["description"].as_str().unwrap();
+    assert!(
+        description.contains("free-vibration") && description.contains("static"),
+        "{description}"
+    );
     // A sweep's values and a study's timing repeats share one list of runs.
     let one = identical_on_one_and_two_threads(
         dir.path(),
@@ -578,6 +586,8 @@ fn studies_on_one_and_two_threads_write_identical_files() {
     let json: serde_json::Value =
         serde_json::from_slice(&std::fs::read(one.join("stiffness.json")).unwrap()).unwrap();
     assert_eq!(json["points"].as_array().unwrap().len(), 2);
+    // Swept over k, not epsilon, a rig keeps event switching by default.
+    assert_eq!(json["case"]["switching"], "event");
     identical_on_one_and_two_threads(
         dir.path(),
         &[

@@ -21,7 +21,37 @@ use scenarios::studies::{
     WorkPrecision,
 };
 use scenarios::{Scenario, SwitchingKind};
+use serde::Serialize;
 use std::path::{Path, PathBuf};
+
+/// What a study's JSON says it studied, beside the study's own fields: the case as its plots
+/// name it, its treatment of v = 0 and its end time.
+#[derive(Serialize)]
+struct StudyFile<'a, T: Serialize> {
+    case: CaseRecord,
+    #[serde(flatten)]
+    study: &'a T,
+}
+
+/// The case of a study, as its JSON records it.
+#[derive(Serialize)]
+struct CaseRecord {
+    description: String,
+    switching: SwitchingKind,
+    t_end: f64,
+}
+
+/// `study` of `case`, for its JSON.
+fn study_file<'a, T: Serialize>(case: &dyn StudyCase, study: &'a T) -> StudyFile<'a, T> {
+    StudyFile {
+        case: CaseRecord {
+            description: case.describe(),
+            switching: case.switching(),
+            t_end: case.t_end(),
+        },
+        study,
+    }
+}
 
 /// The problem a study runs.
 #[derive(Args, Debug, Clone)]
@@ -392,7 +422,8 @@ pub fn add_convergence(
     b.finish();
     let csv = dir.join(format!("{stem}.csv"));
     t.files.add(csv.clone(), runs_table(&c.runs, &csv)?);
-    t.files.add_json(dir.join(format!("{stem}.json")), &c)?;
+    t.files
+        .add_json(dir.join(format!("{stem}.json")), &study_file(case, &c))?;
     // Step sizes and tolerances are different things: one panel each.
     let panel = |step: &str, x_label: &str, slopes: &[f64]| {
         let mut series = per_solver_series(
@@ -571,7 +602,8 @@ pub fn add_independence(
     }
     let csv = dir.join(format!("{stem}.csv"));
     t.files.add(csv.clone(), table.to_csv(&csv)?);
-    t.files.add_json(dir.join(format!("{stem}.json")), &s)?;
+    t.files
+        .add_json(dir.join(format!("{stem}.json")), &study_file(case, &s))?;
     let series = s
         .trajectories
         .iter()
@@ -720,7 +752,8 @@ pub fn add_work_precision(
     }
     let timing_csv = dir.join(format!("{stem}-timing.csv"));
     t.files.add(timing_csv.clone(), timing.to_csv(&timing_csv)?);
-    t.files.add_json(dir.join(format!("{stem}.json")), &w)?;
+    t.files
+        .add_json(dir.join(format!("{stem}.json")), &study_file(case, &w))?;
     let plot = Plot {
         title: format!("Work-precision: {}", case.describe()),
         x_label: "work (f evaluations + dim per Jacobian)".into(),
@@ -878,7 +911,8 @@ pub fn add_stiffness(
     }
     let csv = dir.join(format!("{stem}.csv"));
     t.files.add(csv.clone(), table.to_csv(&csv)?);
-    t.files.add_json(dir.join(format!("{stem}.json")), &s)?;
+    t.files
+        .add_json(dir.join(format!("{stem}.json")), &study_file(case, &s))?;
     // A solver that met the target at a value: a dot at its cost; one that did not: a cross
     // at the top of the plot, named.
     let reached: Vec<(f64, f64)> = s
