@@ -92,7 +92,7 @@ impl Momentum {
     }
 
     /// The rounding error of R at w with the law's `force` there ([`rounding`] of its terms).
-    fn rounding(&self, sliding: Sliding, w: f64, force: f64) -> f64 {
+    fn residual_rounding(&self, sliding: Sliding, w: f64, force: f64) -> f64 {
         let s = sliding.d.sign();
         rounding(&[
             self.w * (s * w + self.v_s),
@@ -362,7 +362,8 @@ pub(crate) fn solve<P: ContactProblem>(
     let (interval, z_rest) = problem.rest(out)?;
     let eq = *problem.eq();
     let held = eq.holding_force();
-    if interval.contains(held) {
+    // At rest on the surface, held there by λ*.
+    let rest = |out: &mut Solved| {
         *out = Solved {
             u: 0.0,
             z: z_rest,
@@ -370,7 +371,10 @@ pub(crate) fn solve<P: ContactProblem>(
             impulse: eq.h * held,
             direction: None,
             iterations: out.iterations,
-        };
+        }
+    };
+    if interval.contains(held) {
+        rest(out);
         return Ok(());
     }
     let d = if held > interval.upper {
@@ -394,14 +398,7 @@ pub(crate) fn solve<P: ContactProblem>(
         Direction::Negative => interval.lower,
     };
     if (held - bound).abs() <= eq.holding_rounding(bound) {
-        *out = Solved {
-            u: 0.0,
-            z: z_rest,
-            force: held,
-            impulse: eq.h * held,
-            direction: None,
-            iterations: out.iterations,
-        };
+        rest(out);
         return Ok(());
     }
     Err(Unsolved::OutsideInterval {
@@ -502,7 +499,7 @@ impl ContactProblem for Newton<'_, '_> {
             let step = newton - w;
             if r == 0.0
                 || step.abs() <= LINEAR_UPDATE * w
-                || r.abs() <= eq.rounding(sliding, w, p.force)
+                || r.abs() <= eq.residual_rounding(sliding, w, p.force)
             {
                 // At w itself to rounding, or one linearised Newton step from it.
                 let du = if step.abs() <= LOCAL_ROUNDOFF * w {
@@ -662,6 +659,7 @@ impl ContactProblem for Affine<'_> {
 mod tests {
     use super::{
         invariant_at_rest, solve, Affine, AffineLaw, Local, Momentum, Newton, Solved, StepCache,
+        Unsolved,
     };
     use friction_models::{Direction, FrictionModel, FrictionParams, ModelId, SignLaw, Variant};
 
@@ -697,11 +695,15 @@ mod tests {
         }
     }
 
-    /// The problem solved by Newton's method, as for any law.
-    fn by_newton(model: &dyn FrictionModel, b: f64, previous: Option<(Direction, f64)>) -> Solved {
+    /// The problem of `eq` solved by Newton's method, as for any law without a state.
+    fn newton(
+        model: &dyn FrictionModel,
+        eq: Momentum,
+        previous: Option<(Direction, f64)>,
+    ) -> Result<Solved, Unsolved> {
         let local = Local {
             model,
-            eq: eq(b),
+            eq,
             x_hat: 0.0,
             z0: 0.0,
             rate0: 0.0,
@@ -713,8 +715,12 @@ mod tests {
             u_guess: 0.0,
         };
         let mut out = empty();
-        solve(&mut problem, previous, &mut out).expect("solvable");
-        out
+        solve(&mut problem, previous, &mut out).map(|()| out)
+    }
+
+    /// The problem solved by Newton's method, as for any law.
+    fn by_newton(model: &dyn FrictionModel, b: f64, previous: Option<(Direction, f64)>) -> Solved {
+        newton(model, eq(b), previous).expect("solvable")
     }
 
     /// The problem solved in closed form.
@@ -800,28 +806,16 @@ mod tests {
         let mut b = 9.0 * h - 64.0 * f64::EPSILON * 9.0 * h;
         let mut at_rest = 0;
         for _ in 0..129 {
-            let local = Local {
-                model: av.as_ref(),
-                eq: Momentum {
-                    h,
-                    theta: 1.0,
-                    w: 1.0,
-                    b,
-                    v_s: 0.0,
-                },
-                x_hat: 0.0,
-                z0: 0.0,
-                rate0: 0.0,
-                has_state: false,
+            let eq = Momentum {
+                h,
+                theta: 1.0,
+                w: 1.0,
+                b,
+                v_s: 0.0,
             };
-            let mut problem = Newton {
-                local: &local,
-                cache: &mut StepCache::default(),
-                u_guess: 0.0,
-            };
-            let mut s = empty();
-            let solved = solve(&mut problem, None, &mut s);
-            assert_eq!(solved, Ok(()), "b = {b:e}");
+            let solved = newton(av.as_ref(), eq, None);
+            assert!(solved.is_ok(), "b = {b:e}: {solved:?}");
+            let s = solved.unwrap();
             match s.direction {
                 None => {
                     at_rest += 1;

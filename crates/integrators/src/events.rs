@@ -293,8 +293,7 @@ pub fn illinois(g: &mut dyn FnMut(f64) -> f64, a: f64, ga: f64, b: f64, gb: f64,
         // tolerance earlier (or the bracket ends there): an isolated root, as a secant step
         // lands on a linear function's. Otherwise it sits at zero there too, and the earliest
         // zero lies before c.
-        let lo = a.min(b);
-        if gc == 0.0 && (c - tol <= lo || side(g(c - tol)) != after) {
+        if gc == 0.0 && (c - tol <= a.min(b) || side(g(c - tol)) != after) {
             return c;
         }
         if side(gc) == side(gb) {
