@@ -20,6 +20,7 @@
 //! contact.
 
 pub mod chain;
+mod correction;
 pub mod energy;
 pub mod file;
 pub mod hybrid;

@@ -149,6 +149,9 @@ pub(crate) struct Solved {
     pub impulse: f64,
     /// Direction of sliding at the end of the step; `None` at rest.
     pub direction: Option<Direction>,
+    /// The slope of the sliding residual at the solution, `∂R/∂u = Ŵ + h·θ_f·dF/du`: how the
+    /// solution follows b, `∂u/∂b = 1/(∂R/∂u)` (0 at rest, where u does not follow b).
+    pub dr_du: f64,
     /// Newton iterations spent.
     pub iterations: usize,
 }
@@ -370,6 +373,7 @@ pub(crate) fn solve<P: ContactProblem>(
             force: held,
             impulse: eq.h * held,
             direction: None,
+            dr_du: 0.0,
             iterations: out.iterations,
         }
     };
@@ -518,6 +522,7 @@ impl ContactProblem for Newton<'_, '_> {
                     force: at.force,
                     impulse: eq.impulse(sliding, at.force),
                     direction: Some(d),
+                    dr_du: dr,
                     iterations,
                 };
                 self.cache.last = Some((d, theta_f, s * out.u, at));
@@ -649,6 +654,7 @@ impl ContactProblem for Affine<'_> {
             force,
             impulse: self.eq.impulse(sliding, force),
             direction: Some(sliding.d),
+            dr_du: dr0,
             iterations: out.iterations,
         };
         Ok(true)
@@ -691,6 +697,7 @@ mod tests {
             force: 0.0,
             impulse: 0.0,
             direction: None,
+            dr_du: 0.0,
             iterations: 0,
         }
     }

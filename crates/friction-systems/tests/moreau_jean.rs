@@ -552,12 +552,15 @@ fn a_contact_without_a_solution_fails_the_step_with_where_and_why() {
         "{why}"
     );
     assert!(why.contains("stick interval [-1, 1]"), "{why}");
-    // What was computed before the failure is kept.
+    // What was computed before the failure is kept, and what it cost: a single body, one
+    // sweep in each step it took and one in the step that failed.
     assert!(
         run.solution.t.last().is_some_and(|&last| last > 0.99),
         "{:?}",
         run.solution.t.last()
     );
+    let stats = &run.solution.stats;
+    assert_eq!(stats.rhs_evals, stats.steps + 1, "{stats:?}");
 }
 
 /// Two free bodies (no contact) joined by a spring, m1 = 1 kg at 1 m/s and m2 = 2 kg at rest:

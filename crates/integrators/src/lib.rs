@@ -32,6 +32,7 @@ pub mod solution;
 pub mod solver;
 pub mod stats;
 pub mod stepper;
+pub mod symmetric;
 
 pub use diffsol_backend::DiffsolMethod;
 pub use dopri5::Dopri5;
