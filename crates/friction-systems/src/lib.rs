@@ -12,7 +12,8 @@
 //! - [`switching`]: how v_rel = 0 is treated (event-driven, regularised, naive,
 //!   time-stepping);
 //! - [`moreau_jean`]: the same system time-stepped by Moreau–Jean's scheme, each step's
-//!   contact problem solved by nonsmooth Gauss–Seidel ([`MoreauJean`]);
+//!   contact problem solved by nonsmooth Gauss–Seidel ([`MoreauJean`]), with Newton's
+//!   correction where the coupling is stiff (`correction`);
 //! - [`run`]: one integration by any solver of `integrators`, or by time-stepping, read per
 //!   body and per contact.
 //!

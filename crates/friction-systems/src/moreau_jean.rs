@@ -27,6 +27,9 @@
 //! until no velocity changes by more than
 //! [`SWEEP_ATOL`]` + `[`SWEEP_RTOL`]`·|v|`; only the neighbours of a body that moved are
 //! visited again. One sweep costs one pass over the springs and contacts: O(N) on a chain.
+//! Where the coupling is stiff (h²θ²k ≳ m) Gauss–Seidel contracts slowly; after
+//! [`CORRECT_AFTER`] sweeps each further sweep starts from Newton's correction of all the
+//! velocities with the modes held (`correction`: a sparse symmetric solve, O(N) on a chain).
 //!
 //! The energy accumulators of [`crate::energy`] are the work of each step's impulses on the
 //! mean velocity `(v + v')/2`; at θ = 1/2 the discrete balance then holds to rounding and to

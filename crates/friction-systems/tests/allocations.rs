@@ -2,7 +2,8 @@
 //! global allocator (counting only on the test's own thread) watches 1000 steps after 50 of
 //! warm-up, on a system that exercises every path of the step: springs between bodies and to
 //! anchors with dampers, an external force with a profile, and contacts solved in closed form
-//! (Coulomb), by Newton's method (CVS) and with an internal state (LuGre).
+//! (Coulomb), by Newton's method (CVS) and with an internal state (LuGre); and, with stiff
+//! springs between the blocks, Newton's correction of the sweeps at every step.
 
 use friction_models::{FrictionParams, ModelId, Variant};
 use friction_systems::{simulate, End, Profile, Switching, System};
@@ -18,8 +19,9 @@ const WATCHED: usize = 1000;
 
 /// Five blocks on a belt running at −5 m/s (so each slides forward throughout), each held by
 /// a damped spring to a wall, neighbours joined by damped springs, the middle one pushed by a
-/// ramp; laws Coulomb, CVS, LuGre, CVS, Coulomb.
-fn sliding_chain() -> System {
+/// ramp; laws Coulomb, CVS, LuGre, CVS, Coulomb; neighbours joined with stiffness
+/// `k_neighbours`, N/m.
+fn sliding_chain(k_neighbours: f64) -> System {
     let p = FrictionParams::paper();
     let mut s = System::default();
     let wall = s.add_anchor("wall", 0.0, 0.0);
@@ -34,7 +36,7 @@ fn sliding_chain() -> System {
         let body = s.add_body(format!("b{i}"), 1.0, 0.0, 0.0);
         s.add_spring(End::Anchor(wall), End::Body(body), 100.0, 0.5);
         if i > 0 {
-            s.add_spring(End::Body(body - 1), End::Body(body), 50.0, 0.2);
+            s.add_spring(End::Body(body - 1), End::Body(body), k_neighbours, 0.2);
         }
         let model = law.build(Variant::Odd, &p).expect("paper parameters");
         s.add_contact(body, -5.0, Arc::from(model));
@@ -43,10 +45,11 @@ fn sliding_chain() -> System {
     s
 }
 
-/// Allocations during steps WARM_UP + 1 ..= WARM_UP + WATCHED of the time-stepped run at θ,
-/// and the run's number of switching steps.
-fn allocations(theta: f64) -> (usize, usize) {
-    let system = sliding_chain();
+/// Allocations during steps WARM_UP + 1 ..= WARM_UP + WATCHED of the time-stepped run at θ
+/// of the chain joined by `k_neighbours`, the run's number of switching steps and of Newton's
+/// corrections.
+fn allocations(theta: f64, k_neighbours: f64) -> (usize, usize, usize) {
+    let system = sliding_chain(k_neighbours);
     let (h, t_end) = (1e-3, 2.0);
     let options = Options {
         output: Output::GridOnly(vec![t_end]),
@@ -65,14 +68,33 @@ fn allocations(theta: f64) -> (usize, usize) {
     let run = simulate(&system, switching, Solver::Rk4, options, &mut observe).expect("valid");
     assert!(run.error.is_none(), "{:?}", run.error);
     assert_eq!(run.solution.stats.steps, 2000);
-    (allocations, run.solution.stats.events)
+    let stats = &run.solution.stats;
+    (allocations, stats.events, stats.lu_factorizations)
 }
 
 #[test]
 fn a_step_that_neither_records_nor_switches_allocates_nothing() {
     for theta in [0.5, 1.0] {
-        let (allocations, switches) = allocations(theta);
+        let (allocations, switches, corrections) = allocations(theta, 50.0);
         assert_eq!(switches, 0, "θ = {theta}: every block slides throughout");
+        assert_eq!(corrections, 0, "θ = {theta}: weak coupling, no correction");
+        assert_eq!(
+            allocations, 0,
+            "θ = {theta}: allocations in {WATCHED} steps"
+        );
+    }
+}
+
+#[test]
+fn a_step_with_newtons_correction_allocates_nothing() {
+    // h²θ²k/m = 25 at θ = 1/2: Gauss–Seidel alone would need tens of sweeps a step.
+    for theta in [0.5, 1.0] {
+        let (allocations, switches, corrections) = allocations(theta, 1e8);
+        assert_eq!(switches, 0, "θ = {theta}: every block slides throughout");
+        assert!(
+            corrections >= WATCHED,
+            "θ = {theta}: {corrections} corrections"
+        );
         assert_eq!(
             allocations, 0,
             "θ = {theta}: allocations in {WATCHED} steps"
