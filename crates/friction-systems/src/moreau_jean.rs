@@ -57,9 +57,10 @@ pub const SWEEP_ATOL: f64 = 1e-14;
 /// Most Gauss–Seidel sweeps in one step.
 pub const MAX_SWEEPS: usize = 10_000;
 /// Sweeps of a step after which every further sweep starts from Newton's correction of the
-/// velocities ([`crate::correction`]), as long as each correction leaves the sweep after it
-/// a smaller largest change than the one before. Weakly coupled bodies (h²θ²k ≪ m: the
-/// chain's defaults) converge in fewer sweeps and never pay for a factorisation.
+/// velocities (the private module `correction`, docs/timestepping.md), as long as each
+/// correction leaves the sweep after it a smaller largest change than the one before. Weakly
+/// coupled bodies (h²θ²k ≪ m: the chain's defaults) converge in fewer sweeps and never pay
+/// for a factorisation.
 pub const CORRECT_AFTER: usize = 3;
 /// The wall clock is read every this many steps.
 const CLOCK_EVERY: usize = 64;
