@@ -480,6 +480,9 @@ impl<'p, 'a> Stepper<'p, 'a> {
             if correcting && sweeps >= self.correct_after {
                 correcting = self.correct();
             }
+            // The largest change is needed only in the sweeps after a correction; not kept
+            // before, it does not lengthen the visits' chain of dependent operations.
+            let track = correcting && sweeps >= self.correct_after;
             sweeps += 1;
             self.sweeps += 1;
             pending = false;
@@ -573,7 +576,9 @@ impl<'p, 'a> Stepper<'p, 'a> {
                 let dv = v - body.v;
                 body.v = v;
                 body.drift = 0.0;
-                largest = largest.max(dv.abs());
+                if track {
+                    largest = largest.max(dv.abs());
+                }
                 if dv != 0.0 {
                     for &(o, w) in row {
                         let other = &mut self.bodies[o];
@@ -593,6 +598,7 @@ impl<'p, 'a> Stepper<'p, 'a> {
     /// Newton's correction of every velocity ([`crate::correction`]) from the last solution
     /// of each body's problem, with every body then waiting for a visit; `false` when there is
     /// none (a singular matrix: Gauss–Seidel goes on alone).
+    #[inline(never)]
     fn correct(&mut self) -> bool {
         let matrix = &self.matrix;
         if self.correction.is_none() {
