@@ -279,13 +279,35 @@ impl Local<'_> {
                 iterations: 0,
             });
         }
-        // With an internal state: z(u) from the state equation by Newton's method first.
+        // With an internal state: z(u) from the state equation G(z) = z − known − h·θ·ż(z) = 0
+        // first, by Newton's method safeguarded by bisection (`rtsafe`, as the sliding
+        // equation): a step that leaves the bracket of the root, or a slope that is not
+        // positive, bisects (or, with one side of the bracket still open, steps twice the
+        // residual towards it: G' = 1 − h·θ·∂ż/∂z ≥ 1 for a dissipative state). An
+        // elasto-plastic law's ż has a kink in z (its α), where Newton's method alone cycled
+        // (the belt at v_belt = 1 m/s failed at t = 1e-3).
         let known = self.z0 + h * (1.0 - theta) * self.rate0;
         let (mut z, mut iterations) = (self.z0, 0);
+        let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
         loop {
             let (_, rate, _, d) = self.law_at(x, u, z, law);
             let (terms, slope) = ([z, known, ht * rate], 1.0 - ht * d.rate_dz);
-            let dz = (terms[0] - terms[1] - terms[2]) / slope;
+            let r = terms[0] - terms[1] - terms[2];
+            if r > 0.0 {
+                hi = z;
+            } else if r < 0.0 {
+                lo = z;
+            }
+            let mut dz = r / slope;
+            let newton = z - dz;
+            if !(slope > 0.0 && newton > lo && newton < hi) && r != 0.0 {
+                let next = if lo.is_finite() && hi.is_finite() {
+                    0.5 * (lo + hi)
+                } else {
+                    z - 2.0 * r
+                };
+                dz = z - next;
+            }
             z -= dz;
             iterations += 1;
             if dz.abs() <= LOCAL_ROUNDOFF * z.abs() || dz.abs() <= rounding(&terms) / slope.abs() {
