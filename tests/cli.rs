@@ -168,6 +168,19 @@ fn reproduce_writes_six_figures_notes_and_report_deterministically() {
         std::fs::read(a.join("studies/cost-chain.csv")).unwrap(),
         std::fs::read(b.join("studies/cost-chain.csv")).unwrap()
     );
+    // Its JSON says what each size studied.
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(a.join("studies/cost-chain.json")).unwrap()).unwrap();
+    let cases = json["cases"].as_array().unwrap();
+    let sizes: Vec<u64> = cases
+        .iter()
+        .map(|c| c["bodies"].as_u64().unwrap())
+        .collect();
+    assert_eq!(sizes, [10, 30, 100, 300, 1000]);
+    assert_eq!(cases[4]["switching"], "event");
+    assert_eq!(cases[4]["t_end"], 4.0);
+    let description = cases[4]["description"].as_str().unwrap();
+    assert!(description.contains("1000"), "{description}");
     assert!(report
         .contains("[Work against precision at N = 100](studies/work-precision-chain-100.png)"));
 }

@@ -41,16 +41,38 @@ struct CaseRecord {
     t_end: f64,
 }
 
-/// `study` of `case`, for its JSON.
-fn study_file<'a, T: Serialize>(case: &dyn StudyCase, study: &'a T) -> StudyFile<'a, T> {
-    StudyFile {
-        case: CaseRecord {
+impl CaseRecord {
+    fn of(case: &dyn StudyCase) -> CaseRecord {
+        CaseRecord {
             description: case.describe(),
             switching: case.switching(),
             t_end: case.t_end(),
-        },
+        }
+    }
+}
+
+/// `study` of `case`, for its JSON.
+fn study_file<'a, T: Serialize>(case: &dyn StudyCase, study: &'a T) -> StudyFile<'a, T> {
+    StudyFile {
+        case: CaseRecord::of(case),
         study,
     }
+}
+
+/// A cost-against-size study's JSON: the case at each size, beside the study's own fields.
+#[derive(Serialize)]
+struct ScalingFile<'a> {
+    cases: Vec<SizedCase>,
+    #[serde(flatten)]
+    study: &'a studies::Scaling,
+}
+
+/// One size of a cost-against-size study and its case.
+#[derive(Serialize)]
+struct SizedCase {
+    bodies: usize,
+    #[serde(flatten)]
+    case: CaseRecord,
 }
 
 /// The problem a study runs.
@@ -1069,7 +1091,17 @@ pub fn add_scaling(
     t.files.add(csv.clone(), table.to_csv(&csv)?);
     let timing_csv = dir.join(format!("{stem}-timing.csv"));
     t.files.add(timing_csv.clone(), timing.to_csv(&timing_csv)?);
-    t.files.add_json(dir.join(format!("{stem}.json")), &s)?;
+    let file = ScalingFile {
+        cases: cases
+            .iter()
+            .map(|(bodies, case)| SizedCase {
+                bodies: *bodies,
+                case: CaseRecord::of(case.as_ref()),
+            })
+            .collect(),
+        study: &s,
+    };
+    t.files.add_json(dir.join(format!("{stem}.json")), &file)?;
     // Wall time per step against N, with each method's fitted slope: the one figure of the
     // study that varies between runs (hence `-timing`).
     let mut series = Vec::new();
