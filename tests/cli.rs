@@ -1246,6 +1246,25 @@ fn time_stepping_runs_rigs_and_chains_and_refuses_what_it_cannot_do() {
         ),
         "{e}"
     );
+    // CS with F_s = 5 N below its sliding force at rest, F_c + C1 = 7.5 N: a holding force
+    // between them has no solution; refused before any step (it failed at t = 0.006 s).
+    let e = rejected(&[
+        "simulate",
+        "belt",
+        "--model",
+        "CS",
+        "--set",
+        "F_s=5",
+        "--switching",
+        "timestepping",
+    ]);
+    assert!(
+        e.contains(
+            "its sliding force at v_rel = 0+, 7.5 N, lies outside its stick interval [-5, 5] N"
+        ),
+        "{e}"
+    );
+    assert!(e.contains("F_s >= 7.5"), "{e}");
     let e = rejected(&[
         "simulate",
         "belt",

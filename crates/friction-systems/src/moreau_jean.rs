@@ -68,20 +68,55 @@ const CLOCK_EVERY: usize = 64;
 /// The scheme's name in solutions and summaries.
 pub const NAME: &str = "moreau-jean";
 
-/// The scheme solves the state equation of a contact together with its velocity for one
-/// internal state; a contact whose model has more (GMS) is refused with a clear error.
-pub fn check_states(system: &System) -> Result<(), SystemError> {
+/// Refuses, with a clear error, a contact the scheme cannot solve:
+///
+/// - a model with more than one internal state (GMS): the scheme solves the state equation of
+///   a contact together with its velocity for one;
+/// - a static map that ignores x (`local::invariant_at_rest`) whose sliding force at
+///   v_rel = 0± lies outside its stick interval beyond rounding (CS or CVS with F_s below
+///   F_c + C1; static or Karnopp with F_s below F_c): a holding force between the interval's
+///   bound and that sliding force has neither rest nor sliding as a solution, and the step
+///   that meets one could only fail.
+pub fn check_contacts(system: &System) -> Result<(), SystemError> {
     for (j, c) in system.contacts.iter().enumerate() {
-        let n = c.model.n_states();
+        let model = c.model.as_ref();
+        let refuse = |why: String| SystemError::Invalid {
+            what: format!("[[contact]] {}", j + 1),
+            why,
+        };
+        let n = model.n_states();
         if n > 1 {
-            return Err(SystemError::Invalid {
-                what: format!("[[contact]] {}", j + 1),
-                why: format!(
-                    "model `{}` has {n} internal states; time-stepping (Moreau-Jean) takes \
-                     at most 1: use --switching event or regularized",
-                    c.model.name()
-                ),
-            });
+            return Err(refuse(format!(
+                "model `{}` has {n} internal states; time-stepping (Moreau-Jean) takes \
+                 at most 1: use --switching event or regularized",
+                model.name()
+            )));
+        }
+        if !local::invariant_at_rest(model) {
+            continue;
+        }
+        let interval = model.stick_interval(0.0, &[]);
+        for d in [Direction::Positive, Direction::Negative] {
+            let (force, _) = model.evaluate(0.0, 0.0, &[], SignLaw::Frozen(d), &mut [], &mut []);
+            let (bound, beyond) = match d {
+                Direction::Positive => (interval.upper, force > interval.upper),
+                Direction::Negative => (interval.lower, force < interval.lower),
+            };
+            let rounding = 4.0 * f64::EPSILON * (force.abs() + bound.abs());
+            if beyond && (force - bound).abs() > rounding {
+                let side = if d == Direction::Positive { "0+" } else { "0-" };
+                return Err(refuse(format!(
+                    "model `{}`: its sliding force at v_rel = {side}, {force} N, lies outside \
+                     its stick interval [{}, {}] N; a holding force between them has neither \
+                     rest nor sliding, so time-stepping (Moreau-Jean) needs the sliding force at \
+                     rest within the stick interval: widen it (for the catalog's laws, \
+                     F_s >= {}), or use --switching event or regularized",
+                    model.name(),
+                    interval.lower,
+                    interval.upper,
+                    force.abs()
+                )));
+            }
         }
     }
     Ok(())

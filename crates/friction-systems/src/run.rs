@@ -73,7 +73,7 @@ pub fn simulate<'a>(
 ) -> Result<Run<'a>, SystemError> {
     system.validate()?;
     if let Switching::TimeStepping { .. } = switching {
-        moreau_jean::check_states(system)?;
+        moreau_jean::check_contacts(system)?;
     }
     let problem = FrictionSystem::new(system, switching);
     let t0 = options.t0;
