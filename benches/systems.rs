@@ -1,20 +1,27 @@
 //! Systems of many bodies: the Burridge–Knopoff chain (`coulomb`, 50 s) event-driven by
 //! Dormand–Prince at rtol 1e-8 and time-stepped by Moreau–Jean at h = 1e-3, θ = 1/2, at
-//! N = 10, 100, 1000; implicit Euler with the sparse Jacobian at N = 100 and 1000 (10 s,
-//! tolerance 1e-4). Run: `cargo bench --bench systems`. Each configuration's statistics are
-//! printed once before it is timed.
+//! N = 10, 100, 1000; the stiffly coupled chain (k_chain = 1e8 N/m, h²θ²k/m = 25, 10 s)
+//! time-stepped at N = 100 and 1000, where Newton's correction keeps the sweeps few; implicit
+//! Euler with the sparse Jacobian at N = 100 and 1000 (10 s, tolerance 1e-4). Run:
+//! `cargo bench --bench systems`. Each configuration's statistics are printed once before it
+//! is timed.
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use friction_lab::friction_models::{FrictionParams, ModelId, Variant};
 use friction_lab::friction_systems::chain::ChainParams;
 use friction_lab::friction_systems::{simulate, Switching, System};
-use friction_lab::integrators::{Options, Output, Solver};
+use friction_lab::integrators::{Options, Output, Solver, Stats};
 use std::hint::black_box;
 use std::sync::Arc;
 
 fn chain(n: usize) -> System {
+    chain_of_stiffness(n, ChainParams::default().k_chain)
+}
+
+fn chain_of_stiffness(n: usize, k_chain: f64) -> System {
     ChainParams {
         n_bodies: n,
+        k_chain,
         ..ChainParams::default()
     }
     .build(&FrictionParams::paper(), |p| {
@@ -33,9 +40,14 @@ fn switched(
     solver: Solver,
     options: Options,
 ) -> (usize, usize) {
+    let stats = stats(system, switching, solver, options);
+    (stats.steps, stats.events)
+}
+
+fn stats(system: &System, switching: Switching, solver: Solver, options: Options) -> Stats {
     let r = simulate(system, switching, solver, options, &mut |_| {}).expect("valid");
     assert!(r.error.is_none(), "{:?}", r.error);
-    (r.solution.stats.steps, r.solution.stats.events)
+    r.solution.stats
 }
 
 fn options(t_end: f64, tol: f64, atol: f64) -> Options {
@@ -69,6 +81,25 @@ fn chains(c: &mut Criterion) {
         };
         let (steps, events) = switched(&system, stepping, Solver::Rk4, o.clone());
         println!("N = {n}: {steps} steps, {events} steps that switched");
+        group.bench_function(format!("N = {n}"), |b| {
+            b.iter(|| black_box(switched(&system, stepping, Solver::Rk4, o.clone())))
+        });
+    }
+    group.finish();
+    let mut group =
+        c.benchmark_group("chain coulomb k_chain 1e8 10 s moreau-jean h 1e-3 theta 0.5");
+    group.sample_size(10);
+    for n in [100, 1000] {
+        let system = chain_of_stiffness(n, 1e8);
+        let o = Options {
+            output: Output::GridOnly(vec![10.0]),
+            ..Options::fixed(0.0, 10.0, 1e-3)
+        };
+        let s = stats(&system, stepping, Solver::Rk4, o.clone());
+        println!(
+            "N = {n}: {} steps, {} sweeps, {} corrections",
+            s.steps, s.rhs_evals, s.lu_factorizations
+        );
         group.bench_function(format!("N = {n}"), |b| {
             b.iter(|| black_box(switched(&system, stepping, Solver::Rk4, o.clone())))
         });
