@@ -267,10 +267,16 @@ impl OdeProblem for FrictionSystem<'_> {
         dy[a + 2] = belt;
     }
 
+    /// The three energy accumulators, last in y: nothing reads them.
+    fn quadratures(&self) -> usize {
+        self.layout.dim() - self.layout.accumulators
+    }
+
     /// The analytic Jacobian of the bodies' unknowns, sparse. Its pattern does not depend on
     /// the modes: the rows of a stuck body are listed with the value zero (a sparse LU that
     /// analyses the pattern once stays valid through every switch). The accumulators, which do
-    /// not act back, are left out (an inexact Newton matrix only for them).
+    /// not act back, are left out: they are the problem's quadratures
+    /// ([`OdeProblem::quadratures`]).
     fn jacobian(&self, _t: f64, y: &[f64], modes: &[Mode], jac: &mut Vec<Entry>) -> bool {
         let l = &self.layout;
         // 1 for a body that moves with the forces, 0 for one held by its contact.

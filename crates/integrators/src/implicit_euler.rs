@@ -189,7 +189,15 @@ impl ImplicitEuler {
             for i in 0..n {
                 self.y_new[i] += self.delta[i];
             }
-            let norm = wrms(&self.delta, &self.y_new, &self.state.y, rtol, atol);
+            // Converged or not by the unknowns that are not quadratures.
+            let q = n - ode.problem.quadratures();
+            let norm = wrms(
+                &self.delta[..q],
+                &self.y_new[..q],
+                &self.state.y[..q],
+                rtol,
+                atol,
+            );
             let eta = if k == 0 {
                 self.eta.max(crate::stepper::UROUND).powf(0.8)
             } else {
@@ -208,6 +216,11 @@ impl ImplicitEuler {
             if eta * norm <= kappa {
                 self.eta = eta;
                 ode.rhs(t1, &self.y_new, &mut self.f_new, &mut self.stats);
+                // The quadratures from the converged state: `M_q·(Y_q − y_q) = h·f_q(t1, Y)`.
+                for i in q..n {
+                    let m = mass.map_or(1.0, |m| m[i]);
+                    self.y_new[i] = self.state.y[i] + h * self.f_new[i] / m;
+                }
                 return Ok(());
             }
             norm_prev = norm;

@@ -86,6 +86,17 @@ pub trait OdeProblem: Sync {
         false
     }
 
+    /// Number of quadratures: the last components of y, which no component of f reads and
+    /// whose rows [`jacobian`](OdeProblem::jacobian) leaves out (energy accumulators,
+    /// `y_q' = f_q(t, y)`). An implicit method judges Newton's convergence on the other
+    /// components only and then sets these from the converged state, `y_q,k+1 = y_q,k +
+    /// h·f_q(t_k+1, y_k+1)` for implicit Euler: with their rows left out, Newton's
+    /// corrections of them are the whole change of f_q between iterates, which need not
+    /// shrink from the first iterate to the second where the power varies fast within a step.
+    fn quadratures(&self) -> usize {
+        0
+    }
+
     /// The diagonal of a constant mass matrix M; `None` for the identity.
     fn mass(&self) -> Option<&[f64]> {
         None
