@@ -2,8 +2,9 @@
 //! neighbours' velocities fixed, solved exactly.
 //!
 //! Unknowns: the relative velocity at the end of the step `u = v − v_s`, and the internal
-//! state z of the contact's model. With `Ŵ` the body's diagonal of the iteration matrix and
-//! `b` everything else of its momentum equation,
+//! states z of the contact's model (none, one as LuGre's, or one per slip block as GMS's, each
+//! state's rate depending on itself only). With `Ŵ` the body's diagonal of the iteration
+//! matrix and `b` everything else of its momentum equation,
 //!
 //! - `Ŵ·(u + v_s) = b − P`, P the friction impulse of the step;
 //! - `x = x̂ + h·θ·(u + v_s)` (x̂ the part of the end position known before the step);
@@ -26,8 +27,11 @@
 //! scheme, criterion): 1.92 s → 1.78 s, where 12 % fewer instructions elsewhere in the step
 //! had changed nothing.
 
-use friction_models::{Direction, FrictionModel, Partials, SignLaw, StatePartials, StickInterval};
+use friction_models::{
+    Direction, FrictionModel, SignLaw, StatePartials, StickInterval, MAX_STATES,
+};
 use std::fmt;
+use std::ops::Range;
 
 /// Most Newton iterations of the sliding equation, or of the internal state, before the
 /// step is declared unsolved.
@@ -120,7 +124,7 @@ pub(crate) struct Sliding {
 }
 
 /// One contact's problem in one sweep, for any law: the law called through
-/// [`FrictionModel::evaluate`], its internal state solved with the velocity.
+/// [`FrictionModel::evaluate`], its internal states solved with the velocity.
 pub(crate) struct Local<'a> {
     /// The contact's law.
     pub model: &'a dyn FrictionModel,
@@ -128,21 +132,18 @@ pub(crate) struct Local<'a> {
     pub eq: Momentum,
     /// End position with the body's own end velocity left out, m.
     pub x_hat: f64,
-    /// Internal state at the start of the step (0 without one).
-    pub z0: f64,
-    /// Its rate at the start of the step.
-    pub rate0: f64,
-    /// Whether the model has an internal state.
-    pub has_state: bool,
+    /// Internal states at the start of the step (empty without any).
+    pub z0: &'a [f64],
+    /// Their rates at the start of the step.
+    pub rate0: &'a [f64],
 }
 
 /// The solution of one contact's problem.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Solved {
-    /// Relative velocity at the end of the step, m/s (exactly 0 at rest).
+    /// Relative velocity at the end of the step, m/s (exactly 0 at rest). (The internal
+    /// states there are kept by the problem: [`StateStore`].)
     pub u: f64,
-    /// Internal state at the end of the step.
-    pub z: f64,
     /// Friction force at the end of the step, N (the holding force λ* at rest).
     pub force: f64,
     /// Friction impulse of the step, N·s.
@@ -198,16 +199,64 @@ impl fmt::Display for Unsolved {
     }
 }
 
-/// The law at one relative velocity: the end state z(u), the force, and dF/du along z(u).
+/// The law at one relative velocity: the force and dF/du along the solution z(u) of the
+/// state equations (z(u) and dz/du themselves are written into [`StateWork`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct Point {
-    z: f64,
     force: f64,
-    /// dF/du along the solution z(u) of the state equation.
+    /// dF/du along z(u).
     dforce: f64,
-    /// dz/du along it.
-    dz: f64,
     iterations: usize,
+}
+
+/// Working storage of the state equations at one relative velocity, of room for
+/// [`MAX_STATES`] states, the first n of them used: z(u) and dz/du, the law's rates and state
+/// partials there, and each state's bracket `(lo, hi)` of its root.
+pub(crate) struct StateWork {
+    z: Vec<f64>,
+    dz: Vec<f64>,
+    rate: Vec<f64>,
+    partials: Vec<StatePartials>,
+    bracket: Vec<(f64, f64)>,
+}
+
+/// The contacts' internal states kept through the sweeps of a step, at their places in y:
+/// at rest, and at the last sliding solution with dz/du there (from which a later visit
+/// starts, and the states at the end of the step are read); and the working storage of the
+/// one contact being solved.
+pub(crate) struct StateStore {
+    rest: Vec<f64>,
+    last: Vec<f64>,
+    last_dz: Vec<f64>,
+    work: StateWork,
+}
+
+impl StateStore {
+    /// Storage for a state vector of `dim` unknowns.
+    pub fn new(dim: usize) -> StateStore {
+        StateStore {
+            rest: vec![0.0; dim],
+            last: vec![0.0; dim],
+            last_dz: vec![0.0; dim],
+            work: StateWork {
+                z: vec![0.0; MAX_STATES],
+                dz: vec![0.0; MAX_STATES],
+                rate: vec![0.0; MAX_STATES],
+                partials: vec![StatePartials::default(); MAX_STATES],
+                bracket: vec![(0.0, 0.0); MAX_STATES],
+            },
+        }
+    }
+
+    /// The states at the end of the step of the contact whose states are `at` in y, solved
+    /// sliding (`sliding`) or at rest.
+    pub fn end(&self, at: Range<usize>, sliding: bool) -> &[f64] {
+        if sliding {
+            &self.last[at]
+        } else {
+            &self.rest[at]
+        }
+    }
 }
 
 /// What a contact's problem keeps through the sweeps of one step: everything that does not
@@ -217,14 +266,14 @@ pub(crate) struct Point {
 pub(crate) struct StepCache {
     /// The law at u = 0+ (index 0) and u = 0− (index 1), under the frozen sign.
     edge: [Option<Point>; 2],
-    /// The stick interval and the internal state at rest.
-    rest: Option<(StickInterval, f64)>,
+    /// The stick interval at rest (the internal states there in [`StateStore`]).
+    rest: Option<StickInterval>,
     /// Whether each side (index as `edge`) has been visited in this step: the first visit
     /// starts Newton's iteration from the edge, a later one from the last solution.
     visited: [bool; 2],
     /// The last sliding solution: direction, weight θ_f, w = |u|, and the law there (after a
-    /// linearised update, the linearised law), from which a later visit starts Newton's
-    /// iteration without evaluating the law again.
+    /// linearised update, the linearised law; the states in [`StateStore`]), from
+    /// which a later visit starts Newton's iteration without evaluating the law again.
     last: Option<(Direction, f64, f64, Point)>,
 }
 
@@ -256,74 +305,87 @@ impl Local<'_> {
         self.x_hat + self.eq.h * self.eq.theta * (u + self.eq.v_s)
     }
 
-    /// F, ż, the partials in x and v and those in z at (x, u, z), for a model with one
-    /// internal state (the scheme takes at most one, checked by [`crate::simulate`]).
-    fn law_at(&self, x: f64, u: f64, z: f64, law: SignLaw) -> (f64, f64, Partials, StatePartials) {
-        let (mut rate, mut states) = ([0.0], [StatePartials::default()]);
-        let (force, p) = self.model.evaluate(x, u, &[z], law, &mut rate, &mut states);
-        (force, rate[0], p, states[0])
-    }
-
-    /// z(u) from the state equation and F(x(u), u, z(u)) with dF/du, under `law`.
-    fn point(&self, u: f64, law: SignLaw) -> Result<Point, Unsolved> {
+    /// z(u) from the state equations (into `work.z`, with dz/du into `work.dz`) and
+    /// F(x(u), u, z(u)) with dF/du, under `law`.
+    fn point(&self, u: f64, law: SignLaw, work: &mut StateWork) -> Result<Point, Unsolved> {
         let x = self.x(u);
         let (h, theta) = (self.eq.h, self.eq.theta);
         let ht = h * theta;
-        if !self.has_state {
+        let n = self.z0.len();
+        if n == 0 {
             let (force, p) = self.model.evaluate(x, u, &[], law, &mut [], &mut []);
             return Ok(Point {
-                z: self.z0,
                 force,
                 dforce: p.force_dv + p.force_dx * ht,
-                dz: 0.0,
                 iterations: 0,
             });
         }
-        // With an internal state: z(u) from the state equation G(z) = z − known − h·θ·ż(z) = 0
-        // first, by Newton's method safeguarded by bisection (`rtsafe`, as the sliding
-        // equation): a step that leaves the bracket of the root, or a slope that is not
-        // positive, bisects (or, with one side of the bracket still open, steps twice the
-        // residual towards it: G' = 1 − h·θ·∂ż/∂z ≥ 1 for a dissipative state). An
-        // elasto-plastic law's ż has a kink in z (its α), where Newton's method alone cycled
-        // (the belt at v_belt = 1 m/s failed at t = 1e-3).
-        let known = self.z0 + h * (1.0 - theta) * self.rate0;
-        let (mut z, mut iterations) = (self.z0, 0);
-        let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
+        let (z, dz) = (&mut work.z[..n], &mut work.dz[..n]);
+        let (rate, partials) = (&mut work.rate[..n], &mut work.partials[..n]);
+        let bracket = &mut work.bracket[..n];
+        z.copy_from_slice(self.z0);
+        // The state equations G_i(z_i) = z_i − known_i − h·θ·ż_i(z_i) = 0 first, each state's
+        // rate depending on itself only, all iterated together by Newton's method safeguarded
+        // by bisection (`rtsafe`, as the sliding equation), each in its own bracket: a step
+        // that leaves the bracket of the root, or a slope that is not positive, bisects (or,
+        // with one side of the bracket still open, steps twice the residual towards it:
+        // G' = 1 − h·θ·∂ż/∂z ≥ 1 for a dissipative state). An elasto-plastic law's ż has a
+        // kink in z (its α), where Newton's method alone cycled (the belt at v_belt = 1 m/s
+        // failed at t = 1e-3). The known parts wait in dz.
+        for ((k, z0), rate0) in dz.iter_mut().zip(self.z0).zip(self.rate0) {
+            *k = z0 + h * (1.0 - theta) * rate0;
+        }
+        bracket.fill((f64::NEG_INFINITY, f64::INFINITY));
+        let mut iterations = 0;
         loop {
-            let (_, rate, _, d) = self.law_at(x, u, z, law);
-            let (terms, slope) = ([z, known, ht * rate], 1.0 - ht * d.rate_dz);
-            let r = terms[0] - terms[1] - terms[2];
-            if r > 0.0 {
-                hi = z;
-            } else if r < 0.0 {
-                lo = z;
+            self.model.evaluate(x, u, z, law, rate, partials);
+            let (mut converged, mut largest) = (true, 0.0_f64);
+            let rows = z.iter_mut().zip(dz.iter()).zip(rate.iter());
+            for (((z, &known), &rate), (d, (lo, hi))) in
+                rows.zip(partials.iter().zip(bracket.iter_mut()))
+            {
+                let (terms, slope) = ([*z, known, ht * rate], 1.0 - ht * d.rate_dz);
+                let r = terms[0] - terms[1] - terms[2];
+                if r > 0.0 {
+                    *hi = *z;
+                } else if r < 0.0 {
+                    *lo = *z;
+                }
+                let mut step = r / slope;
+                let newton = *z - step;
+                if !(slope > 0.0 && newton > *lo && newton < *hi) && r != 0.0 {
+                    let next = if lo.is_finite() && hi.is_finite() {
+                        0.5 * (*lo + *hi)
+                    } else {
+                        *z - 2.0 * r
+                    };
+                    step = *z - next;
+                }
+                *z -= step;
+                converged &= step.abs() <= LOCAL_ROUNDOFF * z.abs()
+                    || step.abs() <= rounding(&terms) / slope.abs();
+                if !step.is_finite() {
+                    return Err(Unsolved::State { u, update: step });
+                }
+                largest = largest.max(step.abs());
             }
-            let mut dz = r / slope;
-            let newton = z - dz;
-            if !(slope > 0.0 && newton > lo && newton < hi) && r != 0.0 {
-                let next = if lo.is_finite() && hi.is_finite() {
-                    0.5 * (lo + hi)
-                } else {
-                    z - 2.0 * r
-                };
-                dz = z - next;
-            }
-            z -= dz;
             iterations += 1;
-            if dz.abs() <= LOCAL_ROUNDOFF * z.abs() || dz.abs() <= rounding(&terms) / slope.abs() {
+            if converged {
                 break;
             }
-            if !dz.is_finite() || iterations == MAX_LOCAL_ITERATIONS {
-                return Err(Unsolved::State { u, update: dz });
+            if iterations == MAX_LOCAL_ITERATIONS {
+                return Err(Unsolved::State { u, update: largest });
             }
         }
-        let (force, _, p, d) = self.law_at(x, u, z, law);
-        let dz_du = ht * (d.rate_dv + d.rate_dx * ht) / (1.0 - ht * d.rate_dz);
+        let (force, p) = self.model.evaluate(x, u, z, law, rate, partials);
+        let mut dforce = p.force_dv + p.force_dx * ht;
+        for (dz, d) in dz.iter_mut().zip(partials.iter()) {
+            *dz = ht * (d.rate_dv + d.rate_dx * ht) / (1.0 - ht * d.rate_dz);
+            dforce += d.force_dz * *dz;
+        }
         Ok(Point {
-            z,
             force,
-            dforce: p.force_dv + p.force_dx * ht + d.force_dz * dz_du,
-            dz: dz_du,
+            dforce,
             iterations,
         })
     }
@@ -336,9 +398,9 @@ pub(crate) trait ContactProblem {
     /// The body's momentum equation.
     fn eq(&self) -> &Momentum;
 
-    /// The stick interval and the internal state at rest, adding the Newton iterations
-    /// spent to `out.iterations`.
-    fn rest(&mut self, out: &mut Solved) -> Result<(StickInterval, f64), Unsolved>;
+    /// The stick interval at rest (with the internal states there, for a problem that has
+    /// them), adding the Newton iterations spent to `out.iterations`.
+    fn rest(&mut self, out: &mut Solved) -> Result<StickInterval, Unsolved>;
 
     /// The sliding solution on `sliding`'s side written into `out`, if one exists there
     /// (`false` when R does not change sign on that side); the iterations spent are added to
@@ -367,7 +429,7 @@ pub(crate) fn solve<P: ContactProblem>(
         if problem.slide(sliding, out)? {
             return Ok(());
         }
-        let interval = problem.rest(out)?.0;
+        let interval = problem.rest(out)?;
         if interval.upper == interval.lower {
             let reversed = match d {
                 Direction::Positive => Direction::Negative,
@@ -384,14 +446,13 @@ pub(crate) fn solve<P: ContactProblem>(
             }
         }
     }
-    let (interval, z_rest) = problem.rest(out)?;
+    let interval = problem.rest(out)?;
     let eq = *problem.eq();
     let held = eq.holding_force();
     // At rest on the surface, held there by λ*.
     let rest = |out: &mut Solved| {
         *out = Solved {
             u: 0.0,
-            z: z_rest,
             force: held,
             impulse: eq.h * held,
             direction: None,
@@ -444,6 +505,9 @@ pub(crate) struct Newton<'l, 'c> {
     pub cache: &'c mut StepCache,
     /// The contact's last relative velocity.
     pub u_guess: f64,
+    /// The contacts' internal states, this one's `at` its places in y.
+    pub store: &'c mut StateStore,
+    pub at: Range<usize>,
 }
 
 impl ContactProblem for Newton<'_, '_> {
@@ -452,22 +516,22 @@ impl ContactProblem for Newton<'_, '_> {
     }
 
     /// Computed once per step (once per run for a static map that ignores x).
-    fn rest(&mut self, out: &mut Solved) -> Result<(StickInterval, f64), Unsolved> {
-        if let Some(rest) = self.cache.rest {
-            return Ok(rest);
+    #[inline]
+    fn rest(&mut self, out: &mut Solved) -> Result<StickInterval, Unsolved> {
+        if let Some(interval) = self.cache.rest {
+            return Ok(interval);
         }
-        let local = self.local;
-        let z = if local.has_state {
-            let rest = local.point(0.0, SignLaw::Discontinuous)?;
+        let (local, store, n) = (self.local, &mut *self.store, self.at.len());
+        if n > 0 {
+            let rest = local.point(0.0, SignLaw::Discontinuous, &mut store.work)?;
             out.iterations += rest.iterations;
-            rest.z
-        } else {
-            local.z0
-        };
-        let n = usize::from(local.has_state);
-        let rest = (local.model.stick_interval(local.x(0.0), &[z][..n]), z);
-        self.cache.rest = Some(rest);
-        Ok(rest)
+            store.rest[self.at.clone()].copy_from_slice(&store.work.z[..n]);
+        }
+        let interval = local
+            .model
+            .stick_interval(local.x(0.0), &store.rest[self.at.clone()]);
+        self.cache.rest = Some(interval);
+        Ok(interval)
     }
 
     /// Newton's iteration starts from u = 0 at the first visit of the step, from `u_guess`
@@ -481,7 +545,7 @@ impl ContactProblem for Newton<'_, '_> {
         let edge = match self.cache.edge[side(d)] {
             Some(p) => p,
             None => {
-                let p = local.point(0.0, law)?;
+                let p = local.point(0.0, law, &mut self.store.work)?;
                 out.iterations += p.iterations;
                 self.cache.edge[side(d)] = Some(p);
                 p
@@ -507,12 +571,13 @@ impl ContactProblem for Newton<'_, '_> {
             .filter(|&(dl, tl, wl, _)| dl == d && tl == theta_f && wl == w)
             .map(|(.., p)| p);
         for _ in 0..MAX_LOCAL_ITERATIONS {
-            let p = match known.take() {
-                Some(p) => p,
+            // The law at w, and whether its states are the kept ones (else in `work`).
+            let (p, kept) = match known.take() {
+                Some(p) => (p, true),
                 None => {
-                    let p = local.point(s * w, law)?;
+                    let p = local.point(s * w, law, &mut self.store.work)?;
                     iterations += p.iterations + 1;
-                    p
+                    (p, false)
                 }
             };
             let (r, dr) = eq.residual(sliding, w, p.force, p.dforce);
@@ -523,24 +588,39 @@ impl ContactProblem for Newton<'_, '_> {
             }
             let newton = w - r / dr;
             let step = newton - w;
+            // The bracket closed to rounding: the root lies between neighbouring floats, where
+            // R, its states solved to rounding, need not fall below its rounding estimate
+            // (GMS in the presliding rig at t = 3.115 s, w = 6.4e-13 m/s).
+            let closed = hi.is_finite() && hi - lo <= LOCAL_ROUNDOFF * hi;
             if r == 0.0
                 || step.abs() <= LINEAR_UPDATE * w
                 || r.abs() <= eq.residual_rounding(sliding, w, p.force)
+                || closed
             {
                 // At w itself to rounding, or one linearised Newton step from it.
-                let du = if step.abs() <= LOCAL_ROUNDOFF * w {
+                let du = if closed || step.abs() <= LOCAL_ROUNDOFF * w {
                     0.0
                 } else {
                     s * step
                 };
                 let at = Point {
-                    z: p.z + p.dz * du,
                     force: p.force + p.dforce * du,
                     ..p
                 };
+                if !self.at.is_empty() {
+                    let (store, places) = (&mut *self.store, self.at.clone());
+                    let last = &mut store.last[places.clone()];
+                    let last_dz = &mut store.last_dz[places];
+                    if !kept {
+                        last.copy_from_slice(&store.work.z[..last.len()]);
+                        last_dz.copy_from_slice(&store.work.dz[..last.len()]);
+                    }
+                    for (z, dz) in last.iter_mut().zip(last_dz.iter()) {
+                        *z += dz * du;
+                    }
+                }
                 *out = Solved {
                     u: s * w + du,
-                    z: at.z,
                     force: at.force,
                     impulse: eq.impulse(sliding, at.force),
                     direction: Some(d),
@@ -653,8 +733,8 @@ impl ContactProblem for Affine<'_> {
         &self.eq
     }
 
-    fn rest(&mut self, _: &mut Solved) -> Result<(StickInterval, f64), Unsolved> {
-        Ok((self.law.interval, 0.0))
+    fn rest(&mut self, _: &mut Solved) -> Result<StickInterval, Unsolved> {
+        Ok(self.law.interval)
     }
 
     fn slide(&mut self, sliding: Sliding, out: &mut Solved) -> Result<bool, Unsolved> {
@@ -672,7 +752,6 @@ impl ContactProblem for Affine<'_> {
         let force = force0 + slope * u;
         *out = Solved {
             u,
-            z: 0.0,
             force,
             impulse: self.eq.impulse(sliding, force),
             direction: Some(sliding.d),
@@ -686,8 +765,8 @@ impl ContactProblem for Affine<'_> {
 #[cfg(test)]
 mod tests {
     use super::{
-        invariant_at_rest, solve, Affine, AffineLaw, Local, Momentum, Newton, Solved, StepCache,
-        Unsolved,
+        invariant_at_rest, solve, Affine, AffineLaw, Local, Momentum, Newton, Solved, StateStore,
+        StepCache, Unsolved,
     };
     use friction_models::{Direction, FrictionModel, FrictionParams, ModelId, SignLaw, Variant};
 
@@ -715,7 +794,6 @@ mod tests {
     fn empty() -> Solved {
         Solved {
             u: 0.0,
-            z: 0.0,
             force: 0.0,
             impulse: 0.0,
             direction: None,
@@ -734,14 +812,15 @@ mod tests {
             model,
             eq,
             x_hat: 0.0,
-            z0: 0.0,
-            rate0: 0.0,
-            has_state: false,
+            z0: &[],
+            rate0: &[],
         };
         let mut problem = Newton {
             local: &local,
             cache: &mut StepCache::default(),
             u_guess: 0.0,
+            store: &mut StateStore::new(0),
+            at: 0..0,
         };
         let mut out = empty();
         solve(&mut problem, previous, &mut out).map(|()| out)

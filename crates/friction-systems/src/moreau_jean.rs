@@ -39,7 +39,9 @@
 
 use crate::correction::Correction;
 use crate::hybrid::FrictionSystem;
-use crate::local::{self, Affine, AffineLaw, Local, Momentum, Newton, Solved, StepCache};
+use crate::local::{
+    self, Affine, AffineLaw, Local, Momentum, Newton, Solved, StateStore, StepCache,
+};
 use crate::springs::Springs;
 use crate::switching::{SLIP_NEGATIVE, SLIP_POSITIVE, STICK};
 use crate::system::{System, SystemError};
@@ -68,15 +70,11 @@ const CLOCK_EVERY: usize = 64;
 /// The scheme's name in solutions and summaries.
 pub const NAME: &str = "moreau-jean";
 
-/// Refuses, with a clear error, a contact the scheme cannot solve:
-///
-/// - a model with more than one internal state (GMS): the scheme solves the state equation of
-///   a contact together with its velocity for one;
-/// - a static map that ignores x (`local::invariant_at_rest`) whose sliding force at
-///   v_rel = 0± lies outside its stick interval beyond rounding (CS or CVS with F_s below
-///   F_c + C1; static or Karnopp with F_s below F_c): a holding force between the interval's
-///   bound and that sliding force has neither rest nor sliding as a solution, and the step
-///   that meets one could only fail.
+/// Refuses, with a clear error, a contact the scheme cannot solve: a static map that ignores
+/// x (`local::invariant_at_rest`) whose sliding force at v_rel = 0± lies outside its stick
+/// interval beyond rounding (CS or CVS with F_s below F_c + C1; static or Karnopp with F_s
+/// below F_c): a holding force between the interval's bound and that sliding force has
+/// neither rest nor sliding as a solution, and the step that meets one could only fail.
 pub fn check_contacts(system: &System) -> Result<(), SystemError> {
     for (j, c) in system.contacts.iter().enumerate() {
         let model = c.model.as_ref();
@@ -84,14 +82,6 @@ pub fn check_contacts(system: &System) -> Result<(), SystemError> {
             what: format!("[[contact]] {}", j + 1),
             why,
         };
-        let n = model.n_states();
-        if n > 1 {
-            return Err(refuse(format!(
-                "model `{}` has {n} internal states; time-stepping (Moreau-Jean) takes \
-                 at most 1: use --switching event or regularized",
-                model.name()
-            )));
-        }
         if !local::invariant_at_rest(model) {
             continue;
         }
@@ -203,8 +193,8 @@ struct ContactData<'p> {
     /// Surface velocity v_s.
     v_s: f64,
     model: &'p dyn FrictionModel,
-    /// Index of the internal state z in y; `None` for a model without one.
-    state: Option<usize>,
+    /// The places of the internal states in y (empty for a model without any).
+    states: std::ops::Range<usize>,
     /// Whether the law at rest is the same at every step ([`local::invariant_at_rest`]): its
     /// problem then keeps the law at v_rel = 0± and the stick interval from step to step.
     invariant: bool,
@@ -254,8 +244,8 @@ struct Stepper<'p, 'a> {
     /// interpolates in.
     y_prev: Vec<f64>,
     modes_prev: Vec<Mode>,
-    /// Per contact: the last local solution, its force F at the end of the step and its
-    /// state rate there.
+    /// Per contact: the last local solution. At the places of the internal states in y:
+    /// their rates at the end of the last step.
     solved: Vec<Solved>,
     rate: Vec<f64>,
     /// Per contact: its friction force at the start of the step (written at the end of the
@@ -270,8 +260,10 @@ struct Stepper<'p, 'a> {
     pair_force: Vec<(f64, f64)>,
     /// Per spring to an anchor: its force on the body and `v_anchor − v`, likewise.
     anchored_force: Vec<(f64, f64)>,
-    /// Per contact: what its problem keeps through the sweeps of the step.
+    /// Per contact: what its problem keeps through the sweeps of the step, and its internal
+    /// states.
     cache: Vec<StepCache>,
+    states: StateStore,
     /// Per contact: what the run does not change.
     contacts: Vec<ContactData<'p>>,
     /// The contacts whose model has an internal state.
@@ -304,7 +296,6 @@ impl<'p, 'a> Stepper<'p, 'a> {
             .enumerate()
             .map(|(j, c)| Solved {
                 u: y0[l.v(c.body)] - c.surface_velocity,
-                z: l.states(c.body, y0).first().copied().unwrap_or(0.0),
                 force: p.friction(j, 0.0, y0, modes0),
                 impulse: 0.0,
                 direction: None,
@@ -367,9 +358,10 @@ impl<'p, 'a> Stepper<'p, 'a> {
             anchored_force,
             springs,
             anchored_start,
-            rate: vec![0.0; p.system.contacts.len()],
+            rate: vec![0.0; y0.len()],
             force_start: solved.iter().map(|s| s.force).collect(),
             cache: vec![StepCache::default(); p.system.contacts.len()],
+            states: StateStore::new(y0.len()),
             contacts: p
                 .system
                 .contacts
@@ -379,7 +371,7 @@ impl<'p, 'a> Stepper<'p, 'a> {
                     at: at[c.body],
                     v_s: c.surface_velocity,
                     model: c.model.as_ref(),
-                    state: l.z[c.body].clone().next(),
+                    states: l.z[c.body].clone(),
                     invariant: local::invariant_at_rest(c.model.as_ref()),
                     affine: AffineLaw::new(c.model.as_ref()),
                 })
@@ -399,26 +391,31 @@ impl<'p, 'a> Stepper<'p, 'a> {
             corrections: 0,
         };
         for j in 0..p.system.contacts.len() {
-            s.rate[j] = s.state_rate(j, &s.y, s.modes[j]);
+            s.state_rates(j);
         }
         s
     }
 
-    /// ż of contact j's model at y in `mode` (0 for a model without an internal state).
-    fn state_rate(&self, j: usize, y: &[f64], mode: Mode) -> f64 {
+    /// ż of contact j's model at the state y in its mode, written into `rate` at the states'
+    /// places (nothing for a model without internal states).
+    fn state_rates(&mut self, j: usize) {
         let c = &self.contacts[j];
-        let Some(z) = c.state else {
-            return 0.0;
-        };
-        let law = match mode {
+        if c.states.is_empty() {
+            return;
+        }
+        let law = match self.modes[j] {
             STICK => SignLaw::Discontinuous,
             m => self.p.switching.law(m),
         };
-        let x = self.p.layout.x[c.body];
-        let mut rate = [0.0];
-        c.model
-            .response(y[x], y[x + 1] - c.v_s, &y[z..z + 1], law, &mut rate);
-        rate[0]
+        let (x, y) = (self.p.layout.x[c.body], &self.y);
+        let states = c.states.clone();
+        c.model.response(
+            y[x],
+            y[x + 1] - c.v_s,
+            &y[states.clone()],
+            law,
+            &mut self.rate[states],
+        );
     }
 
     /// One step from t0 to t0 + h, keeping its start in `y_prev` and `modes_prev` if
@@ -565,9 +562,8 @@ impl<'p, 'a> Stepper<'p, 'a> {
                                     model: c.model,
                                     eq,
                                     x_hat,
-                                    z0: c.state.map_or(0.0, |z| self.y[z]),
-                                    rate0: self.rate[j],
-                                    has_state: c.state.is_some(),
+                                    z0: &self.y[c.states.clone()],
+                                    rate0: &self.rate[c.states.clone()],
                                 };
                                 // The last solution is Newton's starting point.
                                 let u_guess = solved.u;
@@ -575,6 +571,8 @@ impl<'p, 'a> Stepper<'p, 'a> {
                                     local: &local,
                                     cache,
                                     u_guess,
+                                    store: &mut self.states,
+                                    at: c.states.clone(),
                                 };
                                 local::solve(&mut problem, previous, solved)
                             }
@@ -673,14 +671,10 @@ impl<'p, 'a> Stepper<'p, 'a> {
             // The next step's sums start from zero.
             b.known = 0.0;
         }
-        // Each contact's end state, force and mode.
+        // Each contact's end force and mode.
         self.switches.clear();
-        let contacts = self.contacts.iter().zip(&self.solved);
         let modes = self.modes.iter_mut().zip(&mut self.force_start);
-        for (component, ((c, s), (mode, force))) in contacts.zip(modes).enumerate() {
-            if let Some(z) = c.state {
-                self.y[z] = s.z;
-            }
+        for (component, (s, (mode, force))) in self.solved.iter().zip(modes).enumerate() {
             *force = s.force;
             let to = match s.direction {
                 Some(Direction::Positive) => SLIP_POSITIVE,
@@ -707,8 +701,15 @@ impl<'p, 'a> Stepper<'p, 'a> {
             dissipated += s.impulse * (mean - c.v_s);
             belt -= s.impulse * c.v_s;
         }
-        for &j in &self.stateful {
-            self.rate[j] = self.state_rate(j, &self.y, self.modes[j]);
+        // The internal states at the end of the step, and their rates there.
+        for k in 0..self.stateful.len() {
+            let j = self.stateful[k];
+            let at = self.contacts[j].states.clone();
+            let end = self
+                .states
+                .end(at.clone(), self.solved[j].direction.is_some());
+            self.y[at].copy_from_slice(end);
+            self.state_rates(j);
         }
         self.accumulate(t0, h, dissipated, belt);
     }

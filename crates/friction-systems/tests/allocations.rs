@@ -2,8 +2,9 @@
 //! global allocator (counting only on the test's own thread) watches 1000 steps after 50 of
 //! warm-up, on a system that exercises every path of the step: springs between bodies and to
 //! anchors with dampers, an external force with a profile, and contacts solved in closed form
-//! (Coulomb), by Newton's method (CVS) and with an internal state (LuGre); and, with stiff
-//! springs between the blocks, Newton's correction of the sweeps at every step.
+//! (Coulomb), by Newton's method (CVS), with an internal state (LuGre) and with several (GMS,
+//! four slip blocks); and, with stiff springs between the blocks, Newton's correction of the
+//! sweeps at every step.
 
 use friction_models::{FrictionParams, ModelId, Variant};
 use friction_systems::{simulate, End, Profile, Switching, System};
@@ -19,7 +20,7 @@ const WATCHED: usize = 1000;
 
 /// Five blocks on a belt running at −5 m/s (so each slides forward throughout), each held by
 /// a damped spring to a wall, neighbours joined by damped springs, the middle one pushed by a
-/// ramp; laws Coulomb, CVS, LuGre, CVS, Coulomb; neighbours joined with stiffness
+/// ramp; laws Coulomb, CVS, LuGre, GMS, Coulomb; neighbours joined with stiffness
 /// `k_neighbours`, N/m.
 fn sliding_chain(k_neighbours: f64) -> System {
     let p = FrictionParams::paper();
@@ -29,7 +30,7 @@ fn sliding_chain(k_neighbours: f64) -> System {
         ModelId::Coulomb,
         ModelId::Cvs,
         ModelId::LuGre,
-        ModelId::Cvs,
+        ModelId::Gms,
         ModelId::Coulomb,
     ];
     for (i, law) in laws.into_iter().enumerate() {

@@ -373,9 +373,14 @@ fn deviation(run: &Run, reference: &Run, g: &[f64]) -> f64 {
 
 #[test]
 fn models_with_an_internal_state_converge_at_second_order_at_theta_half() {
-    // Dahl + viscous (DV) and LuGre on the belt: their friction is continuous in v, so there is
-    // no break-away jump; the internal state is integrated by the θ-method with the velocity.
-    for (model, h0) in [(ModelId::Dv, 2e-3), (ModelId::LuGre, 2e-4)] {
+    // Dahl + viscous (DV), LuGre and GMS (four slip blocks, a state each) on the belt: their
+    // friction is continuous in v, so there is no break-away jump; the internal states are
+    // integrated by the θ-method with the velocity.
+    for (model, h0) in [
+        (ModelId::Dv, 2e-3),
+        (ModelId::LuGre, 2e-4),
+        (ModelId::Gms, 2e-4),
+    ] {
         let system = belt(model, 1.0, BELT_K, BELT_V);
         let t_end = 1.0;
         let g = grid(t_end, 200);
