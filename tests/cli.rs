@@ -1202,25 +1202,36 @@ fn time_stepping_runs_rigs_and_chains_and_refuses_what_it_cannot_do() {
     for row in stuck {
         assert_eq!(row.split(',').nth(2), Some("0.05"), "{row}");
     }
-    let chain = dir.path().join("chain");
-    let o = friction_lab(&[
-        "simulate",
+    // A time-stepped run into `dir/name` that must succeed: its summary.json.
+    let time_stepped = |name: &str, args: &[&str]| -> serde_json::Value {
+        let out = dir.path().join(name);
+        let mut all = vec!["simulate"];
+        all.extend_from_slice(args);
+        all.extend([
+            "--switching",
+            "timestepping",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        let o = friction_lab(&all);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let summary: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
+        assert_eq!(summary["solver"], "moreau-jean");
+        summary
+    };
+    let summary = time_stepped(
         "chain",
-        "--model",
-        "static",
-        "--switching",
-        "timestepping",
-        "--set",
-        "n_bodies=20",
-        "--t-end",
-        "20",
-        "--out",
-        chain.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let summary: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(chain.join("summary.json")).unwrap()).unwrap();
-    assert_eq!(summary["solver"], "moreau-jean");
+        &[
+            "chain",
+            "--model",
+            "static",
+            "--set",
+            "n_bodies=20",
+            "--t-end",
+            "20",
+        ],
+    );
     assert!(summary["energy"]["relative_residual"].as_f64().unwrap() < 1e-10);
     assert!(summary["event_counts"]["slip+"].as_u64().unwrap() >= 20);
     let e = rejected(&[
@@ -1234,21 +1245,7 @@ fn time_stepping_runs_rigs_and_chains_and_refuses_what_it_cannot_do() {
     assert!(e.contains("no body to time-step"), "{e}");
     // GMS, four slip blocks each with its state, time-stepped (refused before 2026-11-25):
     // the discrete energy balance holds at θ = 1/2.
-    let gms = dir.path().join("gms");
-    let o = friction_lab(&[
-        "simulate",
-        "belt",
-        "--model",
-        "gms",
-        "--switching",
-        "timestepping",
-        "--out",
-        gms.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let summary: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(gms.join("summary.json")).unwrap()).unwrap();
-    assert_eq!(summary["solver"], "moreau-jean");
+    let summary = time_stepped("gms", &["belt", "--model", "gms"]);
     assert!(summary["energy"]["relative_residual"].as_f64().unwrap() < 1e-12);
     // CS with F_s = 5 N below its sliding force at rest, F_c + C1 = 7.5 N: a holding force
     // between them has no solution; refused before any step (it failed at t = 0.006 s).
