@@ -3,10 +3,12 @@
 //! (`OdeProblem::quadratures`), which implicit Euler leaves out of Newton's convergence test
 //! and sets from the converged state, and diffsol's initial-step estimate leaves out.
 
-use friction_models::{FrictionParams, ModelId, Variant};
-use friction_systems::{simulate, End, Switching, System};
+mod common;
+
+use common::belt;
+use friction_models::ModelId;
+use friction_systems::{simulate, Switching};
 use integrators::{Options, Solver};
-use std::sync::Arc;
 
 const T_END: f64 = 0.2;
 
@@ -14,14 +16,7 @@ const T_END: f64 = 0.2;
 /// parameters), from rest, integrated by `solver` with `options`: `(x, v)` at T_END and the
 /// energy balance's relative residual.
 fn fast_belt(v_belt: f64, solver: &str, options: Options) -> ((f64, f64), f64) {
-    let law = ModelId::LuGre
-        .build(Variant::Odd, &FrictionParams::paper())
-        .expect("valid parameters");
-    let mut s = System::default();
-    let body = s.add_body("body", 1.0, 0.0, 0.0);
-    let wall = s.add_anchor("wall", 0.0, 0.0);
-    s.add_spring(End::Body(body), End::Anchor(wall), 100.0, 0.0);
-    s.add_contact(body, v_belt, Arc::from(law));
+    let s = belt(ModelId::LuGre, 1.0, 100.0, v_belt);
     let run = simulate(
         &s,
         Switching::Event,

@@ -24,7 +24,7 @@ use crate::options::{Options, StepControl};
 use crate::problem::{Mode, OdeProblem};
 use crate::solution::{Failure, Solution};
 use crate::stats::Stats;
-use crate::stepper::{linear_interpolation, Ode, Stepper, StepperState, UROUND};
+use crate::stepper::{check_step_size, linear_interpolation, Ode, Stepper, StepperState};
 use diffsol::{
     BdfState, DiffsolError, FaerSparseLU, FaerSparseMat, NalgebraLU, NalgebraMat, NonLinearOp,
     OdeBuilder, OdeEquations, OdeSolverMethod, OdeSolverProblem, OdeSolverState, RkState, Vector,
@@ -41,9 +41,16 @@ const MAX_NEWTON_FAILURES: usize = 10_000;
 
 /// diffsol's smallest step, s: none of its own (its default, an absolute 1e-13 s, stopped a
 /// body of 1 mg on LuGre's bristles, whose time scale m/σ1 is 3e-9 s, at its first step). The
-/// floor is instead the one every adaptive method here keeps, relative to t (dopri5.f's
-/// `0.1·|h| > UROUND·|t|`, [`crate::stepper::check_limits`]), tested after each step.
+/// floor is instead the one every adaptive method here keeps, relative to t
+/// ([`check_step_size`]), tested after each step.
 const MIN_STEP: f64 = f64::MIN_POSITIVE;
+
+/// diffsol's limits as this crate sets them on every problem it builds: Newton failures
+/// ([`MAX_NEWTON_FAILURES`]) and the smallest step ([`MIN_STEP`]).
+fn set_limits<Eqn: OdeEquations<T = f64>>(problem: &mut OdeSolverProblem<Eqn>) {
+    problem.ode_options.max_nonlinear_solver_failures = MAX_NEWTON_FAILURES;
+    problem.ode_options.min_timestep = MIN_STEP;
+}
 
 /// A diffsol method.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -252,11 +259,8 @@ where
         self.stop_set = true;
         let state = self.solver.as_ref().expect("started").state();
         // (Not at the stop time, where diffsol may have shortened the last step to land on it.)
-        if state.t < t_stop && 0.1 * state.h.abs() <= state.t.abs() * UROUND {
-            return Err(SolverError::StepSizeUnderflow {
-                t: state.t,
-                h: state.h,
-            });
+        if state.t < t_stop {
+            check_step_size(state.t, state.h)?;
         }
         self.state.t_prev = self.state.t;
         self.state.t = state.t;
@@ -504,13 +508,12 @@ pub fn solve_observed(
             })
             .build()
             .map_err(build_error)?;
-        ds.ode_options.max_nonlinear_solver_failures = MAX_NEWTON_FAILURES;
-        ds.ode_options.min_timestep = MIN_STEP;
+        set_limits(&mut ds);
         return drive_implicit!(method, &ds, &shared, &algebraic, start, DenseLu);
     }
     if method == DiffsolMethod::Tsit45 {
         let mut ds = builder!(Dense).build().map_err(build_error)?;
-        ds.ode_options.min_timestep = MIN_STEP;
+        set_limits(&mut ds);
         let (order, quadratures) = (method.order(), problem.quadratures());
         return drive(
             method,
@@ -530,13 +533,11 @@ pub fn solve_observed(
     }
     if sparse_jacobian(problem, options.t0, y0, modes) {
         let mut ds = builder!(Sparse).build().map_err(build_error)?;
-        ds.ode_options.max_nonlinear_solver_failures = MAX_NEWTON_FAILURES;
-        ds.ode_options.min_timestep = MIN_STEP;
+        set_limits(&mut ds);
         return drive_implicit!(method, &ds, &shared, &[], start, SparseLu);
     }
     let mut ds = builder!(Dense).build().map_err(build_error)?;
-    ds.ode_options.max_nonlinear_solver_failures = MAX_NEWTON_FAILURES;
-    ds.ode_options.min_timestep = MIN_STEP;
+    set_limits(&mut ds);
     drive_implicit!(method, &ds, &shared, &[], start, DenseLu)
 }
 

@@ -171,6 +171,8 @@ impl ImplicitEuler {
         let (rtol, atol, kappa) = self.tolerances();
         let mass = ode.problem.mass();
         self.y_new.copy_from_slice(&self.state.y);
+        // Converged or not by the unknowns that are not quadratures.
+        let q = n - ode.problem.quadratures();
         let mut norm_prev = 0.0;
         for k in 0..MAX_NEWTON_ITERATIONS {
             ode.rhs(t1, &self.y_new, &mut self.f_new, &mut self.stats);
@@ -189,8 +191,6 @@ impl ImplicitEuler {
             for i in 0..n {
                 self.y_new[i] += self.delta[i];
             }
-            // Converged or not by the unknowns that are not quadratures.
-            let q = n - ode.problem.quadratures();
             let norm = wrms(
                 &self.delta[..q],
                 &self.y_new[..q],

@@ -140,7 +140,7 @@ pub fn check_finite(y: &[f64], t: f64, h: f64, what: &str) -> Result<(), SolverE
 pub const UROUND: f64 = 2.3e-16;
 
 /// The checks every adaptive step attempt makes first (DOPCOR of dopri5.f): no more than
-/// `max_steps` attempts, and a step size that t can still resolve (`0.1·|h| > UROUND·|t|`).
+/// `max_steps` attempts, and a step size that t can still resolve ([`check_step_size`]).
 pub fn check_limits(attempts: usize, max_steps: usize, t: f64, h: f64) -> Result<(), SolverError> {
     if attempts > max_steps {
         return Err(SolverError::TooManySteps {
@@ -149,6 +149,12 @@ pub fn check_limits(attempts: usize, max_steps: usize, t: f64, h: f64) -> Result
             max: max_steps,
         });
     }
+    check_step_size(t, h)
+}
+
+/// dopri5.f's floor of the step size, relative to t: `0.1·|h| > UROUND·|t|`, else
+/// [`SolverError::StepSizeUnderflow`].
+pub fn check_step_size(t: f64, h: f64) -> Result<(), SolverError> {
     if 0.1 * h.abs() <= t.abs() * UROUND {
         return Err(SolverError::StepSizeUnderflow { t, h });
     }
