@@ -75,13 +75,28 @@ pub const PAPER_DT: f64 = 1e-3;
 
 impl SolverOptions {
     /// The step control these options ask for, every value checked against its range, also
-    /// those the chosen solver does not use.
+    /// those the chosen solver does not use; `--fixed-step` only with a solver that takes
+    /// fixed steps.
     pub fn checked_step(&self) -> Result<StepControl, AppError> {
         ranges::RTOL.check(self.rtol)?;
         ranges::ATOL.check(self.atol)?;
         ranges::THETA.check(self.theta)?;
         if let Some(dt) = self.dt {
             ranges::DT.check(dt)?;
+        }
+        if self.fixed_step && !self.solver.takes_fixed_steps() && !self.switching.is_time_stepping()
+        {
+            let fixed: Vec<_> = Solver::ALL
+                .iter()
+                .filter(|s| s.takes_fixed_steps())
+                .map(|s| s.name())
+                .collect();
+            return Err(AppError::Usage(format!(
+                "option `fixed-step` does not apply to solver `{}`: it chooses its own steps \
+                 from --rtol and --atol; allowed with {}",
+                self.solver.name(),
+                fixed.join(", ")
+            )));
         }
         Ok(self.step())
     }

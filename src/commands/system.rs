@@ -214,7 +214,8 @@ fn trajectory_table(run: &Run, bodies: &[usize], path: &Path) -> Result<Vec<u8>,
 }
 
 /// The space–time picture: body index against time, coloured by contact mode, sampled on at
-/// most [`RASTER`] columns and rows; with its data as a CSV table.
+/// most [`RASTER`] columns and rows; with its data as a CSV table. The solution must hold a
+/// point (a run that failed before its first one has no picture).
 fn space_time(run: &Run, title: &str, path: &Path) -> Result<(Raster, Vec<u8>), AppError> {
     let s = &run.solution;
     let n = run.problem.system.bodies.len();
@@ -362,9 +363,11 @@ pub fn make(args: &SimulateArgs) -> Result<Made, AppError> {
     ] {
         files.add(args.out.join(file), bytes);
     }
-    let (raster, data) = space_time(&run, &title, &args.out.join("space-time.csv"))?;
-    files.add(args.out.join("space-time.csv"), data);
-    files.add_raster(&args.out.join("space-time"), &raster)?;
+    if !run.solution.is_empty() {
+        let (raster, data) = space_time(&run, &title, &args.out.join("space-time.csv"))?;
+        files.add(args.out.join("space-time.csv"), data);
+        files.add_raster(&args.out.join("space-time"), &raster)?;
+    }
     let velocity = Plot {
         title: format!("{title}: velocities"),
         x_label: "time t (s)".into(),
