@@ -501,6 +501,31 @@ fn bad_scenario_input_is_rejected_and_writes_nothing() {
             &["phenomena", "--solver", "rk4"],
             "solver `rk4` needs a fixed step",
         ),
+        (
+            &[
+                "simulate",
+                "belt",
+                "--model",
+                "CS",
+                "--solver",
+                "bdf",
+                "--fixed-step",
+            ],
+            "option `fixed-step` does not apply to solver `bdf`: it chooses its own steps \
+             from --rtol and --atol; allowed with rk4, dopri5, implicit-euler",
+        ),
+        (
+            &[
+                "simulate",
+                "chain",
+                "--model",
+                "elasto-plastic",
+                "--solver",
+                "esdirk34",
+                "--fixed-step",
+            ],
+            "option `fixed-step` does not apply to solver `esdirk34`",
+        ),
     ];
     for (args, message) in cases {
         let text = rejected(args);
@@ -1161,6 +1186,18 @@ fn a_study_bounds_each_run_and_draws_the_failed_ones() {
         .count();
     // h = 0.02 takes 50 steps; 0.01, 0.005 and 0.0025 take more than 100.
     assert_eq!(failed, 3, "{csv}");
+    // A failed run stopped early: it has no error against the reference (the four error
+    // columns, 6 to 9, are empty), while the run that finished has all four.
+    for line in csv.lines().skip(1) {
+        let errors = &line.split(',').collect::<Vec<_>>()[5..9];
+        let measured = errors.iter().filter(|e| !e.is_empty()).count();
+        let expected = if line.contains("too many steps") {
+            0
+        } else {
+            4
+        };
+        assert_eq!(measured, expected, "{line}");
+    }
     let svg = std::fs::read_to_string(out.join("converge.svg")).unwrap();
     assert!(
         svg.contains("rk4: 3 failed (at the top)"),

@@ -272,7 +272,9 @@ pub fn run_cases(
             }));
             times.sort_by(f64::total_cmp);
             run.wall_time_s = times[times.len() / 2];
-            if let Some((_, m)) = &reference {
+            // A failed run ends early: its last state is not a state at the end, and it has
+            // no error against the reference.
+            if let (Some((_, m)), None) = (&reference, &run.failure) {
                 run.errors = Errors::between(&run.measures, m);
             }
             runs.push(*run);
