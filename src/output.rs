@@ -21,7 +21,8 @@ pub fn write_file(path: &Path, bytes: &[u8]) -> Result<(), AppError> {
 /// A cell of a CSV table.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Cell {
-    /// A number, written in Rust's shortest round-trip form.
+    /// A number, written in the shortest form that reads back to the same double
+    /// ([`number`]).
     Num(f64),
     /// A label.
     Text(String),
@@ -76,13 +77,25 @@ impl Table {
                             value: *x,
                         })
                     }
-                    Cell::Num(x) => x.to_string(),
+                    Cell::Num(x) => number(*x),
                     Cell::Text(s) => s.clone(),
                 });
             }
             w.write_record(&record).map_err(io)?;
         }
         w.into_inner().map_err(|e| io(e.into_error().into()))
+    }
+}
+
+/// `x` in the fewest digits that read back to the same double: positional between 1e-5 and
+/// 1e16 (`0.0025`, `4127`), with an exponent outside (`3.1781835350686016e-6`, `8.2e82`, as
+/// JSON writes them), so that no number spells out a run of zeros.
+pub fn number(x: f64) -> String {
+    let magnitude = x.abs();
+    if magnitude != 0.0 && !(1e-5..1e16).contains(&magnitude) {
+        format!("{x:e}")
+    } else {
+        x.to_string()
     }
 }
 
@@ -124,4 +137,29 @@ pub fn share_folder(dir: &Path) -> std::io::Result<()> {
     #[cfg(not(unix))]
     let _ = dir;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::number;
+
+    #[test]
+    fn numbers_read_back_exactly_and_never_spell_out_runs_of_zeros() {
+        let cases = [
+            (8.207037550189949e82, "8.207037550189949e82"),
+            (3.1781835350686016e-6, "3.1781835350686016e-6"),
+            (-1e-300, "-1e-300"),
+            (5e-324, "5e-324"),
+            (1e16, "1e16"),
+            (9.999999999999998e15, "9999999999999998"),
+            (0.0025, "0.0025"),
+            (1e-5, "0.00001"),
+            (4127.0, "4127"),
+            (0.0, "0"),
+        ];
+        for (x, text) in cases {
+            assert_eq!(number(x), text);
+            assert_eq!(number(x).parse::<f64>().unwrap().to_bits(), x.to_bits());
+        }
+    }
 }

@@ -97,7 +97,7 @@ pub struct CaseArgs {
     #[arg(long, value_name = "LIST", value_delimiter = ',')]
     pub bodies: Vec<String>,
     /// event, regularized, naive, or timestepping (Moreau–Jean at θ = 1/2, the study's one
-    /// method: over the step sizes, --solvers unused; its reference is event-driven)
+    /// method: over the step sizes, the solver options unused; its reference is event-driven)
     /// [default: event; for `stiffness` of a rig over epsilon, regularized]
     #[arg(long, value_name = "event|regularized|naive|timestepping")]
     pub switching: Option<SwitchingKind>,
