@@ -1384,6 +1384,29 @@ fn sweep_runs_a_grid_in_parallel_measures_the_settled_cycle_and_rejects_bad_axes
         let e = rejected(&["sweep", "belt", "--model", "static", "--grid", grid]);
         assert!(e.contains(message), "{grid}: {e}");
     }
+    // Axes that would run the same point twice or make every point the same run.
+    for (grids, message) in [
+        (
+            &["v_belt=0.1", "v_belt=0.2"][..],
+            "parameter `v_belt` has two axes; give all its values in one",
+        ),
+        (
+            &["sigma0=1e4,1e5"][..],
+            "parameter `sigma0` is not read by model `static` (it reads: F_c, F_s): every \
+             point would be the same run",
+        ),
+        (
+            &["epsilon=1e-3,1e-2"][..],
+            "parameter `epsilon` is read only under --switching regularized, not event",
+        ),
+    ] {
+        let mut args = vec!["sweep", "belt", "--model", "static"];
+        for g in grids {
+            args.extend(["--grid", g]);
+        }
+        let e = rejected(&args);
+        assert!(e.contains(message), "{grids:?}: {e}");
+    }
 }
 
 #[test]

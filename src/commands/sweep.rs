@@ -12,10 +12,12 @@ use crate::output::{Cell, Table};
 use crate::progress::Progress;
 use crate::ranges;
 use clap::Args;
+use friction_models::{FrictionParams, Parameters};
 use friction_systems::{simulate, STICK};
 use integrators::Stats;
 use rayon::prelude::*;
 use scenarios::settled::{Settled, Trace};
+use scenarios::SwitchingKind;
 use serde::Serialize;
 
 /// Most values on one axis.
@@ -153,6 +155,39 @@ impl Axis {
             values,
         })
     }
+}
+
+/// Refuses an axis that names a parameter a second time (only the last would be used) or a
+/// friction parameter that the run does not read (every point would be the same run): one
+/// the model does not list, or `epsilon` outside `--switching regularized`.
+fn check_axes(axes: &[Axis], run: &SimulateArgs) -> Result<(), AppError> {
+    for (i, axis) in axes.iter().enumerate() {
+        let name = axis.name.as_str();
+        if axes[..i].iter().any(|a| a.name == name) {
+            return Err(AppError::Usage(format!(
+                "option `grid`: parameter `{name}` has two axes; give all its values in one"
+            )));
+        }
+        if FrictionParams::paper().value(name).is_none() {
+            continue;
+        }
+        if name == "epsilon" {
+            if run.solver.switching != SwitchingKind::Regularized {
+                return Err(AppError::Usage(format!(
+                    "option `grid`: parameter `epsilon` is read only under --switching \
+                     regularized, not {}: every point would be the same run",
+                    run.solver.switching.name()
+                )));
+            }
+        } else if let Some(model) = run.model.filter(|m| !m.parameters().contains(&name)) {
+            return Err(AppError::Usage(format!(
+                "option `grid`: parameter `{name}` is not read by model `{model}` (it reads: {}): \
+                 every point would be the same run",
+                model.parameters().join(", ")
+            )));
+        }
+    }
+    Ok(())
 }
 
 /// The grid's points in order (the first axis varying slowest), as `NAME=VALUE` assignments.
@@ -296,6 +331,7 @@ pub fn make(args: &SweepArgs) -> Result<Made, AppError> {
         .iter()
         .map(|g| Axis::parse(g))
         .collect::<Result<_, _>>()?;
+    check_axes(&axes, &args.run)?;
     let grid = points(&axes);
     if grid.len() > MAX_POINTS {
         return Err(AppError::Usage(format!(
