@@ -1517,3 +1517,73 @@ fn stiffness_of_a_rig_over_epsilon_is_regularized_unless_told_otherwise() {
     let event = evals(Some("event"));
     assert_eq!(event[0], event[1], "{event:?}");
 }
+
+#[test]
+fn an_independence_study_judges_the_levels_that_finished_and_exits_1() {
+    // RK4 at h = 0.5 on the belt (ω = 10 rad/s, h·ω = 5, beyond RK4's stability bound 2.79)
+    // overflows; the three finer levels are stable and are judged.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("i");
+    let o = friction_lab(&[
+        "independence",
+        "belt",
+        "--model",
+        "CS",
+        "--solver",
+        "rk4",
+        "--start",
+        "0.5",
+        "--levels",
+        "4",
+        "--t-end",
+        "200",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let text = stderr(&o);
+    assert!(
+        text.contains("1 of 4 levels of the independence study failed, the first at level 0 (5e-1): non-finite state")
+            && text.contains("levels 1 to 3 are judged"),
+        "{text}"
+    );
+    let csv = std::fs::read_to_string(out.join("independence.csv")).unwrap();
+    let levels: Vec<&str> = csv
+        .lines()
+        .filter(|l| l.starts_with("final x"))
+        .map(|l| l.split(',').nth(1).unwrap())
+        .collect();
+    assert_eq!(levels, ["1", "2", "3"], "{csv}");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("independence.json")).unwrap())
+            .unwrap();
+    assert_eq!(json["failed"][0]["level"], 0, "{json}");
+    assert_eq!(json["first_level"], 1, "{json}");
+    assert_eq!(json["independent"], false, "{json}");
+    // With fewer than two levels in a row finished there is nothing to judge: exit 1, no
+    // files.
+    let out = dir.path().join("j");
+    let o = friction_lab(&[
+        "independence",
+        "belt",
+        "--model",
+        "CS",
+        "--solver",
+        "rk4",
+        "--start",
+        "0.5",
+        "--levels",
+        "2",
+        "--t-end",
+        "200",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("leaving fewer than two levels in a row to compare"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!out.exists());
+}

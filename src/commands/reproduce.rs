@@ -245,6 +245,7 @@ fn add_studies(
         files,
         dir: &dir,
         threads,
+        failure: None,
     };
     let from_paper_dt = Refinement {
         start: 1e-3,
@@ -324,6 +325,10 @@ fn add_studies(
         Solver::Rk4,
         from_paper_dt,
     )?;
+    // Every level of the report's independence studies must finish.
+    if let Some(failure) = t.failure.take() {
+        return Err(failure);
+    }
     let all = [
         Solver::Rk4,
         Solver::Dopri5,

@@ -196,11 +196,14 @@ impl CaseArgs {
             files: &mut files,
             dir: &self.out,
             threads: ranges::threads(self.threads)?,
+            failure: None,
         };
         let notes = study(&mut target, case)?;
+        let failure = target.failure;
         Ok(Made {
             files,
             notes,
+            failure,
             ..Made::default()
         })
     }
@@ -224,6 +227,9 @@ pub struct Target<'a> {
     pub dir: &'a Path,
     /// Worker threads (all cores when `None`).
     pub threads: Option<usize>,
+    /// A failure the files record (a level of an independence study that failed): the
+    /// command writes them, then exits with it.
+    pub failure: Option<AppError>,
 }
 
 /// The levels of an independence study.
@@ -589,6 +595,18 @@ pub fn add_independence(
     })?
     .map_err(study_error)?;
     b.finish();
+    if let Some(f) = s.failed.first() {
+        t.failure.get_or_insert(AppError::StudyRun(format!(
+            "{} of {levels} levels of the independence study failed, the first at level {} \
+             ({:e}): {}; levels {} to {} are judged",
+            s.failed.len(),
+            f.level,
+            f.resolution,
+            f.failure,
+            s.first_level,
+            s.first_level + s.resolutions.len() - 1
+        )));
+    }
     let mut table = Table::new(&[
         "output",
         "level",
@@ -604,7 +622,7 @@ pub fn add_independence(
             let [h, tol] = resolution_cells(Some(s.step), Some(s.resolutions[i]));
             table.rows.push(vec![
                 Cell::Text(o.name.clone()),
-                Cell::Num(i as f64),
+                Cell::Num((s.first_level + i) as f64),
                 h,
                 tol,
                 Cell::Num(*v),
@@ -648,9 +666,11 @@ pub fn add_independence(
             "Independence: {}: {}",
             case.describe(),
             if s.independent {
-                "independent"
+                "independent".to_string()
+            } else if s.failed.is_empty() {
+                "NOT independent".to_string()
             } else {
-                "NOT independent"
+                format!("NOT independent ({} levels failed)", s.failed.len())
             }
         ),
         x_label: "time t (s)".into(),
@@ -693,6 +713,12 @@ pub fn independence(a: &IndependenceArgs) -> Result<Made, AppError> {
         } else {
             "not independent of"
         };
+        notes.extend(s.failed.iter().map(|f| {
+            format!(
+                "level {} ({:e}) failed, not judged: {}",
+                f.level, f.resolution, f.failure
+            )
+        }));
         notes.push(format!("verdict: {verdict} the step size"));
         Ok(notes)
     })

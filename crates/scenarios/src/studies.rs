@@ -455,19 +455,51 @@ pub struct Independence {
     pub solver: String,
     /// Which the resolutions are: `fixed` (step sizes) or `adaptive` (tolerances).
     pub step: &'static str,
-    /// The resolutions, coarse to fine (each the previous divided by `ratio`).
+    /// The resolutions judged, coarse to fine (each the previous divided by `ratio`): every
+    /// level asked for, or, when some failed, the longest unbroken run of finished ones.
     pub resolutions: Vec<f64>,
+    /// The index of the first judged level among the levels asked for (0 unless the coarsest
+    /// failed).
+    pub first_level: usize,
+    /// The levels that failed, none judged: the study then is not independent.
+    pub failed: Vec<FailedLevel>,
     /// The refinement ratio.
     pub ratio: f64,
     /// The relative tolerance of the verdict.
     pub tolerance: f64,
     /// Each output.
     pub outputs: Vec<OutputCheck>,
-    /// Whether every output is independent of the resolution to the tolerance.
+    /// Whether every level finished and every output is independent of the resolution to
+    /// the tolerance.
     pub independent: bool,
-    /// x on the common grid at every level, for the overlay plot.
+    /// x on the common grid at every judged level, for the overlay plot.
     #[serde(skip)]
     pub trajectories: Vec<Vec<f64>>,
+}
+
+/// A level of an independence study whose run failed.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct FailedLevel {
+    /// Its index among the levels asked for, 0 the coarsest.
+    pub level: usize,
+    /// Its step size or tolerance.
+    pub resolution: f64,
+    /// The solver's error.
+    pub failure: String,
+}
+
+/// The longest unbroken run of `true` in `finished`, the later (finer) one on a tie.
+fn longest_run(finished: &[bool]) -> std::ops::Range<usize> {
+    let mut best = 0..0;
+    let mut start = 0;
+    for (i, &ok) in finished.iter().enumerate() {
+        if !ok {
+            start = i + 1;
+        } else if i + 1 - start >= best.len() {
+            best = start..i + 1;
+        }
+    }
+    best
 }
 
 fn check(name: String, values: Vec<f64>, ratio: f64, tolerance: f64) -> OutputCheck {
@@ -493,7 +525,9 @@ fn check(name: String, values: Vec<f64>, ratio: f64, tolerance: f64) -> OutputCh
 
 /// Runs `solver` at `levels` resolutions, each `ratio` times finer, and judges whether the
 /// final state, the first events, the stick durations and the peak friction are independent
-/// of the resolution to the relative `tolerance`.
+/// of the resolution to the relative `tolerance`. A failed level is kept in
+/// [`Independence::failed`] and the longest unbroken run of finished levels is judged; with
+/// fewer than two finished in a row there is nothing to judge, and the study fails.
 pub fn independence(
     case: &dyn StudyCase,
     solver: Solver,
@@ -509,12 +543,27 @@ pub fn independence(
     let runs = batch::run_cases(&[case], None, &jobs, 0, progress)?
         .remove(0)
         .runs;
-    if let Some(f) = runs.iter().find_map(|r| r.failure.clone()) {
+    let failed: Vec<FailedLevel> = runs
+        .iter()
+        .enumerate()
+        .filter_map(|(level, r)| {
+            r.failure.clone().map(|failure| FailedLevel {
+                level,
+                resolution: resolutions[level],
+                failure,
+            })
+        })
+        .collect();
+    let judged = longest_run(&runs.iter().map(|r| r.failure.is_none()).collect::<Vec<_>>());
+    if judged.len() < 2 {
+        let f = &failed[0];
         return Err(ScenarioError::RunFailed(format!(
-            "a run of the independence study failed: {f}"
+            "a run of the independence study failed at level {} ({:e}), leaving fewer than \
+             two levels in a row to compare: {}",
+            f.level, f.resolution, f.failure
         )));
     }
-    let m: Vec<&Measures> = runs.iter().map(|r| &r.measures).collect();
+    let m: Vec<&Measures> = runs[judged.clone()].iter().map(|r| &r.measures).collect();
     let mut outputs = vec![
         check(
             "final x (m)".into(),
@@ -572,8 +621,10 @@ pub fn independence(
     Ok(Independence {
         solver: method[0].label(),
         step: runs.first().map_or("fixed", |r| r.step),
-        independent: outputs.iter().all(|o| o.independent),
-        resolutions,
+        independent: failed.is_empty() && outputs.iter().all(|o| o.independent),
+        resolutions: resolutions[judged.clone()].to_vec(),
+        first_level: judged.start,
+        failed,
         ratio,
         tolerance,
         trajectories: m
