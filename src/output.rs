@@ -2,6 +2,7 @@
 //! place whole (see [`crate::artifacts`]); no NaN or infinity is ever written.
 
 use crate::error::AppError;
+use friction_models::params::show;
 use std::io::Write;
 use std::path::Path;
 
@@ -22,7 +23,7 @@ pub fn write_file(path: &Path, bytes: &[u8]) -> Result<(), AppError> {
 #[derive(Clone, Debug, PartialEq)]
 pub enum Cell {
     /// A number, written in the shortest form that reads back to the same double
-    /// ([`number`]).
+    /// ([`show`]).
     Num(f64),
     /// A label.
     Text(String),
@@ -77,25 +78,13 @@ impl Table {
                             value: *x,
                         })
                     }
-                    Cell::Num(x) => number(*x),
+                    Cell::Num(x) => show(*x),
                     Cell::Text(s) => s.clone(),
                 });
             }
             w.write_record(&record).map_err(io)?;
         }
         w.into_inner().map_err(|e| io(e.into_error().into()))
-    }
-}
-
-/// `x` in the fewest digits that read back to the same double: positional between 1e-5 and
-/// 1e16 (`0.0025`, `4127`), with an exponent outside (`3.1781835350686016e-6`, `8.2e82`, as
-/// JSON writes them), so that no number spells out a run of zeros.
-pub fn number(x: f64) -> String {
-    let magnitude = x.abs();
-    if magnitude != 0.0 && !(1e-5..1e16).contains(&magnitude) {
-        format!("{x:e}")
-    } else {
-        x.to_string()
     }
 }
 
@@ -141,7 +130,7 @@ pub fn share_folder(dir: &Path) -> std::io::Result<()> {
 
 #[cfg(test)]
 mod tests {
-    use super::number;
+    use super::show;
 
     #[test]
     fn numbers_read_back_exactly_and_never_spell_out_runs_of_zeros() {
@@ -150,16 +139,17 @@ mod tests {
             (3.1781835350686016e-6, "3.1781835350686016e-6"),
             (-1e-300, "-1e-300"),
             (5e-324, "5e-324"),
-            (1e16, "1e16"),
-            (9.999999999999998e15, "9999999999999998"),
+            (1e6, "1e6"),
+            (999999.9999999999, "999999.9999999999"),
             (0.0025, "0.0025"),
-            (1e-5, "0.00001"),
+            (1e-3, "0.001"),
+            (9.999999999999998e-4, "9.999999999999998e-4"),
             (4127.0, "4127"),
             (0.0, "0"),
         ];
         for (x, text) in cases {
-            assert_eq!(number(x), text);
-            assert_eq!(number(x).parse::<f64>().unwrap().to_bits(), x.to_bits());
+            assert_eq!(show(x), text);
+            assert_eq!(show(x).parse::<f64>().unwrap().to_bits(), x.to_bits());
         }
     }
 }

@@ -103,13 +103,7 @@ pub const V_MAX: OptionRange = OptionRange {
 
 /// A value as messages show it: in exponent form when very small or very large (as the
 /// ranges print their bounds), otherwise in full.
-pub fn show(x: f64) -> String {
-    if x.is_finite() && x != 0.0 && !(1e-3..1e6).contains(&x.abs()) {
-        format!("{x:e}")
-    } else {
-        x.to_string()
-    }
-}
+pub use friction_models::params::show;
 
 impl OptionRange {
     /// `value` if it lies in the range, else the error that names option, value and range.

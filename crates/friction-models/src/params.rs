@@ -75,16 +75,19 @@ impl fmt::Display for Range {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let open = if self.min_inclusive { '[' } else { '(' };
         let close = if self.max_inclusive { ']' } else { ')' };
-        let bound = |x: f64| {
-            if x.is_infinite() {
-                if x > 0.0 { "inf" } else { "-inf" }.to_string()
-            } else if x != 0.0 && !(1e-3..1e6).contains(&x.abs()) {
-                format!("{x:e}")
-            } else {
-                x.to_string()
-            }
-        };
-        write!(f, "{open}{}, {}{close}", bound(self.min), bound(self.max))
+        write!(f, "{open}{}, {}{close}", show(self.min), show(self.max))
+    }
+}
+
+/// `x` in the fewest digits that read back to the same double, positional between 1e-3 and
+/// 1e6 (`0.0025`, `4127`) and with an exponent outside (`3.2e-6`, `8.2e82`), so that no
+/// number spells out a run of zeros; `inf`, `-inf`, `NaN` as such. Every number a message,
+/// a range or a table of friction-lab shows is written this way.
+pub fn show(x: f64) -> String {
+    if x.is_finite() && x != 0.0 && !(1e-3..1e6).contains(&x.abs()) {
+        format!("{x:e}")
+    } else {
+        x.to_string()
     }
 }
 

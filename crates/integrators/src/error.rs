@@ -2,12 +2,22 @@
 
 use thiserror::Error;
 
+/// A time as the messages show it: positional between 1e-3 and 1e6, with an exponent outside
+/// (the rule of `friction_models::params::show`; this crate depends on no other of ours).
+fn shown(t: &f64) -> String {
+    if t.is_finite() && *t != 0.0 && !(1e-3..1e6).contains(&t.abs()) {
+        format!("{t:e}")
+    } else {
+        t.to_string()
+    }
+}
+
 /// A failed integration. The solution computed up to the failure is kept by the caller
 /// (see [`crate::Failure`]).
 #[derive(Clone, Debug, Error, PartialEq)]
 pub enum SolverError {
     /// The step size fell below what the floating-point time can resolve.
-    #[error("step size underflow at t = {t}: h = {h:e} is below the resolution of t")]
+    #[error("step size underflow at t = {}: h = {h:e} is below the resolution of t", shown(.t))]
     StepSizeUnderflow {
         /// Time reached.
         t: f64,
@@ -15,7 +25,7 @@ pub enum SolverError {
         h: f64,
     },
     /// More steps than allowed.
-    #[error("too many steps: {max} steps taken by t = {t} (h = {h:e}) without reaching the end")]
+    #[error("too many steps: {max} steps taken by t = {} (h = {h:e}) without reaching the end", shown(.t))]
     TooManySteps {
         /// Time reached.
         t: f64,
@@ -25,7 +35,7 @@ pub enum SolverError {
         max: usize,
     },
     /// The wall-clock limit was reached.
-    #[error("time limit: {limit} s of wall time used by t = {t} without reaching the end")]
+    #[error("time limit: {limit} s of wall time used by t = {} without reaching the end", shown(.t))]
     TimeLimit {
         /// Time reached.
         t: f64,
@@ -33,14 +43,14 @@ pub enum SolverError {
         limit: f64,
     },
     /// A stop was requested from outside ([`crate::interrupt`]: Ctrl-C in the Python package).
-    #[error("interrupted at t = {t}")]
+    #[error("interrupted at t = {}", shown(.t))]
     Interrupted {
         /// Time reached.
         t: f64,
     },
     /// Newton's iteration failed even after the step was cut repeatedly.
     #[error(
-        "Newton iteration diverged at t = {t} with h = {h:e} after {cuts} step-size cuts: {why}"
+        "Newton iteration diverged at t = {} with h = {h:e} after {cuts} step-size cuts: {why}", shown(.t)
     )]
     NewtonDivergence {
         /// Time of the step's start.
@@ -53,7 +63,7 @@ pub enum SolverError {
         why: String,
     },
     /// The iteration matrix could not be factorised.
-    #[error("singular iteration matrix at t = {t} with h = {h:e}")]
+    #[error("singular iteration matrix at t = {} with h = {h:e}", shown(.t))]
     SingularMatrix {
         /// Time of the step's start.
         t: f64,
@@ -61,7 +71,7 @@ pub enum SolverError {
         h: f64,
     },
     /// A NaN or infinity appeared in the state.
-    #[error("non-finite state at t = {t} (h = {h:e}): {what}")]
+    #[error("non-finite state at t = {} (h = {h:e}): {what}", shown(.t))]
     NonFinite {
         /// Time of the step's start.
         t: f64,
@@ -71,7 +81,7 @@ pub enum SolverError {
         what: String,
     },
     /// Events accumulate: too many in too short a time (chattering or a Zeno point).
-    #[error("too many events: {count} events within {window:e} s before t = {t} (chattering or Zeno behaviour); last event: {last}")]
+    #[error("too many events: {count} events within {window:e} s before t = {} (chattering or Zeno behaviour); last event: {last}", shown(.t))]
     TooManyEvents {
         /// Time of the last event.
         t: f64,
@@ -110,7 +120,7 @@ pub enum SolverError {
     },
     /// The contact problem of a time step (the set-valued friction laws with the momentum
     /// balance) was not solved.
-    #[error("contact problem of the step at t = {t} (h = {h:e}) not solved: {why}")]
+    #[error("contact problem of the step at t = {} (h = {h:e}) not solved: {why}", shown(.t))]
     ContactProblem {
         /// Time of the step's start.
         t: f64,
@@ -120,7 +130,7 @@ pub enum SolverError {
         why: String,
     },
     /// diffsol reported an error.
-    #[error("diffsol {solver} failed at t = {t}: {message}")]
+    #[error("diffsol {solver} failed at t = {}: {message}", shown(.t))]
     Diffsol {
         /// Which diffsol method.
         solver: &'static str,
