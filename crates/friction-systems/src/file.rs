@@ -211,6 +211,16 @@ fn contact_model(
     for (name, &value) in &c.params {
         p.set(name, value)
             .map_err(|e| at(&format!("params.{name}"), e.to_string()))?;
+        // A known parameter the law does not read would change nothing: a slip of the pen.
+        if !id.parameters().contains(&name.as_str()) {
+            return Err(at(
+                &format!("params.{name}"),
+                format!(
+                    "model `{id}` does not read it (it reads: {})",
+                    id.parameters().join(", ")
+                ),
+            ));
+        }
     }
     id.build(variant, &p)
         .map(Arc::from)

@@ -120,6 +120,10 @@ fn every_error_names_the_table_the_key_and_the_range() {
             "[[contact]] 1: `params.mu`: unknown parameter `mu`",
         ),
         (
+            TWO_MASSES.replace("F_c = 1.0841", "sigma0 = 1e4"),
+            "[[contact]] 1: `params.sigma0`: model `coulomb` does not read it (it reads: F_c)",
+        ),
+        (
             TWO_MASSES.replace("model = \"lugre\"", "model = \"stribek\""),
             "[[contact]] 2: `model`: unknown model `stribek`",
         ),
