@@ -1443,6 +1443,16 @@ fn phenomena_judges_the_chosen_models_at_the_given_parameters() {
     );
     let e = rejected(&["phenomena", "--model", "viscous", "--set", "mu_v=-1"]);
     assert!(e.contains("mu_v"), "{e}");
+    // Without a static level (F_s = 0) the force ramps rise to F_c: Coulomb's law breaks away
+    // at F_c = 6 N at every rate, so no rising static friction. (The ramps rose to F_s, at
+    // rate 0, and the command was refused for a parameter `rate` it was never given.)
+    let (bare, _) = judge("bare", &["--set", "F_s=0"]);
+    let rising = &bare["coulomb"]["rising_static_friction"];
+    assert_eq!(rising["measured"], false, "{rising}");
+    for key in ["breakaway_1000tau_N", "breakaway_10tau_N"] {
+        let f = rising["evidence"][key].as_f64().unwrap();
+        assert!((f - 6.0).abs() < 1e-6, "{key} = {f}");
+    }
 }
 
 #[test]

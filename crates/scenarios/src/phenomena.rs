@@ -574,7 +574,8 @@ impl Judge<'_> {
     /// 1998, §4): the break-away force is larger when the force rises slowly, i.e. the longer
     /// the contact dwells under load. Force ramps whose rates are tied to the model's own
     /// time scale τ (the internal state's time constant at v_s; 1 s without a state): the
-    /// load reaches F_s in 1000 τ, 100 τ and 10 τ, each at most [`thresholds::LONGEST_RAMP`]
+    /// load reaches max(F_s, F_c) (the stiction protocol's level, F_s for the paper's
+    /// parameters) in 1000 τ, 100 τ and 10 τ, each at most [`thresholds::LONGEST_RAMP`]
     /// (no faster: a ramp on the state's own time scale measures the contact's dynamic
     /// response, which a soft Dahl contact, σ = 5 N/m, shows as a 14 % lower "break-away").
     /// Present if the break-away force falls
@@ -595,7 +596,7 @@ impl Judge<'_> {
         let mut forces = Vec::with_capacity(names.len());
         for (name, scale) in names {
             let load_time = (tau / scale).min(thresholds::LONGEST_RAMP);
-            let Some(b) = self.breakaway(self.p.f_s / load_time)? else {
+            let Some(b) = self.breakaway(self.p.f_s.max(self.p.f_c) / load_time)? else {
                 return Ok(Verdict {
                     measured: false,
                     evidence,
