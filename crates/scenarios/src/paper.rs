@@ -7,7 +7,7 @@
 //! - a model with a viscous term tends to the terminal velocity `v_t = (F_ex − level)/μ_v`
 //!   with time constant `m/μ_v`: AV (level F_s), CVS (F_c), DV (F_c from Dahl), SV (F_s + F_c);
 //! - a model without one tends to the constant acceleration `a = (F_ex − level)/m`:
-//!   CS (level F_c), SD (F_s + F_c).
+//!   CS (level F_c), SD (F_s + F_c); so does a viscous model whose μ_v is 0.
 
 use crate::run::Limits;
 use crate::run::{run, RunSpec, ScenarioError, SwitchingKind};
@@ -40,7 +40,7 @@ pub fn level(model: ModelId, p: &FrictionParams) -> f64 {
 pub fn asymptote(model: ModelId, p: &FrictionParams, s: &ScenarioParams) -> Asymptote {
     let drive = s.f_ex - level(model, p);
     match model {
-        ModelId::Av | ModelId::Cvs | ModelId::Dv | ModelId::Sv => {
+        ModelId::Av | ModelId::Cvs | ModelId::Dv | ModelId::Sv if p.mu_v > 0.0 => {
             Asymptote::TerminalVelocity(drive / p.mu_v)
         }
         _ => Asymptote::Acceleration(drive / s.m),
@@ -103,7 +103,9 @@ pub fn experiment(
         .map(|&model| {
             let window = run(&spec(model, p, s, 5.0, 501), &mut |_| {})?;
             if let Some(e) = &window.error {
-                return Err(ScenarioError::Invalid(format!("{model}: {e}")));
+                return Err(ScenarioError::RunFailed(format!(
+                    "experiment, {model}: {e}"
+                )));
             }
             let at = |t: f64| {
                 window
@@ -117,7 +119,12 @@ pub fn experiment(
             let (measured, target) = match predicted {
                 Asymptote::TerminalVelocity(v_t) => {
                     let long = run(&spec(model, p, s, 30.0 * s.m / p.mu_v, 2), &mut |_| {})?;
-                    (long.last().expect("end recorded").v, v_t)
+                    if let Some(e) = &long.error {
+                        return Err(ScenarioError::RunFailed(format!(
+                            "experiment, {model}: {e}"
+                        )));
+                    }
+                    (long.last().expect("a finished run recorded its end").v, v_t)
                 }
                 Asymptote::Acceleration(a) => (at(5.0).v - at(4.0).v, a),
             };

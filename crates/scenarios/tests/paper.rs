@@ -34,6 +34,26 @@ fn terminal_velocities_and_accelerations_match_their_closed_forms() {
     }
 }
 
+#[test]
+fn without_viscous_friction_every_model_accelerates_at_its_closed_form_rate() {
+    // μ_v = 0 leaves AV, CVS, DV and SV without a terminal velocity: a = (F_ex − level)/m.
+    // (The experiment asked for a run of 30·m/μ_v = ∞ seconds and panicked.)
+    let mut p = FrictionParams::paper();
+    p.set("mu_v", 0.0).unwrap();
+    let rows = experiment(&p, &Scenario::PaperBlock.defaults()).unwrap();
+    let levels = [7.5, 6.0, 6.0, 6.0, 13.5, 13.5];
+    for (row, level) in rows.iter().zip(levels) {
+        assert_eq!(row.predicted, Asymptote::Acceleration(15.0 - level));
+        assert!(
+            row.relative_error < 1e-6,
+            "{}: measured {} vs {:?}",
+            row.model,
+            row.measured,
+            row.predicted
+        );
+    }
+}
+
 fn paper_block(model: ModelId, p: FrictionParams) -> Vec<(f64, f64, f64)> {
     let spec = RunSpec {
         scenario: Scenario::PaperBlock,
