@@ -863,6 +863,12 @@ fn bad_system_input_is_rejected_and_writes_nothing() {
             &["stiffness", "chain", "--model", "CS", "--parameter", "k"],
             "parameter `k` cannot be swept on a system",
         ),
+        (
+            // The report time-steps the chain with `static` friction, whose sliding force
+            // at rest (F_c) lies outside its stick interval [-F_s, F_s] once F_s = 0.
+            &["reproduce", "--set", "F_s=0"],
+            "[[contact]] 1: model `static`: its sliding force at v_rel = 0+",
+        ),
     ];
     for (args, message) in cases {
         let text = rejected(args);

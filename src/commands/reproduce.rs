@@ -532,6 +532,10 @@ pub fn run(args: &ReproduceArgs) -> Result<(), AppError> {
     let start = Instant::now();
     let threads = ranges::threads(args.threads)?;
     let params = args.params.resolve()?;
+    let (friction, scenario) = args.params.resolve_for(Some(Scenario::PaperBlock))?;
+    // The chain studies time-step the chain: parameters at which its law cannot be
+    // time-stepped are refused before anything runs, not after the figures and Table 2.
+    friction_systems::moreau_jean::check_contacts(&chain_case(1, &friction, 1.0)?.system)?;
     let mut files = Artifacts::default();
     let mut reproduced = Vec::new();
     let mut md = String::new();
@@ -594,7 +598,6 @@ pub fn run(args: &ReproduceArgs) -> Result<(), AppError> {
         format!("# Figures 2-7: the paper against its own equations\n\n{header}\n{md}");
     files.add(args.out.join("reproduction.md"), reproduction.into_bytes());
     files.add_json(args.out.join("figures.json"), &reproduced)?;
-    let (friction, scenario) = args.params.resolve_for(Some(Scenario::PaperBlock))?;
     let rows = experiment(&friction, &scenario).map_err(AppError::from)?;
     let experiment_md = add_experiment(&mut files, &args.out, &rows)?;
     files.add(
