@@ -182,7 +182,9 @@ fn add_experiment(
          (`paper-block`), Table 1 parameters, Dormand-Prince with rtol = atol = 1e-12 and event \
          switching. Once the Stribeck term has died out and the Dahl state has saturated, the \
          friction force is a constant level plus mu_v*v: a model with a viscous term tends to \
-         v_t = (F_ex - level)/mu_v, one without accelerates at a = (F_ex - level)/m.\n\n\
+         v_t = (F_ex - level)/mu_v, one without accelerates at a = (F_ex - level)/m (and a \
+         push that does not exceed the level, or the break-away at rest, leaves the block at \
+         rest).\n\n\
          ![velocity](figures/paper-experiment-velocity.png)\n\n\
          | model | closed form | simulated | relative error | v(5 s) (m/s) | x(5 s) (m) |\n|---|---|---|---|---|---|\n",
     );
@@ -190,6 +192,7 @@ fn add_experiment(
         let closed = match r.predicted {
             Asymptote::TerminalVelocity(v) => format!("v_t = {v} m/s"),
             Asymptote::Acceleration(a) => format!("a = {a} m/s^2"),
+            Asymptote::Rest => "at rest (v = 0)".to_string(),
         };
         md += &format!(
             "| {} | {closed} | {:.9} | {:.1e} | {:.4} | {:.4} |\n",

@@ -54,6 +54,32 @@ fn without_viscous_friction_every_model_accelerates_at_its_closed_form_rate() {
     }
 }
 
+#[test]
+fn a_push_that_cannot_keep_the_block_sliding_leaves_it_at_rest() {
+    // F_s = 14 N, C1 = C2 = 7 N against F_ex = 15 N: AV's break-away F_s + C1 = 21 N holds
+    // the block from the start; SD's and SV's sliding level F_s + F_c = 20 N stops it after
+    // its Dahl pre-sliding; CS, CVS and DV (level F_c = 6 N, break-away 13 N) keep theirs.
+    let mut p = FrictionParams::paper();
+    for (name, value) in [("F_s", 14.0), ("C1", 7.0), ("C2", 7.0)] {
+        p.set(name, value).unwrap();
+    }
+    let rows = experiment(&p, &Scenario::PaperBlock.defaults()).unwrap();
+    let expected = [
+        Asymptote::Rest,
+        Asymptote::Acceleration(9.0),
+        Asymptote::TerminalVelocity(18.0),
+        Asymptote::TerminalVelocity(18.0),
+        Asymptote::Rest,
+        Asymptote::Rest,
+    ];
+    for (row, asymptote) in rows.iter().zip(expected) {
+        assert_eq!(row.predicted, asymptote, "{}", row.model);
+        assert!(row.relative_error < 1e-6, "{}: {row:?}", row.model);
+    }
+    assert_eq!(rows[0].x_at_5s, 0.0, "AV never breaks away");
+    assert!(rows[4].x_at_5s > 0.0, "SD slides before it stops");
+}
+
 fn paper_block(model: ModelId, p: FrictionParams) -> Vec<(f64, f64, f64)> {
     let spec = RunSpec {
         scenario: Scenario::PaperBlock,
