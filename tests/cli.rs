@@ -864,6 +864,21 @@ fn bad_system_input_is_rejected_and_writes_nothing() {
             "parameter `k` cannot be swept on a system",
         ),
         (
+            // 2e10 recorded numbers would exhaust the memory before the first step.
+            &[
+                "simulate",
+                "chain",
+                "--model",
+                "coulomb",
+                "--set",
+                "n_bodies=100000",
+                "--points",
+                "100000",
+            ],
+            "option `points` = 100000 would record 2.00003e10 numbers for the system's 200003 \
+             unknowns: allowed at most 2.5e8 numbers, so at most 1249 points",
+        ),
+        (
             // The report time-steps the chain with `static` friction, whose sliding force
             // at rest (F_c) lies outside its stick interval [-F_s, F_s] once F_s = 0.
             &["reproduce", "--set", "F_s=0"],

@@ -6,7 +6,7 @@
 use crate::artifacts::{Artifacts, Made};
 use crate::commands::phenomena::with_threads;
 use crate::commands::simulate::{spec, SimulateArgs, Target};
-use crate::commands::system::{chosen_bodies, grid_options, system_of};
+use crate::commands::system::{chosen_bodies, grid_options, system_of, system_points};
 use crate::error::AppError;
 use crate::output::{Cell, Table};
 use crate::progress::Progress;
@@ -283,7 +283,8 @@ fn run_point(
             let t_end = args
                 .checked_t_end()?
                 .unwrap_or(crate::commands::system::CHAIN_T_END);
-            let points = args.checked_points()?.unwrap_or(2001);
+            let dim = friction_systems::Layout::of(&described.system).dim();
+            let points = system_points(args, dim)?;
             let options = grid_options(args, t_end, points)?;
             let switching = args.solver.switching().with(&described.friction);
             let run = simulate(

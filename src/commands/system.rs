@@ -11,6 +11,7 @@ use crate::options::ModelOptions;
 use crate::output::{Cell, Table};
 use crate::plot::{self, Corner, Marker, Plot, Raster, Series, PALETTE};
 use crate::progress::Progress;
+use crate::ranges;
 use friction_models::{FrictionModel, FrictionParams, ModelId};
 use friction_systems::chain::{ChainParams, CHAIN_PARAMETERS};
 use friction_systems::{
@@ -34,10 +35,32 @@ pub const FILE_T_END: f64 = 20.0;
 /// Most columns and rows of the space–time picture.
 const RASTER: (usize, usize) = (300, 200);
 
+/// The most numbers (points × unknowns) a system's run may record when `--points` asks for
+/// them: 2.5e8, about 2 GB; more would exhaust the memory of a workstation.
+pub const RECORD_LIMIT: usize = 250_000_000;
+
 /// The default number of output points for a system of `dim` unknowns: 2001, fewer for a
 /// large system so that the recorded states stay within [`RECORD_BUDGET`] numbers.
 pub fn default_points(dim: usize) -> usize {
     (RECORD_BUDGET / dim.max(1)).clamp(101, 2001)
+}
+
+/// The output points of a system of `dim` unknowns: `--points`, checked against its range
+/// and against [`RECORD_LIMIT`] numbers in all, or [`default_points`].
+pub fn system_points(args: &SimulateArgs, dim: usize) -> Result<usize, AppError> {
+    let Some(points) = args.checked_points()? else {
+        return Ok(default_points(dim));
+    };
+    if points.saturating_mul(dim) > RECORD_LIMIT {
+        return Err(AppError::Usage(format!(
+            "option `points` = {points} would record {} numbers for the system's {dim} \
+             unknowns: allowed at most {} numbers, so at most {} points",
+            ranges::show((points as f64) * (dim as f64)),
+            ranges::show(RECORD_LIMIT as f64),
+            RECORD_LIMIT / dim.max(1)
+        )));
+    }
+    Ok(points)
 }
 
 /// What the arguments describe: the system, its name, the parameters the summary reports, and
@@ -331,10 +354,7 @@ pub fn make(args: &SimulateArgs) -> Result<Made, AppError> {
     } else {
         CHAIN_T_END
     });
-    let dim = friction_systems::Layout::of(&system).dim();
-    let points = args
-        .checked_points()?
-        .unwrap_or_else(|| default_points(dim));
+    let points = system_points(args, friction_systems::Layout::of(&system).dim())?;
     let options = grid_options(args, t_end, points)?;
     let step = options.step;
     let method = args.solver.switching().method(args.solver.solver);
