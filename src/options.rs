@@ -163,9 +163,17 @@ fn read_file(path: &Path) -> Result<Vec<(String, f64)>, AppError> {
 
 /// Parses the text of a parameter file: `NAME = number` lines (TOML), in file order.
 pub fn parse_params(text: &str) -> Result<Vec<(String, f64)>, String> {
-    let table: toml::Table = text
-        .parse()
-        .map_err(|e: toml::de::Error| e.message().to_string())?;
+    let table: toml::Table = text.parse().map_err(|e: toml::de::Error| {
+        // Where: the line of the span's start, as the file numbers it.
+        match e.span() {
+            Some(span) => {
+                let line = text[..span.start.min(text.len())].matches('\n').count();
+                let shown = text.lines().nth(line).unwrap_or("").trim();
+                format!("line {}: {} (`{shown}`)", line + 1, e.message())
+            }
+            None => e.message().to_string(),
+        }
+    })?;
     table
         .into_iter()
         .map(|(name, value)| match value {

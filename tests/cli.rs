@@ -270,7 +270,9 @@ fn bad_parameters_are_rejected_with_name_value_and_range() {
 fn bad_options_and_files_are_rejected() {
     let dir = tempfile::tempdir().unwrap();
     let malformed = dir.path().join("bad.toml");
-    std::fs::write(&malformed, "F_s = = 3\n").unwrap();
+    std::fs::write(&malformed, "F_c = 6\nF_s = = 3\n").unwrap();
+    let twice = dir.path().join("twice.toml");
+    std::fs::write(&twice, "F_s = 7\nF_c = 6\nF_s = 8\n").unwrap();
     let text_value = dir.path().join("text.toml");
     std::fs::write(&text_value, "F_s = \"high\"\n").unwrap();
     let unknown = dir.path().join("unknown.toml");
@@ -299,7 +301,11 @@ fn bad_options_and_files_are_rejected() {
         ),
         (
             vec!["curve", "AV", "--params", malformed.to_str().unwrap()],
-            "parameter file",
+            "bad.toml: line 2: ",
+        ),
+        (
+            vec!["curve", "AV", "--params", twice.to_str().unwrap()],
+            "twice.toml: line 3: duplicate key (`F_s = 8`)",
         ),
         (
             vec!["curve", "AV", "--params", text_value.to_str().unwrap()],
