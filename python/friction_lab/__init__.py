@@ -66,7 +66,11 @@ def simulate(scenario: Optional[str] = None, *, system: Any = None,
 def _study(command: str, scenario: str, params: Optional[Dict[str, float]],
            options: Dict[str, Any]) -> Study:
     made = run(words(command, scenario, params=params, **options))
-    return Study(made, command)
+    study = Study(made, command)
+    if made.failure is not None:
+        # Written and failed (an independence level): the study keeps what finished.
+        raise SolverError(made.failure, study)
+    return study
 
 
 def converge(scenario: str, *, params: Optional[Dict[str, float]] = None, **options: Any) -> Study:

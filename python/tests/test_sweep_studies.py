@@ -67,6 +67,16 @@ def test_a_convergence_study_measures_rk4s_fourth_order():
     assert any("fitted slope" in n for n in s.notes)
 
 
+def test_an_independence_study_with_a_failed_level_raises_and_keeps_the_others():
+    # RK4 at h = 0.5 on the belt is past its stability bound (h*omega = 5): level 0 fails,
+    # levels 1 to 3 finish and are judged.
+    with pytest.raises(fl.SolverError, match="levels 1 to 3 are judged") as e:
+        fl.independence("belt", model="CS", solver="rk4", start=0.5, levels=4, t_end=200.0)
+    study = e.value.result
+    assert study.summary["first_level"] == 1 and study.summary["failed"][0]["level"] == 0
+    assert not study.summary["independent"]
+
+
 def test_a_long_run_releases_the_gil():
     counted = []
 
