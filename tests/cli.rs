@@ -858,6 +858,10 @@ fn bad_system_input_is_rejected_and_writes_nothing() {
             "option `--bodies`: `b99` is no body: allowed a body's name or an index in [1, 10]",
         ),
         (
+            &["simulate", "chain", "--model", "CS", "--bodies", "b2,3,2"],
+            "option `--bodies`: `b2` and `2` are the same body, b2: choose each body once",
+        ),
+        (
             &["simulate", "belt", "--model", "CS", "--bodies", "1"],
             "option `--bodies` applies to systems",
         ),

@@ -149,7 +149,7 @@ pub fn chosen_bodies(system: &System, chosen: &[String]) -> Result<Vec<usize>, A
             (0..k).map(|j| j * (n - 1) / (k - 1)).collect()
         });
     }
-    chosen
+    let indices: Vec<usize> = chosen
         .iter()
         .map(|token| {
             if let Some(i) = system.bodies.iter().position(|b| &b.name == token) {
@@ -162,7 +162,17 @@ pub fn chosen_bodies(system: &System, chosen: &[String]) -> Result<Vec<usize>, A
                 ))),
             }
         })
-        .collect()
+        .collect::<Result<_, _>>()?;
+    // A body chosen twice would repeat its rows in the tidy trajectory.csv.
+    for (k, &i) in indices.iter().enumerate() {
+        if let Some(j) = indices[..k].iter().position(|&o| o == i) {
+            return Err(AppError::Usage(format!(
+                "option `--bodies`: `{}` and `{}` are the same body, {}: choose each body once",
+                chosen[j], chosen[k], system.bodies[i].name
+            )));
+        }
+    }
+    Ok(indices)
 }
 
 /// A table of body states: `[t,] body, x, v, friction, mode[, z]` (the `z` column only when
