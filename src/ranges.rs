@@ -131,7 +131,8 @@ impl OptionRange {
     }
 
     /// Every value of the list option `option` (`dt-list`, `tol-list`), checked against this
-    /// range; a list has 1 to 50 values.
+    /// range; a list has 1 to 50 values, coarse to fine (each below the one before: the
+    /// observed orders are taken between neighbours, and a repeated value is a repeated run).
     pub fn list(&self, option: &str, values: &[f64]) -> Result<(), AppError> {
         if values.is_empty() || values.len() > 50 {
             return Err(AppError::Usage(format!(
@@ -139,8 +140,8 @@ impl OptionRange {
                 values.len()
             )));
         }
-        match values.iter().find(|&&v| !self.range.contains(v)) {
-            Some(&v) => Err(AppError::Usage(format!(
+        if let Some(&v) = values.iter().find(|&&v| !self.range.contains(v)) {
+            return Err(AppError::Usage(format!(
                 "option `{option}` has {}: allowed values {}{}",
                 show(v),
                 self.range,
@@ -149,6 +150,14 @@ impl OptionRange {
                 } else {
                     format!(" {}", self.unit)
                 }
+            )));
+        }
+        match values.windows(2).find(|w| w[1] >= w[0]) {
+            Some(w) => Err(AppError::Usage(format!(
+                "option `{option}` has {} then {}: allowed values from coarse to fine, each \
+                 below the one before",
+                show(w[0]),
+                show(w[1])
             ))),
             None => Ok(()),
         }

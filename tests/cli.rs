@@ -686,6 +686,45 @@ fn bad_study_input_is_rejected() {
             &["converge", "velocity-sweep", "--model", "CS"],
             "velocity-sweep has none",
         ),
+        (
+            // Orders are taken between neighbours: a list must refine.
+            &[
+                "converge",
+                "belt",
+                "--model",
+                "CS",
+                "--dt-list",
+                "0.005,0.01",
+            ],
+            "option `dt-list` has 0.005 then 0.01: allowed values from coarse to fine",
+        ),
+        (
+            &[
+                "work-precision",
+                "belt",
+                "--model",
+                "CS",
+                "--tol-list",
+                "1e-4,1e-4",
+            ],
+            "option `tol-list` has 1e-4 then 1e-4: allowed values from coarse to fine",
+        ),
+        (
+            // stiffness did not check its lists at all.
+            &["stiffness", "belt", "--model", "CS", "--tol-list", "1e-300"],
+            "option `tol-list` has 1e-300: allowed values [1e-14, 1]",
+        ),
+        (
+            &[
+                "stiffness",
+                "belt",
+                "--model",
+                "CS",
+                "--solvers",
+                "bdf,dopri5,bdf",
+            ],
+            "option `solvers` names `bdf` twice: allowed each solver once",
+        ),
     ];
     for (args, message) in cases {
         let text = rejected(args);

@@ -209,6 +209,19 @@ impl CaseArgs {
     }
 }
 
+/// `--solvers` with each solver once (a study names its runs by solver).
+fn distinct(solvers: &[Solver]) -> Result<(), AppError> {
+    for (k, s) in solvers.iter().enumerate() {
+        if solvers[..k].contains(s) {
+            return Err(AppError::Usage(format!(
+                "option `solvers` names `{}` twice: allowed each solver once",
+                s.name()
+            )));
+        }
+    }
+    Ok(())
+}
+
 fn positive_list(name: &'static str, values: &[f64]) -> Result<(), AppError> {
     match values.iter().find(|v| !(v.is_finite() && **v > 0.0)) {
         Some(v) => Err(AppError::Usage(format!(
@@ -436,6 +449,7 @@ pub fn add_convergence(
     tols: &[f64],
 ) -> Result<Convergence, AppError> {
     let (dir, threads) = (t.dir, t.threads);
+    distinct(solvers)?;
     ranges::DT.list("dt-list", steps)?;
     ranges::RTOL.list("tol-list", tols)?;
     let jobs = solvers
@@ -737,7 +751,7 @@ pub struct WorkPrecisionArgs {
         default_value = "rk4,dopri5,implicit-euler,bdf,tr-bdf2,esdirk34,tsit45"
     )]
     pub solvers: Vec<Solver>,
-    /// Step sizes of rk4.
+    /// Step sizes of rk4, coarse to fine.
     #[arg(
         long,
         value_delimiter = ',',
@@ -745,7 +759,7 @@ pub struct WorkPrecisionArgs {
         default_value = "0.01,0.003,0.001,0.0003"
     )]
     pub dt_list: Vec<f64>,
-    /// Tolerances of the adaptive solvers.
+    /// Tolerances of the adaptive solvers, loose to tight.
     #[arg(
         long,
         value_delimiter = ',',
@@ -773,6 +787,7 @@ pub fn add_work_precision(
     repeats: usize,
 ) -> Result<WorkPrecision, AppError> {
     let (dir, threads) = (t.dir, t.threads);
+    distinct(solvers)?;
     ranges::DT.list("dt-list", steps)?;
     ranges::RTOL.list("tol-list", tols)?;
     let methods: Vec<Method> = Method::studied(case, solvers)
@@ -862,7 +877,7 @@ pub struct StiffnessArgs {
         allow_hyphen_values = true
     )]
     pub target: f64,
-    /// Step sizes of rk4.
+    /// Step sizes of rk4, coarse to fine.
     #[arg(
         long,
         value_delimiter = ',',
@@ -897,6 +912,9 @@ pub fn add_stiffness(
     } = sweep;
     positive_list("values", values)?;
     positive_list("target", &[target])?;
+    distinct(solvers)?;
+    ranges::DT.list("dt-list", steps)?;
+    ranges::RTOL.list("tol-list", tols)?;
     if values.len() > 50 {
         return Err(AppError::Usage(format!(
             "option `values` has {} values: allowed 1 to 50",
