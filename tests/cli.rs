@@ -1601,27 +1601,31 @@ fn stiffness_of_a_rig_over_epsilon_is_regularized_unless_told_otherwise() {
 #[test]
 fn an_independence_study_judges_the_levels_that_finished_and_exits_1() {
     // RK4 at h = 0.5 on the belt (ω = 10 rad/s, h·ω = 5, beyond RK4's stability bound 2.79)
-    // overflows; the three finer levels are stable and are judged.
+    // overflows; the finer levels are stable.
     let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("i");
-    let o = friction_lab(&[
-        "independence",
-        "belt",
-        "--model",
-        "CS",
-        "--solver",
-        "rk4",
-        "--start",
-        "0.5",
-        "--levels",
-        "4",
-        "--t-end",
-        "200",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
-    let text = stderr(&o);
+    let study = |name: &str, levels: &str| {
+        let out = dir.path().join(name);
+        let o = friction_lab(&[
+            "independence",
+            "belt",
+            "--model",
+            "CS",
+            "--solver",
+            "rk4",
+            "--start",
+            "0.5",
+            "--levels",
+            levels,
+            "--t-end",
+            "200",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+        (out, stderr(&o))
+    };
+    // Four levels: 1 to 3 are judged.
+    let (out, text) = study("i", "4");
     assert!(
         text.contains("1 of 4 levels of the independence study failed, the first at level 0 (5e-1): non-finite state")
             && text.contains("levels 1 to 3 are judged"),
@@ -1640,30 +1644,11 @@ fn an_independence_study_judges_the_levels_that_finished_and_exits_1() {
     assert_eq!(json["failed"][0]["level"], 0, "{json}");
     assert_eq!(json["first_level"], 1, "{json}");
     assert_eq!(json["independent"], false, "{json}");
-    // With fewer than two levels in a row finished there is nothing to judge: exit 1, no
-    // files.
-    let out = dir.path().join("j");
-    let o = friction_lab(&[
-        "independence",
-        "belt",
-        "--model",
-        "CS",
-        "--solver",
-        "rk4",
-        "--start",
-        "0.5",
-        "--levels",
-        "2",
-        "--t-end",
-        "200",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    // Two levels: one finished, nothing to compare, no files.
+    let (out, text) = study("j", "2");
     assert!(
-        stderr(&o).contains("leaving fewer than two levels in a row to compare"),
-        "{}",
-        stderr(&o)
+        text.contains("leaving fewer than two levels in a row to compare"),
+        "{text}"
     );
     assert!(!out.exists());
 }
