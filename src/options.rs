@@ -4,8 +4,8 @@
 use crate::error::AppError;
 use crate::ranges;
 use clap::Args;
-use friction_models::{FrictionParams, ParamError, Parameters, Variant};
-use scenarios::{Limits, Scenario, ScenarioParams};
+use friction_models::{FrictionParams, ModelId, ParamError, Parameters, Variant};
+use scenarios::{Limits, Scenario, ScenarioParams, SwitchingKind};
 use std::io::Read;
 use std::path::{Path, PathBuf};
 
@@ -185,4 +185,34 @@ pub fn parse_params(text: &str) -> Result<Vec<(String, f64)>, String> {
             )),
         })
         .collect()
+}
+
+/// Refuses `name`, swept by `option` (a sweep's axis, a stiffness study's parameter), when it
+/// is a friction parameter the run does not read, so that every value would give the same
+/// run: one `model` does not list, or `epsilon` outside `--switching regularized`.
+pub fn check_read(
+    option: &str,
+    name: &str,
+    model: Option<ModelId>,
+    switching: SwitchingKind,
+) -> Result<(), AppError> {
+    if FrictionParams::paper().value(name).is_none() {
+        return Ok(());
+    }
+    if name == "epsilon" {
+        if switching != SwitchingKind::Regularized {
+            return Err(AppError::Usage(format!(
+                "option `{option}`: parameter `epsilon` is read only under --switching \
+                 regularized, not {}: every value would give the same run",
+                switching.name()
+            )));
+        }
+    } else if let Some(model) = model.filter(|m| !m.parameters().contains(&name)) {
+        return Err(AppError::Usage(format!(
+            "option `{option}`: parameter `{name}` is not read by model `{model}` (it reads: {}): \
+             every value would give the same run",
+            model.parameters().join(", ")
+        )));
+    }
+    Ok(())
 }

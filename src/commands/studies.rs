@@ -1057,6 +1057,16 @@ pub fn stiffness(a: &StiffnessArgs) -> Result<Made, AppError> {
     {
         case.switching = Some(SwitchingKind::Regularized);
     }
+    // A system's regularised peer reads epsilon whatever the switching; a rig's run reads
+    // only what its model and switching read.
+    if let Some(Problem::Rig(_)) = case.scenario {
+        crate::options::check_read(
+            "parameter",
+            &a.parameter,
+            case.model,
+            case.switching.unwrap_or(SwitchingKind::Event),
+        )?;
+    }
     case.make(|t, case| {
         let sweep = studies::Sweep {
             parameter: &a.parameter,

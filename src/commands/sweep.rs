@@ -12,12 +12,10 @@ use crate::output::{Cell, Table};
 use crate::progress::Progress;
 use crate::ranges;
 use clap::Args;
-use friction_models::{FrictionParams, Parameters};
 use friction_systems::{simulate, STICK};
 use integrators::Stats;
 use rayon::prelude::*;
 use scenarios::settled::{Settled, Trace};
-use scenarios::SwitchingKind;
 use serde::Serialize;
 
 /// Most values on one axis.
@@ -158,8 +156,7 @@ impl Axis {
 }
 
 /// Refuses an axis that names a parameter a second time (only the last would be used) or a
-/// friction parameter that the run does not read (every point would be the same run): one
-/// the model does not list, or `epsilon` outside `--switching regularized`.
+/// friction parameter that the run does not read ([`crate::options::check_read`]).
 fn check_axes(axes: &[Axis], run: &SimulateArgs) -> Result<(), AppError> {
     for (i, axis) in axes.iter().enumerate() {
         let name = axis.name.as_str();
@@ -168,24 +165,7 @@ fn check_axes(axes: &[Axis], run: &SimulateArgs) -> Result<(), AppError> {
                 "option `grid`: parameter `{name}` has two axes; give all its values in one"
             )));
         }
-        if FrictionParams::paper().value(name).is_none() {
-            continue;
-        }
-        if name == "epsilon" {
-            if run.solver.switching != SwitchingKind::Regularized {
-                return Err(AppError::Usage(format!(
-                    "option `grid`: parameter `epsilon` is read only under --switching \
-                     regularized, not {}: every point would be the same run",
-                    run.solver.switching.name()
-                )));
-            }
-        } else if let Some(model) = run.model.filter(|m| !m.parameters().contains(&name)) {
-            return Err(AppError::Usage(format!(
-                "option `grid`: parameter `{name}` is not read by model `{model}` (it reads: {}): \
-                 every point would be the same run",
-                model.parameters().join(", ")
-            )));
-        }
+        crate::options::check_read("grid", name, run.model, run.solver.switching)?;
     }
     Ok(())
 }
