@@ -1662,3 +1662,28 @@ fn an_independence_study_judges_the_levels_that_finished_and_exits_1() {
     );
     assert!(!out.exists());
 }
+
+#[test]
+fn a_fixed_step_above_a_tenth_of_the_natural_period_gets_a_note() {
+    // The belt: m = 1 kg, k = 100 N/m, period 2π/10 = 0.628 s. Time-stepping at h = 0.1 s
+    // resolves it with six steps a period; at the default 1e-3 s with 628.
+    let dir = tempfile::tempdir().unwrap();
+    let run = |name: &str, extra: &[&str]| {
+        let out = dir.path().join(name);
+        let mut args = vec!["simulate", "belt", "--model", "CS", "--t-end", "2"];
+        args.extend(extra);
+        args.extend(["--out", out.to_str().unwrap()]);
+        let o = friction_lab(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        stderr(&o)
+    };
+    let note = "the fixed step h = 0.1 s is more than a tenth of the shortest natural period, \
+                0.628 s: each oscillation is resolved by fewer than ten steps";
+    for extra in [
+        &["--switching", "timestepping", "--dt", "0.1"][..],
+        &["--solver", "rk4", "--dt", "0.1"][..],
+    ] {
+        assert!(run("coarse", extra).contains(note), "{extra:?}");
+    }
+    assert!(!run("fine", &["--switching", "timestepping"]).contains("natural period"));
+}

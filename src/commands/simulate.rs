@@ -384,6 +384,24 @@ pub fn stiffness_warning(method: &str, t: f64) -> String {
     format!("{method} found the problem stiff at t = {t:.6} s; an implicit solver (bdf, esdirk34) may be much faster")
 }
 
+/// The advice given when a fixed step `h` (RK4, `--fixed-step`, time-stepping) exceeds a
+/// tenth of the shortest natural period `period` of the problem: each oscillation is then
+/// resolved by fewer than ten steps, whatever the scheme's stability.
+pub fn coarse_step_warning(step: StepControl, period: Option<f64>) -> Option<String> {
+    let (StepControl::Fixed { h }, Some(period)) = (step, period) else {
+        return None;
+    };
+    (h > 0.1 * period).then(|| {
+        // The period to three significant digits.
+        let decimals = (2 - period.log10().floor() as i32).max(0) as usize;
+        format!(
+            "the fixed step h = {} s is more than a tenth of the shortest natural period, \
+             {period:.decimals$} s: each oscillation is resolved by fewer than ten steps",
+            ranges::show(h),
+        )
+    })
+}
+
 /// Runs `simulate`: a rig, or a system (chain or file); its files in memory.
 pub fn make(args: &SimulateArgs) -> Result<Made, AppError> {
     match args.scenario {
@@ -481,6 +499,7 @@ fn make_rig(args: &SimulateArgs, scenario: Scenario) -> Result<Made, AppError> {
             .stiffness_detected_at
             .map(|t| stiffness_warning(spec.solver.name(), t))
             .into_iter()
+            .chain(coarse_step_warning(spec.step, outcome.time_scale))
             .collect(),
         failure: outcome.error.map(AppError::Solver),
     })

@@ -457,6 +457,10 @@ pub fn make(args: &SimulateArgs) -> Result<Made, AppError> {
             .stiffness_detected_at
             .map(|t| crate::commands::simulate::stiffness_warning(method, t))
             .into_iter()
+            .chain(crate::commands::simulate::coarse_step_warning(
+                step,
+                integrators::OdeProblem::time_scale(&run.problem),
+            ))
             .collect(),
         failure: run.error.map(AppError::Solver),
     })

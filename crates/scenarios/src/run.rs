@@ -316,6 +316,9 @@ pub struct Outcome {
     pub wall_time_s: f64,
     /// Where Hairer's stiffness test (Dormand–Prince) first judged the problem stiff.
     pub stiffness_detected_at: Option<f64>,
+    /// The body's shortest natural period `2π·√(m/k)` (body scenarios held by a spring;
+    /// `None` otherwise): the scale a fixed step is judged against.
+    pub time_scale: Option<f64>,
 }
 
 impl Outcome {
@@ -463,6 +466,7 @@ fn run_body(
         loop_area: None,
         wall_time_s: run.wall_time_s,
         stiffness_detected_at: run.solution.stiffness_detected_at,
+        time_scale: run.problem.time_scale(),
     })
 }
 
@@ -523,6 +527,7 @@ pub fn run_motion(
         loop_area: last.map(|l| l.1),
         wall_time_s,
         stiffness_detected_at: s.stiffness_detected_at,
+        time_scale: None,
     }
 }
 
@@ -540,6 +545,7 @@ fn run_sweep(spec: &RunSpec, model: &dyn FrictionModel, observe: &mut dyn FnMut(
         loop_area: None,
         wall_time_s: 0.0,
         stiffness_detected_at: None,
+        time_scale: None,
     };
     let v_max = spec.params.v_max;
     let velocities = (1..=20)
