@@ -167,7 +167,11 @@ pub fn parse_params(text: &str) -> Result<Vec<(String, f64)>, String> {
         // Where: the line of the span's start, as the file numbers it.
         match e.span() {
             Some(span) => {
-                let line = text[..span.start.min(text.len())].matches('\n').count();
+                let start = span.start.min(text.len());
+                let line = text.as_bytes()[..start]
+                    .iter()
+                    .filter(|&&b| b == b'\n')
+                    .count();
                 let shown = text.lines().nth(line).unwrap_or("").trim();
                 format!("line {}: {} (`{shown}`)", line + 1, e.message())
             }
