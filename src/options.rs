@@ -200,7 +200,7 @@ pub fn check_read(
     model: Option<ModelId>,
     switching: SwitchingKind,
 ) -> Result<(), AppError> {
-    if FrictionParams::paper().value(name).is_none() {
+    if FrictionParams::spec(name).is_none() {
         return Ok(());
     }
     if name == "epsilon" {
@@ -219,4 +219,13 @@ pub fn check_read(
         )));
     }
     Ok(())
+}
+
+/// The first item of `items` equal to an earlier one: `(earlier, later)` indices. A list option
+/// that names a thing twice (an axis, a body, a solver) would repeat its runs or rows.
+pub fn first_repeat<T: PartialEq>(items: &[T]) -> Option<(usize, usize)> {
+    items
+        .iter()
+        .enumerate()
+        .find_map(|(k, x)| items[..k].iter().position(|o| o == x).map(|j| (j, k)))
 }

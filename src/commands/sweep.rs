@@ -158,16 +158,16 @@ impl Axis {
 /// Refuses an axis that names a parameter a second time (only the last would be used) or a
 /// friction parameter that the run does not read ([`crate::options::check_read`]).
 fn check_axes(axes: &[Axis], run: &SimulateArgs) -> Result<(), AppError> {
-    for (i, axis) in axes.iter().enumerate() {
-        let name = axis.name.as_str();
-        if axes[..i].iter().any(|a| a.name == name) {
-            return Err(AppError::Usage(format!(
-                "option `grid`: parameter `{name}` has two axes; give all its values in one"
-            )));
-        }
-        crate::options::check_read("grid", name, run.model, run.solver.switching)?;
+    let names: Vec<&str> = axes.iter().map(|a| a.name.as_str()).collect();
+    if let Some((_, k)) = crate::options::first_repeat(&names) {
+        return Err(AppError::Usage(format!(
+            "option `grid`: parameter `{}` has two axes; give all its values in one",
+            names[k]
+        )));
     }
-    Ok(())
+    names.iter().try_for_each(|name| {
+        crate::options::check_read("grid", name, run.model, run.solver.switching)
+    })
 }
 
 /// The grid's points in order (the first axis varying slowest), as `NAME=VALUE` assignments.

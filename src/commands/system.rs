@@ -164,13 +164,11 @@ pub fn chosen_bodies(system: &System, chosen: &[String]) -> Result<Vec<usize>, A
         })
         .collect::<Result<_, _>>()?;
     // A body chosen twice would repeat its rows in the tidy trajectory.csv.
-    for (k, &i) in indices.iter().enumerate() {
-        if let Some(j) = indices[..k].iter().position(|&o| o == i) {
-            return Err(AppError::Usage(format!(
-                "option `--bodies`: `{}` and `{}` are the same body, {}: choose each body once",
-                chosen[j], chosen[k], system.bodies[i].name
-            )));
-        }
+    if let Some((j, k)) = crate::options::first_repeat(&indices) {
+        return Err(AppError::Usage(format!(
+            "option `--bodies`: `{}` and `{}` are the same body, {}: choose each body once",
+            chosen[j], chosen[k], system.bodies[indices[k]].name
+        )));
     }
     Ok(indices)
 }

@@ -352,6 +352,27 @@ mod tests {
     use super::*;
 
     #[test]
+    fn numbers_read_back_exactly_and_never_spell_out_runs_of_zeros() {
+        let cases = [
+            (8.207037550189949e82, "8.207037550189949e82"),
+            (3.1781835350686016e-6, "3.1781835350686016e-6"),
+            (-1e-300, "-1e-300"),
+            (5e-324, "5e-324"),
+            (1e6, "1e6"),
+            (999999.9999999999, "999999.9999999999"),
+            (0.0025, "0.0025"),
+            (1e-3, "0.001"),
+            (9.999999999999998e-4, "9.999999999999998e-4"),
+            (4127.0, "4127"),
+            (0.0, "0"),
+        ];
+        for (x, text) in cases {
+            assert_eq!(show(x), text);
+            assert_eq!(show(x).parse::<f64>().unwrap().to_bits(), x.to_bits());
+        }
+    }
+
+    #[test]
     fn named_sets_are_valid() {
         for name in PARAM_SETS {
             FrictionParams::named(name).unwrap().validate().unwrap();

@@ -505,8 +505,9 @@ pub(crate) struct Newton<'l, 'c> {
     pub cache: &'c mut StepCache,
     /// The contact's last relative velocity.
     pub u_guess: f64,
-    /// The contacts' internal states, this one's `at` its places in y.
+    /// The contacts' internal states.
     pub store: &'c mut StateStore,
+    /// The places of this contact's internal states in y (and in `store`).
     pub at: Range<usize>,
 }
 

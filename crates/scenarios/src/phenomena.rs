@@ -291,12 +291,18 @@ impl Judge<'_> {
         }
     }
 
+    /// The level the force ramps are scaled to: max(F_s, F_c), the larger of the static and
+    /// kinetic levels (F_s at the paper's parameters).
+    fn ramp_level(&self) -> f64 {
+        self.p.f_s.max(self.p.f_c)
+    }
+
     /// Stiction as the literature defines it (Armstrong-Hélouvry et al. 1994; Olsson et al.
     /// 1998): under a slowly rising force the body breaks away at a static level above the
     /// kinetic friction that follows. The break-away force is the peak friction before gross
     /// sliding; the kinetic level is the least friction after it, while the ramp goes on.
     fn stiction(&self) -> Result<Verdict, ScenarioError> {
-        let rate = thresholds::STICTION_RATE * self.p.f_s.max(self.p.f_c);
+        let rate = thresholds::STICTION_RATE * self.ramp_level();
         let mut evidence = BTreeMap::from([("rate_N_s", rate)]);
         let Some(b) = self.breakaway(rate)? else {
             return Ok(Verdict {
@@ -544,7 +550,7 @@ impl Judge<'_> {
         let params = ScenarioParams { rate, ..self.rig };
         // The ramp ends at 1.5 times the larger level: a body that has not broken away by
         // then does not break away (and a stiff LuGre run costs in proportion to its length).
-        let t_end = 1.5 * self.p.f_s.max(self.p.f_c) / rate;
+        let t_end = 1.5 * self.ramp_level() / rate;
         let o = self.outcome(&self.spec(Scenario::ForceRamp, params, t_end, 20001))?;
         // Gross sliding: faster than v_s and beyond the pre-sliding range (a soft contact's
         // pre-sliding motion alone can exceed v_s under a fast ramp).
@@ -596,7 +602,7 @@ impl Judge<'_> {
         let mut forces = Vec::with_capacity(names.len());
         for (name, scale) in names {
             let load_time = (tau / scale).min(thresholds::LONGEST_RAMP);
-            let Some(b) = self.breakaway(self.p.f_s.max(self.p.f_c) / load_time)? else {
+            let Some(b) = self.breakaway(self.ramp_level() / load_time)? else {
                 return Ok(Verdict {
                     measured: false,
                     evidence,

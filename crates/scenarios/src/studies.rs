@@ -555,8 +555,7 @@ pub fn independence(
         })
         .collect();
     let judged = longest_run(&runs.iter().map(|r| r.failure.is_none()).collect::<Vec<_>>());
-    if judged.len() < 2 {
-        let f = &failed[0];
+    if let (true, Some(f)) = (judged.len() < 2, failed.first()) {
         return Err(ScenarioError::RunFailed(format!(
             "a run of the independence study failed at level {} ({:e}), leaving fewer than \
              two levels in a row to compare: {}",

@@ -202,15 +202,13 @@ impl CaseArgs {
 
 /// `--solvers` with each solver once (a study names its runs by solver).
 fn distinct(solvers: &[Solver]) -> Result<(), AppError> {
-    for (k, s) in solvers.iter().enumerate() {
-        if solvers[..k].contains(s) {
-            return Err(AppError::Usage(format!(
-                "option `solvers` names `{}` twice: allowed each solver once",
-                s.name()
-            )));
-        }
+    match crate::options::first_repeat(solvers) {
+        Some((_, k)) => Err(AppError::Usage(format!(
+            "option `solvers` names `{}` twice: allowed each solver once",
+            solvers[k].name()
+        ))),
+        None => Ok(()),
     }
-    Ok(())
 }
 
 fn positive_list(name: &'static str, values: &[f64]) -> Result<(), AppError> {
