@@ -1492,6 +1492,46 @@ fn sweep_runs_a_grid_in_parallel_measures_the_settled_cycle_and_rejects_bad_axes
 }
 
 #[test]
+fn phenomena_keeps_the_decided_cells_when_a_protocol_run_fails() {
+    // Ten steps are too few for any protocol run: every cell fails in the solver, and the
+    // table still says so, cell by cell (before: exit 2, as for bad input, and no file).
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let o = friction_lab(&[
+        "phenomena",
+        "--model",
+        "coulomb",
+        "--max-steps",
+        "10",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(e.contains("7 cells of Table 2 are undecided"), "{e}");
+    assert!(e.contains("10 steps"), "{e}");
+    let table: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("table2.json")).unwrap()).unwrap();
+    let cells = table["coulomb"].as_object().unwrap();
+    assert_eq!(cells.len(), 7);
+    for (name, cell) in cells {
+        assert!(cell["measured"].is_null(), "{name}: {cell}");
+        assert!(
+            cell["failed"].as_str().unwrap().contains("coulomb"),
+            "{name}: {cell}"
+        );
+    }
+    let md = std::fs::read_to_string(out.join("table2.md")).unwrap();
+    assert!(md.contains("| Stiction | failed |"), "{md}");
+    assert!(md.contains("7 cells are undecided"), "{md}");
+    // The limits are checked as every command's are.
+    let e = rejected(&["phenomena", "--time-limit", "-1"]);
+    assert!(e.contains("time-limit") && e.contains("-1"), "{e}");
+    let e = rejected(&["phenomena", "--max-steps", "0"]);
+    assert!(e.contains("max-steps"), "{e}");
+}
+
+#[test]
 fn phenomena_judges_the_chosen_models_at_the_given_parameters() {
     let dir = tempfile::tempdir().unwrap();
     let judge = |name: &str, extra: &[&str]| {

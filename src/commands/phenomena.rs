@@ -4,7 +4,7 @@
 
 use crate::artifacts::Artifacts;
 use crate::error::AppError;
-use crate::options::ParamOptions;
+use crate::options::{LimitArgs, ParamOptions};
 use crate::ranges;
 use clap::Args;
 use friction_models::{FrictionParams, ModelId};
@@ -53,6 +53,9 @@ pub struct PhenomenaArgs {
     /// alone is the default.
     #[command(flatten)]
     pub params: ParamOptions,
+    /// The bounds of every protocol run: a run that reaches one leaves its cell undecided.
+    #[command(flatten)]
+    pub limits: LimitArgs,
 }
 
 /// Runs `f` on a pool of `threads` workers (all cores when `None`).
@@ -72,9 +75,10 @@ pub fn with_threads<T: Send>(
     Ok(pool.install(f))
 }
 
-/// Table 2 as `table2.json`: `{"<model>": {"<phenomenon>": {measured, paper, evidence,
-/// region}}}`, `region` the verdict over the cell's grid of rig parameters (axes, points,
-/// fraction, flips, undecided).
+/// Table 2 as `table2.json`: `{"<model>": {"<phenomenon>": {measured, failed, paper,
+/// evidence, region}}}`: `measured` null and `failed` the reason for a cell whose run failed,
+/// `region` the verdict over the cell's grid of rig parameters (axes, points, fraction,
+/// flips, undecided).
 fn json_table(rows: &[(ModelId, Row)]) -> Value {
     let mut out = Map::new();
     for (model, row) in rows {
@@ -83,7 +87,8 @@ fn json_table(rows: &[(ModelId, Row)]) -> Value {
             cells.insert(
                 p.name().into(),
                 json!({
-                    "measured": c.measured,
+                    "measured": c.measured.as_ref().ok(),
+                    "failed": c.measured.as_ref().err(),
                     "paper": c.paper,
                     "evidence": c.evidence,
                     "region": c.region,
@@ -96,9 +101,15 @@ fn json_table(rows: &[(ModelId, Row)]) -> Value {
 }
 
 fn mark(c: &Cell) -> String {
-    let m = u8::from(c.measured);
+    let Ok(measured) = c.measured else {
+        return match c.paper {
+            Some(p) => format!("failed, paper {}", u8::from(p)),
+            None => "failed".into(),
+        };
+    };
+    let m = u8::from(measured);
     let mark = match c.paper {
-        Some(p) if p != c.measured => format!("**{m}** ≠ {}", u8::from(p)),
+        Some(p) if p != measured => format!("**{m}** ≠ {}", u8::from(p)),
         Some(p) => format!("{m} = {}", u8::from(p)),
         None => m.to_string(),
     };
@@ -147,11 +158,12 @@ fn regions_markdown(rows: &[(ModelId, Row)]) -> String {
     s += "\n";
     for (model, row) in rows {
         for (phenomenon, c) in row {
-            let Some(r) = c
-                .region
-                .as_ref()
-                .filter(|r| r.depends() || !r.undecided.is_empty())
-            else {
+            let (Ok(measured), Some(r)) = (
+                c.measured.as_ref(),
+                c.region
+                    .as_ref()
+                    .filter(|r| r.depends() || !r.undecided.is_empty()),
+            ) else {
                 continue;
             };
             let point = |p: &std::collections::BTreeMap<&str, f64>| {
@@ -167,15 +179,15 @@ fn regions_markdown(rows: &[(ModelId, Row)]) -> String {
             s += &format!(
                 "- {model}, {}: {} on {:.0} % of {} points; not {} at ({})",
                 phenomenon.label(),
-                u8::from(c.measured),
+                u8::from(*measured),
                 100.0
-                    * (if c.measured {
+                    * (if *measured {
                         r.fraction
                     } else {
                         1.0 - r.fraction
                     }),
                 r.points - r.undecided.len(),
-                u8::from(c.measured),
+                u8::from(*measured),
                 flips.join("; ")
             );
             if !r.undecided.is_empty() {
@@ -224,9 +236,17 @@ pub fn markdown(rows: &[(ModelId, Row)], protocol: &Protocol, parameters: &str) 
     let disagreements: usize = rows
         .iter()
         .flat_map(|(_, r)| r.iter())
-        .filter(|(_, c)| c.paper.is_some_and(|p| p != c.measured))
+        .filter(|(_, c)| c.disagrees())
         .count();
-    s += &format!("\n{disagreements} of the paper's 42 claims disagree with the simulations.\n\n");
+    s += &format!("\n{disagreements} of the paper's 42 claims disagree with the simulations.");
+    let failed = undecided(rows).len();
+    if failed > 0 {
+        s += &format!(
+            " {failed} cells are undecided: a run of their protocol failed (the evidence below \
+             says where and why)."
+        );
+    }
+    s += "\n\n";
     s += &regions_markdown(rows);
     s += "## Evidence\n\n";
     for (model, row) in rows {
@@ -240,12 +260,11 @@ pub fn markdown(rows: &[(ModelId, Row)], protocol: &Protocol, parameters: &str) 
                 .map(|(k, v)| format!("{k} = {v:.6e}"))
                 .collect();
             let paper = c.paper.map_or("-".to_string(), |p| u8::from(p).to_string());
-            s += &format!(
-                "| {} | {} | {paper} | {} |\n",
-                p.label(),
-                u8::from(c.measured),
-                evidence.join(", ")
-            );
+            let (measured, evidence) = match &c.measured {
+                Ok(m) => (u8::from(*m).to_string(), evidence.join(", ")),
+                Err(why) => ("failed".to_string(), why.clone()),
+            };
+            s += &format!("| {} | {measured} | {paper} | {evidence} |\n", p.label());
         }
         s += "\n";
     }
@@ -299,6 +318,31 @@ impl Default for Judged<'_> {
             models: &ModelId::ALL,
             parameters: None,
         }
+    }
+}
+
+/// The cells whose protocol failed, as `model phenomenon: why`, in the table's order.
+pub fn undecided(rows: &[(ModelId, Row)]) -> Vec<String> {
+    rows.iter()
+        .flat_map(|(m, row)| row.iter().map(move |(p, c)| (m, p, c)))
+        .filter_map(|(m, p, c)| {
+            let why = c.measured.as_ref().err()?;
+            Some(format!("{m} {}: {why}", p.name()))
+        })
+        .collect()
+}
+
+/// The failure of a command whose Table 2 has undecided cells (exit 1, after its files are
+/// written), or `Ok` if every cell was decided.
+pub fn check_decided(rows: &[(ModelId, Row)]) -> Result<(), AppError> {
+    let failed = undecided(rows);
+    match failed.first() {
+        None => Ok(()),
+        Some(first) => Err(AppError::StudyRun(format!(
+            "{} cells of Table 2 are undecided, their protocol runs failed (table2.md and \
+             table2.json mark them); the first: {first}",
+            failed.len()
+        ))),
     }
 }
 
@@ -360,12 +404,13 @@ pub fn run(args: &PhenomenaArgs) -> Result<(), AppError> {
     } else {
         args.models.clone()
     };
-    add_table(
+    let rows = add_table(
         &mut files,
         &args.out,
         Protocol {
             solver: args.solver,
             step,
+            limits: args.limits.limits()?,
         },
         &Judged {
             models: &models,
@@ -380,5 +425,5 @@ pub fn run(args: &PhenomenaArgs) -> Result<(), AppError> {
         args.out.display(),
         start.elapsed().as_secs_f64()
     );
-    Ok(())
+    check_decided(&rows)
 }

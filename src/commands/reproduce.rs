@@ -617,7 +617,7 @@ pub fn run(args: &ReproduceArgs) -> Result<(), AppError> {
     let disagreements = table
         .iter()
         .flat_map(|(_, r)| r.iter())
-        .filter(|(_, c)| c.paper.is_some_and(|p| p != c.measured))
+        .filter(|(_, c)| c.disagrees())
         .count();
     let mut report_md = report(&reproduced, &header);
     report_md += &format!(
@@ -638,5 +638,5 @@ pub fn run(args: &ReproduceArgs) -> Result<(), AppError> {
         args.out.display(),
         start.elapsed().as_secs_f64()
     );
-    Ok(())
+    crate::commands::phenomena::check_decided(&table)
 }

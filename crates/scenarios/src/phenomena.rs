@@ -7,7 +7,7 @@ use crate::run::{run, run_motion, settling_time, Law, RunSpec, ScenarioError, Sw
 use crate::scenario::Scenario;
 use crate::ScenarioParams;
 use friction_models::{FrictionModel, FrictionParams, ModelId, Parameters};
-use integrators::{DiffsolMethod, Solver, StepControl};
+use integrators::{DiffsolMethod, Solver, SolverError, StepControl};
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -160,6 +160,8 @@ pub struct Protocol {
     pub solver: Solver,
     /// Its step control.
     pub step: StepControl,
+    /// The bounds of every run (a run that reaches one fails, and its cell is undecided).
+    pub limits: Limits,
 }
 
 impl Default for Protocol {
@@ -174,6 +176,7 @@ impl Default for Protocol {
                 atol: 1e-12,
                 h0: None,
             },
+            limits: Limits::default(),
         }
     }
 }
@@ -239,17 +242,23 @@ impl Judge<'_> {
             step: self.protocol.step,
             t_end: Some(t_end),
             output_points: points,
-            limits: Limits::default(),
+            limits: self.protocol.limits,
+        }
+    }
+
+    /// The failure of the run `what` of this law's protocol (not bad input: the cell is
+    /// undecided).
+    fn failed(&self, what: impl std::fmt::Display, error: &SolverError) -> ScenarioError {
+        ScenarioError::Solver {
+            what: format!("{} {what}", self.law),
+            error: error.clone(),
         }
     }
 
     fn outcome(&self, spec: &RunSpec) -> Result<crate::Outcome, ScenarioError> {
         let o = run(spec, &mut |_| {})?;
         match &o.error {
-            Some(e) => Err(ScenarioError::Invalid(format!(
-                "{} {}: {e}",
-                self.law, spec.scenario
-            ))),
+            Some(e) => Err(self.failed(spec.scenario, e)),
             None => Ok(o),
         }
     }
@@ -264,11 +273,8 @@ impl Judge<'_> {
             settling_time(self.built, v),
             &mut |_| {},
         );
-        match o.error {
-            Some(e) => Err(ScenarioError::Invalid(format!(
-                "{} steady state at v = {v}: {e}",
-                self.law
-            ))),
+        match &o.error {
+            Some(e) => Err(self.failed(format_args!("steady state at v = {v}"), e)),
             None => Ok(o.last().expect("end recorded").friction),
         }
     }
@@ -425,10 +431,7 @@ impl Judge<'_> {
         let run = |t_end: f64| {
             let o = run_motion(&spec, self.built, motion, t_end, &mut |_| {});
             match &o.error {
-                Some(e) => Err(ScenarioError::Invalid(format!(
-                    "{} {scenario}: {e}",
-                    self.law
-                ))),
+                Some(e) => Err(self.failed(scenario, e)),
                 None => Ok(o),
             }
         };
@@ -665,8 +668,9 @@ pub fn decide_at(
 /// One cell of the measured Table 2.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Cell {
-    /// What the simulation shows.
-    pub measured: bool,
+    /// What the simulation shows: `Ok(observed)`, or `Err(why)` when a run of its protocol
+    /// failed in the solver or reached a limit (the cell is undecided, its evidence empty).
+    pub measured: Result<bool, String>,
     /// What the paper claims (`None` for models it does not cover).
     pub paper: Option<bool>,
     /// The numbers that decided it.
@@ -689,6 +693,13 @@ pub struct Region {
     pub flips: Vec<BTreeMap<&'static str, f64>>,
     /// Points whose run failed (left out of the fraction), with the failure.
     pub undecided: Vec<(BTreeMap<&'static str, f64>, String)>,
+}
+
+impl Cell {
+    /// Whether the simulation decided the cell and the paper claims otherwise.
+    pub fn disagrees(&self) -> bool {
+        matches!((&self.measured, self.paper), (Ok(m), Some(p)) if *m != p)
+    }
 }
 
 impl Region {
@@ -759,7 +770,9 @@ pub type Row = Vec<(Phenomenon, Cell)>;
 /// collected in order).
 ///
 /// With `regions`, each cell is also decided over its grid of rig parameters
-/// ([`region`]): about 20 times the work.
+/// ([`region`]): about 20 times the work. A cell whose protocol fails in the solver is kept,
+/// undecided ([`Cell::measured`] holds why), and the others are decided; bad input fails the
+/// table.
 pub fn table(
     models: &[ModelId],
     protocol: Protocol,
@@ -776,13 +789,25 @@ pub fn table(
         .map(|&(model, phenomenon)| {
             let p = parameters.copied().unwrap_or_else(|| parameters_for(model));
             let law = Law::from(model);
-            let v = decide(phenomenon, &law, &p, protocol)?;
+            let paper = phenomenon.paper_claim(model);
+            let v = match decide(phenomenon, &law, &p, protocol) {
+                Ok(v) => v,
+                Err(e @ (ScenarioError::Solver { .. } | ScenarioError::RunFailed(_))) => {
+                    return Ok(Cell {
+                        measured: Err(e.to_string()),
+                        paper,
+                        evidence: BTreeMap::new(),
+                        region: None,
+                    })
+                }
+                Err(e) => return Err(e),
+            };
             Ok(Cell {
                 region: regions
                     .then(|| region(phenomenon, &law, &p, protocol, v.measured))
                     .transpose()?,
-                measured: v.measured,
-                paper: phenomenon.paper_claim(model),
+                measured: Ok(v.measured),
+                paper,
                 evidence: v.evidence,
             })
         })

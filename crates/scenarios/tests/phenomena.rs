@@ -323,6 +323,7 @@ fn two_solvers_agree_on_every_cell() {
                 atol: 1e-12,
                 h0: None,
             },
+            ..Protocol::default()
         },
         None,
         false,
