@@ -1727,3 +1727,78 @@ fn a_fixed_step_above_a_tenth_of_the_natural_period_gets_a_note() {
     }
     assert!(!run("fine", &["--switching", "timestepping"]).contains("natural period"));
 }
+
+#[test]
+fn a_set_parameter_the_model_does_not_read_gets_a_note() {
+    // CS reads F_c, F_s, C1, C2 and v_s: `sigma0` changes nothing, and `epsilon` only under
+    // regularized switching. Accepted (one set may serve many models), but said.
+    let dir = tempfile::tempdir().unwrap();
+    let run = |name: &str, args: &[&str]| {
+        let out = dir.path().join(name);
+        let mut all = vec!["simulate"];
+        all.extend(args);
+        all.extend(["--t-end", "1", "--out", out.to_str().unwrap()]);
+        let o = friction_lab(&all);
+        assert!(o.status.success(), "{}", stderr(&o));
+        stderr(&o)
+    };
+    let e = run(
+        "rig",
+        &[
+            "paper-block",
+            "--model",
+            "CS",
+            "--set",
+            "sigma0=5",
+            "--set",
+            "F_s=8",
+        ],
+    );
+    assert!(
+        e.contains(
+            "note: option `set`: parameter `sigma0` is not read by model `CS` (it reads: F_c, \
+             F_s, C1, C2, v_s)"
+        ),
+        "{e}"
+    );
+    assert!(!e.contains("`F_s`"), "{e}");
+    let e = run(
+        "epsilon",
+        &["belt", "--model", "CS", "--set", "epsilon=1e-3"],
+    );
+    assert!(
+        e.contains("`epsilon` is read only under --switching regularized"),
+        "{e}"
+    );
+    let e = run(
+        "regularized",
+        &[
+            "belt",
+            "--model",
+            "CS",
+            "--set",
+            "epsilon=1e-3",
+            "--switching",
+            "regularized",
+        ],
+    );
+    assert!(!e.contains("not read") && !e.contains("read only"), "{e}");
+    // The chain: every contact has the one model.
+    let e = run(
+        "chain",
+        &[
+            "chain",
+            "--model",
+            "coulomb",
+            "--set",
+            "n_bodies=3",
+            "--set",
+            "C1=2",
+        ],
+    );
+    assert!(
+        e.contains("parameter `C1` is not read by model `coulomb`"),
+        "{e}"
+    );
+    assert!(!e.contains("n_bodies"), "{e}");
+}

@@ -75,6 +75,14 @@ def test_coulomb_block_pushed_past_friction_follows_the_closed_form():
     assert np.allclose(r.x, 4.5 * r.t ** 2, rtol=0, atol=1e-9)
 
 
+def test_a_parameter_the_model_does_not_read_is_a_runtime_warning():
+    # Coulomb reads F_c only: F_s changes nothing, and the run is the closed form's.
+    with pytest.warns(RuntimeWarning, match="parameter `F_s` is not read by model `coulomb`"):
+        r = fl.simulate("paper-block", model="coulomb", params={"F_c": 6.0, "F_s": 9.0},
+                        t_end=1.0)
+    assert np.allclose(r.v, 9.0 * r.t, rtol=0, atol=1e-9)
+
+
 def test_a_system_from_a_dict_equals_the_same_file_and_is_time_by_body(tmp_path):
     path = tmp_path / "chain.toml"
     path.write_text(CHAIN_TOML)

@@ -5,7 +5,7 @@
 use crate::artifacts::{Artifacts, Made};
 use crate::commands::curve::used_parameters;
 use crate::error::AppError;
-use crate::options::{LimitArgs, ModelOptions};
+use crate::options::{check_read, LimitArgs, ModelOptions};
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Marker, Plot, Series, BLUE};
 use crate::progress::Progress;
@@ -402,6 +402,22 @@ pub fn coarse_step_warning(step: StepControl, period: Option<f64>) -> Option<Str
     })
 }
 
+/// The advice given for each `--set` of a friction parameter the run does not read
+/// ([`check_read`]: one `model` does not list, or `epsilon` outside regularized switching).
+/// Accepted, as a parameter file's are (a notebook may pass one set to many models), but said:
+/// every value would give the same run.
+pub fn unread_warnings(
+    set: &[String],
+    model: Option<ModelId>,
+    switching: SwitchingKind,
+) -> Vec<String> {
+    set.iter()
+        .filter_map(|s| s.split_once('=').map(|(name, _)| name.trim()))
+        .filter_map(|name| check_read("set", name, model, switching).err())
+        .map(|e| e.to_string())
+        .collect()
+}
+
 /// Runs `simulate`: a rig, or a system (chain or file); its files in memory.
 pub fn make(args: &SimulateArgs) -> Result<Made, AppError> {
     match args.scenario {
@@ -500,6 +516,11 @@ fn make_rig(args: &SimulateArgs, scenario: Scenario) -> Result<Made, AppError> {
             .map(|t| stiffness_warning(spec.solver.name(), t))
             .into_iter()
             .chain(coarse_step_warning(spec.step, outcome.time_scale))
+            .chain(unread_warnings(
+                &args.model_options.params.set,
+                Some(model),
+                spec.switching,
+            ))
             .collect(),
         failure: outcome.error.map(AppError::Solver),
     })

@@ -459,6 +459,11 @@ pub fn make(args: &SimulateArgs) -> Result<Made, AppError> {
                 step,
                 integrators::OdeProblem::time_scale(&run.problem),
             ))
+            .chain(crate::commands::simulate::unread_warnings(
+                &args.model_options.params.set,
+                args.model,
+                args.solver.switching(),
+            ))
             .collect(),
         failure: run.error.map(AppError::Solver),
     })
