@@ -77,39 +77,53 @@ impl ParamOptions {
         &self,
         scenario: Option<Scenario>,
     ) -> Result<(FrictionParams, ScenarioParams), AppError> {
-        let mut friction = FrictionParams::named(&self.param_set)?;
         let mut rig = scenario.map_or_else(ScenarioParams::default, |s| s.defaults());
+        let names = scenario.map_or(&[][..], |s| s.parameters());
+        let friction = self.resolve_with(names, |name, value| match scenario {
+            Some(s) if ScenarioParams::spec(name).is_some() => {
+                if !s.parameters().contains(&name) {
+                    return Err(AppError::Usage(format!(
+                        "parameter `{name}` is not used by scenario {s} (it reads: {})",
+                        if s.parameters().is_empty() {
+                            "none".to_string()
+                        } else {
+                            s.parameters().join(", ")
+                        }
+                    )));
+                }
+                rig.set(name, value)?;
+                Ok(true)
+            }
+            _ => Ok(false),
+        })?;
+        rig.validate()?;
+        Ok((friction, rig))
+    }
+
+    /// The friction parameters, with the names that are not friction parameters given to
+    /// `other` (a rig's or a system's own parameters), which says whether it took each; a
+    /// name nobody takes is unknown, and the message lists the friction parameters and
+    /// `other_names`. The named set, then the file, then each `--set`, every value checked.
+    pub fn resolve_with(
+        &self,
+        other_names: &[&str],
+        mut other: impl FnMut(&str, f64) -> Result<bool, AppError>,
+    ) -> Result<FrictionParams, AppError> {
+        let mut friction = FrictionParams::named(&self.param_set)?;
         let mut apply = |name: &str, value: f64| -> Result<(), AppError> {
             if FrictionParams::spec(name).is_some() {
                 return Ok(friction.set(name, value)?);
             }
-            match scenario {
-                Some(s) if ScenarioParams::spec(name).is_some() => {
-                    if !s.parameters().contains(&name) {
-                        return Err(AppError::Usage(format!(
-                            "parameter `{name}` is not used by scenario {s} (it reads: {})",
-                            if s.parameters().is_empty() {
-                                "none".to_string()
-                            } else {
-                                s.parameters().join(", ")
-                            }
-                        )));
-                    }
-                    Ok(rig.set(name, value)?)
-                }
-                _ => {
-                    let mut known: Vec<&str> =
-                        FrictionParams::specs().iter().map(|p| p.name).collect();
-                    if let Some(s) = scenario {
-                        known.extend(s.parameters());
-                    }
-                    Err(ParamError::Unknown {
-                        name: name.to_string(),
-                        known: known.join(", "),
-                    }
-                    .into())
-                }
+            if other(name, value)? {
+                return Ok(());
             }
+            let mut known: Vec<&str> = FrictionParams::specs().iter().map(|p| p.name).collect();
+            known.extend(other_names);
+            Err(ParamError::Unknown {
+                name: name.to_string(),
+                known: known.join(", "),
+            }
+            .into())
         };
         if let Some(path) = &self.params {
             for (name, value) in read_file(path)? {
@@ -121,8 +135,7 @@ impl ParamOptions {
             apply(name, value)?;
         }
         friction.validate()?;
-        rig.validate()?;
-        Ok((friction, rig))
+        Ok(friction)
     }
 }
 

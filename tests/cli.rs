@@ -1802,3 +1802,36 @@ fn a_set_parameter_the_model_does_not_read_gets_a_note() {
     );
     assert!(!e.contains("n_bodies"), "{e}");
 }
+
+#[test]
+fn the_chain_takes_its_parameters_from_a_file_and_names_them_when_one_is_unknown() {
+    // A parameter file sets the chain's own parameters as a rig's file sets the rig's (it was
+    // refused: "unknown parameter `n_bodies`", with the chain's names missing from the list).
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("chain.toml");
+    std::fs::write(&file, "n_bodies = 3\nF_c = 5\n").unwrap();
+    let out = dir.path().join("out");
+    let o = friction_lab(&[
+        "simulate",
+        "chain",
+        "--model",
+        "coulomb",
+        "--params",
+        file.to_str().unwrap(),
+        "--t-end",
+        "1",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let summary: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["n_bodies"], 3, "{summary}");
+    assert_eq!(summary["parameters"]["F_c"], 5.0, "{summary}");
+    let e = rejected(&["simulate", "chain", "--model", "coulomb", "--set", "c=1"]);
+    assert!(
+        e.contains("unknown parameter `c`")
+            && e.contains("n_bodies, m, k_chain, k_driver, v_driver, spread"),
+        "{e}"
+    );
+}

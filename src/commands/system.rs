@@ -102,15 +102,10 @@ pub fn system_of(
         AppError::Usage("option `--model` is required for the chain: e.g. --model coulomb".into())
     })?;
     let mut chain = ChainParams::default();
-    let mut params = options.params.clone();
-    params.set.clear();
-    for assignment in &options.params.set {
-        let (name, value) = crate::options::parse_assignment(assignment)?;
-        if !chain.set(name, value)? {
-            params.set.push(assignment.clone());
-        }
-    }
-    let friction = params.resolve()?;
+    let names = CHAIN_PARAMETERS.map(|(name, _)| name);
+    let friction = options
+        .params
+        .resolve_with(&names, |name, value| Ok(chain.set(name, value)?))?;
     let variant = options.variant;
     let system = chain.build(&friction, |p| {
         model.build(variant, p).map(Arc::<dyn FrictionModel>::from)
