@@ -40,12 +40,16 @@ def _flag(name: str) -> str:
     return "--" + name.replace("_", "-")
 
 
+#: The options of the command line that take no value (``True`` writes them bare).
+FLAGS = frozenset({"fixed_step"})
+
+
 def words(command: str, *positional: Optional[str], **options: Any) -> List[str]:
     """The words of ``friction-lab COMMAND [POSITIONAL] --option value ...``.
 
     ``params`` (a mapping of parameter names to values) becomes ``--set NAME=VALUE`` for each
     item and ``grid`` (a mapping of names to lists, or to range strings such as
-    ``"log:0.01:1:9"``) becomes ``--grid NAME=...``; ``True`` is a bare flag, ``False`` and
+    ``"log:0.01:1:9"``) becomes ``--grid NAME=...``; ``True`` is a bare flag (of :data:`FLAGS` only), ``False`` and
     ``None`` leave the option out, and a list or tuple is written comma-separated.
     """
     argv = [command] + [p for p in positional if p is not None]
@@ -60,6 +64,9 @@ def words(command: str, *positional: Optional[str], **options: Any) -> List[str]
                 text = values if isinstance(values, str) else ",".join(_word(key, v) for v in values)
                 argv += ["--grid", f"{key}={text}"]
         elif value is True:
+            if name not in FLAGS:
+                # Written bare, the next option would be read as its value.
+                raise ValueError(f"option `{name}` = True: a number or a word is expected")
             argv.append(_flag(name))
         elif isinstance(value, (list, tuple)):
             argv += [_flag(name), ",".join(_word(name, v) for v in value)]

@@ -55,3 +55,24 @@ def test_bad_input_raises_value_error_with_the_command_lines_message(cli, tmp_pa
         fl.curve("XYZ")
     with pytest.raises(ValueError, match="unexpected argument '--no-such-option'"):
         fl.curve("CVS", no_such_option=1)
+    # True is a bare flag only for an option that takes no value; written bare, `--points`
+    # took the next option as its value and the message named neither.
+    with pytest.raises(ValueError, match=r"option `points` = True: a number or a word"):
+        fl.curve("CVS", points=True)
+
+
+def test_the_bare_flags_are_the_command_lines_options_without_a_value(cli):
+    # FLAGS must follow the command line: every option that takes no value, in every command
+    # the package runs (`--help` and `--json` of `models` aside: the package never writes them).
+    from friction_lab._command import FLAGS
+    bare = set()
+    for command in ["curve", "simulate", "converge", "independence", "work-precision",
+                    "stiffness", "sweep"]:
+        text = cli(command, "--help").stdout
+        for line in text.splitlines():
+            words = line.split()
+            option = next((w for w in words[:2] if w.startswith("--")), None)
+            if option and (len(words) == words.index(option) + 1
+                           or not words[words.index(option) + 1].startswith("<")):
+                bare.add(option[2:].replace("-", "_"))
+    assert bare - {"help"} == set(FLAGS)
