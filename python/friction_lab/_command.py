@@ -148,9 +148,15 @@ class SystemFile:
     def __enter__(self) -> "SystemFile":
         return self
 
-    def __exit__(self, *exc: Any) -> None:
-        if self._temporary is not None:
-            os.unlink(self._temporary.name)
+    def __exit__(self, kind: Any, error: Any, trace: Any) -> None:
+        if self._temporary is None:
+            return
+        os.unlink(self._temporary.name)
+        # The command line names the file it read; the caller gave a dict, not that file.
+        named = f"system file {self.path}"
+        if isinstance(error, ValueError) and str(error).startswith(named):
+            raise ValueError("system (the dict given, read as JSON)"
+                             + str(error)[len(named):]) from None
 
 
 def _plain(value: Any) -> Any:
