@@ -252,7 +252,7 @@ fn bad_parameters_are_rejected_with_name_value_and_range() {
         ),
         (
             &["curve", "gms", "--set", "n_gms=17"],
-            "parameter `n_gms` = 17 is out of range: allowed [1, 16] 1",
+            "parameter `n_gms` = 17 is out of range: allowed [1, 16]",
         ),
         (
             &["curve", "gms", "--set", "n_gms=2.5"],
@@ -883,10 +883,33 @@ fn bad_system_input_is_rejected_and_writes_nothing() {
     )
     .unwrap();
     let path = file.to_str().unwrap();
+    let body = "[[body]]\nname = \"a\"\nm = 1.0\n";
+    let anchors = "[[anchor]]\nname = \"w1\"\n[[anchor]]\nname = \"w2\"\n";
+    let spring = |ends: &str| {
+        let file = dir.path().join(format!("spring-{}.toml", ends.len()));
+        let text = format!("{body}{anchors}[[spring]]\nbetween = {ends}\nk = 1.0\n");
+        std::fs::write(&file, text).unwrap();
+        file.to_str().unwrap().to_string()
+    };
+    let (to_itself, anchors_only) = (spring("[\"a\", \"a\"]"), spring("[\"w1\", \"w2\"]"));
     let cases: &[(&[&str], &str)] = &[
         (
             &["simulate", "--system", path],
             "bad.toml: [[contact]] 1: `params.F_s`: parameter `F_s` = -2 is out of range: allowed [0, inf) N",
+        ),
+        (
+            &["simulate", "--system", &to_itself],
+            "[[spring]] 1: `between` = [\"a\", \"a\"]: a spring joins two different bodies, or \
+             a body and an anchor",
+        ),
+        (
+            &["simulate", "--system", &anchors_only],
+            "[[spring]] 1: `between` = [\"w1\", \"w2\"]: a spring joins",
+        ),
+        (
+            // A dimensionless range has no unit after it, and a large value an exponent.
+            &["simulate", "belt", "--model", "gms", "--set", "n_gms=1e12"],
+            "error: parameter `n_gms` = 1e12 is out of range: allowed [1, 16]\n",
         ),
         (
             &["simulate", "chain", "--model", "CS", "--set", "n_bodies=0"],

@@ -91,6 +91,14 @@ pub fn show(x: f64) -> String {
     }
 }
 
+/// ` UNIT` after a range, or nothing for a dimensionless quantity (unit `1`).
+fn unit_suffix(unit: &str) -> String {
+    match unit {
+        "" | "1" => String::new(),
+        unit => format!(" {unit}"),
+    }
+}
+
 /// What is known of one parameter: its name (as `--set` takes it), unit, meaning and range.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct ParamSpec {
@@ -116,7 +124,7 @@ pub enum ParamError {
         known: String,
     },
     /// A value outside the parameter's range (NaN and ±∞ included).
-    #[error("parameter `{name}` = {value} is out of range: allowed {range} {unit}")]
+    #[error("parameter `{name}` = {} is out of range: allowed {range}{}", show(*.value), unit_suffix(.unit))]
     OutOfRange {
         /// Parameter name.
         name: String,
@@ -128,7 +136,7 @@ pub enum ParamError {
         unit: String,
     },
     /// A value that is in range on its own but not for the chosen model.
-    #[error("parameter `{name}` = {value} is not allowed here: {reason}")]
+    #[error("parameter `{name}` = {} is not allowed here: {reason}", show(*.value))]
     Invalid {
         /// Parameter name.
         name: String,

@@ -165,7 +165,7 @@ pub struct System {
 #[derive(Clone, Debug, Error, PartialEq)]
 pub enum SystemError {
     /// A value outside its allowed range.
-    #[error("{what}: `{key}` = {value} is out of range: allowed {allowed}")]
+    #[error("{what}: `{key}` = {} is out of range: allowed {allowed}", friction_models::params::show(*.value))]
     OutOfRange {
         /// Which item (`body "b1"`, `spring 3`).
         what: String,
@@ -326,9 +326,18 @@ impl System {
                 }
             }
             if s.a == s.b || matches!((s.a, s.b), (End::Anchor(_), End::Anchor(_))) {
+                let name = |end: End| match end {
+                    End::Body(j) => &self.bodies[j].name,
+                    End::Anchor(j) => &self.anchors[j].name,
+                };
                 return Err(SystemError::Invalid {
                     what: what(),
-                    why: "a spring joins two bodies, or a body and an anchor".into(),
+                    why: format!(
+                        "`between` = [\"{}\", \"{}\"]: a spring joins two different bodies, or \
+                         a body and an anchor",
+                        name(s.a),
+                        name(s.b)
+                    ),
                 });
             }
         }

@@ -93,7 +93,7 @@ pub enum SolverError {
         last: String,
     },
     /// An option outside its range.
-    #[error("invalid option `{name}` = {value}: allowed {allowed}")]
+    #[error("invalid option `{name}` = {}: allowed {allowed}", shown(.value))]
     InvalidOption {
         /// Option name.
         name: &'static str,

@@ -45,7 +45,7 @@ pub struct Curve {
 #[derive(Clone, Debug, Error, PartialEq)]
 pub enum CurveError {
     /// An option outside its range.
-    #[error("option `{name}` = {value} is out of range: allowed {allowed}")]
+    #[error("option `{name}` = {} is out of range: allowed {allowed}", friction_models::params::show(*.value))]
     OutOfRange {
         /// The option's name.
         name: &'static str,
