@@ -1858,3 +1858,34 @@ fn the_chain_takes_its_parameters_from_a_file_and_names_them_when_one_is_unknown
         "{e}"
     );
 }
+
+#[test]
+fn reproduce_keeps_everything_when_the_experiment_fails_for_some_models() {
+    // σ = 1e300 N/m: the Dahl models DV, SD and SV fail at the experiment's first step. The
+    // report is still written whole, the experiment's table says which failed and why, and
+    // the command exits 1 (it exited 1 having written nothing).
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let o = friction_lab(&[
+        "reproduce",
+        "--set",
+        "sigma=1e300",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        e.contains("the paper's experiment failed for DV, SD, SV"),
+        "{e}"
+    );
+    let md = std::fs::read_to_string(out.join("paper-experiment.md")).unwrap();
+    assert!(
+        md.contains("| DV | failed: the run over [0, 5] s: step size underflow at t = 0"),
+        "{md}"
+    );
+    assert!(md.contains("| CS | a = 9 m/s^2 |"), "{md}");
+    for file in ["report.md", "table2.md", "reproduction.md", "studies"] {
+        assert!(out.join(file).exists(), "{file} is missing");
+    }
+}

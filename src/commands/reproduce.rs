@@ -24,7 +24,7 @@ use scenarios::curves::{self, Curve};
 use scenarios::figures::{
     assess, Finding, PaperFigure, LEVEL_OFF_FRACTION, NUMERIC_TOLERANCE, PAPER_FIGURES,
 };
-use scenarios::paper::{experiment, Asymptote, ExperimentRow};
+use scenarios::paper::{experiment, Asymptote, ExperimentFailure, ExperimentRow};
 use scenarios::phenomena::Protocol;
 use scenarios::studies::{Case, Method, StudyCase, SystemCase};
 use scenarios::Limits;
@@ -145,22 +145,24 @@ fn notes(fig: &PaperFigure, r: &Reproduced) -> String {
 fn add_experiment(
     files: &mut Artifacts,
     dir: &std::path::Path,
-    rows: &[ExperimentRow],
+    rows: &[Result<ExperimentRow, ExperimentFailure>],
 ) -> Result<String, AppError> {
     let stem = dir.join("figures/paper-experiment-velocity");
     let mut table = Table::new(&["model", "t", "v"]);
     let mut series = Vec::new();
     for (row, color) in rows.iter().zip(PALETTE) {
-        table.rows.extend(row.velocity.iter().map(|&(t, v)| {
-            vec![
-                Cell::Text(row.model.name().into()),
-                Cell::Num(t),
-                Cell::Num(v),
-            ]
-        }));
+        let (model, velocity, label) = match row {
+            Ok(r) => (r.model, &r.velocity, r.model.name().to_string()),
+            Err(f) => (f.model, &f.velocity, format!("{} (failed)", f.model)),
+        };
+        table.rows.extend(
+            velocity
+                .iter()
+                .map(|&(t, v)| vec![Cell::Text(model.name().into()), Cell::Num(t), Cell::Num(v)]),
+        );
         series.push(Series {
-            label: Some(row.model.name().into()),
-            points: row.velocity.clone(),
+            label: Some(label),
+            points: velocity.clone(),
             color,
             width: 2,
             marker: Marker::None,
@@ -189,6 +191,13 @@ fn add_experiment(
          | model | closed form | simulated | relative error | v(5 s) (m/s) | x(5 s) (m) |\n|---|---|---|---|---|---|\n",
     );
     for r in rows {
+        let r = match r {
+            Ok(r) => r,
+            Err(f) => {
+                md += &format!("| {} | failed: {} | | | | |\n", f.model, f.why);
+                continue;
+            }
+        };
         let closed = match r.predicted {
             Asymptote::TerminalVelocity(v) => format!("v_t = {v} m/s"),
             Asymptote::Acceleration(a) => format!("a = {a} m/s^2"),
@@ -638,5 +647,16 @@ pub fn run(args: &ReproduceArgs) -> Result<(), AppError> {
         args.out.display(),
         start.elapsed().as_secs_f64()
     );
+    let failed: Vec<&ExperimentFailure> = rows.iter().filter_map(|r| r.as_ref().err()).collect();
+    if let Some(first) = failed.first() {
+        let models: Vec<String> = failed.iter().map(|f| f.model.to_string()).collect();
+        return Err(AppError::StudyRun(format!(
+            "the paper's experiment failed for {} (paper-experiment.md and report.md keep the \
+             other models, and the velocity each failed run reached); {}: {}",
+            models.join(", "),
+            first.model,
+            first.why
+        )));
+    }
     crate::commands::phenomena::check_decided(&table)
 }

@@ -107,20 +107,40 @@ fn spec(
     }
 }
 
-/// Runs the experiment for the paper's six models. The asymptote is measured on a run of
-/// 30 time constants m/μ_v (viscous models), or as the mean acceleration over [4, 5] s.
+/// A model whose run of the experiment failed in the solver: why, and the velocity it had
+/// computed on [0, 5] s.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ExperimentFailure {
+    /// The model.
+    pub model: ModelId,
+    /// The solver's error, with the run that met it.
+    pub why: String,
+    /// (t, v) up to the failure (all of [0, 5] s if the longer run failed).
+    pub velocity: Vec<(f64, f64)>,
+}
+
+/// Runs the experiment for the paper's six models, in their order. The asymptote is measured
+/// on a run of 30 time constants m/μ_v (viscous models), or as the mean acceleration over
+/// [4, 5] s. A model whose run fails in the solver gives an [`ExperimentFailure`] and the
+/// others are still measured; bad input fails the whole.
 pub fn experiment(
     p: &FrictionParams,
     s: &ScenarioParams,
-) -> Result<Vec<ExperimentRow>, ScenarioError> {
+) -> Result<Vec<Result<ExperimentRow, ExperimentFailure>>, ScenarioError> {
     ModelId::PAPER
         .iter()
         .map(|&model| {
             let window = run(&spec(model, p, s, 5.0, 501), &mut |_| {})?;
+            let velocity = || window.rows.iter().map(|r| (r.t, r.v)).collect();
+            let failure = |why: String| {
+                Ok(Err(ExperimentFailure {
+                    model,
+                    why,
+                    velocity: velocity(),
+                }))
+            };
             if let Some(e) = &window.error {
-                return Err(ScenarioError::RunFailed(format!(
-                    "experiment, {model}: {e}"
-                )));
+                return failure(format!("the run over [0, 5] s: {e}"));
             }
             let at = |t: f64| {
                 window
@@ -135,9 +155,7 @@ pub fn experiment(
                 Asymptote::TerminalVelocity(v_t) => {
                     let long = run(&spec(model, p, s, 30.0 * s.m / p.mu_v, 2), &mut |_| {})?;
                     if let Some(e) = &long.error {
-                        return Err(ScenarioError::RunFailed(format!(
-                            "experiment, {model}: {e}"
-                        )));
+                        return failure(format!("the run to the terminal velocity: {e}"));
                     }
                     (long.last().expect("a finished run recorded its end").v, v_t)
                 }
@@ -148,15 +166,15 @@ pub fn experiment(
                 Asymptote::Rest => s.f_ex * 5.0 / s.m,
                 _ => target,
             };
-            Ok(ExperimentRow {
+            Ok(Ok(ExperimentRow {
                 model,
                 predicted,
                 measured,
                 relative_error: ((measured - target) / scale).abs(),
                 v_at_5s: at(5.0).v,
                 x_at_5s: at(5.0).x,
-                velocity: window.rows.iter().map(|r| (r.t, r.v)).collect(),
-            })
+                velocity: velocity(),
+            }))
         })
         .collect()
 }
