@@ -968,6 +968,12 @@ fn bad_system_input_is_rejected_and_writes_nothing() {
             &["reproduce", "--set", "F_s=0"],
             "[[contact]] 1: model `static`: its sliding force at v_rel = 0+",
         ),
+        (
+            // Its numbers as every message shows them: an exponent from 1e6 on.
+            &["reproduce", "--set", "F_c=1e6"],
+            "its sliding force at v_rel = 0+, 1.0841470984807897e6 N, lies outside its stick \
+             interval [-8.131103238605922, 8.131103238605922] N",
+        ),
     ];
     for (args, message) in cases {
         let text = rejected(args);

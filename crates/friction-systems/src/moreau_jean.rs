@@ -45,6 +45,7 @@ use crate::local::{
 use crate::springs::Springs;
 use crate::switching::{SLIP_NEGATIVE, SLIP_POSITIVE, STICK};
 use crate::system::{System, SystemError};
+use friction_models::params::show;
 use friction_models::{Direction, FrictionModel, SignLaw};
 use integrators::{
     EventRecord, Failure, Mode, ModeSwitch, Options, Output, Solution, SolverError, StepControl,
@@ -96,15 +97,16 @@ pub fn check_contacts(system: &System) -> Result<(), SystemError> {
             if beyond && (force - bound).abs() > rounding {
                 let side = if d == Direction::Positive { "0+" } else { "0-" };
                 return Err(refuse(format!(
-                    "model `{}`: its sliding force at v_rel = {side}, {force} N, lies outside \
+                    "model `{}`: its sliding force at v_rel = {side}, {} N, lies outside \
                      its stick interval [{}, {}] N; a holding force between them has neither \
                      rest nor sliding, so time-stepping (Moreau-Jean) needs the sliding force at \
                      rest within the stick interval: widen it (for the catalog's laws, \
                      F_s >= {}), or use --switching event or regularized",
                     model.name(),
-                    interval.lower,
-                    interval.upper,
-                    force.abs()
+                    show(force),
+                    show(interval.lower),
+                    show(interval.upper),
+                    show(force.abs())
                 )));
             }
         }
