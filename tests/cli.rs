@@ -1830,6 +1830,64 @@ fn a_set_parameter_the_model_does_not_read_gets_a_note() {
         "{e}"
     );
     assert!(!e.contains("n_bodies"), "{e}");
+    // The studies and sweep say it too; a chain's study under event switching runs its
+    // regularised peer, which reads epsilon.
+    let other = |name: &str, args: &[&str]| {
+        let out = dir.path().join(name);
+        let mut all = args.to_vec();
+        all.extend(["--out", out.to_str().unwrap()]);
+        let o = friction_lab(&all);
+        assert!(o.status.success(), "{}", stderr(&o));
+        stderr(&o)
+    };
+    let study = [
+        "converge",
+        "belt",
+        "--model",
+        "CS",
+        "--solvers",
+        "rk4",
+        "--t-end",
+        "1",
+    ];
+    let e = other("converge", &[&study[..], &["--set", "sigma0=5"]].concat());
+    assert!(
+        e.contains("parameter `sigma0` is not read by model `CS`"),
+        "{e}"
+    );
+    let sweep = [
+        "sweep",
+        "belt",
+        "--model",
+        "CS",
+        "--grid",
+        "v_belt=0.1,0.2",
+        "--t-end",
+        "1",
+    ];
+    let e = other("sweep", &[&sweep[..], &["--set", "mu_v=1"]].concat());
+    assert!(
+        e.contains("parameter `mu_v` is not read by model `CS`"),
+        "{e}"
+    );
+    let e = other(
+        "peers",
+        &[
+            "work-precision",
+            "chain",
+            "--model",
+            "CS",
+            "--set",
+            "n_bodies=2",
+            "--set",
+            "epsilon=1e-3",
+            "--solvers",
+            "bdf",
+            "--t-end",
+            "1",
+        ],
+    );
+    assert!(!e.contains("epsilon"), "{e}");
 }
 
 #[test]

@@ -403,7 +403,11 @@ pub fn make(args: &SweepArgs) -> Result<Made, AppError> {
     Ok(Made {
         files,
         notes: vec![format!("{} points, {failed} failed", results.len())],
-        warnings: Vec::new(),
+        warnings: crate::commands::simulate::unread_warnings(
+            &args.run.model_options.params.set,
+            args.run.model,
+            args.run.solver.switching(),
+        ),
         failure: (failed > 0).then(|| {
             AppError::StudyRun(format!(
                 "{failed} of {} runs failed; sweep.csv says which and why",

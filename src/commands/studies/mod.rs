@@ -4,6 +4,7 @@
 //! cannot be reproduced, go to a separate `*-timing.csv`).
 
 use crate::artifacts::{Artifacts, Made};
+use crate::commands::simulate::unread_warnings;
 use crate::commands::simulate::Target as Problem;
 use crate::commands::system::{chosen_bodies, system_of, FILE_T_END};
 use crate::error::AppError;
@@ -191,11 +192,21 @@ impl CaseArgs {
         };
         let notes = study(&mut target, case)?;
         let failure = target.failure;
+        // A study of a system under event switching also runs its regularised peer (BDF on
+        // the regularised system), which reads epsilon.
+        let switching = match (
+            self.scenario,
+            self.switching.unwrap_or(SwitchingKind::Event),
+        ) {
+            (Some(Problem::Rig(_)), s) => s,
+            (_, SwitchingKind::Event) => SwitchingKind::Regularized,
+            (_, s) => s,
+        };
         Ok(Made {
             files,
             notes,
+            warnings: unread_warnings(&self.model_options.params.set, self.model, switching),
             failure,
-            ..Made::default()
         })
     }
 }
