@@ -72,7 +72,7 @@ pub enum Command {
     /// Stiffness sweep: where the implicit solvers overtake the explicit ones.
     #[command(after_help = EXIT_CODES)]
     Stiffness(commands::studies::StiffnessArgs),
-    /// Sweep a rig or the chain over a grid of parameters: the settled state at every point
+    /// Sweep a rig, the chain or a system file over a grid of parameters: the settled state at every point
     /// (stick phases per cycle, amplitude and period, friction, solver statistics).
     #[command(after_help = EXIT_CODES)]
     Sweep(commands::sweep::SweepArgs),

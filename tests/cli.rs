@@ -1953,3 +1953,65 @@ fn reproduce_keeps_everything_when_the_experiment_fails_for_some_models() {
         assert!(out.join(file).exists(), "{file} is missing");
     }
 }
+
+#[test]
+fn sweep_runs_a_system_file_over_the_regularisation_width() {
+    // A system file's contacts carry their own parameters, so epsilon is the one axis it
+    // takes (it was refused whole: "a system file has no parameters to sweep"). Each row is
+    // the run `simulate --system` makes at that epsilon, step for step.
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("two.toml");
+    std::fs::write(
+        &file,
+        "[[body]]\nname = \"left\"\nm = 1.0\n[[body]]\nname = \"right\"\nm = 2.0\n\
+         [[anchor]]\nname = \"wall\"\nv = 0.1\n\
+         [[spring]]\nbetween = [\"wall\", \"left\"]\nk = 10.0\n\
+         [[spring]]\nbetween = [\"left\", \"right\"]\nk = 50.0\n\
+         [[contact]]\nbody = \"left\"\nmodel = \"CS\"\n\
+         [[contact]]\nbody = \"right\"\nmodel = \"coulomb\"\n",
+    )
+    .unwrap();
+    let path = file.to_str().unwrap();
+    let common = [
+        "--system",
+        path,
+        "--switching",
+        "regularized",
+        "--t-end",
+        "5",
+    ];
+    let out = dir.path().join("sweep");
+    let mut args = vec!["sweep", "--grid", "epsilon=1e-3,1e-2"];
+    args.extend(common);
+    args.extend(["--out", out.to_str().unwrap()]);
+    let o = friction_lab(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("sweep.json")).unwrap()).unwrap();
+    assert_eq!(json["target"], path);
+    let steps: Vec<u64> = json["points"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p["stats"]["steps"].as_u64().unwrap())
+        .collect();
+    assert_eq!(steps.len(), 2);
+    assert!(
+        steps[0] > steps[1],
+        "a narrower width takes more steps: {steps:?}"
+    );
+    let single = dir.path().join("single");
+    let mut args = vec!["simulate", "--set", "epsilon=1e-3"];
+    args.extend(common);
+    args.extend(["--out", single.to_str().unwrap()]);
+    let o = friction_lab(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let summary: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(single.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["stats"]["steps"].as_u64(), Some(steps[0]));
+    let e = rejected(&["sweep", "--system", path, "--grid", "F_s=1,2"]);
+    assert!(
+        e.contains("parameter `F_s` cannot be swept on a system file"),
+        "{e}"
+    );
+}

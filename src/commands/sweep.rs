@@ -1,4 +1,4 @@
-//! `friction-lab sweep SCENARIO|chain --model M --grid NAME=VALUES ... --out DIR`: one run per
+//! `friction-lab sweep SCENARIO|chain|--system FILE --grid NAME=VALUES ... --out DIR`: one run per
 //! point of a grid of parameters (the product of the `--grid` axes), in parallel, each reduced
 //! to its settled-state measures (`scenarios::settled`): `sweep.csv` (one row per point) and
 //! `sweep.json` (the grid, the options, the rows). The rows do not depend on `--threads`.
@@ -165,6 +165,16 @@ fn check_axes(axes: &[Axis], run: &SimulateArgs) -> Result<(), AppError> {
             names[k]
         )));
     }
+    if run.system.is_some() {
+        // A system file's contacts carry their own parameters: only the regularisation width
+        // is shared.
+        if let Some(name) = names.iter().find(|&&n| n != "epsilon") {
+            return Err(AppError::Usage(format!(
+                "option `grid`: parameter `{name}` cannot be swept on a system file (each \
+                 contact has its own parameters): allowed epsilon, under --switching regularized"
+            )));
+        }
+    }
     names.iter().try_for_each(|name| {
         crate::options::check_read("grid", name, run.model, run.solver.switching)
     })
@@ -219,7 +229,8 @@ fn at_point(args: &SimulateArgs, point: &[(String, f64)]) -> SimulateArgs {
 /// A prepared run of one point: checked before any point runs.
 enum Prepared {
     Rig(scenarios::RunSpec),
-    Chain {
+    /// The chain or a system file, and the body measured.
+    System {
         described: crate::commands::system::Described,
         body: usize,
     },
@@ -228,19 +239,16 @@ enum Prepared {
 fn prepare(args: &SimulateArgs) -> Result<Prepared, AppError> {
     match args.scenario {
         Some(Target::Rig(scenario)) => Ok(Prepared::Rig(spec(args, scenario)?)),
-        Some(Target::Chain) => {
-            let described = system_of(None, args.model, &args.model_options)?;
+        _ => {
+            let described = system_of(args.system.as_deref(), args.model, &args.model_options)?;
             described.system.validate()?;
             let body = chosen_bodies(&described.system, &args.bodies)?
                 .first()
                 .copied()
                 .unwrap_or(0);
             args.solver.checked_step()?;
-            Ok(Prepared::Chain { described, body })
+            Ok(Prepared::System { described, body })
         }
-        None => Err(AppError::Usage(
-            "sweep runs a rig or the chain: a system file has no parameters to sweep".into(),
-        )),
     }
 }
 
@@ -259,10 +267,12 @@ fn run_point(
                 o.error.map(|e| e.to_string()),
             )
         }
-        Prepared::Chain { described, body } => {
-            let t_end = args
-                .checked_t_end()?
-                .unwrap_or(crate::commands::system::CHAIN_T_END);
+        Prepared::System { described, body } => {
+            let t_end = args.checked_t_end()?.unwrap_or(if args.system.is_some() {
+                crate::commands::system::FILE_T_END
+            } else {
+                crate::commands::system::CHAIN_T_END
+            });
             let dim = friction_systems::Layout::of(&described.system).dim();
             let points = system_points(args, dim)?;
             let options = grid_options(args, t_end, points)?;
@@ -387,8 +397,9 @@ pub fn make(args: &SweepArgs) -> Result<Made, AppError> {
     files.add_json(
         args.run.out.join("sweep.json"),
         &SweepFile {
-            target: match args.run.scenario {
-                Some(Target::Rig(s)) => s.name().to_string(),
+            target: match (args.run.scenario, &args.run.system) {
+                (Some(Target::Rig(s)), _) => s.name().to_string(),
+                (_, Some(file)) => file.display().to_string(),
                 _ => "chain".into(),
             },
             model: args.run.model.map(|m| m.name().to_string()),
