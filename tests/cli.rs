@@ -798,13 +798,8 @@ fn simulate_chain_writes_the_system_files() {
     }
 }
 
-#[test]
-fn simulate_and_study_a_system_file() {
-    let dir = tempfile::tempdir().unwrap();
-    let file = dir.path().join("two.toml");
-    std::fs::write(
-        &file,
-        r#"
+/// Two bodies in a row from a fixed frame, the first on a belt at 0.1 m/s with CS.
+const TWO_BODIES: &str = r#"
 [[body]]
 name = "m1"
 m = 1.0
@@ -824,9 +819,13 @@ c = 0.2
 body = "m1"
 surface_velocity = 0.1
 model = "CS"
-"#,
-    )
-    .unwrap();
+"#;
+
+#[test]
+fn simulate_and_study_a_system_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("two.toml");
+    std::fs::write(&file, TWO_BODIES).unwrap();
     let out = dir.path().join("sim");
     let o = friction_lab(&[
         "simulate",
@@ -1961,16 +1960,7 @@ fn sweep_runs_a_system_file_over_the_regularisation_width() {
     // the run `simulate --system` makes at that epsilon, step for step.
     let dir = tempfile::tempdir().unwrap();
     let file = dir.path().join("two.toml");
-    std::fs::write(
-        &file,
-        "[[body]]\nname = \"left\"\nm = 1.0\n[[body]]\nname = \"right\"\nm = 2.0\n\
-         [[anchor]]\nname = \"wall\"\nv = 0.1\n\
-         [[spring]]\nbetween = [\"wall\", \"left\"]\nk = 10.0\n\
-         [[spring]]\nbetween = [\"left\", \"right\"]\nk = 50.0\n\
-         [[contact]]\nbody = \"left\"\nmodel = \"CS\"\n\
-         [[contact]]\nbody = \"right\"\nmodel = \"coulomb\"\n",
-    )
-    .unwrap();
+    std::fs::write(&file, TWO_BODIES).unwrap();
     let path = file.to_str().unwrap();
     let common = [
         "--system",
