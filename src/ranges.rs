@@ -104,6 +104,7 @@ pub const V_MAX: OptionRange = OptionRange {
 /// A value as messages show it: in exponent form when very small or very large (as the
 /// ranges print their bounds), otherwise in full.
 pub use friction_models::params::show;
+use friction_models::params::unit_suffix;
 
 impl OptionRange {
     /// `value` if it lies in the range, else the error that names option, value and range.
@@ -111,16 +112,12 @@ impl OptionRange {
         if self.range.contains(value) {
             Ok(value)
         } else {
-            let unit = if self.unit.is_empty() {
-                String::new()
-            } else {
-                format!(" {}", self.unit)
-            };
             Err(AppError::Usage(format!(
-                "option `{}` = {} is out of range: allowed {}{unit}",
+                "option `{}` = {} is out of range: allowed {}{}",
                 self.name,
                 show(value),
-                self.range
+                self.range,
+                unit_suffix(self.unit)
             )))
         }
     }
@@ -145,11 +142,7 @@ impl OptionRange {
                 "option `{option}` has {}: allowed values {}{}",
                 show(v),
                 self.range,
-                if self.unit.is_empty() {
-                    String::new()
-                } else {
-                    format!(" {}", self.unit)
-                }
+                unit_suffix(self.unit)
             )));
         }
         match values.windows(2).find(|w| w[1] >= w[0]) {

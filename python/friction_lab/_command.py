@@ -49,8 +49,9 @@ def words(command: str, *positional: Optional[str], **options: Any) -> List[str]
 
     ``params`` (a mapping of parameter names to values) becomes ``--set NAME=VALUE`` for each
     item and ``grid`` (a mapping of names to lists, or to range strings such as
-    ``"log:0.01:1:9"``) becomes ``--grid NAME=...``; ``True`` is a bare flag (of :data:`FLAGS` only), ``False`` and
-    ``None`` leave the option out, and a list or tuple is written comma-separated.
+    ``"log:0.01:1:9"``) becomes ``--grid NAME=...``; ``True`` is a bare flag (of
+    :data:`FLAGS` only), ``False`` and ``None`` leave the option out, and a list or tuple is
+    written comma-separated.
     """
     argv = [command] + [p for p in positional if p is not None]
     for name, value in options.items():

@@ -6,7 +6,9 @@
 use crate::artifacts::{Artifacts, Made};
 use crate::commands::phenomena::with_threads;
 use crate::commands::simulate::{spec, SimulateArgs, Target};
-use crate::commands::system::{chosen_bodies, grid_options, system_of, system_points};
+use crate::commands::system::{
+    chosen_bodies, default_t_end, grid_options, system_of, system_points,
+};
 use crate::error::AppError;
 use crate::output::{Cell, Table};
 use crate::progress::Progress;
@@ -268,11 +270,9 @@ fn run_point(
             )
         }
         Prepared::System { described, body } => {
-            let t_end = args.checked_t_end()?.unwrap_or(if args.system.is_some() {
-                crate::commands::system::FILE_T_END
-            } else {
-                crate::commands::system::CHAIN_T_END
-            });
+            let t_end = args
+                .checked_t_end()?
+                .unwrap_or_else(|| default_t_end(args.system.as_deref()));
             let dim = friction_systems::Layout::of(&described.system).dim();
             let points = system_points(args, dim)?;
             let options = grid_options(args, t_end, points)?;

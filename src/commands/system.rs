@@ -32,6 +32,16 @@ pub const RECORD_BUDGET: usize = 10_000_000;
 pub const CHAIN_T_END: f64 = 50.0;
 /// Default end time of a system file, s.
 pub const FILE_T_END: f64 = 20.0;
+
+/// The default end time of a system: [`FILE_T_END`] for a system `file`, else (the chain)
+/// [`CHAIN_T_END`].
+pub fn default_t_end(file: Option<&Path>) -> f64 {
+    if file.is_some() {
+        FILE_T_END
+    } else {
+        CHAIN_T_END
+    }
+}
 /// Most columns and rows of the space–time picture.
 const RASTER: (usize, usize) = (300, 200);
 
@@ -352,11 +362,9 @@ pub fn make(args: &SimulateArgs) -> Result<Made, AppError> {
     system.validate()?;
     let bodies = chosen_bodies(&system, &args.bodies)?;
     let switching = args.solver.switching().with(&friction);
-    let t_end = args.checked_t_end()?.unwrap_or(if args.system.is_some() {
-        FILE_T_END
-    } else {
-        CHAIN_T_END
-    });
+    let t_end = args
+        .checked_t_end()?
+        .unwrap_or_else(|| default_t_end(args.system.as_deref()));
     let points = system_points(args, friction_systems::Layout::of(&system).dim())?;
     let options = grid_options(args, t_end, points)?;
     let step = options.step;

@@ -91,8 +91,8 @@ pub fn show(x: f64) -> String {
     }
 }
 
-/// ` UNIT` after a range, or nothing for a dimensionless quantity (unit `1`).
-fn unit_suffix(unit: &str) -> String {
+/// ` UNIT` after a range, or nothing for a dimensionless quantity (unit `1` or none).
+pub fn unit_suffix(unit: &str) -> String {
     match unit {
         "" | "1" => String::new(),
         unit => format!(" {unit}"),

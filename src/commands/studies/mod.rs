@@ -6,7 +6,7 @@
 use crate::artifacts::{Artifacts, Made};
 use crate::commands::simulate::unread_warnings;
 use crate::commands::simulate::Target as Problem;
-use crate::commands::system::{chosen_bodies, system_of, FILE_T_END};
+use crate::commands::system::{chosen_bodies, default_t_end, system_of};
 use crate::error::AppError;
 use crate::options::{LimitArgs, ModelOptions};
 use crate::output::{Cell, Table};
@@ -120,11 +120,6 @@ impl CaseArgs {
             _ => {
                 let described = system_of(self.system.as_deref(), self.model, &self.model_options)?;
                 described.system.validate()?;
-                let default_t_end = if self.system.is_some() {
-                    FILE_T_END
-                } else {
-                    crate::commands::system::CHAIN_T_END
-                };
                 let bodies = if self.bodies.is_empty() {
                     vec![0]
                 } else {
@@ -135,7 +130,10 @@ impl CaseArgs {
                     system: described.system,
                     switching: self.switching.unwrap_or(SwitchingKind::Event),
                     epsilon: described.friction.epsilon,
-                    t_end: check_t_end(self.t_end.unwrap_or(default_t_end))?,
+                    t_end: check_t_end(
+                        self.t_end
+                            .unwrap_or_else(|| default_t_end(self.system.as_deref())),
+                    )?,
                     bodies,
                     limits: self.limits.limits()?,
                 }));
