@@ -822,6 +822,34 @@ model = "CS"
 "#;
 
 #[test]
+fn a_body_whose_name_has_a_comma_is_chosen_by_its_index() {
+    // `--bodies` splits at commas: the name cannot be given, and the refusal says which index
+    // to give instead (the second body here).
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("comma.toml");
+    std::fs::write(&file, TWO_BODIES.replace("\"m2\"", "\"right, m2\"")).unwrap();
+    let system = file.to_str().unwrap();
+    let e = rejected(&["simulate", "--system", system, "--bodies", "right, m2"]);
+    assert!(
+        e.contains("`right` is no body: allowed a body's name or an index in [1, 2]; body \"right, m2\" has a comma: choose it by its index, 2"),
+        "{e}"
+    );
+    let out = dir.path().join("by-index");
+    let o = friction_lab(&[
+        "simulate",
+        "--system",
+        system,
+        "--bodies",
+        "2",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let fin = std::fs::read_to_string(out.join("final.csv")).unwrap();
+    assert!(fin.contains("\n\"right, m2\","), "{fin}");
+}
+
+#[test]
 fn simulate_and_study_a_system_file() {
     let dir = tempfile::tempdir().unwrap();
     let file = dir.path().join("two.toml");
@@ -945,6 +973,19 @@ fn bad_system_input_is_rejected_and_writes_nothing() {
         (
             &["stiffness", "chain", "--model", "CS", "--parameter", "k"],
             "parameter `k` cannot be swept on a system",
+        ),
+        (
+            // No run of the study reads the width under time-stepping: every value the same.
+            &[
+                "stiffness",
+                "chain",
+                "--model",
+                "CS",
+                "--switching",
+                "timestepping",
+            ],
+            "parameter `epsilon` is read on a system only under --switching regularized, or \
+             event (by its regularised BDF peer); not timestepping",
         ),
         (
             // 2e10 recorded numbers would exhaust the memory before the first step.

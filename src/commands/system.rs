@@ -162,9 +162,7 @@ pub fn chosen_bodies(system: &System, chosen: &[String]) -> Result<Vec<usize>, A
             }
             match token.parse::<usize>() {
                 Ok(i) if (1..=n).contains(&i) => Ok(i - 1),
-                _ => Err(AppError::Usage(format!(
-                    "option `--bodies`: `{token}` is no body: allowed a body's name or an index in [1, {n}]"
-                ))),
+                _ => Err(no_body(system, token)),
             }
         })
         .collect::<Result<_, _>>()?;
@@ -176,6 +174,28 @@ pub fn chosen_bodies(system: &System, chosen: &[String]) -> Result<Vec<usize>, A
         )));
     }
     Ok(indices)
+}
+
+/// The error for a `--bodies` token that is no body's name or index. The option splits at
+/// commas, so a body whose name has one is chosen by its index: said, with the index.
+fn no_body(system: &System, token: &str) -> AppError {
+    let n = system.bodies.len();
+    let hint: String = system
+        .bodies
+        .iter()
+        .enumerate()
+        .filter(|(_, b)| b.name.contains(','))
+        .map(|(i, b)| {
+            let name = &b.name;
+            format!(
+                "; body \"{name}\" has a comma: choose it by its index, {}",
+                i + 1
+            )
+        })
+        .collect();
+    AppError::Usage(format!(
+        "option `--bodies`: `{token}` is no body: allowed a body's name or an index in [1, {n}]{hint}"
+    ))
 }
 
 /// A table of body states: `[t,] body, x, v, friction, mode[, z]` (the `z` column only when

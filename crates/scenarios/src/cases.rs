@@ -359,12 +359,23 @@ impl StudyCase for SystemCase {
     }
 
     /// Only the regularisation width `epsilon` can be swept on a system (each contact has its
-    /// own parameters).
+    /// own parameters), and only under a switching some run of the study reads it with:
+    /// regularized, or event (whose regularised BDF peer reads it).
     fn with_parameter(&self, name: &str, value: f64) -> Result<Box<dyn StudyCase>, ScenarioError> {
         if name != "epsilon" {
             return Err(ScenarioError::Invalid(format!(
                 "parameter `{name}` cannot be swept on a system (each contact has its own \
                  parameters): allowed epsilon"
+            )));
+        }
+        if !matches!(
+            self.switching,
+            SwitchingKind::Regularized | SwitchingKind::Event
+        ) {
+            return Err(ScenarioError::Invalid(format!(
+                "parameter `epsilon` is read on a system only under --switching regularized, or \
+                 event (by its regularised BDF peer); not {}: every value would give the same runs",
+                self.switching.name()
             )));
         }
         FrictionParams::paper().set(name, value)?;

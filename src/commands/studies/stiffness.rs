@@ -227,9 +227,9 @@ pub fn stiffness(a: &StiffnessArgs) -> Result<Made, AppError> {
     {
         case.switching = Some(SwitchingKind::Regularized);
     }
-    // A rig's run reads only what its model and switching read. A system is not checked:
-    // epsilon is the one parameter its study sweeps, and under event switching its
-    // regularised peer reads it.
+    // A rig's run reads only what its model and switching read. A system's case checks its
+    // one sweepable parameter, epsilon, itself (`StudyCase::with_parameter`): under event
+    // switching its regularised peer reads it.
     if let Some(Problem::Rig(_)) = case.scenario {
         crate::options::check_read(
             "parameter",
