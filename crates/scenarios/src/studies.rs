@@ -370,6 +370,36 @@ pub struct OrderTable {
     pub fitted_slope: Option<f64>,
 }
 
+impl OrderTable {
+    /// Why there is no fitted slope (`None` when there is one): how many pairs were stalled,
+    /// pre-asymptotic, or at round-off or undefined (see [`PairOrder`]), e.g. "of 3 pairs: 2
+    /// stalled, 1 pre-asymptotic".
+    pub fn unfitted(&self) -> Option<String> {
+        if self.fitted_slope.is_some() {
+            return None;
+        }
+        if self.pairs.is_empty() {
+            return Some("fewer than two resolutions".into());
+        }
+        let count = |flag: fn(&PairOrder) -> bool| self.pairs.iter().filter(|p| flag(p)).count();
+        let kinds = [
+            (count(|p| p.stalled), "stalled"),
+            (count(|p| p.pre_asymptotic), "pre-asymptotic"),
+            (count(|p| p.round_off), "at round-off or undefined"),
+        ];
+        let named: Vec<String> = kinds
+            .iter()
+            .filter(|(n, _)| *n > 0)
+            .map(|(n, kind)| format!("{n} {kind}"))
+            .collect();
+        Some(format!(
+            "of {} pairs: {}",
+            self.pairs.len(),
+            named.join(", ")
+        ))
+    }
+}
+
 /// A convergence study.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Convergence {

@@ -380,6 +380,40 @@ fn pairs_at_the_floor_are_round_off_and_pairs_that_do_not_decrease_are_stalled()
     }
 }
 
+/// A table without a fitted slope says why, counting its pairs' flags; one with a slope says
+/// nothing.
+#[test]
+fn an_unfitted_order_counts_the_flags_of_its_pairs() {
+    use scenarios::studies::{orders, OrderTable};
+    let table = |points: &[(f64, f64)]| {
+        let (pairs, fitted_slope) = orders(points, 1.0);
+        OrderTable {
+            solver: "implicit-euler".into(),
+            measure: "grid_max",
+            pairs,
+            fitted_slope,
+        }
+    };
+    // A coarsest run with no correct digit (an error above the scale), then an error held
+    // at 0.21 by a stick-slip cycle more than the reference's.
+    let stuck = table(&[(0.04, 2.0), (0.02, 0.21), (0.01, 0.21), (0.005, 0.21)]);
+    assert_eq!(stuck.fitted_slope, None, "{stuck:?}");
+    assert_eq!(
+        stuck.unfitted().as_deref(),
+        Some("of 3 pairs: 2 stalled, 1 pre-asymptotic")
+    );
+    let undefined = table(&[(0.02, f64::NAN), (0.01, f64::NAN)]);
+    assert_eq!(
+        undefined.unfitted().as_deref(),
+        Some("of 1 pairs: 1 at round-off or undefined")
+    );
+    assert_eq!(
+        table(&[(0.02, 0.1)]).unfitted().as_deref(),
+        Some("fewer than two resolutions")
+    );
+    assert_eq!(table(&[(0.02, 0.1), (0.01, 0.05)]).unfitted(), None);
+}
+
 /// Dormand–Prince under a name of the user's choosing.
 #[derive(Debug)]
 struct Named(&'static str);

@@ -108,7 +108,11 @@ pub fn converge(a: &ConvergeArgs) -> Result<Made, AppError> {
         Ok(c.orders
             .iter()
             .map(|o| {
-                let slope = o.fitted_slope.map_or("-".into(), |s| format!("{s:.3}"));
+                // No slope: say why (docs/studies.md, "Observed orders").
+                let slope = match o.fitted_slope {
+                    Some(s) => format!("{s:.3}"),
+                    None => format!("- ({})", o.unfitted().unwrap_or_default()),
+                };
                 format!("{:15} {:16} fitted slope {slope}", o.solver, o.measure)
             })
             .collect())
