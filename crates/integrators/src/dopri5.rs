@@ -253,6 +253,14 @@ impl Dopri5 {
     /// Accepts the step just computed: dense output coefficients, FSAL, new time.
     fn accept(&mut self, h: f64, t_new: f64) -> Result<(), SolverError> {
         check_finite(&self.y1, self.state.t, h, "Dormand-Prince step result")?;
+        // f at the step's end enters the dense output and is the next step's first stage
+        // (FSAL): a finite end whose derivative is not would hand NaN to the event location.
+        check_finite(
+            &self.k[6],
+            self.state.t,
+            h,
+            "Dormand-Prince f at the step's end",
+        )?;
         let [c0, c1, c2, c3, c4] = &mut self.cont;
         let k = &self.k;
         for i in 0..self.state.y.len() {

@@ -85,6 +85,8 @@ impl Stepper for Rk4 {
         check_finite(&self.state.y, t0, h, "RK4 step result")?;
         std::mem::swap(&mut self.f_prev, &mut self.f);
         ode.explicit_rhs(t1, &self.state.y, &mut self.f, &mut self.stats);
+        // f at the step's end enters the dense output and starts the next step.
+        check_finite(&self.f, t0, h, "RK4 f at the step's end")?;
         self.state.t_prev = t0;
         self.state.t = t1;
         self.stats.steps += 1;

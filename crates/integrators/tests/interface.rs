@@ -109,14 +109,18 @@ fn simultaneous_events_are_handled_in_one_call() {
 
 #[test]
 fn a_non_finite_state_and_a_step_size_underflow_are_reported() {
-    // RK4 with h = 0.5 on y' = y² overflows to infinity.
+    // RK4 with h = 0.5 on y' = y² overflows to infinity: the step from t = 1.5 ends at a
+    // finite y whose square is not.
     let f = Solver::Rk4
         .solve(&BlowUp, &[1.0], &[Mode(0)], Options::fixed(0.0, 5.0, 0.5))
         .unwrap_err();
     let message = f.error.to_string();
-    assert!(message.starts_with("non-finite state at t = "), "{message}");
     assert!(
-        message.contains("RK4 step result, component 0 = "),
+        message.starts_with("non-finite state at t = 1.5 "),
+        "{message}"
+    );
+    assert!(
+        message.contains("RK4 f at the step's end, component 0 = inf"),
         "{message}"
     );
     assert!(!f.solution.is_empty());
@@ -234,4 +238,50 @@ fn an_own_method_is_driven_like_a_built_in_one() {
     );
     assert_eq!(refused.solution.solver, "my-rk4");
     assert!(refused.solution.t.is_empty());
+}
+
+/// y' = 1, except that evaluation number `nan_at` (counted from 1) returns NaN.
+struct NanAt {
+    nan_at: usize,
+    calls: std::sync::atomic::AtomicUsize,
+}
+
+impl OdeProblem for NanAt {
+    fn dim(&self) -> usize {
+        1
+    }
+    fn rhs(&self, _t: f64, _y: &[f64], _m: &[Mode], f: &mut [f64]) {
+        let call = 1 + self
+            .calls
+            .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        f[0] = if call == self.nan_at { f64::NAN } else { 1.0 };
+    }
+}
+
+#[test]
+fn a_finite_step_end_whose_derivative_is_not_is_refused_where_it_is_made() {
+    // Evaluation 1 is f at the start. Dormand–Prince's first step makes evaluations 2 to 7,
+    // the seventh f at its end (FSAL); RK4's makes 2 to 4 and then f at its end, the fifth.
+    // The end value y1 = 0.5 uses neither, so it is finite, but the dense output (read by the
+    // event location) and the next step would read the NaN.
+    for (solver, nan_at, what) in [
+        (Solver::Dopri5, 7, "Dormand-Prince f at the step's end"),
+        (Solver::Rk4, 5, "RK4 f at the step's end"),
+    ] {
+        let problem = NanAt {
+            nan_at,
+            calls: 0.into(),
+        };
+        let f = solver
+            .solve(&problem, &[0.0], &[Mode(0)], Options::fixed(0.0, 5.0, 0.5))
+            .unwrap_err();
+        let message = f.error.to_string();
+        assert!(
+            message.contains(&format!("{what}, component 0 = NaN")),
+            "{message}"
+        );
+        // The run keeps its start and no step.
+        assert_eq!(f.solution.t, [0.0], "{solver:?}");
+        assert_eq!(f.solution.stats.steps, 0, "{solver:?}");
+    }
 }
