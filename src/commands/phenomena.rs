@@ -338,11 +338,15 @@ pub fn check_decided(rows: &[(ModelId, Row)]) -> Result<(), AppError> {
     let failed = undecided(rows);
     match failed.first() {
         None => Ok(()),
-        Some(first) => Err(AppError::StudyRun(format!(
-            "{} cells of Table 2 are undecided, their protocol runs failed (table2.md and \
-             table2.json mark them); the first: {first}",
-            failed.len()
-        ))),
+        Some(first) => {
+            let count = match failed.len() {
+                1 => "1 cell of Table 2 is undecided, its protocol run".to_string(),
+                n => format!("{n} cells of Table 2 are undecided, their protocol runs"),
+            };
+            Err(AppError::StudyRun(format!(
+                "{count} failed (marked in table2.md and table2.json); the first: {first}"
+            )))
+        }
     }
 }
 
@@ -426,4 +430,53 @@ pub fn run(args: &PhenomenaArgs) -> Result<(), AppError> {
         start.elapsed().as_secs_f64()
     );
     check_decided(&rows)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::check_decided;
+    use friction_models::ModelId;
+    use scenarios::phenomena::{Cell, Phenomenon};
+
+    fn cell(measured: Result<bool, String>) -> Cell {
+        Cell {
+            measured,
+            paper: Some(true),
+            evidence: Default::default(),
+            region: None,
+        }
+    }
+
+    /// The failure counts the undecided cells, in the singular for one, and names the first.
+    #[test]
+    fn undecided_cells_are_counted_and_the_first_named() {
+        let failed = || cell(Err("too many steps".into()));
+        let decided = vec![(ModelId::Cs, vec![(Phenomenon::Stiction, cell(Ok(true)))])];
+        assert!(check_decided(&decided).is_ok());
+        let one = vec![(
+            ModelId::Cs,
+            vec![
+                (Phenomenon::Stiction, cell(Ok(true))),
+                (Phenomenon::Hysteresis, failed()),
+            ],
+        )];
+        assert_eq!(
+            check_decided(&one).unwrap_err().to_string(),
+            "1 cell of Table 2 is undecided, its protocol run failed (marked in table2.md and \
+             table2.json); the first: CS hysteresis: too many steps"
+        );
+        let two = vec![(
+            ModelId::Cs,
+            vec![
+                (Phenomenon::Stiction, failed()),
+                (Phenomenon::Hysteresis, failed()),
+            ],
+        )];
+        let e = check_decided(&two).unwrap_err().to_string();
+        assert!(
+            e.starts_with("2 cells of Table 2 are undecided, their protocol runs failed"),
+            "{e}"
+        );
+        assert!(e.ends_with("the first: CS stiction: too many steps"), "{e}");
+    }
 }
