@@ -1647,6 +1647,37 @@ fn phenomena_judges_the_chosen_models_at_the_given_parameters() {
 }
 
 #[test]
+fn a_study_of_the_chain_spans_its_horizon_of_predictability_by_default() {
+    // simulate runs the chain over 50 s; a study over 10 s (docs/studies.md: over 50 s the
+    // chaotic chain's fixed-step errors saturate and their fitted orders are noise).
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("c");
+    let o = friction_lab(&[
+        "converge",
+        "chain",
+        "--model",
+        "CS",
+        "--solvers",
+        "rk4",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("converge.json")).unwrap()).unwrap();
+    assert_eq!(json["case"]["t_end"], 10.0);
+    // Within it, RK4's fourth order shows on the grid error of the default chain.
+    let rk4 = json["orders"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|o| o["solver"] == "rk4" && o["measure"] == "grid_max")
+        .unwrap();
+    let slope = rk4["fitted_slope"].as_f64().unwrap();
+    assert!((slope - 4.0).abs() < 0.3, "{slope}");
+}
+
+#[test]
 fn studies_of_a_chain_draw_regularised_bdf_and_time_stepping_beside_the_solvers() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("k");

@@ -6,7 +6,7 @@
 use crate::artifacts::{Artifacts, Made};
 use crate::commands::simulate::unread_warnings;
 use crate::commands::simulate::Target as Problem;
-use crate::commands::system::{chosen_bodies, default_t_end, system_of};
+use crate::commands::system::{chosen_bodies, study_t_end, system_of};
 use crate::error::AppError;
 use crate::options::{LimitArgs, ModelOptions};
 use crate::output::{Cell, Table};
@@ -93,7 +93,8 @@ pub struct CaseArgs {
     /// [default: event; for `stiffness` of a rig over epsilon, regularized]
     #[arg(long, value_name = "event|regularized|naive|timestepping")]
     pub switching: Option<SwitchingKind>,
-    /// End time, s [default: the scenario's; 50 for the chain; 20 for a system file].
+    /// End time, s [default: the scenario's; 10 for the chain (its horizon of predictability:
+    /// docs/studies.md); 20 for a system file].
     #[arg(long, value_name = "T", allow_hyphen_values = true)]
     pub t_end: Option<f64>,
     /// Folder to write into (created if missing).
@@ -132,7 +133,7 @@ impl CaseArgs {
                     epsilon: described.friction.epsilon,
                     t_end: check_t_end(
                         self.t_end
-                            .unwrap_or_else(|| default_t_end(self.system.as_deref())),
+                            .unwrap_or_else(|| study_t_end(self.system.as_deref())),
                     )?,
                     bodies,
                     limits: self.limits.limits()?,
