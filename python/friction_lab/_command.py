@@ -17,6 +17,7 @@ import warnings
 from dataclasses import dataclass, field
 from typing import Any, Dict, List, Mapping, Optional, Union
 
+import numpy as np
 import pandas as pd
 
 from . import _native
@@ -24,7 +25,10 @@ from . import _native
 
 def _word(name: str, value: Any) -> str:
     """One option value as the command line spells it; floats in their shortest round-trip
-    form, so the Rust side reads back the very same double."""
+    form, so the Rust side reads back the very same double (a numpy array of no dimension
+    is its one value)."""
+    if isinstance(value, np.ndarray) and value.ndim == 0:
+        value = value.item()
     if isinstance(value, bool):
         raise ValueError(f"option `{name}` = {value!r}: a number or a word is expected")
     if isinstance(value, numbers.Integral):
@@ -44,14 +48,29 @@ def _flag(name: str) -> str:
 FLAGS = frozenset({"fixed_step"})
 
 
+def _listed(what: str, value: Any) -> Optional[list]:
+    """``value`` as a list if it is one, a tuple, a range or a one-dimensional numpy array
+    (``None`` for a single value); an array of more dimensions is refused, naming ``what``."""
+    if isinstance(value, (list, tuple, range)):
+        return list(value)
+    if isinstance(value, np.ndarray):
+        if value.ndim == 0:
+            return None
+        if value.ndim > 1:
+            raise ValueError(f"{what}: an array of shape {value.shape}: a list of values "
+                             "(one dimension) is expected")
+        return value.tolist()
+    return None
+
+
 def words(command: str, *positional: Optional[str], **options: Any) -> List[str]:
     """The words of ``friction-lab COMMAND [POSITIONAL] --option value ...``.
 
     ``params`` (a mapping of parameter names to values) becomes ``--set NAME=VALUE`` for each
     item and ``grid`` (a mapping of names to lists, or to range strings such as
     ``"log:0.01:1:9"``) becomes ``--grid NAME=...``; ``True`` is a bare flag (of
-    :data:`FLAGS` only), ``False`` and ``None`` leave the option out, and a list or tuple is
-    written comma-separated.
+    :data:`FLAGS` only), ``False`` and ``None`` leave the option out, and a list, tuple, range
+    or one-dimensional numpy array is written comma-separated.
     """
     argv = [command] + [p for p in positional if p is not None]
     for name, value in options.items():
@@ -62,15 +81,22 @@ def words(command: str, *positional: Optional[str], **options: Any) -> List[str]
                 argv += ["--set", f"{key}={_word(key, v)}"]
         elif name == "grid":
             for key, values in dict(value).items():
-                text = values if isinstance(values, str) else ",".join(_word(key, v) for v in values)
-                argv += ["--grid", f"{key}={text}"]
+                if isinstance(values, str):
+                    argv += ["--grid", f"{key}={values}"]
+                    continue
+                listed = _listed(f"option `grid`, axis `{key}`", values)
+                if listed is None:
+                    listed = [values]
+                if not listed:
+                    raise ValueError(f"option `grid`, axis `{key}`: no values")
+                argv += ["--grid", f"{key}=" + ",".join(_word(key, v) for v in listed)]
         elif value is True:
             if name not in FLAGS:
                 # Written bare, the next option would be read as its value.
                 raise ValueError(f"option `{name}` = True: a number or a word is expected")
             argv.append(_flag(name))
-        elif isinstance(value, (list, tuple)):
-            argv += [_flag(name), ",".join(_word(name, v) for v in value)]
+        elif (listed := _listed(f"option `{name}`", value)) is not None:
+            argv += [_flag(name), ",".join(_word(name, v) for v in listed)]
         else:
             argv += [_flag(name), _word(name, value)]
     return argv

@@ -128,3 +128,22 @@ def test_bad_options_raise_value_error_naming_the_field(cli, tmp_path):
     # The message names the dict, not the temporary file it was written to.
     assert str(e.value).startswith("system (the dict given, read as JSON): "), e.value
     assert "friction-lab-system-" not in str(e.value)
+
+
+def test_numpy_arrays_are_lists_and_their_scalars_values():
+    from friction_lab._command import words
+    # A one-dimensional array is written as a list, a value of no dimension as that value; the
+    # doubles cross exactly.
+    argv = words("stiffness", "belt", values=np.array([0.1, 1e-2 / 3]), t_end=np.array(2.0),
+                 grid={"k": np.arange(1, 3), "v_belt": 0.5})
+    assert argv == ["stiffness", "belt", "--values", "0.1,0.0033333333333333335",
+                    "--t-end", "2.0", "--grid", "k=1,2", "--grid", "v_belt=0.5"]
+    with pytest.raises(ValueError, match=r"option `values`: an array of shape \(2, 1\)"):
+        words("stiffness", "belt", values=np.zeros((2, 1)))
+    with pytest.raises(ValueError, match="option `grid`, axis `k`: no values"):
+        words("sweep", "belt", grid={"k": np.array([])})
+    # Bodies chosen by an array of indices: the same run as by a list.
+    by_array = fl.simulate("chain", model="CS", t_end=1.0, bodies=np.array([1, 3]))
+    by_list = fl.simulate("chain", model="CS", t_end=1.0, bodies=[1, 3])
+    assert by_array.bodies == by_list.bodies
+    assert np.array_equal(by_array.x, by_list.x)
