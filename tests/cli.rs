@@ -1647,6 +1647,59 @@ fn phenomena_judges_the_chosen_models_at_the_given_parameters() {
 }
 
 #[test]
+fn converge_and_work_precision_name_the_runs_that_failed() {
+    // LuGre's bristles are stiff: Dormand-Prince with fixed steps of 0.02 to 0.0025 s is
+    // unstable at every one, and no order line has anything to fit; the study still succeeds
+    // (a failed run is data) and says so, with the first failure.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("c");
+    let o = friction_lab(&[
+        "converge",
+        "belt",
+        "--model",
+        "lugre",
+        "--solvers",
+        "dopri5",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        text.contains(
+            "dopri5          4 of 4 runs failed (status in converge.csv); the first, at h = \
+             0.02: non-finite state at t = 0.02"
+        ),
+        "{text}"
+    );
+    let csv = std::fs::read_to_string(out.join("converge.csv")).unwrap();
+    assert_eq!(csv.matches("non-finite state").count(), 4, "{csv}");
+    // work-precision says it the same way: RK4 at its two coarsest steps.
+    let out = dir.path().join("w");
+    let o = friction_lab(&[
+        "work-precision",
+        "belt",
+        "--model",
+        "lugre",
+        "--solvers",
+        "rk4",
+        "--repeats",
+        "1",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        text.contains(
+            "rk4             2 of 4 runs failed (status in work-precision.csv); the first, at \
+             h = 0.01: non-finite state"
+        ),
+        "{text}"
+    );
+}
+
+#[test]
 fn a_study_of_the_chain_spans_its_horizon_of_predictability_by_default() {
     // simulate runs the chain over 50 s; a study over 10 s (docs/studies.md: over 50 s the
     // chaotic chain's fixed-step errors saturate and their fitted orders are noise).

@@ -1,7 +1,8 @@
 //! `converge`: observed orders of every solver against a reference.
 
 use super::{
-    distinct, per_solver_series, runs_table, slope_lines, study_error, study_file, CaseArgs, Target,
+    distinct, failures, per_solver_series, runs_table, slope_lines, study_error, study_file,
+    CaseArgs, Target,
 };
 use crate::artifacts::Made;
 use crate::commands::phenomena::with_threads;
@@ -105,16 +106,14 @@ pub fn add_convergence(
 pub fn converge(a: &ConvergeArgs) -> Result<Made, AppError> {
     a.case.make(|t, case| {
         let c = add_convergence(t, "converge", case, &a.solvers, &a.dt_list, &a.tol_list)?;
-        Ok(c.orders
-            .iter()
-            .map(|o| {
-                // No slope: say why (docs/studies.md, "Observed orders").
-                let slope = match o.fitted_slope {
-                    Some(s) => format!("{s:.3}"),
-                    None => format!("- ({})", o.unfitted().unwrap_or_default()),
-                };
-                format!("{:15} {:16} fitted slope {slope}", o.solver, o.measure)
-            })
-            .collect())
+        let orders = c.orders.iter().map(|o| {
+            // No slope: say why (docs/studies.md, "Observed orders").
+            let slope = match o.fitted_slope {
+                Some(s) => format!("{s:.3}"),
+                None => format!("- ({})", o.unfitted().unwrap_or_default()),
+            };
+            format!("{:15} {:16} fitted slope {slope}", o.solver, o.measure)
+        });
+        Ok(orders.chain(failures(&c.runs, "converge.csv")).collect())
     })
 }

@@ -13,6 +13,7 @@ use crate::output::{Cell, Table};
 use crate::plot::{Marker, Series, PALETTE};
 use crate::ranges;
 use clap::Args;
+use friction_models::params::show;
 use friction_models::ModelId;
 use integrators::Solver;
 use scenarios::studies::{Case, StudyCase, StudyRun, SystemCase};
@@ -402,6 +403,38 @@ fn slope_lines(series: &[Series], slopes: &[f64]) -> Vec<Series> {
             color: plotters::style::RGBColor(shade, shade, shade),
             width: 1,
             marker: Marker::None,
+        })
+        .collect()
+}
+
+/// One line for each method with failed runs of a study (an unstable step, a limit): how many,
+/// and the first's resolution and error (their status in the study's `csv`). Their errors are
+/// missing, which `converge`'s order lines count with round-off; this says why.
+pub fn failures(runs: &[StudyRun], csv: &str) -> Vec<String> {
+    let mut labels: Vec<&str> = Vec::new();
+    for r in runs {
+        if !labels.contains(&r.solver.as_str()) {
+            labels.push(&r.solver);
+        }
+    }
+    labels
+        .into_iter()
+        .filter_map(|label| {
+            let mine: Vec<&StudyRun> = runs.iter().filter(|r| r.solver == label).collect();
+            let failed: Vec<&StudyRun> = mine
+                .iter()
+                .copied()
+                .filter(|r| r.failure.is_some())
+                .collect();
+            let first = failed.first()?;
+            let at = if first.step == "fixed" { "h" } else { "tol" };
+            Some(format!(
+                "{label:15} {} of {} runs failed (status in {csv}); the first, at {at} = {}: {}",
+                failed.len(),
+                mine.len(),
+                show(first.resolution),
+                first.failure.as_deref().unwrap_or_default()
+            ))
         })
         .collect()
 }

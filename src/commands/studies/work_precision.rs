@@ -1,8 +1,8 @@
 //! `work-precision`: error against work and wall time for every solver and peer.
 
 use super::{
-    distinct, per_solver_series, resolution_cells, runs_table, study_error, study_file, CaseArgs,
-    Target,
+    distinct, failures, per_solver_series, resolution_cells, runs_table, study_error, study_file,
+    CaseArgs, Target,
 };
 use crate::artifacts::Made;
 use crate::commands::phenomena::with_threads;
@@ -117,7 +117,7 @@ pub fn work_precision(a: &WorkPrecisionArgs) -> Result<Made, AppError> {
             &a.dt_list,
             &a.tol_list,
             ranges::REPEATS.count(a.repeats)?,
-        )?;
-        Ok(Vec::new())
+        )
+        .map(|w| failures(&w.runs, "work-precision.csv"))
     })
 }
