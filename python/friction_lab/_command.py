@@ -87,7 +87,7 @@ def words(command: str, *positional: Optional[str], **options: Any) -> List[str]
                 listed = _listed(f"option `grid`, axis `{key}`", values)
                 if listed is None:
                     listed = [values]
-                if not listed:
+                elif not listed:
                     raise ValueError(f"option `grid`, axis `{key}`: no values")
                 argv += ["--grid", f"{key}=" + ",".join(_word(key, v) for v in listed)]
         elif value is True:

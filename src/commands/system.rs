@@ -44,21 +44,13 @@ pub const CHAIN_STUDY_T_END: f64 = 10.0;
 /// The default end time of a system: [`FILE_T_END`] for a system `file`, else (the chain)
 /// [`CHAIN_T_END`].
 pub fn default_t_end(file: Option<&Path>) -> f64 {
-    if file.is_some() {
-        FILE_T_END
-    } else {
-        CHAIN_T_END
-    }
+    file.map_or(CHAIN_T_END, |_| FILE_T_END)
 }
 
 /// The default end time of a solver study of a system: [`FILE_T_END`] for a system `file`,
 /// else (the chain) [`CHAIN_STUDY_T_END`].
 pub fn study_t_end(file: Option<&Path>) -> f64 {
-    if file.is_some() {
-        FILE_T_END
-    } else {
-        CHAIN_STUDY_T_END
-    }
+    file.map_or(CHAIN_STUDY_T_END, |_| FILE_T_END)
 }
 /// Most columns and rows of the space–time picture.
 const RASTER: (usize, usize) = (300, 200);

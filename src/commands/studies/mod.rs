@@ -411,25 +411,15 @@ fn slope_lines(series: &[Series], slopes: &[f64]) -> Vec<Series> {
 /// and the first's resolution and error (their status in the study's `csv`). Their errors are
 /// missing, which `converge`'s order lines count with round-off; this says why.
 pub fn failures(runs: &[StudyRun], csv: &str) -> Vec<String> {
-    let mut labels: Vec<&str> = Vec::new();
-    for r in runs {
-        if !labels.contains(&r.solver.as_str()) {
-            labels.push(&r.solver);
-        }
-    }
-    labels
-        .into_iter()
-        .filter_map(|label| {
-            let mine: Vec<&StudyRun> = runs.iter().filter(|r| r.solver == label).collect();
-            let failed: Vec<&StudyRun> = mine
-                .iter()
-                .copied()
-                .filter(|r| r.failure.is_some())
-                .collect();
+    // A study's runs come method by method (`Method::jobs`), each method once.
+    runs.chunk_by(|a, b| a.solver == b.solver)
+        .filter_map(|mine| {
+            let failed: Vec<&StudyRun> = mine.iter().filter(|r| r.failure.is_some()).collect();
             let first = failed.first()?;
             let at = if first.step == "fixed" { "h" } else { "tol" };
             Some(format!(
-                "{label:15} {} of {} runs failed (status in {csv}); the first, at {at} = {}: {}",
+                "{:15} {} of {} runs failed (status in {csv}); the first, at {at} = {}: {}",
+                first.solver,
                 failed.len(),
                 mine.len(),
                 show(first.resolution),
