@@ -3,6 +3,12 @@
 //! written into a temporary folder beside the target (`.friction-lab-XXXXXX`), which is then
 //! renamed into place; a target folder that friction-lab wrote before (it holds the marker
 //! file [`MARKER`]) is replaced, and any other non-empty folder is refused.
+//!
+//! A run killed while writing leaves its temporary folder behind; the next run into the same
+//! parent folder removes it. A run still writing holds a lock on its temporary folder's marker
+//! (an advisory file lock, which the system releases when the process ends), so runs that
+//! write side by side into one parent folder (a shell loop in the background, a cluster
+//! job array) never remove each other's folders.
 
 use crate::error::AppError;
 use crate::figure::{self, Drawn};
@@ -132,7 +138,8 @@ impl Artifacts {
             .prefix(TEMPORARY_PREFIX)
             .tempdir_in(&parent)
             .map_err(|e| refuse(format!("no temporary folder can be made beside it: {e}")))?;
-        write_file(&tmp.path().join(MARKER), MARKER_TEXT.as_bytes())?;
+        // Held until the folder is in place: the lock tells other runs it is not stale.
+        let _claim = claim(tmp.path())?;
         // Figures are drawn here, in parallel, in order; the first error (in file order) wins.
         let files: Vec<(PathBuf, Vec<u8>)> = self
             .files
@@ -225,8 +232,33 @@ fn check_target(root: &Path) -> Result<(), String> {
     }
 }
 
+/// Writes the marker into the temporary folder `tmp` and returns it open and locked: the
+/// marker is written under another name, locked, then renamed (the lock stays with the file),
+/// so no other run ever sees the marker unlocked while this one lives.
+fn claim(tmp: &Path) -> Result<std::fs::File, AppError> {
+    let (pending, marker) = (tmp.join(CLAIM), tmp.join(MARKER));
+    let io = |path: &Path| {
+        let path = path.to_path_buf();
+        move |source| AppError::Io { path, source }
+    };
+    let file = std::fs::File::create(&pending).map_err(io(&pending))?;
+    file.lock().map_err(io(&pending))?;
+    write_file(&pending, MARKER_TEXT.as_bytes())?;
+    std::fs::rename(&pending, &marker).map_err(io(&marker))?;
+    Ok(file)
+}
+
+/// The marker's name while [`claim`] writes and locks it.
+const CLAIM: &str = ".friction-lab-claim";
+
+/// Whether the temporary folder `dir` is one a friction-lab run left behind: it holds a marker
+/// that no living run has locked ([`claim`]).
+fn stale(dir: &Path) -> bool {
+    std::fs::File::open(dir.join(MARKER)).is_ok_and(|marker| marker.try_lock().is_ok())
+}
+
 /// Removes temporary folders of friction-lab runs that were killed before they finished
-/// (recognised by their prefix and their marker file).
+/// (recognised by their prefix and their unlocked marker file: [`stale`]).
 fn remove_stale_temporaries(parent: &Path) {
     let Ok(entries) = std::fs::read_dir(parent) else {
         return;
@@ -237,7 +269,7 @@ fn remove_stale_temporaries(parent: &Path) {
             .file_name()
             .to_str()
             .is_some_and(|n| n.starts_with(TEMPORARY_PREFIX) && n != MARKER);
-        if ours && path.is_dir() && path.join(MARKER).is_file() {
+        if ours && path.is_dir() && stale(&path) {
             let _ = std::fs::remove_dir_all(&path);
         }
     }

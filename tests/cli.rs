@@ -1094,6 +1094,19 @@ fn a_folder_is_written_whole_or_not_at_all() {
         "{:?}",
         temporaries(dir.path())
     );
+    // The temporary folder of a run still writing beside it (its marker locked, as a living
+    // run holds it) is left alone; once the lock is gone, it is stale and removed.
+    let writing = dir.path().join(".friction-lab-XyZ789");
+    std::fs::create_dir(&writing).unwrap();
+    let marker = writing.join(".friction-lab-output");
+    std::fs::write(&marker, "").unwrap();
+    let lock = std::fs::File::open(&marker).unwrap();
+    lock.lock().unwrap();
+    assert!(curve(&out).status.success());
+    assert_eq!(temporaries(dir.path()), [".friction-lab-XyZ789"]);
+    drop(lock);
+    assert!(curve(&out).status.success());
+    assert!(temporaries(dir.path()).is_empty());
     // A file where the folder should be: refused with exit 2.
     let file = dir.path().join("file");
     std::fs::write(&file, "x").unwrap();

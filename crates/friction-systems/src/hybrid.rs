@@ -346,7 +346,7 @@ impl OdeProblem for FrictionSystem<'_> {
         }
         let s = self.stick_interval(j, y);
         let f = self.other_force(c.body, t, y);
-        if index % 2 == 0 {
+        if index.is_multiple_of(2) {
             s.upper - f
         } else {
             f - s.lower

@@ -217,7 +217,7 @@ impl Dopri5 {
     /// h·λ ≈ h·‖k7 − k6‖/‖y1 − ysti‖.
     fn stiffness_test(&mut self, h: f64) {
         let accepted = self.stats.steps + 1;
-        if accepted % NSTIFF != 0 && self.iasti == 0 {
+        if !accepted.is_multiple_of(NSTIFF) && self.iasti == 0 {
             return;
         }
         let num: f64 = self.k[6]
