@@ -1895,6 +1895,32 @@ fn a_fixed_step_above_a_tenth_of_the_natural_period_gets_a_note() {
 }
 
 #[test]
+fn an_explicit_fixed_step_that_diverges_gets_a_note() {
+    // LuGre's bristles (σ0 = 1e5 N/m on 1 kg) decay at a rate of order σ0·|v|/F_c: RK4 at
+    // the default 1e-3 s is far beyond its stability limit and the state overflows within
+    // ten steps; at 1e-5 s it is stable.
+    let dir = tempfile::tempdir().unwrap();
+    let run = |name: &str, extra: &[&str]| {
+        let out = dir.path().join(name);
+        let mut args = vec!["simulate", "free-vibration", "--model", "lugre"];
+        args.extend(["--switching", "naive", "--t-end", "0.05"]);
+        args.extend(extra);
+        args.extend(["--out", out.to_str().unwrap()]);
+        friction_lab(&args)
+    };
+    let note = "the explicit method diverged with the fixed step h = 0.001 s";
+    for solver in [&["--solver", "rk4"][..], &["--fixed-step"][..]] {
+        let o = run("coarse", solver);
+        assert_eq!(o.status.code(), Some(1), "{solver:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains("non-finite state"), "{}", stderr(&o));
+        assert!(stderr(&o).contains(note), "{solver:?}: {}", stderr(&o));
+    }
+    let o = run("fine", &["--solver", "rk4", "--dt", "1e-5"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!stderr(&o).contains("diverged"), "{}", stderr(&o));
+}
+
+#[test]
 fn a_set_parameter_the_model_does_not_read_gets_a_note() {
     // CS reads F_c, F_s, C1, C2 and v_s: `sigma0` changes nothing, and `epsilon` only under
     // regularized switching. Accepted (one set may serve many models), but said.

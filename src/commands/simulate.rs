@@ -12,7 +12,7 @@ use crate::progress::Progress;
 use crate::ranges;
 use clap::Args;
 use friction_models::{ModelId, Parameters};
-use integrators::{Solver, StepControl};
+use integrators::{Solver, SolverError, StepControl};
 use scenarios::run::{EventEntry, Outcome};
 use scenarios::{Law, Limits, RunSpec, Scenario, SwitchingKind};
 use serde::Serialize;
@@ -402,6 +402,31 @@ pub fn coarse_step_warning(step: StepControl, period: Option<f64>) -> Option<Str
     })
 }
 
+/// The advice given when an explicit `solver` with a fixed step (RK4, or Dormand–Prince with
+/// `--fixed-step`; under any `switching` but time-stepping) ended in a non-finite state: a
+/// fixed step beyond the method's stability limit, where h times the problem's fastest decay
+/// rate |λ| passes about 2.8 for RK4 or 3.3 for Dormand–Prince on the negative real axis
+/// (Hairer & Wanner, Solving ODEs II, §IV.2), multiplies the state at every step.
+pub fn unstable_step_warning(
+    solver: Solver,
+    switching: SwitchingKind,
+    step: StepControl,
+    error: Option<&SolverError>,
+) -> Option<String> {
+    let explicit =
+        !solver.is_implicit() && !matches!(switching, SwitchingKind::TimeStepping { .. });
+    match (explicit, step, error) {
+        (true, StepControl::Fixed { h }, Some(SolverError::NonFinite { .. })) => Some(format!(
+            "the explicit method diverged with the fixed step h = {} s: it is unstable once h \
+             times the problem's fastest rate (a stiff bristle, spring or damper) passes its \
+             stability limit (about 2.8 for rk4, 3.3 for dopri5); a smaller --dt, an adaptive solver (dopri5) \
+             or an implicit one (bdf) avoids it",
+            ranges::show(h)
+        )),
+        _ => None,
+    }
+}
+
 /// The advice given for each `--set` of a friction parameter the run does not read
 /// ([`check_read`]: one `model` does not list, or `epsilon` outside regularized switching).
 /// Accepted, as a parameter file's are (a notebook may pass one set to many models), but said:
@@ -516,6 +541,12 @@ fn make_rig(args: &SimulateArgs, scenario: Scenario) -> Result<Made, AppError> {
             .map(|t| stiffness_warning(spec.solver.name(), t))
             .into_iter()
             .chain(coarse_step_warning(spec.step, outcome.time_scale))
+            .chain(unstable_step_warning(
+                spec.solver,
+                spec.switching,
+                spec.step,
+                outcome.error.as_ref(),
+            ))
             .chain(unread_warnings(
                 &args.model_options.params.set,
                 Some(model),

@@ -492,6 +492,12 @@ pub fn make(args: &SimulateArgs) -> Result<Made, AppError> {
                 step,
                 integrators::OdeProblem::time_scale(&run.problem),
             ))
+            .chain(crate::commands::simulate::unstable_step_warning(
+                args.solver.solver,
+                args.solver.switching(),
+                step,
+                run.error.as_ref(),
+            ))
             .chain(crate::commands::simulate::unread_warnings(
                 &args.model_options.params.set,
                 args.model,
