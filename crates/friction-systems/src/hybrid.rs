@@ -42,6 +42,12 @@ const BREAK_AWAY_NEGATIVE: EventSpec = EventSpec {
     crossing: Crossing::Falling,
 };
 
+/// How far ahead, in time scales of the problem ([`OdeProblem::time_scale`], its shortest
+/// natural period; seconds without one), [`FrictionSystem::mode_at`] looks at the other forces
+/// to break a tie: short against any change of a driver or profile, long against rounding of
+/// t.
+pub const TIE_LOOKAHEAD: f64 = 1e-6;
+
 /// A system with a treatment of v_rel = 0, ready for any solver.
 pub struct FrictionSystem<'a> {
     /// The system.
@@ -174,7 +180,12 @@ impl<'a> FrictionSystem<'a> {
     }
 
     /// The mode contact `j` is in at (t, y): by the sign of v_rel, and at v_rel = 0 by the
-    /// stick law.
+    /// stick law. At a tie, the other forces exactly on the bound of a stick interval of zero
+    /// width (a law continuous at rest, as LuGre's, with no force on the body: every block of
+    /// a chain at t = 0), the direction they are heading decides: the other forces
+    /// [`TIE_LOOKAHEAD`] time scales later, the state held (an anchor driven at a speed, a
+    /// force profile). Without it the tie read as sliding backwards, and a switch to sliding
+    /// forwards followed at t ≈ 1e-17.
     pub fn mode_at(&self, j: usize, t: f64, y: &[f64]) -> Mode {
         let c = &self.system.contacts[j];
         let v_rel = y[self.layout.v(c.body)] - c.surface_velocity;
@@ -183,7 +194,11 @@ impl<'a> FrictionSystem<'a> {
             Some(Direction::Negative) => SLIP_NEGATIVE,
             None => {
                 let s = self.stick_interval(j, y);
-                let f = self.other_force(c.body, t, y);
+                let mut f = self.other_force(c.body, t, y);
+                if s.upper == s.lower && f == s.upper {
+                    let later = t + TIE_LOOKAHEAD * self.time_scale().unwrap_or(1.0);
+                    f = self.other_force(c.body, later, y);
+                }
                 if s.upper > s.lower && s.contains(f) {
                     STICK
                 } else if f > s.upper {

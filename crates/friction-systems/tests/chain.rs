@@ -2,7 +2,7 @@
 
 use friction_models::{FrictionParams, ModelId, Variant};
 use friction_systems::chain::ChainParams;
-use friction_systems::{simulate, Run, Switching, System, STICK};
+use friction_systems::{simulate, FrictionSystem, Run, Switching, System, SLIP_POSITIVE, STICK};
 
 mod common;
 
@@ -156,4 +156,26 @@ fn regularised_and_naive_treatments_run_a_chain_too() {
     // its order at every crossing of v = 0 and the balance is off by a visible amount.
     assert!(residuals[0] < 1e-8, "regularised: {}", residuals[0]);
     assert!(residuals[1] > 1e-4, "naive: {}", residuals[1]);
+}
+
+#[test]
+fn a_lugre_chain_at_rest_starts_sliding_the_way_the_driver_pulls() {
+    // LuGre is continuous at rest: its stick interval has zero width, and at t = 0 every
+    // block is at rest with no force on it, exactly on that interval's bound. The driver
+    // moving forwards breaks the tie: each block starts in slip+, and no switch follows (the
+    // tie once read as slip-, with a switch of every block to slip+ at t ≈ 1e-17).
+    let c = ChainParams {
+        n_bodies: 3,
+        ..ChainParams::default()
+    };
+    let system = chain(ModelId::LuGre, &c);
+    let problem = FrictionSystem::new(&system, Switching::Event);
+    let y0 = problem.initial_state();
+    assert_eq!(problem.initial_modes(0.0, &y0), [SLIP_POSITIVE; 3]);
+    let run = switched(&system, Options::adaptive(0.0, 0.5, 1e-8, 1e-10));
+    assert!(
+        run.solution.events.iter().all(|e| e.t > 1e-3),
+        "{:?}",
+        run.solution.events.first()
+    );
 }
