@@ -3,7 +3,7 @@
 
 use friction_models::{FrictionParams, ModelId};
 use integrators::Solver;
-use scenarios::studies::{convergence, independence, Case, Reference};
+use scenarios::studies::{convergence, independence, Case, Reference, StudyCase};
 use scenarios::{Limits, Scenario, SwitchingKind};
 
 /// The block pushed by 15 N against viscous friction: smooth, with a closed form.
@@ -120,6 +120,38 @@ fn the_independence_verdict_is_negative_for_a_coarse_step_and_positive_for_a_fin
         (v.values[2] - exact).abs() <= 2.0 * v.remaining_error + 1e-12,
         "{v:?}"
     );
+}
+
+#[test]
+fn levels_outside_the_asymptotic_range_do_not_make_a_small_richardson_estimate() {
+    // GMS's stiff bristles in free vibration: RK4 diverges at 1e-3 (level 0 fails), ends at
+    // x = -1.9e70 m at 5e-4 and 86 m at 2.5e-4, and is accurate only at 1.25e-4. The
+    // differences then fall by 2e68 in one halving: an observed order of 226, whose Richardson
+    // estimate (1e-67 m) once called x independent. Taken at most at RK4's order 4, the
+    // estimate must bound the true error of the finest level, here against BDF at 1e-11.
+    let case = Case {
+        scenario: Scenario::FreeVibration,
+        law: ModelId::Gms.into(),
+        params: Scenario::FreeVibration.defaults(),
+        t_end: 10.0,
+        ..viscous_block()
+    };
+    let study = independence(&case, Solver::Rk4, 1e-3, 2.0, 4, 1e-6, &|| {}).unwrap();
+    assert_eq!(study.first_level, 1, "{:?}", study.failed);
+    let x = &study.outputs[0];
+    assert!(x.name.starts_with("final x"), "{x:?}");
+    assert!(x.order.is_some_and(|p| p > 100.0), "{x:?}");
+    let bdf = Solver::from_name("bdf").unwrap();
+    let tight = integrators::StepControl::Adaptive {
+        rtol: 1e-11,
+        atol: 1e-13,
+        h0: None,
+    };
+    let truth = case.measure(bdf, tight).unwrap().measures.final_state[0];
+    let error = (x.values.last().unwrap() - truth).abs();
+    assert!(error > 1e-10, "a true error to bound: {error:e}");
+    assert!(error <= x.remaining_error, "{error:e} against {x:?}");
+    assert!(!x.independent && !study.independent, "{x:?}");
 }
 
 #[test]
