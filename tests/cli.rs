@@ -250,6 +250,21 @@ fn bad_parameters_are_rejected_with_name_value_and_range() {
             &["reproduce", "--set", "mu_v=-0.5"],
             "parameter `mu_v` = -0.5 is out of range: allowed [0, inf) N*s/m",
         ),
+        // reproduce runs every rig and the chain at their own settings: a rig's or the
+        // chain's parameter is refused by name, a misspelt one as unknown.
+        (
+            &["reproduce", "--set", "F_ex=20"],
+            "parameter `F_ex` is not a friction parameter: reproduce runs every rig and the \
+             chain at their own (the paper's) settings",
+        ),
+        (
+            &["reproduce", "--set", "n_bodies=5"],
+            "parameter `n_bodies` is not a friction parameter",
+        ),
+        (
+            &["reproduce", "--set", "F_x=3"],
+            "unknown parameter `F_x`; known parameters: F_s, F_c",
+        ),
         (
             &["curve", "gms", "--set", "n_gms=17"],
             "parameter `n_gms` = 17 is out of range: allowed [1, 16]",

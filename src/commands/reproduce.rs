@@ -16,7 +16,7 @@ use crate::output::{Cell, Table};
 use crate::plot::{Corner, Marker, Plot, Series, PALETTE};
 use crate::ranges;
 use clap::Args;
-use friction_models::{FrictionParams, ModelId, Variant};
+use friction_models::{FrictionParams, ModelId, Parameters, Variant};
 use friction_systems::chain::ChainParams;
 use integrators::Solver;
 use integrators::StepControl;
@@ -543,11 +543,27 @@ fn report(reproduced: &[Reproduced], header: &str) -> String {
 pub fn run(args: &ReproduceArgs) -> Result<(), AppError> {
     let start = Instant::now();
     let threads = ranges::threads(args.threads)?;
-    let params = args.params.resolve()?;
-    let (friction, scenario) = args.params.resolve_for(Some(Scenario::PaperBlock))?;
+    // Friction parameters only: every rig of the report runs at its own defaults.
+    let rig_or_chain = |name: &str| {
+        scenarios::ScenarioParams::spec(name).is_some()
+            || friction_systems::chain::CHAIN_PARAMETERS
+                .iter()
+                .any(|p| p.0 == name)
+    };
+    let params = args.params.resolve_with(&[], |name, _| {
+        if !rig_or_chain(name) {
+            return Ok(false);
+        }
+        Err(AppError::Usage(format!(
+            "parameter `{name}` is not a friction parameter: reproduce runs every rig and \
+             the chain at their own (the paper's) settings, and takes only the friction \
+             parameters (`friction-lab models` lists them); set `{name}` with simulate, \
+             the studies or sweep"
+        )))
+    })?;
     // The chain studies time-step the chain: parameters at which its law cannot be
     // time-stepped are refused before anything runs, not after the figures and Table 2.
-    friction_systems::moreau_jean::check_contacts(&chain_case(1, &friction, 1.0)?.system)?;
+    friction_systems::moreau_jean::check_contacts(&chain_case(1, &params, 1.0)?.system)?;
     let mut files = Artifacts::default();
     let mut reproduced = Vec::new();
     let mut md = String::new();
@@ -610,7 +626,7 @@ pub fn run(args: &ReproduceArgs) -> Result<(), AppError> {
         format!("# Figures 2-7: the paper against its own equations\n\n{header}\n{md}");
     files.add(args.out.join("reproduction.md"), reproduction.into_bytes());
     files.add_json(args.out.join("figures.json"), &reproduced)?;
-    let rows = experiment(&friction, &scenario).map_err(AppError::from)?;
+    let rows = experiment(&params, &Scenario::PaperBlock.defaults()).map_err(AppError::from)?;
     let experiment_md = add_experiment(&mut files, &args.out, &rows)?;
     files.add(
         args.out.join("paper-experiment.md"),
@@ -636,9 +652,9 @@ pub fn run(args: &ReproduceArgs) -> Result<(), AppError> {
         paper's 42 claims disagree with the simulations. The protocols are described in \
         docs/phenomena.md.\n"
     );
-    report_md += &add_studies(&mut files, &args.out, &friction, threads)?;
+    report_md += &add_studies(&mut files, &args.out, &params, threads)?;
     report_md +=
-        &crate::commands::stick_slip::add_stick_slip(&mut files, &args.out, &friction, threads)?;
+        &crate::commands::stick_slip::add_stick_slip(&mut files, &args.out, &params, threads)?;
     files.add(args.out.join("report.md"), report_md.into_bytes());
     let written = with_threads(threads, || files.write(&args.out))??;
     println!(
