@@ -1589,6 +1589,57 @@ fn sweep_runs_a_grid_in_parallel_measures_the_settled_cycle_and_rejects_bad_axes
 }
 
 #[test]
+fn the_parts_of_a_sweep_by_point_range_are_its_rows_in_order() {
+    // Spread over machines or Dask tasks: parts 0:2, 2:5 and 5:6 of a 6-point grid give the
+    // whole sweep's rows, bit for bit; a range outside the grid is refused with its bounds.
+    let dir = tempfile::tempdir().unwrap();
+    let sweep = |name: &str, range: Option<&str>| {
+        let out = dir.path().join(name);
+        let mut args = vec!["sweep", "belt", "--model", "CS", "--t-end", "10"];
+        args.extend(["--grid", "v_belt=0.1,0.2,0.3", "--grid", "k=50,100"]);
+        if let Some(range) = range {
+            args.extend(["--point-range", range]);
+        }
+        args.extend(["--out", out.to_str().unwrap()]);
+        let o = friction_lab(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let csv = std::fs::read_to_string(out.join("sweep.csv")).unwrap();
+        (csv, String::from_utf8_lossy(&o.stdout).into_owned())
+    };
+    let (whole, said) = sweep("whole", None);
+    assert!(said.contains("6 points, 0 failed"), "{said}");
+    let mut lines = whole.lines();
+    let header = lines.next().unwrap();
+    let mut parts = Vec::new();
+    for (name, range, note) in [
+        ("a", "0:2", "2 points, 0 failed"),
+        ("b", "2:5", "3 points, 0 failed"),
+        ("c", "5:6", "1 point, 0 failed"),
+    ] {
+        let (csv, said) = sweep(name, Some(range));
+        assert!(said.contains(note), "{range}: {said}");
+        let mut rows = csv.lines();
+        assert_eq!(rows.next(), Some(header));
+        parts.extend(rows.map(str::to_string));
+    }
+    assert_eq!(parts, lines.collect::<Vec<_>>());
+    let e = rejected(&[
+        "sweep",
+        "belt",
+        "--model",
+        "CS",
+        "--grid",
+        "v_belt=0.1,0.2",
+        "--point-range",
+        "1:3",
+    ]);
+    assert!(
+        e.contains("allowed START:END with 0 <= START <= END <= 2 (the grid's points)"),
+        "{e}"
+    );
+}
+
+#[test]
 fn phenomena_keeps_the_decided_cells_when_a_protocol_run_fails() {
     // Ten steps are too few for any protocol run: every cell fails in the solver, and the
     // table still says so, cell by cell (before: exit 2, as for bad input, and no file).

@@ -413,7 +413,11 @@ pub fn make(args: &SweepArgs) -> Result<Made, AppError> {
     let failed = results.iter().filter(|r| r.error.is_some()).count();
     Ok(Made {
         files,
-        notes: vec![format!("{} points, {failed} failed", results.len())],
+        notes: vec![format!(
+            "{} point{}, {failed} failed",
+            results.len(),
+            if results.len() == 1 { "" } else { "s" }
+        )],
         warnings: crate::commands::simulate::unread_warnings(
             &args.run.model_options.params.set,
             args.run.model,
