@@ -1382,6 +1382,10 @@ fn a_study_bounds_each_run_and_draws_the_failed_ones() {
         svg.contains("rk4: 3 failed (at the top)"),
         "the failed runs are named"
     );
+    // A step cap is not a divergence: no word of stability.
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(text.contains("3 of 4 runs failed"), "{text}");
+    assert!(!text.contains("diverged"), "{text}");
 }
 
 #[test]
@@ -1753,6 +1757,11 @@ fn converge_and_work_precision_name_the_runs_that_failed() {
     );
     let csv = std::fs::read_to_string(out.join("converge.csv")).unwrap();
     assert_eq!(csv.matches("non-finite state").count(), 4, "{csv}");
+    // Why, once: the fixed steps are past the explicit method's stability limit.
+    let why = "an explicit method diverged with a fixed step: it is unstable once h times the \
+               problem's fastest rate";
+    assert_eq!(text.matches(why).count(), 1, "{text}");
+    assert!(text.contains("a smaller step in --dt-list"), "{text}");
     // work-precision says it the same way: RK4 at its two coarsest steps.
     let out = dir.path().join("w");
     let o = friction_lab(&[
@@ -1776,6 +1785,7 @@ fn converge_and_work_precision_name_the_runs_that_failed() {
         ),
         "{text}"
     );
+    assert!(text.contains(why), "{text}");
 }
 
 #[test]
@@ -1904,13 +1914,19 @@ fn an_independence_study_judges_the_levels_that_finished_and_exits_1() {
             out.to_str().unwrap(),
         ]);
         assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
-        (out, stderr(&o))
+        let said = String::from_utf8_lossy(&o.stdout).into_owned();
+        (out, said + &stderr(&o))
     };
     // Four levels: 1 to 3 are judged.
     let (out, text) = study("i", "4");
     assert!(
         text.contains("1 of 4 levels of the independence study failed, the first at level 0 (5e-1): non-finite state")
             && text.contains("levels 1 to 3 are judged"),
+        "{text}"
+    );
+    assert!(
+        text.contains("an explicit method diverged with a fixed step")
+            && text.contains("a smaller --start"),
         "{text}"
     );
     let csv = std::fs::read_to_string(out.join("independence.csv")).unwrap();

@@ -403,10 +403,8 @@ pub fn coarse_step_warning(step: StepControl, period: Option<f64>) -> Option<Str
 }
 
 /// The advice given when an explicit `solver` with a fixed step (RK4, or Dormand–Prince with
-/// `--fixed-step`; under any `switching` but time-stepping) ended in a non-finite state: a
-/// fixed step beyond the method's stability limit, where h times the problem's fastest decay
-/// rate |λ| passes about 2.8 for RK4 or 3.3 for Dormand–Prince on the negative real axis
-/// (Hairer & Wanner, Solving ODEs II, §IV.2), multiplies the state at every step.
+/// `--fixed-step`; under any `switching` but time-stepping) ended past its stability limit
+/// ([`scenarios::run::diverged`]).
 pub fn unstable_step_warning(
     solver: Solver,
     switching: SwitchingKind,
@@ -415,16 +413,26 @@ pub fn unstable_step_warning(
 ) -> Option<String> {
     let explicit =
         !solver.is_implicit() && !matches!(switching, SwitchingKind::TimeStepping { .. });
-    match (explicit, step, error) {
-        (true, StepControl::Fixed { h }, Some(SolverError::NonFinite { .. })) => Some(format!(
-            "the explicit method diverged with the fixed step h = {} s: it is unstable once h \
-             times the problem's fastest rate (a stiff bristle, spring or damper) passes its \
-             stability limit (about 2.8 for rk4, 3.3 for dopri5); a smaller --dt, an adaptive solver (dopri5) \
-             or an implicit one (bdf) avoids it",
-            ranges::show(h)
-        )),
-        _ => None,
-    }
+    let StepControl::Fixed { h } = step else {
+        return None;
+    };
+    scenarios::run::diverged(explicit, step, error).then(|| {
+        format!(
+            "the explicit method diverged with the fixed step h = {} s: {}",
+            ranges::show(h),
+            unstable_step("--dt")
+        )
+    })
+}
+
+/// Why an explicit method with a fixed step diverges, and what avoids it: a smaller step in
+/// `option`, or another solver.
+pub fn unstable_step(option: &str) -> String {
+    format!(
+        "it is unstable once h times the problem's fastest rate (a stiff bristle, spring or \
+         damper) passes its stability limit (about 2.8 for rk4, 3.3 for dopri5); a smaller \
+         {option}, an adaptive solver (dopri5) or an implicit one (bdf) avoids it"
+    )
 }
 
 /// The advice given for each `--set` of a friction parameter the run does not read

@@ -242,6 +242,7 @@ pub fn run_cases(
                 measures: o.measures,
                 stats: o.stats,
                 work: o.stats.work(dims[case]),
+                diverged: crate::run::diverged(!method.is_implicit(), step, o.error.as_ref()),
                 failure: o.error.map(|e| e.to_string()),
                 wall_time_s: o.wall_time_s,
             })))

@@ -38,6 +38,17 @@ pub enum SwitchingKind {
 /// θ of time-stepping unless `--theta` says otherwise: the trapezoidal rule.
 pub const DEFAULT_THETA: f64 = 0.5;
 
+/// Whether a run ended as an explicit method (`explicit`: not implicit, not time-stepped) with
+/// a fixed step ends past its stability limit: in a non-finite state. There h times the
+/// problem's fastest decay rate |λ| exceeds the method's bound on the negative real axis, about
+/// 2.8 for RK4 and 3.3 for Dormand–Prince (Hairer & Wanner, Solving ODEs II, §IV.2), and every
+/// step multiplies the state.
+pub fn diverged(explicit: bool, step: StepControl, error: Option<&SolverError>) -> bool {
+    explicit
+        && matches!(step, StepControl::Fixed { .. })
+        && matches!(error, Some(SolverError::NonFinite { .. }))
+}
+
 impl SwitchingKind {
     /// Every treatment (time-stepping at the default θ).
     pub const ALL: [SwitchingKind; 4] = [

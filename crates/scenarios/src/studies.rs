@@ -240,6 +240,10 @@ pub struct StudyRun {
     pub work: usize,
     /// The solver's error, if it failed.
     pub failure: Option<String>,
+    /// Whether it failed as an explicit method with a fixed step past its stability limit
+    /// ([`crate::run::diverged`]).
+    #[serde(skip)]
+    pub diverged: bool,
     /// Wall time of the run, s: the median over it and its timing repeats (not
     /// deterministic: kept out of the study's main files).
     #[serde(skip)]
@@ -530,6 +534,10 @@ pub struct FailedLevel {
     pub resolution: f64,
     /// The solver's error.
     pub failure: String,
+    /// Whether it failed as an explicit method with a fixed step past its stability limit
+    /// ([`crate::run::diverged`]).
+    #[serde(skip)]
+    pub diverged: bool,
 }
 
 /// The longest unbroken run of `true` in `finished`, the later (finer) one on a tie.
@@ -606,6 +614,7 @@ pub fn independence(
                 level,
                 resolution: resolutions[level],
                 failure,
+                diverged: r.diverged,
             })
         })
         .collect();

@@ -4,8 +4,8 @@
 //! cannot be reproduced, go to a separate `*-timing.csv`).
 
 use crate::artifacts::{Artifacts, Made};
-use crate::commands::simulate::unread_warnings;
 use crate::commands::simulate::Target as Problem;
+use crate::commands::simulate::{unread_warnings, unstable_step};
 use crate::commands::system::{chosen_bodies, study_t_end, system_of};
 use crate::error::AppError;
 use crate::options::{LimitArgs, ModelOptions};
@@ -409,8 +409,15 @@ fn slope_lines(series: &[Series], slopes: &[f64]) -> Vec<Series> {
 
 /// One line for each method with failed runs of a study (an unstable step, a limit): how many,
 /// and the first's resolution and error (their status in the study's `csv`). Their errors are
-/// missing, which `converge`'s order lines count with round-off; this says why.
+/// missing, which `converge`'s order lines count with round-off; this says why. A last line
+/// says why, when a run of an explicit method diverged with its fixed step.
 pub fn failures(runs: &[StudyRun], csv: &str) -> Vec<String> {
+    let diverged = runs.iter().any(|r| r.diverged).then(|| {
+        format!(
+            "an explicit method diverged with a fixed step: {}",
+            unstable_step("step in --dt-list")
+        )
+    });
     // A study's runs come method by method (`Method::jobs`), each method once.
     runs.chunk_by(|a, b| a.solver == b.solver)
         .filter_map(|mine| {
@@ -426,5 +433,6 @@ pub fn failures(runs: &[StudyRun], csv: &str) -> Vec<String> {
                 first.failure.as_deref().unwrap_or_default()
             ))
         })
+        .chain(diverged)
         .collect()
 }
