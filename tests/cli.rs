@@ -1727,6 +1727,34 @@ fn phenomena_judges_the_chosen_models_at_the_given_parameters() {
         let f = rising["evidence"][key].as_f64().unwrap();
         assert!((f - 6.0).abs() < 1e-6, "{key} = {f}");
     }
+    // A --set read by neither the protocols nor a judged model is accepted, and said; F_s,
+    // which neither model reads either, scales the ramps, and is not.
+    let out = dir.path().join("unread");
+    let mut args = vec!["phenomena", "--model", "viscous", "--model", "coulomb"];
+    args.extend([
+        "--set",
+        "sigma0=1e4",
+        "--set",
+        "F_s=8",
+        "--set",
+        "epsilon=0.1",
+    ]);
+    args.extend(["--out", out.to_str().unwrap()]);
+    let o = friction_lab(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        e.contains(
+            "note: option `set`: parameter `sigma0` is read by none of the judged models: every \
+             value would give the same table"
+        ),
+        "{e}"
+    );
+    assert!(
+        e.contains("parameter `epsilon` is not read by the protocols, which switch at v = 0"),
+        "{e}"
+    );
+    assert!(!e.contains("`F_s`"), "{e}");
 }
 
 #[test]

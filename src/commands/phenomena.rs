@@ -4,12 +4,15 @@
 
 use crate::artifacts::Artifacts;
 use crate::error::AppError;
-use crate::options::{LimitArgs, ParamOptions};
+use crate::options::{check_read, LimitArgs, ParamOptions};
 use crate::ranges;
 use clap::Args;
 use friction_models::{FrictionParams, ModelId};
 use integrators::{Solver, StepControl};
-use scenarios::phenomena::{table, thresholds, Cell, Phenomenon, Protocol, Row};
+use scenarios::phenomena::{
+    table, thresholds, Cell, Phenomenon, Protocol, Row, PROTOCOL_PARAMETERS,
+};
+use scenarios::SwitchingKind;
 use serde_json::{json, Map, Value};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -429,7 +432,36 @@ pub fn run(args: &PhenomenaArgs) -> Result<(), AppError> {
         args.out.display(),
         start.elapsed().as_secs_f64()
     );
+    for warning in unread_by_all(&p.set, &models) {
+        eprintln!("note: {warning}");
+    }
     check_decided(&rows)
+}
+
+/// The advice given for each `--set` of a friction parameter that neither the protocols
+/// ([`PROTOCOL_PARAMETERS`]) nor any of the judged `models` reads under the protocols' event
+/// switching ([`check_read`]; `epsilon` never): accepted, as `simulate` accepts it, but
+/// said: every value would give the same table.
+fn unread_by_all(set: &[String], models: &[ModelId]) -> Vec<String> {
+    let unread = |name: &str, m: ModelId| check_read("set", name, Some(m), SwitchingKind::Event);
+    set.iter()
+        .filter_map(|s| s.split_once('=').map(|(name, _)| name.trim()))
+        .filter(|name| !PROTOCOL_PARAMETERS.contains(name))
+        .filter(|name| models.iter().all(|&m| unread(name, m).is_err()))
+        .map(|name| match models {
+            _ if name == "epsilon" => "option `set`: parameter `epsilon` is not read by the \
+                 protocols, which switch at v = 0 by events: every value would give the same \
+                 table"
+                .to_string(),
+            [m] => unread(name, *m)
+                .expect_err("unread by every model")
+                .to_string(),
+            _ => format!(
+                "option `set`: parameter `{name}` is read by none of the judged models: every \
+                 value would give the same table"
+            ),
+        })
+        .collect()
 }
 
 #[cfg(test)]

@@ -153,6 +153,12 @@ pub mod thresholds {
     pub const BREAKAWAY_MIN: f64 = 0.01;
 }
 
+/// The friction parameters the protocols read themselves, whatever model they judge: F_s and
+/// F_c scale the force ramps (to max(F_s, F_c)) and the break-away and pre-sliding measures,
+/// v_s the velocities of the Stribeck sweep, of the velocity oscillation and of gross sliding.
+/// A `--set` of one of them changes the table even for a model that does not read it.
+pub const PROTOCOL_PARAMETERS: [&str; 3] = ["F_s", "F_c", "v_s"];
+
 /// How the protocols integrate.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Protocol {

@@ -1,7 +1,7 @@
 //! The phenomena protocols: textbook answers on models whose behaviour is beyond doubt, and
 //! the same table from two different solvers.
 
-use friction_models::{FrictionParams, ModelId};
+use friction_models::{FrictionParams, ModelId, Parameters};
 use integrators::{Solver, StepControl};
 use scenarios::phenomena::{decide, parameters_for, region, table, Phenomenon, Protocol};
 use scenarios::Law;
@@ -373,4 +373,36 @@ fn a_verdict_over_the_grid_says_where_it_flips() {
     )
     .unwrap();
     assert_eq!((r.points, r.fraction, r.flips.len()), (1, 1.0, 0));
+}
+
+#[test]
+fn the_protocols_read_f_s_f_c_and_v_s_whatever_the_model() {
+    // The viscous model reads mu_v only. A change of a parameter the protocols read
+    // themselves (PROTOCOL_PARAMETERS: ramp levels, sweep velocities) still changes some
+    // evidence of its row; a change of one neither reads changes none.
+    use scenarios::phenomena::PROTOCOL_PARAMETERS;
+    let row = |p: &FrictionParams| -> Vec<_> {
+        Phenomenon::ALL
+            .iter()
+            .map(|&ph| decide(ph, &Law::from(ModelId::Viscous), p, Protocol::default()).unwrap())
+            .map(|c| c.evidence)
+            .collect()
+    };
+    let paper = FrictionParams::paper();
+    let base = row(&paper);
+    for name in PROTOCOL_PARAMETERS {
+        let mut p = paper;
+        let value = match name {
+            "F_c" => 10.0,
+            "F_s" => 9.0,
+            _ => 0.3,
+        };
+        p.set(name, value).unwrap();
+        assert_ne!(row(&p), base, "{name} = {value} changed no evidence");
+    }
+    for (name, value) in [("sigma0", 1e4), ("C1", 0.5)] {
+        let mut p = paper;
+        p.set(name, value).unwrap();
+        assert_eq!(row(&p), base, "{name} = {value} changed the evidence");
+    }
 }
