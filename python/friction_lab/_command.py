@@ -63,6 +63,23 @@ def _listed(what: str, value: Any) -> Optional[list]:
     return None
 
 
+def _mapping(name: str, value: Any, example: str) -> Mapping:
+    """``value`` as a mapping of names to values: a dict, a pandas Series of named values, or
+    pairs (what ``dict`` takes); anything else is refused, naming the option, an ``example``
+    and what it got."""
+    if isinstance(value, Mapping):
+        return value
+    if isinstance(value, pd.Series):
+        return value.to_dict()
+    try:
+        if not isinstance(value, (str, bytes)):
+            return dict(value)
+    except (TypeError, ValueError):
+        pass
+    raise ValueError(f"option `{name}`: a mapping of parameter names to values is expected, "
+                     f"e.g. {example}, not {type(value).__name__} {value!r}")
+
+
 def words(command: str, *positional: Optional[str], **options: Any) -> List[str]:
     """The words of ``friction-lab COMMAND [POSITIONAL] --option value ...``.
 
@@ -77,10 +94,10 @@ def words(command: str, *positional: Optional[str], **options: Any) -> List[str]
         if value is None or value is False:
             continue
         if name == "params":
-            for key, v in dict(value).items():
+            for key, v in _mapping(name, value, "{'v_belt': 0.1}").items():
                 argv += ["--set", f"{key}={_word(key, v)}"]
         elif name == "grid":
-            for key, values in dict(value).items():
+            for key, values in _mapping(name, value, "{'v_belt': [0.1, 0.2]}").items():
                 if isinstance(values, str):
                     argv += ["--grid", f"{key}={values}"]
                     continue

@@ -128,6 +128,16 @@ def test_bad_options_raise_value_error_naming_the_field(cli, tmp_path):
     # The message names the dict, not the temporary file it was written to.
     assert str(e.value).startswith("system (the dict given, read as JSON): "), e.value
     assert "friction-lab-system-" not in str(e.value)
+    # params and grid are mappings (or pairs, or a Series); anything else is named, not left
+    # to dict()'s "'int' object is not iterable".
+    for bad in (1, [1, 2], "F_s=7", True):
+        with pytest.raises(ValueError, match="option `params`: a mapping of parameter names"):
+            fl.simulate("belt", model="CVS", params=bad)
+    with pytest.raises(ValueError, match=r"option `grid`: .* e\.g\. \{'v_belt': \[0\.1, 0\.2\]\}"):
+        fl.sweep("belt", model="CVS", grid=0.1)
+    pairs = fl.simulate("belt", model="CVS", params=[("v_belt", 0.2)], t_end=1.0)
+    series = fl.simulate("belt", model="CVS", params=pd.Series({"v_belt": 0.2}), t_end=1.0)
+    assert np.array_equal(pairs.v, series.v)
 
 
 def test_numpy_arrays_are_lists_and_their_scalars_values():
