@@ -448,12 +448,12 @@ fn unread_by_all(set: &[String], models: &[ModelId]) -> Vec<String> {
         .filter_map(|s| s.split_once('=').map(|(name, _)| name.trim()))
         .filter(|name| !PROTOCOL_PARAMETERS.contains(name))
         .filter(|name| models.iter().all(|&m| unread(name, m).is_err()))
-        .map(|name| match models {
-            _ if name == "epsilon" => "option `set`: parameter `epsilon` is not read by the \
+        .map(|name| match (name, models) {
+            ("epsilon", _) => "option `set`: parameter `epsilon` is not read by the \
                  protocols, which switch at v = 0 by events: every value would give the same \
                  table"
                 .to_string(),
-            [m] => unread(name, *m)
+            (_, [m]) => unread(name, *m)
                 .expect_err("unread by every model")
                 .to_string(),
             _ => format!(

@@ -411,8 +411,7 @@ pub fn unstable_step_warning(
     step: StepControl,
     error: Option<&SolverError>,
 ) -> Option<String> {
-    let explicit =
-        !solver.is_implicit() && !matches!(switching, SwitchingKind::TimeStepping { .. });
+    let explicit = !solver.is_implicit() && !switching.is_time_stepping();
     let StepControl::Fixed { h } = step else {
         return None;
     };
@@ -423,6 +422,15 @@ pub fn unstable_step_warning(
             unstable_step("--dt")
         )
     })
+}
+
+/// The line a study prints when a run of an explicit method diverged with its fixed step:
+/// why, and what avoids it ([`unstable_step`] with the study's `option` for its steps).
+pub fn diverged_line(option: &str) -> String {
+    format!(
+        "an explicit method diverged with a fixed step: {}",
+        unstable_step(option)
+    )
 }
 
 /// Why an explicit method with a fixed step diverges, and what avoids it: a smaller step in

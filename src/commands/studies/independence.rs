@@ -4,7 +4,7 @@
 use super::{resolution_cells, study_error, study_file, CaseArgs, Refinement, Target};
 use crate::artifacts::Made;
 use crate::commands::phenomena::with_threads;
-use crate::commands::simulate::unstable_step;
+use crate::commands::simulate::diverged_line;
 use crate::error::AppError;
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Marker, Plot, Series, PALETTE};
@@ -239,10 +239,7 @@ pub fn independence(a: &IndependenceArgs) -> Result<Made, AppError> {
             )
         }));
         if s.failed.iter().any(|f| f.diverged) {
-            notes.push(format!(
-                "an explicit method diverged with a fixed step: {}",
-                unstable_step("--start")
-            ));
+            notes.push(diverged_line("--start"));
         }
         notes.push(format!("verdict: {verdict} the step size"));
         Ok(notes)

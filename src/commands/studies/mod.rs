@@ -5,7 +5,7 @@
 
 use crate::artifacts::{Artifacts, Made};
 use crate::commands::simulate::Target as Problem;
-use crate::commands::simulate::{unread_warnings, unstable_step};
+use crate::commands::simulate::{diverged_line, unread_warnings};
 use crate::commands::system::{chosen_bodies, study_t_end, system_of};
 use crate::error::AppError;
 use crate::options::{LimitArgs, ModelOptions};
@@ -412,12 +412,10 @@ fn slope_lines(series: &[Series], slopes: &[f64]) -> Vec<Series> {
 /// missing, which `converge`'s order lines count with round-off; this says why. A last line
 /// says why, when a run of an explicit method diverged with its fixed step.
 pub fn failures(runs: &[StudyRun], csv: &str) -> Vec<String> {
-    let diverged = runs.iter().any(|r| r.diverged).then(|| {
-        format!(
-            "an explicit method diverged with a fixed step: {}",
-            unstable_step("step in --dt-list")
-        )
-    });
+    let diverged = runs
+        .iter()
+        .any(|r| r.diverged)
+        .then(|| diverged_line("step in --dt-list"));
     // A study's runs come method by method (`Method::jobs`), each method once.
     runs.chunk_by(|a, b| a.solver == b.solver)
         .filter_map(|mine| {
