@@ -147,9 +147,20 @@ pub fn parse_assignment(text: &str) -> Result<(&str, f64), AppError> {
         ))
     })?;
     let (name, value) = (name.trim(), value.trim());
-    let number = value
-        .parse::<f64>()
-        .map_err(|_| AppError::Usage(format!("--set {name}={value}: `{value}` is not a number")))?;
+    let number = value.parse::<f64>().map_err(|_| {
+        // The two misreadings seen: several parameters in one --set, and a list of values.
+        let hint = if value.contains('=') {
+            format!(" (one parameter per --set: --set {name}=… --set …)")
+        } else if value.contains(',') {
+            " (one value per --set: a list of values is a sweep, `sweep --grid NAME=a,b`)"
+                .to_string()
+        } else {
+            String::new()
+        };
+        AppError::Usage(format!(
+            "--set {name}={value}: `{value}` is not a number{hint}"
+        ))
+    })?;
     Ok((name, number))
 }
 

@@ -232,6 +232,14 @@ fn bad_parameters_are_rejected_with_name_value_and_range() {
             "`abc` is not a number",
         ),
         (
+            &["curve", "SD", "--set", "F_s=7,F_c=5"],
+            "`7,F_c=5` is not a number (one parameter per --set: --set F_s=… --set …)",
+        ),
+        (
+            &["curve", "SD", "--set", "F_s=7,8"],
+            "`7,8` is not a number (one value per --set: a list of values is a sweep",
+        ),
+        (
             &["curve", "SD", "--param-set", "steel"],
             "unknown parameter set `steel`; known sets: paper, lugre-1995",
         ),
