@@ -147,8 +147,15 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, plots: &[Plot]) -> Res
             .x_label_area_size(50)
             .y_label_area_size(70);
         if plot.log {
+            let axis = |a: f64, b: f64| {
+                let ticks = log_ticks(a, b);
+                (a..b)
+                    .log_scale()
+                    .with_key_points(ticks.clone())
+                    .with_light_points(ticks)
+            };
             let chart = builder
-                .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
+                .build_cartesian_2d(axis(x0, x1), axis(y0, y1))
                 .map_err(err)?;
             draw_on(chart, plot)?;
         } else {
@@ -158,6 +165,48 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, plots: &[Plot]) -> Res
     }
     root.present().map_err(err)
 }
+
+/// The ticks of a log axis over [a, b]: the powers of ten in it (every second, third… when
+/// there are more than [`MAX_TICKS`]), or, when fewer than three, the 1-2-5 multiples of the
+/// powers of ten, or all nine, whichever first gives three; the two ends of a range narrower
+/// than that. (plotters' own ticks start at the first power of ten, and left a range from
+/// 2e3 to 4e4 labelled only at 1e4, 2e4 and 3e4.)
+fn log_ticks(a: f64, b: f64) -> Vec<f64> {
+    let (k0, k1) = (a.log10().floor() as i32, b.log10().ceil() as i32);
+    let within = |mantissas: &[f64]| -> Vec<f64> {
+        (k0..=k1)
+            // m/10^−k below one: the nearest double to m·10^k, as the labels print it.
+            .flat_map(|k| {
+                mantissas.iter().map(move |m| match k {
+                    0.. => m * 10f64.powi(k),
+                    _ => m / 10f64.powi(-k),
+                })
+            })
+            .filter(|v| (a..=b).contains(v))
+            .collect()
+    };
+    let decades = within(&[1.0]);
+    if decades.len() >= 3 {
+        let every = decades.len().div_ceil(MAX_TICKS) as i32;
+        return decades
+            .into_iter()
+            .filter(|v| (v.log10().round() as i32).rem_euclid(every) == 0)
+            .collect();
+    }
+    for mantissas in [
+        &[1.0, 2.0, 5.0][..],
+        &[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0],
+    ] {
+        let ticks = within(mantissas);
+        if ticks.len() >= 3 {
+            return ticks;
+        }
+    }
+    vec![a, b]
+}
+
+/// The most ticks a log axis labels with powers of ten.
+const MAX_TICKS: usize = 10;
 
 /// A tick label of a log axis: three significant digits, exponent form outside [1e-3, 1e4).
 fn tick_label(v: f64) -> String {
@@ -454,6 +503,20 @@ pub fn raster_png(r: &Raster, path: &Path) -> Result<Vec<u8>, AppError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_log_axis_has_at_least_three_ticks_and_at_most_ten_powers_of_ten() {
+        // The work axis of the 100-block chain's work–precision plot.
+        assert_eq!(log_ticks(1.8e3, 3.8e4), [2e3, 5e3, 1e4, 2e4]);
+        assert_eq!(log_ticks(0.5, 50.0), [0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 50.0]);
+        assert_eq!(log_ticks(0.15, 0.6), [0.2, 0.3, 0.4, 0.5, 0.6]);
+        assert_eq!(log_ticks(0.9, 20.0), [1.0, 2.0, 5.0, 10.0, 20.0]);
+        assert_eq!(log_ticks(3.1e4, 3.2e4), [3.1e4, 3.2e4]);
+        let many = log_ticks(1e-12, 1e12);
+        assert_eq!(many.len(), 9, "{many:?}");
+        assert!(many.iter().all(|v| (v.log10().round() as i32) % 3 == 0));
+        assert_eq!(log_ticks(2e-11, 0.5).len(), 10);
+    }
 
     #[test]
     fn log_tick_labels_are_short() {
