@@ -75,7 +75,8 @@ pub const PALETTE: [RGBColor; 8] = [
     RGBColor(140, 90, 40),
 ];
 
-/// Where the legend goes.
+/// Where the legend goes, if its box covers no more of the data there than in any other
+/// corner (else the corner whose box covers the least).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Corner {
     /// Upper left (the default: most curves here rise to the right).
@@ -83,6 +84,101 @@ pub enum Corner {
     UpperLeft,
     /// Upper right (error-against-work plots, which fall to the right).
     UpperRight,
+    /// Lower left.
+    LowerLeft,
+    /// Lower right.
+    LowerRight,
+}
+
+/// The plotting area of one panel of [`SIZE`] inside its label areas, margins and caption,
+/// pixels (measured on the drawn figures).
+const PLOT_AREA: (f64, f64) = (800.0, 493.0);
+
+/// The legend box, pixels: its gap to the plotting area's corner, its width besides the
+/// labels' text and per character of the longest label, and its height besides the entries
+/// and per entry (measured on the drawn figures: 230 × 86 for four entries whose longest label
+/// has 26 characters; 8.5 per character leaves room for wide letters), and the margin kept
+/// around it for the markers' radius.
+const LEGEND_BOX: LegendBox = LegendBox {
+    gap: 5.0,
+    width: 25.0,
+    per_char: 8.5,
+    height: 5.0,
+    per_entry: 21.0,
+    margin: 6.0,
+};
+
+/// The measures of [`LEGEND_BOX`].
+struct LegendBox {
+    gap: f64,
+    width: f64,
+    per_char: f64,
+    height: f64,
+    per_entry: f64,
+    margin: f64,
+}
+
+/// The corner for the legend of `plot` drawn over `bounds`: the one whose legend box covers the
+/// fewest of the plot's points and of the samples along its lines (16 a segment), the preferred
+/// [`Plot::legend`] on a tie. (The belt's work–precision plot had its implicit Euler's last point
+/// under the box in the upper right.)
+fn legend_corner(plot: &Plot, ((x0, x1), (y0, y1)): ((f64, f64), (f64, f64))) -> Corner {
+    let labels: Vec<&str> = plot
+        .series
+        .iter()
+        .filter_map(|s| s.label.as_deref())
+        .collect();
+    let chars = labels.iter().map(|l| l.chars().count()).max().unwrap_or(0) as f64;
+    let b = &LEGEND_BOX;
+    // The box with its gap and margin, as fractions of the plotting area.
+    let w = (b.gap + b.width + b.per_char * chars + b.margin) / PLOT_AREA.0;
+    let h = (b.gap + b.height + b.per_entry * labels.len() as f64 + b.margin) / PLOT_AREA.1;
+    let axis = |v: f64, (a, b): (f64, f64)| {
+        let f = |v: f64| if plot.log { v.log10() } else { v };
+        (f(v) - f(a)) / (f(b) - f(a))
+    };
+    let mut samples = Vec::new();
+    for s in &plot.series {
+        let points: Vec<(f64, f64)> = s
+            .points
+            .iter()
+            .filter(|(x, y)| {
+                x.is_finite() && y.is_finite() && (!plot.log || (*x > 0.0 && *y > 0.0))
+            })
+            .map(|&(x, y)| (axis(x, (x0, x1)), axis(y, (y0, y1))))
+            .collect();
+        samples.extend(&points);
+        if s.width > 0 {
+            for pair in points.windows(2) {
+                let ((ax, ay), (bx, by)) = (pair[0], pair[1]);
+                samples.extend((1..16).map(|i| {
+                    let t = f64::from(i) / 16.0;
+                    (ax + t * (bx - ax), ay + t * (by - ay))
+                }));
+            }
+        }
+    }
+    let covered = |corner: Corner| {
+        let left = matches!(corner, Corner::UpperLeft | Corner::LowerLeft);
+        let upper = matches!(corner, Corner::UpperLeft | Corner::UpperRight);
+        samples
+            .iter()
+            .filter(|&&(u, v)| {
+                (if left { u <= w } else { u >= 1.0 - w })
+                    && (if upper { v >= 1.0 - h } else { v <= h })
+            })
+            .count()
+    };
+    let others = [
+        Corner::UpperLeft,
+        Corner::UpperRight,
+        Corner::LowerLeft,
+        Corner::LowerRight,
+    ];
+    std::iter::once(plot.legend)
+        .chain(others.into_iter().filter(|&c| c != plot.legend))
+        .min_by_key(|&c| covered(c))
+        .unwrap_or(plot.legend)
 }
 
 static FONT: Once = Once::new();
@@ -316,9 +412,11 @@ where
             .label_font(("sans-serif", 15))
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK)
-            .position(match plot.legend {
+            .position(match legend_corner(plot, bounds(plot)) {
                 Corner::UpperLeft => SeriesLabelPosition::UpperLeft,
                 Corner::UpperRight => SeriesLabelPosition::UpperRight,
+                Corner::LowerLeft => SeriesLabelPosition::LowerLeft,
+                Corner::LowerRight => SeriesLabelPosition::LowerRight,
             })
             .draw()
             .map_err(err)?;
@@ -516,6 +614,43 @@ mod tests {
         assert_eq!(many.len(), 9, "{many:?}");
         assert!(many.iter().all(|v| (v.log10().round() as i32) % 3 == 0));
         assert_eq!(log_ticks(2e-11, 0.5).len(), 10);
+    }
+
+    #[test]
+    fn the_legend_goes_to_the_preferred_corner_unless_it_would_cover_data() {
+        let line = |points: Vec<(f64, f64)>| Series {
+            label: Some("a run".into()),
+            points,
+            color: RED,
+            width: 2,
+            marker: Marker::Dot,
+        };
+        let plot = |points, legend| Plot {
+            title: "t".into(),
+            x_label: "x".into(),
+            y_label: "y".into(),
+            series: vec![line(points)],
+            legend,
+            log: false,
+        };
+        // A line from the lower left to the upper right: the upper left is free.
+        let rising = plot(vec![(0.0, 0.0), (1.0, 1.0)], Corner::UpperRight);
+        assert_eq!(legend_corner(&rising, bounds(&rising)), Corner::UpperLeft);
+        let kept = plot(vec![(0.0, 0.0), (1.0, 1.0)], Corner::LowerRight);
+        assert_eq!(legend_corner(&kept, bounds(&kept)), Corner::LowerRight);
+        // Falling, with a point in each corner but the lower left: the lower left.
+        let falling = plot(
+            vec![(0.0, 1.0), (0.5, 0.5), (1.0, 0.0), (1.0, 1.0)],
+            Corner::UpperLeft,
+        );
+        assert_eq!(legend_corner(&falling, bounds(&falling)), Corner::LowerLeft);
+        // On log axes the corners are taken in decades: a point at (1e3, 1e-3) of
+        // [1, 1e3] × [1e-3, 1] is in the lower right.
+        let log = Plot {
+            log: true,
+            ..plot(vec![(1.0, 1.0), (1e3, 1e-3)], Corner::LowerRight)
+        };
+        assert_eq!(legend_corner(&log, bounds(&log)), Corner::UpperRight);
     }
 
     #[test]
