@@ -26,10 +26,13 @@ use error::AppError;
 
 /// The exit codes, as `--help` lists them.
 pub const EXIT_CODES: &str = "Exit codes:
-  0  success
-  1  a run failed (solver error, step or time limit): the files written keep what was computed
-     and summary.json says where and why; or writing the output failed
-  2  bad input (an option, a parameter, a file, the output folder): nothing was run or written";
+    0  success
+    1  a run failed (solver error, step or time limit): the files written keep what was
+       computed and summary.json says where and why; or writing the output failed
+    2  bad input (an option, a parameter, a file, the output folder): nothing was run or
+       written
+  130  stopped by Ctrl-C, SIGTERM or SIGHUP: the runs in progress end at their next step and
+       the files keep what was computed, as for 1 (a second signal quits, writing nothing)";
 
 /// Dry-friction models and the solvers that integrate them.
 #[derive(Parser, Debug)]

@@ -1,11 +1,43 @@
 //! The `friction-lab` command line; see `shared/spec/cli.md` and `friction-lab --help`.
 
 use clap::Parser;
+use friction_lab::integrators::interrupt;
+
+/// The exit code of a command stopped by a signal (Ctrl-C, SIGTERM, SIGHUP): 128 + SIGINT's 2,
+/// the shell's code for Ctrl-C.
+const INTERRUPTED: i32 = 130;
+
+/// Ctrl-C, SIGTERM or SIGHUP (a cluster's scheduler at the end of a job's time) asks every run
+/// in progress to stop at its next step ([`interrupt::request`]): each ends as a run that
+/// reaches a time limit does, keeping what it computed, and the command writes its files.
+/// A second signal quits at once; the output folder is then left as it was (the temporary
+/// folder is removed by the next run into the same parent folder).
+fn stop_on_signal() {
+    let handler = || {
+        if interrupt::requested() {
+            std::process::exit(INTERRUPTED);
+        }
+        interrupt::request();
+        eprintln!(
+            "\nfriction-lab: stopping: the runs in progress end at their next step and the \
+             files keep what they computed (a second Ctrl-C quits at once, writing nothing)"
+        );
+    };
+    // Without a handler (none can be installed) a signal ends the process as by default.
+    let _ = ctrlc::set_handler(handler);
+}
 
 fn main() {
     let cli = friction_lab::Cli::parse();
-    if let Err(e) = friction_lab::run(cli) {
+    stop_on_signal();
+    let result = friction_lab::run(cli);
+    if let Err(e) = &result {
         eprintln!("error: {e}");
+    }
+    if interrupt::requested() {
+        std::process::exit(INTERRUPTED);
+    }
+    if let Err(e) = result {
         std::process::exit(e.exit_code());
     }
 }

@@ -2287,3 +2287,54 @@ fn sweep_runs_a_system_file_over_the_regularisation_width() {
         "{e}"
     );
 }
+
+#[test]
+fn ctrl_c_stops_a_run_at_its_next_step_and_keeps_what_it_computed() {
+    use std::io::{BufRead, BufReader};
+    use std::process::Stdio;
+    // Implicit Euler on a LuGre chain: over a minute at the defaults.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("run");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_friction-lab"))
+        .args([
+            "simulate",
+            "chain",
+            "--model",
+            "lugre",
+            "--solver",
+            "implicit-euler",
+        ])
+        .args(["--out", out.to_str().unwrap()])
+        .env("FRICTION_LAB_HEARTBEAT_S", "0.2")
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut lines = BufReader::new(child.stderr.take().unwrap()).lines();
+    // The first heartbeat: the run is integrating (the handler is set before it starts).
+    let first = lines.next().unwrap().unwrap();
+    assert!(first.contains(" s elapsed"), "{first}");
+    let kill = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(kill.success());
+    let rest: Vec<String> = lines.map(|l| l.unwrap()).collect();
+    let status = child.wait().unwrap();
+    let text = rest.join("\n");
+    assert_eq!(status.code(), Some(130), "{text}");
+    assert!(text.contains("friction-lab: stopping"), "{text}");
+    assert!(text.contains("interrupted at t = "), "{text}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["status"], "failed");
+    let error = summary["error"].as_str().unwrap();
+    assert!(error.starts_with("interrupted at t = "), "{error}");
+    // The trajectory up to the stop: past t = 0, short of the end.
+    let t = summary["final"].as_f64().unwrap();
+    assert!(
+        t > 0.0 && t < summary["t_end"].as_f64().unwrap(),
+        "{summary}"
+    );
+    let rows = std::fs::read_to_string(out.join("trajectory.csv")).unwrap();
+    assert!(rows.lines().count() > 2, "{rows}");
+}
