@@ -95,14 +95,12 @@ pub enum Corner {
 const PLOT_AREA: (f64, f64) = (800.0, 493.0);
 
 /// The legend box, pixels: its gap to the plotting area's corner, its width besides the
-/// labels' text and per character of the longest label, and its height besides the entries
-/// and per entry (measured on the drawn figures: 230 × 86 for four entries whose longest label
-/// has 26 characters; 8.5 per character leaves room for wide letters), and the margin kept
-/// around it for the markers' radius.
+/// longest label's text (plotters' legend area, 30, and its two margins, 10), and its height
+/// besides the entries and per entry (measured on the drawn figures: 86 for four entries), and
+/// the margin kept around it for the markers' radius.
 const LEGEND_BOX: LegendBox = LegendBox {
     gap: 5.0,
-    width: 25.0,
-    per_char: 8.5,
+    width: 50.0,
     height: 5.0,
     per_entry: 21.0,
     margin: 6.0,
@@ -112,27 +110,74 @@ const LEGEND_BOX: LegendBox = LegendBox {
 struct LegendBox {
     gap: f64,
     width: f64,
-    per_char: f64,
     height: f64,
     per_entry: f64,
     margin: f64,
 }
 
-/// The corner for the legend of `plot` drawn over `bounds`: the one whose legend box covers the
-/// fewest of the plot's points and of the samples along its lines (16 a segment), the preferred
-/// [`Plot::legend`] on a tie. (The belt's work–precision plot had its implicit Euler's last point
-/// under the box in the upper right.)
-fn legend_corner(plot: &Plot, ((x0, x1), (y0, y1)): ((f64, f64), (f64, f64))) -> Corner {
+/// The legend's font.
+const LEGEND_FONT: (&str, u32) = ("sans-serif", 15);
+
+/// The axes' ranges as [`bounds`] gives them, and the legend's corner ([`legend_corner`]); when
+/// the legend would cover data in every corner (a stick–slip map's grid of markers), the top of
+/// the y range is raised by the legend's height, so that it sits above the data.
+fn layout(plot: &Plot) -> (Bounds, Corner) {
+    let fitted = bounds(plot);
+    let (corner, covered) = legend_corner(plot, fitted);
+    if covered == 0 {
+        return (fitted, corner);
+    }
+    let (x, (y0, y1)) = fitted;
+    let h = legend_size(plot).1;
+    let raised = if plot.log {
+        (y0, y0 * (y1 / y0).powf(1.0 / (1.0 - h)))
+    } else {
+        (y0, y0 + (y1 - y0) / (1.0 - h))
+    };
+    ((x, raised), legend_corner(plot, (x, raised)).0)
+}
+
+/// The ranges of the x and y axes.
+type Bounds = ((f64, f64), (f64, f64));
+
+/// The legend box of `plot` with its gap and margin, as fractions of the plotting area's width
+/// and height (zero without a legend).
+fn legend_size(plot: &Plot) -> (f64, f64) {
     let labels: Vec<&str> = plot
         .series
         .iter()
         .filter_map(|s| s.label.as_deref())
         .collect();
-    let chars = labels.iter().map(|l| l.chars().count()).max().unwrap_or(0) as f64;
+    if labels.is_empty() {
+        return (0.0, 0.0);
+    }
+    register_font();
+    let font = (LEGEND_FONT.0, LEGEND_FONT.1).into_font();
+    // The width the font gives each label (ten pixels a character if it cannot say).
+    let text = labels
+        .iter()
+        .map(|l| {
+            font.box_size(l)
+                .map_or(10 * l.chars().count() as u32, |(w, _)| w)
+        })
+        .max()
+        .unwrap_or(0);
     let b = &LEGEND_BOX;
-    // The box with its gap and margin, as fractions of the plotting area.
-    let w = (b.gap + b.width + b.per_char * chars + b.margin) / PLOT_AREA.0;
-    let h = (b.gap + b.height + b.per_entry * labels.len() as f64 + b.margin) / PLOT_AREA.1;
+    (
+        (b.gap + b.width + f64::from(text) + b.margin) / PLOT_AREA.0,
+        (b.gap + b.height + b.per_entry * labels.len() as f64 + b.margin) / PLOT_AREA.1,
+    )
+}
+
+/// The corner for the legend of `plot` drawn over `bounds`, and how much it covers there: the
+/// corner whose legend box covers the fewest of the plot's points and of the samples along its
+/// lines (16 a segment), the preferred [`Plot::legend`] on a tie. (The belt's work–precision
+/// plot had its implicit Euler's last point under the box in the upper right.)
+fn legend_corner(plot: &Plot, ((x0, x1), (y0, y1)): Bounds) -> (Corner, usize) {
+    let (w, h) = legend_size(plot);
+    if w == 0.0 {
+        return (plot.legend, 0);
+    }
     let axis = |v: f64, (a, b): (f64, f64)| {
         let f = |v: f64| if plot.log { v.log10() } else { v };
         (f(v) - f(a)) / (f(b) - f(a))
@@ -177,8 +222,9 @@ fn legend_corner(plot: &Plot, ((x0, x1), (y0, y1)): ((f64, f64), (f64, f64))) ->
     ];
     std::iter::once(plot.legend)
         .chain(others.into_iter().filter(|&c| c != plot.legend))
-        .min_by_key(|&c| covered(c))
-        .unwrap_or(plot.legend)
+        .map(|c| (c, covered(c)))
+        .min_by_key(|&(_, n)| n)
+        .unwrap_or((plot.legend, 0))
 }
 
 static FONT: Once = Once::new();
@@ -203,7 +249,7 @@ fn drawable(plot: &Plot) -> impl Iterator<Item = (f64, f64)> + '_ {
 /// The plot range of the data, padded by 5 % on each side (of the decades on log axes);
 /// [0, 1] (or [1, 10]) on an axis with no drawable data (an empty plot must still draw, and
 /// plotters cannot draw an infinite range).
-fn bounds(plot: &Plot) -> ((f64, f64), (f64, f64)) {
+fn bounds(plot: &Plot) -> Bounds {
     let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
     let to_axis = |v: f64| if plot.log { v.log10() } else { v };
     for (x, y) in drawable(plot) {
@@ -235,7 +281,7 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, plots: &[Plot]) -> Res
     let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
     root.fill(&WHITE).map_err(err)?;
     for (area, plot) in root.split_evenly((1, plots.len().max(1))).iter().zip(plots) {
-        let ((x0, x1), (y0, y1)) = bounds(plot);
+        let (((x0, x1), (y0, y1)), corner) = layout(plot);
         let mut builder = ChartBuilder::on(area);
         builder
             .caption(&plot.title, ("sans-serif", 22))
@@ -253,10 +299,10 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, plots: &[Plot]) -> Res
             let chart = builder
                 .build_cartesian_2d(axis(x0, x1), axis(y0, y1))
                 .map_err(err)?;
-            draw_on(chart, plot)?;
+            draw_on(chart, plot, corner)?;
         } else {
             let chart = builder.build_cartesian_2d(x0..x1, y0..y1).map_err(err)?;
-            draw_on(chart, plot)?;
+            draw_on(chart, plot, corner)?;
         }
     }
     root.present().map_err(err)
@@ -326,6 +372,7 @@ fn tick_label(v: f64) -> String {
 fn draw_on<'a, DB, X, Y>(
     mut chart: ChartContext<'a, DB, Cartesian2d<X, Y>>,
     plot: &Plot,
+    legend: Corner,
 ) -> Result<(), String>
 where
     DB: DrawingBackend + 'a,
@@ -409,10 +456,10 @@ where
     if plot.series.iter().any(|s| s.label.is_some()) {
         chart
             .configure_series_labels()
-            .label_font(("sans-serif", 15))
+            .label_font(LEGEND_FONT)
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK)
-            .position(match legend_corner(plot, bounds(plot)) {
+            .position(match legend {
                 Corner::UpperLeft => SeriesLabelPosition::UpperLeft,
                 Corner::UpperRight => SeriesLabelPosition::UpperRight,
                 Corner::LowerLeft => SeriesLabelPosition::LowerLeft,
@@ -635,22 +682,45 @@ mod tests {
         };
         // A line from the lower left to the upper right: the upper left is free.
         let rising = plot(vec![(0.0, 0.0), (1.0, 1.0)], Corner::UpperRight);
-        assert_eq!(legend_corner(&rising, bounds(&rising)), Corner::UpperLeft);
+        assert_eq!(legend_corner(&rising, bounds(&rising)).0, Corner::UpperLeft);
         let kept = plot(vec![(0.0, 0.0), (1.0, 1.0)], Corner::LowerRight);
-        assert_eq!(legend_corner(&kept, bounds(&kept)), Corner::LowerRight);
+        assert_eq!(legend_corner(&kept, bounds(&kept)).0, Corner::LowerRight);
         // Falling, with a point in each corner but the lower left: the lower left.
         let falling = plot(
             vec![(0.0, 1.0), (0.5, 0.5), (1.0, 0.0), (1.0, 1.0)],
             Corner::UpperLeft,
         );
-        assert_eq!(legend_corner(&falling, bounds(&falling)), Corner::LowerLeft);
+        assert_eq!(
+            legend_corner(&falling, bounds(&falling)).0,
+            Corner::LowerLeft
+        );
         // On log axes the corners are taken in decades: a point at (1e3, 1e-3) of
         // [1, 1e3] × [1e-3, 1] is in the lower right.
         let log = Plot {
             log: true,
             ..plot(vec![(1.0, 1.0), (1e3, 1e-3)], Corner::LowerRight)
         };
-        assert_eq!(legend_corner(&log, bounds(&log)), Corner::UpperRight);
+        assert_eq!(legend_corner(&log, bounds(&log)).0, Corner::UpperRight);
+        // A grid of markers everywhere: the y range is raised for the legend, which then
+        // covers nothing, in the preferred corner.
+        let grid: Vec<(f64, f64)> = (1..=20)
+            .flat_map(|i| (1..=20).map(move |j| (f64::from(i), f64::from(j))))
+            .collect();
+        for log in [false, true] {
+            let map = Plot {
+                log,
+                series: vec![Series {
+                    width: 0,
+                    ..line(grid.clone())
+                }],
+                ..plot(vec![], Corner::UpperLeft)
+            };
+            assert!(legend_corner(&map, bounds(&map)).1 > 0);
+            let (raised, corner) = layout(&map);
+            assert_eq!(corner, Corner::UpperLeft);
+            assert_eq!(legend_corner(&map, raised), (Corner::UpperLeft, 0));
+            assert!(raised.1 .1 > bounds(&map).1 .1);
+        }
     }
 
     #[test]
