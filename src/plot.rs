@@ -381,6 +381,18 @@ where
 {
     let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
     let tick = |v: &f64| tick_label(*v);
+    // A linear axis's tick at zero computed as a sum of steps can be a rounding below it, which
+    // plotters labels "-0.0": such a tick is labelled as zero.
+    let (xr, yr) = (chart.x_range(), chart.y_range());
+    let zero = |v: f64, r: &std::ops::Range<f64>| {
+        if v.abs() <= 1e-9 * r.start.abs().max(r.end.abs()) {
+            0.0
+        } else {
+            v
+        }
+    };
+    let x_tick = |v: &f64| X::format(&zero(*v, &xr));
+    let y_tick = |v: &f64| Y::format(&zero(*v, &yr));
     let mut mesh = chart.configure_mesh();
     mesh.light_line_style(WHITE)
         .x_desc(plot.x_label.as_str())
@@ -389,6 +401,8 @@ where
         .axis_desc_style(("sans-serif", 17));
     if plot.log {
         mesh.x_label_formatter(&tick).y_label_formatter(&tick);
+    } else {
+        mesh.x_label_formatter(&x_tick).y_label_formatter(&y_tick);
     }
     mesh.draw().map_err(err)?;
     if !plot.log {

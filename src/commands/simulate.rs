@@ -302,6 +302,21 @@ fn trajectory(o: &Outcome, has_state: bool, path: &Path) -> Result<Vec<u8>, AppE
     table.to_csv(path)
 }
 
+/// The rows a figure draws: the trajectory's, with the body just before each switch put
+/// before the row at the switch, so that a jump of the friction is drawn where it happens (at
+/// the switch's x, v and t) and not as a line from the last point before the switch.
+fn drawn_rows(o: &Outcome) -> Vec<&scenarios::Row> {
+    let mut before = o.before_switches.iter().peekable();
+    let mut out = Vec::with_capacity(o.rows.len() + o.before_switches.len());
+    for r in &o.rows {
+        while let Some(b) = before.next_if(|b| b.t <= r.t) {
+            out.push(b);
+        }
+        out.push(r);
+    }
+    out
+}
+
 /// The figures of a simulation: (file stem, title, x label, y label, points).
 fn figures(o: &Outcome, name: &str) -> Vec<(&'static str, Plot)> {
     type Pick = fn(&scenarios::Row) -> f64;
@@ -355,6 +370,7 @@ fn figures(o: &Outcome, name: &str) -> Vec<(&'static str, Plot)> {
             |r| r.friction,
         ),
     ];
+    let rows = drawn_rows(o);
     specs
         .into_iter()
         .map(|(stem, what, xl, yl, fx, fy)| {
@@ -366,7 +382,7 @@ fn figures(o: &Outcome, name: &str) -> Vec<(&'static str, Plot)> {
                     y_label: yl.into(),
                     series: vec![Series {
                         label: None,
-                        points: o.rows.iter().map(|r| (fx(r), fy(r))).collect(),
+                        points: rows.iter().map(|r| (fx(r), fy(r))).collect(),
                         color: BLUE,
                         width: 2,
                         marker: Marker::None,
@@ -571,4 +587,52 @@ fn make_rig(args: &SimulateArgs, scenario: Scenario) -> Result<Made, AppError> {
             .collect(),
         failure: outcome.error.map(AppError::Solver),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use friction_models::{FrictionParams, ModelId};
+    use scenarios::{Limits, RunSpec, Scenario};
+
+    #[test]
+    fn a_figure_draws_each_switch_as_a_jump_at_the_switch() {
+        // The belt's stick–slip with the paper's CVS, output every 10 ms: at a re-stick the
+        // friction jumps from about −7.5 N to the holding force. Drawn from the trajectory
+        // alone, the line ran from the last point of the slip phase to the point at the switch,
+        // through states that never were.
+        let spec = RunSpec {
+            scenario: Scenario::Belt,
+            law: ModelId::Cvs.into(),
+            friction: FrictionParams::paper(),
+            params: Scenario::Belt.defaults(),
+            solver: Solver::Dopri5,
+            switching: SwitchingKind::Event,
+            step: StepControl::Adaptive {
+                rtol: 1e-8,
+                atol: 1e-10,
+                h0: None,
+            },
+            t_end: Some(20.0),
+            output_points: 2001,
+            limits: Limits::default(),
+        };
+        let o = scenarios::run(&spec, &mut |_| {}).unwrap();
+        let drawn = drawn_rows(&o);
+        let switches = o.rows.windows(2).filter(|w| w[0].mode != w[1].mode).count();
+        assert!(switches >= 30, "{switches} switches");
+        assert_eq!(o.before_switches.len(), switches);
+        assert_eq!(drawn.len(), o.rows.len() + switches);
+        // Every change of mode between two drawn points is at one instant and one state.
+        for w in drawn.windows(2) {
+            if w[0].mode != w[1].mode {
+                assert_eq!((w[0].t, w[0].x, w[0].v), (w[1].t, w[1].x, w[1].v));
+            }
+        }
+        // The friction before a re-stick is CVS's at v_rel = 0⁻: −(F_c + C2) = −7.5 N.
+        let p = FrictionParams::paper();
+        for b in o.before_switches.iter().filter(|b| b.mode != "stick") {
+            assert!((b.friction + p.f_c + p.c2).abs() < 1e-9, "{b:?}");
+        }
+    }
 }

@@ -158,6 +158,42 @@ impl Run<'_> {
         out
     }
 
+    /// Body `i` at each switch of its contact's mode that has a recorded point, with the mode
+    /// it leaves: the one-sided limit `F(t_e⁻)` of its friction, where the recorded point holds
+    /// the mode it enters and `F(t_e⁺)`. The state (x, v, z) is continuous at a switch; the
+    /// friction jumps, as at a re-stick from the sliding force to the holding force. (The
+    /// event-driven solvers record a point at each switch; time-stepping at the end of the
+    /// step that switched, where this is the law of the mode left at the step's end state.)
+    pub fn before_switches(&self, i: usize) -> Vec<BodyState> {
+        let p = &self.problem;
+        let Some(j) = p.layout.contact[i] else {
+            return Vec::new();
+        };
+        let s = &self.solution;
+        let mut modes = self.modes0.clone();
+        let mut out = Vec::new();
+        for e in &self.solution.events {
+            let before = modes.clone();
+            for w in &e.switches {
+                modes[w.component] = w.to;
+            }
+            if before[j] == modes[j] {
+                continue;
+            }
+            // The recorded point at the switch, if any.
+            let k = s.t.partition_point(|&t| t < e.t);
+            if k < s.len() && s.t[k] == e.t {
+                let y = s.y_at(k);
+                out.push(BodyState {
+                    friction: p.friction(j, e.t, y, &before),
+                    mode: Some(p.reported_mode(j, y, &before)),
+                    ..self.body_at(i, k)
+                });
+            }
+        }
+        out
+    }
+
     /// The energy balance from the start to the last recorded point.
     pub fn energy(&self) -> Option<EnergyBalance> {
         self.solution

@@ -137,3 +137,57 @@ fn naive_stepping_misses_the_cycle_that_switching_finds() {
         "{chatter} sign changes of v_rel in {cycles:.1} cycles"
     );
 }
+
+#[test]
+fn before_each_switch_the_friction_is_that_of_the_mode_left() {
+    // At a re-stick the friction jumps from the sliding force −F_c (v_rel → 0⁻) to the holding
+    // force −k·x; at a break-away from the holding force −k·x = −F_s to −F_c. The recorded
+    // point of a switch holds the force after it; `before_switches` the force before.
+    let system = belt(ModelId::Static, M, K, V_BELT);
+    let grid = integrators::even_grid(0.0, 5.0, 501);
+    let options = Options {
+        output: integrators::Output::Grid(grid),
+        ..Options::adaptive(0.0, 5.0, 1e-10, 1e-12)
+    };
+    let run = friction_systems::simulate(
+        &system,
+        Switching::Event,
+        integrators::Solver::Dopri5,
+        options,
+        &mut |_| {},
+    )
+    .unwrap();
+    let p = FrictionParams::paper();
+    let switches: Vec<_> = run
+        .contact_events()
+        .into_iter()
+        .filter(|e| e.from != e.to)
+        .collect();
+    let before = run.before_switches(0);
+    assert!(switches.len() >= 8, "{} switches", switches.len());
+    assert_eq!(before.len(), switches.len());
+    let after = run.body(0);
+    for (b, e) in before.iter().zip(&switches) {
+        let a = after.iter().find(|a| a.t == e.t).unwrap();
+        assert_eq!((b.t, b.x, b.v, b.mode), (a.t, a.x, a.v, Some(e.from)));
+        assert_eq!(a.mode, Some(e.to));
+        let holding = -K * a.x;
+        let (f_before, f_after) = if e.to == STICK {
+            (-p.f_c, holding)
+        } else {
+            (holding, -p.f_c)
+        };
+        assert!((b.friction - f_before).abs() < 1e-9, "{b:?} {e:?}");
+        assert!((a.friction - f_after).abs() < 1e-9, "{a:?} {e:?}");
+    }
+    // At every break-away the holding force is −F_s.
+    let breaks: Vec<f64> = before
+        .iter()
+        .filter(|b| b.mode == Some(STICK))
+        .map(|b| b.friction)
+        .collect();
+    assert!(breaks.len() >= 4);
+    for f in &breaks {
+        assert!((f + p.f_s).abs() < 1e-8, "{breaks:?}");
+    }
+}

@@ -311,6 +311,11 @@ pub struct EventEntry {
 pub struct Outcome {
     /// Trajectory rows.
     pub rows: Vec<Row>,
+    /// The body just before each switch of its mode, with the mode it leaves and its friction
+    /// there, `F(t_e⁻)` (the row at the switch holds `F(t_e⁺)`): what a figure needs to draw
+    /// the jump at the switch ([`friction_systems::Run::before_switches`]). Empty for the
+    /// prescribed motions and the velocity sweep.
+    pub before_switches: Vec<Row>,
     /// Events.
     pub events: Vec<EventEntry>,
     /// Solver statistics.
@@ -447,20 +452,28 @@ fn run_body(
         options(spec, t_end),
         observe,
     )?;
-    let rows = run
+    let row = |b: friction_systems::BodyState| Row {
+        t: b.t,
+        x: b.x,
+        v: b.v,
+        friction: b.friction,
+        mode: mode_name(b.mode.unwrap_or(STICK)),
+        z: b.z,
+    };
+    let rows: Vec<Row> = run
         .body(0)
         .into_iter()
-        .map(|b| Row {
-            t: b.t,
-            x: b.x,
-            v: b.v,
-            friction: b.friction,
-            mode: mode_name(b.mode.unwrap_or(STICK)),
-            z: b.z,
-        })
+        .map(row)
         .take_while(Row::is_finite)
         .collect();
+    let last = rows.last().map_or(f64::NEG_INFINITY, |r| r.t);
     Ok(Outcome {
+        before_switches: run
+            .before_switches(0)
+            .into_iter()
+            .map(row)
+            .take_while(|r| r.is_finite() && r.t <= last)
+            .collect(),
         rows,
         events: run
             .contact_events()
@@ -523,6 +536,7 @@ pub fn run_motion(
     let last = s.last().map(|(_, y)| (y[w], y[w + 1]));
     Outcome {
         rows,
+        before_switches: Vec::new(),
         events: s
             .events
             .iter()
@@ -548,6 +562,7 @@ pub fn run_motion(
 fn run_sweep(spec: &RunSpec, model: &dyn FrictionModel, observe: &mut dyn FnMut(f64)) -> Outcome {
     let mut out = Outcome {
         rows: Vec::new(),
+        before_switches: Vec::new(),
         events: Vec::new(),
         stats: Stats::default(),
         error: None,
