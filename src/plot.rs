@@ -184,13 +184,8 @@ fn legend_corner(plot: &Plot, ((x0, x1), (y0, y1)): Bounds) -> (Corner, usize) {
     };
     let mut samples = Vec::new();
     for s in &plot.series {
-        let points: Vec<(f64, f64)> = s
-            .points
-            .iter()
-            .filter(|(x, y)| {
-                x.is_finite() && y.is_finite() && (!plot.log || (*x > 0.0 && *y > 0.0))
-            })
-            .map(|&(x, y)| (axis(x, (x0, x1)), axis(y, (y0, y1))))
+        let points: Vec<(f64, f64)> = drawn(plot, s)
+            .map(|(x, y)| (axis(x, (x0, x1)), axis(y, (y0, y1))))
             .collect();
         samples.extend(&points);
         if s.width > 0 {
@@ -238,12 +233,14 @@ fn register_font() {
 
 /// The points of a plot that can be drawn on its axes: finite, and positive on log axes.
 fn drawable(plot: &Plot) -> impl Iterator<Item = (f64, f64)> + '_ {
-    plot.series
-        .iter()
-        .flat_map(|s| s.points.iter().copied())
-        .filter(move |(x, y)| {
-            x.is_finite() && y.is_finite() && (!plot.log || (*x > 0.0 && *y > 0.0))
-        })
+    plot.series.iter().flat_map(|s| drawn(plot, s))
+}
+
+/// The points of series `s` of `plot` that can be drawn ([`drawable`]).
+fn drawn<'a>(plot: &'a Plot, s: &'a Series) -> impl Iterator<Item = (f64, f64)> + 'a {
+    s.points.iter().copied().filter(move |(x, y)| {
+        x.is_finite() && y.is_finite() && (!plot.log || (*x > 0.0 && *y > 0.0))
+    })
 }
 
 /// The plot range of the data, padded by 5 % on each side (of the decades on log axes);
@@ -417,14 +414,7 @@ where
             .map_err(err)?;
     }
     for s in &plot.series {
-        let points: Vec<(f64, f64)> = s
-            .points
-            .iter()
-            .copied()
-            .filter(|(x, y)| {
-                x.is_finite() && y.is_finite() && (!plot.log || (*x > 0.0 && *y > 0.0))
-            })
-            .collect();
+        let points: Vec<(f64, f64)> = drawn(plot, s).collect();
         let color = s.color;
         let marker = s.marker;
         let drawn = if s.width > 0 {
