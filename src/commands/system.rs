@@ -429,13 +429,22 @@ pub fn make(args: &SimulateArgs) -> Result<Made, AppError> {
         files.add(args.out.join("space-time.csv"), data);
         files.add_raster(&args.out.join("space-time"), &raster)?;
     }
+    // One colour each: the first bodies written, as many as the palette has colours.
+    let drawn = bodies.len().min(PALETTE.len());
     let velocity = Plot {
-        title: format!("{title}: velocities"),
+        title: if drawn < bodies.len() {
+            format!(
+                "{title}: velocities of the first {drawn} of {} bodies written",
+                bodies.len()
+            )
+        } else {
+            format!("{title}: velocities")
+        },
         x_label: "time t (s)".into(),
         y_label: "velocity v (m/s)".into(),
         series: bodies
             .iter()
-            .take(PALETTE.len())
+            .take(drawn)
             .enumerate()
             .map(|(c, &i)| Series {
                 label: Some(system.bodies[i].name.clone()),
