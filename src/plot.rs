@@ -120,20 +120,19 @@ const LEGEND_FONT: (&str, u32) = ("sans-serif", 15);
 
 /// The axes' ranges as [`bounds`] gives them, and the legend's corner ([`legend_corner`]); when
 /// the legend would cover data in every corner (a stick–slip map's grid of markers), the top of
-/// the y range is raised by the legend's height, so that it sits above the data.
+/// the y range is raised by the legend's height, so that it sits above the data (unless the
+/// legend is more than half the plot's height).
 fn layout(plot: &Plot) -> (Bounds, Corner) {
     let fitted = bounds(plot);
     let (corner, covered) = legend_corner(plot, fitted);
-    if covered == 0 {
+    let h = legend_size(plot).1;
+    // (A legend of more than half the height is left where it covers least.)
+    if covered == 0 || h > 0.5 {
         return (fitted, corner);
     }
     let (x, (y0, y1)) = fitted;
-    let h = legend_size(plot).1;
-    let raised = if plot.log {
-        (y0, y0 * (y1 / y0).powf(1.0 / (1.0 - h)))
-    } else {
-        (y0, y0 + (y1 - y0) / (1.0 - h))
-    };
+    let (a, b) = (to_axis(plot, y0), to_axis(plot, y1));
+    let raised = from_axis(plot, (a, a + (b - a) / (1.0 - h)));
     ((x, raised), legend_corner(plot, (x, raised)).0)
 }
 
@@ -248,9 +247,8 @@ fn drawn<'a>(plot: &'a Plot, s: &'a Series) -> impl Iterator<Item = (f64, f64)> 
 /// plotters cannot draw an infinite range).
 fn bounds(plot: &Plot) -> Bounds {
     let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
-    let to_axis = |v: f64| if plot.log { v.log10() } else { v };
     for (x, y) in drawable(plot) {
-        let (x, y) = (to_axis(x), to_axis(y));
+        let (x, y) = (to_axis(plot, x), to_axis(plot, y));
         x0 = x0.min(x);
         x1 = x1.max(x);
         y0 = y0.min(y);
@@ -263,14 +261,39 @@ fn bounds(plot: &Plot) -> Bounds {
         let d = if b > a { 0.05 * (b - a) } else { 0.5 };
         (a - d, b + d)
     };
-    let from_axis = |(a, b): (f64, f64)| {
-        if plot.log {
-            (10f64.powf(a), 10f64.powf(b))
-        } else {
-            (a, b)
-        }
+    (from_axis(plot, pad(x0, x1)), from_axis(plot, pad(y0, y1)))
+}
+
+/// A value in the space an axis is drawn in: its decade on a log axis.
+fn to_axis(plot: &Plot, v: f64) -> f64 {
+    if plot.log {
+        v.log10()
+    } else {
+        v
+    }
+}
+
+/// The range (a, b) of the drawing space ([`to_axis`]) in the data's units, kept within the
+/// doubles' normal range (1e±307: a padded log range from data at 1e-300 would reach 0) and
+/// of positive width.
+fn from_axis(plot: &Plot, (a, b): (f64, f64)) -> (f64, f64) {
+    const LIMIT: f64 = 307.0;
+    let (a, b) = if plot.log {
+        (a.clamp(-LIMIT, LIMIT), b.clamp(-LIMIT, LIMIT))
+    } else {
+        let limit = 10f64.powf(LIMIT);
+        (a.clamp(-limit, limit), b.clamp(-limit, limit))
     };
-    (from_axis(pad(x0, x1)), from_axis(pad(y0, y1)))
+    let (a, b) = if a < b {
+        (a, b)
+    } else {
+        (b - (b.abs() + 1.0), b)
+    };
+    if plot.log {
+        (10f64.powf(a), 10f64.powf(b))
+    } else {
+        (a, b)
+    }
 }
 
 /// Draws `plots` side by side on `root`.
@@ -403,15 +426,20 @@ where
     }
     mesh.draw().map_err(err)?;
     if !plot.log {
-        // The axes through the origin, as in the paper's figures.
+        // The axes through the origin, as in the paper's figures, where the origin is in
+        // range (a line far outside would map beyond the pixels plotters can address).
         let (xr, yr) = (chart.x_range(), chart.y_range());
         let axis = ShapeStyle::from(&BLACK.mix(0.4)).stroke_width(1);
-        chart
-            .draw_series(LineSeries::new([(xr.start, 0.0), (xr.end, 0.0)], axis))
-            .map_err(err)?;
-        chart
-            .draw_series(LineSeries::new([(0.0, yr.start), (0.0, yr.end)], axis))
-            .map_err(err)?;
+        if yr.contains(&0.0) {
+            chart
+                .draw_series(LineSeries::new([(xr.start, 0.0), (xr.end, 0.0)], axis))
+                .map_err(err)?;
+        }
+        if xr.contains(&0.0) {
+            chart
+                .draw_series(LineSeries::new([(0.0, yr.start), (0.0, yr.end)], axis))
+                .map_err(err)?;
+        }
     }
     for s in &plot.series {
         let points: Vec<(f64, f64)> = drawn(plot, s).collect();
@@ -725,6 +753,12 @@ mod tests {
             assert_eq!(legend_corner(&map, raised), (Corner::UpperLeft, 0));
             assert!(raised.1 .1 > bounds(&map).1 .1);
         }
+        // A legend of thirty entries is taller than half the plot: the range is kept.
+        let many = Plot {
+            series: (0..30).map(|_| line(grid.clone())).collect(),
+            ..plot(vec![], Corner::UpperLeft)
+        };
+        assert_eq!(layout(&many).0, bounds(&many));
     }
 
     #[test]
@@ -755,5 +789,47 @@ mod tests {
         assert!(svg(&plot, Path::new("empty.svg"))
             .unwrap()
             .contains("nothing"));
+    }
+
+    #[test]
+    fn degenerate_plots_draw_on_linear_and_log_axes() {
+        let cases: [Vec<(f64, f64)>; 6] = [
+            vec![],
+            vec![(1.0, 1.0)],
+            vec![(2.0, 3.0); 5],
+            vec![(-1.0, 0.0), (0.0, -1.0), (f64::INFINITY, 1.0)],
+            vec![(1e-300, 1e-300), (1e300, 1e300)],
+            vec![(1e-5, 1.0), (1.0000001e-5, 1.0000001)],
+        ];
+        for points in cases {
+            for (log, labels) in [(false, 1), (true, 1), (false, 40), (true, 40)] {
+                let plot = Plot {
+                    title: "edge".into(),
+                    x_label: "x".into(),
+                    y_label: "y".into(),
+                    series: (0..labels)
+                        .map(|i| Series {
+                            label: Some(format!("series {i}")),
+                            points: points.clone(),
+                            color: RED,
+                            width: 2,
+                            marker: Marker::Dot,
+                        })
+                        .collect(),
+                    legend: Corner::UpperRight,
+                    log,
+                };
+                let ((x0, x1), (y0, y1)) = layout(&plot).0;
+                assert!(x0 < x1 && y0 < y1, "{points:?} {log}: {x0} {x1} {y0} {y1}");
+                assert!(
+                    [x0, x1, y0, y1].iter().all(|v| v.is_finite()),
+                    "{points:?} {log}: {x0} {x1} {y0} {y1}"
+                );
+                assert!(
+                    svg(&plot, Path::new("edge.svg")).is_ok(),
+                    "{points:?} {log}"
+                );
+            }
+        }
     }
 }
