@@ -323,10 +323,17 @@ fn runs_table(runs: &[StudyRun], path: &Path) -> Result<Vec<u8>, AppError> {
     t.to_csv(path)
 }
 
-/// log10 of (x, y) pairs with both positive and finite.
+/// The height of the `row`-th row of crosses above the data of a log plot, whose largest value
+/// is `largest`: three times it, then 1.5 times higher for each row, one row per solver with
+/// failed runs (drawn at one height, the crosses of one hid those of another).
+pub(super) fn row_at_top(largest: f64, row: i32) -> f64 {
+    largest * 3.0 * 1.5f64.powi(row)
+}
+
 /// One series per solver of the runs `keep` selects, with a dot on every run that computed,
 /// and, per solver with failed runs, a series of crosses drawn at the top of the plot at their
-/// x, named with their count (a failed run has no error to plot, but it is not left out).
+/// x, named with their count (a failed run has no error to plot, but it is not left out), each
+/// such solver in a row of its own ([`row_at_top`]).
 fn per_solver_series(
     runs: &[StudyRun],
     keep: impl Fn(&StudyRun) -> bool,
@@ -341,14 +348,14 @@ fn per_solver_series(
         }
     }
     let plotted = |r: &&&StudyRun| r.failure.is_none() && y(r) > 0.0 && y(r).is_finite();
-    let top = runs
+    let largest = runs
         .iter()
         .filter(plotted)
         .map(|r| y(r))
         .reduce(f64::max)
-        .unwrap_or(1.0)
-        * 3.0;
+        .unwrap_or(1.0);
     let mut series = Vec::new();
+    let mut rows = 0;
     for (name, &color) in names.iter().zip(PALETTE.iter().cycle()) {
         let mine = || runs.iter().filter(|r| r.solver == *name);
         let points: Vec<(f64, f64)> = mine().filter(plotted).map(|r| (x(r), y(r))).collect();
@@ -361,11 +368,13 @@ fn per_solver_series(
                 marker: Marker::Dot,
             });
         }
+        let top = row_at_top(largest, rows);
         let failed: Vec<(f64, f64)> = mine()
             .filter(|r| r.failure.is_some())
             .map(|r| (x(r), top))
             .collect();
         if !failed.is_empty() {
+            rows += 1;
             series.push(Series {
                 label: Some(format!("{name}: {} failed (at the top)", failed.len())),
                 points: failed,
@@ -433,4 +442,49 @@ pub fn failures(runs: &[StudyRun], csv: &str) -> Vec<String> {
         })
         .chain(diverged)
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use integrators::Stats;
+    use scenarios::studies::Errors;
+
+    fn run(solver: &str, h: f64, error: f64, failure: Option<&str>) -> StudyRun {
+        StudyRun {
+            solver: solver.into(),
+            resolution: h,
+            step: "fixed",
+            errors: Errors {
+                final_state: error,
+                ..Errors::UNMEASURED
+            },
+            measures: Default::default(),
+            stats: Stats::default(),
+            work: 0,
+            failure: failure.map(str::to_string),
+            diverged: false,
+            wall_time_s: 0.0,
+        }
+    }
+
+    #[test]
+    fn the_failed_runs_of_each_solver_are_drawn_in_a_row_of_their_own() {
+        // Two solvers failing at the same step: at one height, the second's crosses hid the
+        // first's.
+        let runs = [
+            run("rk4", 0.02, f64::NAN, Some("diverged")),
+            run("rk4", 0.01, 1e-4, None),
+            run("dopri5", 0.02, f64::NAN, Some("diverged")),
+            run("dopri5", 0.01, 1e-6, None),
+            run("implicit-euler", 0.02, 1e-2, None),
+        ];
+        let series = per_solver_series(&runs, |_| true, |r| r.resolution, |r| r.errors.final_state);
+        let crosses: Vec<(f64, f64)> = series
+            .iter()
+            .filter(|s| s.marker == Marker::Cross)
+            .map(|s| s.points[0])
+            .collect();
+        assert_eq!(crosses, [(0.02, 3e-2), (0.02, 3e-2 * 1.5)]);
+    }
 }

@@ -1,7 +1,10 @@
 //! `stiffness`: the cost to reach a target error across a stiffness parameter, and where
 //! the implicit solvers overtake the explicit ones.
 
-use super::{distinct, positive_list, resolution_cells, study_error, study_file, CaseArgs, Target};
+use super::{
+    distinct, positive_list, resolution_cells, row_at_top, study_error, study_file, CaseArgs,
+    Target,
+};
 use crate::artifacts::Made;
 use crate::commands::phenomena::with_threads;
 use crate::commands::simulate::Target as Problem;
@@ -150,7 +153,7 @@ pub fn add_stiffness(
     t.files
         .add_json(dir.join(format!("{stem}.json")), &study_file(case, &s))?;
     // A solver that met the target at a value: a dot at its cost; one that did not: a cross
-    // at the top of the plot, named.
+    // at the top of the plot, named, each such solver in a row of its own.
     let reached: Vec<(f64, f64)> = s
         .points
         .iter()
@@ -161,8 +164,9 @@ pub fn add_stiffness(
                 .map(|c| (p.value, c.work as f64))
         })
         .collect();
-    let top = reached.iter().map(|p| p.1).fold(1.0, f64::max) * 3.0;
+    let largest = reached.iter().map(|p| p.1).fold(1.0, f64::max);
     let mut series = Vec::new();
+    let mut rows = 0;
     for (method, &color) in methods.iter().zip(PALETTE.iter().cycle()) {
         let label = method.label();
         let costs = || {
@@ -174,6 +178,7 @@ pub fn add_stiffness(
             .filter(|(_, c)| c.resolution.is_some())
             .map(|(v, c)| (v, c.work as f64))
             .collect();
+        let top = row_at_top(largest, rows);
         let missed: Vec<(f64, f64)> = costs()
             .filter(|(_, c)| c.resolution.is_none())
             .map(|(v, _)| (v, top))
@@ -188,6 +193,7 @@ pub fn add_stiffness(
             });
         }
         if !missed.is_empty() {
+            rows += 1;
             series.push(Series {
                 label: Some(format!(
                     "{label}: target not reached at {} value(s) (at the top)",
