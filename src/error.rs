@@ -62,9 +62,7 @@ pub enum AppError {
         source: std::io::Error,
     },
     /// The solver failed; the files written say how far it got.
-    #[error(
-        "the solver failed: {0} (summary.json and trajectory.csv keep the run up to the failure)"
-    )]
+    #[error("{}", solver_failure(.0))]
     Solver(SolverError),
     /// A run that a study needs failed in the solver.
     #[error("{0}")]
@@ -110,5 +108,19 @@ impl From<ScenarioError> for AppError {
                 AppError::StudyRun(e.to_string())
             }
         }
+    }
+}
+
+/// The message of a run that ended in the solver: stopped by a signal
+/// ([`SolverError::Interrupted`]), or failed.
+fn solver_failure(e: &SolverError) -> String {
+    match e {
+        SolverError::Interrupted { .. } => {
+            format!("stopped: {e} (summary.json and trajectory.csv keep the run up to there)")
+        }
+        _ => format!(
+            "the solver failed: {e} (summary.json and trajectory.csv keep the run up to the \
+             failure)"
+        ),
     }
 }

@@ -1299,6 +1299,11 @@ fn a_run_that_hits_its_step_cap_or_time_limit_keeps_its_result_and_exits_1() {
         let o = friction_lab(&all);
         assert_eq!(o.status.code(), Some(1), "{what}: {}", stderr(&o));
         assert!(stderr(&o).contains(message), "{what}: {}", stderr(&o));
+        assert!(
+            stderr(&o).contains(&format!("error: the solver failed: {message}")),
+            "{what}: {}",
+            stderr(&o)
+        );
         let summary: serde_json::Value =
             serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
         assert_eq!(summary["status"], "failed");
@@ -1322,7 +1327,9 @@ fn the_exit_codes_are_listed_in_every_help() {
         assert!(o.status.success());
         let text = String::from_utf8_lossy(&o.stdout);
         assert!(
-            text.contains("Exit codes:") && text.contains("2  bad input"),
+            text.contains("Exit codes:")
+                && text.contains("2  bad input")
+                && text.contains("130  stopped by Ctrl-C"),
             "{command:?}: {text}"
         );
     }
@@ -2323,7 +2330,10 @@ fn ctrl_c_stops_a_run_at_its_next_step_and_keeps_what_it_computed() {
     let text = rest.join("\n");
     assert_eq!(status.code(), Some(130), "{text}");
     assert!(text.contains("friction-lab: stopping"), "{text}");
-    assert!(text.contains("interrupted at t = "), "{text}");
+    assert!(
+        text.contains("error: stopped: interrupted at t = "),
+        "{text}"
+    );
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     assert_eq!(summary["status"], "failed");
