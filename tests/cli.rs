@@ -1304,6 +1304,12 @@ fn a_run_that_hits_its_step_cap_or_time_limit_keeps_its_result_and_exits_1() {
             "{what}: {}",
             stderr(&o)
         );
+        // A cap reached within a few natural periods is not blamed on the periods.
+        assert!(
+            !stderr(&o).contains("natural period"),
+            "{what}: {}",
+            stderr(&o)
+        );
         let summary: serde_json::Value =
             serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
         assert_eq!(summary["status"], "failed");
@@ -2347,4 +2353,33 @@ fn ctrl_c_stops_a_run_at_its_next_step_and_keeps_what_it_computed() {
     );
     let rows = std::fs::read_to_string(out.join("trajectory.csv")).unwrap();
     assert!(rows.lines().count() > 2, "{rows}");
+}
+
+#[test]
+fn a_run_that_cannot_resolve_its_natural_period_is_told_why() {
+    // k = 1e300 N/m on 1 kg: a period of 6.3e-150 s, 3.2e150 of them in the belt's 20 s; the
+    // run ends in a step-size underflow, and the note names the period.
+    let dir = tempfile::tempdir().unwrap();
+    for (what, set) in [("rig", "k=1e300"), ("chain", "k_chain=1e300")] {
+        let rig = if what == "rig" { "belt" } else { "chain" };
+        let out = dir.path().join(what);
+        let o = friction_lab(&[
+            "simulate",
+            rig,
+            "--model",
+            "CS",
+            "--set",
+            set,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert_eq!(o.status.code(), Some(1), "{what}: {}", stderr(&o));
+        let text = stderr(&o);
+        assert!(text.contains("step size underflow"), "{what}: {text}");
+        assert!(
+            text.contains("of the shortest natural period 2π√(m/k) = ")
+                && text.contains("check the masses and stiffnesses"),
+            "{what}: {text}"
+        );
+    }
 }

@@ -418,6 +418,33 @@ pub fn coarse_step_warning(step: StepControl, period: Option<f64>) -> Option<Str
     })
 }
 
+/// The advice given when a run over `span` seconds ended for lack of steps (too many, or a step
+/// below the resolution of t) and spans more than [`MANY_PERIODS`] of the problem's shortest
+/// natural period `period`: no solver resolves that many oscillations within the step cap, and
+/// the likelier cause is a mass or a stiffness off by orders of magnitude (k = 1e300 N/m on a
+/// body of 1 kg ends with a step-size underflow at t = 3e-130 s).
+pub fn unresolvable_period_warning(
+    span: f64,
+    period: Option<f64>,
+    error: Option<&SolverError>,
+) -> Option<String> {
+    let lack_of_steps = matches!(
+        error,
+        Some(SolverError::TooManySteps { .. } | SolverError::StepSizeUnderflow { .. })
+    );
+    let period = period.filter(|&p| lack_of_steps && span > MANY_PERIODS * p)?;
+    Some(format!(
+        "the run spans {:.1e} of the shortest natural period 2π√(m/k) = {period:.2e} s, too \
+         many to resolve with a few steps each: check the masses and stiffnesses, or shorten \
+         --t-end",
+        span / period,
+    ))
+}
+
+/// The number of the shortest natural periods beyond which a run that lacked steps is told
+/// why ([`unresolvable_period_warning`]): at ten steps a period, the default step cap.
+pub const MANY_PERIODS: f64 = 1e6;
+
 /// The advice given when an explicit `solver` with a fixed step (RK4, or Dormand–Prince with
 /// `--fixed-step`; under any `switching` but time-stepping) ended past its stability limit
 /// ([`scenarios::run::diverged`]).
@@ -573,6 +600,11 @@ fn make_rig(args: &SimulateArgs, scenario: Scenario) -> Result<Made, AppError> {
             .map(|t| stiffness_warning(spec.solver.name(), t))
             .into_iter()
             .chain(coarse_step_warning(spec.step, outcome.time_scale))
+            .chain(unresolvable_period_warning(
+                t_end,
+                outcome.time_scale,
+                outcome.error.as_ref(),
+            ))
             .chain(unstable_step_warning(
                 spec.solver,
                 spec.switching,
