@@ -625,7 +625,7 @@ fn make_rig(args: &SimulateArgs, scenario: Scenario) -> Result<Made, AppError> {
 mod tests {
     use super::*;
     use friction_models::{FrictionParams, ModelId};
-    use scenarios::{Limits, RunSpec, Scenario};
+    use scenarios::RunSpec;
 
     #[test]
     fn a_figure_draws_each_switch_as_a_jump_at_the_switch() {
@@ -634,20 +634,9 @@ mod tests {
         // alone, the line ran from the last point of the slip phase to the point at the switch,
         // through states that never were.
         let spec = RunSpec {
-            scenario: Scenario::Belt,
-            law: ModelId::Cvs.into(),
-            friction: FrictionParams::paper(),
-            params: Scenario::Belt.defaults(),
-            solver: Solver::Dopri5,
-            switching: SwitchingKind::Event,
-            step: StepControl::Adaptive {
-                rtol: 1e-8,
-                atol: 1e-10,
-                h0: None,
-            },
             t_end: Some(20.0),
             output_points: 2001,
-            limits: Limits::default(),
+            ..scenarios::stick_slip::belt_run(ModelId::Cvs, &FrictionParams::paper())
         };
         let o = scenarios::run(&spec, &mut |_| {}).unwrap();
         let drawn = drawn_rows(&o);

@@ -7,7 +7,7 @@ use crate::hybrid::FrictionSystem;
 use crate::moreau_jean::{self, MoreauJean};
 use crate::switching::Switching;
 use crate::system::{System, SystemError};
-use integrators::{Failure, Mode, Options, Solution, Solver, SolverError};
+use integrators::{EventRecord, Failure, Mode, Options, Solution, Solver, SolverError};
 use std::time::Instant;
 
 /// A switch (or a touch of v_rel = 0 that kept the mode) of one contact.
@@ -135,25 +135,31 @@ impl Run<'_> {
         }
     }
 
+    /// Each event in time order, with the modes before it and after it.
+    fn events_with_modes(&self) -> impl Iterator<Item = (&EventRecord, Vec<Mode>, Vec<Mode>)> {
+        let mut modes = self.modes0.clone();
+        self.solution.events.iter().map(move |e| {
+            let before = modes.clone();
+            for s in &e.switches {
+                modes[s.component] = s.to;
+            }
+            (e, before, modes.clone())
+        })
+    }
+
     /// The switching log: every contact whose event fired, in time order.
     pub fn contact_events(&self) -> Vec<ContactEvent> {
-        let mut modes = self.modes0.clone();
         let mut out = Vec::new();
-        for e in &self.solution.events {
+        for (e, before, after) in self.events_with_modes() {
             let mut contacts: Vec<usize> = e.fired.iter().map(|&k| k / 2).collect();
             contacts.dedup();
-            let mut after = modes.clone();
-            for s in &e.switches {
-                after[s.component] = s.to;
-            }
             out.extend(contacts.into_iter().map(|j| ContactEvent {
                 t: e.t,
                 contact: j,
                 body: self.problem.system.contacts[j].body,
-                from: modes[j],
+                from: before[j],
                 to: after[j],
             }));
-            modes = after;
         }
         out
     }
@@ -170,14 +176,9 @@ impl Run<'_> {
             return Vec::new();
         };
         let s = &self.solution;
-        let mut modes = self.modes0.clone();
         let mut out = Vec::new();
-        for e in &self.solution.events {
-            let before = modes.clone();
-            for w in &e.switches {
-                modes[w.component] = w.to;
-            }
-            if before[j] == modes[j] {
+        for (e, before, after) in self.events_with_modes() {
+            if before[j] == after[j] {
                 continue;
             }
             // The recorded point at the switch, if any.
