@@ -162,15 +162,7 @@ pub fn run() -> Report {
         .iter()
         .find(|e| e.from == STICK)
         .map_or(f64::NAN, |e| e.t);
-    let case = SystemCase {
-        name: "belt with Tustin's law".into(),
-        system: system.clone(),
-        switching: SwitchingKind::Event,
-        epsilon: 1e-3,
-        t_end: 3.0,
-        bodies: vec![0],
-        limits: Limits::default(),
-    };
+    let case = SystemCase::new("belt with Tustin's law", system.clone(), 3.0);
     let study = studies::convergence(
         &case,
         &[Solver::Rk4],

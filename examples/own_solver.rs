@@ -20,7 +20,6 @@ use friction_lab::integrators::{
     Ode, OneStepMethod, Options, Solver, SolverError, Stats, StepControl, Stepper, StepperState,
 };
 use friction_lab::scenarios::studies::{self, Method, SystemCase};
-use friction_lab::scenarios::{Limits, SwitchingKind};
 use std::sync::Arc;
 
 // The Butcher tableau of Bogacki & Shampine (1989), Table 1: nodes, stages, third-order
@@ -293,15 +292,7 @@ pub fn run() -> Report {
         (r.contact_events().len(), [b.x, b.v])
     });
     let [(n_bs23, a), (n_dopri5, b)] = simulated;
-    let case = SystemCase {
-        name: "switched belt, CVS".into(),
-        system,
-        switching: SwitchingKind::Event,
-        epsilon: 1e-3,
-        t_end: 3.0,
-        bodies: vec![0],
-        limits: Limits::default(),
-    };
+    let case = SystemCase::new("switched belt, CVS", system, 3.0);
     let steps = [0.01, 0.005, 0.0025, 0.00125];
     let convergence =
         studies::convergence(&case, &[bs23], &steps, &[], &|| {}).expect("the study runs");

@@ -10,7 +10,6 @@ use friction_lab::friction_models::{FrictionParams, ModelId, Variant};
 use friction_lab::friction_systems::{simulate, End, Switching, System, STICK};
 use friction_lab::integrators::{Options, Solver};
 use friction_lab::scenarios::studies::{self, SystemCase};
-use friction_lab::scenarios::{Limits, SwitchingKind};
 use std::sync::Arc;
 
 /// The two-mass system.
@@ -68,13 +67,8 @@ pub fn run() -> Report {
     };
     let events = event.contact_events();
     let case = SystemCase {
-        name: "two-mass system".into(),
-        system: system.clone(),
-        switching: SwitchingKind::Event,
-        epsilon: 1e-3,
-        t_end: 5.0,
         bodies: vec![0, 1],
-        limits: Limits::default(),
+        ..SystemCase::new("two-mass system", system.clone(), 5.0)
     };
     let wp = studies::work_precision(
         &case,

@@ -821,6 +821,45 @@ fn simulate_chain_writes_the_system_files() {
     }
 }
 
+/// A stiffness study of the chain sweeps its coupling: the explicit method pays for a stiff
+/// spring between the blocks (they stick and slip against their neighbours every few
+/// milliseconds, each switch a restart and a run of rejected steps), BDF does not.
+#[test]
+fn stiffness_of_the_chain_sweeps_its_coupling_spring() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("stiff");
+    let o = friction_lab(&[
+        "stiffness",
+        "chain",
+        "--model",
+        "CS",
+        "--parameter",
+        "k_chain",
+        "--values",
+        "100,1e6",
+        "--solvers",
+        "dopri5,bdf",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("stiffness.json")).unwrap()).unwrap();
+    let work = |value: usize, solver: &str| -> f64 {
+        let costs = json["points"][value]["costs"].as_array().unwrap();
+        let cost = costs.iter().find(|c| c["solver"] == solver).unwrap();
+        assert!(!cost["resolution"].is_null(), "{solver} reached the target");
+        cost["work"].as_f64().unwrap()
+    };
+    let (explicit, implicit) = (
+        work(1, "dopri5") / work(0, "dopri5"),
+        work(1, "bdf") / work(0, "bdf"),
+    );
+    assert!(explicit > 10.0, "Dormand–Prince: {explicit}");
+    assert!(implicit < 2.0, "BDF: {implicit}");
+    assert_eq!(json["crossover"], 1e6);
+}
+
 /// Two bodies in a row from a fixed frame, the first on a belt at 0.1 m/s with CS.
 const TWO_BODIES: &str = r#"
 [[body]]
@@ -994,8 +1033,14 @@ fn bad_system_input_is_rejected_and_writes_nothing() {
             "system file /nonexistent/system.toml:",
         ),
         (
+            // The chain's spring to its neighbour is `k_chain`; a rig's spring is `k`.
             &["stiffness", "chain", "--model", "CS", "--parameter", "k"],
-            "parameter `k` cannot be swept on a system",
+            "unknown parameter `k` of the chain; known: n_bodies, m, k_chain, k_driver, \
+             v_driver, spread, and the friction parameters its law reads",
+        ),
+        (
+            &["stiffness", "chain", "--model", "CS", "--parameter", "sigma"],
+            "parameter `sigma` is not read by model `CS` (it reads: F_c, F_s, C1, C2, v_s)",
         ),
         (
             // No run of the study reads the width under time-stepping: every value the same.

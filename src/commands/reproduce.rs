@@ -443,14 +443,14 @@ fn chain_case(n: usize, friction: &FrictionParams, t_end: f64) -> Result<SystemC
     for b in &mut system.bodies {
         b.x0 = PRELOAD_X0;
     }
+    // Pre-loaded after it was built: not the chain its parameters build, so no `chain`.
     Ok(SystemCase {
-        name: format!("chain of {n} blocks with static friction"),
-        system,
-        switching: SwitchingKind::Event,
         epsilon: friction.epsilon,
-        t_end,
-        bodies: vec![0],
-        limits: Limits::default(),
+        ..SystemCase::new(
+            format!("chain of {n} blocks with static friction"),
+            system,
+            t_end,
+        )
     })
 }
 

@@ -12,16 +12,17 @@ use crate::output::{Cell, Table};
 use crate::plot::{self, Corner, Marker, Plot, Raster, Series, PALETTE};
 use crate::progress::Progress;
 use crate::ranges;
-use friction_models::{FrictionModel, FrictionParams, ModelId};
+use friction_models::{FrictionParams, ModelId};
 use friction_systems::chain::{ChainParams, CHAIN_PARAMETERS};
 use friction_systems::{
     mode_name, BodyState, EnergyBalance, Run, System, SLIP_NEGATIVE, SLIP_POSITIVE,
 };
 use integrators::{Options, Output};
+use scenarios::chain::ChainSource;
+use scenarios::Law;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::Path;
-use std::sync::Arc;
 
 /// Bodies written to the trajectory when none are chosen: all of a chain this long or shorter,
 /// otherwise this many evenly spaced.
@@ -94,6 +95,8 @@ pub struct Described {
     pub parameters: BTreeMap<String, f64>,
     /// The friction parameters of the command line.
     pub friction: FrictionParams,
+    /// What the chain was built from (`None` for a system file).
+    pub source: Option<ChainSource>,
 }
 
 /// The system of `--system FILE` or, without one, the chain with `model` and the parameters
@@ -116,6 +119,7 @@ pub fn system_of(
             name: path.display().to_string(),
             parameters: BTreeMap::new(),
             friction: options.params.resolve()?,
+            source: None,
         });
     }
     let model = model.ok_or_else(|| {
@@ -126,10 +130,15 @@ pub fn system_of(
     let friction = options
         .params
         .resolve_with(&names, |name, value| Ok(chain.set(name, value)?))?;
-    let variant = options.variant;
-    let system = chain.build(&friction, |p| {
-        model.build(variant, p).map(Arc::<dyn FrictionModel>::from)
-    })?;
+    let source = ChainSource {
+        chain,
+        law: Law::Catalog {
+            model,
+            variant: options.variant,
+        },
+        friction,
+    };
+    let system = source.build()?;
     let mut reported: BTreeMap<String, f64> = used_parameters(model, &friction)
         .into_iter()
         .map(|(k, v)| (k.to_string(), v))
@@ -147,9 +156,10 @@ pub fn system_of(
     }
     Ok(Described {
         system,
-        name: format!("chain of {} {model}", chain.n_bodies),
+        name: source.name(),
         parameters: reported,
         friction,
+        source: Some(source),
     })
 }
 
@@ -384,6 +394,7 @@ pub fn make(args: &SimulateArgs) -> Result<Made, AppError> {
         name,
         mut parameters,
         friction,
+        ..
     } = system_of(args.system.as_deref(), args.model, &args.model_options)?;
     args.solver.checked_step()?;
     if let scenarios::SwitchingKind::TimeStepping { theta } = args.solver.switching() {

@@ -2,6 +2,7 @@
 //! solvers and steps and measured the same way. A rig ([`Case`]), a system of many bodies
 //! ([`SystemCase`]), or a user's own problem through the public [`StudyCase`] trait.
 
+use crate::chain::ChainSource;
 use crate::run::Limits;
 use crate::run::{run, Law, Outcome, RunSpec, ScenarioError, SwitchingKind, DEFAULT_THETA};
 use crate::scenario::Scenario;
@@ -331,6 +332,28 @@ pub struct SystemCase {
     pub bodies: Vec<usize>,
     /// Bounds of every run.
     pub limits: Limits,
+    /// What the system was built from, when it is the chain: a stiffness study can then sweep
+    /// the chain's parameters and its law's (`None`: a system file, or a chain changed after
+    /// it was built).
+    pub chain: Option<ChainSource>,
+}
+
+impl SystemCase {
+    /// A study of `system` over `t_end` seconds: event-driven, its first body measured, the
+    /// regularised peer at ε = 1e-3, the default limits, no chain to build again (change any
+    /// field with `SystemCase { bodies: …, ..SystemCase::new(…) }`).
+    pub fn new(name: impl Into<String>, system: System, t_end: f64) -> SystemCase {
+        SystemCase {
+            name: name.into(),
+            system,
+            switching: SwitchingKind::Event,
+            epsilon: 1e-3,
+            t_end,
+            bodies: vec![0],
+            limits: Limits::default(),
+            chain: None,
+        }
+    }
 }
 
 impl StudyCase for SystemCase {
@@ -358,15 +381,35 @@ impl StudyCase for SystemCase {
         })
     }
 
-    /// Only the regularisation width `epsilon` can be swept on a system (each contact has its
-    /// own parameters), and only under a switching some run of the study reads it with:
-    /// regularized, or event (whose regularised BDF peer reads it).
+    /// The regularisation width `epsilon` can be swept on any system, under a switching some
+    /// run of the study reads it with: regularized, or event (whose regularised BDF peer
+    /// reads it). On the chain, so can its parameters and those its law reads, each value
+    /// building the chain again ([`ChainSource::with`]); on a system file nothing else (each
+    /// contact has its own parameters).
     fn with_parameter(&self, name: &str, value: f64) -> Result<Box<dyn StudyCase>, ScenarioError> {
         if name != "epsilon" {
-            return Err(ScenarioError::Invalid(format!(
-                "parameter `{name}` cannot be swept on a system (each contact has its own \
-                 parameters): allowed epsilon"
-            )));
+            let Some(source) = &self.chain else {
+                return Err(ScenarioError::Invalid(format!(
+                    "parameter `{name}` cannot be swept on a system file (each contact has its \
+                     own parameters): allowed epsilon"
+                )));
+            };
+            let source = source.with(name, value)?;
+            let system = source.build()?;
+            if let Some(&b) = self.bodies.iter().find(|&&b| b >= system.bodies.len()) {
+                return Err(ScenarioError::Invalid(format!(
+                    "parameter `{name}` = {value} leaves {} bodies: the measured body {} is not \
+                     among them",
+                    system.bodies.len(),
+                    b + 1
+                )));
+            }
+            return Ok(Box::new(SystemCase {
+                name: source.name(),
+                system,
+                chain: Some(source),
+                ..self.clone()
+            }));
         }
         if !matches!(
             self.switching,

@@ -3,11 +3,13 @@
 //!
 //! The curve rigs of Figures 2–7 ([`curves`]) and the catalogue of those figures
 //! ([`figures`]); the rigs ([`scenario`], [`mod@run`]); the paper's experiment ([`paper`]);
-//! Table 2 by simulation ([`phenomena`]); the solver studies ([`studies`], [`cases`], their
+//! Table 2 by simulation ([`phenomena`]); the solver studies ([`studies`], [`cases`], the chain
+//! they build again for each swept value: [`chain`]; their
 //! runs as one list: [`batch`]); the settled state a parameter sweep measures ([`settled`]).
 
 pub mod batch;
 pub mod cases;
+pub mod chain;
 pub mod curves;
 pub mod figures;
 pub mod grid;

@@ -256,15 +256,7 @@ fn a_system_study_draws_regularised_bdf_and_time_stepping_beside_its_solvers() {
             .map(Arc::from)
     })
     .unwrap();
-    let case = SystemCase {
-        name: "chain".into(),
-        system,
-        switching: SwitchingKind::Event,
-        epsilon: 1e-3,
-        t_end: 10.0,
-        bodies: vec![0],
-        limits: Limits::default(),
-    };
+    let case = SystemCase::new("chain", system, 10.0);
     let peers = case.peers();
     let labels: Vec<String> = peers.iter().map(Method::label).collect();
     assert_eq!(labels, ["bdf (regularized)", "moreau-jean (timestepping)"]);

@@ -138,6 +138,7 @@ impl CaseArgs {
                     )?,
                     bodies,
                     limits: self.limits.limits()?,
+                    chain: described.source,
                 }));
             }
         };

@@ -24,7 +24,8 @@ pub struct StiffnessArgs {
     /// The problem.
     #[command(flatten)]
     pub case: CaseArgs,
-    /// The parameter swept: epsilon, sigma, sigma0, k, or any other.
+    /// The parameter swept: epsilon, sigma, sigma0, k, or any other the run reads (on the
+    /// chain: k_chain, m, …, or its law's; on a system file: epsilon).
     #[arg(long, value_name = "NAME", default_value = "epsilon")]
     pub parameter: String,
     /// Its values, in sweep order.
@@ -234,8 +235,8 @@ pub fn stiffness(a: &StiffnessArgs) -> Result<Made, AppError> {
         case.switching = Some(SwitchingKind::Regularized);
     }
     // A rig's run reads only what its model and switching read. A system's case checks its
-    // one sweepable parameter, epsilon, itself (`StudyCase::with_parameter`): under event
-    // switching its regularised peer reads it.
+    // parameter itself (`StudyCase::with_parameter`): epsilon, which under event switching
+    // its regularised peer reads, and on the chain the chain's parameters and its law's.
     if let Some(Problem::Rig(_)) = case.scenario {
         crate::options::check_read(
             "parameter",
