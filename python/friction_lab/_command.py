@@ -89,6 +89,11 @@ def words(command: str, *positional: Optional[str], **options: Any) -> List[str]
     :data:`FLAGS` only), ``False`` and ``None`` leave the option out, and a list, tuple, range
     or one-dimensional numpy array is written comma-separated.
     """
+    for p in positional:
+        if p is not None and not isinstance(p, str):
+            # Passed on, it would fail as the native call's TypeError, naming no argument.
+            raise ValueError(f"`{command}`: argument {p!r} is not a name: a string is expected, "
+                             f"as `friction-lab {command} --help` lists them")
     argv = [command] + [p for p in positional if p is not None]
     for name, value in options.items():
         if value is None or value is False:

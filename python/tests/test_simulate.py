@@ -135,6 +135,14 @@ def test_bad_options_raise_value_error_naming_the_field(cli, tmp_path):
             fl.simulate("belt", model="CVS", params=bad)
     with pytest.raises(ValueError, match=r"option `grid`: .* e\.g\. \{'v_belt': \[0\.1, 0\.2\]\}"):
         fl.sweep("belt", model="CVS", grid=0.1)
+    # A scenario or a model that is not a string is named, not left to the native call's
+    # TypeError "'int' object is not an instance of 'str'".
+    for call, bad in ((lambda b: fl.simulate(b, model="CVS"), 3),
+                      (lambda b: fl.stiffness(b, model="CS"), ["belt"]),
+                      (lambda b: fl.sweep(b, model="CS", grid={"k": [1]}), 1.0),
+                      (fl.curve, np.array(["CS"]))):
+        with pytest.raises(ValueError, match=r"argument .* is not a name: a string is expected"):
+            call(bad)
     pairs = fl.simulate("belt", model="CVS", params=[("v_belt", 0.2)], t_end=1.0)
     series = fl.simulate("belt", model="CVS", params=pd.Series({"v_belt": 0.2}), t_end=1.0)
     assert np.array_equal(pairs.v, series.v)
