@@ -130,8 +130,20 @@ impl ParamOptions {
                 apply(&name, value)?;
             }
         }
-        for assignment in &self.set {
-            let (name, value) = parse_assignment(assignment)?;
+        let assignments = self
+            .set
+            .iter()
+            .map(|a| parse_assignment(a))
+            .collect::<Result<Vec<_>, _>>()?;
+        let names: Vec<&str> = assignments.iter().map(|a| a.0).collect();
+        if let Some((j, k)) = first_repeat(&names) {
+            return Err(AppError::Usage(format!(
+                "option `--set`: parameter `{}` is set twice, {} and {}: set each parameter \
+                 once (only the last would be used)",
+                names[k], self.set[j], self.set[k]
+            )));
+        }
+        for (name, value) in assignments {
             apply(name, value)?;
         }
         friction.validate()?;

@@ -232,6 +232,14 @@ fn bad_parameters_are_rejected_with_name_value_and_range() {
             "`abc` is not a number",
         ),
         (
+            // Only the last would be used: a script that appends its --set's twice.
+            &[
+                "curve", "SD", "--set", "F_s=8", "--set", "F_c=5", "--set", "F_s=9",
+            ],
+            "option `--set`: parameter `F_s` is set twice, F_s=8 and F_s=9: set each parameter \
+             once (only the last would be used)",
+        ),
+        (
             &["curve", "SD", "--set", "F_s=7,F_c=5"],
             "`7,F_c=5` is not a number (one parameter per --set: --set F_s=… --set …)",
         ),
@@ -1656,6 +1664,17 @@ fn sweep_runs_a_grid_in_parallel_measures_the_settled_cycle_and_rejects_bad_axes
         let e = rejected(&args);
         assert!(e.contains(message), "{grids:?}: {e}");
     }
+    // A point's value is applied after the --set's: the set value would be swept over silently.
+    let e = rejected(&[
+        "sweep", "belt", "--model", "CS", "--set", "F_s=7", "--grid", "F_s=8,9",
+    ]);
+    assert!(
+        e.contains(
+            "option `grid`: parameter `F_s` is also given by --set F_s=7: every point would \
+             override it; give its values in the axis only"
+        ),
+        "{e}"
+    );
 }
 
 #[test]

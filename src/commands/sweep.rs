@@ -167,6 +167,19 @@ fn check_axes(axes: &[Axis], run: &SimulateArgs) -> Result<(), AppError> {
             names[k]
         )));
     }
+    // A point's values are applied after the --set's: a parameter in both would be swept
+    // silently over the value the user set.
+    let set = &run.model_options.params.set;
+    if let Some((name, given)) = names.iter().find_map(|&n| {
+        set.iter()
+            .find(|a| crate::options::parse_assignment(a).is_ok_and(|(s, _)| s == n))
+            .map(|a| (n, a))
+    }) {
+        return Err(AppError::Usage(format!(
+            "option `grid`: parameter `{name}` is also given by --set {given}: every point \
+             would override it; give its values in the axis only"
+        )));
+    }
     if run.system.is_some() {
         // A system file's contacts carry their own parameters: only the regularisation width
         // is shared.
