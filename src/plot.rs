@@ -5,6 +5,7 @@ use crate::error::AppError;
 use plotters::coord::ranged1d::ValueFormatter;
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 use std::path::Path;
 use std::sync::Once;
 
@@ -63,8 +64,9 @@ pub const BLUE: RGBColor = RGBColor(30, 80, 200);
 /// Third series colour.
 pub const GREEN: RGBColor = RGBColor(20, 140, 60);
 
-/// Colours for figures with several series, in order.
-pub const PALETTE: [RGBColor; 8] = [
+/// Colours for figures with several series, in order: one for each of a study's nine methods
+/// at most (the seven solvers, and a system's regularised BDF and time-stepping).
+pub const PALETTE: [RGBColor; 10] = [
     RED,
     BLUE,
     GREEN,
@@ -73,6 +75,8 @@ pub const PALETTE: [RGBColor; 8] = [
     RGBColor(90, 90, 90),
     RGBColor(0, 160, 170),
     RGBColor(140, 90, 40),
+    RGBColor(220, 60, 150),
+    RGBColor(150, 160, 0),
 ];
 
 /// Where the legend goes, if its box covers no more of the data there than in any other
@@ -118,22 +122,28 @@ struct LegendBox {
 /// The legend's font.
 const LEGEND_FONT: (&str, u32) = ("sans-serif", 15);
 
-/// The axes' ranges as [`bounds`] gives them, and the legend's corner ([`legend_corner`]); when
-/// the legend would cover data in every corner (a stick–slip map's grid of markers), the top of
-/// the y range is raised by the legend's height, so that it sits above the data (unless the
-/// legend is more than half the plot's height).
-fn layout(plot: &Plot) -> (Bounds, Corner) {
+/// Where a plot's legend is drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum LegendPlace {
+    /// In a corner of the plotting area.
+    Inside(Corner),
+    /// Beside the plotting area, on its right, level with its top.
+    Beside,
+}
+
+/// The axes' ranges as [`bounds`] gives them, and where the legend goes: in the corner of
+/// [`legend_corner`] if it covers no data there, else beside the plot (a stick–slip map's grid
+/// of markers; the nine methods of a chain's work–precision plot, whose curves reach every
+/// corner: raising the y range above the data, as done before, left six empty decades), unless
+/// it is taller than the plot, when it stays in the corner where it covers least.
+fn layout(plot: &Plot) -> (Bounds, LegendPlace) {
     let fitted = bounds(plot);
     let (corner, covered) = legend_corner(plot, fitted);
-    let h = legend_size(plot).1;
-    // (A legend of more than half the height is left where it covers least.)
-    if covered == 0 || h > 0.5 {
-        return (fitted, corner);
+    if covered == 0 || legend_size(plot).1 > 1.0 {
+        (fitted, LegendPlace::Inside(corner))
+    } else {
+        (fitted, LegendPlace::Beside)
     }
-    let (x, (y0, y1)) = fitted;
-    let (a, b) = (to_axis(plot, y0), to_axis(plot, y1));
-    let raised = from_axis(plot, (a, a + (b - a) / (1.0 - h)));
-    ((x, raised), legend_corner(plot, (x, raised)).0)
 }
 
 /// The ranges of the x and y axes.
@@ -142,6 +152,12 @@ type Bounds = ((f64, f64), (f64, f64));
 /// The legend box of `plot` with its gap and margin, as fractions of the plotting area's width
 /// and height (zero without a legend).
 fn legend_size(plot: &Plot) -> (f64, f64) {
+    let (w, h) = legend_pixels(plot);
+    (w / PLOT_AREA.0, h / PLOT_AREA.1)
+}
+
+/// The legend box of `plot` with its gap and margin, pixels (zero without a legend).
+fn legend_pixels(plot: &Plot) -> (f64, f64) {
     let labels: Vec<&str> = plot
         .series
         .iter()
@@ -163,8 +179,8 @@ fn legend_size(plot: &Plot) -> (f64, f64) {
         .unwrap_or(0);
     let b = &LEGEND_BOX;
     (
-        (b.gap + b.width + f64::from(text) + b.margin) / PLOT_AREA.0,
-        (b.gap + b.height + b.per_entry * labels.len() as f64 + b.margin) / PLOT_AREA.1,
+        b.gap + b.width + f64::from(text) + b.margin,
+        b.gap + b.height + b.per_entry * labels.len() as f64 + b.margin,
     )
 }
 
@@ -300,9 +316,22 @@ fn from_axis(plot: &Plot, (a, b): (f64, f64)) -> (f64, f64) {
 fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, plots: &[Plot]) -> Result<(), String> {
     let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
     root.fill(&WHITE).map_err(err)?;
-    for (area, plot) in root.split_evenly((1, plots.len().max(1))).iter().zip(plots) {
-        let (((x0, x1), (y0, y1)), corner) = layout(plot);
-        let mut builder = ChartBuilder::on(area);
+    for (panel, plot) in root.split_evenly((1, plots.len().max(1))).iter().zip(plots) {
+        let (((x0, x1), (y0, y1)), legend) = layout(plot);
+        // A legend beside the plot takes a strip on the panel's right.
+        let (area, beside) = match legend {
+            LegendPlace::Beside => {
+                let strip = legend_pixels(plot).0.ceil() as u32 + LEGEND_BOX.gap as u32;
+                let (a, b) = panel.split_horizontally(panel.dim_in_pixel().0.saturating_sub(strip));
+                (a, Some(b))
+            }
+            LegendPlace::Inside(_) => (panel.clone(), None),
+        };
+        let corner = match legend {
+            LegendPlace::Inside(c) => Some(c),
+            LegendPlace::Beside => None,
+        };
+        let mut builder = ChartBuilder::on(&area);
         builder
             .caption(&plot.title, ("sans-serif", 22))
             .margin(15)
@@ -319,13 +348,60 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, plots: &[Plot]) -> Res
             let chart = builder
                 .build_cartesian_2d(axis(x0, x1), axis(y0, y1))
                 .map_err(err)?;
-            draw_on(chart, plot, corner)?;
+            draw_on(chart, plot, corner, beside.as_ref())?;
         } else {
             let chart = builder.build_cartesian_2d(x0..x1, y0..y1).map_err(err)?;
-            draw_on(chart, plot, corner)?;
+            draw_on(chart, plot, corner, beside.as_ref())?;
         }
     }
     root.present().map_err(err)
+}
+
+/// A legend's key: a line sample and a cross, in pixels from the key's left end.
+type Key = (PathElement<(i32, i32)>, Cross<(i32, i32), i32>);
+
+/// The key of a series in a legend, relative to its left end: a line for a computed series, a
+/// cross for failed runs.
+fn key(color: RGBColor, marker: Marker) -> Key {
+    let (cross, line) = match marker {
+        Marker::Cross => (1.0, 0.0),
+        _ => (0.0, 1.0),
+    };
+    (
+        PathElement::new([(0, 0), (20, 0)], color.mix(line).stroke_width(3)),
+        Cross::new((10, 0), 5, color.mix(cross).stroke_width(2)),
+    )
+}
+
+/// The legend of `plot` drawn in `area`, a strip beside its plotting area, its box's top at
+/// `top` pixels of the strip: the box, key and text of plotters' own legend.
+fn draw_legend_beside<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    plot: &Plot,
+    top: i32,
+) -> Result<(), String> {
+    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
+    let b = &LEGEND_BOX;
+    let labelled: Vec<&Series> = plot.series.iter().filter(|s| s.label.is_some()).collect();
+    let (w, h) = legend_pixels(plot);
+    let corner = |x: f64, y: f64| (x as i32, top + y as i32);
+    let (x0, x1) = (0.0, w - b.gap - b.margin);
+    let height = h - b.gap - b.margin;
+    let frame = [corner(x0, 0.0), corner(x1, height)];
+    area.draw(&Rectangle::new(frame, WHITE.mix(0.85).filled()))
+        .map_err(err)?;
+    area.draw(&Rectangle::new(frame, BLACK)).map_err(err)?;
+    let text = TextStyle::from(LEGEND_FONT.into_font()).pos(Pos::new(HPos::Left, VPos::Center));
+    for (k, s) in labelled.iter().enumerate() {
+        let y = b.height / 2.0 + b.per_entry * (k as f64 + 0.5);
+        let (line, cross) = key(s.color, s.marker);
+        area.draw(&(EmptyElement::at(corner(x0 + 10.0, y)) + line + cross))
+            .map_err(err)?;
+        let label = s.label.as_deref().unwrap_or_default();
+        area.draw(&Text::new(label, corner(x0 + 40.0, y), &text))
+            .map_err(err)?;
+    }
+    Ok(())
 }
 
 /// The ticks of a log axis over [a, b]: the powers of ten in it (every second, third… when
@@ -392,7 +468,8 @@ fn tick_label(v: f64) -> String {
 fn draw_on<'a, DB, X, Y>(
     mut chart: ChartContext<'a, DB, Cartesian2d<X, Y>>,
     plot: &Plot,
-    legend: Corner,
+    corner: Option<Corner>,
+    beside: Option<&DrawingArea<DB, Shift>>,
 ) -> Result<(), String>
 where
     DB: DrawingBackend + 'a,
@@ -456,15 +533,9 @@ where
                 .map_err(err)?
         };
         if let Some(label) = &s.label {
-            // A cross for failed runs, a line (with its dot) for the others.
-            let (cross, line) = match marker {
-                Marker::Cross => (1.0, 0.0),
-                _ => (0.0, 1.0),
-            };
-            drawn.label(label.as_str()).legend(move |(x, y)| {
-                EmptyElement::at((x, y))
-                    + PathElement::new([(0, 0), (20, 0)], color.mix(line).stroke_width(3))
-                    + Cross::new((10, 0), 5, color.mix(cross).stroke_width(2))
+            drawn.label(label.as_str()).legend(move |p| {
+                let (line, cross) = key(color, marker);
+                EmptyElement::at(p) + line + cross
             });
         }
         match marker {
@@ -485,22 +556,30 @@ where
             }
         }
     }
-    if plot.series.iter().any(|s| s.label.is_some()) {
-        chart
+    if !plot.series.iter().any(|s| s.label.is_some()) {
+        return Ok(());
+    }
+    match (corner, beside) {
+        (Some(corner), _) => chart
             .configure_series_labels()
             .label_font(LEGEND_FONT)
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK)
-            .position(match legend {
+            .position(match corner {
                 Corner::UpperLeft => SeriesLabelPosition::UpperLeft,
                 Corner::UpperRight => SeriesLabelPosition::UpperRight,
                 Corner::LowerLeft => SeriesLabelPosition::LowerLeft,
                 Corner::LowerRight => SeriesLabelPosition::LowerRight,
             })
             .draw()
-            .map_err(err)?;
+            .map_err(err),
+        (None, Some(area)) => {
+            // Level with the plotting area's top (both in the panel's pixels).
+            let top = chart.plotting_area().get_base_pixel().1 - area.get_base_pixel().1;
+            draw_legend_beside(area, plot, top + LEGEND_BOX.gap as i32)
+        }
+        (None, None) => Ok(()),
     }
-    Ok(())
 }
 
 /// The size of a figure of `panels` plots side by side.
@@ -733,8 +812,8 @@ mod tests {
             ..plot(vec![(1.0, 1.0), (1e3, 1e-3)], Corner::LowerRight)
         };
         assert_eq!(legend_corner(&log, bounds(&log)).0, Corner::UpperRight);
-        // A grid of markers everywhere: the y range is raised for the legend, which then
-        // covers nothing, in the preferred corner.
+        // A grid of markers everywhere: the legend goes beside the plot, the ranges those of
+        // the data; its text is drawn right of every marker.
         let grid: Vec<(f64, f64)> = (1..=20)
             .flat_map(|i| (1..=20).map(move |j| (f64::from(i), f64::from(j))))
             .collect();
@@ -748,17 +827,28 @@ mod tests {
                 ..plot(vec![], Corner::UpperLeft)
             };
             assert!(legend_corner(&map, bounds(&map)).1 > 0);
-            let (raised, corner) = layout(&map);
-            assert_eq!(corner, Corner::UpperLeft);
-            assert_eq!(legend_corner(&map, raised), (Corner::UpperLeft, 0));
-            assert!(raised.1 .1 > bounds(&map).1 .1);
+            assert_eq!(layout(&map), (bounds(&map), LegendPlace::Beside));
+            let svg = svg(&map, Path::new("map.svg")).unwrap();
+            let rightmost = svg
+                .split("<circle cx=\"")
+                .skip(1)
+                .filter_map(|e| e.split('"').next()?.parse::<f64>().ok())
+                .fold(0.0, f64::max);
+            let text = svg.find("a run").unwrap();
+            let label_x = svg[..text].rsplit("<text x=\"").next().unwrap();
+            let label_x: f64 = label_x.split('"').next().unwrap().parse().unwrap();
+            assert!(rightmost > 100.0, "the markers are drawn: {rightmost}");
+            assert!(label_x > rightmost + 10.0, "{label_x} {rightmost}");
+            assert!(label_x < f64::from(SIZE.0), "{label_x}");
         }
-        // A legend of thirty entries is taller than half the plot: the range is kept.
+        // A legend of thirty entries is taller than the plot: it stays in the corner where it
+        // covers least, over the data's ranges.
         let many = Plot {
             series: (0..30).map(|_| line(grid.clone())).collect(),
             ..plot(vec![], Corner::UpperLeft)
         };
         assert_eq!(layout(&many).0, bounds(&many));
+        assert!(matches!(layout(&many).1, LegendPlace::Inside(_)));
     }
 
     #[test]

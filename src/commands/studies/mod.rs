@@ -488,4 +488,29 @@ mod tests {
             .collect();
         assert_eq!(crosses, [(0.02, 3e-2), (0.02, 3e-2 * 1.5)]);
     }
+
+    #[test]
+    fn every_solver_of_a_system_study_has_a_colour_of_its_own() {
+        // The seven solvers and a system's two peers: with eight colours, time-stepping took
+        // RK4's red, and the chain's default work-precision plot drew them alike.
+        let names = [
+            "rk4",
+            "dopri5",
+            "implicit-euler",
+            "bdf",
+            "tr-bdf2",
+            "esdirk34",
+            "tsit45",
+            "bdf (regularized)",
+            "moreau-jean (timestepping)",
+        ];
+        let runs: Vec<StudyRun> = names.iter().map(|n| run(n, 0.01, 1e-4, None)).collect();
+        let series = per_solver_series(&runs, |_| true, |r| r.resolution, |r| r.errors.final_state);
+        assert_eq!(series.len(), names.len());
+        for (i, a) in series.iter().enumerate() {
+            for b in &series[..i] {
+                assert_ne!(a.color, b.color, "{:?} and {:?}", a.label, b.label);
+            }
+        }
+    }
 }
