@@ -1,6 +1,7 @@
 //! A study's runs as one list on the pool: every case of the study (one, or one per value of
 //! a stiffness sweep), the reference runs of each, each (method, step) and its timing repeats,
-//! handed to the workers by a greedy list schedule ([`schedule::in_order`]), the longest
+//! handed to the workers by a greedy list schedule ([`schedule::in_order`]): the references
+//! first (a reference that fails ends the study, and no run starts after it), then the longest
 //! expected first (Graham 1969's LPT rule: a makespan of at most 4/3 of the optimum). A study
 //! that ran its cases one after the other, or its reference beside its runs, or its timing
 //! repeats after them, waited at each of those barriers for its longest run.
@@ -218,9 +219,16 @@ pub fn run_cases(
             expected_steps(&method, step, cases[case].t_end())
         }
     };
+    // The references first: every error is measured against them, so a reference that fails
+    // (or is interrupted) ends the study, and no run starts after it; and a study stopped
+    // after its references keeps its finished runs.
+    let is_reference = |i: usize| matches!(tasks[i], Task::Reference { .. });
     let mut order: Vec<usize> = (0..tasks.len()).collect();
-    order.sort_by(|&a, &b| cost(&tasks[b]).total_cmp(&cost(&tasks[a])));
-    let done = schedule::in_order(&order, |i| match tasks[i] {
+    order.sort_by(|&a, &b| {
+        let longer = cost(&tasks[b]).total_cmp(&cost(&tasks[a]));
+        is_reference(b).cmp(&is_reference(a)).then(longer)
+    });
+    let done = schedule::in_order(&order, is_reference, |i| match tasks[i] {
         Task::Reference { case, solver } => {
             let Some(Plan::Runs { own, .. }) = &plans[case] else {
                 unreachable!("reference tasks come from run plans")

@@ -242,6 +242,47 @@ fn the_reference_is_an_independent_tight_run_and_is_cross_checked_when_both_are_
 }
 
 #[test]
+fn a_study_whose_reference_fails_starts_no_run_after_it() {
+    use scenarios::studies::{work_precision, Method};
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    // 100 steps: the reference (Dormand–Prince at 1e-13 over 5 s) fails. RK4's runs at
+    // 1e-3 and 1e-4 are expected longer (5e3 and 5e4 steps against about 7e2), and were
+    // scheduled, and run to their own step cap, before it.
+    let case = Case {
+        limits: Limits {
+            max_steps: 100,
+            time_limit: None,
+        },
+        ..switched_belt()
+    };
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    let ran = AtomicUsize::new(0);
+    let e = pool
+        .install(|| {
+            work_precision(
+                &case,
+                &[Method::of(Solver::Rk4)],
+                &[1e-3, 1e-4],
+                &[],
+                1,
+                &|| {
+                    ran.fetch_add(1, Ordering::Relaxed);
+                },
+            )
+        })
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with("the reference run (dopri5) failed: too many steps"),
+        "{e}"
+    );
+    assert_eq!(ran.into_inner(), 0);
+}
+
+#[test]
 fn a_system_study_draws_regularised_bdf_and_time_stepping_beside_its_solvers() {
     use friction_systems::chain::ChainParams;
     use scenarios::studies::{work_precision, Method, StudyCase, SystemCase};
