@@ -332,8 +332,9 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, plots: &[Plot]) -> Res
             LegendPlace::Beside => None,
         };
         let mut builder = ChartBuilder::on(&area);
+        let caption = caption_size(&plot.title, area.dim_in_pixel().0);
         builder
-            .caption(&plot.title, ("sans-serif", 22))
+            .caption(&plot.title, ("sans-serif", caption))
             .margin(15)
             .x_label_area_size(50)
             .y_label_area_size(70);
@@ -359,6 +360,26 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, plots: &[Plot]) -> Res
 
 /// A legend's key: a line sample and a cross, in pixels from the key's left end.
 type Key = (PathElement<(i32, i32)>, Cross<(i32, i32), i32>);
+
+/// The largest and smallest font sizes of a plot's title, pixels.
+const CAPTION_SIZES: (u32, u32) = (22, 12);
+
+/// The font size of `title` over an area `width` pixels wide: the largest of
+/// [`CAPTION_SIZES`] whose text fits with 10 pixels each side (a model's title with its
+/// reference, such as GMS's, ran over both edges at the largest).
+fn caption_size(title: &str, width: u32) -> u32 {
+    register_font();
+    let (largest, smallest) = CAPTION_SIZES;
+    (smallest..=largest)
+        .rev()
+        .find(|&size| {
+            ("sans-serif", size)
+                .into_font()
+                .box_size(title)
+                .map_or(true, |(w, _)| w + 20 <= width)
+        })
+        .unwrap_or(smallest)
+}
 
 /// The key of a series in a legend, relative to its left end: a line for a computed series, a
 /// cross for failed runs.
@@ -849,6 +870,21 @@ mod tests {
         };
         assert_eq!(layout(&many).0, bounds(&many));
         assert!(matches!(layout(&many).1, LegendPlace::Inside(_)));
+    }
+
+    #[test]
+    fn a_long_title_is_set_smaller_to_fit_its_panel() {
+        let gms = "gms: generalized Maxwell-slip (Al-Bender et al. 2005) (Al-Bender, Lampaert, \
+                   Swevers (2005), IEEE TAC 50(11))";
+        let size = caption_size(gms, SIZE.0);
+        assert!((CAPTION_SIZES.1..CAPTION_SIZES.0).contains(&size), "{size}");
+        let width = |size: u32| ("sans-serif", size).into_font().box_size(gms).unwrap().0;
+        assert!(width(size) + 20 <= SIZE.0, "{}", width(size));
+        assert!(width(size + 1) + 20 > SIZE.0, "the largest that fits");
+        assert_eq!(
+            caption_size("Work-precision: belt with CS", SIZE.0),
+            CAPTION_SIZES.0
+        );
     }
 
     #[test]
