@@ -764,22 +764,83 @@ pub struct Stiffness {
     pub crossover: Option<f64>,
 }
 
+impl StiffnessPoint {
+    /// Whether some method met the target at this value (where none did, neither kind wins).
+    pub fn decided(&self) -> bool {
+        self.costs.iter().any(|c| c.resolution.is_some())
+    }
+}
+
 /// The first value (in sweep order) from which the implicit solvers win, where the explicit
-/// ones won before it and the implicit ones win at every value from it on; `None` where one
+/// ones won before it and the implicit ones win at every value from it on (values at which no
+/// method met the target are passed over); `None` where one
 /// kind wins at every value or the winner changes more than once (as [`Stiffness::verdict`]
 /// says).
 pub fn crossover(points: &[StiffnessPoint]) -> Option<f64> {
-    let k = points.iter().position(|p| p.implicit_wins)?;
-    (k > 0 && points[k..].iter().all(|p| p.implicit_wins)).then(|| points[k].value)
+    let decided: Vec<&StiffnessPoint> = points.iter().filter(|p| p.decided()).collect();
+    let k = decided.iter().position(|p| p.implicit_wins)?;
+    (k > 0 && decided[k..].iter().all(|p| p.implicit_wins)).then(|| decided[k].value)
 }
 
 impl Stiffness {
     /// The study's conclusion in words: a crossover only where the winner changes inside the
-    /// sweep; "no crossover in this range" where one kind wins at every value.
+    /// sweep; "no crossover in this range" where one kind wins at every value; no winner where
+    /// only one kind of method was studied, or at a value where no method met the target
+    /// (named after the verdict).
     pub fn verdict(&self) -> String {
-        let wins: Vec<bool> = self.points.iter().map(|p| p.implicit_wins).collect();
+        let studied = |implicit: bool| {
+            let mut names: Vec<&str> = Vec::new();
+            for c in self.points.iter().flat_map(|p| &p.costs) {
+                if c.implicit == implicit && !names.contains(&c.solver.as_str()) {
+                    names.push(&c.solver);
+                }
+            }
+            names
+        };
+        let (implicit, explicit) = (studied(true), studied(false));
+        if !self.points.is_empty() && (implicit.is_empty() || explicit.is_empty()) {
+            let (kind, names) = if implicit.is_empty() {
+                ("explicit", explicit)
+            } else {
+                ("implicit", implicit)
+            };
+            return format!(
+                "only {kind} methods were studied ({}): nothing to compare them with; their cost \
+                 against {} is in stiffness.csv",
+                names.join(", "),
+                self.parameter
+            );
+        }
+        let undecided: Vec<String> = self
+            .points
+            .iter()
+            .filter(|p| !p.decided())
+            .map(|p| p.value.to_string())
+            .collect();
+        let decided: Vec<&StiffnessPoint> = self.points.iter().filter(|p| p.decided()).collect();
+        if !self.points.is_empty() && decided.is_empty() {
+            return format!(
+                "no method met the target at any {} of the sweep",
+                self.parameter
+            );
+        }
+        let verdict = self.winners(&decided);
+        if undecided.is_empty() {
+            verdict
+        } else {
+            format!(
+                "{verdict}; no method met the target at {} = {}",
+                self.parameter,
+                undecided.join(", ")
+            )
+        }
+    }
+
+    /// Which kind wins over the `decided` values: everywhere, from a crossover on, or by turns.
+    fn winners(&self, decided: &[&StiffnessPoint]) -> String {
+        let wins: Vec<bool> = decided.iter().map(|p| p.implicit_wins).collect();
         let values = |implicit: bool| {
-            self.points
+            decided
                 .iter()
                 .filter(|p| p.implicit_wins == implicit)
                 .map(|p| p.value.to_string())
@@ -801,7 +862,7 @@ impl Stiffness {
                 if wins[k..].iter().all(|&w| w) {
                     format!(
                         "the implicit solvers overtake the explicit ones from {} = {}",
-                        self.parameter, self.points[k].value
+                        self.parameter, decided[k].value
                     )
                 } else {
                     format!(

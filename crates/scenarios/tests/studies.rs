@@ -156,15 +156,27 @@ fn levels_outside_the_asymptotic_range_do_not_make_a_small_richardson_estimate()
 
 #[test]
 fn the_stiffness_verdict_names_a_crossover_only_inside_the_sweep() {
-    use scenarios::studies::{crossover, Stiffness, StiffnessPoint};
-    let sweep = |wins: &[bool]| {
-        let points: Vec<StiffnessPoint> = wins
+    use scenarios::studies::{crossover, Cost, Stiffness, StiffnessPoint};
+    // Each value's winner (None: no method met the target there), among the methods studied.
+    let studied = |outcomes: &[Option<bool>], kinds: &[bool]| {
+        let points: Vec<StiffnessPoint> = outcomes
             .iter()
             .enumerate()
             .map(|(i, &w)| StiffnessPoint {
                 value: 10f64.powi(-(i as i32)),
-                costs: vec![],
-                implicit_wins: w,
+                costs: kinds
+                    .iter()
+                    .map(|&implicit| Cost {
+                        solver: if implicit { "bdf" } else { "dopri5" }.into(),
+                        implicit,
+                        resolution: w.map(|_| 1e-6),
+                        step: None,
+                        error: 1e-4,
+                        stats: integrators::Stats::default(),
+                        work: 10,
+                    })
+                    .collect(),
+                implicit_wins: w == Some(true),
             })
             .collect();
         Stiffness {
@@ -173,6 +185,12 @@ fn the_stiffness_verdict_names_a_crossover_only_inside_the_sweep() {
             crossover: crossover(&points),
             points,
         }
+    };
+    let sweep = |wins: &[bool]| {
+        studied(
+            &wins.iter().map(|&w| Some(w)).collect::<Vec<_>>(),
+            &[true, false],
+        )
     };
     // The crossover of the files is the verdict's: none where one kind wins everywhere (the
     // JSON once named the first value then) or the winner changes twice.
@@ -200,6 +218,31 @@ fn the_stiffness_verdict_names_a_crossover_only_inside_the_sweep() {
     assert!(sweep(&[false, true, false])
         .verdict()
         .starts_with("the winner changes more than once"));
+    // One kind studied: no winner (`stiffness --solvers bdf`, or a time-stepped study, said
+    // "the implicit solvers win at every epsilon").
+    let only_implicit = studied(&[Some(true), Some(true)], &[true]);
+    assert_eq!(
+        only_implicit.verdict(),
+        "only implicit methods were studied (bdf): nothing to compare them with; their cost \
+         against epsilon is in stiffness.csv"
+    );
+    assert_eq!(only_implicit.crossover, None);
+    assert!(studied(&[Some(false)], &[false])
+        .verdict()
+        .starts_with("only explicit methods were studied (dopri5)"));
+    // A value where no method met the target has no winner (it counted as the explicit
+    // solvers' win), and a crossover is read over the others.
+    let gap = studied(&[Some(false), None, Some(true), Some(true)], &[true, false]);
+    assert_eq!(
+        gap.verdict(),
+        "the implicit solvers overtake the explicit ones from epsilon = 0.01; no method met \
+         the target at epsilon = 0.1"
+    );
+    assert_eq!(gap.crossover, Some(0.01));
+    assert_eq!(
+        studied(&[None, None], &[true, false]).verdict(),
+        "no method met the target at any epsilon of the sweep"
+    );
 }
 
 /// The switched belt (CS, event switching), which has no closed form.
