@@ -15,6 +15,7 @@ use crate::schedule;
 use crate::studies::REFERENCE_TOLERANCE;
 use crate::studies::{resolution, step_kind, Errors, Method, Reference, StudyRun};
 use integrators::{DiffsolMethod, Solver, StepControl};
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// The steps a run is expected to take, to order the list: `T/h` with a fixed step;
 /// `T·tol^(−1/(p+1))` with a tolerance, for a method of order p whose error per step is
@@ -153,7 +154,8 @@ enum Task {
 enum Done {
     Reference(Measures),
     Run(Box<StudyRun>),
-    Time(f64),
+    /// A timing repeat's wall time; `None` for the repeat of a run that failed, not run.
+    Time(Option<f64>),
 }
 
 /// Refuses two different methods with the same label.
@@ -228,6 +230,12 @@ pub fn run_cases(
         let longer = cost(&tasks[b]).total_cmp(&cost(&tasks[a]));
         is_reference(b).cmp(&is_reference(a)).then(longer)
     });
+    // Whether each (case, job)'s first run failed: its timing repeats are then not run (a
+    // step cap would stop them alike, and a partial run's time measures nothing; a repeat
+    // taken beside its first run still runs).
+    let failed: Vec<AtomicBool> = (0..cases.len() * jobs.len())
+        .map(|_| AtomicBool::new(false))
+        .collect();
     let done = schedule::in_order(&order, is_reference, |i| match tasks[i] {
         Task::Reference { case, solver } => {
             let Some(Plan::Runs { own, .. }) = &plans[case] else {
@@ -237,10 +245,18 @@ pub fn run_cases(
         }
         Task::Run { case, job, repeat } => {
             let (method, step) = jobs[job];
+            let first_failed = &failed[case * jobs.len() + job];
+            if repeat > 0 && first_failed.load(Ordering::Relaxed) {
+                progress();
+                return Ok(Done::Time(None));
+            }
             let o = method.measure(cases[case], step)?;
             progress();
             if repeat > 0 {
-                return Ok(Done::Time(o.wall_time_s));
+                return Ok(Done::Time(Some(o.wall_time_s)));
+            }
+            if o.error.is_some() {
+                first_failed.store(true, Ordering::Relaxed);
             }
             Ok(Done::Run(Box::new(StudyRun {
                 solver: method.label(),
@@ -275,7 +291,7 @@ pub fn run_cases(
                 unreachable!("results come back in the order of the tasks")
             };
             let mut times = vec![run.wall_time_s];
-            times.extend(done.by_ref().take(repeats).map(|d| match d {
+            times.extend(done.by_ref().take(repeats).filter_map(|d| match d {
                 Done::Time(t) => t,
                 _ => unreachable!("results come back in the order of the tasks"),
             }));

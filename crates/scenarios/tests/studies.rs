@@ -325,6 +325,97 @@ fn a_study_whose_reference_fails_starts_no_run_after_it() {
     assert_eq!(ran.into_inner(), 0);
 }
 
+/// The viscous block, its runs at h = 0.01 capped at ten steps (so they fail), every run's
+/// step recorded.
+struct Counted {
+    block: Case,
+    calls: std::sync::Mutex<Vec<f64>>,
+}
+
+impl StudyCase for Counted {
+    fn describe(&self) -> String {
+        self.block.describe()
+    }
+    fn t_end(&self) -> f64 {
+        self.block.t_end
+    }
+    fn switching(&self) -> SwitchingKind {
+        self.block.switching
+    }
+    fn dim(&self) -> Result<usize, scenarios::ScenarioError> {
+        self.block.dim()
+    }
+    fn with_switching(&self, switching: SwitchingKind) -> Box<dyn StudyCase> {
+        self.block.with_switching(switching)
+    }
+    fn with_parameter(
+        &self,
+        name: &str,
+        value: f64,
+    ) -> Result<Box<dyn StudyCase>, scenarios::ScenarioError> {
+        self.block.with_parameter(name, value)
+    }
+    fn measure(
+        &self,
+        solver: Solver,
+        step: integrators::StepControl,
+    ) -> Result<scenarios::studies::Measured, scenarios::ScenarioError> {
+        let h = step.given_step().unwrap_or(0.0);
+        self.calls.lock().unwrap().push(h);
+        let capped = Case {
+            limits: Limits {
+                max_steps: 10,
+                time_limit: None,
+            },
+            ..self.block.clone()
+        };
+        if h == 0.01 { &capped } else { &self.block }.measure(solver, step)
+    }
+    fn closed_form(&self) -> Option<(String, scenarios::studies::Measures)> {
+        self.block.closed_form()
+    }
+}
+
+#[test]
+fn a_run_that_failed_is_not_timed_again() {
+    use scenarios::studies::{work_precision, Method};
+    // One thread, so that each first run ends before its repeats start: three repeats of the
+    // run that succeeds, none of the one that failed (they would fail alike).
+    let case = Counted {
+        block: viscous_block(),
+        calls: Default::default(),
+    };
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    let w = pool
+        .install(|| {
+            work_precision(
+                &case,
+                &[Method::of(Solver::Rk4)],
+                &[0.01, 0.005],
+                &[],
+                4,
+                &|| {},
+            )
+        })
+        .unwrap();
+    let calls = case.calls.into_inner().unwrap();
+    assert_eq!(calls.iter().filter(|&&h| h == 0.01).count(), 1, "{calls:?}");
+    assert_eq!(
+        calls.iter().filter(|&&h| h == 0.005).count(),
+        4,
+        "{calls:?}"
+    );
+    assert!(w.runs[0]
+        .failure
+        .as_deref()
+        .unwrap()
+        .starts_with("too many steps"));
+    assert!(w.runs[0].wall_time_s > 0.0 && w.runs[1].failure.is_none());
+}
+
 #[test]
 fn a_system_study_draws_regularised_bdf_and_time_stepping_beside_its_solvers() {
     use friction_systems::chain::ChainParams;
