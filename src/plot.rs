@@ -319,17 +319,15 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, plots: &[Plot]) -> Res
     for (panel, plot) in root.split_evenly((1, plots.len().max(1))).iter().zip(plots) {
         let (((x0, x1), (y0, y1)), legend) = layout(plot);
         // A legend beside the plot takes a strip on the panel's right.
-        let (area, beside) = match legend {
+        let strip;
+        let (area, target) = match legend {
             LegendPlace::Beside => {
-                let strip = legend_pixels(plot).0.ceil() as u32 + LEGEND_BOX.gap as u32;
-                let (a, b) = panel.split_horizontally(panel.dim_in_pixel().0.saturating_sub(strip));
-                (a, Some(b))
+                let width = legend_pixels(plot).0.ceil() as u32 + LEGEND_BOX.gap as u32;
+                let (a, b) = panel.split_horizontally(panel.dim_in_pixel().0.saturating_sub(width));
+                strip = b;
+                (a, LegendTarget::Strip(&strip))
             }
-            LegendPlace::Inside(_) => (panel.clone(), None),
-        };
-        let corner = match legend {
-            LegendPlace::Inside(c) => Some(c),
-            LegendPlace::Beside => None,
+            LegendPlace::Inside(c) => (panel.clone(), LegendTarget::Corner(c)),
         };
         let mut builder = ChartBuilder::on(&area);
         let caption = caption_size(&plot.title, area.dim_in_pixel().0);
@@ -349,13 +347,20 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, plots: &[Plot]) -> Res
             let chart = builder
                 .build_cartesian_2d(axis(x0, x1), axis(y0, y1))
                 .map_err(err)?;
-            draw_on(chart, plot, corner, beside.as_ref())?;
+            draw_on(chart, plot, target)?;
         } else {
             let chart = builder.build_cartesian_2d(x0..x1, y0..y1).map_err(err)?;
-            draw_on(chart, plot, corner, beside.as_ref())?;
+            draw_on(chart, plot, target)?;
         }
     }
     root.present().map_err(err)
+}
+
+/// Where [`draw_on`] draws the legend: in a corner of the plotting area, or in a strip of the
+/// panel beside it.
+enum LegendTarget<'b, DB: DrawingBackend> {
+    Corner(Corner),
+    Strip(&'b DrawingArea<DB, Shift>),
 }
 
 /// A legend's key: a line sample and a cross, in pixels from the key's left end.
@@ -489,8 +494,7 @@ fn tick_label(v: f64) -> String {
 fn draw_on<'a, DB, X, Y>(
     mut chart: ChartContext<'a, DB, Cartesian2d<X, Y>>,
     plot: &Plot,
-    corner: Option<Corner>,
-    beside: Option<&DrawingArea<DB, Shift>>,
+    legend: LegendTarget<'_, DB>,
 ) -> Result<(), String>
 where
     DB: DrawingBackend + 'a,
@@ -580,8 +584,8 @@ where
     if !plot.series.iter().any(|s| s.label.is_some()) {
         return Ok(());
     }
-    match (corner, beside) {
-        (Some(corner), _) => chart
+    match legend {
+        LegendTarget::Corner(corner) => chart
             .configure_series_labels()
             .label_font(LEGEND_FONT)
             .background_style(WHITE.mix(0.85))
@@ -594,12 +598,11 @@ where
             })
             .draw()
             .map_err(err),
-        (None, Some(area)) => {
+        LegendTarget::Strip(area) => {
             // Level with the plotting area's top (both in the panel's pixels).
             let top = chart.plotting_area().get_base_pixel().1 - area.get_base_pixel().1;
             draw_legend_beside(area, plot, top + LEGEND_BOX.gap as i32)
         }
-        (None, None) => Ok(()),
     }
 }
 
