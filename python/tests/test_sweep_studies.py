@@ -67,6 +67,18 @@ def test_a_convergence_study_measures_rk4s_fourth_order():
     assert any("fitted slope" in n for n in s.notes)
 
 
+def test_a_stiffness_study_of_the_chain_sweeps_its_coupling():
+    # Each value builds the chain again: Dormand-Prince pays for the stiff coupling, BDF not.
+    s = fl.stiffness("chain", model="CS", parameter="k_chain", values=np.array([100, 1e6]),
+                     solvers=["dopri5", "bdf"])
+    cost = s.runs.set_index(["value", "solver"])["rhs_evals"]
+    assert cost[(1e6, "dopri5")] > 10 * cost[(100.0, "dopri5")]
+    assert cost[(1e6, "bdf")] < 2 * cost[(100.0, "bdf")]
+    assert s.summary["crossover"] == 1e6
+    with pytest.raises(ValueError, match="parameter `sigma` is not read by model `CS`"):
+        fl.stiffness("chain", model="CS", parameter="sigma", values=[1, 2])
+
+
 def test_an_independence_study_with_a_failed_level_raises_and_keeps_the_others():
     # RK4 at h = 0.5 on the belt is past its stability bound (h*omega = 5): level 0 fails,
     # levels 1 to 3 finish and are judged.
