@@ -247,11 +247,9 @@ pub fn check_read(
                 switching.name()
             )));
         }
-    } else if let Some(model) = model.filter(|m| !m.parameters().contains(&name)) {
+    } else if let Some(why) = model.and_then(|m| m.unread(name)) {
         return Err(AppError::Usage(format!(
-            "option `{option}`: parameter `{name}` is not read by model `{model}` (it reads: {}): \
-             every value would give the same run",
-            model.parameters().join(", ")
+            "option `{option}`: {why}: every value would give the same run"
         )));
     }
     Ok(())

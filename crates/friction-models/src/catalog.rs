@@ -321,6 +321,18 @@ impl ModelId {
         self.entry().parameters
     }
 
+    /// `None` if the model reads parameter `name`; else the reason a value of it changes
+    /// nothing: "parameter `name` is not read by model `M` (it reads: …)".
+    pub fn unread(self, name: &str) -> Option<String> {
+        let read = self.parameters();
+        (!read.contains(&name)).then(|| {
+            format!(
+                "parameter `{name}` is not read by model `{self}` (it reads: {})",
+                read.join(", ")
+            )
+        })
+    }
+
     /// How the model's curve is drawn: Dahl-type models against displacement, the rest
     /// against velocity (LuGre, its variants and GMS in steady sliding).
     pub fn curve_axis(self) -> CurveAxis {

@@ -48,15 +48,10 @@ impl ChainSource {
                     .join(", ")
             )));
         }
-        if let Some(model) = self.law.catalog() {
-            let read = model.parameters();
-            if !read.contains(&name) {
-                return Err(ScenarioError::Invalid(format!(
-                    "parameter `{name}` is not read by model `{model}` (it reads: {}): every \
-                     value would give the same runs",
-                    read.join(", ")
-                )));
-            }
+        if let Some(why) = self.law.catalog().and_then(|m| m.unread(name)) {
+            return Err(ScenarioError::Invalid(format!(
+                "{why}: every value would give the same runs"
+            )));
         }
         source.friction.set(name, value)?;
         Ok(source)
