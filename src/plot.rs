@@ -337,15 +337,15 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, plots: &[Plot]) -> Res
             .x_label_area_size(50)
             .y_label_area_size(70);
         if plot.log {
-            let axis = |a: f64, b: f64| {
-                let ticks = log_ticks(a, b);
+            let axis = |a: f64, b: f64, ticks: Vec<f64>| {
                 (a..b)
                     .log_scale()
                     .with_key_points(ticks.clone())
                     .with_light_points(ticks)
             };
+            let x_ticks = sample_ticks(plot, x0, x1).unwrap_or_else(|| log_ticks(x0, x1));
             let chart = builder
-                .build_cartesian_2d(axis(x0, x1), axis(y0, y1))
+                .build_cartesian_2d(axis(x0, x1, x_ticks), axis(y0, y1, log_ticks(y0, y1)))
                 .map_err(err)?;
             draw_on(chart, plot, target)?;
         } else {
@@ -471,6 +471,35 @@ fn log_ticks(a: f64, b: f64) -> Vec<f64> {
 
 /// The most ticks a log axis labels with powers of ten.
 const MAX_TICKS: usize = 10;
+
+/// The most sampled values a log x axis labels one by one ([`sample_ticks`]).
+const MAX_SAMPLE_TICKS: usize = 8;
+
+/// The least distance between two labelled samples, as a fraction of the axis's length.
+const MIN_SAMPLE_GAP: f64 = 0.08;
+
+/// The ticks of a log x axis over [a, b] at the values the runs were made at, when the plot
+/// samples a few of them (the step sizes of a convergence study, the widths of a stiffness
+/// sweep, the block counts of a cost study): the distinct x of the marked points, if there
+/// are two to [`MAX_SAMPLE_TICKS`] of them, each at least [`MIN_SAMPLE_GAP`] of the axis
+/// from the next. (The powers of ten and their 1-2-5 multiples left the finest step of a
+/// convergence study, h = 0.0025, without a label.)
+fn sample_ticks(plot: &Plot, a: f64, b: f64) -> Option<Vec<f64>> {
+    let mut xs: Vec<f64> = plot
+        .series
+        .iter()
+        .filter(|s| s.marker != Marker::None)
+        .flat_map(|s| s.points.iter().map(|p| p.0))
+        .filter(|x| (a..=b).contains(x))
+        .collect();
+    xs.sort_by(f64::total_cmp);
+    xs.dedup();
+    let span = (b / a).log10();
+    let apart = xs
+        .windows(2)
+        .all(|w| (w[1] / w[0]).log10() >= MIN_SAMPLE_GAP * span);
+    ((2..=MAX_SAMPLE_TICKS).contains(&xs.len()) && apart).then_some(xs)
+}
 
 /// A tick label of a log axis: three significant digits, exponent form outside [1e-3, 1e4).
 fn tick_label(v: f64) -> String {
@@ -783,6 +812,46 @@ pub fn raster_png(r: &Raster, path: &Path) -> Result<Vec<u8>, AppError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A plot of dotted runs at `xs` (y = x) on log axes.
+    fn runs_at(xs: &[f64]) -> Plot {
+        Plot {
+            title: String::new(),
+            x_label: String::new(),
+            y_label: String::new(),
+            series: vec![Series {
+                label: None,
+                points: xs.iter().map(|&x| (x, x)).collect(),
+                color: RED,
+                width: 2,
+                marker: Marker::Dot,
+            }],
+            legend: Corner::default(),
+            log: true,
+        }
+    }
+
+    #[test]
+    fn a_log_x_axis_is_labelled_at_a_few_sampled_values() {
+        // A convergence study's steps: every one labelled, the finest included.
+        let steps = [0.02, 0.01, 0.005, 0.0025];
+        assert_eq!(
+            sample_ticks(&runs_at(&steps), 0.0022, 0.023),
+            Some(vec![0.0025, 0.005, 0.01, 0.02])
+        );
+        // Too many values (a work–precision plot's errors), or two too close to label apart:
+        // the powers of ten and their multiples instead.
+        let many: Vec<f64> = (1..=9).map(|k| 10f64.powi(-k)).collect();
+        assert_eq!(sample_ticks(&runs_at(&many), 1e-10, 1.0), None);
+        assert_eq!(
+            sample_ticks(&runs_at(&[1e-3, 1.1e-3, 1e-1]), 1e-4, 1.0),
+            None
+        );
+        // A curve without markers (a reference slope) is not a sample.
+        let mut slope = runs_at(&[0.01, 0.1]);
+        slope.series[0].marker = Marker::None;
+        assert_eq!(sample_ticks(&slope, 1e-3, 1.0), None);
+    }
 
     #[test]
     fn a_log_axis_has_at_least_three_ticks_and_at_most_ten_powers_of_ten() {
