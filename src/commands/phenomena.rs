@@ -32,7 +32,7 @@ pub struct PhenomenaArgs {
         long,
         value_name = "R",
         allow_hyphen_values = true,
-        default_value_t = 1e-10
+        default_value = "1e-10"
     )]
     pub rtol: f64,
     /// Absolute tolerance.
@@ -40,7 +40,7 @@ pub struct PhenomenaArgs {
         long,
         value_name = "A",
         allow_hyphen_values = true,
-        default_value_t = 1e-12
+        default_value = "1e-12"
     )]
     pub atol: f64,
     /// Worker threads (default: all cores; more than the machine has are capped to its cores).

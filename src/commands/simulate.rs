@@ -54,7 +54,7 @@ pub struct SolverOptions {
         long,
         value_name = "R",
         allow_hyphen_values = true,
-        default_value_t = 1e-8
+        default_value = "1e-8"
     )]
     pub rtol: f64,
     /// Absolute tolerance of the adaptive solvers.
@@ -62,7 +62,7 @@ pub struct SolverOptions {
         long,
         value_name = "A",
         allow_hyphen_values = true,
-        default_value_t = 1e-10
+        default_value = "1e-10"
     )]
     pub atol: f64,
     /// The bounds of the run.

@@ -51,7 +51,7 @@ pub struct IndependenceArgs {
     #[arg(
         long,
         value_name = "TOL",
-        default_value_t = 1e-6,
+        default_value = "1e-6",
         allow_hyphen_values = true
     )]
     pub tol: f64,
