@@ -2420,6 +2420,52 @@ fn ctrl_c_stops_a_run_at_its_next_step_and_keeps_what_it_computed() {
 }
 
 #[test]
+fn ctrl_c_during_reproduce_writes_what_it_computed_and_names_what_it_did_not_run() {
+    use std::io::{BufRead, BufReader};
+    use std::process::Stdio;
+    // The first heartbeat comes from a study (on an idle machine, the belt's work-precision;
+    // only studies report progress): the figures, the experiment and Table 2 are done, the
+    // chain's studies (seconds) and the stick-slip map are still to come.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_friction-lab"))
+        .args(["reproduce", "--out", out.to_str().unwrap()])
+        .env("FRICTION_LAB_HEARTBEAT_S", "0.2")
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut lines = BufReader::new(child.stderr.take().unwrap()).lines();
+    let first = lines.next().unwrap().unwrap();
+    assert!(first.contains(" runs done, "), "{first}");
+    let kill = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(kill.success());
+    let rest: Vec<String> = lines.map(|l| l.unwrap()).collect();
+    let status = child.wait().unwrap();
+    assert_eq!(status.code(), Some(130), "{}", rest.join("\n"));
+    // Written whole: the figures, Table 2 and the studies; the report says what is missing.
+    for file in [
+        "figures/figure-4-CVS.png",
+        "table2.md",
+        "paper-experiment.md",
+        "studies/converge-paper-block-CVS.json",
+    ] {
+        assert!(out.join(file).is_file(), "{file} missing");
+    }
+    assert!(!out.join("stick-slip").exists());
+    let report = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(
+        report.contains(
+            "## Stick-slip on the belt\n\nNot run: the command was stopped by a signal before it."
+        ),
+        "{report}"
+    );
+    assert!(report.contains("## Stopped\n"), "{report}");
+}
+
+#[test]
 fn a_run_that_cannot_resolve_its_natural_period_is_told_why() {
     // k = 1e300 N/m on 1 kg: a period of 6.3e-150 s, 3.2e150 of them in the belt's 20 s; the
     // run ends in a step-size underflow, and the note names the period.

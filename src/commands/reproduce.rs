@@ -18,8 +18,8 @@ use crate::ranges;
 use clap::Args;
 use friction_models::{FrictionParams, ModelId, Parameters, Variant};
 use friction_systems::chain::ChainParams;
-use integrators::Solver;
 use integrators::StepControl;
+use integrators::{interrupt, Solver};
 use scenarios::curves::{self, Curve};
 use scenarios::figures::{
     assess, Finding, PaperFigure, LEVEL_OFF_FRACTION, NUMERIC_TOLERANCE, PAPER_FIGURES,
@@ -652,9 +652,18 @@ pub fn run(args: &ReproduceArgs) -> Result<(), AppError> {
         paper's 42 claims disagree with the simulations. The protocols are described in \
         docs/phenomena.md.\n"
     );
-    report_md += &add_studies(&mut files, &args.out, &params, threads)?;
-    report_md +=
-        &crate::commands::stick_slip::add_stick_slip(&mut files, &args.out, &params, threads)?;
+    let mut failure = None;
+    report_md += &section("Solver studies", &mut failure, || {
+        add_studies(&mut files, &args.out, &params, threads)
+    })?;
+    report_md += &section("Stick-slip on the belt", &mut failure, || {
+        crate::commands::stick_slip::add_stick_slip(&mut files, &args.out, &params, threads)
+    })?;
+    if interrupt::requested() {
+        report_md += "\n## Stopped\n\nThe command was stopped by a signal (exit 130): the runs \
+                      in progress then ended at their next step, and their studies' files mark \
+                      them as failed; a section after it was not run.\n";
+    }
     files.add(args.out.join("report.md"), report_md.into_bytes());
     let written = with_threads(threads, || files.write(&args.out))??;
     println!(
@@ -674,5 +683,71 @@ pub fn run(args: &ReproduceArgs) -> Result<(), AppError> {
             first.why
         )));
     }
+    if let Some(failure) = failure {
+        return Err(failure);
+    }
     crate::commands::phenomena::check_decided(&table)
+}
+
+/// A section of the report that runs the studies: its text, or, when it fails while running
+/// (a run it needs failed, or a signal stopped it: exit 1 or 130), a paragraph under `title`
+/// that says so and why, the failure kept in `failure` (the first) for the command's exit.
+/// The files of the studies that finished are written either way. A section is not started
+/// once a signal has stopped the command. Bad input (exit 2) still ends the command before
+/// anything is written.
+fn section(
+    title: &str,
+    failure: &mut Option<AppError>,
+    result: impl FnOnce() -> Result<String, AppError>,
+) -> Result<String, AppError> {
+    if interrupt::requested() {
+        return Ok(format!(
+            "\n## {title}\n\nNot run: the command was stopped by a signal before it.\n"
+        ));
+    }
+    match result() {
+        Ok(md) => Ok(md),
+        Err(e) if e.exit_code() == 2 => Err(e),
+        Err(e) => {
+            let md = format!(
+                "\n## {title}\n\nNot completed: {e}. The files of the parts that finished \
+                 are written.\n"
+            );
+            failure.get_or_insert(e);
+            Ok(md)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{section, AppError};
+
+    #[test]
+    fn a_section_that_fails_while_running_is_named_and_its_failure_kept() {
+        let mut failure = None;
+        let ok = section("Studies", &mut failure, || {
+            Ok("\n## Studies\n\ntext\n".into())
+        });
+        assert_eq!(ok.unwrap(), "\n## Studies\n\ntext\n");
+        assert!(failure.is_none());
+        let failed = section("Studies", &mut failure, || {
+            Err(AppError::StudyRun("the reference failed".into()))
+        });
+        assert_eq!(
+            failed.unwrap(),
+            "\n## Studies\n\nNot completed: the reference failed. The files of the parts that \
+             finished are written.\n"
+        );
+        // The first failure is the one the command exits with.
+        let _ = section("Map", &mut failure, || {
+            Err(AppError::StudyRun("a second".into()))
+        });
+        assert_eq!(failure.unwrap().to_string(), "the reference failed");
+        // Bad input still ends the command, writing nothing.
+        let mut none = None;
+        let usage = section("Map", &mut none, || Err(AppError::Usage("bad".into())));
+        assert_eq!(usage.unwrap_err().exit_code(), 2);
+        assert!(none.is_none());
+    }
 }
