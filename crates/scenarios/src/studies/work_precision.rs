@@ -1,0 +1,36 @@
+//! The work–precision study: every method at every resolution, with the work it took.
+
+use super::{batch, Method, Reference, StudyCase, StudyRun};
+use crate::run::ScenarioError;
+use serde::Serialize;
+
+/// A work–precision study: every solver at every resolution, with the work it took.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct WorkPrecision {
+    /// The reference.
+    pub reference: Reference,
+    /// Every run, its wall time the median over the repetitions.
+    pub runs: Vec<StudyRun>,
+}
+
+/// Runs every method over its step sizes or tolerances, `repeats` times each for the
+/// median wall time, the repetitions in the same list as the runs (each run alone on its
+/// core: see docs/performance.md for what a neighbour costs a small problem). The reference is the one of the methods' solvers under the case's own
+/// treatment.
+pub fn work_precision(
+    case: &dyn StudyCase,
+    methods: &[Method],
+    step_sizes: &[f64],
+    tolerances: &[f64],
+    repeats: usize,
+    progress: &(dyn Fn() + Sync),
+) -> Result<WorkPrecision, ScenarioError> {
+    let jobs = Method::jobs(methods, step_sizes, tolerances, false);
+    let own = Method::own_solvers(methods);
+    let c = batch::run_cases(&[case], Some(&own), &jobs, repeats.max(1) - 1, progress)?.remove(0);
+    let (reference, _) = c.reference.expect("a reference was asked for");
+    Ok(WorkPrecision {
+        reference,
+        runs: c.runs,
+    })
+}

@@ -1,0 +1,301 @@
+//! Where a plot's legend goes (a corner that covers no data, or a strip beside the plot), its
+//! size, and its drawing beside the plot.
+
+use super::axes::{bounds, Bounds};
+use super::{drawn, register_font, Marker, Plot, Series};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+
+/// Where the legend goes, if its box covers no more of the data there than in any other
+/// corner (else the corner whose box covers the least).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Corner {
+    /// Upper left (the default: most curves here rise to the right).
+    #[default]
+    UpperLeft,
+    /// Upper right (error-against-work plots, which fall to the right).
+    UpperRight,
+    /// Lower left.
+    LowerLeft,
+    /// Lower right.
+    LowerRight,
+}
+
+/// The plotting area of one panel of [`SIZE`] inside its label areas, margins and caption,
+/// pixels (measured on the drawn figures).
+const PLOT_AREA: (f64, f64) = (800.0, 493.0);
+
+/// The legend box, pixels: its gap to the plotting area's corner, its width besides the
+/// longest label's text (plotters' legend area, 30, and its two margins, 10), and its height
+/// besides the entries and per entry (measured on the drawn figures: 86 for four entries), and
+/// the margin kept around it for the markers' radius.
+pub(super) const LEGEND_BOX: LegendBox = LegendBox {
+    gap: 5.0,
+    width: 50.0,
+    height: 5.0,
+    per_entry: 21.0,
+    margin: 6.0,
+};
+
+/// The measures of [`LEGEND_BOX`].
+pub(super) struct LegendBox {
+    pub(super) gap: f64,
+    pub(super) width: f64,
+    pub(super) height: f64,
+    pub(super) per_entry: f64,
+    pub(super) margin: f64,
+}
+
+/// The legend's font.
+pub(super) const LEGEND_FONT: (&str, u32) = ("sans-serif", 15);
+
+/// Where a plot's legend is drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum LegendPlace {
+    /// In a corner of the plotting area.
+    Inside(Corner),
+    /// Beside the plotting area, on its right, level with its top.
+    Beside,
+}
+
+/// The axes' ranges as [`bounds`] gives them, and where the legend goes: in the corner of
+/// [`legend_corner`] if it covers no data there, else beside the plot (a stick–slip map's grid
+/// of markers; the nine methods of a chain's work–precision plot, whose curves reach every
+/// corner: raising the y range above the data, as done before, left six empty decades), unless
+/// it is taller than the plot, when it stays in the corner where it covers least.
+pub(super) fn layout(plot: &Plot) -> (Bounds, LegendPlace) {
+    let fitted = bounds(plot);
+    let (corner, covered) = legend_corner(plot, fitted);
+    if covered == 0 || legend_size(plot).1 > 1.0 {
+        (fitted, LegendPlace::Inside(corner))
+    } else {
+        (fitted, LegendPlace::Beside)
+    }
+}
+
+/// The legend box of `plot` with its gap and margin, as fractions of the plotting area's width
+/// and height (zero without a legend).
+fn legend_size(plot: &Plot) -> (f64, f64) {
+    let (w, h) = legend_pixels(plot);
+    (w / PLOT_AREA.0, h / PLOT_AREA.1)
+}
+
+/// The legend box of `plot` with its gap and margin, pixels (zero without a legend).
+pub(super) fn legend_pixels(plot: &Plot) -> (f64, f64) {
+    let labels: Vec<&str> = plot
+        .series
+        .iter()
+        .filter_map(|s| s.label.as_deref())
+        .collect();
+    if labels.is_empty() {
+        return (0.0, 0.0);
+    }
+    register_font();
+    let font = (LEGEND_FONT.0, LEGEND_FONT.1).into_font();
+    // The width the font gives each label (ten pixels a character if it cannot say).
+    let text = labels
+        .iter()
+        .map(|l| {
+            font.box_size(l)
+                .map_or(10 * l.chars().count() as u32, |(w, _)| w)
+        })
+        .max()
+        .unwrap_or(0);
+    let b = &LEGEND_BOX;
+    (
+        b.gap + b.width + f64::from(text) + b.margin,
+        b.gap + b.height + b.per_entry * labels.len() as f64 + b.margin,
+    )
+}
+
+/// The corner for the legend of `plot` drawn over `bounds`, and how much it covers there: the
+/// corner whose legend box covers the fewest of the plot's points and of the samples along its
+/// lines (16 a segment), the preferred [`Plot::legend`] on a tie. (The belt's work–precision
+/// plot had its implicit Euler's last point under the box in the upper right.)
+fn legend_corner(plot: &Plot, ((x0, x1), (y0, y1)): Bounds) -> (Corner, usize) {
+    let (w, h) = legend_size(plot);
+    if w == 0.0 {
+        return (plot.legend, 0);
+    }
+    let axis = |v: f64, (a, b): (f64, f64)| {
+        let f = |v: f64| if plot.log { v.log10() } else { v };
+        (f(v) - f(a)) / (f(b) - f(a))
+    };
+    let mut samples = Vec::new();
+    for s in &plot.series {
+        let points: Vec<(f64, f64)> = drawn(plot, s)
+            .map(|(x, y)| (axis(x, (x0, x1)), axis(y, (y0, y1))))
+            .collect();
+        samples.extend(&points);
+        if s.width > 0 {
+            for pair in points.windows(2) {
+                let ((ax, ay), (bx, by)) = (pair[0], pair[1]);
+                samples.extend((1..16).map(|i| {
+                    let t = f64::from(i) / 16.0;
+                    (ax + t * (bx - ax), ay + t * (by - ay))
+                }));
+            }
+        }
+    }
+    let covered = |corner: Corner| {
+        let left = matches!(corner, Corner::UpperLeft | Corner::LowerLeft);
+        let upper = matches!(corner, Corner::UpperLeft | Corner::UpperRight);
+        samples
+            .iter()
+            .filter(|&&(u, v)| {
+                (if left { u <= w } else { u >= 1.0 - w })
+                    && (if upper { v >= 1.0 - h } else { v <= h })
+            })
+            .count()
+    };
+    let others = [
+        Corner::UpperLeft,
+        Corner::UpperRight,
+        Corner::LowerLeft,
+        Corner::LowerRight,
+    ];
+    std::iter::once(plot.legend)
+        .chain(others.into_iter().filter(|&c| c != plot.legend))
+        .map(|c| (c, covered(c)))
+        .min_by_key(|&(_, n)| n)
+        .unwrap_or((plot.legend, 0))
+}
+
+/// Where [`draw_on`] draws the legend: in a corner of the plotting area, or in a strip of the
+/// panel beside it.
+pub(super) enum LegendTarget<'b, DB: DrawingBackend> {
+    Corner(Corner),
+    Strip(&'b DrawingArea<DB, Shift>),
+}
+
+/// A legend's key: a line sample and a cross, in pixels from the key's left end.
+type Key = (PathElement<(i32, i32)>, Cross<(i32, i32), i32>);
+
+/// The key of a series in a legend, relative to its left end: a line for a computed series, a
+/// cross for failed runs.
+pub(super) fn key(color: RGBColor, marker: Marker) -> Key {
+    let (cross, line) = match marker {
+        Marker::Cross => (1.0, 0.0),
+        _ => (0.0, 1.0),
+    };
+    (
+        PathElement::new([(0, 0), (20, 0)], color.mix(line).stroke_width(3)),
+        Cross::new((10, 0), 5, color.mix(cross).stroke_width(2)),
+    )
+}
+
+/// The legend of `plot` drawn in `area`, a strip beside its plotting area, its box's top at
+/// `top` pixels of the strip: the box, key and text of plotters' own legend.
+pub(super) fn draw_legend_beside<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    plot: &Plot,
+    top: i32,
+) -> Result<(), String> {
+    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
+    let b = &LEGEND_BOX;
+    let labelled: Vec<&Series> = plot.series.iter().filter(|s| s.label.is_some()).collect();
+    let (w, h) = legend_pixels(plot);
+    let corner = |x: f64, y: f64| (x as i32, top + y as i32);
+    let (x0, x1) = (0.0, w - b.gap - b.margin);
+    let height = h - b.gap - b.margin;
+    let frame = [corner(x0, 0.0), corner(x1, height)];
+    area.draw(&Rectangle::new(frame, WHITE.mix(0.85).filled()))
+        .map_err(err)?;
+    area.draw(&Rectangle::new(frame, BLACK)).map_err(err)?;
+    let text = TextStyle::from(LEGEND_FONT.into_font()).pos(Pos::new(HPos::Left, VPos::Center));
+    for (k, s) in labelled.iter().enumerate() {
+        let y = b.height / 2.0 + b.per_entry * (k as f64 + 0.5);
+        let (line, cross) = key(s.color, s.marker);
+        area.draw(&(EmptyElement::at(corner(x0 + 10.0, y)) + line + cross))
+            .map_err(err)?;
+        let label = s.label.as_deref().unwrap_or_default();
+        area.draw(&Text::new(label, corner(x0 + 40.0, y), &text))
+            .map_err(err)?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::plot::{svg, RED, SIZE};
+    use std::path::Path;
+
+    #[test]
+    fn the_legend_goes_to_the_preferred_corner_unless_it_would_cover_data() {
+        let line = |points: Vec<(f64, f64)>| Series {
+            label: Some("a run".into()),
+            points,
+            color: RED,
+            width: 2,
+            marker: Marker::Dot,
+        };
+        let plot = |points, legend| Plot {
+            title: "t".into(),
+            x_label: "x".into(),
+            y_label: "y".into(),
+            series: vec![line(points)],
+            legend,
+            log: false,
+        };
+        // A line from the lower left to the upper right: the upper left is free.
+        let rising = plot(vec![(0.0, 0.0), (1.0, 1.0)], Corner::UpperRight);
+        assert_eq!(legend_corner(&rising, bounds(&rising)).0, Corner::UpperLeft);
+        let kept = plot(vec![(0.0, 0.0), (1.0, 1.0)], Corner::LowerRight);
+        assert_eq!(legend_corner(&kept, bounds(&kept)).0, Corner::LowerRight);
+        // Falling, with a point in each corner but the lower left: the lower left.
+        let falling = plot(
+            vec![(0.0, 1.0), (0.5, 0.5), (1.0, 0.0), (1.0, 1.0)],
+            Corner::UpperLeft,
+        );
+        assert_eq!(
+            legend_corner(&falling, bounds(&falling)).0,
+            Corner::LowerLeft
+        );
+        // On log axes the corners are taken in decades: a point at (1e3, 1e-3) of
+        // [1, 1e3] × [1e-3, 1] is in the lower right.
+        let log = Plot {
+            log: true,
+            ..plot(vec![(1.0, 1.0), (1e3, 1e-3)], Corner::LowerRight)
+        };
+        assert_eq!(legend_corner(&log, bounds(&log)).0, Corner::UpperRight);
+        // A grid of markers everywhere: the legend goes beside the plot, the ranges those of
+        // the data; its text is drawn right of every marker.
+        let grid: Vec<(f64, f64)> = (1..=20)
+            .flat_map(|i| (1..=20).map(move |j| (f64::from(i), f64::from(j))))
+            .collect();
+        for log in [false, true] {
+            let map = Plot {
+                log,
+                series: vec![Series {
+                    width: 0,
+                    ..line(grid.clone())
+                }],
+                ..plot(vec![], Corner::UpperLeft)
+            };
+            assert!(legend_corner(&map, bounds(&map)).1 > 0);
+            assert_eq!(layout(&map), (bounds(&map), LegendPlace::Beside));
+            let svg = svg(&map, Path::new("map.svg")).unwrap();
+            let rightmost = svg
+                .split("<circle cx=\"")
+                .skip(1)
+                .filter_map(|e| e.split('"').next()?.parse::<f64>().ok())
+                .fold(0.0, f64::max);
+            let text = svg.find("a run").unwrap();
+            let label_x = svg[..text].rsplit("<text x=\"").next().unwrap();
+            let label_x: f64 = label_x.split('"').next().unwrap().parse().unwrap();
+            assert!(rightmost > 100.0, "the markers are drawn: {rightmost}");
+            assert!(label_x > rightmost + 10.0, "{label_x} {rightmost}");
+            assert!(label_x < f64::from(SIZE.0), "{label_x}");
+        }
+        // A legend of thirty entries is taller than the plot: it stays in the corner where it
+        // covers least, over the data's ranges.
+        let many = Plot {
+            series: (0..30).map(|_| line(grid.clone())).collect(),
+            ..plot(vec![], Corner::UpperLeft)
+        };
+        assert_eq!(layout(&many).0, bounds(&many));
+        assert!(matches!(layout(&many).1, LegendPlace::Inside(_)));
+    }
+}

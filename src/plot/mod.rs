@@ -1,0 +1,444 @@
+//! Line plots as PNG and SVG, drawn by plotters with an embedded DejaVu Sans font so that
+//! no system font package is needed: the plot and its series, drawn on linear or log axes
+//! (`axes`: ranges, ticks, labels), with a legend (`legend`: where it goes); and a raster of
+//! coloured cells (`raster`).
+
+mod axes;
+mod legend;
+mod raster;
+
+use crate::error::AppError;
+use axes::{log_ticks, sample_ticks, tick_label};
+pub use legend::Corner;
+use legend::{
+    draw_legend_beside, key, layout, legend_pixels, LegendPlace, LegendTarget, LEGEND_BOX,
+    LEGEND_FONT,
+};
+use plotters::coord::ranged1d::ValueFormatter;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+pub use raster::{raster_png, raster_svg, Raster};
+use std::path::Path;
+use std::sync::Once;
+
+/// Width and height of every figure, pixels.
+pub const SIZE: (u32, u32) = (900, 600);
+
+/// One polyline of a plot.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Series {
+    /// Legend entry; `None` keeps the series out of the legend.
+    pub label: Option<String>,
+    /// The points, in drawing order.
+    pub points: Vec<(f64, f64)>,
+    /// Line colour.
+    pub color: RGBColor,
+    /// Line width, pixels (0: no line, markers only).
+    pub width: u32,
+    /// How each point is marked.
+    pub marker: Marker,
+}
+
+/// How the points of a series are marked.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Marker {
+    /// Not at all (a curve).
+    #[default]
+    None,
+    /// A filled dot (a computed run).
+    Dot,
+    /// A cross (a run that failed or did not reach its target).
+    Cross,
+}
+
+/// A labelled line plot.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Plot {
+    /// Title above the plot.
+    pub title: String,
+    /// x-axis label, with unit.
+    pub x_label: String,
+    /// y-axis label, with unit.
+    pub y_label: String,
+    /// The polylines.
+    pub series: Vec<Series>,
+    /// Where the legend goes.
+    pub legend: Corner,
+    /// Logarithmic axes (x and y), with the data in their own units; non-positive values
+    /// are left out. Linear axes draw the axes through the origin, as the paper's figures.
+    pub log: bool,
+}
+
+/// The colours of the figures: the paper's red for the model, blue and green beside it.
+pub const RED: RGBColor = RGBColor(200, 30, 30);
+/// Second series colour.
+pub const BLUE: RGBColor = RGBColor(30, 80, 200);
+/// Third series colour.
+pub const GREEN: RGBColor = RGBColor(20, 140, 60);
+
+/// Colours for figures with several series, in order: one for each of a study's nine methods
+/// at most (the seven solvers, and a system's regularised BDF and time-stepping).
+pub const PALETTE: [RGBColor; 10] = [
+    RED,
+    BLUE,
+    GREEN,
+    RGBColor(230, 130, 0),
+    RGBColor(130, 50, 170),
+    RGBColor(90, 90, 90),
+    RGBColor(0, 160, 170),
+    RGBColor(140, 90, 40),
+    RGBColor(220, 60, 150),
+    RGBColor(150, 160, 0),
+];
+
+static FONT: Once = Once::new();
+
+fn register_font() {
+    FONT.call_once(|| {
+        plotters::style::register_font("sans-serif", FontStyle::Normal, dejavu::sans::regular())
+            .unwrap_or_else(|_| unreachable!("the embedded DejaVu Sans font is valid"));
+    });
+}
+
+/// The points of a plot that can be drawn on its axes: finite, and positive on log axes.
+fn drawable(plot: &Plot) -> impl Iterator<Item = (f64, f64)> + '_ {
+    plot.series.iter().flat_map(|s| drawn(plot, s))
+}
+
+/// The points of series `s` of `plot` that can be drawn ([`drawable`]).
+fn drawn<'a>(plot: &'a Plot, s: &'a Series) -> impl Iterator<Item = (f64, f64)> + 'a {
+    s.points.iter().copied().filter(move |(x, y)| {
+        x.is_finite() && y.is_finite() && (!plot.log || (*x > 0.0 && *y > 0.0))
+    })
+}
+
+/// Draws `plots` side by side on `root`.
+fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, plots: &[Plot]) -> Result<(), String> {
+    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
+    root.fill(&WHITE).map_err(err)?;
+    for (panel, plot) in root.split_evenly((1, plots.len().max(1))).iter().zip(plots) {
+        let (((x0, x1), (y0, y1)), legend) = layout(plot);
+        // A legend beside the plot takes a strip on the panel's right.
+        let strip;
+        let (area, target) = match legend {
+            LegendPlace::Beside => {
+                let width = legend_pixels(plot).0.ceil() as u32 + LEGEND_BOX.gap as u32;
+                let (a, b) = panel.split_horizontally(panel.dim_in_pixel().0.saturating_sub(width));
+                strip = b;
+                (a, LegendTarget::Strip(&strip))
+            }
+            LegendPlace::Inside(c) => (panel.clone(), LegendTarget::Corner(c)),
+        };
+        let mut builder = ChartBuilder::on(&area);
+        let caption = caption_size(&plot.title, area.dim_in_pixel().0);
+        builder
+            .caption(&plot.title, ("sans-serif", caption))
+            .margin(15)
+            .x_label_area_size(50)
+            .y_label_area_size(70);
+        if plot.log {
+            let axis = |a: f64, b: f64, ticks: Vec<f64>| {
+                (a..b)
+                    .log_scale()
+                    .with_key_points(ticks.clone())
+                    .with_light_points(ticks)
+            };
+            let x_ticks = sample_ticks(plot, x0, x1).unwrap_or_else(|| log_ticks(x0, x1));
+            let chart = builder
+                .build_cartesian_2d(axis(x0, x1, x_ticks), axis(y0, y1, log_ticks(y0, y1)))
+                .map_err(err)?;
+            draw_on(chart, plot, target)?;
+        } else {
+            let chart = builder.build_cartesian_2d(x0..x1, y0..y1).map_err(err)?;
+            draw_on(chart, plot, target)?;
+        }
+    }
+    root.present().map_err(err)
+}
+
+/// The largest and smallest font sizes of a plot's title, pixels.
+const CAPTION_SIZES: (u32, u32) = (22, 12);
+
+/// The font size of `title` over an area `width` pixels wide: the largest of
+/// [`CAPTION_SIZES`] whose text fits with 10 pixels each side (a model's title with its
+/// reference, such as GMS's, ran over both edges at the largest).
+fn caption_size(title: &str, width: u32) -> u32 {
+    register_font();
+    let (largest, smallest) = CAPTION_SIZES;
+    (smallest..=largest)
+        .rev()
+        .find(|&size| {
+            ("sans-serif", size)
+                .into_font()
+                .box_size(title)
+                .map_or(true, |(w, _)| w + 20 <= width)
+        })
+        .unwrap_or(smallest)
+}
+
+/// The mesh, the series with their markers, and the legend, on linear or log axes.
+fn draw_on<'a, DB, X, Y>(
+    mut chart: ChartContext<'a, DB, Cartesian2d<X, Y>>,
+    plot: &Plot,
+    legend: LegendTarget<'_, DB>,
+) -> Result<(), String>
+where
+    DB: DrawingBackend + 'a,
+    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+{
+    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
+    let tick = |v: &f64| tick_label(*v);
+    // A linear axis's tick at zero computed as a sum of steps can be a rounding below it, which
+    // plotters labels "-0.0": such a tick is labelled as zero.
+    let (xr, yr) = (chart.x_range(), chart.y_range());
+    let zero = |v: f64, r: &std::ops::Range<f64>| {
+        if v.abs() <= 1e-9 * r.start.abs().max(r.end.abs()) {
+            0.0
+        } else {
+            v
+        }
+    };
+    let x_tick = |v: &f64| X::format(&zero(*v, &xr));
+    let y_tick = |v: &f64| Y::format(&zero(*v, &yr));
+    let mut mesh = chart.configure_mesh();
+    mesh.light_line_style(WHITE)
+        .x_desc(plot.x_label.as_str())
+        .y_desc(plot.y_label.as_str())
+        .label_style(("sans-serif", 15))
+        .axis_desc_style(("sans-serif", 17));
+    if plot.log {
+        mesh.x_label_formatter(&tick).y_label_formatter(&tick);
+    } else {
+        mesh.x_label_formatter(&x_tick).y_label_formatter(&y_tick);
+    }
+    mesh.draw().map_err(err)?;
+    if !plot.log {
+        // The axes through the origin, as in the paper's figures, where the origin is in
+        // range (a line far outside would map beyond the pixels plotters can address).
+        let (xr, yr) = (chart.x_range(), chart.y_range());
+        let axis = ShapeStyle::from(&BLACK.mix(0.4)).stroke_width(1);
+        if yr.contains(&0.0) {
+            chart
+                .draw_series(LineSeries::new([(xr.start, 0.0), (xr.end, 0.0)], axis))
+                .map_err(err)?;
+        }
+        if xr.contains(&0.0) {
+            chart
+                .draw_series(LineSeries::new([(0.0, yr.start), (0.0, yr.end)], axis))
+                .map_err(err)?;
+        }
+    }
+    for s in &plot.series {
+        let points: Vec<(f64, f64)> = drawn(plot, s).collect();
+        let color = s.color;
+        let marker = s.marker;
+        let drawn = if s.width > 0 {
+            let style = ShapeStyle::from(&s.color).stroke_width(s.width);
+            chart
+                .draw_series(LineSeries::new(points.iter().copied(), style))
+                .map_err(err)?
+        } else {
+            chart
+                .draw_series(std::iter::empty::<PathElement<(f64, f64)>>())
+                .map_err(err)?
+        };
+        if let Some(label) = &s.label {
+            drawn.label(label.as_str()).legend(move |p| {
+                let (line, cross) = key(color, marker);
+                EmptyElement::at(p) + line + cross
+            });
+        }
+        match marker {
+            Marker::None => {}
+            Marker::Dot => {
+                chart
+                    .draw_series(points.iter().map(|&p| Circle::new(p, 4, color.filled())))
+                    .map_err(err)?;
+            }
+            Marker::Cross => {
+                chart
+                    .draw_series(
+                        points
+                            .iter()
+                            .map(|&p| Cross::new(p, 6, color.stroke_width(2))),
+                    )
+                    .map_err(err)?;
+            }
+        }
+    }
+    if !plot.series.iter().any(|s| s.label.is_some()) {
+        return Ok(());
+    }
+    match legend {
+        LegendTarget::Corner(corner) => chart
+            .configure_series_labels()
+            .label_font(LEGEND_FONT)
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .position(match corner {
+                Corner::UpperLeft => SeriesLabelPosition::UpperLeft,
+                Corner::UpperRight => SeriesLabelPosition::UpperRight,
+                Corner::LowerLeft => SeriesLabelPosition::LowerLeft,
+                Corner::LowerRight => SeriesLabelPosition::LowerRight,
+            })
+            .draw()
+            .map_err(err),
+        LegendTarget::Strip(area) => {
+            // Level with the plotting area's top (both in the panel's pixels).
+            let top = chart.plotting_area().get_base_pixel().1 - area.get_base_pixel().1;
+            draw_legend_beside(area, plot, top + LEGEND_BOX.gap as i32)
+        }
+    }
+}
+
+/// The size of a figure of `panels` plots side by side.
+fn size(panels: usize) -> (u32, u32) {
+    (SIZE.0 * panels.max(1) as u32, SIZE.1)
+}
+
+/// The plot as SVG text.
+pub fn svg(plot: &Plot, path: &Path) -> Result<String, AppError> {
+    svg_panels(std::slice::from_ref(plot), path)
+}
+
+/// Plots side by side as SVG text.
+pub fn svg_panels(plots: &[Plot], path: &Path) -> Result<String, AppError> {
+    register_font();
+    let mut text = String::new();
+    draw(
+        SVGBackend::with_string(&mut text, size(plots.len())).into_drawing_area(),
+        plots,
+    )
+    .map_err(|message| AppError::Plot {
+        path: path.to_path_buf(),
+        message,
+    })?;
+    Ok(text)
+}
+
+/// The plot as PNG bytes.
+pub fn png(plot: &Plot, path: &Path) -> Result<Vec<u8>, AppError> {
+    png_panels(std::slice::from_ref(plot), path)
+}
+
+/// Plots side by side as PNG bytes.
+pub fn png_panels(plots: &[Plot], path: &Path) -> Result<Vec<u8>, AppError> {
+    register_font();
+    let fail = |message: String| AppError::Plot {
+        path: path.to_path_buf(),
+        message,
+    };
+    let (w, h) = size(plots.len());
+    let mut pixels = vec![0u8; (w * h * 3) as usize];
+    draw(
+        BitMapBackend::with_buffer(&mut pixels, (w, h)).into_drawing_area(),
+        plots,
+    )
+    .map_err(fail)?;
+    encode_png(&pixels, (w, h), path)
+}
+
+/// RGB pixels of a `w × h` image as PNG bytes.
+fn encode_png(pixels: &[u8], (w, h): (u32, u32), path: &Path) -> Result<Vec<u8>, AppError> {
+    let mut bytes = Vec::new();
+    let mut encoder = png::Encoder::new(&mut bytes, w, h);
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.set_depth(png::BitDepth::Eight);
+    // Fast deflate: figures are a few tens of kB either way, and Best cost a fifth of
+    // `reproduce`'s instructions.
+    encoder.set_compression(png::Compression::Fast);
+    encoder
+        .write_header()
+        .and_then(|mut writer| writer.write_image_data(pixels))
+        .map_err(|e| AppError::Plot {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        })?;
+    Ok(bytes)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use axes::bounds;
+
+    #[test]
+    fn a_long_title_is_set_smaller_to_fit_its_panel() {
+        let gms = "gms: generalized Maxwell-slip (Al-Bender et al. 2005) (Al-Bender, Lampaert, \
+                   Swevers (2005), IEEE TAC 50(11))";
+        let size = caption_size(gms, SIZE.0);
+        assert!((CAPTION_SIZES.1..CAPTION_SIZES.0).contains(&size), "{size}");
+        let width = |size: u32| ("sans-serif", size).into_font().box_size(gms).unwrap().0;
+        assert!(width(size) + 20 <= SIZE.0, "{}", width(size));
+        assert!(width(size + 1) + 20 > SIZE.0, "the largest that fits");
+        assert_eq!(
+            caption_size("Work-precision: belt with CS", SIZE.0),
+            CAPTION_SIZES.0
+        );
+    }
+
+    #[test]
+    fn an_empty_plot_draws_on_a_unit_range() {
+        let plot = Plot {
+            title: "nothing".into(),
+            x_label: "x".into(),
+            y_label: "y".into(),
+            series: vec![Series {
+                label: None,
+                points: vec![(f64::NAN, 1.0)],
+                color: RED,
+                width: 1,
+                marker: Marker::None,
+            }],
+            legend: Corner::default(),
+            log: false,
+        };
+        assert_eq!(bounds(&plot), ((0.0, 1.0), (0.0, 1.0)));
+        assert!(svg(&plot, Path::new("empty.svg"))
+            .unwrap()
+            .contains("nothing"));
+    }
+
+    #[test]
+    fn degenerate_plots_draw_on_linear_and_log_axes() {
+        let cases: [Vec<(f64, f64)>; 6] = [
+            vec![],
+            vec![(1.0, 1.0)],
+            vec![(2.0, 3.0); 5],
+            vec![(-1.0, 0.0), (0.0, -1.0), (f64::INFINITY, 1.0)],
+            vec![(1e-300, 1e-300), (1e300, 1e300)],
+            vec![(1e-5, 1.0), (1.0000001e-5, 1.0000001)],
+        ];
+        for points in cases {
+            for (log, labels) in [(false, 1), (true, 1), (false, 40), (true, 40)] {
+                let plot = Plot {
+                    title: "edge".into(),
+                    x_label: "x".into(),
+                    y_label: "y".into(),
+                    series: (0..labels)
+                        .map(|i| Series {
+                            label: Some(format!("series {i}")),
+                            points: points.clone(),
+                            color: RED,
+                            width: 2,
+                            marker: Marker::Dot,
+                        })
+                        .collect(),
+                    legend: Corner::UpperRight,
+                    log,
+                };
+                let ((x0, x1), (y0, y1)) = layout(&plot).0;
+                assert!(x0 < x1 && y0 < y1, "{points:?} {log}: {x0} {x1} {y0} {y1}");
+                assert!(
+                    [x0, x1, y0, y1].iter().all(|v| v.is_finite()),
+                    "{points:?} {log}: {x0} {x1} {y0} {y1}"
+                );
+                assert!(
+                    svg(&plot, Path::new("edge.svg")).is_ok(),
+                    "{points:?} {log}"
+                );
+            }
+        }
+    }
+}
