@@ -86,6 +86,7 @@ impl FrictionModel for Composite {
     }
 
     /// `F = F_memoryless(v) + z`, `ż` of Dahl's law (eq. 4) when the model has it.
+    #[inline]
     fn evaluate(
         &self,
         _x: f64,
