@@ -19,6 +19,7 @@
 //! forces that already see all of them.
 
 use crate::layout::Layout;
+use crate::local;
 use crate::springs::{Sorted, Springs};
 use crate::switching::{mode_of_velocity, Switching, SLIP_NEGATIVE, SLIP_POSITIVE, STICK};
 use crate::system::{End, System};
@@ -62,6 +63,10 @@ pub struct FrictionSystem<'a> {
     springs_at: Vec<Vec<Sorted>>,
     /// The external forces on each body, by index.
     forces_at: Vec<Vec<usize>>,
+    /// Each contact's stick interval, for a law whose law at rest is the same at every step
+    /// (`local::invariant_at_rest`: no state, and x ignored), read once: a stuck contact's
+    /// two event functions read it at every evaluation.
+    rest: Vec<Option<StickInterval>>,
 }
 
 impl<'a> FrictionSystem<'a> {
@@ -72,6 +77,14 @@ impl<'a> FrictionSystem<'a> {
             forces_at[force.body].push(f);
         }
         let (springs, springs_at) = Springs::of(system);
+        let rest = system
+            .contacts
+            .iter()
+            .map(|c| {
+                let model = c.model.as_ref();
+                local::invariant_at_rest(model).then(|| model.stick_interval(0.0, &[]))
+            })
+            .collect();
         FrictionSystem {
             system,
             layout: Layout::of(system),
@@ -79,6 +92,7 @@ impl<'a> FrictionSystem<'a> {
             springs,
             springs_at,
             forces_at,
+            rest,
         }
     }
 
@@ -143,6 +157,9 @@ impl<'a> FrictionSystem<'a> {
 
     /// The admissible friction forces of contact `j` at rest, in state y.
     pub fn stick_interval(&self, j: usize, y: &[f64]) -> StickInterval {
+        if let Some(interval) = self.rest[j] {
+            return interval;
+        }
         let c = &self.system.contacts[j];
         c.model
             .stick_interval(y[self.layout.x[c.body]], self.layout.states(c.body, y))
