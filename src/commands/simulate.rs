@@ -428,11 +428,7 @@ pub fn unresolvable_period_warning(
     period: Option<f64>,
     error: Option<&SolverError>,
 ) -> Option<String> {
-    let lack_of_steps = matches!(
-        error,
-        Some(SolverError::TooManySteps { .. } | SolverError::StepSizeUnderflow { .. })
-    );
-    let period = period.filter(|&p| lack_of_steps && span > MANY_PERIODS * p)?;
+    let period = period.filter(|&p| lacked_steps(error) && span > MANY_PERIODS * p)?;
     Some(format!(
         "the run spans {:.1e} of the shortest natural period 2π√(m/k) = {period:.2e} s, too \
          many to resolve with a few steps each: check the masses and stiffnesses, or shorten \
@@ -444,6 +440,52 @@ pub fn unresolvable_period_warning(
 /// The number of the shortest natural periods beyond which a run that lacked steps is told
 /// why ([`unresolvable_period_warning`]): at ten steps a period, the default step cap.
 pub const MANY_PERIODS: f64 = 1e6;
+
+/// Whether a run ended for lack of steps: too many, or a step below the resolution of t.
+fn lacked_steps(error: Option<&SolverError>) -> bool {
+    matches!(
+        error,
+        Some(SolverError::TooManySteps { .. } | SolverError::StepSizeUnderflow { .. })
+    )
+}
+
+/// The advice given when a run under naive switching with an adaptive solver ended for lack
+/// of steps: stepping blindly through the jump of the law at v_rel = 0, the error control
+/// shrinks the step there until the cap (the belt with CS: 1e7 steps by t = 0.03 s, h =
+/// 2.5e-9 s), which is what naive switching exists to show.
+pub fn naive_chatter_warning(
+    switching: SwitchingKind,
+    step: StepControl,
+    error: Option<&SolverError>,
+) -> Option<String> {
+    let adaptive = matches!(step, StepControl::Adaptive { .. });
+    (switching == SwitchingKind::Naive && adaptive && lacked_steps(error)).then(|| {
+        "naive switching steps blindly through the jump of the friction law at v_rel = 0, \
+         where an adaptive solver's error control shrinks the step until the cap: \
+         --switching event locates the switches, regularized smooths the jump (width \
+         epsilon), timestepping takes fixed steps that stick exactly; or keep naive with a \
+         fixed step (--solver rk4 --dt H)"
+            .to_string()
+    })
+}
+
+/// The advice on a run that failed or ran out of steps, over `span` seconds of a problem
+/// whose shortest natural period is `period`: [`unresolvable_period_warning`],
+/// [`unstable_step_warning`] and [`naive_chatter_warning`], each where it applies.
+pub fn failure_warnings(
+    solver: Solver,
+    switching: SwitchingKind,
+    step: StepControl,
+    span: f64,
+    period: Option<f64>,
+    error: Option<&SolverError>,
+) -> Vec<String> {
+    unresolvable_period_warning(span, period, error)
+        .into_iter()
+        .chain(unstable_step_warning(solver, switching, step, error))
+        .chain(naive_chatter_warning(switching, step, error))
+        .collect()
+}
 
 /// The advice given when an explicit `solver` with a fixed step (RK4, or Dormand–Prince with
 /// `--fixed-step`; under any `switching` but time-stepping) ended past its stability limit
@@ -600,15 +642,12 @@ fn make_rig(args: &SimulateArgs, scenario: Scenario) -> Result<Made, AppError> {
             .map(|t| stiffness_warning(spec.solver.name(), t))
             .into_iter()
             .chain(coarse_step_warning(spec.step, outcome.time_scale))
-            .chain(unresolvable_period_warning(
-                t_end,
-                outcome.time_scale,
-                outcome.error.as_ref(),
-            ))
-            .chain(unstable_step_warning(
+            .chain(failure_warnings(
                 spec.solver,
                 spec.switching,
                 spec.step,
+                t_end,
+                outcome.time_scale,
                 outcome.error.as_ref(),
             ))
             .chain(unread_warnings(
@@ -626,6 +665,52 @@ mod tests {
     use super::*;
     use friction_models::{FrictionParams, ModelId};
     use scenarios::RunSpec;
+
+    #[test]
+    fn naive_switching_that_runs_out_of_steps_is_told_why_and_what_else_to_use() {
+        // The belt with CS under naive switching and Dormand–Prince at the defaults: 1e7 steps
+        // by t = 0.03 s, the step shrunk to 2.5e-9 s at the jump.
+        let spec = RunSpec {
+            switching: SwitchingKind::Naive,
+            limits: scenarios::Limits {
+                max_steps: 2000,
+                time_limit: None,
+            },
+            ..scenarios::stick_slip::belt_run(ModelId::Cs, &FrictionParams::paper())
+        };
+        let o = scenarios::run(&spec, &mut |_| {}).unwrap();
+        let error = o.error.as_ref();
+        assert!(
+            matches!(error, Some(SolverError::TooManySteps { max: 2000, .. })),
+            "{error:?}"
+        );
+        let warning = naive_chatter_warning(spec.switching, spec.step, error).unwrap();
+        assert!(
+            warning.starts_with("naive switching steps blindly"),
+            "{warning}"
+        );
+        assert!(warning.contains("--switching event"), "{warning}");
+        // Not for event switching, nor for a fixed step, nor for a run that did not lack steps.
+        let adaptive = spec.step;
+        assert_eq!(
+            naive_chatter_warning(SwitchingKind::Event, adaptive, error),
+            None
+        );
+        let fixed = StepControl::Fixed { h: 1e-3 };
+        assert_eq!(
+            naive_chatter_warning(SwitchingKind::Naive, fixed, error),
+            None
+        );
+        let limit = SolverError::TimeLimit { t: 1.0, limit: 2.0 };
+        assert_eq!(
+            naive_chatter_warning(SwitchingKind::Naive, adaptive, Some(&limit)),
+            None
+        );
+        assert_eq!(
+            naive_chatter_warning(SwitchingKind::Naive, adaptive, None),
+            None
+        );
+    }
 
     #[test]
     fn a_figure_draws_each_switch_as_a_jump_at_the_switch() {

@@ -512,15 +512,12 @@ pub fn make(args: &SimulateArgs) -> Result<Made, AppError> {
                 step,
                 integrators::OdeProblem::time_scale(&run.problem),
             ))
-            .chain(crate::commands::simulate::unresolvable_period_warning(
-                t_end,
-                integrators::OdeProblem::time_scale(&run.problem),
-                run.error.as_ref(),
-            ))
-            .chain(crate::commands::simulate::unstable_step_warning(
+            .chain(crate::commands::simulate::failure_warnings(
                 args.solver.solver,
                 args.solver.switching(),
                 step,
+                t_end,
+                integrators::OdeProblem::time_scale(&run.problem),
                 run.error.as_ref(),
             ))
             .chain(crate::commands::simulate::unread_warnings(
