@@ -2365,40 +2365,47 @@ fn sweep_runs_a_system_file_over_the_regularisation_width() {
     );
 }
 
-#[test]
-fn ctrl_c_stops_a_run_at_its_next_step_and_keeps_what_it_computed() {
+/// Runs friction-lab with `args` and a heartbeat every 0.2 s, sends it SIGINT once it has
+/// printed its first heartbeat (the signal handler is set before any run starts), and returns
+/// that line, what it printed on stderr after it, and its exit code.
+fn interrupted_at_first_heartbeat(args: &[&str]) -> (String, String, Option<i32>) {
     use std::io::{BufRead, BufReader};
     use std::process::Stdio;
-    // Implicit Euler on a LuGre chain: over a minute at the defaults.
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("run");
     let mut child = Command::new(env!("CARGO_BIN_EXE_friction-lab"))
-        .args([
-            "simulate",
-            "chain",
-            "--model",
-            "lugre",
-            "--solver",
-            "implicit-euler",
-        ])
-        .args(["--out", out.to_str().unwrap()])
+        .args(args)
         .env("FRICTION_LAB_HEARTBEAT_S", "0.2")
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
     let mut lines = BufReader::new(child.stderr.take().unwrap()).lines();
-    // The first heartbeat: the run is integrating (the handler is set before it starts).
     let first = lines.next().unwrap().unwrap();
-    assert!(first.contains(" s elapsed"), "{first}");
     let kill = Command::new("kill")
         .args(["-INT", &child.id().to_string()])
         .status()
         .unwrap();
     assert!(kill.success());
     let rest: Vec<String> = lines.map(|l| l.unwrap()).collect();
-    let status = child.wait().unwrap();
-    let text = rest.join("\n");
-    assert_eq!(status.code(), Some(130), "{text}");
+    (first, rest.join("\n"), child.wait().unwrap().code())
+}
+
+#[test]
+fn ctrl_c_stops_a_run_at_its_next_step_and_keeps_what_it_computed() {
+    // Implicit Euler on a LuGre chain: over a minute at the defaults.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("run");
+    let (first, text, code) = interrupted_at_first_heartbeat(&[
+        "simulate",
+        "chain",
+        "--model",
+        "lugre",
+        "--solver",
+        "implicit-euler",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    // The first heartbeat: the run is integrating.
+    assert!(first.contains(" s elapsed"), "{first}");
+    assert_eq!(code, Some(130), "{text}");
     assert!(text.contains("friction-lab: stopping"), "{text}");
     assert!(
         text.contains("error: stopped: interrupted at t = "),
@@ -2421,30 +2428,15 @@ fn ctrl_c_stops_a_run_at_its_next_step_and_keeps_what_it_computed() {
 
 #[test]
 fn ctrl_c_during_reproduce_writes_what_it_computed_and_names_what_it_did_not_run() {
-    use std::io::{BufRead, BufReader};
-    use std::process::Stdio;
     // The first heartbeat comes from a study (on an idle machine, the belt's work-precision;
     // only studies report progress): the figures, the experiment and Table 2 are done, the
     // chain's studies (seconds) and the stick-slip map are still to come.
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_friction-lab"))
-        .args(["reproduce", "--out", out.to_str().unwrap()])
-        .env("FRICTION_LAB_HEARTBEAT_S", "0.2")
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let mut lines = BufReader::new(child.stderr.take().unwrap()).lines();
-    let first = lines.next().unwrap().unwrap();
+    let (first, text, code) =
+        interrupted_at_first_heartbeat(&["reproduce", "--out", out.to_str().unwrap()]);
     assert!(first.contains(" runs done, "), "{first}");
-    let kill = Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(kill.success());
-    let rest: Vec<String> = lines.map(|l| l.unwrap()).collect();
-    let status = child.wait().unwrap();
-    assert_eq!(status.code(), Some(130), "{}", rest.join("\n"));
+    assert_eq!(code, Some(130), "{text}");
     // Written whole: the figures, Table 2 and the studies; the report says what is missing.
     for file in [
         "figures/figure-4-CVS.png",

@@ -304,17 +304,7 @@ pub fn svg(plot: &Plot, path: &Path) -> Result<String, AppError> {
 
 /// Plots side by side as SVG text.
 pub fn svg_panels(plots: &[Plot], path: &Path) -> Result<String, AppError> {
-    register_font();
-    let mut text = String::new();
-    draw(
-        SVGBackend::with_string(&mut text, size(plots.len())).into_drawing_area(),
-        plots,
-    )
-    .map_err(|message| AppError::Plot {
-        path: path.to_path_buf(),
-        message,
-    })?;
-    Ok(text)
+    render_svg(size(plots.len()), path, |root| draw(root, plots))
 }
 
 /// The plot as PNG bytes.
@@ -324,19 +314,43 @@ pub fn png(plot: &Plot, path: &Path) -> Result<Vec<u8>, AppError> {
 
 /// Plots side by side as PNG bytes.
 pub fn png_panels(plots: &[Plot], path: &Path) -> Result<Vec<u8>, AppError> {
+    render_png(size(plots.len()), path, |root| draw(root, plots))
+}
+
+/// What `paint` draws on an SVG canvas of `size` pixels, as text; a drawing error names the
+/// figure's `path`.
+fn render_svg(
+    size: (u32, u32),
+    path: &Path,
+    paint: impl FnOnce(DrawingArea<SVGBackend, Shift>) -> Result<(), String>,
+) -> Result<String, AppError> {
     register_font();
-    let fail = |message: String| AppError::Plot {
+    let mut text = String::new();
+    paint(SVGBackend::with_string(&mut text, size).into_drawing_area())
+        .map_err(|message| plot_error(path, message))?;
+    Ok(text)
+}
+
+/// What `paint` draws on an RGB canvas of `size` pixels, as PNG bytes; a drawing error names
+/// the figure's `path`.
+fn render_png(
+    (w, h): (u32, u32),
+    path: &Path,
+    paint: impl FnOnce(DrawingArea<BitMapBackend, Shift>) -> Result<(), String>,
+) -> Result<Vec<u8>, AppError> {
+    register_font();
+    let mut pixels = vec![0u8; (w * h * 3) as usize];
+    paint(BitMapBackend::with_buffer(&mut pixels, (w, h)).into_drawing_area())
+        .map_err(|message| plot_error(path, message))?;
+    encode_png(&pixels, (w, h), path)
+}
+
+/// The error of drawing the figure at `path`.
+fn plot_error(path: &Path, message: String) -> AppError {
+    AppError::Plot {
         path: path.to_path_buf(),
         message,
-    };
-    let (w, h) = size(plots.len());
-    let mut pixels = vec![0u8; (w * h * 3) as usize];
-    draw(
-        BitMapBackend::with_buffer(&mut pixels, (w, h)).into_drawing_area(),
-        plots,
-    )
-    .map_err(fail)?;
-    encode_png(&pixels, (w, h), path)
+    }
 }
 
 /// RGB pixels of a `w × h` image as PNG bytes.
@@ -351,10 +365,7 @@ fn encode_png(pixels: &[u8], (w, h): (u32, u32), path: &Path) -> Result<Vec<u8>,
     encoder
         .write_header()
         .and_then(|mut writer| writer.write_image_data(pixels))
-        .map_err(|e| AppError::Plot {
-            path: path.to_path_buf(),
-            message: e.to_string(),
-        })?;
+        .map_err(|e| plot_error(path, e.to_string()))?;
     Ok(bytes)
 }
 

@@ -1,6 +1,6 @@
 //! A raster of coloured cells over time and an index: a chain's contact modes.
 
-use super::{encode_png, register_font, SIZE};
+use super::{render_png, render_svg, SIZE};
 use crate::error::AppError;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -85,31 +85,10 @@ fn draw_raster<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, r: &Raster) -> 
 
 /// The raster as SVG text.
 pub fn raster_svg(r: &Raster, path: &Path) -> Result<String, AppError> {
-    register_font();
-    let mut text = String::new();
-    draw_raster(
-        SVGBackend::with_string(&mut text, SIZE).into_drawing_area(),
-        r,
-    )
-    .map_err(|message| AppError::Plot {
-        path: path.to_path_buf(),
-        message,
-    })?;
-    Ok(text)
+    render_svg(SIZE, path, |root| draw_raster(root, r))
 }
 
 /// The raster as PNG bytes.
 pub fn raster_png(r: &Raster, path: &Path) -> Result<Vec<u8>, AppError> {
-    register_font();
-    let (w, h) = SIZE;
-    let mut pixels = vec![0u8; (w * h * 3) as usize];
-    draw_raster(
-        BitMapBackend::with_buffer(&mut pixels, SIZE).into_drawing_area(),
-        r,
-    )
-    .map_err(|message| AppError::Plot {
-        path: path.to_path_buf(),
-        message,
-    })?;
-    encode_png(&pixels, SIZE, path)
+    render_png(SIZE, path, |root| draw_raster(root, r))
 }
