@@ -23,8 +23,9 @@ use crate::local;
 use crate::springs::{Sorted, Springs};
 use crate::switching::{mode_of_velocity, Switching, SLIP_NEGATIVE, SLIP_POSITIVE, STICK};
 use crate::system::{End, System};
-use friction_models::{Direction, StatePartials, StickInterval, MAX_STATES};
+use friction_models::{Direction, FrictionModel, StatePartials, StickInterval, MAX_STATES};
 use integrators::{Control, Crossing, Entry, EventSpec, Mode, OdeProblem};
+use std::ops::Range;
 
 const SLIP_POSITIVE_EVENT: EventSpec = EventSpec {
     name: "v_rel=0",
@@ -67,6 +68,26 @@ pub struct FrictionSystem<'a> {
     /// (`local::invariant_at_rest`: no state, and x ignored), read once: a stuck contact's
     /// two event functions read it at every evaluation.
     rest: Vec<Option<StickInterval>>,
+    /// What the right-hand side reads of each body, gathered once.
+    bodies_at: Vec<BodyAt<'a>>,
+}
+
+/// What the right-hand side reads of one body, gathered once instead of looked up through
+/// the system and the layout at every evaluation: where its x is in y (v follows), its mass
+/// and its contact.
+struct BodyAt<'a> {
+    x: usize,
+    m: f64,
+    contact: Option<ContactAt<'a>>,
+}
+
+/// What the right-hand side reads of one contact: its index, its law, the surface velocity
+/// and the places of its internal states in y.
+struct ContactAt<'a> {
+    j: usize,
+    model: &'a dyn FrictionModel,
+    v_s: f64,
+    z: Range<usize>,
 }
 
 impl<'a> FrictionSystem<'a> {
@@ -85,14 +106,34 @@ impl<'a> FrictionSystem<'a> {
                 local::invariant_at_rest(model).then(|| model.stick_interval(0.0, &[]))
             })
             .collect();
+        let layout = Layout::of(system);
+        let bodies_at = system
+            .bodies
+            .iter()
+            .enumerate()
+            .map(|(i, body)| BodyAt {
+                x: layout.x[i],
+                m: body.m,
+                contact: layout.contact[i].map(|j| {
+                    let c = &system.contacts[j];
+                    ContactAt {
+                        j,
+                        model: c.model.as_ref(),
+                        v_s: c.surface_velocity,
+                        z: layout.z[i].clone(),
+                    }
+                }),
+            })
+            .collect();
         FrictionSystem {
             system,
-            layout: Layout::of(system),
+            layout,
             switching,
             springs,
             springs_at,
             forces_at,
             rest,
+            bodies_at,
         }
     }
 
@@ -165,14 +206,19 @@ impl<'a> FrictionSystem<'a> {
             .stick_interval(y[self.layout.x[c.body]], self.layout.states(c.body, y))
     }
 
-    /// Friction force of contact `j` in `mode`, given the other forces `other` on its body;
-    /// writes the rates of its internal states into `rate` (zero while it sticks).
-    fn contact_force(&self, j: usize, y: &[f64], mode: Mode, other: f64, rate: &mut [f64]) -> f64 {
-        let c = &self.system.contacts[j];
-        let i = c.body;
-        let x = y[self.layout.x[i]];
-        let v_rel = y[self.layout.v(i)] - c.surface_velocity;
-        let z = self.layout.states(i, y);
+    /// Friction force of contact `c` of a body at `(x, v)` with internal states `z`, in
+    /// `mode`, given the other forces `other` on the body; writes the rates of its internal
+    /// states into `rate` (zero while it sticks).
+    fn contact_force(
+        &self,
+        c: &ContactAt,
+        (x, v): (f64, f64),
+        z: &[f64],
+        mode: Mode,
+        other: f64,
+        rate: &mut [f64],
+    ) -> f64 {
+        let v_rel = v - c.v_s;
         match self.switching {
             s if s.has_modes() && mode == STICK => {
                 rate.fill(0.0);
@@ -191,9 +237,18 @@ impl<'a> FrictionSystem<'a> {
     /// The friction force of contact `j` at (t, y) in `modes`, as the right-hand side uses it.
     pub fn friction(&self, j: usize, t: f64, y: &[f64], modes: &[Mode]) -> f64 {
         let body = self.system.contacts[j].body;
+        let b = &self.bodies_at[body];
+        let c = b.contact.as_ref().expect("a contact's body has it");
         let other = self.other_force(body, t, y);
-        let rate = &mut [0.0; MAX_STATES][..self.layout.z[body].len()];
-        self.contact_force(j, y, modes[j], other, rate)
+        let rate = &mut [0.0; MAX_STATES][..c.z.len()];
+        self.contact_force(
+            c,
+            (y[b.x], y[b.x + 1]),
+            &y[c.z.clone()],
+            modes[j],
+            other,
+            rate,
+        )
     }
 
     /// The mode contact `j` is in at (t, y): by the sign of v_rel, and at v_rel = 0 by the
@@ -268,32 +323,38 @@ impl OdeProblem for FrictionSystem<'_> {
     /// `Ẇ_ext = Σ F_ext,i·v_i + Σ anchor power − Σ c·Δv²`, `Ḋ = Σ F_f,j·v_rel,j`,
     /// `Ẇ_belt = −Σ F_f,j·v_s,j`.
     fn rhs(&self, t: f64, y: &[f64], modes: &[Mode], dy: &mut [f64]) {
-        let l = &self.layout;
-        for i in 0..self.system.bodies.len() {
-            dy[l.x[i]] = y[l.v(i)];
-            dy[l.v(i)] = 0.0;
+        for b in &self.bodies_at {
+            dy[b.x] = y[b.x + 1];
+            dy[b.x + 1] = 0.0;
         }
-        let external = self.applied_forces(t, y, |i, f| dy[l.v(i)] += f);
+        let external = self.applied_forces(t, y, |i, f| dy[self.bodies_at[i].x + 1] += f);
         let (mut dissipated, mut belt) = (0.0, 0.0);
-        for (i, body) in self.system.bodies.iter().enumerate() {
-            let v = l.v(i);
-            let Some(j) = l.contact[i] else {
-                dy[v] /= body.m;
+        for b in &self.bodies_at {
+            let v = b.x + 1;
+            let Some(c) = &b.contact else {
+                dy[v] /= b.m;
                 continue;
             };
-            let surface = self.system.contacts[j].surface_velocity;
             let other = dy[v];
-            let force = self.contact_force(j, y, modes[j], other, &mut dy[l.z[i].clone()]);
-            dissipated += force * (y[v] - surface);
-            belt -= force * surface;
-            if self.switching.has_modes() && modes[j] == STICK {
-                dy[l.x[i]] = surface;
+            let state = (y[b.x], y[v]);
+            let force = self.contact_force(
+                c,
+                state,
+                &y[c.z.clone()],
+                modes[c.j],
+                other,
+                &mut dy[c.z.clone()],
+            );
+            dissipated += force * (y[v] - c.v_s);
+            belt -= force * c.v_s;
+            if self.switching.has_modes() && modes[c.j] == STICK {
+                dy[b.x] = c.v_s;
                 dy[v] = 0.0;
             } else {
-                dy[v] = (other - force) / body.m;
+                dy[v] = (other - force) / b.m;
             }
         }
-        let a = l.accumulators;
+        let a = self.layout.accumulators;
         dy[a] = external;
         dy[a + 1] = dissipated;
         dy[a + 2] = belt;
