@@ -70,6 +70,11 @@ pub struct FrictionSystem<'a> {
     rest: Vec<Option<StickInterval>>,
     /// What the right-hand side reads of each body, gathered once.
     bodies_at: Vec<BodyAt<'a>>,
+    /// The place in y of each spring to an anchor's body (its x; v follows), in the order of
+    /// `springs.anchored`.
+    anchored_x: Vec<usize>,
+    /// The places in y of each spring's two bodies, in the order of `springs.pairs`.
+    pairs_x: Vec<(usize, usize)>,
 }
 
 /// What the right-hand side reads of one body, gathered once instead of looked up through
@@ -125,6 +130,12 @@ impl<'a> FrictionSystem<'a> {
                 }),
             })
             .collect();
+        let anchored_x = springs.anchored.iter().map(|s| layout.x[s.body]).collect();
+        let pairs_x = springs
+            .pairs
+            .iter()
+            .map(|s| (layout.x[s.a], layout.x[s.b]))
+            .collect();
         FrictionSystem {
             system,
             layout,
@@ -134,6 +145,8 @@ impl<'a> FrictionSystem<'a> {
             forces_at,
             rest,
             bodies_at,
+            anchored_x,
+            pairs_x,
         }
     }
 
@@ -146,14 +159,17 @@ impl<'a> FrictionSystem<'a> {
                 g.constant + g.profile.at(t)
             })
             .sum();
-        let l = &self.layout;
-        let state = |body: usize| (y[l.x[body]], y[l.x[body] + 1]);
+        let state = |x: usize| (y[x], y[x + 1]);
         for &s in &self.springs_at[i] {
             f += match s {
-                Sorted::Anchored(s) => self.springs.anchored[s].force(t, state(i)).0,
-                Sorted::Pair(s) => {
-                    let s = &self.springs.pairs[s];
-                    let force = s.force(state(s.a), state(s.b)).0;
+                Sorted::Anchored(s) => {
+                    self.springs.anchored[s]
+                        .force(t, state(self.anchored_x[s]))
+                        .0
+                }
+                Sorted::Pair(k) => {
+                    let (s, (xa, xb)) = (&self.springs.pairs[k], self.pairs_x[k]);
+                    let force = s.force(state(xa), state(xb)).0;
                     if s.a == i {
                         force
                     } else {
@@ -165,33 +181,33 @@ impl<'a> FrictionSystem<'a> {
         f
     }
 
-    /// Every force but friction at (t, y), handed to `add(body, force)` term by term (the
-    /// external forces, then each spring and damper on each of its body ends); returns the
-    /// power of those forces that is not stored in the springs,
-    /// `Σ F_ext,i·v_i + Σ anchor power − Σ c·Δv²`.
+    /// Every force but friction at (t, y), handed to `add(v, force)` term by term with `v` the
+    /// place in y of the body's velocity (the external forces, then each spring and damper on
+    /// each of its body ends); returns the power of those forces that is not stored in the
+    /// springs, `Σ F_ext,i·v_i + Σ anchor power − Σ c·Δv²`.
     pub(crate) fn applied_forces(&self, t: f64, y: &[f64], mut add: impl FnMut(usize, f64)) -> f64 {
         let mut external = 0.0;
         for f in &self.system.forces {
             let force = f.constant + f.profile.at(t);
-            add(f.body, force);
-            external += force * y[self.layout.v(f.body)];
+            let v = self.bodies_at[f.body].x + 1;
+            add(v, force);
+            external += force * y[v];
         }
         // The springs to anchors, then the pairs (at a body whose springs to anchors are
         // declared before its pairs, as in the chain, in the declared order); an anchor's
         // power `−F_anchor·v_anchor` is `F_body·v_anchor`.
-        let l = &self.layout;
-        let state = |body: usize| (y[l.x[body]], y[l.x[body] + 1]);
-        for s in &self.springs.anchored {
-            let (force, dv) = s.force(t, state(s.body));
+        let state = |x: usize| (y[x], y[x + 1]);
+        for (s, &x) in self.springs.anchored.iter().zip(&self.anchored_x) {
+            let (force, dv) = s.force(t, state(x));
             external -= s.c * dv * dv;
-            add(s.body, force);
+            add(x + 1, force);
             external += force * s.v;
         }
-        for s in &self.springs.pairs {
-            let (force, dv) = s.force(state(s.a), state(s.b));
+        for (s, &(xa, xb)) in self.springs.pairs.iter().zip(&self.pairs_x) {
+            let (force, dv) = s.force(state(xa), state(xb));
             external -= s.c * dv * dv;
-            add(s.a, force);
-            add(s.b, -force);
+            add(xa + 1, force);
+            add(xb + 1, -force);
         }
         external
     }
@@ -327,7 +343,7 @@ impl OdeProblem for FrictionSystem<'_> {
             dy[b.x] = y[b.x + 1];
             dy[b.x + 1] = 0.0;
         }
-        let external = self.applied_forces(t, y, |i, f| dy[self.bodies_at[i].x + 1] += f);
+        let external = self.applied_forces(t, y, |v, f| dy[v] += f);
         let (mut dissipated, mut belt) = (0.0, 0.0);
         for b in &self.bodies_at {
             let v = b.x + 1;
