@@ -494,6 +494,7 @@ pub fn make(args: &SimulateArgs) -> Result<Made, AppError> {
         stiffness_detected_at: run.solution.stiffness_detected_at,
     };
     files.add_json(args.out.join("summary.json"), &summary)?;
+    let period = integrators::OdeProblem::time_scale(&run.problem);
     Ok(Made {
         files,
         notes: vec![format!(
@@ -508,16 +509,13 @@ pub fn make(args: &SimulateArgs) -> Result<Made, AppError> {
             .stiffness_detected_at
             .map(|t| crate::commands::simulate::stiffness_warning(method, t))
             .into_iter()
-            .chain(crate::commands::simulate::coarse_step_warning(
-                step,
-                integrators::OdeProblem::time_scale(&run.problem),
-            ))
+            .chain(crate::commands::simulate::coarse_step_warning(step, period))
             .chain(crate::commands::simulate::failure_warnings(
                 args.solver.solver,
                 args.solver.switching(),
                 step,
                 t_end,
-                integrators::OdeProblem::time_scale(&run.problem),
+                period,
                 run.error.as_ref(),
             ))
             .chain(crate::commands::simulate::unread_warnings(

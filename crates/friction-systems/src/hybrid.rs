@@ -212,6 +212,12 @@ impl<'a> FrictionSystem<'a> {
         external
     }
 
+    /// Whether contact `j`'s law at rest is the same at every step
+    /// (`local::invariant_at_rest`), as read once when the problem was made.
+    pub(crate) fn invariant_at_rest(&self, j: usize) -> bool {
+        self.rest[j].is_some()
+    }
+
     /// The admissible friction forces of contact `j` at rest, in state y.
     pub fn stick_interval(&self, j: usize, y: &[f64]) -> StickInterval {
         if let Some(interval) = self.rest[j] {

@@ -368,13 +368,14 @@ impl<'p, 'a> Stepper<'p, 'a> {
                 .system
                 .contacts
                 .iter()
-                .map(|c| ContactData {
+                .enumerate()
+                .map(|(j, c)| ContactData {
                     body: c.body,
                     at: at[c.body],
                     v_s: c.surface_velocity,
                     model: c.model.as_ref(),
                     states: l.z[c.body].clone(),
-                    invariant: local::invariant_at_rest(c.model.as_ref()),
+                    invariant: p.invariant_at_rest(j),
                     affine: AffineLaw::new(c.model.as_ref()),
                 })
                 .collect(),
