@@ -188,7 +188,7 @@ impl Made {
     /// when `None`), prints what was written and the notes, and returns the failure.
     pub fn deliver(self, out: &Path, threads: Option<usize>) -> Result<(), AppError> {
         let files = self.files;
-        let written = crate::commands::phenomena::with_threads(threads, || files.write(out))??;
+        let written = crate::threads::with_threads(threads, || files.write(out))??;
         println!("wrote {} files into {}", written.len(), out.display());
         for note in &self.notes {
             println!("{note}");

@@ -20,6 +20,8 @@ pub mod output;
 pub mod plot;
 pub mod progress;
 pub mod ranges;
+pub mod threads;
+pub mod warnings;
 
 use clap::{Parser, Subcommand};
 use error::AppError;
@@ -124,7 +126,12 @@ impl Command {
 pub fn make(command: &Command) -> Result<artifacts::Made, AppError> {
     match command {
         Command::Curve(args) => commands::curve::make(args),
-        Command::Simulate(args) => commands::simulate::make(args),
+        Command::Simulate(args) => match args.scenario {
+            Some(commands::simulate::Target::Rig(scenario)) => {
+                commands::simulate::make_rig(args, scenario)
+            }
+            _ => commands::system::make(args),
+        },
         Command::Converge(args) => commands::studies::converge(args),
         Command::Independence(args) => commands::studies::independence(args),
         Command::WorkPrecision(args) => commands::studies::work_precision(args),

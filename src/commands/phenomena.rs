@@ -6,6 +6,7 @@ use crate::artifacts::Artifacts;
 use crate::error::AppError;
 use crate::options::{check_read, LimitArgs, ParamOptions};
 use crate::ranges;
+use crate::threads::with_threads;
 use clap::Args;
 use friction_models::{FrictionParams, ModelId};
 use integrators::{Solver, StepControl};
@@ -59,23 +60,6 @@ pub struct PhenomenaArgs {
     /// The bounds of every protocol run: a run that reaches one leaves its cell undecided.
     #[command(flatten)]
     pub limits: LimitArgs,
-}
-
-/// Runs `f` on a pool of `threads` workers (all cores when `None`).
-pub fn with_threads<T: Send>(
-    threads: Option<usize>,
-    f: impl FnOnce() -> T + Send,
-) -> Result<T, AppError> {
-    if threads == Some(0) {
-        return Err(AppError::Usage(
-            "option `threads` = 0 is out of range: allowed [1, inf)".into(),
-        ));
-    }
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads.unwrap_or(0))
-        .build()
-        .map_err(|e| AppError::Usage(format!("cannot start {threads:?} threads: {e}")))?;
-    Ok(pool.install(f))
 }
 
 /// Table 2 as `table2.json`: `{"<model>": {"<phenomenon>": {measured, failed, paper,

@@ -4,7 +4,6 @@
 use crate::artifacts::Artifacts;
 use crate::commands::curve::{used_parameters, KeyValues};
 use crate::commands::phenomena::add_table;
-use crate::commands::phenomena::with_threads;
 use crate::commands::studies::{
     add_convergence, add_independence, add_scaling, add_stiffness, add_work_precision, Refinement,
     Target,
@@ -15,6 +14,7 @@ use crate::options::ParamOptions;
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Marker, Plot, Series, PALETTE};
 use crate::ranges;
+use crate::threads::with_threads;
 use clap::Args;
 use friction_models::{FrictionParams, ModelId, Parameters, Variant};
 use friction_systems::chain::ChainParams;

@@ -2,10 +2,10 @@
 //! `reproduce` writes them into `stick-slip/`: CSVs, figures and a report section.
 
 use crate::artifacts::Artifacts;
-use crate::commands::phenomena::with_threads;
 use crate::error::AppError;
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Marker, Plot, Series, BLUE, PALETTE};
+use crate::threads::with_threads;
 use friction_models::{FrictionParams, ModelId};
 use scenarios::stick_slip::{belt_run, bifurcation, log_space, map, stability_boundary, Regime};
 use std::path::Path;

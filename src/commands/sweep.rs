@@ -4,7 +4,6 @@
 //! `sweep.json` (the grid, the options, the rows). The rows do not depend on `--threads`.
 
 use crate::artifacts::{Artifacts, Made};
-use crate::commands::phenomena::with_threads;
 use crate::commands::simulate::{spec, SimulateArgs, Target};
 use crate::commands::system::{
     chosen_bodies, default_t_end, grid_options, system_of, system_points,
@@ -13,6 +12,7 @@ use crate::error::AppError;
 use crate::output::{Cell, Table};
 use crate::progress::Progress;
 use crate::ranges;
+use crate::threads::with_threads;
 use clap::Args;
 use friction_systems::{simulate, STICK};
 use integrators::Stats;
@@ -431,7 +431,7 @@ pub fn make(args: &SweepArgs) -> Result<Made, AppError> {
             results.len(),
             if results.len() == 1 { "" } else { "s" }
         )],
-        warnings: crate::commands::simulate::unread_warnings(
+        warnings: crate::warnings::unread_warnings(
             &args.run.model_options.params.set,
             args.run.model,
             args.run.solver.switching(),

@@ -507,10 +507,10 @@ pub fn make(args: &SimulateArgs) -> Result<Made, AppError> {
         warnings: run
             .solution
             .stiffness_detected_at
-            .map(|t| crate::commands::simulate::stiffness_warning(method, t))
+            .map(|t| crate::warnings::stiffness_warning(method, t))
             .into_iter()
-            .chain(crate::commands::simulate::coarse_step_warning(step, period))
-            .chain(crate::commands::simulate::failure_warnings(
+            .chain(crate::warnings::coarse_step_warning(step, period))
+            .chain(crate::warnings::failure_warnings(
                 args.solver.solver,
                 args.solver.switching(),
                 step,
@@ -518,7 +518,7 @@ pub fn make(args: &SimulateArgs) -> Result<Made, AppError> {
                 period,
                 run.error.as_ref(),
             ))
-            .chain(crate::commands::simulate::unread_warnings(
+            .chain(crate::warnings::unread_warnings(
                 &args.model_options.params.set,
                 args.model,
                 args.solver.switching(),

@@ -5,8 +5,8 @@
 //! models of the paper and the classical reference laws (Coulomb, viscous, static, Stribeck,
 //! Dahl, Karnopp) are all values of this one struct; see [`crate::catalog`].
 
-use crate::catalog::{CurveAxis, ModelId};
-use crate::model::{FrictionModel, Partials, StatePartials, StickInterval};
+use crate::id::ModelId;
+use crate::model::{CurveAxis, FrictionModel, Partials, StatePartials, StickInterval};
 use crate::sign::{Direction, SignLaw};
 use crate::terms::{self, Term};
 

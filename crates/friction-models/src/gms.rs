@@ -22,7 +22,7 @@
 //! stiffness at rest), shares α_i = (2i − 1)/n², so that the blocks slip one after the other
 //! at deflections (2i − 1)·F_s/(n·σ0), and damping σ_i = σ1/n.
 
-use crate::catalog::ModelId;
+use crate::id::ModelId;
 use crate::model::{FrictionModel, Partials, StatePartials, StickInterval};
 use crate::sign::SignLaw;
 use crate::terms;

@@ -10,6 +10,7 @@
 pub mod catalog;
 pub mod composite;
 pub mod gms;
+pub mod id;
 pub mod lugre;
 pub mod model;
 pub mod params;
@@ -17,9 +18,10 @@ pub mod sign;
 pub mod steady;
 pub mod terms;
 
-pub use catalog::{CurveAxis, ModelId};
+pub use id::ModelId;
 pub use model::{
-    reported_state, FrictionModel, Partials, StatePartials, StickInterval, Variant, MAX_STATES,
+    reported_state, CurveAxis, FrictionModel, Partials, StatePartials, StickInterval, Variant,
+    MAX_STATES,
 };
 pub use params::{FrictionParams, ParamError, ParamSpec, Parameters, Range, PARAM_SETS};
 pub use sign::{Branches, Direction, SignLaw};

@@ -13,7 +13,7 @@
 //!   ½·sin(π·(|z| − (z_max + z_ba)/2)/(z_max − z_ba)) + ½ to 1 at z_max = g(v)/σ0, and 0 when
 //!   z and v have opposite signs (unloading is elastic).
 
-use crate::catalog::ModelId;
+use crate::id::ModelId;
 use crate::model::{FrictionModel, Partials, StatePartials, StickInterval};
 use crate::sign::SignLaw;
 use crate::terms;

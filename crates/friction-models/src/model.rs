@@ -1,6 +1,5 @@
 //! The interface every friction model implements and the integrators use.
 
-use crate::catalog::CurveAxis;
 use crate::sign::SignLaw;
 use serde::Serialize;
 use std::fmt;
@@ -71,6 +70,16 @@ impl StickInterval {
     pub fn clamp(&self, applied: f64) -> f64 {
         applied.max(self.lower).min(self.upper)
     }
+}
+
+/// How a model's curve is drawn (`friction-lab curve`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum CurveAxis {
+    /// Force against velocity in steady sliding (Figures 2–4).
+    Velocity,
+    /// Force against displacement under the paper's prescribed motion (Figures 5–7).
+    Displacement,
 }
 
 /// Which reading of the paper's equations a model follows.

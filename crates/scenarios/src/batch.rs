@@ -10,10 +10,10 @@
 //! results are the same for any number of threads and any order.
 
 use crate::cases::{Measures, StudyCase};
+use crate::method::{resolution, step_kind, Method};
 use crate::run::{ScenarioError, SwitchingKind};
 use crate::schedule;
-use crate::studies::REFERENCE_TOLERANCE;
-use crate::studies::{resolution, step_kind, Errors, Method, Reference, StudyRun};
+use crate::study_run::{Errors, Reference, StudyRun, REFERENCE_TOLERANCE};
 use integrators::{DiffsolMethod, Solver, StepControl};
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -250,7 +250,7 @@ pub fn run_cases(
                 progress();
                 return Ok(Done::Time(None));
             }
-            let o = method.measure(cases[case], step)?;
+            let o = cases[case].measure_by(&method, step)?;
             progress();
             if repeat > 0 {
                 return Ok(Done::Time(Some(o.wall_time_s)));

@@ -3,10 +3,10 @@
 //! ([`SystemCase`]), or a user's own problem through the public [`StudyCase`] trait.
 
 use crate::chain::ChainSource;
+use crate::method::Method;
 use crate::run::Limits;
 use crate::run::{run, Law, Outcome, RunSpec, ScenarioError, SwitchingKind, DEFAULT_THETA};
 use crate::scenario::Scenario;
-use crate::studies::Method;
 use crate::ScenarioParams;
 use friction_models::{FrictionParams, ModelId, Parameters};
 use friction_systems::{simulate, Run, System, STICK};
@@ -66,6 +66,15 @@ pub trait StudyCase: Sync + Send {
 
     /// One run with `solver` and `step`, measured on the common grid.
     fn measure(&self, solver: Solver, step: StepControl) -> Result<Measured, ScenarioError>;
+
+    /// One run of `method` with `step`: [`StudyCase::measure`] with its solver, under this
+    /// case's treatment of v = 0 or the method's own.
+    fn measure_by(&self, method: &Method, step: StepControl) -> Result<Measured, ScenarioError> {
+        match method.switching {
+            None => self.measure(method.solver, step),
+            Some(s) => self.with_switching(s).measure(method.solver, step),
+        }
+    }
 
     /// The exact solution's measures, where one is known, with its formula.
     fn closed_form(&self) -> Option<(String, Measures)> {

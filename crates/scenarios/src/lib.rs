@@ -13,6 +13,7 @@ pub mod chain;
 pub mod curves;
 pub mod figures;
 pub mod grid;
+pub mod method;
 pub mod motion;
 pub mod paper;
 pub mod params;
@@ -23,6 +24,7 @@ pub mod schedule;
 pub mod settled;
 pub mod stick_slip;
 pub mod studies;
+pub mod study_run;
 
 pub use params::ScenarioParams;
 pub use run::{run, Law, Limits, Outcome, Row, RunSpec, ScenarioError, SwitchingKind};

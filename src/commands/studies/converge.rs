@@ -5,11 +5,11 @@ use super::{
     CaseArgs, Target,
 };
 use crate::artifacts::Made;
-use crate::commands::phenomena::with_threads;
 use crate::error::AppError;
 use crate::plot::{Corner, Plot};
 use crate::progress::Progress;
 use crate::ranges;
+use crate::threads::with_threads;
 use clap::Args;
 use integrators::Solver;
 use scenarios::studies::{self, Convergence, StudyCase};

@@ -3,13 +3,13 @@
 
 use super::{resolution_cells, study_error, study_file, CaseArgs, Refinement, Target};
 use crate::artifacts::Made;
-use crate::commands::phenomena::with_threads;
-use crate::commands::simulate::diverged_line;
 use crate::error::AppError;
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Marker, Plot, Series, PALETTE};
 use crate::progress::Progress;
 use crate::ranges;
+use crate::threads::with_threads;
+use crate::warnings::diverged_line;
 use clap::Args;
 use integrators::Solver;
 use scenarios::studies::{self, Independence, StudyCase};

@@ -5,13 +5,13 @@
 
 use crate::artifacts::{Artifacts, Made};
 use crate::commands::simulate::Target as Problem;
-use crate::commands::simulate::{diverged_line, unread_warnings};
 use crate::commands::system::{chosen_bodies, study_t_end, system_of};
 use crate::error::AppError;
 use crate::options::{LimitArgs, ModelOptions};
 use crate::output::{Cell, Table};
 use crate::plot::{Marker, Series, PALETTE};
 use crate::ranges;
+use crate::warnings::{diverged_line, unread_warnings};
 use clap::Args;
 use friction_models::params::show;
 use friction_models::ModelId;

@@ -2,11 +2,11 @@
 //! study of `reproduce`).
 
 use super::{resolution_cells, study_error, CaseRecord, Target};
-use crate::commands::phenomena::with_threads;
 use crate::error::AppError;
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Marker, Plot, Series, PALETTE};
 use crate::progress::Progress;
+use crate::threads::with_threads;
 use scenarios::studies::{self, Method, StudyCase};
 use serde::Serialize;
 

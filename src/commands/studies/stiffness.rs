@@ -6,13 +6,13 @@ use super::{
     Target,
 };
 use crate::artifacts::Made;
-use crate::commands::phenomena::with_threads;
 use crate::commands::simulate::Target as Problem;
 use crate::error::AppError;
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Marker, Plot, Series, PALETTE};
 use crate::progress::Progress;
 use crate::ranges;
+use crate::threads::with_threads;
 use clap::Args;
 use integrators::Solver;
 use scenarios::studies::{self, Method, Stiffness, StudyCase};
@@ -95,7 +95,7 @@ pub fn add_stiffness(
             values.len()
         )));
     }
-    let methods: Vec<Method> = Method::studied(case, solvers)
+    let methods: Vec<Method> = Method::studied(case.switching(), solvers)
         .into_iter()
         .chain(case.peers())
         .collect();

@@ -5,12 +5,12 @@ use super::{
     CaseArgs, Target,
 };
 use crate::artifacts::Made;
-use crate::commands::phenomena::with_threads;
 use crate::error::AppError;
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Plot};
 use crate::progress::Progress;
 use crate::ranges;
+use crate::threads::with_threads;
 use clap::Args;
 use integrators::Solver;
 use scenarios::studies::{self, Method, StudyCase, WorkPrecision};
@@ -67,7 +67,7 @@ pub fn add_work_precision(
     distinct(solvers)?;
     ranges::DT.list("dt-list", steps)?;
     ranges::RTOL.list("tol-list", tols)?;
-    let methods: Vec<Method> = Method::studied(case, solvers)
+    let methods: Vec<Method> = Method::studied(case.switching(), solvers)
         .into_iter()
         .chain(case.peers())
         .collect();

@@ -155,7 +155,7 @@ pub fn convergence(
     tolerances: &[f64],
     progress: &(dyn Fn() + Sync),
 ) -> Result<Convergence, ScenarioError> {
-    let methods = Method::studied(case, solvers);
+    let methods = Method::studied(case.switching(), solvers);
     let jobs = Method::jobs(&methods, step_sizes, tolerances, true);
     let own = Method::own_solvers(&methods);
     let (reference, ref_measures, runs) = run_against_reference(case, &own, &jobs, progress)?;

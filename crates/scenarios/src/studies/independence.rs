@@ -130,7 +130,7 @@ pub fn independence(
     progress: &(dyn Fn() + Sync),
 ) -> Result<Independence, ScenarioError> {
     let resolutions: Vec<f64> = (0..levels).map(|i| start / ratio.powi(i as i32)).collect();
-    let method = Method::studied(case, &[solver]);
+    let method = Method::studied(case.switching(), &[solver]);
     let jobs = Method::jobs(&method, &resolutions, &resolutions, false);
     let runs = batch::run_cases(&[case], None, &jobs, 0, progress)?
         .remove(0)

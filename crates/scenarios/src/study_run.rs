@@ -1,0 +1,109 @@
+//! One run of a study against its reference: where the reference comes from, the run's
+//! errors against it, and the record a study keeps of the run.
+
+use crate::cases::Measures;
+use integrators::{Stats, StepControl};
+use serde::Serialize;
+
+/// Errors of a run against the reference.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Errors {
+    /// max |Δx|, |Δv| over every body at the end.
+    pub final_state: f64,
+    /// max |Δx|, |Δv| of the measured bodies over the common grid.
+    pub grid_max: f64,
+    /// max |Δt| over the events (NaN when the numbers of events differ).
+    pub event_times: f64,
+    /// max |Δ| over the stick durations (NaN when their numbers differ).
+    pub stick_durations: f64,
+}
+
+fn max_diff(a: &[f64], b: &[f64]) -> f64 {
+    if a.len() != b.len() {
+        return f64::NAN;
+    }
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+}
+
+impl Errors {
+    /// Not measured (yet): every error NaN.
+    pub const UNMEASURED: Errors = Errors {
+        final_state: f64::NAN,
+        grid_max: f64::NAN,
+        event_times: f64::NAN,
+        stick_durations: f64::NAN,
+    };
+
+    /// The errors of `m` against `reference`.
+    pub fn between(m: &Measures, reference: &Measures) -> Errors {
+        let grid_max = if m.grid.len() == reference.grid.len() {
+            m.grid
+                .iter()
+                .zip(&reference.grid)
+                .map(|(a, b)| max_diff(a, b))
+                .fold(0.0, f64::max)
+        } else {
+            f64::NAN
+        };
+        Errors {
+            final_state: max_diff(&m.final_state, &reference.final_state),
+            grid_max,
+            event_times: max_diff(&m.event_times, &reference.event_times),
+            stick_durations: max_diff(&m.stick_durations, &reference.stick_durations),
+        }
+    }
+}
+
+/// Where the reference comes from.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub enum Reference {
+    /// An exact solution, by name.
+    ClosedForm(String),
+    /// A much tighter run of a solver.
+    Run {
+        /// The solver.
+        solver: &'static str,
+        /// Its step control.
+        step: StepControl,
+        /// A second tight run by an independent solver, where the first one is also studied:
+        /// the solver, and the largest difference of the two on the time grid (a bound on the
+        /// reference's own error).
+        cross_check: Option<(&'static str, f64)>,
+    },
+}
+
+/// The tolerance of a reference run, rtol = atol.
+pub const REFERENCE_TOLERANCE: f64 = 1e-13;
+
+/// One run of a study.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct StudyRun {
+    /// The method's label ([`crate::method::Method::label`]): the solver, or a peer with its treatment.
+    pub solver: String,
+    /// The step size (fixed-step runs) or the tolerance (adaptive runs).
+    pub resolution: f64,
+    /// Which the resolution is: `fixed` (a step size, s) or `adaptive` (rtol = atol).
+    pub step: &'static str,
+    /// Errors against the reference.
+    pub errors: Errors,
+    /// The run's measures.
+    #[serde(skip)]
+    pub measures: Measures,
+    /// Work done.
+    pub stats: Stats,
+    /// Work in right-hand-side evaluations ([`Stats::work`] at the problem's dimension).
+    pub work: usize,
+    /// The solver's error, if it failed.
+    pub failure: Option<String>,
+    /// Whether it failed as an explicit method with a fixed step past its stability limit
+    /// ([`crate::run::diverged`]).
+    #[serde(skip)]
+    pub diverged: bool,
+    /// Wall time of the run, s: the median over it and its timing repeats (not
+    /// deterministic: kept out of the study's main files).
+    #[serde(skip)]
+    pub wall_time_s: f64,
+}
