@@ -21,8 +21,8 @@ use friction_lab::friction_models::{
 };
 use friction_lab::friction_systems::chain::{scale_levels, ChainParams};
 use friction_lab::friction_systems::moreau_jean::{SWEEP_ATOL, SWEEP_RTOL};
-use friction_lab::friction_systems::{simulate, Switching};
-use friction_lab::integrators::{Options, Output, Solver};
+use friction_lab::friction_systems::{simulate, Scheme};
+use friction_lab::integrators::{Options, Output};
 use std::hint::black_box;
 
 const T_END: f64 = 50.0;
@@ -52,8 +52,8 @@ fn general(chain: &ChainParams) -> (Vec<(f64, f64)>, usize) {
         output: Output::GridOnly(vec![T_END]),
         ..Options::fixed(0.0, T_END, H)
     };
-    let switching = Switching::TimeStepping { theta: THETA };
-    let run = simulate(&system, switching, Solver::Rk4, options, &mut |_| {}).expect("valid");
+    let scheme = Scheme::TimeStepping { theta: THETA };
+    let run = simulate(&system, scheme, options, &mut |_| {}).expect("valid");
     assert!(run.error.is_none(), "{:?}", run.error);
     let states = run.final_states().iter().map(|b| (b.x, b.v)).collect();
     (states, run.solution.stats.rhs_evals)

@@ -9,7 +9,7 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use friction_lab::friction_models::{FrictionParams, ModelId, Variant};
 use friction_lab::friction_systems::chain::ChainParams;
-use friction_lab::friction_systems::{simulate, Switching, System};
+use friction_lab::friction_systems::{simulate, Scheme, Switching, System};
 use friction_lab::integrators::{Options, Output, Solver, Stats};
 use std::hint::black_box;
 use std::sync::Arc;
@@ -31,21 +31,20 @@ fn chain_of_stiffness(n: usize, k_chain: f64) -> System {
 }
 
 fn run(system: &System, solver: Solver, options: Options) -> (usize, usize) {
-    switched(system, Switching::Event, solver, options)
+    let scheme = Scheme::EventDriven {
+        solver,
+        switching: Switching::Event,
+    };
+    switched(system, scheme, options)
 }
 
-fn switched(
-    system: &System,
-    switching: Switching,
-    solver: Solver,
-    options: Options,
-) -> (usize, usize) {
-    let stats = stats(system, switching, solver, options);
+fn switched(system: &System, scheme: Scheme, options: Options) -> (usize, usize) {
+    let stats = stats(system, scheme, options);
     (stats.steps, stats.events)
 }
 
-fn stats(system: &System, switching: Switching, solver: Solver, options: Options) -> Stats {
-    let r = simulate(system, switching, solver, options, &mut |_| {}).expect("valid");
+fn stats(system: &System, scheme: Scheme, options: Options) -> Stats {
+    let r = simulate(system, scheme, options, &mut |_| {}).expect("valid");
     assert!(r.error.is_none(), "{:?}", r.error);
     r.solution.stats
 }
@@ -72,17 +71,17 @@ fn chains(c: &mut Criterion) {
     group.finish();
     let mut group = c.benchmark_group("chain coulomb 50 s moreau-jean h 1e-3 theta 0.5");
     group.sample_size(10);
-    let stepping = Switching::TimeStepping { theta: 0.5 };
+    let stepping = Scheme::TimeStepping { theta: 0.5 };
     for n in [10, 100, 1000] {
         let system = chain(n);
         let o = Options {
             output: Output::GridOnly(vec![50.0]),
             ..Options::fixed(0.0, 50.0, 1e-3)
         };
-        let (steps, events) = switched(&system, stepping, Solver::Rk4, o.clone());
+        let (steps, events) = switched(&system, stepping, o.clone());
         println!("N = {n}: {steps} steps, {events} steps that switched");
         group.bench_function(format!("N = {n}"), |b| {
-            b.iter(|| black_box(switched(&system, stepping, Solver::Rk4, o.clone())))
+            b.iter(|| black_box(switched(&system, stepping, o.clone())))
         });
     }
     group.finish();
@@ -95,13 +94,13 @@ fn chains(c: &mut Criterion) {
             output: Output::GridOnly(vec![10.0]),
             ..Options::fixed(0.0, 10.0, 1e-3)
         };
-        let s = stats(&system, stepping, Solver::Rk4, o.clone());
+        let s = stats(&system, stepping, o.clone());
         println!(
             "N = {n}: {} steps, {} sweeps, {} corrections",
             s.steps, s.rhs_evals, s.lu_factorizations
         );
         group.bench_function(format!("N = {n}"), |b| {
-            b.iter(|| black_box(switched(&system, stepping, Solver::Rk4, o.clone())))
+            b.iter(|| black_box(switched(&system, stepping, o.clone())))
         });
     }
     group.finish();

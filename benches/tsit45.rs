@@ -16,7 +16,7 @@ use diffsol::{
 use friction_lab::friction_models::{
     Direction, FrictionModel, FrictionParams, ModelId, SignLaw, Variant,
 };
-use friction_lab::friction_systems::{simulate, End, Switching, System};
+use friction_lab::friction_systems::{simulate, End, Scheme, Switching, System};
 use friction_lab::integrators::{Options, Output, Solver};
 use friction_lab::plot::{self, Corner, Marker, Plot, Series, PALETTE};
 use std::cell::{Cell, RefCell};
@@ -56,8 +56,10 @@ fn friction_lab(system: &System, tol: f64) -> ([f64; 2], usize) {
     };
     let run = simulate(
         system,
-        Switching::Event,
-        Solver::Dopri5,
+        Scheme::EventDriven {
+            solver: Solver::Dopri5,
+            switching: Switching::Event,
+        },
         options,
         &mut |_| {},
     )

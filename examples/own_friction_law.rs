@@ -12,7 +12,7 @@
 use friction_lab::friction_models::{
     FrictionModel, FrictionParams, Partials, SignLaw, StatePartials, StickInterval,
 };
-use friction_lab::friction_systems::{simulate, End, Switching, System, STICK};
+use friction_lab::friction_systems::{simulate, End, Scheme, Switching, System, STICK};
 use friction_lab::integrators::{Options, Solver, StepControl};
 use friction_lab::scenarios::phenomena::{self, Phenomenon, Protocol};
 use friction_lab::scenarios::studies::{self, SystemCase};
@@ -151,8 +151,10 @@ pub fn run() -> Report {
     let options = Options::adaptive(0.0, 10.0, 1e-10, 1e-12);
     let r = simulate(
         &system,
-        Switching::Event,
-        Solver::Dopri5,
+        Scheme::EventDriven {
+            solver: Solver::Dopri5,
+            switching: Switching::Event,
+        },
         options,
         &mut |_| {},
     )

@@ -12,7 +12,7 @@
 //! Run: `cargo run --release --example own_solver`.
 
 use friction_lab::friction_models::{FrictionParams, ModelId, Variant};
-use friction_lab::friction_systems::{simulate, End, Switching, System};
+use friction_lab::friction_systems::{simulate, End, Scheme, Switching, System};
 use friction_lab::integrators::stepper::{
     check_finite, check_limits, hermite_cubic, next_grid_point, wrms,
 };
@@ -285,8 +285,16 @@ pub fn run() -> Report {
     let bs23 = Solver::Own(&BS23);
     let simulated = [bs23, Solver::Dopri5].map(|solver| {
         let options = Options::adaptive(0.0, 10.0, 1e-8, 1e-8);
-        let r = simulate(&system, Switching::Event, solver, options, &mut |_| {})
-            .expect("a valid system");
+        let r = simulate(
+            &system,
+            Scheme::EventDriven {
+                solver,
+                switching: Switching::Event,
+            },
+            options,
+            &mut |_| {},
+        )
+        .expect("a valid system");
         assert!(r.error.is_none(), "{solver:?}: {:?}", r.error);
         let b = r.final_states()[0];
         (r.contact_events().len(), [b.x, b.v])

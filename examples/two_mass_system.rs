@@ -7,7 +7,7 @@
 //! Run: `cargo run --release --example two_mass_system`.
 
 use friction_lab::friction_models::{FrictionParams, ModelId, Variant};
-use friction_lab::friction_systems::{simulate, End, Switching, System, STICK};
+use friction_lab::friction_systems::{simulate, End, Scheme, Switching, System, STICK};
 use friction_lab::integrators::{Options, Solver};
 use friction_lab::scenarios::studies::{self, SystemCase};
 use std::sync::Arc;
@@ -47,8 +47,10 @@ pub fn run() -> Report {
     let options = || Options::adaptive(0.0, 20.0, 1e-10, 1e-12);
     let event = simulate(
         &system,
-        Switching::Event,
-        Solver::Dopri5,
+        Scheme::EventDriven {
+            solver: Solver::Dopri5,
+            switching: Switching::Event,
+        },
         options(),
         &mut |_| {},
     )
@@ -57,8 +59,10 @@ pub fn run() -> Report {
     let gap = |epsilon| {
         let smooth = simulate(
             &system,
-            Switching::Regularized { epsilon },
-            Solver::Dopri5,
+            Scheme::EventDriven {
+                solver: Solver::Dopri5,
+                switching: Switching::Regularized { epsilon },
+            },
             options(),
             &mut |_| {},
         )

@@ -255,6 +255,84 @@ pub fn check_read(
     Ok(())
 }
 
+/// `--scheme`: how a run is integrated, as Siconos's `Simulation` chooses it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum SchemeName {
+    /// A solver steps between located events; v = 0 is treated by `--switching`.
+    #[default]
+    EventDriven,
+    /// Moreau–Jean time-stepping: fixed steps of `--dt`, no event located, no ODE solver.
+    TimeStepping,
+}
+
+impl SchemeName {
+    /// Every scheme, as `--scheme` takes it.
+    pub const ALL: [SchemeName; 2] = [SchemeName::EventDriven, SchemeName::TimeStepping];
+
+    /// The scheme that integrates under `switching`: time-stepping or event-driven.
+    pub fn of(switching: SwitchingKind) -> SchemeName {
+        match switching.is_time_stepping() {
+            true => SchemeName::TimeStepping,
+            false => SchemeName::EventDriven,
+        }
+    }
+
+    /// The name `--scheme` takes.
+    pub fn name(self) -> &'static str {
+        match self {
+            SchemeName::EventDriven => "event-driven",
+            SchemeName::TimeStepping => "time-stepping",
+        }
+    }
+}
+
+impl std::str::FromStr for SchemeName {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        SchemeName::ALL
+            .into_iter()
+            .find(|k| k.name() == s)
+            .ok_or_else(|| format!("unknown scheme `{s}`; known: event-driven, time-stepping"))
+    }
+}
+
+/// The note given for `--switching timestepping`, the former spelling of `--scheme
+/// time-stepping`, which is still taken.
+pub const TIMESTEPPING_SPELLING: &str = "`--switching timestepping` is now spelt `--scheme \
+     time-stepping` (time-stepping is a scheme, not a treatment of v = 0); the old spelling is \
+     taken for now and will be refused in a later release";
+
+/// The notes on the spelling of `--switching`: [`TIMESTEPPING_SPELLING`] for `timestepping`.
+pub fn spelling_notes(switching: Option<SwitchingKind>) -> Vec<String> {
+    let old = matches!(switching, Some(SwitchingKind::TimeStepping { .. }));
+    old.then(|| TIMESTEPPING_SPELLING.to_string())
+        .into_iter()
+        .collect()
+}
+
+/// The treatment of v = 0 that `--scheme` and `--switching` ask for: time-stepping at `theta`
+/// (also from the former spelling `--switching timestepping`), or `switching` under
+/// event-driven integration (event by default). `--switching regularized` or `naive` with
+/// `--scheme time-stepping` is refused: time-stepping treats v = 0 by the set-valued law.
+pub fn treatment(
+    scheme: SchemeName,
+    switching: Option<SwitchingKind>,
+    theta: f64,
+) -> Result<SwitchingKind, AppError> {
+    match (scheme, switching) {
+        (_, Some(SwitchingKind::TimeStepping { .. }))
+        | (SchemeName::TimeStepping, None | Some(SwitchingKind::Event)) => {
+            Ok(SwitchingKind::TimeStepping { theta })
+        }
+        (SchemeName::TimeStepping, Some(s)) => Err(AppError::Usage(format!(
+            "option `--switching {}` applies to --scheme event-driven: time-stepping locates no \
+             event and treats v = 0 by the set-valued law at the end of each step",
+            s.name()
+        ))),
+        (SchemeName::EventDriven, s) => Ok(s.unwrap_or(SwitchingKind::Event)),
+    }
+}
+
 /// The first item of `items` equal to an earlier one: `(earlier, later)` indices. A list option
 /// that names a thing twice (an axis, a body, a solver) would repeat its runs or rows.
 pub fn first_repeat<T: PartialEq>(items: &[T]) -> Option<(usize, usize)> {

@@ -1057,8 +1057,8 @@ fn bad_system_input_is_rejected_and_writes_nothing() {
                 "chain",
                 "--model",
                 "CS",
-                "--switching",
-                "timestepping",
+                "--scheme",
+                "time-stepping",
             ],
             "parameter `epsilon` is read on a system only under --switching regularized, or \
              event (by its regularised BDF peer); not timestepping",
@@ -1471,8 +1471,8 @@ fn time_stepping_runs_rigs_and_chains_and_refuses_what_it_cannot_do() {
         "belt",
         "--model",
         "static",
-        "--switching",
-        "timestepping",
+        "--scheme",
+        "time-stepping",
         "--theta",
         "1",
         "--dt",
@@ -1486,6 +1486,7 @@ fn time_stepping_runs_rigs_and_chains_and_refuses_what_it_cannot_do() {
     let summary: serde_json::Value =
         serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
     assert_eq!(summary["solver"], "moreau-jean");
+    assert_eq!(summary["scheme"], "time-stepping");
     assert_eq!(summary["switching"], "timestepping");
     assert_eq!(summary["parameters"]["theta"], 1.0);
     assert_eq!(summary["stats"]["steps"], 5000);
@@ -1501,12 +1502,7 @@ fn time_stepping_runs_rigs_and_chains_and_refuses_what_it_cannot_do() {
         let out = dir.path().join(name);
         let mut all = vec!["simulate"];
         all.extend_from_slice(args);
-        all.extend([
-            "--switching",
-            "timestepping",
-            "--out",
-            out.to_str().unwrap(),
-        ]);
+        all.extend(["--scheme", "time-stepping", "--out", out.to_str().unwrap()]);
         let o = friction_lab(&all);
         assert!(o.status.success(), "{}", stderr(&o));
         let summary: serde_json::Value =
@@ -1533,8 +1529,8 @@ fn time_stepping_runs_rigs_and_chains_and_refuses_what_it_cannot_do() {
         "prescribed-motion",
         "--model",
         "CS",
-        "--switching",
-        "timestepping",
+        "--scheme",
+        "time-stepping",
     ]);
     assert!(e.contains("no body to time-step"), "{e}");
     // GMS, four slip blocks each with its state, time-stepped (refused before 2026-11-25):
@@ -1550,8 +1546,8 @@ fn time_stepping_runs_rigs_and_chains_and_refuses_what_it_cannot_do() {
         "CS",
         "--set",
         "F_s=5",
-        "--switching",
-        "timestepping",
+        "--scheme",
+        "time-stepping",
     ]);
     assert!(
         e.contains(
@@ -1565,8 +1561,8 @@ fn time_stepping_runs_rigs_and_chains_and_refuses_what_it_cannot_do() {
         "belt",
         "--model",
         "CS",
-        "--switching",
-        "timestepping",
+        "--scheme",
+        "time-stepping",
         "--theta",
         "0.4",
     ]);
@@ -2081,12 +2077,12 @@ fn a_fixed_step_above_a_tenth_of_the_natural_period_gets_a_note() {
     let note = "the fixed step h = 0.1 s is more than a tenth of the shortest natural period, \
                 0.628 s: each oscillation is resolved by fewer than ten steps";
     for extra in [
-        &["--switching", "timestepping", "--dt", "0.1"][..],
+        &["--scheme", "time-stepping", "--dt", "0.1"][..],
         &["--solver", "rk4", "--dt", "0.1"][..],
     ] {
         assert!(run("coarse", extra).contains(note), "{extra:?}");
     }
-    assert!(!run("fine", &["--switching", "timestepping"]).contains("natural period"));
+    assert!(!run("fine", &["--scheme", "time-stepping"]).contains("natural period"));
 }
 
 #[test]
@@ -2484,4 +2480,74 @@ fn a_run_that_cannot_resolve_its_natural_period_is_told_why() {
             "{what}: {text}"
         );
     }
+}
+
+#[test]
+fn the_scheme_is_chosen_apart_from_the_treatment_of_v_zero() {
+    // Time-stepping takes no ODE solver and no treatment of v = 0 but its own: both refused,
+    // naming the option and the way out, before anything is run.
+    let e = rejected(&[
+        "simulate",
+        "belt",
+        "--model",
+        "CS",
+        "--scheme",
+        "time-stepping",
+        "--solver",
+        "rk4",
+    ]);
+    assert!(
+        e.contains("option `--solver rk4` does not apply to --scheme time-stepping"),
+        "{e}"
+    );
+    let e = rejected(&[
+        "simulate",
+        "chain",
+        "--model",
+        "CS",
+        "--scheme",
+        "time-stepping",
+        "--switching",
+        "regularized",
+    ]);
+    assert!(
+        e.contains("option `--switching regularized` applies to --scheme event-driven"),
+        "{e}"
+    );
+    let e = rejected(&["simulate", "belt", "--model", "CS", "--scheme", "moreau"]);
+    assert!(
+        e.contains("unknown scheme `moreau`; known: event-driven, time-stepping"),
+        "{e}"
+    );
+    // The former spelling `--switching timestepping` still runs the same scheme, bit for
+    // bit, and says how it is spelt now.
+    let dir = tempfile::tempdir().unwrap();
+    let run = |name: &str, spelling: [&str; 2]| {
+        let out = dir.path().join(name);
+        let o = friction_lab(&[
+            "simulate",
+            "belt",
+            "--model",
+            "CS",
+            "--t-end",
+            "2",
+            spelling[0],
+            spelling[1],
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        (
+            std::fs::read(out.join("trajectory.csv")).unwrap(),
+            stderr(&o),
+        )
+    };
+    let (new, quiet) = run("new", ["--scheme", "time-stepping"]);
+    let (old, note) = run("old", ["--switching", "timestepping"]);
+    assert_eq!(new, old);
+    assert!(!quiet.contains("now spelt"), "{quiet}");
+    assert!(
+        note.contains("`--switching timestepping` is now spelt `--scheme time-stepping`"),
+        "{note}"
+    );
 }

@@ -98,7 +98,7 @@ def test_a_system_from_a_dict_equals_the_same_file_and_is_time_by_body(tmp_path)
 
 def test_the_chain_by_name_time_stepped():
     r = fl.simulate("chain", model="coulomb", params={"n_bodies": 30}, t_end=5.0,
-                    switching="timestepping", dt=1e-3, bodies=[1, 15, 30])
+                    scheme="time-stepping", dt=1e-3, bodies=[1, 15, 30])
     assert r.bodies == ["b1", "b15", "b30"]
     assert r.x.shape == (len(r.t), 3)
     assert r.summary["stats"]["steps"] == 5000

@@ -95,7 +95,7 @@ def test_a_long_run_releases_the_gil():
     def work():
         with pytest.raises(fl.SolverError, match="time limit"):
             fl.simulate("chain", model="coulomb", params={"n_bodies": 2000}, t_end=1000.0,
-                        switching="timestepping", points=101, time_limit=1.0)
+                        scheme="time-stepping", points=101, time_limit=1.0)
 
     worker = threading.Thread(target=work)
     worker.start()
@@ -115,7 +115,7 @@ def test_ctrl_c_stops_a_long_run_and_the_next_run_works():
     with pytest.raises(KeyboardInterrupt):
         # About a minute of work if nothing stopped it.
         fl.simulate("chain", model="coulomb", params={"n_bodies": 2000}, t_end=1000.0,
-                    switching="timestepping", points=101)
+                    scheme="time-stepping", points=101)
     assert time.monotonic() - start < 5.0
     r = fl.simulate("belt", model="CVS", t_end=1.0)
     assert r.summary["status"] == "ok" and np.isclose(r.t[-1], 1.0)

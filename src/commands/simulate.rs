@@ -5,7 +5,7 @@
 use crate::artifacts::{Artifacts, Made};
 use crate::commands::curve::used_parameters;
 use crate::error::AppError;
-use crate::options::{LimitArgs, ModelOptions};
+use crate::options::{spelling_notes, treatment, LimitArgs, ModelOptions, SchemeName};
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Marker, Plot, Series, BLUE};
 use crate::progress::Progress;
@@ -23,18 +23,24 @@ use std::path::{Path, PathBuf};
 /// Options that choose and tune the solver, shared by every command that integrates.
 #[derive(Args, Clone, Debug)]
 pub struct SolverOptions {
-    /// rk4, dopri5, implicit-euler, bdf, tr-bdf2, esdirk34 (diffsol), tsit45 (diffsol).
-    #[arg(long, value_name = "SOLVER", default_value = "dopri5")]
-    pub solver: Solver,
-    /// event (stick/slip switching), regularized (tanh, width epsilon), naive, or
-    /// timestepping (Moreau–Jean: fixed steps of --dt, no event located; --solver unused).
+    /// event-driven (a solver steps between located events; v = 0 treated by --switching) or
+    /// time-stepping (Moreau–Jean: fixed steps of --dt, no event located, no --solver).
     #[arg(
         long,
-        value_name = "event|regularized|naive|timestepping",
-        default_value = "event"
+        value_name = "event-driven|time-stepping",
+        default_value = "event-driven"
     )]
-    pub switching: SwitchingKind,
-    /// θ of --switching timestepping: the weight of the step's end on the smooth forces,
+    pub scheme: SchemeName,
+    /// The solver of event-driven integration: rk4, dopri5, implicit-euler, bdf, tr-bdf2,
+    /// esdirk34 (diffsol), tsit45 (diffsol) [default: dopri5; refused under time-stepping].
+    #[arg(long, value_name = "SOLVER")]
+    pub solver: Option<Solver>,
+    /// The treatment of v = 0 under event-driven integration: event (stick/slip switching),
+    /// regularized (tanh, width epsilon) or naive [default: event]. (`timestepping`, the
+    /// former spelling of --scheme time-stepping, is still taken, with a note.)
+    #[arg(long, value_name = "event|regularized|naive")]
+    pub switching: Option<SwitchingKind>,
+    /// θ of --scheme time-stepping: the weight of the step's end on the smooth forces,
     /// 0.5 (trapezoidal, second order) to 1 (implicit Euler, first order).
     #[arg(
         long,
@@ -85,8 +91,16 @@ impl SolverOptions {
         if let Some(dt) = self.dt {
             ranges::DT.check(dt)?;
         }
-        if self.fixed_step && !self.solver.takes_fixed_steps() && !self.switching.is_time_stepping()
-        {
+        let switching = self.checked_switching()?;
+        if let (Some(solver), true) = (self.solver, switching.is_time_stepping()) {
+            return Err(AppError::Usage(format!(
+                "option `--solver {}` does not apply to --scheme time-stepping: Moreau–Jean's \
+                 scheme takes no ODE solver (its step is --dt, its weight --theta); drop \
+                 --solver, or choose --scheme event-driven",
+                solver.name()
+            )));
+        }
+        if self.fixed_step && !self.solver().takes_fixed_steps() && !switching.is_time_stepping() {
             let fixed: Vec<_> = Solver::ALL
                 .iter()
                 .filter(|s| s.takes_fixed_steps())
@@ -95,7 +109,7 @@ impl SolverOptions {
             return Err(AppError::Usage(format!(
                 "option `fixed-step` does not apply to solver `{}`: it chooses its own steps \
                  from --rtol and --atol; allowed with {}",
-                self.solver.name(),
+                self.solver().name(),
                 fixed.join(", ")
             )));
         }
@@ -107,15 +121,32 @@ impl SolverOptions {
         self.limits.limits()
     }
 
-    /// The treatment of v = 0, with θ from `--theta`.
+    /// The treatment of v = 0 that `--scheme` and `--switching` ask for, θ from `--theta`
+    /// ([`treatment`]; checked by [`SolverOptions::checked_step`]).
+    pub fn checked_switching(&self) -> Result<SwitchingKind, AppError> {
+        treatment(self.scheme, self.switching, self.theta)
+    }
+
+    /// The treatment of v = 0, once [`SolverOptions::checked_step`] has passed.
     pub fn switching(&self) -> SwitchingKind {
-        self.switching.with_theta(self.theta)
+        self.checked_switching()
+            .unwrap_or(SwitchingKind::TimeStepping { theta: self.theta })
+    }
+
+    /// The solver of event-driven integration: `--solver`, or Dormand–Prince.
+    pub fn solver(&self) -> Solver {
+        self.solver.unwrap_or(Solver::Dopri5)
+    }
+
+    /// The notes on the options' spelling ([`spelling_notes`]).
+    pub fn spelling_notes(&self) -> Vec<String> {
+        spelling_notes(self.switching)
     }
 
     /// The step control these options ask for.
     pub fn step(&self) -> StepControl {
-        let fixed = self.solver.is_fixed_step() || self.fixed_step;
-        if fixed || self.switching.is_time_stepping() {
+        let fixed = self.solver().is_fixed_step() || self.fixed_step;
+        if fixed || self.switching().is_time_stepping() {
             StepControl::Fixed {
                 h: self.dt.unwrap_or(PAPER_DT),
             }
@@ -214,6 +245,7 @@ struct Summary<'a> {
     model: &'a str,
     variant: friction_models::Variant,
     solver: &'a str,
+    scheme: &'a str,
     switching: &'a str,
     step: StepControl,
     t_end: f64,
@@ -272,7 +304,7 @@ pub fn spec(args: &SimulateArgs, scenario: Scenario) -> Result<RunSpec, AppError
         },
         friction,
         params,
-        solver: args.solver.solver,
+        solver: args.solver.solver(),
         switching: args.solver.switching(),
         step,
         t_end: args.t_end,
@@ -446,6 +478,7 @@ pub fn make_rig(args: &SimulateArgs, scenario: Scenario) -> Result<Made, AppErro
         model: model.name(),
         variant,
         solver: method,
+        scheme: SchemeName::of(spec.switching).name(),
         switching: spec.switching.name(),
         step: spec.step,
         t_end,
@@ -500,6 +533,7 @@ pub fn make_rig(args: &SimulateArgs, scenario: Scenario) -> Result<Made, AppErro
                 Some(model),
                 spec.switching,
             ))
+            .chain(args.solver.spelling_notes())
             .collect(),
         failure: outcome.error.map(AppError::Solver),
     })

@@ -191,7 +191,7 @@ fn check_axes(axes: &[Axis], run: &SimulateArgs) -> Result<(), AppError> {
         }
     }
     names.iter().try_for_each(|name| {
-        crate::options::check_read("grid", name, run.model, run.solver.switching)
+        crate::options::check_read("grid", name, run.model, run.solver.switching())
     })
 }
 
@@ -289,14 +289,11 @@ fn run_point(
             let dim = friction_systems::Layout::of(&described.system).dim();
             let points = system_points(args, dim)?;
             let options = grid_options(args, t_end, points)?;
-            let switching = args.solver.switching().with(&described.friction);
-            let run = simulate(
-                &described.system,
-                switching,
-                args.solver.solver,
-                options,
-                &mut |_| {},
-            )?;
+            let scheme = args
+                .solver
+                .switching()
+                .scheme(args.solver.solver(), &described.friction);
+            let run = simulate(&described.system, scheme, options, &mut |_| {})?;
             let mut trace = Trace::default();
             for b in run.body(body) {
                 trace.t.push(b.t);
@@ -435,7 +432,10 @@ pub fn make(args: &SweepArgs) -> Result<Made, AppError> {
             &args.run.model_options.params.set,
             args.run.model,
             args.run.solver.switching(),
-        ),
+        )
+        .into_iter()
+        .chain(args.run.solver.spelling_notes())
+        .collect(),
         failure: (failed > 0).then(|| {
             AppError::StudyRun(format!(
                 "{failed} of {} runs failed; sweep.csv says which and why",

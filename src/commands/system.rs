@@ -7,7 +7,7 @@ use crate::artifacts::{Artifacts, Made};
 use crate::commands::curve::used_parameters;
 use crate::commands::simulate::SimulateArgs;
 use crate::error::AppError;
-use crate::options::ModelOptions;
+use crate::options::{ModelOptions, SchemeName};
 use crate::output::{Cell, Table};
 use crate::plot::{self, Corner, Marker, Plot, Raster, Series, PALETTE};
 use crate::progress::Progress;
@@ -358,6 +358,7 @@ struct SystemSummary<'a> {
     n_bodies: usize,
     n_contacts: usize,
     solver: &'a str,
+    scheme: &'a str,
     switching: &'a str,
     step: integrators::StepControl,
     t_end: f64,
@@ -402,24 +403,24 @@ pub fn make(args: &SimulateArgs) -> Result<Made, AppError> {
     }
     system.validate()?;
     let bodies = chosen_bodies(&system, &args.bodies)?;
-    let switching = args.solver.switching().with(&friction);
+    let scheme = args
+        .solver
+        .switching()
+        .scheme(args.solver.solver(), &friction);
     let t_end = args
         .checked_t_end()?
         .unwrap_or_else(|| default_t_end(args.system.as_deref()));
     let points = system_points(args, friction_systems::Layout::of(&system).dim())?;
     let options = grid_options(args, t_end, points)?;
     let step = options.step;
-    let method = args.solver.switching().method(args.solver.solver);
+    let method = scheme.method_name();
     let bar = Progress::time(t_end, &format!("{name} {method}"));
-    let run =
-        friction_systems::simulate(&system, switching, args.solver.solver, options, &mut |t| {
-            bar.at(t)
-        })?;
+    let run = friction_systems::simulate(&system, scheme, options, &mut |t| bar.at(t))?;
     bar.finish();
 
     let title = format!(
         "{name} ({method}, {} switching)",
-        args.solver.switching.name()
+        args.solver.switching().name()
     );
     let mut files = Artifacts::default();
     for (file, bytes) in [
@@ -479,7 +480,8 @@ pub fn make(args: &SimulateArgs) -> Result<Made, AppError> {
         n_bodies: system.bodies.len(),
         n_contacts: system.contacts.len(),
         solver: method,
-        switching: args.solver.switching.name(),
+        scheme: SchemeName::of(args.solver.switching()).name(),
+        switching: args.solver.switching().name(),
         step,
         t_end,
         parameters: &parameters,
@@ -511,7 +513,7 @@ pub fn make(args: &SimulateArgs) -> Result<Made, AppError> {
             .into_iter()
             .chain(crate::warnings::coarse_step_warning(step, period))
             .chain(crate::warnings::failure_warnings(
-                args.solver.solver,
+                args.solver.solver(),
                 args.solver.switching(),
                 step,
                 t_end,
@@ -523,6 +525,7 @@ pub fn make(args: &SimulateArgs) -> Result<Made, AppError> {
                 args.model,
                 args.solver.switching(),
             ))
+            .chain(args.solver.spelling_notes())
             .collect(),
         failure: run.error.map(AppError::Solver),
     })

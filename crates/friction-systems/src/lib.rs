@@ -9,8 +9,9 @@
 //!   [`integrators::OdeProblem`]): the state layout ([`layout`]), one stick/slip mode per
 //!   contact, two event functions per contact, the analytic sparse Jacobian, the energy
 //!   accumulators ([`energy`]);
-//! - [`switching`]: how v_rel = 0 is treated (event-driven, regularised, naive,
-//!   time-stepping);
+//! - [`scheme`]: how the system is integrated ([`Scheme`]): event-driven by a solver with a
+//!   treatment of v_rel = 0 ([`switching`]: event location, regularised, naive), or
+//!   time-stepped;
 //! - [`moreau_jean`]: the same system time-stepped by Moreau–Jean's scheme, each step's
 //!   contact problem solved by nonsmooth Gauss–Seidel ([`MoreauJean`]), with Newton's
 //!   correction where the coupling is stiff (`correction`);
@@ -29,6 +30,7 @@ pub mod layout;
 mod local;
 pub mod moreau_jean;
 pub mod run;
+pub mod scheme;
 mod springs;
 pub mod switching;
 pub mod system;
@@ -39,5 +41,6 @@ pub use hybrid::FrictionSystem;
 pub use layout::Layout;
 pub use moreau_jean::MoreauJean;
 pub use run::{simulate, BodyState, ContactEvent, Run};
+pub use scheme::Scheme;
 pub use switching::{mode_name, Switching, SLIP_NEGATIVE, SLIP_POSITIVE, STICK};
 pub use system::{Anchor, Body, Contact, End, Force, Profile, Spring, System, SystemError};

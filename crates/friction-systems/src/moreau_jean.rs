@@ -832,8 +832,8 @@ impl MoreauJean {
     /// The allowed range of θ, as messages print it.
     pub const THETA_RANGE: &'static str = "[0.5, 1]";
 
-    /// Integrates `problem` (whose switching should be
-    /// [`Switching::TimeStepping`](crate::Switching)) from `y0` in `modes0` with the fixed step
+    /// Integrates `problem` (built with [`Switching::Event`](crate::Switching)'s modes, as
+    /// [`crate::Scheme::TimeStepping`] builds it) from `y0` in `modes0` with the fixed step
     /// of `options`, telling `observe` the time after every step. A failure keeps everything
     /// recorded before it.
     pub fn solve(
@@ -1029,7 +1029,7 @@ mod tests {
             ModelId::Coulomb.build(Variant::Odd, p).map(Arc::from)
         })
         .expect("a valid chain");
-        let problem = FrictionSystem::new(&system, Switching::TimeStepping { theta: 0.5 });
+        let problem = FrictionSystem::new(&system, Switching::Event);
         let steps = 10_000;
         let (off, sweeps, corrections) = fixed_points(&problem, steps, super::CORRECT_AFTER);
         let (plain_off, plain, none) = fixed_points(&problem, steps, usize::MAX);

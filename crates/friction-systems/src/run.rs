@@ -5,9 +5,9 @@
 use crate::energy::EnergyBalance;
 use crate::hybrid::FrictionSystem;
 use crate::moreau_jean::{self, MoreauJean};
-use crate::switching::Switching;
+use crate::scheme::Scheme;
 use crate::system::{System, SystemError};
-use integrators::{EventRecord, Failure, Mode, Options, Solution, Solver, SolverError};
+use integrators::{EventRecord, Failure, Mode, Options, Solution, SolverError};
 use std::time::Instant;
 
 /// A switch (or a touch of v_rel = 0 that kept the mode) of one contact.
@@ -61,30 +61,30 @@ pub struct Run<'a> {
     pub wall_time_s: f64,
 }
 
-/// Integrates `system` under `switching` with `solver` and `options` from the bodies'
-/// initial states (under [`Switching::TimeStepping`] the scheme is Moreau–Jean's and `solver`
-/// is not used); `observe` is told the time after every step.
+/// Integrates `system` by `scheme` with `options` from the bodies' initial states; `observe`
+/// is told the time after every step.
 pub fn simulate<'a>(
     system: &'a System,
-    switching: Switching,
-    solver: Solver,
+    scheme: Scheme,
     options: Options,
     observe: &mut dyn FnMut(f64),
 ) -> Result<Run<'a>, SystemError> {
     system.validate()?;
-    if let Switching::TimeStepping { .. } = switching {
+    if let Scheme::TimeStepping { .. } = scheme {
         moreau_jean::check_contacts(system)?;
     }
-    let problem = FrictionSystem::new(system, switching);
+    let problem = FrictionSystem::new(system, scheme.switching());
     let t0 = options.t0;
     let y0 = problem.initial_state();
     let modes0 = problem.initial_modes(t0, &y0);
     let clock = Instant::now();
-    let result = match switching {
-        Switching::TimeStepping { theta } => {
+    let result = match scheme {
+        Scheme::TimeStepping { theta } => {
             MoreauJean { theta }.solve(&problem, &y0, &modes0, &options, observe)
         }
-        _ => solver.solve_observed(&problem, &y0, &modes0, options, observe),
+        Scheme::EventDriven { solver, .. } => {
+            solver.solve_observed(&problem, &y0, &modes0, options, observe)
+        }
     };
     let (solution, error) = match result {
         Ok(s) => (s, None),

@@ -7,10 +7,9 @@
 //! - [`Switching::Regularized`]: sign(v) ≈ tanh(v/ε), one smooth ODE.
 //! - [`Switching::Naive`]: the discontinuous law stepped through blindly (sign(0) = 0, and
 //!   the stick rule of eqs. (6)–(7) only when v_rel is exactly zero or inside a Karnopp band).
-//! - [`Switching::TimeStepping`]: no event is located; Moreau–Jean's scheme
-//!   ([`crate::moreau_jean`]) takes fixed steps and finds each contact's force and mode at the
-//!   end of every step from the set-valued law. Between steps the modes mean what they mean
-//!   under `Event`.
+//!
+//! These are the treatments of event-driven integration; time-stepping is a scheme of its own
+//! ([`crate::Scheme`]), whose modes between steps mean what they mean under `Event`.
 
 use friction_models::{Direction, SignLaw};
 use integrators::Mode;
@@ -42,7 +41,7 @@ pub fn mode_of_velocity(v_rel: f64) -> Mode {
     }
 }
 
-/// How v_rel = 0 is treated.
+/// How v_rel = 0 is treated under event-driven integration.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub enum Switching {
     /// Event location with stick/slip mode switching.
@@ -54,31 +53,22 @@ pub enum Switching {
     },
     /// The discontinuous law stepped through blindly.
     Naive,
-    /// Moreau–Jean time-stepping with the θ-method on the smooth forces.
-    TimeStepping {
-        /// Weight θ of the end of the step, in [1/2, 1].
-        theta: f64,
-    },
 }
 
 impl Switching {
     /// The law sign(v) is evaluated by in a sliding `mode`.
     pub fn law(self, mode: Mode) -> SignLaw {
         match self {
-            Switching::Event | Switching::TimeStepping { .. } if mode == SLIP_NEGATIVE => {
-                SignLaw::Frozen(Direction::Negative)
-            }
-            Switching::Event | Switching::TimeStepping { .. } => {
-                SignLaw::Frozen(Direction::Positive)
-            }
+            Switching::Event if mode == SLIP_NEGATIVE => SignLaw::Frozen(Direction::Negative),
+            Switching::Event => SignLaw::Frozen(Direction::Positive),
             Switching::Regularized { epsilon } => SignLaw::Smooth { epsilon },
             Switching::Naive => SignLaw::Discontinuous,
         }
     }
 
-    /// Whether every contact carries a stick/slip mode (event switching and time-stepping);
+    /// Whether every contact carries a stick/slip mode (event switching, and so time-stepping);
     /// otherwise the mode is only read off the sign of v_rel.
     pub fn has_modes(self) -> bool {
-        matches!(self, Switching::Event | Switching::TimeStepping { .. })
+        self == Switching::Event
     }
 }

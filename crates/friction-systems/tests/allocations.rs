@@ -7,9 +7,9 @@
 //! sweeps at every step.
 
 use friction_models::{FrictionParams, ModelId, Variant};
-use friction_systems::{simulate, End, Profile, Switching, System};
+use friction_systems::{simulate, End, Profile, Scheme, System};
 use integrators::counting::Counting;
-use integrators::{Options, Output, Solver};
+use integrators::{Options, Output};
 use std::sync::Arc;
 
 #[global_allocator]
@@ -65,8 +65,8 @@ fn allocations(theta: f64, k_neighbours: f64) -> (usize, usize, usize) {
             allocations = Counting::stop();
         }
     };
-    let switching = Switching::TimeStepping { theta };
-    let run = simulate(&system, switching, Solver::Rk4, options, &mut observe).expect("valid");
+    let scheme = Scheme::TimeStepping { theta };
+    let run = simulate(&system, scheme, options, &mut observe).expect("valid");
     assert!(run.error.is_none(), "{:?}", run.error);
     assert_eq!(run.solution.stats.steps, 2000);
     let stats = &run.solution.stats;

@@ -6,7 +6,7 @@
 //! then hangs: the run's time limit is checked between steps).
 
 use friction_models::{FrictionParams, ModelId, Variant};
-use friction_systems::{simulate, Switching, System};
+use friction_systems::{simulate, Scheme, Switching, System};
 use integrators::{Options, Solver};
 use std::sync::Arc;
 
@@ -19,19 +19,21 @@ fn a_body_at_rest_under_no_force_stays_at_rest_with_every_model_and_solver() {
         let mut system = System::default();
         let body = system.add_body("body", 1.0, 0.0, 0.0);
         system.add_contact(body, 0.0, Arc::from(law));
-        for (solver, switching) in [
-            ("dopri5", Switching::Event),
-            ("bdf", Switching::Event),
-            ("dopri5", Switching::TimeStepping { theta: 0.5 }),
+        let event_driven = |solver| Scheme::EventDriven {
+            solver,
+            switching: Switching::Event,
+        };
+        for scheme in [
+            event_driven(Solver::Dopri5),
+            event_driven(Solver::from_name("bdf").expect("a solver")),
+            Scheme::TimeStepping { theta: 0.5 },
         ] {
-            let options = match switching {
-                Switching::TimeStepping { .. } => Options::fixed(0.0, 2.0, 1e-3),
-                _ => Options::adaptive(0.0, 2.0, 1e-8, 1e-10),
+            let options = match scheme {
+                Scheme::TimeStepping { .. } => Options::fixed(0.0, 2.0, 1e-3),
+                Scheme::EventDriven { .. } => Options::adaptive(0.0, 2.0, 1e-8, 1e-10),
             };
-            let solver = Solver::from_name(solver).expect("a solver");
-            let run =
-                simulate(&system, switching, solver, options, &mut |_| {}).expect("a valid system");
-            let case = format!("{model:?}, {switching:?}, {solver:?}");
+            let run = simulate(&system, scheme, options, &mut |_| {}).expect("a valid system");
+            let case = format!("{model:?}, {scheme:?}");
             assert!(run.error.is_none(), "{case}: {:?}", run.error);
             assert_eq!(run.solution.t.last(), Some(&2.0), "{case}");
             // Every unknown at every recorded time: positions, velocities, internal states and

@@ -2,7 +2,9 @@
 
 use friction_models::{FrictionParams, ModelId, Variant};
 use friction_systems::chain::ChainParams;
-use friction_systems::{simulate, FrictionSystem, Run, Switching, System, SLIP_POSITIVE, STICK};
+use friction_systems::{
+    simulate, FrictionSystem, Run, Scheme, Switching, System, SLIP_POSITIVE, STICK,
+};
 
 mod common;
 
@@ -14,8 +16,10 @@ use std::sync::Arc;
 fn switched(system: &System, options: Options) -> Run<'_> {
     let run = simulate(
         system,
-        Switching::Event,
-        Solver::Dopri5,
+        Scheme::EventDriven {
+            solver: Solver::Dopri5,
+            switching: Switching::Event,
+        },
         options,
         &mut |_| {},
     )
@@ -147,7 +151,13 @@ fn regularised_and_naive_treatments_run_a_chain_too() {
             Options::fixed(0.0, 10.0, 1e-3),
         ),
     ] {
-        let run = simulate(&system, switching, solver, options, &mut |_| {}).unwrap();
+        let run = simulate(
+            &system,
+            Scheme::EventDriven { solver, switching },
+            options,
+            &mut |_| {},
+        )
+        .unwrap();
         assert!(run.error.is_none(), "{switching:?}: {:?}", run.error);
         assert!(run.solution.events.is_empty());
         residuals.push(run.energy().unwrap().relative_residual);

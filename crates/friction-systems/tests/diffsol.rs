@@ -5,7 +5,7 @@ mod common;
 
 use common::belt;
 use friction_models::{FrictionModel, FrictionParams, ModelId, Variant};
-use friction_systems::{FrictionSystem, Switching, STICK};
+use friction_systems::{FrictionSystem, Scheme, Switching, STICK};
 use integrators::diffsol_backend::{self, DiffsolMethod};
 use integrators::{
     Dopri5, ImplicitEuler, Integrator, Mode, NewtonKind, OdeProblem, Options, Solution,
@@ -227,7 +227,16 @@ fn diffsol_implicit_methods_run_a_chain_on_the_sparse_path_and_agree_with_dopri5
     let finals = |solver: &str, tol: f64| {
         let o = Options::adaptive(0.0, 10.0, tol, tol * 1e-2);
         let solver = integrators::Solver::from_name(solver).unwrap();
-        let r = simulate(&system, Switching::Event, solver, o, &mut |_| {}).unwrap();
+        let r = simulate(
+            &system,
+            Scheme::EventDriven {
+                solver,
+                switching: Switching::Event,
+            },
+            o,
+            &mut |_| {},
+        )
+        .unwrap();
         assert!(r.error.is_none(), "{:?}", r.error);
         r.final_states()
     };

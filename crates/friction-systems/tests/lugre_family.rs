@@ -3,7 +3,7 @@
 use friction_models::{
     steady, FrictionModel, FrictionParams, ModelId, SignLaw, StatePartials, Variant,
 };
-use friction_systems::{simulate, Profile, Switching, System};
+use friction_systems::{simulate, Profile, Scheme, Switching, System};
 use integrators::{Options, Solver};
 use std::sync::Arc;
 
@@ -27,8 +27,10 @@ fn positions(model: ModelId, bias: f64, amplitude: f64, from: f64, to: f64) -> (
     let at = |t_end: f64| {
         let run = simulate(
             &s,
-            Switching::Event,
-            Solver::from_name("bdf").expect("a solver"),
+            Scheme::EventDriven {
+                solver: Solver::from_name("bdf").expect("a solver"),
+                switching: Switching::Event,
+            },
             Options::adaptive(0.0, t_end, 1e-10, 1e-14),
             &mut |_| {},
         )

@@ -7,7 +7,7 @@ use common::{belt, one_block_exact};
 use friction_models::{FrictionParams, ModelId, Variant};
 use friction_systems::chain::ChainParams;
 use friction_systems::moreau_jean::{SWEEP_ATOL, SWEEP_RTOL};
-use friction_systems::{simulate, End, Run, Switching, System, STICK};
+use friction_systems::{simulate, End, Run, Scheme, Switching, System, STICK};
 use integrators::{Options, Output, Solver, SolverError, StepControl};
 use std::f64::consts::PI;
 use std::sync::Arc;
@@ -25,8 +25,8 @@ fn stepped<'a>(system: &'a System, theta: f64, h: f64, t_end: f64, grid: &[f64])
         output,
         ..Options::fixed(0.0, t_end, h)
     };
-    let switching = Switching::TimeStepping { theta };
-    let run = simulate(system, switching, Solver::Rk4, options, &mut |_| {}).unwrap();
+    let switching = Scheme::TimeStepping { theta };
+    let run = simulate(system, switching, options, &mut |_| {}).unwrap();
     assert!(run.error.is_none(), "{:?}", run.error);
     run
 }
@@ -207,8 +207,10 @@ fn the_closed_forms_agree_with_event_driven_dormand_prince() {
             };
             let run = simulate(
                 &case.system,
-                Switching::Event,
-                Solver::Dopri5,
+                Scheme::EventDriven {
+                    solver: Solver::Dopri5,
+                    switching: Switching::Event,
+                },
                 options,
                 &mut |_| {},
             )
@@ -303,8 +305,10 @@ fn a_100_block_chain_time_stepped_converges_to_the_event_driven_solution() {
     let t_end = 20.0;
     let reference = simulate(
         &system,
-        Switching::Event,
-        Solver::Dopri5,
+        Scheme::EventDriven {
+            solver: Solver::Dopri5,
+            switching: Switching::Event,
+        },
         Options {
             output: Output::GridOnly(vec![t_end]),
             ..Options::adaptive(0.0, t_end, 1e-11, 1e-13)
@@ -332,18 +336,18 @@ fn a_100_block_chain_time_stepped_converges_to_the_event_driven_solution() {
 #[test]
 fn bad_theta_and_tolerances_are_refused_with_their_range() {
     let system = belt(ModelId::Coulomb, 1.0, BELT_K, BELT_V);
-    let run = |switching, step| {
+    let run = |scheme, step| {
         let options = Options {
             step,
             ..Options::fixed(0.0, 1.0, 1e-3)
         };
-        simulate(&system, switching, Solver::Rk4, options, &mut |_| {})
+        simulate(&system, scheme, options, &mut |_| {})
             .unwrap()
             .error
     };
     let fixed = StepControl::Fixed { h: 1e-3 };
     assert_eq!(
-        run(Switching::TimeStepping { theta: 0.3 }, fixed),
+        run(Scheme::TimeStepping { theta: 0.3 }, fixed),
         Some(SolverError::InvalidOption {
             name: "theta",
             value: 0.3,
@@ -355,7 +359,7 @@ fn bad_theta_and_tolerances_are_refused_with_their_range() {
         atol: 1e-8,
         h0: None,
     };
-    let e = run(Switching::TimeStepping { theta: 0.5 }, adaptive).unwrap();
+    let e = run(Scheme::TimeStepping { theta: 0.5 }, adaptive).unwrap();
     assert!(e.to_string().contains("fixed step"), "{e}");
 }
 
@@ -386,8 +390,10 @@ fn models_with_an_internal_state_converge_at_second_order_at_theta_half() {
         let g = grid(t_end, 200);
         let reference = simulate(
             &system,
-            Switching::Event,
-            Solver::Diffsol(integrators::DiffsolMethod::Bdf),
+            Scheme::EventDriven {
+                solver: Solver::Diffsol(integrators::DiffsolMethod::Bdf),
+                switching: Switching::Event,
+            },
             Options {
                 output: Output::Grid(g.clone()),
                 ..Options::adaptive(0.0, t_end, 1e-11, 1e-13)
@@ -546,8 +552,8 @@ fn a_contact_without_a_solution_fails_the_step_with_where_and_why() {
     })
     .unwrap();
     let options = Options::fixed(0.0, 3.0, 1e-3);
-    let switching = Switching::TimeStepping { theta: 0.5 };
-    let run = simulate(&system, switching, Solver::Rk4, options, &mut |_| {}).unwrap();
+    let scheme = Scheme::TimeStepping { theta: 0.5 };
+    let run = simulate(&system, scheme, options, &mut |_| {}).unwrap();
     let Some(SolverError::ContactProblem { t, why, .. }) = &run.error else {
         panic!("{:?}", run.error);
     };

@@ -7,7 +7,7 @@ mod common;
 
 use common::belt;
 use friction_models::ModelId;
-use friction_systems::{simulate, Switching};
+use friction_systems::{simulate, Scheme, Switching};
 use integrators::{Options, Solver};
 
 const T_END: f64 = 0.2;
@@ -19,8 +19,10 @@ fn fast_belt(v_belt: f64, solver: &str, options: Options) -> ((f64, f64), f64) {
     let s = belt(ModelId::LuGre, 1.0, 100.0, v_belt);
     let run = simulate(
         &s,
-        Switching::Event,
-        Solver::from_name(solver).expect("a solver"),
+        Scheme::EventDriven {
+            solver: Solver::from_name(solver).expect("a solver"),
+            switching: Switching::Event,
+        },
         options,
         &mut |_| {},
     )

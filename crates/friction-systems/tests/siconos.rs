@@ -12,8 +12,8 @@
 
 use friction_models::{FrictionParams, ModelId, Variant};
 use friction_systems::chain::ChainParams;
-use friction_systems::{simulate, Switching};
-use integrators::{Options, Output, Solver};
+use friction_systems::{simulate, Scheme};
+use integrators::{Options, Output};
 use std::sync::Arc;
 
 /// The rows of a reference file: t, then x_1..x_N, then v_1..v_N.
@@ -46,8 +46,7 @@ fn differences(theta: f64, name: &str) -> (f64, f64, usize) {
     };
     let run = simulate(
         &system,
-        Switching::TimeStepping { theta },
-        Solver::Rk4,
+        Scheme::TimeStepping { theta },
         options,
         &mut |_| {},
     )

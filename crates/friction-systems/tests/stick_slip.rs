@@ -151,8 +151,10 @@ fn before_each_switch_the_friction_is_that_of_the_mode_left() {
     };
     let run = friction_systems::simulate(
         &system,
-        Switching::Event,
-        integrators::Solver::Dopri5,
+        friction_systems::Scheme::EventDriven {
+            solver: integrators::Solver::Dopri5,
+            switching: Switching::Event,
+        },
         options,
         &mut |_| {},
     )

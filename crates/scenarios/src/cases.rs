@@ -471,8 +471,7 @@ impl StudyCase for SystemCase {
         };
         let run = simulate(
             &self.system,
-            self.switching.with(&friction),
-            solver,
+            self.switching.scheme(solver, &friction),
             options,
             &mut |_| {},
         )?;

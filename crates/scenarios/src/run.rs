@@ -7,7 +7,7 @@ use crate::params::ScenarioParams;
 use crate::scenario::Scenario;
 use friction_models::{FrictionModel, FrictionParams, ModelId, ParamError, Parameters, Variant};
 use friction_systems::{
-    mode_name, End, EnergyBalance, Profile, Switching, System, SystemError, STICK,
+    mode_name, End, EnergyBalance, Profile, Scheme, Switching, System, SystemError, STICK,
 };
 use integrators::{
     Failure, OdeProblem, Options, Output, Solution, Solver, SolverError, Stats, StepControl,
@@ -70,14 +70,6 @@ impl SwitchingKind {
         }
     }
 
-    /// The same treatment with θ = `theta` if it is time-stepping.
-    pub fn with_theta(self, theta: f64) -> SwitchingKind {
-        match self {
-            SwitchingKind::TimeStepping { .. } => SwitchingKind::TimeStepping { theta },
-            other => other,
-        }
-    }
-
     /// The name of the method that integrates under this treatment with `solver`: the solver's,
     /// or Moreau–Jean's under time-stepping (which uses no ODE solver).
     pub fn method(self, solver: Solver) -> &'static str {
@@ -92,14 +84,16 @@ impl SwitchingKind {
         matches!(self, SwitchingKind::TimeStepping { .. })
     }
 
-    /// The integrators' switching, with the width from the parameters.
-    pub fn with(self, p: &FrictionParams) -> Switching {
-        match self {
+    /// The scheme a run with `solver` takes: event-driven under this treatment (the width of
+    /// regularisation from `p`), or time-stepped (no solver takes part).
+    pub fn scheme(self, solver: Solver, p: &FrictionParams) -> Scheme {
+        let switching = match self {
             SwitchingKind::Event => Switching::Event,
             SwitchingKind::Regularized => Switching::Regularized { epsilon: p.epsilon },
             SwitchingKind::Naive => Switching::Naive,
-            SwitchingKind::TimeStepping { theta } => Switching::TimeStepping { theta },
-        }
+            SwitchingKind::TimeStepping { theta } => return Scheme::TimeStepping { theta },
+        };
+        Scheme::EventDriven { solver, switching }
     }
 }
 
@@ -119,7 +113,10 @@ impl std::str::FromStr for SwitchingKind {
             .into_iter()
             .find(|k| k.name() == s)
             .ok_or_else(|| {
-                format!("unknown switching `{s}`; allowed: event, regularized, naive, timestepping")
+                format!(
+                    "unknown switching `{s}`; allowed: event, regularized, naive \
+                     (time-stepping is a scheme: --scheme time-stepping)"
+                )
             })
     }
 }
@@ -355,8 +352,8 @@ fn validate(spec: &RunSpec) -> Result<(), ScenarioError> {
     }
     if !spec.scenario.has_body() && spec.switching.is_time_stepping() {
         return Err(ScenarioError::Invalid(format!(
-            "switching `timestepping` cannot run {}: the motion is prescribed, there is no body \
-             to time-step; use event, regularized or naive",
+            "scheme `time-stepping` cannot run {}: the motion is prescribed, there is no body \
+             to time-step; use the event-driven scheme (event, regularized or naive switching)",
             spec.scenario
         )));
     }
@@ -447,8 +444,7 @@ fn run_body(
     let system = body_system(spec, model);
     let run = friction_systems::simulate(
         &system,
-        spec.switching.with(&spec.friction),
-        spec.solver,
+        spec.switching.scheme(spec.solver, &spec.friction),
         options(spec, t_end),
         observe,
     )?;
@@ -505,7 +501,11 @@ pub fn run_motion(
     let k = Kinematic {
         model,
         motion,
-        switching: spec.switching.with(&spec.friction),
+        // (A prescribed motion is never time-stepped: `validate` refuses it.)
+        switching: spec
+            .switching
+            .scheme(spec.solver, &spec.friction)
+            .switching(),
     };
     let y0 = vec![0.0; k.dim()];
     let clock = Instant::now();

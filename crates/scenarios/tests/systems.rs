@@ -42,8 +42,7 @@ fn a_one_body_system_file_equals_the_belt_rig() {
     let system = file::parse(text).unwrap();
     let sys = simulate(
         &system,
-        spec.switching.with(&spec.friction),
-        spec.solver,
+        spec.switching.scheme(spec.solver, &spec.friction),
         options(&spec, 10.0),
         &mut |_| {},
     )

@@ -7,7 +7,7 @@ use crate::artifacts::{Artifacts, Made};
 use crate::commands::simulate::Target as Problem;
 use crate::commands::system::{chosen_bodies, study_t_end, system_of};
 use crate::error::AppError;
-use crate::options::{LimitArgs, ModelOptions};
+use crate::options::{spelling_notes, treatment, LimitArgs, ModelOptions, SchemeName};
 use crate::output::{Cell, Table};
 use crate::plot::{Marker, Series, PALETTE};
 use crate::ranges;
@@ -16,6 +16,7 @@ use clap::Args;
 use friction_models::params::show;
 use friction_models::ModelId;
 use integrators::Solver;
+use scenarios::run::DEFAULT_THETA;
 use scenarios::studies::{Case, StudyCase, StudyRun, SystemCase};
 use scenarios::{Scenario, SwitchingKind};
 use serde::Serialize;
@@ -89,10 +90,19 @@ pub struct CaseArgs {
     /// (names or 1-based indices) [default: the first body]; every body's final state is.
     #[arg(long, value_name = "LIST", value_delimiter = ',')]
     pub bodies: Vec<String>,
-    /// event, regularized, naive, or timestepping (Moreau–Jean at θ = 1/2, the study's one
-    /// method: over the step sizes, the solver options unused; its reference is event-driven)
-    /// [default: event; for `stiffness` of a rig over epsilon, regularized]
-    #[arg(long, value_name = "event|regularized|naive|timestepping")]
+    /// event-driven (the solvers between located events, v = 0 treated by --switching) or
+    /// time-stepping (Moreau–Jean at θ = 1/2, the study's one method: over the step sizes,
+    /// the solver options unused; its reference is event-driven).
+    #[arg(
+        long,
+        value_name = "event-driven|time-stepping",
+        default_value = "event-driven"
+    )]
+    pub scheme: SchemeName,
+    /// The treatment of v = 0 under event-driven integration: event, regularized or naive
+    /// [default: event; for `stiffness` of a rig over epsilon, regularized]. (`timestepping`,
+    /// the former spelling of --scheme time-stepping, is still taken, with a note.)
+    #[arg(long, value_name = "event|regularized|naive")]
     pub switching: Option<SwitchingKind>,
     /// End time, s [default: the scenario's; 10 for the chain (its horizon of predictability:
     /// docs/studies.md); 20 for a system file].
@@ -130,7 +140,7 @@ impl CaseArgs {
                 return Ok(Box::new(SystemCase {
                     name: described.name,
                     system: described.system,
-                    switching: self.switching.unwrap_or(SwitchingKind::Event),
+                    switching: self.treatment()?,
                     epsilon: described.friction.epsilon,
                     t_end: check_t_end(
                         self.t_end
@@ -168,7 +178,7 @@ impl CaseArgs {
             law: model.into(),
             friction,
             params,
-            switching: self.switching.unwrap_or(SwitchingKind::Event),
+            switching: self.treatment()?,
             t_end,
             limits: self.limits.limits()?,
         }))
@@ -176,6 +186,12 @@ impl CaseArgs {
 }
 
 impl CaseArgs {
+    /// The treatment of v = 0 that `--scheme` and `--switching` ask for (time-stepping at
+    /// θ = 1/2).
+    pub fn treatment(&self) -> Result<SwitchingKind, AppError> {
+        treatment(self.scheme, self.switching, DEFAULT_THETA)
+    }
+
     /// Sets up the case, runs `study` (which returns its lines for the terminal), and keeps
     /// its files in memory.
     fn make(
@@ -195,10 +211,7 @@ impl CaseArgs {
         let failure = target.failure;
         // A study of a system under event switching also runs its regularised peer (BDF on
         // the regularised system), which reads epsilon.
-        let switching = match (
-            self.scenario,
-            self.switching.unwrap_or(SwitchingKind::Event),
-        ) {
+        let switching = match (self.scenario, self.treatment()?) {
             (Some(Problem::Rig(_)), s) => s,
             (_, SwitchingKind::Event) => SwitchingKind::Regularized,
             (_, s) => s,
@@ -206,7 +219,10 @@ impl CaseArgs {
         Ok(Made {
             files,
             notes,
-            warnings: unread_warnings(&self.model_options.params.set, self.model, switching),
+            warnings: unread_warnings(&self.model_options.params.set, self.model, switching)
+                .into_iter()
+                .chain(spelling_notes(self.switching))
+                .collect(),
             failure,
         })
     }

@@ -8,6 +8,7 @@ use super::{
 use crate::artifacts::Made;
 use crate::commands::simulate::Target as Problem;
 use crate::error::AppError;
+use crate::options::SchemeName;
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Marker, Plot, Series, PALETTE};
 use crate::progress::Progress;
@@ -229,6 +230,7 @@ pub fn add_stiffness(
 pub fn stiffness(a: &StiffnessArgs) -> Result<Made, AppError> {
     let mut case = a.case.clone();
     if case.switching.is_none()
+        && case.scheme == SchemeName::EventDriven
         && a.parameter == "epsilon"
         && matches!(case.scenario, Some(Problem::Rig(_)))
     {
@@ -238,12 +240,7 @@ pub fn stiffness(a: &StiffnessArgs) -> Result<Made, AppError> {
     // parameter itself (`StudyCase::with_parameter`): epsilon, which under event switching
     // its regularised peer reads, and on the chain the chain's parameters and its law's.
     if let Some(Problem::Rig(_)) = case.scenario {
-        crate::options::check_read(
-            "parameter",
-            &a.parameter,
-            case.model,
-            case.switching.unwrap_or(SwitchingKind::Event),
-        )?;
+        crate::options::check_read("parameter", &a.parameter, case.model, case.treatment()?)?;
     }
     case.make(|t, case| {
         let sweep = studies::Sweep {
