@@ -20,6 +20,7 @@ pub mod output;
 pub mod plot;
 pub mod progress;
 pub mod ranges;
+pub mod study;
 pub mod threads;
 pub mod warnings;
 

@@ -4,16 +4,16 @@
 use crate::artifacts::Artifacts;
 use crate::commands::curve::{used_parameters, KeyValues};
 use crate::commands::phenomena::add_table;
-use crate::commands::studies::{
-    add_convergence, add_independence, add_scaling, add_stiffness, add_work_precision, Refinement,
-    Target,
-};
 use crate::error::AppError;
 use crate::figure::Drawn;
 use crate::options::ParamOptions;
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Marker, Plot, Series, PALETTE};
 use crate::ranges;
+use crate::study::{
+    conduct, ConvergenceStudy, IndependenceStudy, Refinement, ScalingStudy, StiffnessStudy, Target,
+    WorkPrecisionStudy,
+};
 use crate::threads::with_threads;
 use clap::Args;
 use friction_models::{FrictionParams, ModelId, Parameters, Variant};
@@ -269,73 +269,83 @@ fn add_studies(
     let native = [Solver::Rk4, Solver::Dopri5, Solver::ImplicitEuler];
     let steps = [0.02, 0.01, 0.005, 0.0025];
     let solver = |name| Solver::from_name(name).expect("a known solver");
-    let smooth = add_convergence(
+    let smooth = conduct(
+        &ConvergenceStudy {
+            case: &case(
+                Scenario::PaperBlock,
+                ModelId::Cvs,
+                SwitchingKind::Event,
+                friction,
+                5.0,
+            ),
+            solvers: &native,
+            steps: &steps,
+            tols: &[1e-6],
+        },
         &mut t,
         "converge-paper-block-CVS",
-        &case(
-            Scenario::PaperBlock,
-            ModelId::Cvs,
-            SwitchingKind::Event,
-            friction,
-            5.0,
-        ),
-        &native,
-        &steps,
-        &[1e-6],
     )?;
-    let naive = add_convergence(
+    let naive = conduct(
+        &ConvergenceStudy {
+            case: &case(
+                Scenario::FreeVibration,
+                ModelId::Static,
+                SwitchingKind::Naive,
+                friction,
+                2.0,
+            ),
+            solvers: &rk4,
+            steps: &steps,
+            tols: &[1e-6],
+        },
         &mut t,
         "converge-free-vibration-naive",
-        &case(
-            Scenario::FreeVibration,
-            ModelId::Static,
-            SwitchingKind::Naive,
-            friction,
-            2.0,
-        ),
-        &rk4,
-        &steps,
-        &[1e-6],
     )?;
-    let switched = add_convergence(
+    let switched = conduct(
+        &ConvergenceStudy {
+            case: &case(
+                Scenario::FreeVibration,
+                ModelId::Static,
+                SwitchingKind::Event,
+                friction,
+                2.0,
+            ),
+            solvers: &rk4,
+            steps: &steps,
+            tols: &[1e-6],
+        },
         &mut t,
         "converge-free-vibration-event",
-        &case(
-            Scenario::FreeVibration,
-            ModelId::Static,
-            SwitchingKind::Event,
-            friction,
-            2.0,
-        ),
-        &rk4,
-        &steps,
-        &[1e-6],
     )?;
-    let av = add_independence(
+    let av = conduct(
+        &IndependenceStudy {
+            case: &case(
+                Scenario::PaperBlock,
+                ModelId::Av,
+                SwitchingKind::Event,
+                friction,
+                5.0,
+            ),
+            solver: Solver::Rk4,
+            refinement: from_paper_dt,
+        },
         &mut t,
         "independence-paper-block-AV",
-        &case(
-            Scenario::PaperBlock,
-            ModelId::Av,
-            SwitchingKind::Event,
-            friction,
-            5.0,
-        ),
-        Solver::Rk4,
-        from_paper_dt,
     )?;
-    let cs = add_independence(
+    let cs = conduct(
+        &IndependenceStudy {
+            case: &case(
+                Scenario::Belt,
+                ModelId::Cs,
+                SwitchingKind::Naive,
+                friction,
+                20.0,
+            ),
+            solver: Solver::Rk4,
+            refinement: from_paper_dt,
+        },
         &mut t,
         "independence-belt-CS-naive",
-        &case(
-            Scenario::Belt,
-            ModelId::Cs,
-            SwitchingKind::Naive,
-            friction,
-            20.0,
-        ),
-        Solver::Rk4,
-        from_paper_dt,
     )?;
     // Every level of the report's independence studies must finish.
     if let Some(failure) = t.failure.take() {
@@ -350,20 +360,22 @@ fn add_studies(
         solver("esdirk34"),
         solver("tsit45"),
     ];
-    add_work_precision(
+    conduct(
+        &WorkPrecisionStudy {
+            case: &case(
+                Scenario::Belt,
+                ModelId::Cs,
+                SwitchingKind::Event,
+                friction,
+                5.0,
+            ),
+            solvers: &all,
+            steps: &[0.01, 0.003, 0.001, 0.0003],
+            tols: &[1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8],
+            repeats: 3,
+        },
         &mut t,
         "work-precision-belt-CS",
-        &case(
-            Scenario::Belt,
-            ModelId::Cs,
-            SwitchingKind::Event,
-            friction,
-            5.0,
-        ),
-        &all,
-        &[0.01, 0.003, 0.001, 0.0003],
-        &[1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8],
-        3,
     )?;
     let explicit_implicit = [
         Solver::Dopri5,
@@ -377,20 +389,22 @@ fn add_studies(
         values: &[1.0, 1e-1, 1e-2, 1e-3, 1e-4],
         target: 1e-3,
     };
-    let stiff = add_stiffness(
+    let stiff = conduct(
+        &StiffnessStudy {
+            case: &case(
+                Scenario::Belt,
+                ModelId::Cs,
+                SwitchingKind::Regularized,
+                friction,
+                2.0,
+            ),
+            sweep,
+            solvers: &explicit_implicit,
+            steps: &[0.01],
+            tols: &[1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7],
+        },
         &mut t,
         "stiffness-belt-CS-epsilon",
-        &case(
-            Scenario::Belt,
-            ModelId::Cs,
-            SwitchingKind::Regularized,
-            friction,
-            2.0,
-        ),
-        sweep,
-        &explicit_implicit,
-        &[0.01],
-        &[1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7],
     )?;
     let verdict = |i: &scenarios::studies::Independence| {
         if i.independent {
@@ -458,14 +472,16 @@ fn chain_case(n: usize, friction: &FrictionParams, t_end: f64) -> Result<SystemC
 /// and the cost per step against N up to 1000, with their report section.
 fn add_chain_studies(t: &mut Target, friction: &FrictionParams) -> Result<String, AppError> {
     let bdf = Solver::from_name("bdf").expect("a known solver");
-    add_work_precision(
+    conduct(
+        &WorkPrecisionStudy {
+            case: &chain_case(100, friction, 5.0)?,
+            solvers: &[Solver::Dopri5, bdf],
+            steps: &[0.01, 0.003, 0.001, 0.0003],
+            tols: &[1e-4, 1e-5, 1e-6, 1e-7, 1e-8],
+            repeats: 1,
+        },
         t,
         "work-precision-chain-100",
-        &chain_case(100, friction, 5.0)?,
-        &[Solver::Dopri5, bdf],
-        &[0.01, 0.003, 0.001, 0.0003],
-        &[1e-4, 1e-5, 1e-6, 1e-7, 1e-8],
-        1,
     )?;
     let sizes = [10, 30, 100, 300, 1000];
     let cases = sizes
@@ -491,7 +507,14 @@ fn add_chain_studies(t: &mut Target, friction: &FrictionParams) -> Result<String
         };
         (m, step)
     }));
-    let scaling = add_scaling(t, "cost-chain", &cases, &methods)?;
+    let scaling = conduct(
+        &ScalingStudy {
+            cases: &cases,
+            methods: &methods,
+        },
+        t,
+        "cost-chain",
+    )?;
     let exponents = scaling
         .exponents
         .iter()

@@ -1,18 +1,11 @@
 //! `converge`: observed orders of every solver against a reference.
 
-use super::{
-    distinct, failures, per_solver_series, runs_table, slope_lines, study_error, study_file,
-    CaseArgs, Target,
-};
+use super::{failures, CaseArgs};
 use crate::artifacts::Made;
 use crate::error::AppError;
-use crate::plot::{Corner, Plot};
-use crate::progress::Progress;
-use crate::ranges;
-use crate::threads::with_threads;
+use crate::study::{conduct, ConvergenceStudy};
 use clap::Args;
 use integrators::Solver;
-use scenarios::studies::{self, Convergence, StudyCase};
 
 /// Options of `converge`.
 #[derive(Args, Debug)]
@@ -45,67 +38,16 @@ pub struct ConvergeArgs {
     pub tol_list: Vec<f64>,
 }
 
-/// Computes a convergence study and adds its files (`converge.csv`, `converge.json`,
-/// `converge.png`/`.svg`) under `dir` with file stem `stem`.
-pub fn add_convergence(
-    t: &mut Target,
-    stem: &str,
-    case: &dyn StudyCase,
-    solvers: &[Solver],
-    steps: &[f64],
-    tols: &[f64],
-) -> Result<Convergence, AppError> {
-    let (dir, threads) = (t.dir, t.threads);
-    distinct(solvers)?;
-    ranges::DT.list("dt-list", steps)?;
-    ranges::RTOL.list("tol-list", tols)?;
-    let jobs = solvers
-        .iter()
-        .map(|&s| studies::steps_for(s, steps, tols, true).len())
-        .sum();
-    let b = Progress::runs(jobs, "converge");
-    let c = with_threads(threads, || {
-        studies::convergence(case, solvers, steps, tols, &|| b.inc())
-    })?
-    .map_err(study_error)?;
-    b.finish();
-    let csv = dir.join(format!("{stem}.csv"));
-    t.files.add(csv.clone(), runs_table(&c.runs, &csv)?);
-    t.files
-        .add_json(dir.join(format!("{stem}.json")), &study_file(case, &c))?;
-    // Step sizes and tolerances are different things: one panel each.
-    let panel = |step: &str, x_label: &str, slopes: &[f64]| {
-        let mut series = per_solver_series(
-            &c.runs,
-            |r| r.step == step,
-            |r| r.resolution,
-            |r| r.errors.grid_max,
-        );
-        series.extend(slope_lines(&series, slopes));
-        Plot {
-            title: format!("Convergence ({step} steps): {}", case.describe()),
-            x_label: x_label.into(),
-            y_label: "max error on the time grid".into(),
-            series,
-            legend: Corner::default(),
-            log: true,
-        }
-    };
-    let panels: Vec<Plot> = [
-        panel("fixed", "step size h (s)", &[1.0, 4.0, 5.0]),
-        panel("adaptive", "tolerance (rtol = atol)", &[1.0]),
-    ]
-    .into_iter()
-    .filter(|p| !p.series.is_empty())
-    .collect();
-    t.files.add_panels(&dir.join(stem), &panels)?;
-    Ok(c)
-}
-
 /// Runs `converge`; its files in memory.
 pub fn converge(a: &ConvergeArgs) -> Result<Made, AppError> {
     a.case.make(|t, case| {
-        let c = add_convergence(t, "converge", case, &a.solvers, &a.dt_list, &a.tol_list)?;
+        let study = ConvergenceStudy {
+            case,
+            solvers: &a.solvers,
+            steps: &a.dt_list,
+            tols: &a.tol_list,
+        };
+        let c = conduct(&study, t, "converge")?;
         let orders = c.orders.iter().map(|o| {
             // No slope: say why (docs/studies.md, "Observed orders").
             let slope = match o.fitted_slope {

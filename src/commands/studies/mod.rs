@@ -8,66 +8,26 @@ use crate::commands::simulate::Target as Problem;
 use crate::commands::system::{chosen_bodies, study_t_end, system_of};
 use crate::error::AppError;
 use crate::options::{spelling_notes, treatment, LimitArgs, ModelOptions, SchemeName};
-use crate::output::{Cell, Table};
-use crate::plot::{Marker, Series, PALETTE};
 use crate::ranges;
+use crate::study::Target;
 use crate::warnings::{diverged_line, unread_warnings};
 use clap::Args;
 use friction_models::params::show;
 use friction_models::ModelId;
-use integrators::Solver;
 use scenarios::run::DEFAULT_THETA;
 use scenarios::studies::{Case, StudyCase, StudyRun, SystemCase};
 use scenarios::{Scenario, SwitchingKind};
-use serde::Serialize;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 mod converge;
 mod independence;
-mod scaling;
 mod stiffness;
 mod work_precision;
 
-pub use converge::{add_convergence, converge, ConvergeArgs};
-pub use independence::{add_independence, independence, IndependenceArgs};
-pub use scaling::add_scaling;
-pub use stiffness::{add_stiffness, stiffness, StiffnessArgs};
-pub use work_precision::{add_work_precision, work_precision, WorkPrecisionArgs};
-
-/// What a study's JSON says it studied, beside the study's own fields: the case as its plots
-/// name it, its treatment of v = 0 and its end time.
-#[derive(Serialize)]
-struct StudyFile<'a, T: Serialize> {
-    case: CaseRecord,
-    #[serde(flatten)]
-    study: &'a T,
-}
-
-/// The case of a study, as its JSON records it.
-#[derive(Serialize)]
-struct CaseRecord {
-    description: String,
-    switching: SwitchingKind,
-    t_end: f64,
-}
-
-impl CaseRecord {
-    fn of(case: &dyn StudyCase) -> CaseRecord {
-        CaseRecord {
-            description: case.describe(),
-            switching: case.switching(),
-            t_end: case.t_end(),
-        }
-    }
-}
-
-/// `study` of `case`, for its JSON.
-fn study_file<'a, T: Serialize>(case: &dyn StudyCase, study: &'a T) -> StudyFile<'a, T> {
-    StudyFile {
-        case: CaseRecord::of(case),
-        study,
-    }
-}
+pub use converge::{converge, ConvergeArgs};
+pub use independence::{independence, IndependenceArgs};
+pub use stiffness::{stiffness, StiffnessArgs};
+pub use work_precision::{work_precision, WorkPrecisionArgs};
 
 /// The problem a study runs.
 #[derive(Args, Debug, Clone)]
@@ -228,211 +188,6 @@ impl CaseArgs {
     }
 }
 
-/// `--solvers` with each solver once (a study names its runs by solver).
-fn distinct(solvers: &[Solver]) -> Result<(), AppError> {
-    match crate::options::first_repeat(solvers) {
-        Some((_, k)) => Err(AppError::Usage(format!(
-            "option `solvers` names `{}` twice: allowed each solver once",
-            solvers[k].name()
-        ))),
-        None => Ok(()),
-    }
-}
-
-fn positive_list(name: &'static str, values: &[f64]) -> Result<(), AppError> {
-    match values.iter().find(|v| !(v.is_finite() && **v > 0.0)) {
-        Some(v) => Err(AppError::Usage(format!(
-            "option `{name}` has {v}: allowed values (0, inf)"
-        ))),
-        None if values.is_empty() => Err(AppError::Usage(format!("option `{name}` is empty"))),
-        None => Ok(()),
-    }
-}
-
-/// Where a study's files go, and on how many threads it runs.
-pub struct Target<'a> {
-    /// The files being prepared.
-    pub files: &'a mut Artifacts,
-    /// The folder.
-    pub dir: &'a Path,
-    /// Worker threads (all cores when `None`).
-    pub threads: Option<usize>,
-    /// A failure the files record (a level of an independence study that failed): the
-    /// command writes them, then exits with it.
-    pub failure: Option<AppError>,
-}
-
-/// The levels of an independence study.
-#[derive(Clone, Copy, Debug)]
-pub struct Refinement {
-    /// The coarsest step size or tolerance.
-    pub start: f64,
-    /// The ratio between levels.
-    pub ratio: f64,
-    /// Number of levels.
-    pub levels: i64,
-    /// Relative tolerance of the verdict.
-    pub tol: f64,
-}
-
-fn study_error(e: scenarios::ScenarioError) -> AppError {
-    AppError::from(e)
-}
-
-/// The columns `h` and `tol` of a run with `resolution` of kind `step` (`fixed`: a step
-/// size, `adaptive`: a tolerance): the one that applies, the other empty, so that each column
-/// holds one quantity.
-fn resolution_cells(step: Option<&str>, resolution: Option<f64>) -> [Cell; 2] {
-    let empty = || Cell::Text(String::new());
-    match (step, resolution) {
-        (Some("fixed"), Some(h)) => [Cell::Num(h), empty()],
-        (Some(_), Some(tol)) => [empty(), Cell::Num(tol)],
-        _ => [empty(), empty()],
-    }
-}
-
-/// One CSV row per run: solver, step size or tolerance, the errors, the work.
-fn runs_table(runs: &[StudyRun], path: &Path) -> Result<Vec<u8>, AppError> {
-    let mut t = Table::new(&[
-        "solver",
-        "step",
-        "h",
-        "tol",
-        "work",
-        "error_final_state",
-        "error_grid_max",
-        "error_event_times",
-        "error_stick_durations",
-        "steps",
-        "rejected",
-        "rhs_evals",
-        "jacobian_evals",
-        "lu_factorizations",
-        "newton_iterations",
-        "events",
-        "status",
-    ]);
-    for r in runs {
-        // A missing measure (no events to compare) is written as an empty cell, never NaN.
-        let num = Cell::num;
-        let s = r.stats;
-        let [h, tol] = resolution_cells(Some(r.step), Some(r.resolution));
-        t.rows.push(vec![
-            Cell::Text(r.solver.clone()),
-            Cell::Text(r.step.into()),
-            h,
-            tol,
-            Cell::Num(r.work as f64),
-            num(r.errors.final_state),
-            num(r.errors.grid_max),
-            num(r.errors.event_times),
-            num(r.errors.stick_durations),
-            Cell::Num(s.steps as f64),
-            Cell::Num(s.rejected() as f64),
-            Cell::Num(s.rhs_evals as f64),
-            Cell::Num(s.jacobian_evals as f64),
-            Cell::Num(s.lu_factorizations as f64),
-            Cell::Num(s.newton_iterations as f64),
-            Cell::Num(s.events as f64),
-            Cell::Text(r.failure.clone().unwrap_or_else(|| "ok".into())),
-        ]);
-    }
-    t.to_csv(path)
-}
-
-/// The height of the `row`-th row of crosses above the data of a log plot, whose largest value
-/// is `largest`: three times it, then 1.5 times higher for each row, one row per solver with
-/// failed runs (drawn at one height, the crosses of one hid those of another).
-pub(super) fn row_at_top(largest: f64, row: i32) -> f64 {
-    largest * 3.0 * 1.5f64.powi(row)
-}
-
-/// One series per solver of the runs `keep` selects, with a dot on every run that computed,
-/// and, per solver with failed runs, a series of crosses drawn at the top of the plot at their
-/// x, named with their count (a failed run has no error to plot, but it is not left out), each
-/// such solver in a row of its own ([`row_at_top`]).
-fn per_solver_series(
-    runs: &[StudyRun],
-    keep: impl Fn(&StudyRun) -> bool,
-    x: impl Fn(&StudyRun) -> f64,
-    y: impl Fn(&StudyRun) -> f64,
-) -> Vec<Series> {
-    let runs: Vec<&StudyRun> = runs.iter().filter(|r| keep(r)).collect();
-    let mut names: Vec<&str> = Vec::new();
-    for r in &runs {
-        if !names.contains(&r.solver.as_str()) {
-            names.push(&r.solver);
-        }
-    }
-    let plotted = |r: &&&StudyRun| r.failure.is_none() && y(r) > 0.0 && y(r).is_finite();
-    let largest = runs
-        .iter()
-        .filter(plotted)
-        .map(|r| y(r))
-        .reduce(f64::max)
-        .unwrap_or(1.0);
-    let mut series = Vec::new();
-    let mut rows = 0;
-    for (name, &color) in names.iter().zip(PALETTE.iter().cycle()) {
-        let mine = || runs.iter().filter(|r| r.solver == *name);
-        let points: Vec<(f64, f64)> = mine().filter(plotted).map(|r| (x(r), y(r))).collect();
-        if !points.is_empty() {
-            series.push(Series {
-                label: Some(name.to_string()),
-                points,
-                color,
-                width: 2,
-                marker: Marker::Dot,
-            });
-        }
-        let top = row_at_top(largest, rows);
-        let failed: Vec<(f64, f64)> = mine()
-            .filter(|r| r.failure.is_some())
-            .map(|r| (x(r), top))
-            .collect();
-        if !failed.is_empty() {
-            rows += 1;
-            series.push(Series {
-                label: Some(format!("{name}: {} failed (at the top)", failed.len())),
-                points: failed,
-                color,
-                width: 0,
-                marker: Marker::Cross,
-            });
-        }
-    }
-    series
-}
-
-/// Reference lines of slope `p` (on log–log axes) through the first point of the first
-/// series, drawn only over that series' x-range.
-fn slope_lines(series: &[Series], slopes: &[f64]) -> Vec<Series> {
-    let Some(first) = series.iter().find(|s| s.marker == Marker::Dot) else {
-        return Vec::new();
-    };
-    let (x0, y0) = first.points[0];
-    let (lo, hi) = first
-        .points
-        .iter()
-        .fold((f64::INFINITY, 0.0f64), |(lo, hi), p| {
-            (lo.min(p.0), hi.max(p.0))
-        });
-    slopes
-        .iter()
-        .zip([170u8, 120, 70].iter().cycle())
-        .map(|(&p, &shade)| Series {
-            label: Some(format!("slope {p}")),
-            points: [lo, hi]
-                .iter()
-                .map(|&x| (x, y0 * (x / x0).powf(p)))
-                .collect(),
-            color: plotters::style::RGBColor(shade, shade, shade),
-            width: 1,
-            marker: Marker::None,
-        })
-        .collect()
-}
-
 /// One line for each method with failed runs of a study (an unstable step, a limit): how many,
 /// and the first's resolution and error (their status in the study's `csv`). Their errors are
 /// missing, which `converge`'s order lines count with round-off; this says why. A last line
@@ -459,74 +214,4 @@ pub fn failures(runs: &[StudyRun], csv: &str) -> Vec<String> {
         })
         .chain(diverged)
         .collect()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use integrators::Stats;
-    use scenarios::studies::Errors;
-
-    fn run(solver: &str, h: f64, error: f64, failure: Option<&str>) -> StudyRun {
-        StudyRun {
-            solver: solver.into(),
-            resolution: h,
-            step: "fixed",
-            errors: Errors {
-                final_state: error,
-                ..Errors::UNMEASURED
-            },
-            measures: Default::default(),
-            stats: Stats::default(),
-            work: 0,
-            failure: failure.map(str::to_string),
-            diverged: false,
-            wall_time_s: 0.0,
-        }
-    }
-
-    #[test]
-    fn the_failed_runs_of_each_solver_are_drawn_in_a_row_of_their_own() {
-        // Two solvers failing at the same step: at one height, the second's crosses hid the
-        // first's.
-        let runs = [
-            run("rk4", 0.02, f64::NAN, Some("diverged")),
-            run("rk4", 0.01, 1e-4, None),
-            run("dopri5", 0.02, f64::NAN, Some("diverged")),
-            run("dopri5", 0.01, 1e-6, None),
-            run("implicit-euler", 0.02, 1e-2, None),
-        ];
-        let series = per_solver_series(&runs, |_| true, |r| r.resolution, |r| r.errors.final_state);
-        let crosses: Vec<(f64, f64)> = series
-            .iter()
-            .filter(|s| s.marker == Marker::Cross)
-            .map(|s| s.points[0])
-            .collect();
-        assert_eq!(crosses, [(0.02, 3e-2), (0.02, 3e-2 * 1.5)]);
-    }
-
-    #[test]
-    fn every_solver_of_a_system_study_has_a_colour_of_its_own() {
-        // The seven solvers and a system's two peers: with eight colours, time-stepping took
-        // RK4's red, and the chain's default work-precision plot drew them alike.
-        let names = [
-            "rk4",
-            "dopri5",
-            "implicit-euler",
-            "bdf",
-            "tr-bdf2",
-            "esdirk34",
-            "tsit45",
-            "bdf (regularized)",
-            "moreau-jean (timestepping)",
-        ];
-        let runs: Vec<StudyRun> = names.iter().map(|n| run(n, 0.01, 1e-4, None)).collect();
-        let series = per_solver_series(&runs, |_| true, |r| r.resolution, |r| r.errors.final_state);
-        assert_eq!(series.len(), names.len());
-        for (i, a) in series.iter().enumerate() {
-            for b in &series[..i] {
-                assert_ne!(a.color, b.color, "{:?} and {:?}", a.label, b.label);
-            }
-        }
-    }
 }

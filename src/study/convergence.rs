@@ -1,0 +1,86 @@
+//! The convergence study: observed orders of every solver against a reference
+//! ([`scenarios::studies::convergence`]), one panel for fixed steps and one for tolerances.
+
+use super::draw::{per_solver_series, slope_lines};
+use super::tables::runs_table;
+use super::{distinct, study_file, Study, StudyFiles};
+use crate::error::AppError;
+use crate::plot::{Corner, Plot};
+use crate::ranges;
+use integrators::Solver;
+use scenarios::studies::{self, Convergence, StudyCase};
+use scenarios::ScenarioError;
+
+/// Every solver of `solvers` on `case` at the fixed step sizes `steps` (those that take fixed
+/// steps) or at the tolerances `tols` (rtol = atol), against one reference.
+pub struct ConvergenceStudy<'a> {
+    /// The problem.
+    pub case: &'a dyn StudyCase,
+    /// The solvers, each once.
+    pub solvers: &'a [Solver],
+    /// Step sizes, coarse to fine.
+    pub steps: &'a [f64],
+    /// Tolerances, loose to tight.
+    pub tols: &'a [f64],
+}
+
+impl Study for ConvergenceStudy<'_> {
+    type Result = Convergence;
+
+    fn name(&self) -> &'static str {
+        "converge"
+    }
+
+    fn check(&self) -> Result<(), AppError> {
+        distinct(self.solvers)?;
+        ranges::DT.list("dt-list", self.steps)?;
+        ranges::RTOL.list("tol-list", self.tols)?;
+        Ok(())
+    }
+
+    fn runs(&self) -> usize {
+        self.solvers
+            .iter()
+            .map(|&s| studies::steps_for(s, self.steps, self.tols, true).len())
+            .sum()
+    }
+
+    fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<Convergence, ScenarioError> {
+        studies::convergence(self.case, self.solvers, self.steps, self.tols, progress)
+    }
+
+    /// `{stem}.csv` (a row per run), `{stem}.json` and `{stem}.png`/`.svg`.
+    fn write(&self, c: &Convergence, out: &mut StudyFiles) -> Result<(), AppError> {
+        let case = self.case;
+        let csv = out.path(".csv");
+        out.files.add(csv.clone(), runs_table(&c.runs, &csv)?);
+        out.files
+            .add_json(out.path(".json"), &study_file(case, c))?;
+        // Step sizes and tolerances are different things: one panel each.
+        let panel = |step: &str, x_label: &str, slopes: &[f64]| {
+            let mut series = per_solver_series(
+                &c.runs,
+                |r| r.step == step,
+                |r| r.resolution,
+                |r| r.errors.grid_max,
+            );
+            series.extend(slope_lines(&series, slopes));
+            Plot {
+                title: format!("Convergence ({step} steps): {}", case.describe()),
+                x_label: x_label.into(),
+                y_label: "max error on the time grid".into(),
+                series,
+                legend: Corner::default(),
+                log: true,
+            }
+        };
+        let panels: Vec<Plot> = [
+            panel("fixed", "step size h (s)", &[1.0, 4.0, 5.0]),
+            panel("adaptive", "tolerance (rtol = atol)", &[1.0]),
+        ]
+        .into_iter()
+        .filter(|p| !p.series.is_empty())
+        .collect();
+        out.files.add_panels(&out.path(""), &panels)
+    }
+}

@@ -1,0 +1,168 @@
+//! The figures' pieces the studies share: one series per solver with its failed runs drawn
+//! at the top, and reference slopes.
+
+use crate::plot::{Marker, Series, PALETTE};
+use scenarios::studies::StudyRun;
+
+/// The height of the `row`-th row of crosses above the data of a log plot, whose largest value
+/// is `largest`: three times it, then 1.5 times higher for each row, one row per solver with
+/// failed runs (drawn at one height, the crosses of one hid those of another).
+pub fn row_at_top(largest: f64, row: i32) -> f64 {
+    largest * 3.0 * 1.5f64.powi(row)
+}
+
+/// One series per solver of the runs `keep` selects, with a dot on every run that computed,
+/// and, per solver with failed runs, a series of crosses drawn at the top of the plot at their
+/// x, named with their count (a failed run has no error to plot, but it is not left out), each
+/// such solver in a row of its own ([`row_at_top`]).
+pub fn per_solver_series(
+    runs: &[StudyRun],
+    keep: impl Fn(&StudyRun) -> bool,
+    x: impl Fn(&StudyRun) -> f64,
+    y: impl Fn(&StudyRun) -> f64,
+) -> Vec<Series> {
+    let runs: Vec<&StudyRun> = runs.iter().filter(|r| keep(r)).collect();
+    let mut names: Vec<&str> = Vec::new();
+    for r in &runs {
+        if !names.contains(&r.solver.as_str()) {
+            names.push(&r.solver);
+        }
+    }
+    let plotted = |r: &&&StudyRun| r.failure.is_none() && y(r) > 0.0 && y(r).is_finite();
+    let largest = runs
+        .iter()
+        .filter(plotted)
+        .map(|r| y(r))
+        .reduce(f64::max)
+        .unwrap_or(1.0);
+    let mut series = Vec::new();
+    let mut rows = 0;
+    for (name, &color) in names.iter().zip(PALETTE.iter().cycle()) {
+        let mine = || runs.iter().filter(|r| r.solver == *name);
+        let points: Vec<(f64, f64)> = mine().filter(plotted).map(|r| (x(r), y(r))).collect();
+        if !points.is_empty() {
+            series.push(Series {
+                label: Some(name.to_string()),
+                points,
+                color,
+                width: 2,
+                marker: Marker::Dot,
+            });
+        }
+        let top = row_at_top(largest, rows);
+        let failed: Vec<(f64, f64)> = mine()
+            .filter(|r| r.failure.is_some())
+            .map(|r| (x(r), top))
+            .collect();
+        if !failed.is_empty() {
+            rows += 1;
+            series.push(Series {
+                label: Some(format!("{name}: {} failed (at the top)", failed.len())),
+                points: failed,
+                color,
+                width: 0,
+                marker: Marker::Cross,
+            });
+        }
+    }
+    series
+}
+
+/// Reference lines of slope `p` (on log–log axes) through the first point of the first
+/// series, drawn only over that series' x-range.
+pub fn slope_lines(series: &[Series], slopes: &[f64]) -> Vec<Series> {
+    let Some(first) = series.iter().find(|s| s.marker == Marker::Dot) else {
+        return Vec::new();
+    };
+    let (x0, y0) = first.points[0];
+    let (lo, hi) = first
+        .points
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(lo, hi), p| {
+            (lo.min(p.0), hi.max(p.0))
+        });
+    slopes
+        .iter()
+        .zip([170u8, 120, 70].iter().cycle())
+        .map(|(&p, &shade)| Series {
+            label: Some(format!("slope {p}")),
+            points: [lo, hi]
+                .iter()
+                .map(|&x| (x, y0 * (x / x0).powf(p)))
+                .collect(),
+            color: plotters::style::RGBColor(shade, shade, shade),
+            width: 1,
+            marker: Marker::None,
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use integrators::Stats;
+    use scenarios::studies::Errors;
+
+    fn run(solver: &str, h: f64, error: f64, failure: Option<&str>) -> StudyRun {
+        StudyRun {
+            solver: solver.into(),
+            resolution: h,
+            step: "fixed",
+            errors: Errors {
+                final_state: error,
+                ..Errors::UNMEASURED
+            },
+            measures: Default::default(),
+            stats: Stats::default(),
+            work: 0,
+            failure: failure.map(str::to_string),
+            diverged: false,
+            wall_time_s: 0.0,
+        }
+    }
+
+    #[test]
+    fn the_failed_runs_of_each_solver_are_drawn_in_a_row_of_their_own() {
+        // Two solvers failing at the same step: at one height, the second's crosses hid the
+        // first's.
+        let runs = [
+            run("rk4", 0.02, f64::NAN, Some("diverged")),
+            run("rk4", 0.01, 1e-4, None),
+            run("dopri5", 0.02, f64::NAN, Some("diverged")),
+            run("dopri5", 0.01, 1e-6, None),
+            run("implicit-euler", 0.02, 1e-2, None),
+        ];
+        let series = per_solver_series(&runs, |_| true, |r| r.resolution, |r| r.errors.final_state);
+        let crosses: Vec<(f64, f64)> = series
+            .iter()
+            .filter(|s| s.marker == Marker::Cross)
+            .map(|s| s.points[0])
+            .collect();
+        assert_eq!(crosses, [(0.02, 3e-2), (0.02, 3e-2 * 1.5)]);
+    }
+
+    #[test]
+    fn every_solver_of_a_system_study_has_a_colour_of_its_own() {
+        // The seven solvers and a system's two peers: with eight colours, time-stepping took
+        // RK4's red, and the chain's default work-precision plot drew them alike.
+        let names = [
+            "rk4",
+            "dopri5",
+            "implicit-euler",
+            "bdf",
+            "tr-bdf2",
+            "esdirk34",
+            "tsit45",
+            "bdf (regularized)",
+            "moreau-jean (timestepping)",
+        ];
+        let runs: Vec<StudyRun> = names.iter().map(|n| run(n, 0.01, 1e-4, None)).collect();
+        let series = per_solver_series(&runs, |_| true, |r| r.resolution, |r| r.errors.final_state);
+        assert_eq!(series.len(), names.len());
+        for (i, a) in series.iter().enumerate() {
+            for b in &series[..i] {
+                assert_ne!(a.color, b.color, "{:?} and {:?}", a.label, b.label);
+            }
+        }
+    }
+}

@@ -1,0 +1,204 @@
+//! Step-size independence: one solver at a ladder of resolutions, with a Richardson estimate
+//! of the error left and a verdict ([`scenarios::studies::independence`]).
+
+use super::tables::resolution_cells;
+use super::{study_file, Study, StudyFiles};
+use crate::error::AppError;
+use crate::output::{Cell, Table};
+use crate::plot::{Corner, Marker, Plot, Series, PALETTE};
+use crate::ranges;
+use integrators::Solver;
+use scenarios::studies::{self, Independence, StudyCase};
+use scenarios::ScenarioError;
+
+/// The levels of an independence study.
+#[derive(Clone, Copy, Debug)]
+pub struct Refinement {
+    /// The coarsest step size or tolerance.
+    pub start: f64,
+    /// The ratio between levels.
+    pub ratio: f64,
+    /// Number of levels.
+    pub levels: i64,
+    /// Relative tolerance of the verdict.
+    pub tol: f64,
+}
+
+/// `solver` on `case` at the levels of `refinement`: `start`, `start/ratio`, … (step sizes
+/// for a fixed-step solver or time-stepping, else tolerances).
+pub struct IndependenceStudy<'a> {
+    /// The problem.
+    pub case: &'a dyn StudyCase,
+    /// The solver.
+    pub solver: Solver,
+    /// The levels and the verdict's tolerance.
+    pub refinement: Refinement,
+}
+
+impl Study for IndependenceStudy<'_> {
+    type Result = Independence;
+
+    fn name(&self) -> &'static str {
+        "independence"
+    }
+
+    /// Each of `tol`, `ratio` and `levels` in its range, and every level in the range of a
+    /// step size or a tolerance.
+    fn check(&self) -> Result<(), AppError> {
+        let (case, solver) = (self.case, self.solver);
+        let Refinement {
+            start,
+            ratio,
+            levels,
+            tol,
+        } = self.refinement;
+        if !(0.0..=1.0).contains(&tol) || tol == 0.0 {
+            return Err(AppError::Usage(format!(
+                "option `tol` = {tol} is out of range: allowed (0, 1]"
+            )));
+        }
+        if !(ratio.is_finite() && ratio > 1.0 && ratio <= 1e3) {
+            return Err(AppError::Usage(format!(
+                "option `ratio` = {ratio} is out of range: allowed (1, 1000]"
+            )));
+        }
+        if !(2..=12).contains(&levels) {
+            return Err(AppError::Usage(format!(
+                "option `levels` = {levels} is out of range: allowed [2, 12]"
+            )));
+        }
+        // Every level is a step size (fixed-step solvers) or a tolerance, in that option's range.
+        let resolution = if solver.is_fixed_step() || case.switching().is_time_stepping() {
+            ranges::DT
+        } else {
+            ranges::RTOL
+        };
+        let finest = start / ratio.powi(levels as i32 - 1);
+        resolution
+            .check(start)
+            .and(resolution.check(finest))
+            .map_err(|_| {
+                AppError::Usage(format!(
+                    "option `start` = {} (finest level {finest:e}) is out of range for {}: every \
+             level must lie in {} (the range of --{})",
+                    ranges::show(start),
+                    solver.name(),
+                    resolution.range,
+                    resolution.name
+                ))
+            })?;
+        Ok(())
+    }
+
+    fn runs(&self) -> usize {
+        self.refinement.levels as usize
+    }
+
+    fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<Independence, ScenarioError> {
+        let r = self.refinement;
+        studies::independence(
+            self.case,
+            self.solver,
+            r.start,
+            r.ratio,
+            r.levels as usize,
+            r.tol,
+            progress,
+        )
+    }
+
+    /// The levels that failed, named: the files keep the levels that ran.
+    fn failure(&self, s: &Independence) -> Option<AppError> {
+        let levels = self.refinement.levels;
+        let f = s.failed.first()?;
+        Some(AppError::StudyRun(format!(
+            "{} of {levels} levels of the independence study failed, the first at level {} \
+             ({:e}): {}; levels {} to {} are judged",
+            s.failed.len(),
+            f.level,
+            f.resolution,
+            f.failure,
+            s.first_level,
+            s.first_level + s.resolutions.len() - 1
+        )))
+    }
+
+    /// `{stem}.csv` (a row per output and level), `{stem}.json` and `{stem}.png`/`.svg` (the
+    /// trajectories at every level).
+    fn write(&self, s: &Independence, out: &mut StudyFiles) -> Result<(), AppError> {
+        let case = self.case;
+        let mut table = Table::new(&[
+            "output",
+            "level",
+            "h",
+            "tol",
+            "value",
+            "difference_to_previous",
+            "remaining_error",
+            "independent",
+        ]);
+        for o in &s.outputs {
+            for (i, v) in o.values.iter().enumerate() {
+                let [h, tol] = resolution_cells(Some(s.step), Some(s.resolutions[i]));
+                table.rows.push(vec![
+                    Cell::Text(o.name.clone()),
+                    Cell::Num((s.first_level + i) as f64),
+                    h,
+                    tol,
+                    Cell::Num(*v),
+                    if i == 0 {
+                        Cell::Text(String::new())
+                    } else {
+                        Cell::Num(o.differences[i - 1])
+                    },
+                    if i + 1 == o.values.len() && o.remaining_error.is_finite() {
+                        Cell::Num(o.remaining_error)
+                    } else {
+                        Cell::Text(String::new())
+                    },
+                    Cell::Text(o.independent.to_string()),
+                ]);
+            }
+        }
+        let csv = out.path(".csv");
+        out.files.add(csv.clone(), table.to_csv(&csv)?);
+        out.files
+            .add_json(out.path(".json"), &study_file(case, s))?;
+        let series = s
+            .trajectories
+            .iter()
+            .zip(&s.resolutions)
+            .zip(PALETTE.iter().cycle())
+            .map(|((xs, h), &color)| Series {
+                label: Some(format!("{} at {h:e}", s.solver)),
+                points: xs
+                    .iter()
+                    .enumerate()
+                    .map(|(i, &x)| (case.t_end() * i as f64 / (xs.len().max(2) - 1) as f64, x))
+                    .collect(),
+                color,
+                width: 2,
+                marker: Marker::None,
+            })
+            .collect();
+        let plot = Plot {
+            title: format!(
+                "Independence: {}: {}",
+                case.describe(),
+                if s.independent {
+                    "independent".to_string()
+                } else if s.failed.is_empty() {
+                    "NOT independent".to_string()
+                } else {
+                    format!("NOT independent ({} levels failed)", s.failed.len())
+                }
+            ),
+            x_label: "time t (s)".into(),
+            y_label: "displacement x (m)".into(),
+            series,
+            legend: Corner::default(),
+            log: false,
+        };
+        out.files.add_plot(&out.path(""), &plot)
+    }
+}

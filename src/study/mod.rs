@@ -1,0 +1,175 @@
+//! The solver studies as one abstraction: a [`Study`] runs cases with methods, each run against
+//! a reference, into a typed result, and writes that result's tables and figures.
+//! [`conduct`] is what every study shares: its options checked before anything runs, its runs
+//! on a pool of threads with a progress bar (collected in order, so the files do not depend on
+//! the thread count), its files added to a [`Target`]. The command line, `reproduce` and a
+//! user's own code conduct the same studies; each study is a file of this module.
+
+mod convergence;
+mod draw;
+mod independence;
+mod scaling;
+mod stiffness;
+mod tables;
+mod work_precision;
+
+pub use convergence::ConvergenceStudy;
+pub use independence::{IndependenceStudy, Refinement};
+pub use scaling::ScalingStudy;
+pub use stiffness::StiffnessStudy;
+pub use work_precision::WorkPrecisionStudy;
+
+use crate::artifacts::Artifacts;
+use crate::error::AppError;
+use crate::progress::Progress;
+use crate::threads::with_threads;
+use integrators::Solver;
+use scenarios::studies::StudyCase;
+use scenarios::{ScenarioError, SwitchingKind};
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+
+/// A study: its runs, the typed result they make, and the files that show it.
+pub trait Study: Sync {
+    /// What the study makes of its runs (written as its JSON).
+    type Result: Serialize + Send;
+
+    /// Its name, as its progress bar says it.
+    fn name(&self) -> &'static str;
+
+    /// Checks its options (lists, ranges) before anything runs: a bad one is
+    /// [`AppError::Usage`], exit code 2.
+    fn check(&self) -> Result<(), AppError> {
+        Ok(())
+    }
+
+    /// How many runs it makes: the length of its progress bar.
+    fn runs(&self) -> usize;
+
+    /// Makes its runs (on the current thread pool) and their result; `progress` is called
+    /// after each run.
+    fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<Self::Result, ScenarioError>;
+
+    /// A failure that the files record and the command exits with once they are written (a
+    /// level of an independence study that failed); none by default.
+    fn failure(&self, _result: &Self::Result) -> Option<AppError> {
+        None
+    }
+
+    /// Adds its tables, JSON and figures to `out`.
+    fn write(&self, result: &Self::Result, out: &mut StudyFiles) -> Result<(), AppError>;
+}
+
+/// Where a study's files go: a folder, a file stem, and the files being prepared.
+pub struct StudyFiles<'a> {
+    /// The files being prepared.
+    pub files: &'a mut Artifacts,
+    /// The folder.
+    pub dir: &'a Path,
+    /// The stem every file of the study starts with (`converge` for `converge.csv`).
+    pub stem: &'a str,
+}
+
+impl StudyFiles<'_> {
+    /// The path of the study's file `{stem}{suffix}`, e.g. `.csv` or `-timing.csv`.
+    pub fn path(&self, suffix: &str) -> PathBuf {
+        self.dir.join(format!("{}{suffix}", self.stem))
+    }
+}
+
+/// Where a study's files go, and on how many threads it runs.
+pub struct Target<'a> {
+    /// The files being prepared.
+    pub files: &'a mut Artifacts,
+    /// The folder.
+    pub dir: &'a Path,
+    /// Worker threads (all cores when `None`).
+    pub threads: Option<usize>,
+    /// A failure the files record (a level of an independence study that failed): the
+    /// command writes them, then exits with it.
+    pub failure: Option<AppError>,
+}
+
+/// Conducts `study` into `target` under the file stem `stem`: checks its options, makes its
+/// runs on `target`'s threads with a progress bar, records its failure if it has one, and adds
+/// its files. Returns its result.
+pub fn conduct<S: Study>(
+    study: &S,
+    target: &mut Target,
+    stem: &str,
+) -> Result<S::Result, AppError> {
+    study.check()?;
+    let bar = Progress::runs(study.runs(), study.name());
+    let result = with_threads(target.threads, || study.run(&|| bar.inc()))??;
+    bar.finish();
+    if let Some(failure) = study.failure(&result) {
+        target.failure.get_or_insert(failure);
+    }
+    study.write(
+        &result,
+        &mut StudyFiles {
+            files: target.files,
+            dir: target.dir,
+            stem,
+        },
+    )?;
+    Ok(result)
+}
+
+/// What a study's JSON says it studied, beside the study's own fields: the case as its plots
+/// name it, its treatment of v = 0 and its end time.
+#[derive(Serialize)]
+pub struct StudyFile<'a, T: Serialize> {
+    case: CaseRecord,
+    #[serde(flatten)]
+    study: &'a T,
+}
+
+/// The case of a study, as its JSON records it.
+#[derive(Serialize)]
+pub struct CaseRecord {
+    description: String,
+    switching: SwitchingKind,
+    t_end: f64,
+}
+
+impl CaseRecord {
+    /// The record of `case`.
+    pub fn of(case: &dyn StudyCase) -> CaseRecord {
+        CaseRecord {
+            description: case.describe(),
+            switching: case.switching(),
+            t_end: case.t_end(),
+        }
+    }
+}
+
+/// `study` of `case`, for its JSON.
+pub fn study_file<'a, T: Serialize>(case: &dyn StudyCase, study: &'a T) -> StudyFile<'a, T> {
+    StudyFile {
+        case: CaseRecord::of(case),
+        study,
+    }
+}
+
+/// `--solvers` with each solver once (a study names its runs by solver).
+pub fn distinct(solvers: &[Solver]) -> Result<(), AppError> {
+    match crate::options::first_repeat(solvers) {
+        Some((_, k)) => Err(AppError::Usage(format!(
+            "option `solvers` names `{}` twice: allowed each solver once",
+            solvers[k].name()
+        ))),
+        None => Ok(()),
+    }
+}
+
+/// A list option of positive finite numbers, not empty.
+pub fn positive_list(name: &'static str, values: &[f64]) -> Result<(), AppError> {
+    match values.iter().find(|v| !(v.is_finite() && **v > 0.0)) {
+        Some(v) => Err(AppError::Usage(format!(
+            "option `{name}` has {v}: allowed values (0, inf)"
+        ))),
+        None if values.is_empty() => Err(AppError::Usage(format!("option `{name}` is empty"))),
+        None => Ok(()),
+    }
+}

@@ -1,0 +1,192 @@
+//! The stiffness sweep: the cost to reach a target error across a stiffness parameter, and
+//! where the implicit solvers overtake the explicit ones ([`scenarios::studies::stiffness`]).
+
+use super::draw::row_at_top;
+use super::tables::resolution_cells;
+use super::{distinct, positive_list, study_file, Study, StudyFiles};
+use crate::error::AppError;
+use crate::output::{Cell, Table};
+use crate::plot::{Corner, Marker, Plot, Series, PALETTE};
+use crate::ranges;
+use integrators::Solver;
+use scenarios::studies::{self, Method, Stiffness, StudyCase, Sweep};
+use scenarios::ScenarioError;
+
+/// The most values a sweep takes.
+const MAX_VALUES: usize = 50;
+
+/// Every solver of `solvers` on `case`, and the case's peers, at each value of the swept
+/// parameter: the least work that reaches the sweep's target error, over the step sizes
+/// `steps` (fixed-step methods) or the tolerances `tols`.
+pub struct StiffnessStudy<'a> {
+    /// The problem.
+    pub case: &'a dyn StudyCase,
+    /// The parameter, its values and the target error.
+    pub sweep: Sweep<'a>,
+    /// The solvers, each once.
+    pub solvers: &'a [Solver],
+    /// Step sizes, coarse to fine.
+    pub steps: &'a [f64],
+    /// Tolerances, loose to tight.
+    pub tols: &'a [f64],
+}
+
+impl StiffnessStudy<'_> {
+    /// The studied solvers under the case's treatment, then its peers.
+    fn methods(&self) -> Vec<Method> {
+        Method::studied(self.case.switching(), self.solvers)
+            .into_iter()
+            .chain(self.case.peers())
+            .collect()
+    }
+}
+
+impl Study for StiffnessStudy<'_> {
+    type Result = Stiffness;
+
+    fn name(&self) -> &'static str {
+        "stiffness"
+    }
+
+    fn check(&self) -> Result<(), AppError> {
+        let values = self.sweep.values;
+        positive_list("values", values)?;
+        positive_list("target", &[self.sweep.target])?;
+        distinct(self.solvers)?;
+        ranges::DT.list("dt-list", self.steps)?;
+        ranges::RTOL.list("tol-list", self.tols)?;
+        if values.len() > MAX_VALUES {
+            return Err(AppError::Usage(format!(
+                "option `values` has {} values: allowed 1 to {MAX_VALUES}",
+                values.len()
+            )));
+        }
+        Ok(())
+    }
+
+    fn runs(&self) -> usize {
+        Method::jobs(&self.methods(), self.steps, self.tols, false).len() * self.sweep.values.len()
+    }
+
+    fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<Stiffness, ScenarioError> {
+        let methods = self.methods();
+        studies::stiffness(
+            self.case,
+            Sweep { ..self.sweep },
+            &methods,
+            self.steps,
+            self.tols,
+            progress,
+        )
+    }
+
+    /// `{stem}.csv` (a row per value and method), `{stem}.json` and `{stem}.png`/`.svg`.
+    fn write(&self, s: &Stiffness, out: &mut StudyFiles) -> Result<(), AppError> {
+        let (case, methods) = (self.case, self.methods());
+        let Sweep {
+            parameter, target, ..
+        } = self.sweep;
+        let mut table = Table::new(&[
+            "value",
+            "solver",
+            "implicit",
+            "reached",
+            "h",
+            "tol",
+            "error",
+            "rhs_evals",
+            "jacobian_evals",
+            "lu_factorizations",
+            "implicit_wins",
+        ]);
+        for p in &s.points {
+            for c in &p.costs {
+                // Numeric columns hold numbers or nothing: `reached` says why both are empty.
+                let [h, tol] = resolution_cells(c.step, c.resolution);
+                table.rows.push(vec![
+                    Cell::Num(p.value),
+                    Cell::Text(c.solver.clone()),
+                    Cell::Text(c.implicit.to_string()),
+                    Cell::Text(c.resolution.is_some().to_string()),
+                    h,
+                    tol,
+                    Cell::num(c.error),
+                    Cell::Num(c.stats.rhs_evals as f64),
+                    Cell::Num(c.stats.jacobian_evals as f64),
+                    Cell::Num(c.stats.lu_factorizations as f64),
+                    Cell::Text(p.implicit_wins.to_string()),
+                ]);
+            }
+        }
+        let csv = out.path(".csv");
+        out.files.add(csv.clone(), table.to_csv(&csv)?);
+        out.files
+            .add_json(out.path(".json"), &study_file(case, s))?;
+        // A solver that met the target at a value: a dot at its cost; one that did not: a cross
+        // at the top of the plot, named, each such solver in a row of its own.
+        let reached: Vec<(f64, f64)> = s
+            .points
+            .iter()
+            .flat_map(|p| {
+                p.costs
+                    .iter()
+                    .filter(|c| c.resolution.is_some())
+                    .map(|c| (p.value, c.work as f64))
+            })
+            .collect();
+        let largest = reached.iter().map(|p| p.1).fold(1.0, f64::max);
+        let mut series = Vec::new();
+        let mut rows = 0;
+        for (method, &color) in methods.iter().zip(PALETTE.iter().cycle()) {
+            let label = method.label();
+            let costs = || {
+                s.points
+                    .iter()
+                    .filter_map(|p| Some((p.value, p.costs.iter().find(|c| c.solver == label)?)))
+            };
+            let met: Vec<(f64, f64)> = costs()
+                .filter(|(_, c)| c.resolution.is_some())
+                .map(|(v, c)| (v, c.work as f64))
+                .collect();
+            let top = row_at_top(largest, rows);
+            let missed: Vec<(f64, f64)> = costs()
+                .filter(|(_, c)| c.resolution.is_none())
+                .map(|(v, _)| (v, top))
+                .collect();
+            if !met.is_empty() {
+                series.push(Series {
+                    label: Some(label.clone()),
+                    points: met,
+                    color,
+                    width: 2,
+                    marker: Marker::Dot,
+                });
+            }
+            if !missed.is_empty() {
+                rows += 1;
+                series.push(Series {
+                    label: Some(format!(
+                        "{label}: target not reached at {} value(s) (at the top)",
+                        missed.len()
+                    )),
+                    points: missed,
+                    color,
+                    width: 0,
+                    marker: Marker::Cross,
+                });
+            }
+        }
+        let plot = Plot {
+            title: format!(
+                "Cost to reach error {target:e} against {parameter}: {}",
+                case.describe()
+            ),
+            x_label: parameter.to_string(),
+            y_label: "work (f evaluations + dim per Jacobian)".into(),
+            series,
+            legend: Corner::UpperRight,
+            log: true,
+        };
+        out.files.add_plot(&out.path(""), &plot)
+    }
+}

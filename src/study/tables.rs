@@ -1,0 +1,67 @@
+//! The tables the studies share: one row per run, and the columns of a resolution.
+
+use crate::error::AppError;
+use crate::output::{Cell, Table};
+use scenarios::studies::StudyRun;
+use std::path::Path;
+
+/// The columns `h` and `tol` of a run with `resolution` of kind `step` (`fixed`: a step
+/// size, `adaptive`: a tolerance): the one that applies, the other empty, so that each column
+/// holds one quantity.
+pub fn resolution_cells(step: Option<&str>, resolution: Option<f64>) -> [Cell; 2] {
+    let empty = || Cell::Text(String::new());
+    match (step, resolution) {
+        (Some("fixed"), Some(h)) => [Cell::Num(h), empty()],
+        (Some(_), Some(tol)) => [empty(), Cell::Num(tol)],
+        _ => [empty(), empty()],
+    }
+}
+
+/// One CSV row per run: solver, step size or tolerance, the errors, the work.
+pub fn runs_table(runs: &[StudyRun], path: &Path) -> Result<Vec<u8>, AppError> {
+    let mut t = Table::new(&[
+        "solver",
+        "step",
+        "h",
+        "tol",
+        "work",
+        "error_final_state",
+        "error_grid_max",
+        "error_event_times",
+        "error_stick_durations",
+        "steps",
+        "rejected",
+        "rhs_evals",
+        "jacobian_evals",
+        "lu_factorizations",
+        "newton_iterations",
+        "events",
+        "status",
+    ]);
+    for r in runs {
+        // A missing measure (no events to compare) is written as an empty cell, never NaN.
+        let num = Cell::num;
+        let s = r.stats;
+        let [h, tol] = resolution_cells(Some(r.step), Some(r.resolution));
+        t.rows.push(vec![
+            Cell::Text(r.solver.clone()),
+            Cell::Text(r.step.into()),
+            h,
+            tol,
+            Cell::Num(r.work as f64),
+            num(r.errors.final_state),
+            num(r.errors.grid_max),
+            num(r.errors.event_times),
+            num(r.errors.stick_durations),
+            Cell::Num(s.steps as f64),
+            Cell::Num(s.rejected() as f64),
+            Cell::Num(s.rhs_evals as f64),
+            Cell::Num(s.jacobian_evals as f64),
+            Cell::Num(s.lu_factorizations as f64),
+            Cell::Num(s.newton_iterations as f64),
+            Cell::Num(s.events as f64),
+            Cell::Text(r.failure.clone().unwrap_or_else(|| "ok".into())),
+        ]);
+    }
+    t.to_csv(path)
+}

@@ -1,0 +1,102 @@
+//! Work–precision: error against work and wall time for every solver and peer
+//! ([`scenarios::studies::work_precision`]).
+
+use super::draw::per_solver_series;
+use super::tables::{resolution_cells, runs_table};
+use super::{distinct, study_file, Study, StudyFiles};
+use crate::error::AppError;
+use crate::output::{Cell, Table};
+use crate::plot::{Corner, Plot};
+use crate::ranges;
+use integrators::Solver;
+use scenarios::studies::{self, Method, StudyCase, WorkPrecision};
+use scenarios::ScenarioError;
+
+/// Every solver of `solvers` on `case`, and the case's peers (methods under another treatment
+/// of v = 0), at the step sizes `steps` (fixed-step methods) or the tolerances `tols`, each run
+/// `repeats` times for its median wall time.
+pub struct WorkPrecisionStudy<'a> {
+    /// The problem.
+    pub case: &'a dyn StudyCase,
+    /// The solvers, each once.
+    pub solvers: &'a [Solver],
+    /// Step sizes, coarse to fine.
+    pub steps: &'a [f64],
+    /// Tolerances, loose to tight.
+    pub tols: &'a [f64],
+    /// Runs of each (method, resolution) for the median wall time.
+    pub repeats: usize,
+}
+
+impl WorkPrecisionStudy<'_> {
+    /// The studied solvers under the case's treatment, then its peers.
+    fn methods(&self) -> Vec<Method> {
+        Method::studied(self.case.switching(), self.solvers)
+            .into_iter()
+            .chain(self.case.peers())
+            .collect()
+    }
+}
+
+impl Study for WorkPrecisionStudy<'_> {
+    type Result = WorkPrecision;
+
+    fn name(&self) -> &'static str {
+        "work-precision"
+    }
+
+    fn check(&self) -> Result<(), AppError> {
+        distinct(self.solvers)?;
+        ranges::DT.list("dt-list", self.steps)?;
+        ranges::RTOL.list("tol-list", self.tols)?;
+        Ok(())
+    }
+
+    fn runs(&self) -> usize {
+        Method::jobs(&self.methods(), self.steps, self.tols, false).len() * self.repeats
+    }
+
+    fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<WorkPrecision, ScenarioError> {
+        let methods = self.methods();
+        studies::work_precision(
+            self.case,
+            &methods,
+            self.steps,
+            self.tols,
+            self.repeats,
+            progress,
+        )
+    }
+
+    /// `{stem}.csv` (a row per run), `{stem}-timing.csv` (their median wall times, which
+    /// vary between runs), `{stem}.json` and `{stem}.png`/`.svg`.
+    fn write(&self, w: &WorkPrecision, out: &mut StudyFiles) -> Result<(), AppError> {
+        let case = self.case;
+        let csv = out.path(".csv");
+        out.files.add(csv.clone(), runs_table(&w.runs, &csv)?);
+        let mut timing = Table::new(&["solver", "h", "tol", "wall_time_median_s"]);
+        for r in &w.runs {
+            let [h, tol] = resolution_cells(Some(r.step), Some(r.resolution));
+            timing.rows.push(vec![
+                Cell::Text(r.solver.clone()),
+                h,
+                tol,
+                Cell::Num(r.wall_time_s),
+            ]);
+        }
+        let timing_csv = out.path("-timing.csv");
+        out.files
+            .add(timing_csv.clone(), timing.to_csv(&timing_csv)?);
+        out.files
+            .add_json(out.path(".json"), &study_file(case, w))?;
+        let plot = Plot {
+            title: format!("Work-precision: {}", case.describe()),
+            x_label: "work (f evaluations + dim per Jacobian)".into(),
+            y_label: "max error on the time grid".into(),
+            series: per_solver_series(&w.runs, |_| true, |r| r.work as f64, |r| r.errors.grid_max),
+            legend: Corner::UpperRight,
+            log: true,
+        };
+        out.files.add_plot(&out.path(""), &plot)
+    }
+}
