@@ -9,6 +9,10 @@ mod own_friction_law;
 mod own_solver;
 
 #[allow(dead_code)]
+#[path = "../examples/own_study.rs"]
+mod own_study;
+
+#[allow(dead_code)]
 #[path = "../examples/two_mass_system.rs"]
 mod two_mass_system;
 
@@ -77,4 +81,45 @@ fn an_own_solver_runs_through_simulation_and_two_studies() {
     let [(e3, w3), (e5, w5)] = r.at_1e8;
     assert!(e3 < 1e-6 && e5 < 1e-7, "errors {e3}, {e5}");
     assert!(e5 < e3 && w5 < w3, "bs23 {e3} in {w3}, dopri5 {e5} in {w5}");
+}
+
+#[test]
+fn an_own_study_is_conducted_and_writes_its_files_and_figure() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("step-counts");
+    let o = own_study::run(&out).unwrap();
+    assert_eq!(
+        o.files,
+        [
+            "step-counts.csv",
+            "step-counts.json",
+            "step-counts.png",
+            "step-counts.svg"
+        ]
+    );
+    // The order of each error estimate from its step counts: Dormand–Prince's embedded
+    // solution is of order 4 (its slope approaches 1/5 from below as the tolerance falls: a
+    // fixed cost of the start weighs less; 4.5 from 1e-7 to 1e-12), implicit Euler's
+    // step-doubling estimate of order 1.
+    let order = |name: &str| {
+        let (_, _, q) = o.counts.orders.iter().find(|o| o.0 == name).unwrap();
+        *q
+    };
+    let dopri5 = order("dopri5");
+    assert!((3.8..5.0).contains(&dopri5), "{dopri5}");
+    let implicit_euler = order("implicit-euler");
+    assert!((implicit_euler - 1.0).abs() < 0.2, "{implicit_euler}");
+    // Dormand–Prince meets its tolerance within a small factor (tolerance proportionality);
+    // implicit Euler, controlled per step, only its square root (docs/solvers.md).
+    let runs = |name: &'static str| o.counts.runs.iter().filter(move |r| r.solver == name);
+    for r in runs("dopri5") {
+        assert!(r.error < 10.0 * r.tol, "{r:?}");
+    }
+    let logs: Vec<(f64, f64)> = runs("implicit-euler")
+        .map(|r| (r.tol.ln(), r.error.ln()))
+        .collect();
+    let slope = friction_lab::scenarios::studies::slope(&logs);
+    assert!((slope - 0.5).abs() < 0.1, "error ~ tol^{slope}");
+    let csv = std::fs::read_to_string(out.join("step-counts.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 1 + 6 + 5);
 }
