@@ -680,7 +680,14 @@ pub fn run(args: &ReproduceArgs) -> Result<(), AppError> {
         add_studies(&mut files, &args.out, &params, threads)
     })?;
     report_md += &section("Stick-slip on the belt", &mut failure, || {
-        crate::commands::stick_slip::add_stick_slip(&mut files, &args.out, &params, threads)
+        let dir = args.out.join("stick-slip");
+        let mut t = Target {
+            files: &mut files,
+            dir: &dir,
+            threads,
+            failure: None,
+        };
+        crate::commands::stick_slip::add_stick_slip(&mut t, &params)
     })?;
     if interrupt::requested() {
         report_md += "\n## Stopped\n\nThe command was stopped by a signal (exit 130): the runs \

@@ -9,6 +9,7 @@ mod convergence;
 mod draw;
 mod independence;
 mod scaling;
+mod stick_slip;
 mod stiffness;
 mod tables;
 mod work_precision;
@@ -16,6 +17,7 @@ mod work_precision;
 pub use convergence::ConvergenceStudy;
 pub use independence::{IndependenceStudy, Refinement};
 pub use scaling::ScalingStudy;
+pub use stick_slip::{Bifurcation, BifurcationStudy, StickSlipMap, StickSlipMapStudy};
 pub use stiffness::StiffnessStudy;
 pub use work_precision::WorkPrecisionStudy;
 
@@ -31,8 +33,8 @@ use std::path::{Path, PathBuf};
 
 /// A study: its runs, the typed result they make, and the files that show it.
 pub trait Study: Sync {
-    /// What the study makes of its runs (written as its JSON).
-    type Result: Serialize + Send;
+    /// What the study makes of its runs.
+    type Result: Send;
 
     /// Its name, as its progress bar says it.
     fn name(&self) -> &'static str;

@@ -165,12 +165,13 @@ fn settled(spec: &RunSpec, settle: f64) -> Result<Settled, ScenarioError> {
 }
 
 /// The map over `v_belts` × `ks` from rest (the base's other parameters), in parallel, rows
-/// in grid order (v_belt slowest).
+/// in grid order (v_belt slowest); `progress` is called after each point.
 pub fn map(
     base: &RunSpec,
     v_belts: &[f64],
     ks: &[f64],
     settle: f64,
+    progress: &(dyn Fn() + Sync),
 ) -> Result<Vec<MapPoint>, ScenarioError> {
     let model = base.law.build(&base.friction)?;
     let points: Vec<(f64, f64)> = v_belts
@@ -181,6 +182,7 @@ pub fn map(
         .par_iter()
         .map(|&(v_belt, k)| {
             let s = settled(&belt_spec(base, v_belt, k, 0.0), settle)?;
+            progress();
             Ok(MapPoint {
                 v_belt,
                 k,
@@ -204,11 +206,13 @@ pub struct Branches {
     pub from_sliding: Settled,
 }
 
-/// The bifurcation diagram at the base's k, in parallel.
+/// The bifurcation diagram at the base's k, in parallel; `progress` is called after each run
+/// (two a belt speed).
 pub fn bifurcation(
     base: &RunSpec,
     v_belts: &[f64],
     settle: f64,
+    progress: &(dyn Fn() + Sync),
 ) -> Result<Vec<Branches>, ScenarioError> {
     let model = base.law.build(&base.friction)?;
     let k = base.params.k;
@@ -218,10 +222,12 @@ pub fn bifurcation(
             let v = -v_belt;
             let force = steady::force(model.as_ref(), v, SignLaw::Frozen(Direction::Negative));
             let x_s = -force / k;
-            let (from_rest, from_sliding) = rayon::join(
-                || settled(&belt_spec(base, v_belt, k, 0.0), settle),
-                || settled(&belt_spec(base, v_belt, k, x_s * (1.0 + 1e-6)), settle),
-            );
+            let from = |x0: f64| {
+                let s = settled(&belt_spec(base, v_belt, k, x0), settle);
+                progress();
+                s
+            };
+            let (from_rest, from_sliding) = rayon::join(|| from(0.0), || from(x_s * (1.0 + 1e-6)));
             Ok(Branches {
                 v_belt,
                 from_rest: from_rest?,

@@ -42,7 +42,7 @@ fn the_sliding_slope_is_the_closed_form_and_the_boundary_its_zeros() {
 
 #[test]
 fn the_map_finds_stick_slip_where_sliding_is_unstable_and_none_on_a_fast_belt() {
-    let points = map(&cvs_belt(), &[0.05, 1.0], &[100.0], 0.5).unwrap();
+    let points = map(&cvs_belt(), &[0.05, 1.0], &[100.0], 0.5, &|| {}).unwrap();
     assert!(points[0].linearly_unstable);
     assert_eq!(points[0].regime, Regime::StickSlip, "{:?}", points[0]);
     assert!(!points[1].linearly_unstable);
@@ -53,7 +53,7 @@ fn the_map_finds_stick_slip_where_sliding_is_unstable_and_none_on_a_fast_belt() 
 fn stick_slip_from_rest_coexists_with_stable_steady_sliding() {
     // v_b = 0.4: above the linear boundary (about 0.22 m/s, sliding is stable) and below
     // F_c/√(k·m) = 0.6 m/s (a body started at rest still catches the belt and sticks).
-    let b = bifurcation(&cvs_belt(), &[0.4], 0.5).unwrap();
+    let b = bifurcation(&cvs_belt(), &[0.4], 0.5, &|| {}).unwrap();
     assert_eq!(
         Regime::of(&b[0].from_rest, 0.4),
         Regime::StickSlip,

@@ -1,0 +1,267 @@
+//! The belt's stick–slip as two studies ([`scenarios::stick_slip`]): the map of the settled
+//! regime over belt speed × stiffness from rest, with the linear stability boundary of steady
+//! sliding, and the bifurcation diagram of the settled amplitude against belt speed, from rest
+//! and from steady sliding.
+
+use super::{Study, StudyFiles};
+use crate::error::AppError;
+use crate::output::{Cell, Table};
+use crate::plot::{Corner, Marker, Plot, Series, BLUE, PALETTE};
+use scenarios::stick_slip::{
+    bifurcation, log_space, map, stability_boundary, Branches, MapPoint, Regime,
+};
+use scenarios::{RunSpec, ScenarioError};
+
+/// The span of belt speeds over which the linear stability boundary is sought, m/s, and the
+/// points it is sampled at: wider than the map's (the boundary's lower end lies near v_s/60).
+const BOUNDARY_SPAN: (f64, f64, usize) = (1e-5, 10.0, 800);
+
+/// The belt speeds in [`BOUNDARY_SPAN`] where `c + dF/dv` changes sign for the base's law.
+fn boundary(base: &RunSpec) -> Result<Vec<f64>, ScenarioError> {
+    let model = base.law.build(&base.friction)?;
+    let (lo, hi, n) = BOUNDARY_SPAN;
+    Ok(stability_boundary(model.as_ref(), base.params.c, lo, hi, n))
+}
+
+/// The settled regime of the belt `base` from rest at every belt speed × stiffness.
+pub struct StickSlipMapStudy<'a> {
+    /// The belt run (its law, parameters, solver and duration).
+    pub base: &'a RunSpec,
+    /// Belt speeds: `v_belt_count` log-spaced over `v_belt_range`, m/s.
+    pub v_belt_range: (f64, f64),
+    /// How many belt speeds.
+    pub v_belt_count: usize,
+    /// Spring stiffnesses, N/m, ascending.
+    pub ks: &'a [f64],
+    /// The measured, settled fraction of each run (its end).
+    pub settle: f64,
+}
+
+/// The map's points, in grid order (belt speed slowest), and the stability boundary.
+pub struct StickSlipMap {
+    /// Every (v_belt, k) with its settled state and regime.
+    pub points: Vec<MapPoint>,
+    /// The belt speeds where steady sliding changes stability (c + dF/dv = 0).
+    pub boundary: Vec<f64>,
+}
+
+impl StickSlipMapStudy<'_> {
+    fn v_belts(&self) -> Vec<f64> {
+        let (lo, hi) = self.v_belt_range;
+        log_space(lo, hi, self.v_belt_count)
+    }
+}
+
+impl Study for StickSlipMapStudy<'_> {
+    type Result = StickSlipMap;
+
+    fn name(&self) -> &'static str {
+        "stick-slip map"
+    }
+
+    fn runs(&self) -> usize {
+        self.v_belt_count * self.ks.len()
+    }
+
+    fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<StickSlipMap, ScenarioError> {
+        Ok(StickSlipMap {
+            points: map(self.base, &self.v_belts(), self.ks, self.settle, progress)?,
+            boundary: boundary(self.base)?,
+        })
+    }
+
+    /// `{stem}.csv` (a row per point) and `{stem}.png`/`.svg`: the regimes over the plane,
+    /// the stability boundary inside the map's speeds.
+    fn write(&self, r: &StickSlipMap, out: &mut StudyFiles) -> Result<(), AppError> {
+        let (points, boundary, ks) = (&r.points, &r.boundary, self.ks);
+        let (v_lo, v_hi) = self.v_belt_range;
+        let mut table = Table::new(&[
+            "v_belt",
+            "k",
+            "regime",
+            "linearly_unstable",
+            "stick_per_cycle",
+            "period",
+            "x_amplitude",
+        ]);
+        let num = Cell::num;
+        for p in points {
+            table.rows.push(vec![
+                Cell::Num(p.v_belt),
+                Cell::Num(p.k),
+                Cell::Text(format!("{:?}", p.regime)),
+                Cell::Text(p.linearly_unstable.to_string()),
+                num(p.settled.stick_per_cycle),
+                num(p.settled.period),
+                num(p.settled.x_amplitude),
+            ]);
+        }
+        let csv = out.path(".csv");
+        out.files.add(csv.clone(), table.to_csv(&csv)?);
+        let regime_series = |regime: Regime, label: &str, color, marker| Series {
+            label: Some(label.into()),
+            points: points
+                .iter()
+                .filter(|p| p.regime == regime)
+                .map(|p| (p.v_belt, p.k))
+                .collect(),
+            color,
+            width: 0,
+            marker,
+        };
+        let mut series = vec![
+            regime_series(Regime::StickSlip, "stick-slip", PALETTE[0], Marker::Dot),
+            regime_series(
+                Regime::Oscillation,
+                "oscillation without stick",
+                PALETTE[2],
+                Marker::Dot,
+            ),
+            regime_series(Regime::SteadySliding, "steady sliding", BLUE, Marker::Cross),
+            regime_series(
+                Regime::Stuck,
+                "carried by the belt all along",
+                PALETTE[3],
+                Marker::Cross,
+            ),
+        ];
+        series.retain(|s| !s.points.is_empty());
+        let inside: Vec<f64> = boundary
+            .iter()
+            .copied()
+            .filter(|v| (v_lo..=v_hi).contains(v))
+            .collect();
+        for (i, &v) in inside.iter().enumerate() {
+            series.push(Series {
+                label: (i == 0).then(|| "c + dF/dv = 0 (linear stability of sliding)".into()),
+                points: vec![(v, ks[0]), (v, ks[ks.len() - 1])],
+                color: plotters::style::RGBColor(90, 90, 90),
+                width: 2,
+                marker: Marker::None,
+            });
+        }
+        out.files.add_plot(
+            &out.path(""),
+            &Plot {
+                title: "Belt with CVS from rest: settled regime (c = 0, m = 1)".into(),
+                x_label: "belt speed v_belt (m/s)".into(),
+                y_label: "spring stiffness k (N/m)".into(),
+                series,
+                legend: Corner::UpperRight,
+                log: true,
+            },
+        )
+    }
+}
+
+/// The settled amplitude of the belt `base` (at its stiffness) against belt speed, from rest
+/// and from steady sliding.
+pub struct BifurcationStudy<'a> {
+    /// The belt run (its law, parameters, stiffness, solver and duration).
+    pub base: &'a RunSpec,
+    /// Belt speeds, m/s, ascending.
+    pub v_belts: &'a [f64],
+    /// The measured, settled fraction of each run (its end).
+    pub settle: f64,
+}
+
+/// The two branches at each belt speed, and the stability boundary.
+pub struct Bifurcation {
+    /// Per belt speed, the settled state from rest and from steady sliding.
+    pub branches: Vec<Branches>,
+    /// The belt speeds where steady sliding changes stability (c + dF/dv = 0).
+    pub boundary: Vec<f64>,
+}
+
+impl Study for BifurcationStudy<'_> {
+    type Result = Bifurcation;
+
+    fn name(&self) -> &'static str {
+        "bifurcation"
+    }
+
+    /// From rest and from steady sliding at each speed.
+    fn runs(&self) -> usize {
+        2 * self.v_belts.len()
+    }
+
+    fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<Bifurcation, ScenarioError> {
+        Ok(Bifurcation {
+            branches: bifurcation(self.base, self.v_belts, self.settle, progress)?,
+            boundary: boundary(self.base)?,
+        })
+    }
+
+    /// `{stem}.csv` (a row per speed) and `{stem}.png`/`.svg`: both branches' amplitudes and
+    /// the stability boundary.
+    fn write(&self, r: &Bifurcation, out: &mut StudyFiles) -> Result<(), AppError> {
+        let (branches, boundary) = (&r.branches, &r.boundary);
+        let num = Cell::num;
+        let mut table = Table::new(&[
+            "v_belt",
+            "from_rest_regime",
+            "from_rest_x_amplitude",
+            "from_sliding_regime",
+            "from_sliding_x_amplitude",
+        ]);
+        for b in branches {
+            table.rows.push(vec![
+                Cell::Num(b.v_belt),
+                Cell::Text(format!("{:?}", Regime::of(&b.from_rest, b.v_belt))),
+                num(b.from_rest.x_amplitude),
+                Cell::Text(format!("{:?}", Regime::of(&b.from_sliding, b.v_belt))),
+                num(b.from_sliding.x_amplitude),
+            ]);
+        }
+        let csv = out.path(".csv");
+        out.files.add(csv.clone(), table.to_csv(&csv)?);
+        let branch = |label: &str,
+                      pick: fn(&scenarios::stick_slip::Branches) -> f64,
+                      color,
+                      marker| Series {
+            label: Some(label.into()),
+            points: branches.iter().map(|b| (b.v_belt, pick(b))).collect(),
+            color,
+            width: 1,
+            marker,
+        };
+        let mut series = vec![
+            branch(
+                "from rest",
+                |b| b.from_rest.x_amplitude,
+                PALETTE[0],
+                Marker::Dot,
+            ),
+            branch(
+                "from steady sliding",
+                |b| b.from_sliding.x_amplitude,
+                BLUE,
+                Marker::Cross,
+            ),
+        ];
+        let top = branches
+            .iter()
+            .map(|b| b.from_rest.x_amplitude.max(b.from_sliding.x_amplitude))
+            .fold(0.0, f64::max);
+        for (i, &v) in boundary.iter().enumerate() {
+            series.push(Series {
+                label: (i == 0).then(|| "c + dF/dv = 0".into()),
+                points: vec![(v, 0.0), (v, top)],
+                color: plotters::style::RGBColor(90, 90, 90),
+                width: 1,
+                marker: Marker::None,
+            });
+        }
+        out.files.add_plot(
+            &out.path(""),
+            &Plot {
+                title: "Belt with CVS, k = 100 N/m: settled amplitude against belt speed".into(),
+                x_label: "belt speed v_belt (m/s)".into(),
+                y_label: "amplitude of x - v_mean*t (m)".into(),
+                series,
+                legend: Corner::UpperRight,
+                log: false,
+            },
+        )
+    }
+}
