@@ -2514,6 +2514,35 @@ fn the_scheme_is_chosen_apart_from_the_treatment_of_v_zero() {
         e.contains("option `--switching regularized` applies to --scheme event-driven"),
         "{e}"
     );
+    // A study under time-stepping has one method, Moreau–Jean's: naming solvers is refused.
+    let e = rejected(&[
+        "converge",
+        "belt",
+        "--model",
+        "CS",
+        "--scheme",
+        "time-stepping",
+        "--solvers",
+        "rk4,dopri5",
+    ]);
+    assert!(
+        e.contains("option `--solvers rk4,dopri5` does not apply to --scheme time-stepping"),
+        "{e}"
+    );
+    let e = rejected(&[
+        "independence",
+        "belt",
+        "--model",
+        "CS",
+        "--scheme",
+        "time-stepping",
+        "--solver",
+        "rk4",
+    ]);
+    assert!(
+        e.contains("option `--solver rk4` does not apply to --scheme time-stepping"),
+        "{e}"
+    );
     let e = rejected(&["simulate", "belt", "--model", "CS", "--scheme", "moreau"]);
     assert!(
         e.contains("unknown scheme `moreau`; known: event-driven, time-stepping"),

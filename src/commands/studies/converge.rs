@@ -7,18 +7,18 @@ use crate::study::{conduct, ConvergenceStudy};
 use clap::Args;
 use integrators::Solver;
 
+/// The solvers `converge` compares by default.
+const CONVERGE_SOLVERS: [Solver; 3] = [Solver::Rk4, Solver::Dopri5, Solver::ImplicitEuler];
+
 /// Options of `converge`.
 #[derive(Args, Debug)]
 pub struct ConvergeArgs {
     /// The problem.
     #[command(flatten)]
     pub case: CaseArgs,
-    /// Solvers, comma-separated.
-    #[arg(
-        long,
-        value_delimiter = ',',
-        default_value = "rk4,dopri5,implicit-euler"
-    )]
+    /// Solvers, comma-separated [default: rk4,dopri5,implicit-euler; refused under --scheme
+    /// time-stepping, whose one method is Moreau–Jean's scheme].
+    #[arg(long, value_delimiter = ',')]
     pub solvers: Vec<Solver>,
     /// Step sizes of rk4, dopri5 and implicit-euler (fixed steps), coarse to fine.
     #[arg(
@@ -43,7 +43,7 @@ pub fn converge(a: &ConvergeArgs) -> Result<Made, AppError> {
     a.case.make(|t, case| {
         let study = ConvergenceStudy {
             case,
-            solvers: &a.solvers,
+            solvers: &a.case.solvers("solvers", &a.solvers, &CONVERGE_SOLVERS)?,
             steps: &a.dt_list,
             tols: &a.tol_list,
         };

@@ -15,9 +15,10 @@ pub struct IndependenceArgs {
     /// The problem.
     #[command(flatten)]
     pub case: CaseArgs,
-    /// The solver.
-    #[arg(long, value_name = "SOLVER", default_value = "rk4")]
-    pub solver: Solver,
+    /// The solver [default: rk4; refused under --scheme time-stepping, whose one method is
+    /// Moreau–Jean's scheme].
+    #[arg(long, value_name = "SOLVER")]
+    pub solver: Option<Solver>,
     /// The coarsest step size (rk4) or tolerance (adaptive solvers).
     #[arg(
         long,
@@ -63,7 +64,9 @@ pub fn independence(a: &IndependenceArgs) -> Result<Made, AppError> {
         };
         let study = IndependenceStudy {
             case,
-            solver: a.solver,
+            solver: a
+                .case
+                .solvers("solver", a.solver.as_slice(), &[Solver::Rk4])?[0],
             refinement: r,
         };
         let s = conduct(&study, t, "independence")?;

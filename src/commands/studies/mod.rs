@@ -14,6 +14,7 @@ use crate::warnings::{diverged_line, unread_warnings};
 use clap::Args;
 use friction_models::params::show;
 use friction_models::ModelId;
+use integrators::Solver;
 use scenarios::run::DEFAULT_THETA;
 use scenarios::studies::{Case, StudyCase, StudyRun, SystemCase};
 use scenarios::{Scenario, SwitchingKind};
@@ -146,6 +147,26 @@ impl CaseArgs {
 }
 
 impl CaseArgs {
+    /// The solvers a study compares: those `given` by `option`, or `defaults` when none are. Under
+    /// time-stepping the study's one method is Moreau–Jean's scheme, which takes no solver:
+    /// naming one is refused rather than ignored.
+    pub fn solvers(
+        &self,
+        option: &str,
+        given: &[Solver],
+        defaults: &[Solver],
+    ) -> Result<Vec<Solver>, AppError> {
+        if !given.is_empty() && self.treatment()?.is_time_stepping() {
+            return Err(AppError::Usage(format!(
+                "option `--{option} {}` does not apply to --scheme time-stepping: the study's one \
+                 method is Moreau–Jean's scheme over the study's step sizes, which takes no ODE \
+                 solver; drop the solvers, or choose --scheme event-driven",
+                given.iter().map(|s| s.name()).collect::<Vec<_>>().join(",")
+            )));
+        }
+        Ok(if given.is_empty() { defaults } else { given }.to_vec())
+    }
+
     /// The treatment of v = 0 that `--scheme` and `--switching` ask for (time-stepping at
     /// θ = 1/2).
     pub fn treatment(&self) -> Result<SwitchingKind, AppError> {

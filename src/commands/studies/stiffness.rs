@@ -8,9 +8,18 @@ use crate::error::AppError;
 use crate::options::SchemeName;
 use crate::study::{conduct, StiffnessStudy};
 use clap::Args;
-use integrators::Solver;
+use integrators::{DiffsolMethod, Solver};
 use scenarios::studies;
 use scenarios::SwitchingKind;
+
+/// The solvers `stiffness` compares by default: two explicit, three implicit.
+const STIFFNESS_SOLVERS: [Solver; 5] = [
+    Solver::Dopri5,
+    Solver::Diffsol(DiffsolMethod::Tsit45),
+    Solver::ImplicitEuler,
+    Solver::Diffsol(DiffsolMethod::Bdf),
+    Solver::Diffsol(DiffsolMethod::Esdirk34),
+];
 
 /// Options of `stiffness`.
 #[derive(Args, Debug)]
@@ -30,12 +39,9 @@ pub struct StiffnessArgs {
         default_value = "1e-1,1e-2,1e-3,1e-4"
     )]
     pub values: Vec<f64>,
-    /// Solvers, comma-separated.
-    #[arg(
-        long,
-        value_delimiter = ',',
-        default_value = "dopri5,tsit45,implicit-euler,bdf,esdirk34"
-    )]
+    /// Solvers, comma-separated [default: dopri5,tsit45,implicit-euler,bdf,esdirk34; refused under --scheme
+    /// time-stepping, whose one method is Moreau–Jean's scheme].
+    #[arg(long, value_delimiter = ',')]
     pub solvers: Vec<Solver>,
     /// The error to reach (maximum over the time grid).
     #[arg(
@@ -90,7 +96,7 @@ pub fn stiffness(a: &StiffnessArgs) -> Result<Made, AppError> {
         let study = StiffnessStudy {
             case,
             sweep,
-            solvers: &a.solvers,
+            solvers: &a.case.solvers("solvers", &a.solvers, &STIFFNESS_SOLVERS)?,
             steps: &a.dt_list,
             tols: &a.tol_list,
         };

@@ -6,7 +6,18 @@ use crate::error::AppError;
 use crate::ranges;
 use crate::study::{conduct, WorkPrecisionStudy};
 use clap::Args;
-use integrators::Solver;
+use integrators::{DiffsolMethod, Solver};
+
+/// The solvers `work-precision` compares by default: every built-in one.
+const WORK_PRECISION_SOLVERS: [Solver; 7] = [
+    Solver::Rk4,
+    Solver::Dopri5,
+    Solver::ImplicitEuler,
+    Solver::Diffsol(DiffsolMethod::Bdf),
+    Solver::Diffsol(DiffsolMethod::TrBdf2),
+    Solver::Diffsol(DiffsolMethod::Esdirk34),
+    Solver::Diffsol(DiffsolMethod::Tsit45),
+];
 
 /// Options of `work-precision`.
 #[derive(Args, Debug)]
@@ -14,12 +25,9 @@ pub struct WorkPrecisionArgs {
     /// The problem.
     #[command(flatten)]
     pub case: CaseArgs,
-    /// Solvers, comma-separated.
-    #[arg(
-        long,
-        value_delimiter = ',',
-        default_value = "rk4,dopri5,implicit-euler,bdf,tr-bdf2,esdirk34,tsit45"
-    )]
+    /// Solvers, comma-separated [default: rk4,dopri5,implicit-euler,bdf,tr-bdf2,esdirk34,tsit45; refused under --scheme
+    /// time-stepping, whose one method is Moreau–Jean's scheme].
+    #[arg(long, value_delimiter = ',')]
     pub solvers: Vec<Solver>,
     /// Step sizes of rk4, coarse to fine.
     #[arg(
@@ -51,7 +59,9 @@ pub fn work_precision(a: &WorkPrecisionArgs) -> Result<Made, AppError> {
     a.case.make(|t, case| {
         let study = WorkPrecisionStudy {
             case,
-            solvers: &a.solvers,
+            solvers: &a
+                .case
+                .solvers("solvers", &a.solvers, &WORK_PRECISION_SOLVERS)?,
             steps: &a.dt_list,
             tols: &a.tol_list,
             repeats: ranges::REPEATS.count(a.repeats)?,
