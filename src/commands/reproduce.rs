@@ -3,7 +3,6 @@
 
 use crate::artifacts::Artifacts;
 use crate::commands::curve::{used_parameters, KeyValues};
-use crate::commands::phenomena::add_table;
 use crate::error::AppError;
 use crate::figure::Drawn;
 use crate::options::ParamOptions;
@@ -11,8 +10,8 @@ use crate::output::{Cell, Table};
 use crate::plot::{Corner, Marker, Plot, Series, PALETTE};
 use crate::ranges;
 use crate::study::{
-    conduct, ConvergenceStudy, IndependenceStudy, Refinement, ScalingStudy, StiffnessStudy, Target,
-    WorkPrecisionStudy,
+    check_decided, conduct, ConvergenceStudy, IndependenceStudy, Refinement, ScalingStudy,
+    StiffnessStudy, Table2Study, Target, WorkPrecisionStudy,
 };
 use crate::threads::with_threads;
 use clap::Args;
@@ -655,13 +654,18 @@ pub fn run(args: &ReproduceArgs) -> Result<(), AppError> {
         args.out.join("paper-experiment.md"),
         format!("# The paper's experiment\n\n{experiment_md}").into_bytes(),
     );
-    let table = add_table(
-        &mut files,
-        &args.out,
-        Protocol::default(),
-        &Default::default(),
+    let table2 = Table2Study {
+        models: &ModelId::ALL,
+        protocol: Protocol::default(),
+        parameters: None,
+    };
+    let mut target = Target {
+        files: &mut files,
+        dir: &args.out,
         threads,
-    )?;
+        failure: None,
+    };
+    let table = conduct(&table2, &mut target, "table2")?;
     let disagreements = table
         .iter()
         .flat_map(|(_, r)| r.iter())
@@ -716,7 +720,7 @@ pub fn run(args: &ReproduceArgs) -> Result<(), AppError> {
     if let Some(failure) = failure {
         return Err(failure);
     }
-    crate::commands::phenomena::check_decided(&table)
+    check_decided(&table)
 }
 
 /// A section of the report that runs the studies: its text, or, when it fails while running

@@ -11,6 +11,7 @@ mod independence;
 mod scaling;
 mod stick_slip;
 mod stiffness;
+mod table2;
 mod tables;
 mod work_precision;
 
@@ -19,6 +20,7 @@ pub use independence::{IndependenceStudy, Refinement};
 pub use scaling::ScalingStudy;
 pub use stick_slip::{Bifurcation, BifurcationStudy, StickSlipMap, StickSlipMapStudy};
 pub use stiffness::StiffnessStudy;
+pub use table2::{check_decided, undecided, Table2Study};
 pub use work_precision::WorkPrecisionStudy;
 
 use crate::artifacts::Artifacts;

@@ -778,12 +778,13 @@ pub type Row = Vec<(Phenomenon, Cell)>;
 /// With `regions`, each cell is also decided over its grid of rig parameters
 /// ([`region`]): about 20 times the work. A cell whose protocol fails in the solver is kept,
 /// undecided ([`Cell::measured`] holds why), and the others are decided; bad input fails the
-/// table.
+/// table. `progress` is called after each cell.
 pub fn table(
     models: &[ModelId],
     protocol: Protocol,
     parameters: Option<&FrictionParams>,
     regions: bool,
+    progress: &(dyn Fn() + Sync),
 ) -> Result<Vec<(ModelId, Row)>, ScenarioError> {
     use rayon::prelude::*;
     let jobs: Vec<(ModelId, Phenomenon)> = models
@@ -796,26 +797,25 @@ pub fn table(
             let p = parameters.copied().unwrap_or_else(|| parameters_for(model));
             let law = Law::from(model);
             let paper = phenomenon.paper_claim(model);
-            let v = match decide(phenomenon, &law, &p, protocol) {
-                Ok(v) => v,
-                Err(e @ (ScenarioError::Solver { .. } | ScenarioError::RunFailed(_))) => {
-                    return Ok(Cell {
-                        measured: Err(e.to_string()),
-                        paper,
-                        evidence: BTreeMap::new(),
-                        region: None,
-                    })
-                }
-                Err(e) => return Err(e),
+            let cell = match decide(phenomenon, &law, &p, protocol) {
+                Ok(v) => Ok(Cell {
+                    region: regions
+                        .then(|| region(phenomenon, &law, &p, protocol, v.measured))
+                        .transpose()?,
+                    measured: Ok(v.measured),
+                    paper,
+                    evidence: v.evidence,
+                }),
+                Err(e @ (ScenarioError::Solver { .. } | ScenarioError::RunFailed(_))) => Ok(Cell {
+                    measured: Err(e.to_string()),
+                    paper,
+                    evidence: BTreeMap::new(),
+                    region: None,
+                }),
+                Err(e) => Err(e),
             };
-            Ok(Cell {
-                region: regions
-                    .then(|| region(phenomenon, &law, &p, protocol, v.measured))
-                    .transpose()?,
-                measured: Ok(v.measured),
-                paper,
-                evidence: v.evidence,
-            })
+            progress();
+            cell
         })
         .collect();
     let mut cells = cells.into_iter();

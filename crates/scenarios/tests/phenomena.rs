@@ -313,7 +313,7 @@ fn hysteresis_is_frictional_lag_or_a_lossy_presliding_loop_never_a_spring() {
 
 #[test]
 fn two_solvers_agree_on_every_cell() {
-    let dopri5 = table(&ModelId::ALL, Protocol::default(), None, false).unwrap();
+    let dopri5 = table(&ModelId::ALL, Protocol::default(), None, false, &|| {}).unwrap();
     let bdf = table(
         &ModelId::ALL,
         Protocol {
@@ -327,6 +327,7 @@ fn two_solvers_agree_on_every_cell() {
         },
         None,
         false,
+        &|| {},
     )
     .unwrap();
     for ((model, a), (_, b)) in dopri5.iter().zip(&bdf) {

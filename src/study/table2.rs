@@ -1,0 +1,310 @@
+//! Table 2 decided by simulation ([`scenarios::phenomena`]): every protocol for every model,
+//! each cell with its verdict over a grid of rig parameters, written beside the paper's claims
+//! as `table2.md` and `table2.json` with the numbers that decided each cell.
+
+use super::{Study, StudyFiles};
+use crate::error::AppError;
+use friction_models::{FrictionParams, ModelId};
+use scenarios::phenomena::{table, thresholds, Cell, Phenomenon, Protocol, Row};
+use scenarios::ScenarioError;
+use serde_json::{json, Map, Value};
+
+/// Table 2 for `models` under `protocol`, each model at its own parameter set or all at
+/// `parameters` (with the words that describe them).
+pub struct Table2Study<'a> {
+    /// The models, in column order.
+    pub models: &'a [ModelId],
+    /// The solver, tolerances and bounds of every protocol run.
+    pub protocol: Protocol,
+    /// Parameters for every model, with their description; `None`: each model at its own set.
+    pub parameters: Option<(FrictionParams, String)>,
+}
+
+impl Study for Table2Study<'_> {
+    type Result = Vec<(ModelId, Row)>;
+
+    fn name(&self) -> &'static str {
+        "Table 2"
+    }
+
+    fn runs(&self) -> usize {
+        self.models.len() * Phenomenon::ALL.len()
+    }
+
+    fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<Self::Result, ScenarioError> {
+        let parameters = self.parameters.as_ref().map(|p| &p.0);
+        table(self.models, self.protocol, parameters, true, progress)
+    }
+
+    /// `{stem}.md` (the table beside the paper's, with the protocols and their verdicts over
+    /// their grids) and `{stem}.json` (every cell with its evidence).
+    fn write(&self, rows: &Self::Result, out: &mut StudyFiles) -> Result<(), AppError> {
+        let own = own_parameters();
+        let described = self
+            .parameters
+            .as_ref()
+            .map_or(own.as_str(), |p| p.1.as_str());
+        out.files.add(
+            out.path(".md"),
+            markdown(rows, &self.protocol, described).into_bytes(),
+        );
+        out.files.add_json(out.path(".json"), &json_table(rows))
+    }
+}
+
+/// Table 2 as `table2.json`: `{"<model>": {"<phenomenon>": {measured, failed, paper,
+/// evidence, region}}}`: `measured` null and `failed` the reason for a cell whose run failed,
+/// `region` the verdict over the cell's grid of rig parameters (axes, points, fraction,
+/// flips, undecided).
+fn json_table(rows: &[(ModelId, Row)]) -> Value {
+    let mut out = Map::new();
+    for (model, row) in rows {
+        let mut cells = Map::new();
+        for (p, c) in row {
+            cells.insert(
+                p.name().into(),
+                json!({
+                    "measured": c.measured.as_ref().ok(),
+                    "failed": c.measured.as_ref().err(),
+                    "paper": c.paper,
+                    "evidence": c.evidence,
+                    "region": c.region,
+                }),
+            );
+        }
+        out.insert(model.name().into(), Value::Object(cells));
+    }
+    Value::Object(out)
+}
+
+fn mark(c: &Cell) -> String {
+    let Ok(measured) = c.measured else {
+        return match c.paper {
+            Some(p) => format!("failed, paper {}", u8::from(p)),
+            None => "failed".into(),
+        };
+    };
+    let m = u8::from(measured);
+    let mark = match c.paper {
+        Some(p) if p != measured => format!("**{m}** ≠ {}", u8::from(p)),
+        Some(p) => format!("{m} = {}", u8::from(p)),
+        None => m.to_string(),
+    };
+    match &c.region {
+        Some(r) if r.depends() => format!("{mark} (depends: {:.0} %)", 100.0 * r.fraction),
+        _ => mark,
+    }
+}
+
+/// Most flipping points listed per cell in `table2.md` (all are in `table2.json`).
+const FLIPS_LISTED: usize = 4;
+
+/// The section of `table2.md` on the verdicts over the grids of rig parameters.
+fn regions_markdown(rows: &[(ModelId, Row)]) -> String {
+    if !rows
+        .iter()
+        .any(|(_, r)| r.iter().any(|(_, c)| c.region.is_some()))
+    {
+        return String::new();
+    }
+    let mut s = String::from(
+        "## Over the rig's parameters\n\nEach cell is also decided at every point of a grid of \
+         the rig's parameters, the default rig among them; a cell marked `depends: P %` holds on \
+         P % of its grid (`table2.json` lists every point where it flips). The grids:\n\n",
+    );
+    for phenomenon in Phenomenon::ALL {
+        let axes: Vec<String> = phenomenon
+            .region()
+            .iter()
+            .map(|(name, values)| {
+                let v: Vec<String> = values.iter().map(|v| v.to_string()).collect();
+                format!("{name} ∈ {{{}}}", v.join(", "))
+            })
+            .collect();
+        s += &format!(
+            "- {}: {}\n",
+            phenomenon.label(),
+            if axes.is_empty() {
+                "no rig parameter (steady friction or a prescribed motion): the default rig only"
+                    .to_string()
+            } else {
+                axes.join(" × ")
+            }
+        );
+    }
+    s += "\n";
+    for (model, row) in rows {
+        for (phenomenon, c) in row {
+            let (Ok(measured), Some(r)) = (
+                c.measured.as_ref(),
+                c.region
+                    .as_ref()
+                    .filter(|r| r.depends() || !r.undecided.is_empty()),
+            ) else {
+                continue;
+            };
+            let point = |p: &std::collections::BTreeMap<&str, f64>| {
+                p.iter()
+                    .map(|(k, v)| format!("{k} = {v}"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            };
+            let mut flips: Vec<String> = r.flips.iter().take(FLIPS_LISTED).map(point).collect();
+            if r.flips.len() > FLIPS_LISTED {
+                flips.push(format!("{} more", r.flips.len() - FLIPS_LISTED));
+            }
+            s += &format!(
+                "- {model}, {}: {} on {:.0} % of {} points; not {} at ({})",
+                phenomenon.label(),
+                u8::from(*measured),
+                100.0
+                    * (if *measured {
+                        r.fraction
+                    } else {
+                        1.0 - r.fraction
+                    }),
+                r.points - r.undecided.len(),
+                u8::from(*measured),
+                flips.join("; ")
+            );
+            if !r.undecided.is_empty() {
+                s += &format!("; {} points undecided (the run failed)", r.undecided.len());
+            }
+            s += "\n";
+        }
+    }
+    s + "\n"
+}
+
+/// Table 2 as markdown: the measured table beside the paper's, then the evidence.
+pub fn markdown(rows: &[(ModelId, Row)], protocol: &Protocol, parameters: &str) -> String {
+    let mut s = String::from("# Table 2, decided by simulation\n\n");
+    s += &format!(
+        "Written by `friction-lab phenomena` with solver {} ({:?}), event switching, {parameters}. \
+         Each cell reads `measured = paper`; a disagreement is \
+         bold, `measured ≠ paper`. The protocols and thresholds are in docs/phenomena.md.\n\n",
+        protocol.solver.name(),
+        protocol.step
+    );
+    s += "| phenomenon |";
+    for (m, _) in rows {
+        s += &format!(" {m} |");
+    }
+    s += "\n|---|";
+    s += &"---|".repeat(rows.len());
+    s += "\n| parameters read (paper's count) |";
+    for (m, _) in rows {
+        let paper = [4, 4, 4, 3, 3, 4];
+        let n = m.parameters().len();
+        match ModelId::PAPER.iter().position(|p| p == m) {
+            Some(i) => s += &format!(" {n} ({}) |", paper[i]),
+            None => s += &format!(" {n} |"),
+        }
+    }
+    s += "\n";
+    for (i, phenomenon) in Phenomenon::ALL.iter().enumerate() {
+        s += &format!("| {} |", phenomenon.label());
+        for (_, row) in rows {
+            let c = &row[i].1;
+            s += &format!(" {} |", mark(c));
+        }
+        s += "\n";
+    }
+    let disagreements: usize = rows
+        .iter()
+        .flat_map(|(_, r)| r.iter())
+        .filter(|(_, c)| c.disagrees())
+        .count();
+    s += &format!("\n{disagreements} of the paper's 42 claims disagree with the simulations.");
+    let failed = undecided(rows).len();
+    if failed > 0 {
+        s += &format!(
+            " {failed} cells are undecided: a run of their protocol failed (the evidence below \
+             says where and why)."
+        );
+    }
+    s += "\n\n";
+    s += &regions_markdown(rows);
+    s += "## Evidence\n\n";
+    for (model, row) in rows {
+        s += &format!(
+            "### {model}\n\n| phenomenon | measured | paper | evidence |\n|---|---|---|---|\n"
+        );
+        for (p, c) in row {
+            let evidence: Vec<String> = c
+                .evidence
+                .iter()
+                .map(|(k, v)| format!("{k} = {v:.6e}"))
+                .collect();
+            let paper = c.paper.map_or("-".to_string(), |p| u8::from(p).to_string());
+            let (measured, evidence) = match &c.measured {
+                Ok(m) => (u8::from(*m).to_string(), evidence.join(", ")),
+                Err(why) => ("failed".to_string(), why.clone()),
+            };
+            s += &format!("| {} | {measured} | {paper} | {evidence} |\n", p.label());
+        }
+        s += "\n";
+    }
+    s += &format!(
+        "Thresholds: stiction: break-away force under a ramp of {}·max(F_s, F_c) per second \
+         above the kinetic level after it by more than {}; pre-sliding x_max > {} m and recovery > {}; Stribeck \
+         and viscous relative change beyond {}; hysteresis: a friction–velocity loop wider than {} \
+         in sliding or a pre-sliding loss above {} per cycle; stick–slip: at \
+         least {} stick phases in the settled half and {} per cycle; rising static friction: \
+         break-away force change beyond {}.\n",
+        thresholds::STICTION_RATE,
+        thresholds::STATIC_EXCESS,
+        thresholds::PRESLIDING_MIN,
+        thresholds::PRESLIDING_RECOVERY,
+        thresholds::STEADY_CHANGE,
+        thresholds::LAG_WIDTH,
+        thresholds::PRESLIDING_DISSIPATION,
+        thresholds::STICK_PHASES,
+        thresholds::STICK_PER_CYCLE,
+        thresholds::BREAKAWAY_CHANGE,
+    );
+    s
+}
+
+/// The parameters of Table 2 when none are given: each model at its own set
+/// ([`phenomena::parameters_for`]).
+fn own_parameters() -> String {
+    let lugre: Vec<&str> = ModelId::ALL
+        .iter()
+        .filter(|&&m| scenarios::phenomena::parameters_for(m) == FrictionParams::lugre_1995())
+        .map(|m| m.name())
+        .collect();
+    format!(
+        "parameter set `paper` (`lugre-1995` for {})",
+        lugre.join(", ")
+    )
+}
+
+/// The cells whose protocol failed, as `model phenomenon: why`, in the table's order.
+pub fn undecided(rows: &[(ModelId, Row)]) -> Vec<String> {
+    rows.iter()
+        .flat_map(|(m, row)| row.iter().map(move |(p, c)| (m, p, c)))
+        .filter_map(|(m, p, c)| {
+            let why = c.measured.as_ref().err()?;
+            Some(format!("{m} {}: {why}", p.name()))
+        })
+        .collect()
+}
+
+/// The failure of a command whose Table 2 has undecided cells (exit 1, after its files are
+/// written), or `Ok` if every cell was decided.
+pub fn check_decided(rows: &[(ModelId, Row)]) -> Result<(), AppError> {
+    let failed = undecided(rows);
+    match failed.first() {
+        None => Ok(()),
+        Some(first) => {
+            let count = match failed.len() {
+                1 => "1 cell of Table 2 is undecided, its protocol run".to_string(),
+                n => format!("{n} cells of Table 2 are undecided, their protocol runs"),
+            };
+            Err(AppError::StudyRun(format!(
+                "{count} failed (marked in table2.md and table2.json); the first: {first}"
+            )))
+        }
+    }
+}
