@@ -48,7 +48,8 @@ use crate::system::{System, SystemError};
 use friction_models::params::show;
 use friction_models::{Direction, FrictionModel, SignLaw};
 use integrators::{
-    EventRecord, Failure, Mode, ModeSwitch, Options, Output, Solution, SolverError, StepControl,
+    EventRecord, Failure, Integrator, Mode, ModeSwitch, Ode, Options, Solution, SolverError, Stats,
+    StepControl, Stepper, StepperState,
 };
 
 /// Relative change of a velocity in one sweep below which Gauss–Seidel has converged (the
@@ -65,8 +66,6 @@ pub const MAX_SWEEPS: usize = 10_000;
 /// coupled bodies (h²θ²k ≪ m: the chain's defaults) converge in fewer sweeps and never pay
 /// for a factorisation.
 pub const CORRECT_AFTER: usize = 3;
-/// The wall clock is read every this many steps.
-const CLOCK_EVERY: usize = 64;
 
 /// The scheme's name in solutions and summaries.
 pub const NAME: &str = "moreau-jean";
@@ -232,7 +231,7 @@ struct BodyStep {
 
 /// The scheme's working state between steps. The bodies are in the sweep order
 /// ([`colour_order`]): body `body_of[k]` is at place k, body i at place `at[i]`.
-struct Stepper<'p, 'a> {
+struct TimeStepper<'p, 'a> {
     p: &'p FrictionSystem<'a>,
     theta: f64,
     body_of: Vec<usize>,
@@ -240,9 +239,9 @@ struct Stepper<'p, 'a> {
     bodies: Vec<BodyStep>,
     matrix: Matrix,
     /// The state and modes at the end of the last step.
-    y: Vec<f64>,
+    state: StepperState,
     modes: Vec<Mode>,
-    /// The state and modes at the start of the last step, kept only for a step the recorder
+    /// The state and modes at the start of the last step, kept only for a step the driver
     /// interpolates in.
     y_prev: Vec<f64>,
     modes_prev: Vec<Mode>,
@@ -279,10 +278,68 @@ struct Stepper<'p, 'a> {
     sweeps: usize,
     iterations: usize,
     corrections: usize,
+    /// The run: its start, its end, its fixed step and how many steps it takes, the steps
+    /// taken, and those that switched a mode (its events).
+    t0: f64,
+    t_end: f64,
+    h: f64,
+    n_steps: usize,
+    taken: usize,
+    switched_steps: usize,
+    /// The output grid, if any, and the first of its points after the last step's end: a step
+    /// with a point strictly inside keeps its start ([`TimeStepper::y_prev`]) for the driver's
+    /// interpolation.
+    grid: Option<Vec<f64>>,
+    grid_next: usize,
 }
 
-impl<'p, 'a> Stepper<'p, 'a> {
+impl<'p, 'a> TimeStepper<'p, 'a> {
+    /// The scheme at θ = `theta` for the run of `options` from `y0` in `modes0`: θ in
+    /// [`MoreauJean::THETA_RANGE`], a fixed step that divides the span into fewer than 2^64
+    /// steps.
     fn new(
+        p: &'p FrictionSystem<'a>,
+        theta: f64,
+        options: &Options,
+        y0: &[f64],
+        modes0: &[Mode],
+    ) -> Result<Self, SolverError> {
+        options.validate()?;
+        if !(0.5..=1.0).contains(&theta) {
+            return Err(SolverError::InvalidOption {
+                name: "theta",
+                value: theta,
+                allowed: MoreauJean::THETA_RANGE,
+            });
+        }
+        let StepControl::Fixed { h } = options.step else {
+            return Err(SolverError::Unsupported {
+                solver: NAME,
+                why: "time-stepping takes a fixed step (--dt), not tolerances".into(),
+            });
+        };
+        let (t0, t_end) = (options.t0, options.t_end);
+        let n_steps = ((t_end - t0) / h - 1e-9).ceil().max(1.0);
+        if n_steps >= usize::MAX as f64 {
+            return Err(SolverError::InvalidOption {
+                name: "dt",
+                value: h,
+                allowed: "a step that divides the span into fewer than 2^64 steps",
+            });
+        }
+        let grid = options.output.grid().map(<[f64]>::to_vec);
+        let grid_next = grid.as_ref().map_or(0, |g| g.partition_point(|&t| t <= t0));
+        Ok(TimeStepper {
+            t_end,
+            n_steps: n_steps as usize,
+            grid,
+            grid_next,
+            ..TimeStepper::build(p, theta, (t0, h), y0, modes0)
+        })
+    }
+
+    /// The scheme's state at (t0, y0) in `modes0` with step h, for a run of one step.
+    fn build(
         p: &'p FrictionSystem<'a>,
         theta: f64,
         (t0, h): (f64, f64),
@@ -347,12 +404,17 @@ impl<'p, 'a> Stepper<'p, 'a> {
             bodies[s.a].known += f;
             bodies[s.b].known -= f;
         }
-        let mut s = Stepper {
+        let mut s = TimeStepper {
             p,
             theta,
             matrix: Matrix::new(&mut bodies, &springs, h, theta),
             bodies,
-            y: y0.to_vec(),
+            state: StepperState {
+                t_prev: t0,
+                t: t0,
+                y: y0.to_vec(),
+                h,
+            },
             y_prev: y0.to_vec(),
             modes: modes0.to_vec(),
             modes_prev: modes0.to_vec(),
@@ -392,6 +454,14 @@ impl<'p, 'a> Stepper<'p, 'a> {
             sweeps: 0,
             iterations: 0,
             corrections: 0,
+            t0,
+            t_end: t0 + h,
+            h,
+            n_steps: 1,
+            taken: 0,
+            switched_steps: 0,
+            grid: None,
+            grid_next: 0,
         };
         for j in 0..p.system.contacts.len() {
             s.state_rates(j);
@@ -410,7 +480,7 @@ impl<'p, 'a> Stepper<'p, 'a> {
             STICK => SignLaw::Discontinuous,
             m => self.p.switching.law(m),
         };
-        let (x, y) = (self.p.layout.x[c.body], &self.y);
+        let (x, y) = (self.p.layout.x[c.body], &self.state.y);
         let states = c.states.clone();
         c.model.response(
             y[x],
@@ -422,9 +492,9 @@ impl<'p, 'a> Stepper<'p, 'a> {
     }
 
     /// One step from t0 to t0 + h, keeping its start in `y_prev` and `modes_prev` if
-    /// `keep_start` (the recorder interpolates in it).
+    /// `keep_start` (the driver interpolates in it).
     #[inline(never)]
-    fn step(&mut self, t0: f64, h: f64, keep_start: bool) -> Result<(), SolverError> {
+    fn advance(&mut self, t0: f64, h: f64, keep_start: bool) -> Result<(), SolverError> {
         self.begin_step(t0, h, keep_start);
         self.sweep_to_convergence(t0, h)?;
         self.finish_step(t0, h);
@@ -441,12 +511,12 @@ impl<'p, 'a> Stepper<'p, 'a> {
             self.matrix = Matrix::new(&mut self.bodies, &self.springs, h, theta);
         }
         if keep_start {
-            self.y_prev.copy_from_slice(&self.y);
+            self.y_prev.copy_from_slice(&self.state.y);
             self.modes_prev.copy_from_slice(&self.modes);
         }
         // The known part of b: m·v + h·(1−θ)·F_o(t_k) + h·θ·F_o(t_{k+1}) at zero end velocities.
         // Each body's `known` holds its springs' forces at t0 here (`finish_step` cleared it,
-        // then `accumulate` added them at the end of the step before, or `Stepper::new`).
+        // then `accumulate` added them at the end of the step before, or `TimeStepper::new`).
         let bodies = &mut self.bodies;
         for f in &p.system.forces {
             bodies[self.at[f.body]].known += f.constant + f.profile.at(t0);
@@ -565,7 +635,7 @@ impl<'p, 'a> Stepper<'p, 'a> {
                                     model: c.model,
                                     eq,
                                     x_hat,
-                                    z0: &self.y[c.states.clone()],
+                                    z0: &self.state.y[c.states.clone()],
                                     rate0: &self.rate[c.states.clone()],
                                 };
                                 // The last solution is Newton's starting point.
@@ -669,8 +739,8 @@ impl<'p, 'a> Stepper<'p, 'a> {
         let theta = self.theta;
         for b in self.bodies.iter_mut() {
             b.x = b.x_hat + h * theta * b.v;
-            self.y[b.x_index] = b.x;
-            self.y[b.x_index + 1] = b.v;
+            self.state.y[b.x_index] = b.x;
+            self.state.y[b.x_index + 1] = b.v;
             // The next step's sums start from zero.
             b.known = 0.0;
         }
@@ -711,7 +781,7 @@ impl<'p, 'a> Stepper<'p, 'a> {
             let end = self
                 .states
                 .end(at.clone(), self.solved[j].direction.is_some());
-            self.y[at].copy_from_slice(end);
+            self.state.y[at].copy_from_slice(end);
             self.state_rates(j);
         }
         self.accumulate(t0, h, dissipated, belt);
@@ -756,74 +826,90 @@ impl<'p, 'a> Stepper<'p, 'a> {
             }
         }
         let a = p.layout.accumulators;
-        self.y[a] += external;
-        self.y[a + 1] += dissipated;
-        self.y[a + 2] += belt;
+        self.state.y[a] += external;
+        self.state.y[a + 1] += dissipated;
+        self.state.y[a + 2] += belt;
     }
 }
 
-/// What the recorder keeps of each step, by the output option.
-struct Recorder<'o> {
-    output: &'o Output,
-    next: usize,
-    y: Vec<f64>,
-    modes: Vec<Mode>,
-}
-
-impl Recorder<'_> {
-    /// Whether the next step, ending at t1, has a grid point strictly inside it, which the
-    /// recorder interpolates from the step's start.
-    fn interpolates_before(&self, t1: f64) -> bool {
-        self.output
-            .grid()
-            .is_some_and(|grid| self.next < grid.len() && grid[self.next] < t1)
+impl Stepper for TimeStepper<'_, '_> {
+    fn name(&self) -> &'static str {
+        NAME
     }
 
-    /// Records the start (t0, y0) of the run.
-    fn start(&mut self, solution: &mut Solution, t0: f64, y0: &[f64], modes: &[Mode]) {
-        match self.output.grid() {
-            None => solution.push(t0, y0, modes),
-            Some(grid) => {
-                while self.next < grid.len() && grid[self.next] <= t0 {
-                    solution.push(grid[self.next], y0, modes);
-                    self.next += 1;
-                }
-            }
-        }
+    /// Built at the run's start, where the driver starts it; it locates no event, so it is
+    /// never restarted.
+    fn start(&mut self, _ode: &Ode, _t: f64, _y: &[f64]) -> Result<(), SolverError> {
+        Ok(())
     }
 
-    /// Records what falls in the step from (t0, y0, modes0) to (t1, y1, modes1): the step end,
-    /// or the grid points inside it by linear interpolation and the end of a step that
-    /// switched a mode. Inside a step a contact is reported stuck only if it is stuck at both
-    /// ends (so that a stuck contact moves with its surface exactly).
-    fn step(
-        &mut self,
-        solution: &mut Solution,
-        (t0, y0, modes0): (f64, &[f64], &[Mode]),
-        (t1, y1, modes1): (f64, &[f64], &[Mode]),
-        switched: bool,
-    ) {
-        let Some(grid) = self.output.grid() else {
-            solution.push(t1, y1, modes1);
-            return;
+    /// Step k from t_k = t0 + k·h to t0 + (k+1)·h, the last one shortened to end at t_end (the
+    /// times computed from t0, not accumulated).
+    fn step(&mut self, _ode: &Ode, _t_stop: f64) -> Result<(), SolverError> {
+        let k = self.taken;
+        let t_k = self.t0 + k as f64 * self.h;
+        let last = k + 1 >= self.n_steps;
+        let (t_next, step) = match last {
+            true => (self.t_end, self.t_end - t_k),
+            false => (self.t0 + (k + 1) as f64 * self.h, self.h),
         };
-        while self.next < grid.len() && grid[self.next] <= t1 {
-            if grid[self.next] == t1 {
-                solution.push(t1, y1, modes1);
-            } else {
-                let s = (grid[self.next] - t0) / (t1 - t0);
-                for ((y, a), b) in self.y.iter_mut().zip(y0).zip(y1) {
-                    *y = a + s * (b - a);
-                }
-                for ((m, &a), &b) in self.modes.iter_mut().zip(modes0).zip(modes1) {
-                    *m = if b == STICK && a != STICK { a } else { b };
-                }
-                solution.push(grid[self.next], &self.y, &self.modes);
-            }
-            self.next += 1;
+        let inside = |g: &[f64], next: usize| next < g.len() && g[next] < t_next;
+        let keep_start = self
+            .grid
+            .as_ref()
+            .is_some_and(|g| inside(g, self.grid_next));
+        self.advance(t_k, step, keep_start)?;
+        if let Some(g) = &self.grid {
+            self.grid_next += g[self.grid_next..].partition_point(|&t| t <= t_next);
         }
-        if switched && self.output.records_events() && solution.t.last() != Some(&t1) {
-            solution.push(t1, y1, modes1);
+        self.state.t_prev = t_k;
+        self.state.t = t_next;
+        self.taken += 1;
+        if !self.switches.is_empty() {
+            self.switched_steps += 1;
+        }
+        Ok(())
+    }
+
+    fn state(&self) -> &StepperState {
+        &self.state
+    }
+
+    /// The linear interpolant of the step's ends (kept for a step with an output point inside).
+    fn dense_output(&self, t: f64, y: &mut [f64]) {
+        let (t0, t1) = (self.state.t_prev, self.state.t);
+        let s = (t - t0) / (t1 - t0);
+        for ((y, a), b) in y.iter_mut().zip(&self.y_prev).zip(&self.state.y) {
+            *y = a + s * (b - a);
+        }
+    }
+
+    /// Gauss–Seidel sweeps as evaluations, their Newton iterations and corrections, and the
+    /// steps that switched a mode as events.
+    fn stats(&self) -> Stats {
+        Stats {
+            steps: self.taken,
+            rhs_evals: self.sweeps,
+            newton_iterations: self.iterations,
+            lu_factorizations: self.corrections,
+            events: self.switched_steps,
+            ..Stats::default()
+        }
+    }
+
+    fn locates_events(&self) -> bool {
+        false
+    }
+
+    fn take_switches(&mut self) -> Option<EventRecord> {
+        (!self.switches.is_empty()).then(|| event_record(self.state.t, self.switches.clone()))
+    }
+
+    /// Inside a step a contact is reported stuck only if it is stuck at both ends, so that a
+    /// stuck contact moves with its surface exactly.
+    fn modes_inside(&self, before: &[Mode], after: &[Mode], out: &mut [Mode]) {
+        for ((m, &a), &b) in out.iter_mut().zip(before).zip(after) {
+            *m = if b == STICK && a != STICK { a } else { b };
         }
     }
 }
@@ -834,8 +920,10 @@ impl MoreauJean {
 
     /// Integrates `problem` (built with [`Switching::Event`](crate::Switching)'s modes, as
     /// [`crate::Scheme::TimeStepping`] builds it) from `y0` in `modes0` with the fixed step
-    /// of `options`, telling `observe` the time after every step. A failure keeps everything
-    /// recorded before it.
+    /// of `options`, telling `observe` the time after every step but the last. The steps run on
+    /// the driver of every method ([`Integrator`]: its step cap, time limit, interrupt and
+    /// output), which locates no event for this method: it settles each contact's mode at the
+    /// end of every step (`TimeStepper`). A failure keeps everything recorded before it.
     pub fn solve(
         &self,
         problem: &FrictionSystem,
@@ -844,113 +932,14 @@ impl MoreauJean {
         options: &Options,
         observe: &mut dyn FnMut(f64),
     ) -> Result<Solution, Failure> {
-        let mut solution = Solution::new(NAME, y0.len(), modes0.len());
-        match self.run(problem, y0, modes0, options, observe, &mut solution) {
-            Ok(()) => Ok(solution),
-            Err(error) => Err(Failure {
-                error,
-                solution: Box::new(solution),
-            }),
-        }
-    }
-
-    fn run(
-        &self,
-        problem: &FrictionSystem,
-        y0: &[f64],
-        modes0: &[Mode],
-        options: &Options,
-        observe: &mut dyn FnMut(f64),
-        solution: &mut Solution,
-    ) -> Result<(), SolverError> {
-        options.validate()?;
-        if !(0.5..=1.0).contains(&self.theta) {
-            return Err(SolverError::InvalidOption {
-                name: "theta",
-                value: self.theta,
-                allowed: Self::THETA_RANGE,
-            });
-        }
-        let StepControl::Fixed { h } = options.step else {
-            return Err(SolverError::Unsupported {
-                solver: NAME,
-                why: "time-stepping takes a fixed step (--dt), not tolerances".into(),
-            });
+        let failed = |error| Failure {
+            error,
+            solution: Box::new(Solution::new(NAME, y0.len(), modes0.len())),
         };
-        let (t0, t_end) = (options.t0, options.t_end);
-        let n_steps = ((t_end - t0) / h - 1e-9).ceil().max(1.0);
-        if n_steps >= usize::MAX as f64 {
-            return Err(SolverError::InvalidOption {
-                name: "dt",
-                value: h,
-                allowed: "a step that divides the span into fewer than 2^64 steps",
-            });
-        }
-        let n_steps = n_steps as usize;
-        let clock = std::time::Instant::now();
-        let mut s = Stepper::new(problem, self.theta, (t0, h), y0, modes0);
-        let mut recorder = Recorder {
-            output: &options.output,
-            next: 0,
-            y: vec![0.0; y0.len()],
-            modes: modes0.to_vec(),
-        };
-        recorder.start(solution, t0, y0, modes0);
-        // The steps; the statistics are written after them whether they all succeed or one
-        // fails (a failure keeps the run up to it, with what it cost).
-        let mut steps = || -> Result<(), SolverError> {
-            for k in 0..n_steps {
-                if k == options.max_steps {
-                    return Err(SolverError::TooManySteps {
-                        t: t0 + k as f64 * h,
-                        h,
-                        max: options.max_steps,
-                    });
-                }
-                if let Some(limit) = options.time_limit {
-                    if k % CLOCK_EVERY == 0 && clock.elapsed().as_secs_f64() > limit {
-                        return Err(SolverError::TimeLimit {
-                            t: t0 + k as f64 * h,
-                            limit,
-                        });
-                    }
-                }
-                let t_k = t0 + k as f64 * h;
-                if integrators::interrupt::requested() {
-                    return Err(SolverError::Interrupted { t: t_k });
-                }
-                let t_next = if k + 1 == n_steps {
-                    t_end
-                } else {
-                    t0 + (k + 1) as f64 * h
-                };
-                let step = if k + 1 == n_steps { t_end - t_k } else { h };
-                s.step(t_k, step, recorder.interpolates_before(t_next))?;
-                let switched = !s.switches.is_empty();
-                if switched {
-                    solution
-                        .events
-                        .push(event_record(t_next, s.switches.clone()));
-                    solution.stats.events += 1;
-                }
-                // (y_prev and modes_prev are the step's start only when the recorder asked for them;
-                // it reads them only then.)
-                recorder.step(
-                    solution,
-                    (t_k, &s.y_prev, &s.modes_prev),
-                    (t_next, &s.y, &s.modes),
-                    switched,
-                );
-                solution.stats.steps += 1;
-                observe(t_next);
-            }
-            Ok(())
-        };
-        let result = steps();
-        solution.stats.rhs_evals = s.sweeps;
-        solution.stats.newton_iterations = s.iterations;
-        solution.stats.lu_factorizations = s.corrections;
-        result
+        let stepper = TimeStepper::new(problem, self.theta, options, y0, modes0).map_err(failed)?;
+        Integrator::new(problem, Box::new(stepper), y0, modes0, options.clone())
+            .map_err(failed)?
+            .solve_observed(observe)
     }
 }
 
@@ -975,7 +964,7 @@ fn event_record(t: f64, switches: Vec<ModeSwitch>) -> EventRecord {
 
 #[cfg(test)]
 mod tests {
-    use super::{colour_order, Stepper, SWEEP_ATOL, SWEEP_RTOL};
+    use super::{colour_order, TimeStepper, SWEEP_ATOL, SWEEP_RTOL};
     use crate::chain::ChainParams;
     use crate::{FrictionSystem, Switching};
     use friction_models::{FrictionParams, ModelId, Variant};
@@ -994,7 +983,7 @@ mod tests {
         let y0 = problem.initial_state();
         let modes0 = problem.initial_modes(0.0, &y0);
         let h = 1e-3;
-        let mut s = Stepper::new(problem, 0.5, (0.0, h), &y0, &modes0);
+        let mut s = TimeStepper::build(problem, 0.5, (0.0, h), &y0, &modes0);
         let mut worst = 0.0_f64;
         for k in 0..steps {
             let t = k as f64 * h;

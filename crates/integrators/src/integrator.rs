@@ -40,6 +40,10 @@ pub struct Integrator<'a> {
     /// The chattering guard's window, s.
     zeno_window: f64,
     modes: Vec<Mode>,
+    /// For a method that settles the modes itself: the modes at the start of a step that
+    /// switched, and those reported inside it.
+    modes_before: Vec<Mode>,
+    modes_inside: Vec<Mode>,
     watch: EventWatch,
     solution: Solution,
     grid_next: usize,
@@ -73,7 +77,9 @@ impl<'a> Integrator<'a> {
         check_finite(y0, options.t0, 0.0, "initial state")?;
         stepper.start(&Ode { problem, modes }, options.t0, y0)?;
         let mut watch = EventWatch::default();
-        watch.start(problem, modes, options.t0, y0, &[]);
+        if stepper.locates_events() {
+            watch.start(problem, modes, options.t0, y0, &[]);
+        }
         let mut solution = Solution::new(stepper.name(), problem.dim(), modes.len());
         let mut grid_next = 0;
         match options.output.grid() {
@@ -93,6 +99,8 @@ impl<'a> Integrator<'a> {
             zeno_window: options.zeno.window_s(problem.time_scale()),
             options,
             modes: modes.to_vec(),
+            modes_before: modes.to_vec(),
+            modes_inside: modes.to_vec(),
             watch,
             solution,
             grid_next,
@@ -163,6 +171,9 @@ impl<'a> Integrator<'a> {
         };
         self.stepper.step(&ode, t_end)?;
         let (t0, t1) = (self.stepper.state().t_prev, self.stepper.state().t);
+        if !self.stepper.locates_events() {
+            return Ok(self.record_own_switches(t1));
+        }
         let stepper = &self.stepper;
         let found = self.watch.check(
             self.problem,
@@ -187,6 +198,53 @@ impl<'a> Integrator<'a> {
     }
 
     /// Applies the events `fired` at `t`, records both sides and restarts the method.
+    /// After a step of a method that settles the modes itself (time-stepping) to `t1`: its
+    /// switches applied and recorded as an event at the step's end, the output inside the step
+    /// recorded with [`Stepper::modes_inside`], and, where events are recorded, the end of a
+    /// step that switched.
+    fn record_own_switches(&mut self, t1: f64) -> StopReason {
+        let record = self.stepper.take_switches();
+        // The modes inside the step: those through it, or, where it switched, the method's
+        // reading of before and after (buffers kept: no allocation a step).
+        if let Some(r) = &record {
+            self.modes_before.copy_from_slice(&self.modes);
+            for s in &r.switches {
+                self.modes[s.component] = s.to;
+            }
+            self.stepper
+                .modes_inside(&self.modes_before, &self.modes, &mut self.modes_inside);
+        } else {
+            self.modes_inside.copy_from_slice(&self.modes);
+        }
+        match self.options.output.grid() {
+            None => self.solution.push(t1, &self.stepper.state().y, &self.modes),
+            Some(times) => {
+                while self.grid_next < times.len() && times[self.grid_next] <= t1 {
+                    let tg = times[self.grid_next];
+                    if tg == t1 {
+                        self.solution.push(t1, &self.stepper.state().y, &self.modes);
+                    } else {
+                        self.stepper.dense_output(tg, &mut self.y_grid);
+                        self.solution.push(tg, &self.y_grid, &self.modes_inside);
+                    }
+                    self.grid_next += 1;
+                }
+            }
+        }
+        if let Some(record) = record {
+            let end_recorded = self.solution.t.last() == Some(&t1);
+            if self.options.output.records_events() && !end_recorded {
+                self.solution.push(t1, &self.stepper.state().y, &self.modes);
+            }
+            self.solution.events.push(record);
+        }
+        if t1 >= self.options.t_end {
+            self.done = true;
+            return StopReason::EndReached;
+        }
+        StopReason::StepTaken { t: t1 }
+    }
+
     fn handle(&mut self, t: f64, fired: Vec<usize>) -> Result<StopReason, SolverError> {
         self.cut_at_event += 1;
         self.record_grid_until(t, false);
@@ -256,7 +314,9 @@ impl<'a> Integrator<'a> {
     /// `s` with the statistics of the run so far.
     fn with_stats(&self, mut s: Solution) -> Solution {
         s.stats = self.stepper.stats();
-        s.stats.events = s.events.iter().map(|e| e.fired.len()).sum();
+        if self.stepper.locates_events() {
+            s.stats.events = s.events.iter().map(|e| e.fired.len()).sum();
+        }
         s.stats.cut_at_event = self.cut_at_event;
         s.stiffness_detected_at = self.stepper.stiffness_detected_at();
         s

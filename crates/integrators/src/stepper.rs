@@ -2,6 +2,7 @@
 
 use crate::error::SolverError;
 use crate::problem::{Mode, OdeProblem};
+use crate::solution::EventRecord;
 use crate::stats::Stats;
 
 /// The problem in fixed modes, as the methods see it.
@@ -93,6 +94,29 @@ pub trait Stepper {
     /// Where a stiffness test (Hairer's, in Dormand–Prince) first found the problem stiff.
     fn stiffness_detected_at(&self) -> Option<f64> {
         None
+    }
+
+    /// Whether the driver locates the problem's events on the method's dense output and
+    /// applies their actions: true for every method but one that settles the modes itself at
+    /// the end of each step (time-stepping, which locates no event).
+    fn locates_events(&self) -> bool {
+        true
+    }
+
+    /// A method that settles the modes itself: the switches of its last step, as an event
+    /// record at the step's end, taken once (`None` when it switched nothing, and always for
+    /// the methods whose events the driver locates). Its [`Stepper::stats`] then count the
+    /// steps that switched as its events.
+    fn take_switches(&mut self) -> Option<EventRecord> {
+        None
+    }
+
+    /// The modes reported at an output point strictly inside the last step, whose modes were
+    /// `before` at its start and `after` at its end: `before` by default (a located event
+    /// ends the step, so the modes hold through it).
+    fn modes_inside(&self, before: &[Mode], after: &[Mode], out: &mut [Mode]) {
+        let _ = after;
+        out.copy_from_slice(before);
     }
 }
 
