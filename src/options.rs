@@ -255,6 +255,38 @@ pub fn check_read(
     Ok(())
 }
 
+/// `--scheme` and `--switching`: how a run or a study is integrated, and how v = 0 is treated
+/// under the event-driven scheme.
+#[derive(Args, Clone, Debug)]
+pub struct SchemeArgs {
+    /// event-driven (a solver steps between located events; v = 0 treated by --switching) or
+    /// time-stepping (Moreau–Jean: fixed steps, no event located, no solver; a study's one
+    /// method, over its step sizes, against an event-driven reference).
+    #[arg(
+        long,
+        value_name = "event-driven|time-stepping",
+        default_value = "event-driven"
+    )]
+    pub scheme: SchemeName,
+    /// The treatment of v = 0 under event-driven integration: event (stick/slip switching),
+    /// regularized (tanh, width epsilon) or naive [default: event]. (`timestepping`, the
+    /// former spelling of --scheme time-stepping, is still taken, with a note.)
+    #[arg(long, value_name = "event|regularized|naive")]
+    pub switching: Option<SwitchingKind>,
+}
+
+impl SchemeArgs {
+    /// The treatment of v = 0 they ask for, time-stepping at `theta` ([`treatment`]).
+    pub fn treatment(&self, theta: f64) -> Result<SwitchingKind, AppError> {
+        treatment(self.scheme, self.switching, theta)
+    }
+
+    /// The notes on their spelling ([`spelling_notes`]).
+    pub fn spelling_notes(&self) -> Vec<String> {
+        spelling_notes(self.switching)
+    }
+}
+
 /// `--scheme`: how a run is integrated, as Siconos's `Simulation` chooses it.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum SchemeName {

@@ -5,7 +5,7 @@
 use crate::artifacts::{Artifacts, Made};
 use crate::commands::curve::used_parameters;
 use crate::error::AppError;
-use crate::options::{spelling_notes, treatment, LimitArgs, ModelOptions, SchemeName};
+use crate::options::{LimitArgs, ModelOptions, SchemeArgs, SchemeName};
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Marker, Plot, Series, BLUE};
 use crate::progress::Progress;
@@ -23,23 +23,13 @@ use std::path::{Path, PathBuf};
 /// Options that choose and tune the solver, shared by every command that integrates.
 #[derive(Args, Clone, Debug)]
 pub struct SolverOptions {
-    /// event-driven (a solver steps between located events; v = 0 treated by --switching) or
-    /// time-stepping (Moreau–Jean: fixed steps of --dt, no event located, no --solver).
-    #[arg(
-        long,
-        value_name = "event-driven|time-stepping",
-        default_value = "event-driven"
-    )]
-    pub scheme: SchemeName,
+    /// The scheme, and the treatment of v = 0 under the event-driven one.
+    #[command(flatten)]
+    pub scheme: SchemeArgs,
     /// The solver of event-driven integration: rk4, dopri5, implicit-euler, bdf, tr-bdf2,
     /// esdirk34 (diffsol), tsit45 (diffsol) [default: dopri5; refused under time-stepping].
     #[arg(long, value_name = "SOLVER")]
     pub solver: Option<Solver>,
-    /// The treatment of v = 0 under event-driven integration: event (stick/slip switching),
-    /// regularized (tanh, width epsilon) or naive [default: event]. (`timestepping`, the
-    /// former spelling of --scheme time-stepping, is still taken, with a note.)
-    #[arg(long, value_name = "event|regularized|naive")]
-    pub switching: Option<SwitchingKind>,
     /// θ of --scheme time-stepping: the weight of the step's end on the smooth forces,
     /// 0.5 (trapezoidal, second order) to 1 (implicit Euler, first order).
     #[arg(
@@ -122,9 +112,9 @@ impl SolverOptions {
     }
 
     /// The treatment of v = 0 that `--scheme` and `--switching` ask for, θ from `--theta`
-    /// ([`treatment`]; checked by [`SolverOptions::checked_step`]).
+    /// ([`SchemeArgs::treatment`]; checked by [`SolverOptions::checked_step`]).
     pub fn checked_switching(&self) -> Result<SwitchingKind, AppError> {
-        treatment(self.scheme, self.switching, self.theta)
+        self.scheme.treatment(self.theta)
     }
 
     /// The treatment of v = 0, once [`SolverOptions::checked_step`] has passed.
@@ -138,9 +128,9 @@ impl SolverOptions {
         self.solver.unwrap_or(Solver::Dopri5)
     }
 
-    /// The notes on the options' spelling ([`spelling_notes`]).
+    /// The notes on the options' spelling ([`SchemeArgs::spelling_notes`]).
     pub fn spelling_notes(&self) -> Vec<String> {
-        spelling_notes(self.switching)
+        self.scheme.spelling_notes()
     }
 
     /// The step control these options ask for.

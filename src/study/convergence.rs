@@ -3,10 +3,9 @@
 
 use super::draw::{per_solver_series, slope_lines};
 use super::tables::runs_table;
-use super::{distinct, study_file, Study, StudyFiles};
+use super::{check_lists, study_file, Study, StudyFiles};
 use crate::error::AppError;
 use crate::plot::{Corner, Plot};
-use crate::ranges;
 use integrators::Solver;
 use scenarios::studies::{self, Convergence, StudyCase};
 use scenarios::ScenarioError;
@@ -32,10 +31,7 @@ impl Study for ConvergenceStudy<'_> {
     }
 
     fn check(&self) -> Result<(), AppError> {
-        distinct(self.solvers)?;
-        ranges::DT.list("dt-list", self.steps)?;
-        ranges::RTOL.list("tol-list", self.tols)?;
-        Ok(())
+        check_lists(self.solvers, self.steps, self.tols)
     }
 
     fn runs(&self) -> usize {

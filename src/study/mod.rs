@@ -28,7 +28,7 @@ use crate::error::AppError;
 use crate::progress::Progress;
 use crate::threads::with_threads;
 use integrators::Solver;
-use scenarios::studies::StudyCase;
+use scenarios::studies::{Method, StudyCase};
 use scenarios::{ScenarioError, SwitchingKind};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -165,6 +165,35 @@ pub fn distinct(solvers: &[Solver]) -> Result<(), AppError> {
         ))),
         None => Ok(()),
     }
+}
+
+/// The methods a study of `solvers` compares on `case`: each solver under the case's treatment
+/// of v = 0 (or the case's one time-stepping method), then the case's peers.
+pub fn methods_with_peers(case: &dyn StudyCase, solvers: &[Solver]) -> Vec<Method> {
+    Method::studied(case.switching(), solvers)
+        .into_iter()
+        .chain(case.peers())
+        .collect()
+}
+
+/// How many runs [`methods_with_peers`] make at the step sizes `steps` (fixed-step methods)
+/// or the tolerances `tols` (the others): one per method and resolution.
+pub fn runs_with_peers(
+    case: &dyn StudyCase,
+    solvers: &[Solver],
+    steps: &[f64],
+    tols: &[f64],
+) -> usize {
+    Method::jobs(&methods_with_peers(case, solvers), steps, tols, false).len()
+}
+
+/// The options of a study of `solvers` at the step sizes `steps` and the tolerances `tols`:
+/// each solver once, every step size and tolerance in its range (`--dt-list`, `--tol-list`).
+pub fn check_lists(solvers: &[Solver], steps: &[f64], tols: &[f64]) -> Result<(), AppError> {
+    distinct(solvers)?;
+    crate::ranges::DT.list("dt-list", steps)?;
+    crate::ranges::RTOL.list("tol-list", tols)?;
+    Ok(())
 }
 
 /// A list option of positive finite numbers, not empty.

@@ -3,13 +3,14 @@
 
 use super::draw::row_at_top;
 use super::tables::resolution_cells;
-use super::{distinct, positive_list, study_file, Study, StudyFiles};
+use super::{
+    check_lists, methods_with_peers, positive_list, runs_with_peers, study_file, Study, StudyFiles,
+};
 use crate::error::AppError;
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Marker, Plot, Series, PALETTE};
-use crate::ranges;
 use integrators::Solver;
-use scenarios::studies::{self, Method, Stiffness, StudyCase, Sweep};
+use scenarios::studies::{self, Stiffness, StudyCase, Sweep};
 use scenarios::ScenarioError;
 
 /// The most values a sweep takes.
@@ -31,16 +32,6 @@ pub struct StiffnessStudy<'a> {
     pub tols: &'a [f64],
 }
 
-impl StiffnessStudy<'_> {
-    /// The studied solvers under the case's treatment, then its peers.
-    fn methods(&self) -> Vec<Method> {
-        Method::studied(self.case.switching(), self.solvers)
-            .into_iter()
-            .chain(self.case.peers())
-            .collect()
-    }
-}
-
 impl Study for StiffnessStudy<'_> {
     type Result = Stiffness;
 
@@ -52,9 +43,7 @@ impl Study for StiffnessStudy<'_> {
         let values = self.sweep.values;
         positive_list("values", values)?;
         positive_list("target", &[self.sweep.target])?;
-        distinct(self.solvers)?;
-        ranges::DT.list("dt-list", self.steps)?;
-        ranges::RTOL.list("tol-list", self.tols)?;
+        check_lists(self.solvers, self.steps, self.tols)?;
         if values.len() > MAX_VALUES {
             return Err(AppError::Usage(format!(
                 "option `values` has {} values: allowed 1 to {MAX_VALUES}",
@@ -65,11 +54,11 @@ impl Study for StiffnessStudy<'_> {
     }
 
     fn runs(&self) -> usize {
-        Method::jobs(&self.methods(), self.steps, self.tols, false).len() * self.sweep.values.len()
+        runs_with_peers(self.case, self.solvers, self.steps, self.tols) * self.sweep.values.len()
     }
 
     fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<Stiffness, ScenarioError> {
-        let methods = self.methods();
+        let methods = methods_with_peers(self.case, self.solvers);
         studies::stiffness(
             self.case,
             Sweep { ..self.sweep },
@@ -82,7 +71,7 @@ impl Study for StiffnessStudy<'_> {
 
     /// `{stem}.csv` (a row per value and method), `{stem}.json` and `{stem}.png`/`.svg`.
     fn write(&self, s: &Stiffness, out: &mut StudyFiles) -> Result<(), AppError> {
-        let (case, methods) = (self.case, self.methods());
+        let (case, methods) = (self.case, methods_with_peers(self.case, self.solvers));
         let Sweep {
             parameter, target, ..
         } = self.sweep;

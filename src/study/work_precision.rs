@@ -3,13 +3,12 @@
 
 use super::draw::per_solver_series;
 use super::tables::{resolution_cells, runs_table};
-use super::{distinct, study_file, Study, StudyFiles};
+use super::{check_lists, methods_with_peers, runs_with_peers, study_file, Study, StudyFiles};
 use crate::error::AppError;
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Plot};
-use crate::ranges;
 use integrators::Solver;
-use scenarios::studies::{self, Method, StudyCase, WorkPrecision};
+use scenarios::studies::{self, StudyCase, WorkPrecision};
 use scenarios::ScenarioError;
 
 /// Every solver of `solvers` on `case`, and the case's peers (methods under another treatment
@@ -28,16 +27,6 @@ pub struct WorkPrecisionStudy<'a> {
     pub repeats: usize,
 }
 
-impl WorkPrecisionStudy<'_> {
-    /// The studied solvers under the case's treatment, then its peers.
-    fn methods(&self) -> Vec<Method> {
-        Method::studied(self.case.switching(), self.solvers)
-            .into_iter()
-            .chain(self.case.peers())
-            .collect()
-    }
-}
-
 impl Study for WorkPrecisionStudy<'_> {
     type Result = WorkPrecision;
 
@@ -46,18 +35,15 @@ impl Study for WorkPrecisionStudy<'_> {
     }
 
     fn check(&self) -> Result<(), AppError> {
-        distinct(self.solvers)?;
-        ranges::DT.list("dt-list", self.steps)?;
-        ranges::RTOL.list("tol-list", self.tols)?;
-        Ok(())
+        check_lists(self.solvers, self.steps, self.tols)
     }
 
     fn runs(&self) -> usize {
-        Method::jobs(&self.methods(), self.steps, self.tols, false).len() * self.repeats
+        runs_with_peers(self.case, self.solvers, self.steps, self.tols) * self.repeats
     }
 
     fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<WorkPrecision, ScenarioError> {
-        let methods = self.methods();
+        let methods = methods_with_peers(self.case, self.solvers);
         studies::work_precision(
             self.case,
             &methods,

@@ -7,7 +7,7 @@ use crate::artifacts::{Artifacts, Made};
 use crate::commands::simulate::Target as Problem;
 use crate::commands::system::{chosen_bodies, study_t_end, system_of};
 use crate::error::AppError;
-use crate::options::{spelling_notes, treatment, LimitArgs, ModelOptions, SchemeName};
+use crate::options::{LimitArgs, ModelOptions, SchemeArgs};
 use crate::ranges;
 use crate::study::Target;
 use crate::warnings::{diverged_line, unread_warnings};
@@ -51,20 +51,9 @@ pub struct CaseArgs {
     /// (names or 1-based indices) [default: the first body]; every body's final state is.
     #[arg(long, value_name = "LIST", value_delimiter = ',')]
     pub bodies: Vec<String>,
-    /// event-driven (the solvers between located events, v = 0 treated by --switching) or
-    /// time-stepping (Moreau–Jean at θ = 1/2, the study's one method: over the step sizes,
-    /// the solver options unused; its reference is event-driven).
-    #[arg(
-        long,
-        value_name = "event-driven|time-stepping",
-        default_value = "event-driven"
-    )]
-    pub scheme: SchemeName,
-    /// The treatment of v = 0 under event-driven integration: event, regularized or naive
-    /// [default: event; for `stiffness` of a rig over epsilon, regularized]. (`timestepping`,
-    /// the former spelling of --scheme time-stepping, is still taken, with a note.)
-    #[arg(long, value_name = "event|regularized|naive")]
-    pub switching: Option<SwitchingKind>,
+    /// The scheme, and the treatment of v = 0 under the event-driven one.
+    #[command(flatten)]
+    pub scheme: SchemeArgs,
     /// End time, s [default: the scenario's; 10 for the chain (its horizon of predictability:
     /// docs/studies.md); 20 for a system file].
     #[arg(long, value_name = "T", allow_hyphen_values = true)]
@@ -170,7 +159,7 @@ impl CaseArgs {
     /// The treatment of v = 0 that `--scheme` and `--switching` ask for (time-stepping at
     /// θ = 1/2).
     pub fn treatment(&self) -> Result<SwitchingKind, AppError> {
-        treatment(self.scheme, self.switching, DEFAULT_THETA)
+        self.scheme.treatment(DEFAULT_THETA)
     }
 
     /// Sets up the case, runs `study` (which returns its lines for the terminal), and keeps
@@ -202,7 +191,7 @@ impl CaseArgs {
             notes,
             warnings: unread_warnings(&self.model_options.params.set, self.model, switching)
                 .into_iter()
-                .chain(spelling_notes(self.switching))
+                .chain(self.scheme.spelling_notes())
                 .collect(),
             failure,
         })

@@ -28,7 +28,8 @@ pub struct StiffnessArgs {
     #[command(flatten)]
     pub case: CaseArgs,
     /// The parameter swept: epsilon, sigma, sigma0, k, or any other the run reads (on the
-    /// chain: k_chain, m, …, or its law's; on a system file: epsilon).
+    /// chain: k_chain, m, …, or its law's; on a system file: epsilon). A rig swept over
+    /// epsilon without --switching is regularized.
     #[arg(long, value_name = "NAME", default_value = "epsilon")]
     pub parameter: String,
     /// Its values, in sweep order.
@@ -74,12 +75,12 @@ pub struct StiffnessArgs {
 /// the method that depends on it.
 pub fn stiffness(a: &StiffnessArgs) -> Result<Made, AppError> {
     let mut case = a.case.clone();
-    if case.switching.is_none()
-        && case.scheme == SchemeName::EventDriven
+    if case.scheme.switching.is_none()
+        && case.scheme.scheme == SchemeName::EventDriven
         && a.parameter == "epsilon"
         && matches!(case.scenario, Some(Problem::Rig(_)))
     {
-        case.switching = Some(SwitchingKind::Regularized);
+        case.scheme.switching = Some(SwitchingKind::Regularized);
     }
     // A rig's run reads only what its model and switching read. A system's case checks its
     // parameter itself (`StudyCase::with_parameter`): epsilon, which under event switching

@@ -6,18 +6,7 @@ use crate::error::AppError;
 use crate::ranges;
 use crate::study::{conduct, WorkPrecisionStudy};
 use clap::Args;
-use integrators::{DiffsolMethod, Solver};
-
-/// The solvers `work-precision` compares by default: every built-in one.
-const WORK_PRECISION_SOLVERS: [Solver; 7] = [
-    Solver::Rk4,
-    Solver::Dopri5,
-    Solver::ImplicitEuler,
-    Solver::Diffsol(DiffsolMethod::Bdf),
-    Solver::Diffsol(DiffsolMethod::TrBdf2),
-    Solver::Diffsol(DiffsolMethod::Esdirk34),
-    Solver::Diffsol(DiffsolMethod::Tsit45),
-];
+use integrators::Solver;
 
 /// Options of `work-precision`.
 #[derive(Args, Debug)]
@@ -59,9 +48,7 @@ pub fn work_precision(a: &WorkPrecisionArgs) -> Result<Made, AppError> {
     a.case.make(|t, case| {
         let study = WorkPrecisionStudy {
             case,
-            solvers: &a
-                .case
-                .solvers("solvers", &a.solvers, &WORK_PRECISION_SOLVERS)?,
+            solvers: &a.case.solvers("solvers", &a.solvers, &Solver::ALL)?,
             steps: &a.dt_list,
             tols: &a.tol_list,
             repeats: ranges::REPEATS.count(a.repeats)?,
