@@ -2553,6 +2553,12 @@ fn the_scheme_is_chosen_apart_from_the_treatment_of_v_zero() {
         e.contains("option `--solver rk4` does not apply to --scheme time-stepping"),
         "{e}"
     );
+    // θ is time-stepping's: given to the event-driven scheme, it is refused, not ignored.
+    let e = rejected(&["simulate", "belt", "--model", "CS", "--theta", "0.7"]);
+    assert!(
+        e.contains("option `--theta 0.7` applies to --scheme time-stepping"),
+        "{e}"
+    );
     let e = rejected(&["simulate", "belt", "--model", "CS", "--scheme", "moreau"]);
     assert!(
         e.contains("unknown scheme `moreau`; known: event-driven, time-stepping"),

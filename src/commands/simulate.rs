@@ -31,14 +31,10 @@ pub struct SolverOptions {
     #[arg(long, value_name = "SOLVER")]
     pub solver: Option<Solver>,
     /// θ of --scheme time-stepping: the weight of the step's end on the smooth forces,
-    /// 0.5 (trapezoidal, second order) to 1 (implicit Euler, first order).
-    #[arg(
-        long,
-        value_name = "THETA",
-        allow_hyphen_values = true,
-        default_value_t = scenarios::run::DEFAULT_THETA
-    )]
-    pub theta: f64,
+    /// 0.5 (trapezoidal, second order) to 1 (implicit Euler, first order) [default: 0.5;
+    /// refused under the event-driven scheme, which has no θ].
+    #[arg(long, value_name = "THETA", allow_hyphen_values = true)]
+    pub theta: Option<f64>,
     /// Fixed step of rk4 and of time-stepping (default 1e-3 s, the paper's), or the initial
     /// step of the adaptive solvers (the fixed step with --fixed-step).
     #[arg(long, value_name = "H", allow_hyphen_values = true)]
@@ -77,11 +73,21 @@ impl SolverOptions {
     pub fn checked_step(&self) -> Result<StepControl, AppError> {
         ranges::RTOL.check(self.rtol)?;
         ranges::ATOL.check(self.atol)?;
-        ranges::THETA.check(self.theta)?;
+        if let Some(theta) = self.theta {
+            ranges::THETA.check(theta)?;
+        }
         if let Some(dt) = self.dt {
             ranges::DT.check(dt)?;
         }
         let switching = self.checked_switching()?;
+        if let (Some(theta), false) = (self.theta, switching.is_time_stepping()) {
+            return Err(AppError::Usage(format!(
+                "option `--theta {}` applies to --scheme time-stepping, the weight of its \
+                 θ-method: the event-driven solvers have none; drop --theta, or choose \
+                 --scheme time-stepping",
+                ranges::show(theta)
+            )));
+        }
         if let (Some(solver), true) = (self.solver, switching.is_time_stepping()) {
             return Err(AppError::Usage(format!(
                 "option `--solver {}` does not apply to --scheme time-stepping: Moreau–Jean's \
@@ -114,13 +120,20 @@ impl SolverOptions {
     /// The treatment of v = 0 that `--scheme` and `--switching` ask for, θ from `--theta`
     /// ([`SchemeArgs::treatment`]; checked by [`SolverOptions::checked_step`]).
     pub fn checked_switching(&self) -> Result<SwitchingKind, AppError> {
-        self.scheme.treatment(self.theta)
+        self.scheme.treatment(self.theta())
+    }
+
+    /// θ of time-stepping: `--theta`, or the trapezoidal rule's 1/2.
+    pub fn theta(&self) -> f64 {
+        self.theta.unwrap_or(scenarios::run::DEFAULT_THETA)
     }
 
     /// The treatment of v = 0, once [`SolverOptions::checked_step`] has passed.
     pub fn switching(&self) -> SwitchingKind {
         self.checked_switching()
-            .unwrap_or(SwitchingKind::TimeStepping { theta: self.theta })
+            .unwrap_or(SwitchingKind::TimeStepping {
+                theta: self.theta(),
+            })
     }
 
     /// The solver of event-driven integration: `--solver`, or Dormand–Prince.
