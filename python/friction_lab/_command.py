@@ -1,12 +1,17 @@
 """Keyword arguments to command-line words, and a command's files back as tables.
 
 Every function of the package runs a command of the ``friction-lab`` program in memory
-(``_native.run``): its keyword arguments become that command's options, so each default,
-range check and error message is the command line's own (docs/python.md lists them).
+(``_native.run``): its keyword arguments become that command's options, so each default and
+range check is the command line's own (docs/python.md lists them). What Python is told is in
+Python's words: an unknown keyword argument is a ``TypeError`` naming it and its close match,
+and the messages name the keyword arguments (``t_end``, ``params``), not the options
+(``--t-end``, ``--set``).
 """
 
 from __future__ import annotations
 
+import difflib
+import functools
 import io
 import json
 import math
@@ -80,6 +85,42 @@ def _mapping(name: str, value: Any, example: str) -> Mapping:
                      f"e.g. {example}, not {type(value).__name__} {value!r}")
 
 
+@functools.lru_cache(maxsize=None)
+def keywords(command: str) -> Dict[str, str]:
+    """The keyword arguments of ``command``'s function, each with the command line's option
+    it stands for: the options' names with ``_`` for ``-``, ``params`` for ``--set`` (``out``
+    has no keyword: nothing is written)."""
+    names = {long.replace("-", "_"): long for long, _ in _native.options(command)}
+    names.pop("out", None)
+    names["params"] = names.pop("set", "set")
+    return names
+
+
+def check_keywords(command: str, options: Mapping[str, Any]) -> None:
+    """A ``TypeError`` for a keyword argument ``command``'s function does not take, naming it
+    and the closest one it takes (or all of them)."""
+    known = keywords(command)
+    for name in options:
+        if name in known:
+            continue
+        close = difflib.get_close_matches(name, known, n=1)
+        hint = (f"; did you mean '{close[0]}'?" if close
+                else "; it takes: " + ", ".join(sorted(known)))
+        raise TypeError(f"{command.replace('-', '_')}() got an unexpected keyword argument "
+                        f"'{name}'{hint}")
+
+
+def spelled(message: str, command: str) -> str:
+    """A message of the command line in Python's words: each option of ``command`` named as
+    its keyword argument (``--t-end`` and `` `t-end` `` as ``t_end``, ``--set`` as
+    ``params``), and no usage line."""
+    text = "\n".join(line for line in message.splitlines()
+                     if not line.startswith("Usage:")).strip()
+    for python, long in sorted(keywords(command).items(), key=lambda kv: -len(kv[1])):
+        text = text.replace(f"--{long}", python).replace(f"`{long}`", f"`{python}`")
+    return text
+
+
 def words(command: str, *positional: Optional[str], **options: Any) -> List[str]:
     """The words of ``friction-lab COMMAND [POSITIONAL] --option value ...``.
 
@@ -94,6 +135,7 @@ def words(command: str, *positional: Optional[str], **options: Any) -> List[str]
             # Passed on, it would fail as the native call's TypeError, naming no argument.
             raise ValueError(f"`{command}`: argument {p!r} is not a name: a string is expected, "
                              f"as `friction-lab {command} --help` lists them")
+    check_keywords(command, options)
     argv = [command] + [p for p in positional if p is not None]
     for name, value in options.items():
         if value is None or value is False:
@@ -168,13 +210,17 @@ class SolverError(RuntimeError):
 def run(argv: List[str]) -> Made:
     """Runs ``friction-lab ARGV`` in memory (GIL released, Ctrl-C honoured). Bad input raises
     ``ValueError``; a failure with no result raises ``SolverError``."""
+    command = argv[0]
     try:
         files, notes, advice, failure = _native.run(argv)
     except _native.SolverError as e:
-        raise SolverError(str(e)) from None
+        raise SolverError(spelled(str(e), command)) from None
+    except ValueError as e:
+        raise ValueError(spelled(str(e), command)) from None
     for line in advice:
-        warnings.warn(line, RuntimeWarning, stacklevel=3)
-    return Made(dict(files), list(notes), failure)
+        warnings.warn(spelled(line, command), RuntimeWarning, stacklevel=3)
+    failure = None if failure is None else spelled(failure, command)
+    return Made(dict(files), [spelled(n, command) for n in notes], failure)
 
 
 class SystemFile:

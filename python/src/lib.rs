@@ -9,8 +9,9 @@
 //! calling thread watches for Ctrl-C and stops the solvers through
 //! [`integrators::interrupt`].
 
-use clap::Parser;
+use clap::{CommandFactory, Parser};
 use friction_lab::error::AppError;
+use integrators::SolverError as RunError;
 use pyo3::create_exception;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
@@ -65,8 +66,38 @@ fn run(py: Python<'_>, argv: Vec<String>) -> PyResult<Made> {
         files,
         made.notes,
         made.warnings,
-        made.failure.map(|e| e.to_string()),
+        made.failure.as_ref().map(failure_message),
     ))
+}
+
+/// The message of a run that failed part-way, as Python reads it: what was computed is the
+/// error's `result`, not files.
+fn failure_message(e: &AppError) -> String {
+    const KEPT: &str = "the error's `result` keeps the run up to";
+    match e {
+        AppError::Solver(s @ RunError::Interrupted { .. }) => {
+            format!("stopped: {s} ({KEPT} there)")
+        }
+        AppError::Solver(s) => format!("the solver failed: {s} ({KEPT} the failure)"),
+        other => other.to_string(),
+    }
+}
+
+/// The long options of command `name` as the command line spells them (`t-end`), each with
+/// whether it takes a value: the keyword arguments of the Python function that runs it.
+#[pyfunction]
+fn options(name: &str) -> PyResult<Vec<(String, bool)>> {
+    let cli = friction_lab::Cli::command();
+    let command = cli
+        .find_subcommand(name)
+        .ok_or_else(|| PyValueError::new_err(format!("unknown command `{name}`")))?;
+    Ok(command
+        .get_arguments()
+        .filter_map(|a| {
+            let long = a.get_long()?;
+            Some((long.to_string(), a.get_action().takes_values()))
+        })
+        .collect())
 }
 
 /// The listing of `friction-lab models --json`.
@@ -94,7 +125,7 @@ fn to_python(e: AppError) -> PyErr {
     if e.exit_code() == 2 {
         PyValueError::new_err(e.to_string())
     } else {
-        SolverError::new_err(e.to_string())
+        SolverError::new_err(failure_message(&e))
     }
 }
 
@@ -143,6 +174,7 @@ fn interruptible<T: Send>(py: Python<'_>, work: impl FnOnce() -> T + Send) -> Py
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(models_json, m)?)?;
+    m.add_function(wrap_pyfunction!(options, m)?)?;
     m.add("SolverError", m.py().get_type::<SolverError>())?;
     Ok(())
 }

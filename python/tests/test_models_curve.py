@@ -53,7 +53,8 @@ def test_bad_input_raises_value_error_with_the_command_lines_message(cli, tmp_pa
     assert "mu_v" in str(e.value) and "allowed" in str(e.value)
     with pytest.raises(ValueError, match="unknown model"):
         fl.curve("XYZ")
-    with pytest.raises(ValueError, match="unexpected argument '--no-such-option'"):
+    with pytest.raises(TypeError, match="curve\\(\\) got an unexpected keyword argument "
+                                        "'no_such_option'"):
         fl.curve("CVS", no_such_option=1)
     # True is a bare flag only for an option that takes no value; written bare, `--points`
     # took the next option as its value and the message named neither.

@@ -108,9 +108,36 @@ def test_a_solver_failure_raises_solver_error_with_the_partial_result():
     with pytest.raises(fl.SolverError) as e:
         fl.simulate("belt", model="CVS", max_steps=50)
     assert "too many steps" in str(e.value)
+    # The partial run is the error's result: no file is named, none was written.
+    assert "the error's `result` keeps the run up to the failure" in str(e.value)
+    assert "summary.json" not in str(e.value)
     partial = e.value.result
     assert partial.summary["status"] == "failed"
     assert 0 < partial.t[-1] < 20.0 and partial.stats["steps"] == 50
+
+
+def test_errors_speak_python_not_the_command_line(cli, tmp_path):
+    # An unknown keyword argument is Python's TypeError, with the closest one it takes.
+    with pytest.raises(TypeError, match=r"simulate\(\) got an unexpected keyword argument "
+                                        r"'tend'; did you mean 't_end'\?"):
+        fl.simulate("belt", model="CVS", tend=5)
+    with pytest.raises(TypeError, match=r"work_precision\(\) got an unexpected keyword "
+                                        r"argument 'solver'; did you mean 'solvers'\?"):
+        fl.work_precision("belt", model="CS", solver="rk4")
+    # A bad value names the keyword argument, as Python spells it; the message is otherwise
+    # the command line's.
+    with pytest.raises(ValueError) as e:
+        fl.simulate("belt", model="CVS", t_end=-1.0)
+    assert str(e.value) == "option `t_end` = -1 is out of range: allowed [1e-6, 1e6] s"
+    done = cli("simulate", "belt", "--model", "CVS", "--t-end", "-1", "--out", tmp_path / "x")
+    assert done.stderr.strip() == "error: option `t-end` = -1 is out of range: allowed [1e-6, 1e6] s"
+    with pytest.raises(ValueError) as e:
+        fl.simulate("belt", model="CVS", scheme="time-stepping", solver="rk4")
+    assert str(e.value).startswith("option `solver rk4` does not apply to scheme time-stepping")
+    assert "--" not in str(e.value)
+    with pytest.raises(ValueError) as e:
+        fl.simulate("belt", model="CVS", params={"F_s": "abc"})
+    assert str(e.value) == "params F_s=abc: `abc` is not a number"
 
 
 def test_bad_options_raise_value_error_naming_the_field(cli, tmp_path):
@@ -152,10 +179,11 @@ def test_numpy_arrays_are_lists_and_their_scalars_values():
     from friction_lab._command import words
     # A one-dimensional array is written as a list, a value of no dimension as that value; the
     # doubles cross exactly.
-    argv = words("stiffness", "belt", values=np.array([0.1, 1e-2 / 3]), t_end=np.array(2.0),
-                 grid={"k": np.arange(1, 3), "v_belt": 0.5})
+    argv = words("stiffness", "belt", values=np.array([0.1, 1e-2 / 3]), t_end=np.array(2.0))
     assert argv == ["stiffness", "belt", "--values", "0.1,0.0033333333333333335",
-                    "--t-end", "2.0", "--grid", "k=1,2", "--grid", "v_belt=0.5"]
+                    "--t-end", "2.0"]
+    argv = words("sweep", "belt", grid={"k": np.arange(1, 3), "v_belt": 0.5})
+    assert argv == ["sweep", "belt", "--grid", "k=1,2", "--grid", "v_belt=0.5"]
     with pytest.raises(ValueError, match=r"option `values`: an array of shape \(2, 1\)"):
         words("stiffness", "belt", values=np.zeros((2, 1)))
     with pytest.raises(ValueError, match="option `grid`, axis `k`: no values"):

@@ -49,7 +49,8 @@ def test_a_sweep_on_a_two_worker_local_cluster_equals_the_in_process_one():
 def test_sweep_checks_its_grid():
     with pytest.raises(ValueError, match="option `grid`"):
         fl.sweep("belt", model="CVS", grid={"v_belt": "1:2"})
-    with pytest.raises(ValueError, match="point-range"):
+    # Named as the keyword argument it was given by.
+    with pytest.raises(ValueError, match="option `point_range` = `0:5` is out of range"):
         fl.sweep("belt", model="CVS", grid={"v_belt": [0.1]}, point_range="0:5")
 
 
