@@ -181,6 +181,9 @@ pub struct Made {
     pub warnings: Vec<String>,
     /// The failure the files record, returned once they are written.
     pub failure: Option<AppError>,
+    /// A run's trajectory as columns, where it was asked for instead of its file
+    /// ([`crate::trajectory::TrajectoryAs::Columns`]).
+    pub trajectory: Option<crate::trajectory::Trajectory>,
 }
 
 impl Made {

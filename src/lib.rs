@@ -22,10 +22,12 @@ pub mod progress;
 pub mod ranges;
 pub mod study;
 pub mod threads;
+pub mod trajectory;
 pub mod warnings;
 
 use clap::{Parser, Subcommand};
 use error::AppError;
+use trajectory::TrajectoryAs;
 
 /// The exit codes, as `--help` lists them.
 pub const EXIT_CODES: &str = "Exit codes:
@@ -122,16 +124,26 @@ impl Command {
 }
 
 /// Runs `curve`, `simulate`, a study or `sweep`, and keeps its files in memory instead of
-/// writing them (figures undrawn): the command line writes them, the Python package reads
-/// them. `models`, `phenomena` and `reproduce` are refused here.
+/// writing them (figures undrawn): the command line writes them. `models`, `phenomena` and
+/// `reproduce` are refused here.
 pub fn make(command: &Command) -> Result<artifacts::Made, AppError> {
+    make_as(command, TrajectoryAs::File)
+}
+
+/// As [`make`], for a front end that takes numbers (Python): `simulate`'s trajectory is
+/// [`artifacts::Made::trajectory`]'s columns instead of `trajectory.csv`.
+pub fn make_in_memory(command: &Command) -> Result<artifacts::Made, AppError> {
+    make_as(command, TrajectoryAs::Columns)
+}
+
+fn make_as(command: &Command, trajectory: TrajectoryAs) -> Result<artifacts::Made, AppError> {
     match command {
         Command::Curve(args) => commands::curve::make(args),
         Command::Simulate(args) => match args.scenario {
             Some(commands::simulate::Target::Rig(scenario)) => {
-                commands::simulate::make_rig(args, scenario)
+                commands::simulate::make_rig(args, scenario, trajectory)
             }
-            _ => commands::system::make(args),
+            _ => commands::system::make(args, trajectory),
         },
         Command::Converge(args) => commands::studies::converge(args),
         Command::Independence(args) => commands::studies::independence(args),

@@ -181,12 +181,14 @@ def table(data: Union[bytes, str, os.PathLike]) -> pd.DataFrame:
 
 @dataclass
 class Made:
-    """What one command made: its data files by name, the lines it would print, and the
-    message of a run that failed part-way (the files keep what was computed)."""
+    """What one command made: its data files by name, the lines it would print, the message
+    of a run that failed part-way (the files keep what was computed), and ``simulate``'s
+    trajectory as numbers (``trajectory.csv``'s columns, see :func:`columns`)."""
 
     files: Dict[str, bytes]
     notes: List[str] = field(default_factory=list)
     failure: Optional[str] = None
+    trajectory: Optional[Dict[str, Any]] = None
 
     def table(self, name: str) -> pd.DataFrame:
         """The CSV file ``name`` as a DataFrame."""
@@ -212,7 +214,7 @@ def run(argv: List[str]) -> Made:
     ``ValueError``; a failure with no result raises ``SolverError``."""
     command = argv[0]
     try:
-        files, notes, advice, failure = _native.run(argv)
+        files, notes, advice, failure, trajectory = _native.run(argv)
     except _native.SolverError as e:
         raise SolverError(spelled(str(e), command)) from None
     except ValueError as e:
@@ -220,7 +222,7 @@ def run(argv: List[str]) -> Made:
     for line in advice:
         warnings.warn(spelled(line, command), RuntimeWarning, stacklevel=3)
     failure = None if failure is None else spelled(failure, command)
-    return Made(dict(files), [spelled(n, command) for n in notes], failure)
+    return Made(dict(files), [spelled(n, command) for n in notes], failure, trajectory)
 
 
 class SystemFile:

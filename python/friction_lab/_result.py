@@ -1,5 +1,6 @@
 """The result of ``simulate``: numpy arrays, the events and the summary, as the command
-line's ``trajectory.csv``, ``events.csv`` and ``summary.json`` hold them."""
+line's ``trajectory.csv``, ``events.csv`` and ``summary.json`` hold them; the arrays are made
+from the library's numbers, not from the text of a file."""
 
 from __future__ import annotations
 
@@ -27,25 +28,20 @@ class Result:
         self.summary: Dict[str, Any] = made.json("summary.json")
         #: Solver statistics (steps, rejected, rhs_evals, jacobian_evals, ..., events).
         self.stats: Dict[str, Any] = self.summary["stats"]
-        self._tidy = made.table("trajectory.csv")
-        self.is_system = "body" in self._tidy.columns
-        if self.is_system:
-            names = list(dict.fromkeys(self._tidy["body"]))
-            #: The bodies the arrays hold, in column order (systems only).
-            self.bodies: Optional[List[str]] = names
-            shape = (-1, len(names))
-            self.t = self._tidy["t"].to_numpy()[:: len(names)]
-        else:
-            self.bodies = None
-            shape = (-1,)
-            self.t = self._tidy["t"].to_numpy()
-        columns = {c: self._tidy[c].to_numpy().reshape(shape)
-                   for c in ("x", "v", "friction", "mode", "z") if c in self._tidy}
-        self.x: np.ndarray = columns["x"]
-        self.v: np.ndarray = columns["v"]
-        self.friction: np.ndarray = columns["friction"]
-        self.mode: np.ndarray = columns["mode"]
-        self.z: Optional[np.ndarray] = columns.get("z")
+        # The library's numbers, as bytes of doubles: no text between (docs/python.md).
+        c = made.trajectory
+        doubles = lambda name: np.frombuffer(c[name], dtype="<f8")  # noqa: E731
+        #: The bodies the arrays hold, in column order (systems only).
+        self.bodies: Optional[List[str]] = c["bodies"]
+        self.is_system = self.bodies is not None
+        shape = (-1, len(self.bodies)) if self.is_system else (-1,)
+        self.t: np.ndarray = doubles("t")
+        self.x: np.ndarray = doubles("x").reshape(shape)
+        self.v: np.ndarray = doubles("v").reshape(shape)
+        self.friction: np.ndarray = doubles("friction").reshape(shape)
+        names = np.array(c["mode_names"], dtype=object)
+        self.mode: np.ndarray = names[np.frombuffer(c["mode"], dtype=np.uint8)].reshape(shape)
+        self.z: Optional[np.ndarray] = None if c["z"] is None else doubles("z").reshape(shape)
         #: Every mode switch: t, body, from, to.
         self.events: pd.DataFrame = (made.table("events.csv") if self.is_system
                                      else self._rig_events())
@@ -60,8 +56,18 @@ class Result:
         return pd.DataFrame(rows, columns=["t", "body", "from", "to"])
 
     def to_pandas(self) -> pd.DataFrame:
-        """The tidy trajectory, exactly as ``trajectory.csv`` holds it."""
-        return self._tidy.copy()
+        """The tidy trajectory: the rows and columns of ``trajectory.csv`` (``t``, for a system
+        ``body``, then ``x``, ``v``, ``friction``, ``mode`` and, where a model has one, ``z``:
+        NaN for a body whose model has none)."""
+        rows = {"t": self.t}
+        if self.is_system:
+            rows = {"t": np.repeat(self.t, len(self.bodies)),
+                    "body": np.tile(np.array(self.bodies, dtype=object), len(self.t))}
+        for name in ("x", "v", "friction", "mode", "z"):
+            column = getattr(self, name)
+            if column is not None:
+                rows[name] = column.reshape(-1)
+        return pd.DataFrame(rows)
 
     def __repr__(self) -> str:
         what = self.summary.get("scenario") or self.summary.get("system")

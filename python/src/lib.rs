@@ -11,11 +11,12 @@
 
 use clap::{CommandFactory, Parser};
 use friction_lab::error::AppError;
+use friction_lab::trajectory::Trajectory;
 use integrators::SolverError as RunError;
 use pyo3::create_exception;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::PyBytes;
+use pyo3::types::{PyBytes, PyDict};
 use std::path::Path;
 use std::sync::{mpsc, Mutex};
 use std::time::Duration;
@@ -34,17 +35,54 @@ const SIGNAL_POLL: Duration = Duration::from_millis(50);
 /// the files returned; nothing is written.
 const IN_MEMORY: &str = ".";
 
-/// What a command made, for the Python layer: `(files, notes, warnings, failure)`, where
-/// `files` maps each data file's name (relative to the output folder, e.g. `trajectory.csv`)
-/// to its bytes, `notes` and `warnings` are the lines the command line prints on stdout and
-/// stderr, and `failure` is the message of a run that failed after computing part of its
-/// result (the files keep that part), or `None`.
+/// What a command made, for the Python layer: `(files, notes, warnings, failure,
+/// trajectory)`, where `files` maps each data file's name (relative to the output folder, e.g.
+/// `summary.json`) to its bytes, `notes` and `warnings` are the lines the command line prints
+/// on stdout and stderr, `failure` is the message of a run that failed after computing part of
+/// its result (the files keep that part), or `None`, and `trajectory` is `simulate`'s
+/// trajectory as numbers ([`trajectory`]), or `None`.
 type Made = (
     Vec<(String, Py<PyBytes>)>,
     Vec<String>,
     Vec<String>,
     Option<String>,
+    Option<Py<PyDict>>,
 );
+
+/// The little-endian bytes of `values`, from which numpy makes its array without a copy
+/// through text (`numpy.frombuffer(b, "<f8")`).
+fn doubles<'py>(py: Python<'py>, values: &[f64]) -> Bound<'py, PyBytes> {
+    let bytes: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
+    PyBytes::new(py, &bytes)
+}
+
+/// A run's trajectory for the Python layer: `t`, `x`, `v`, `friction` and `z` (or `None`) as
+/// the bytes of little-endian doubles, the modes as one byte each (`mode`) indexing
+/// `mode_names`, and `bodies` (a system's bodies written, or `None` for a rig).
+fn trajectory<'py>(py: Python<'py>, t: &Trajectory) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("t", doubles(py, &t.t))?;
+    d.set_item("x", doubles(py, &t.x))?;
+    d.set_item("v", doubles(py, &t.v))?;
+    d.set_item("friction", doubles(py, &t.friction))?;
+    d.set_item("z", t.z.as_deref().map(|z| doubles(py, z)))?;
+    let mut names: Vec<&str> = Vec::new();
+    let codes: Vec<u8> = t
+        .mode
+        .iter()
+        .map(|m| match names.iter().position(|n| n == m) {
+            Some(k) => k as u8,
+            None => {
+                names.push(m);
+                (names.len() - 1) as u8
+            }
+        })
+        .collect();
+    d.set_item("mode", PyBytes::new(py, &codes))?;
+    d.set_item("mode_names", names)?;
+    d.set_item("bodies", t.bodies.clone())?;
+    Ok(d)
+}
 
 /// Runs `friction-lab ARGV...` (the program name not included) in memory. Bad input raises
 /// `ValueError` with the command line's message; a failure without a result raises
@@ -55,18 +93,25 @@ fn run(py: Python<'_>, argv: Vec<String>) -> PyResult<Made> {
         .chain(argv)
         .chain(["--out".to_string(), IN_MEMORY.to_string()]);
     let cli = friction_lab::Cli::try_parse_from(words).map_err(|e| usage(&e))?;
-    let made = interruptible(py, || friction_lab::make(&cli.command))?.map_err(to_python)?;
+    let made =
+        interruptible(py, || friction_lab::make_in_memory(&cli.command))?.map_err(to_python)?;
     let files = made
         .files
         .data(Path::new(IN_MEMORY))
         .into_iter()
         .map(|(name, bytes)| (name.display().to_string(), PyBytes::new(py, bytes).unbind()))
         .collect();
+    let columns = made
+        .trajectory
+        .as_ref()
+        .map(|t| trajectory(py, t).map(Bound::unbind))
+        .transpose()?;
     Ok((
         files,
         made.notes,
         made.warnings,
         made.failure.as_ref().map(failure_message),
+        columns,
     ))
 }
 

@@ -10,6 +10,7 @@ use crate::output::{Cell, Table};
 use crate::plot::{Corner, Marker, Plot, Series, BLUE};
 use crate::progress::Progress;
 use crate::ranges;
+use crate::trajectory::{Trajectory, TrajectoryAs};
 use crate::warnings::{coarse_step_warning, failure_warnings, stiffness_warning, unread_warnings};
 use clap::Args;
 use friction_models::{ModelId, Parameters};
@@ -431,9 +432,13 @@ fn figures(o: &Outcome, name: &str) -> Vec<(&'static str, Plot)> {
         .collect()
 }
 
-/// Runs `simulate` on a rig: its files in memory (a chain or a system file is
-/// [`crate::commands::system::make`]).
-pub fn make_rig(args: &SimulateArgs, scenario: Scenario) -> Result<Made, AppError> {
+/// Runs `simulate` on a rig: its files in memory, its trajectory as the file or as columns
+/// (a chain or a system file is [`crate::commands::system::make`]).
+pub fn make_rig(
+    args: &SimulateArgs,
+    scenario: Scenario,
+    trajectory_as: TrajectoryAs,
+) -> Result<Made, AppError> {
     let spec = spec(args, scenario)?;
     let (model, variant) = (model_of(args, scenario)?, args.model_options.variant);
     let t_end = spec
@@ -457,8 +462,14 @@ pub fn make_rig(args: &SimulateArgs, scenario: Scenario) -> Result<Made, AppErro
         spec.switching.name()
     );
     let mut files = Artifacts::default();
-    let csv = args.out.join("trajectory.csv");
-    files.add(csv.clone(), trajectory(&outcome, has_state, &csv)?);
+    let columns = match trajectory_as {
+        TrajectoryAs::File => {
+            let csv = args.out.join("trajectory.csv");
+            files.add(csv.clone(), trajectory(&outcome, has_state, &csv)?);
+            None
+        }
+        TrajectoryAs::Columns => Some(Trajectory::of_outcome(&outcome, has_state)),
+    };
     for (stem, p) in figures(&outcome, &name) {
         files.add_plot(&args.out.join(stem), &p)?;
     }
@@ -517,6 +528,7 @@ pub fn make_rig(args: &SimulateArgs, scenario: Scenario) -> Result<Made, AppErro
     files.add_json(args.out.join("summary.json"), &summary)?;
     Ok(Made {
         files,
+        trajectory: columns,
         notes: Vec::new(),
         warnings: outcome
             .stiffness_detected_at

@@ -442,5 +442,6 @@ pub fn make(args: &SweepArgs) -> Result<Made, AppError> {
                 results.len()
             ))
         }),
+        trajectory: None,
     })
 }

@@ -12,6 +12,7 @@ use crate::output::{Cell, Table};
 use crate::plot::{self, Corner, Marker, Plot, Raster, Series, PALETTE};
 use crate::progress::Progress;
 use crate::ranges;
+use crate::trajectory::{Trajectory, TrajectoryAs};
 use friction_models::{FrictionParams, ModelId};
 use friction_systems::chain::{ChainParams, CHAIN_PARAMETERS};
 use friction_systems::{
@@ -388,8 +389,8 @@ pub fn grid_options(args: &SimulateArgs, t_end: f64, points: usize) -> Result<Op
     })
 }
 
-/// Runs `simulate` on a system; its files in memory.
-pub fn make(args: &SimulateArgs) -> Result<Made, AppError> {
+/// Runs `simulate` on a system: its files in memory, its trajectory as the file or as columns.
+pub fn make(args: &SimulateArgs, trajectory_as: TrajectoryAs) -> Result<Made, AppError> {
     let Described {
         system,
         name,
@@ -429,13 +430,17 @@ pub fn make(args: &SimulateArgs) -> Result<Made, AppError> {
             "events.csv",
             events_table(&run, &args.out.join("events.csv"))?,
         ),
-        (
-            "trajectory.csv",
-            trajectory_table(&run, &bodies, &args.out.join("trajectory.csv"))?,
-        ),
     ] {
         files.add(args.out.join(file), bytes);
     }
+    let columns = match trajectory_as {
+        TrajectoryAs::File => {
+            let csv = args.out.join("trajectory.csv");
+            files.add(csv.clone(), trajectory_table(&run, &bodies, &csv)?);
+            None
+        }
+        TrajectoryAs::Columns => Some(Trajectory::of_run(&run, &bodies)),
+    };
     if !run.solution.is_empty() {
         let (raster, data) = space_time(&run, &title, &args.out.join("space-time.csv"))?;
         files.add(args.out.join("space-time.csv"), data);
@@ -499,6 +504,7 @@ pub fn make(args: &SimulateArgs) -> Result<Made, AppError> {
     let period = integrators::OdeProblem::time_scale(&run.problem);
     Ok(Made {
         files,
+        trajectory: columns,
         notes: vec![format!(
             "{} bodies, {} steps, {} events, {:.3} s",
             system.bodies.len(),

@@ -194,6 +194,7 @@ impl CaseArgs {
                 .chain(self.scheme.spelling_notes())
                 .collect(),
             failure,
+            trajectory: None,
         })
     }
 }
