@@ -7,7 +7,7 @@ use super::{check_lists, study_file, Study, StudyFiles};
 use crate::error::AppError;
 use crate::plot::{Corner, Plot};
 use integrators::Solver;
-use scenarios::studies::{self, Convergence, StudyCase};
+use scenarios::studies::{self, Convergence, StepKind, StudyCase};
 use scenarios::ScenarioError;
 
 /// Every solver of `solvers` on `case` at the fixed step sizes `steps` (those that take fixed
@@ -53,7 +53,7 @@ impl Study for ConvergenceStudy<'_> {
         out.files
             .add_json(out.path(".json"), &study_file(case, c))?;
         // Step sizes and tolerances are different things: one panel each.
-        let panel = |step: &str, x_label: &str, slopes: &[f64]| {
+        let panel = |step: StepKind, x_label: &str, slopes: &[f64]| {
             let mut series = per_solver_series(
                 &c.runs,
                 |r| r.step == step,
@@ -62,7 +62,7 @@ impl Study for ConvergenceStudy<'_> {
             );
             series.extend(slope_lines(&series, slopes));
             Plot {
-                title: format!("Convergence ({step} steps): {}", case.describe()),
+                title: format!("Convergence ({} steps): {}", step.name(), case.describe()),
                 x_label: x_label.into(),
                 y_label: "max error on the time grid".into(),
                 series,
@@ -71,8 +71,8 @@ impl Study for ConvergenceStudy<'_> {
             }
         };
         let panels: Vec<Plot> = [
-            panel("fixed", "step size h (s)", &[1.0, 4.0, 5.0]),
-            panel("adaptive", "tolerance (rtol = atol)", &[1.0]),
+            panel(StepKind::Fixed, "step size h (s)", &[1.0, 4.0, 5.0]),
+            panel(StepKind::Adaptive, "tolerance (rtol = atol)", &[1.0]),
         ]
         .into_iter()
         .filter(|p| !p.series.is_empty())

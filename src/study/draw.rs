@@ -107,7 +107,7 @@ mod tests {
         StudyRun {
             solver: solver.into(),
             resolution: h,
-            step: "fixed",
+            step: scenarios::studies::StepKind::Fixed,
             errors: Errors {
                 final_state: error,
                 ..Errors::UNMEASURED

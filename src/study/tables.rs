@@ -2,16 +2,15 @@
 
 use crate::error::AppError;
 use crate::output::{Cell, Table};
-use scenarios::studies::StudyRun;
+use scenarios::studies::{StepKind, StudyRun};
 use std::path::Path;
 
-/// The columns `h` and `tol` of a run with `resolution` of kind `step` (`fixed`: a step
-/// size, `adaptive`: a tolerance): the one that applies, the other empty, so that each column
-/// holds one quantity.
-pub fn resolution_cells(step: Option<&str>, resolution: Option<f64>) -> [Cell; 2] {
+/// The columns `h` and `tol` of a run with `resolution` of kind `step` (a step size or a
+/// tolerance): the one that applies, the other empty, so that each column holds one quantity.
+pub fn resolution_cells(step: Option<StepKind>, resolution: Option<f64>) -> [Cell; 2] {
     let empty = || Cell::Text(String::new());
     match (step, resolution) {
-        (Some("fixed"), Some(h)) => [Cell::Num(h), empty()],
+        (Some(StepKind::Fixed), Some(h)) => [Cell::Num(h), empty()],
         (Some(_), Some(tol)) => [empty(), Cell::Num(tol)],
         _ => [empty(), empty()],
     }
@@ -45,7 +44,7 @@ pub fn runs_table(runs: &[StudyRun], path: &Path) -> Result<Vec<u8>, AppError> {
         let [h, tol] = resolution_cells(Some(r.step), Some(r.resolution));
         t.rows.push(vec![
             Cell::Text(r.solver.clone()),
-            Cell::Text(r.step.into()),
+            Cell::Text(r.step.name().into()),
             h,
             tol,
             Cell::Num(r.work as f64),

@@ -10,7 +10,7 @@
 //! results are the same for any number of threads and any order.
 
 use crate::cases::{Measures, StudyCase};
-use crate::method::{resolution, step_kind, Method};
+use crate::method::{resolution, Method, StepKind};
 use crate::run::{ScenarioError, SwitchingKind};
 use crate::schedule;
 use crate::study_run::{Errors, Reference, StudyRun, REFERENCE_TOLERANCE};
@@ -261,7 +261,7 @@ pub fn run_cases(
             Ok(Done::Run(Box::new(StudyRun {
                 solver: method.label(),
                 resolution: resolution(step),
-                step: step_kind(step),
+                step: StepKind::of(step),
                 errors: Errors::UNMEASURED,
                 measures: o.measures,
                 stats: o.stats,

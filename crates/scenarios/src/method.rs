@@ -3,6 +3,7 @@
 
 use crate::run::SwitchingKind;
 use integrators::{Solver, StepControl};
+use serde::Serialize;
 
 /// How a study integrates its case: a solver under the case's own treatment of v = 0, or a
 /// peer under another one (regularised BDF, or Moreau–Jean time-stepping, beside event-driven
@@ -121,11 +122,32 @@ pub fn resolution(step: StepControl) -> f64 {
     }
 }
 
-/// Which a resolution is: `fixed` (a step size) or `adaptive` (a tolerance).
-pub fn step_kind(step: StepControl) -> &'static str {
-    match step {
-        StepControl::Fixed { .. } => "fixed",
-        StepControl::Adaptive { .. } => "adaptive",
+/// Which a resolution is: a step size (fixed steps, s) or a tolerance (adaptive steps,
+/// rtol = atol); written `fixed` and `adaptive`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum StepKind {
+    /// A step size.
+    Fixed,
+    /// A tolerance.
+    Adaptive,
+}
+
+impl StepKind {
+    /// The kind of `step`.
+    pub fn of(step: StepControl) -> StepKind {
+        match step {
+            StepControl::Fixed { .. } => StepKind::Fixed,
+            StepControl::Adaptive { .. } => StepKind::Adaptive,
+        }
+    }
+
+    /// Its name, as tables write it.
+    pub fn name(self) -> &'static str {
+        match self {
+            StepKind::Fixed => "fixed",
+            StepKind::Adaptive => "adaptive",
+        }
     }
 }
 

@@ -2,6 +2,7 @@
 //! errors against it, and the record a study keeps of the run.
 
 use crate::cases::Measures;
+use crate::method::StepKind;
 use integrators::{Stats, StepControl};
 use serde::Serialize;
 
@@ -86,7 +87,7 @@ pub struct StudyRun {
     /// The step size (fixed-step runs) or the tolerance (adaptive runs).
     pub resolution: f64,
     /// Which the resolution is: `fixed` (a step size, s) or `adaptive` (rtol = atol).
-    pub step: &'static str,
+    pub step: StepKind,
     /// Errors against the reference.
     pub errors: Errors,
     /// The run's measures.

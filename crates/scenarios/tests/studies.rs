@@ -686,7 +686,7 @@ fn a_time_stepped_study_measures_moreau_jeans_order_under_its_own_name() {
         assert!(c
             .runs
             .iter()
-            .all(|r| r.failure.is_none() && r.step == "fixed"));
+            .all(|r| r.failure.is_none() && r.step == scenarios::studies::StepKind::Fixed));
         let grid = c.orders.iter().find(|t| t.measure == "grid_max").unwrap();
         assert_eq!(grid.solver, "moreau-jean (timestepping)");
         let p = grid.fitted_slope.unwrap();

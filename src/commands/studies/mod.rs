@@ -16,7 +16,7 @@ use friction_models::params::show;
 use friction_models::ModelId;
 use integrators::Solver;
 use scenarios::run::DEFAULT_THETA;
-use scenarios::studies::{Case, StudyCase, StudyRun, SystemCase};
+use scenarios::studies::{Case, StepKind, StudyCase, StudyRun, SystemCase};
 use scenarios::{Scenario, SwitchingKind};
 use std::path::PathBuf;
 
@@ -213,7 +213,11 @@ pub fn failures(runs: &[StudyRun], csv: &str) -> Vec<String> {
         .filter_map(|mine| {
             let failed: Vec<&StudyRun> = mine.iter().filter(|r| r.failure.is_some()).collect();
             let first = failed.first()?;
-            let at = if first.step == "fixed" { "h" } else { "tol" };
+            let at = if first.step == StepKind::Fixed {
+                "h"
+            } else {
+                "tol"
+            };
             Some(format!(
                 "{:15} {} of {} runs failed (status in {csv}); the first, at {at} = {}: {}",
                 first.solver,

@@ -1,7 +1,7 @@
 //! The step-size independence study: successive differences over refinement levels, the
 //! Richardson estimate of the error left, and the verdict.
 
-use super::{batch, Measures, Method, StudyCase};
+use super::{batch, Measures, Method, StepKind, StudyCase};
 use crate::run::ScenarioError;
 use integrators::Solver;
 use serde::Serialize;
@@ -31,7 +31,7 @@ pub struct Independence {
     /// The method's label ([`Method::label`]).
     pub solver: String,
     /// Which the resolutions are: `fixed` (step sizes) or `adaptive` (tolerances).
-    pub step: &'static str,
+    pub step: StepKind,
     /// The resolutions judged, coarse to fine (each the previous divided by `ratio`): every
     /// level asked for, or, when some failed, the longest unbroken run of finished ones.
     pub resolutions: Vec<f64>,
@@ -203,7 +203,7 @@ pub fn independence(
     }
     Ok(Independence {
         solver: method[0].label(),
-        step: runs.first().map_or("fixed", |r| r.step),
+        step: runs.first().map_or(StepKind::Fixed, |r| r.step),
         independent: failed.is_empty() && outputs.iter().all(|o| o.independent),
         resolutions: resolutions[judged.clone()].to_vec(),
         first_level: judged.start,

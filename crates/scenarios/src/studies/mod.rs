@@ -13,7 +13,7 @@ mod work_precision;
 use crate::batch;
 pub use crate::batch::reference;
 pub use crate::cases::{Case, Measured, Measures, StudyCase, SystemCase, GRID_POINTS};
-pub use crate::method::{resolution, step_kind, steps_for, Method};
+pub use crate::method::{resolution, steps_for, Method, StepKind};
 use crate::run::ScenarioError;
 pub use crate::study_run::{Errors, Reference, StudyRun, REFERENCE_TOLERANCE};
 pub use convergence::{convergence, observed_order, orders, Convergence, OrderTable, PairOrder};

@@ -1,6 +1,6 @@
 //! Cost against size: every method at one resolution on systems of growing size.
 
-use super::{resolution, slope, step_kind, Method, StudyCase};
+use super::{resolution, slope, Method, StepKind, StudyCase};
 use crate::run::ScenarioError;
 use crate::schedule;
 use integrators::{Stats, StepControl};
@@ -16,7 +16,7 @@ pub struct ScalingRun {
     /// Its step size or tolerance.
     pub resolution: f64,
     /// Which the resolution is: `fixed` or `adaptive`.
-    pub step: &'static str,
+    pub step: StepKind,
     /// Work done.
     pub stats: Stats,
     /// Work in right-hand-side evaluations ([`Stats::work`]).
@@ -65,7 +65,7 @@ pub fn scaling(
             size: *size,
             solver: method.label(),
             resolution: resolution(step),
-            step: step_kind(step),
+            step: StepKind::of(step),
             stats: o.stats,
             work,
             work_per_step: work as f64 / o.stats.steps.max(1) as f64,

@@ -1,7 +1,7 @@
 //! The stiffness study: the cheapest run of each method that meets a target error, over the
 //! values of a stiffness parameter, and where the implicit methods overtake the explicit ones.
 
-use super::{batch, Method, StudyCase};
+use super::{batch, Method, StepKind, StudyCase};
 use crate::run::ScenarioError;
 use integrators::Stats;
 use serde::Serialize;
@@ -16,7 +16,7 @@ pub struct Cost {
     /// The resolution that first met the target (None: none did).
     pub resolution: Option<f64>,
     /// Which that resolution is: `fixed` or `adaptive` (None: none met the target).
-    pub step: Option<&'static str>,
+    pub step: Option<StepKind>,
     /// Its error.
     pub error: f64,
     /// Its statistics.
