@@ -103,7 +103,7 @@ mod tests {
     use integrators::Stats;
     use scenarios::studies::Errors;
 
-    fn run(solver: &str, h: f64, error: f64, failure: Option<&str>) -> StudyRun {
+    fn run(solver: &str, h: f64, error: f64, failure: Option<f64>) -> StudyRun {
         StudyRun {
             solver: solver.into(),
             resolution: h,
@@ -115,7 +115,12 @@ mod tests {
             measures: Default::default(),
             stats: Stats::default(),
             work: 0,
-            failure: failure.map(str::to_string),
+            // A run that left the finite numbers at time t.
+            failure: failure.map(|t| integrators::SolverError::NonFinite {
+                t,
+                h,
+                what: "state".into(),
+            }),
             diverged: false,
             wall_time_s: 0.0,
         }
@@ -126,9 +131,9 @@ mod tests {
         // Two solvers failing at the same step: at one height, the second's crosses hid the
         // first's.
         let runs = [
-            run("rk4", 0.02, f64::NAN, Some("diverged")),
+            run("rk4", 0.02, f64::NAN, Some(0.1)),
             run("rk4", 0.01, 1e-4, None),
-            run("dopri5", 0.02, f64::NAN, Some("diverged")),
+            run("dopri5", 0.02, f64::NAN, Some(0.1)),
             run("dopri5", 0.01, 1e-6, None),
             run("implicit-euler", 0.02, 1e-2, None),
         ];

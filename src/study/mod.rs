@@ -1,5 +1,6 @@
-//! The solver studies as one abstraction: a [`Study`] runs cases with methods, each run against
-//! a reference, into a typed result, and writes that result's tables and figures.
+//! The studies as one abstraction: a [`Study`] makes its runs (solvers on a case against a
+//! reference, Table 2's protocols, the belt's settled states) into a typed result, and writes
+//! that result's tables and figures.
 //! [`conduct`] is what every study shares: its options checked before anything runs, its runs
 //! on a pool of threads with a progress bar (collected in order, so the files do not depend on
 //! the thread count), its files added to a [`Target`]. The command line, `reproduce` and a

@@ -87,7 +87,7 @@ impl Study for ScalingStudy<'_> {
                 Cell::Num(r.stats.jacobian_evals as f64),
                 Cell::Num(r.stats.lu_factorizations as f64),
                 Cell::Num(r.stats.events as f64),
-                Cell::Text(r.failure.clone().unwrap_or_else(|| "ok".into())),
+                Cell::Text(r.failure.as_ref().map_or("ok".into(), |e| e.to_string())),
             ]);
             timing.rows.push(vec![
                 Cell::Num(r.size as f64),

@@ -59,7 +59,7 @@ pub fn runs_table(runs: &[StudyRun], path: &Path) -> Result<Vec<u8>, AppError> {
             Cell::Num(s.lu_factorizations as f64),
             Cell::Num(s.newton_iterations as f64),
             Cell::Num(s.events as f64),
-            Cell::Text(r.failure.clone().unwrap_or_else(|| "ok".into())),
+            Cell::Text(r.failure.as_ref().map_or("ok".into(), |e| e.to_string())),
         ]);
     }
     t.to_csv(path)

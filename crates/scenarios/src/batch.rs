@@ -267,7 +267,7 @@ pub fn run_cases(
                 stats: o.stats,
                 work: o.stats.work(dims[case]),
                 diverged: crate::run::diverged(!method.is_implicit(), step, o.error.as_ref()),
-                failure: o.error.map(|e| e.to_string()),
+                failure: o.error,
                 wall_time_s: o.wall_time_s,
             })))
         }

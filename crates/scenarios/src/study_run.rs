@@ -3,7 +3,7 @@
 
 use crate::cases::Measures;
 use crate::method::StepKind;
-use integrators::{Stats, StepControl};
+use integrators::{SolverError, Stats, StepControl};
 use serde::Serialize;
 
 /// Errors of a run against the reference.
@@ -97,8 +97,9 @@ pub struct StudyRun {
     pub stats: Stats,
     /// Work in right-hand-side evaluations ([`Stats::work`] at the problem's dimension).
     pub work: usize,
-    /// The solver's error, if it failed.
-    pub failure: Option<String>,
+    /// The solver's error, if it failed (written as its message).
+    #[serde(serialize_with = "message")]
+    pub failure: Option<SolverError>,
     /// Whether it failed as an explicit method with a fixed step past its stability limit
     /// ([`crate::run::diverged`]).
     #[serde(skip)]
@@ -107,4 +108,15 @@ pub struct StudyRun {
     /// deterministic: kept out of the study's main files).
     #[serde(skip)]
     pub wall_time_s: f64,
+}
+
+/// A run's failure as its message, or null: what the study files write.
+pub fn message<S: serde::Serializer>(
+    failure: &Option<SolverError>,
+    serializer: S,
+) -> Result<S::Ok, S::Error> {
+    match failure {
+        Some(e) => serializer.serialize_some(&e.to_string()),
+        None => serializer.serialize_none(),
+    }
 }

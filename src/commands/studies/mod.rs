@@ -224,7 +224,11 @@ pub fn failures(runs: &[StudyRun], csv: &str) -> Vec<String> {
                 failed.len(),
                 mine.len(),
                 show(first.resolution),
-                first.failure.as_deref().unwrap_or_default()
+                first
+                    .failure
+                    .as_ref()
+                    .map(|e| e.to_string())
+                    .unwrap_or_default()
             ))
         })
         .chain(diverged)

@@ -139,10 +139,10 @@ pub fn independence(
         .iter()
         .enumerate()
         .filter_map(|(level, r)| {
-            r.failure.clone().map(|failure| FailedLevel {
+            r.failure.as_ref().map(|failure| FailedLevel {
                 level,
                 resolution: resolutions[level],
-                failure,
+                failure: failure.to_string(),
                 diverged: r.diverged,
             })
         })

@@ -3,7 +3,7 @@
 use super::{resolution, slope, Method, StepKind, StudyCase};
 use crate::run::ScenarioError;
 use crate::schedule;
-use integrators::{Stats, StepControl};
+use integrators::{SolverError, Stats, StepControl};
 use serde::Serialize;
 
 /// One run of a cost-against-size study.
@@ -23,8 +23,9 @@ pub struct ScalingRun {
     pub work: usize,
     /// Work per accepted step.
     pub work_per_step: f64,
-    /// The solver's error, if it failed.
-    pub failure: Option<String>,
+    /// The solver's error, if it failed (written as its message).
+    #[serde(serialize_with = "crate::study_run::message")]
+    pub failure: Option<SolverError>,
     /// Wall time of the run, s (not deterministic: kept out of the study's main files).
     #[serde(skip)]
     pub wall_time_s: f64,
@@ -69,7 +70,7 @@ pub fn scaling(
             stats: o.stats,
             work,
             work_per_step: work as f64 / o.stats.steps.max(1) as f64,
-            failure: o.error.map(|e| e.to_string()),
+            failure: o.error,
             wall_time_s: o.wall_time_s,
         };
         Ok(run)
