@@ -4,12 +4,15 @@
 
 use crate::chain::ChainSource;
 use crate::method::Method;
+use crate::motion::Kinematic;
 use crate::run::Limits;
-use crate::run::{run, Law, Outcome, RunSpec, ScenarioError, SwitchingKind, DEFAULT_THETA};
+use crate::run::{
+    body_system, run, Law, Outcome, RunSpec, ScenarioError, SwitchingKind, DEFAULT_THETA,
+};
 use crate::scenario::Scenario;
 use crate::ScenarioParams;
 use friction_models::{FrictionParams, ModelId, Parameters};
-use friction_systems::{simulate, Run, System, STICK};
+use friction_systems::{simulate, Layout, Run, System, STICK};
 use integrators::{DiffsolMethod, Options, Output, Solver, SolverError, Stats, StepControl};
 use serde::Serialize;
 
@@ -231,14 +234,16 @@ impl StudyCase for Case {
         self.switching
     }
 
-    /// The body's x, v and internal state, and the three energy accumulators.
+    /// A body rig's: the unknowns of its one-body system (x, v, the internal states, the
+    /// energy accumulators); a prescribed motion's: those of its kinematic problem.
     fn dim(&self) -> Result<usize, ScenarioError> {
         let model = self.law.build(&self.friction)?;
-        Ok(if self.scenario.has_body() {
-            2 + model.n_states() + 3
-        } else {
-            model.n_states() + 2
-        })
+        if !self.scenario.has_body() {
+            return Ok(Kinematic::dim_of(model.as_ref()));
+        }
+        // The solver and step do not change the system.
+        let spec = self.spec(Solver::Dopri5, StepControl::Fixed { h: self.t_end });
+        Ok(Layout::of(&body_system(&spec, model)).dim())
     }
 
     fn with_switching(&self, switching: SwitchingKind) -> Box<dyn StudyCase> {

@@ -123,9 +123,17 @@ impl Kinematic<'_> {
     }
 }
 
+impl Kinematic<'_> {
+    /// The number of unknowns of a prescribed motion of `model`: its internal states, then the
+    /// two accumulators (the work against friction and the loop area).
+    pub fn dim_of(model: &dyn FrictionModel) -> usize {
+        model.n_states() + 2
+    }
+}
+
 impl OdeProblem for Kinematic<'_> {
     fn dim(&self) -> usize {
-        self.model.n_states() + 2
+        Kinematic::dim_of(self.model)
     }
 
     fn rhs(&self, t: f64, y: &[f64], modes: &[Mode], dy: &mut [f64]) {
