@@ -275,23 +275,10 @@ pub struct SchemeArgs {
     pub switching: Option<SwitchingKind>,
 }
 
-impl SchemeArgs {
-    /// The treatment of v = 0 they ask for, time-stepping at `theta` ([`treatment`]).
-    pub fn treatment(&self, theta: f64) -> Result<SwitchingKind, AppError> {
-        treatment(self.scheme, self.switching, theta)
-    }
-
-    /// The notes on their spelling ([`spelling_notes`]).
-    pub fn spelling_notes(&self) -> Vec<String> {
-        spelling_notes(self.switching)
-    }
-}
-
 /// `--scheme`: how a run is integrated, as Siconos's `Simulation` chooses it.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SchemeName {
     /// A solver steps between located events; v = 0 is treated by `--switching`.
-    #[default]
     EventDriven,
     /// Moreau–Jean time-stepping: fixed steps of `--dt`, no event located, no ODE solver.
     TimeStepping,
@@ -334,34 +321,32 @@ pub const TIMESTEPPING_SPELLING: &str = "`--switching timestepping` is now spelt
      time-stepping` (time-stepping is a scheme, not a treatment of v = 0); the old spelling is \
      taken for now and will be refused in a later release";
 
-/// The notes on the spelling of `--switching`: [`TIMESTEPPING_SPELLING`] for `timestepping`.
-pub fn spelling_notes(switching: Option<SwitchingKind>) -> Vec<String> {
-    let old = matches!(switching, Some(SwitchingKind::TimeStepping { .. }));
-    old.then(|| TIMESTEPPING_SPELLING.to_string())
-        .into_iter()
-        .collect()
-}
+impl SchemeArgs {
+    /// The notes on their spelling: [`TIMESTEPPING_SPELLING`] for `--switching timestepping`.
+    pub fn spelling_notes(&self) -> Vec<String> {
+        let old = matches!(self.switching, Some(SwitchingKind::TimeStepping { .. }));
+        old.then(|| TIMESTEPPING_SPELLING.to_string())
+            .into_iter()
+            .collect()
+    }
 
-/// The treatment of v = 0 that `--scheme` and `--switching` ask for: time-stepping at `theta`
-/// (also from the former spelling `--switching timestepping`), or `switching` under
-/// event-driven integration (event by default). `--switching regularized` or `naive` with
-/// `--scheme time-stepping` is refused: time-stepping treats v = 0 by the set-valued law.
-pub fn treatment(
-    scheme: SchemeName,
-    switching: Option<SwitchingKind>,
-    theta: f64,
-) -> Result<SwitchingKind, AppError> {
-    match (scheme, switching) {
-        (_, Some(SwitchingKind::TimeStepping { .. }))
-        | (SchemeName::TimeStepping, None | Some(SwitchingKind::Event)) => {
-            Ok(SwitchingKind::TimeStepping { theta })
+    /// The treatment of v = 0 they ask for: time-stepping at `theta` (also from the former
+    /// spelling `--switching timestepping`), or `--switching` under event-driven integration
+    /// (event by default). `--switching regularized` or `naive` with `--scheme time-stepping` is
+    /// refused: time-stepping treats v = 0 by the set-valued law.
+    pub fn treatment(&self, theta: f64) -> Result<SwitchingKind, AppError> {
+        match (self.scheme, self.switching) {
+            (_, Some(SwitchingKind::TimeStepping { .. }))
+            | (SchemeName::TimeStepping, None | Some(SwitchingKind::Event)) => {
+                Ok(SwitchingKind::TimeStepping { theta })
+            }
+            (SchemeName::TimeStepping, Some(s)) => Err(AppError::Usage(format!(
+                "option `--switching {}` applies to --scheme event-driven: time-stepping locates \
+                 no event and treats v = 0 by the set-valued law at the end of each step",
+                s.name()
+            ))),
+            (SchemeName::EventDriven, s) => Ok(s.unwrap_or(SwitchingKind::Event)),
         }
-        (SchemeName::TimeStepping, Some(s)) => Err(AppError::Usage(format!(
-            "option `--switching {}` applies to --scheme event-driven: time-stepping locates no \
-             event and treats v = 0 by the set-valued law at the end of each step",
-            s.name()
-        ))),
-        (SchemeName::EventDriven, s) => Ok(s.unwrap_or(SwitchingKind::Event)),
     }
 }
 

@@ -2494,76 +2494,50 @@ fn a_run_that_cannot_resolve_its_natural_period_is_told_why() {
 
 #[test]
 fn the_scheme_is_chosen_apart_from_the_treatment_of_v_zero() {
-    // Time-stepping takes no ODE solver and no treatment of v = 0 but its own: both refused,
-    // naming the option and the way out, before anything is run.
-    let e = rejected(&[
-        "simulate",
-        "belt",
-        "--model",
-        "CS",
-        "--scheme",
-        "time-stepping",
-        "--solver",
-        "rk4",
-    ]);
-    assert!(
-        e.contains("option `--solver rk4` does not apply to --scheme time-stepping"),
-        "{e}"
-    );
-    let e = rejected(&[
-        "simulate",
-        "chain",
-        "--model",
-        "CS",
-        "--scheme",
-        "time-stepping",
-        "--switching",
-        "regularized",
-    ]);
-    assert!(
-        e.contains("option `--switching regularized` applies to --scheme event-driven"),
-        "{e}"
-    );
-    // A study under time-stepping has one method, Moreau–Jean's: naming solvers is refused.
-    let e = rejected(&[
-        "converge",
-        "belt",
-        "--model",
-        "CS",
-        "--scheme",
-        "time-stepping",
-        "--solvers",
-        "rk4,dopri5",
-    ]);
-    assert!(
-        e.contains("option `--solvers rk4,dopri5` does not apply to --scheme time-stepping"),
-        "{e}"
-    );
-    let e = rejected(&[
-        "independence",
-        "belt",
-        "--model",
-        "CS",
-        "--scheme",
-        "time-stepping",
-        "--solver",
-        "rk4",
-    ]);
-    assert!(
-        e.contains("option `--solver rk4` does not apply to --scheme time-stepping"),
-        "{e}"
-    );
-    // θ is time-stepping's: given to the event-driven scheme, it is refused, not ignored.
-    let e = rejected(&["simulate", "belt", "--model", "CS", "--theta", "0.7"]);
-    assert!(
-        e.contains("option `--theta 0.7` applies to --scheme time-stepping"),
-        "{e}"
-    );
-    let e = rejected(&["simulate", "belt", "--model", "CS", "--scheme", "moreau"]);
-    assert!(
-        e.contains("unknown scheme `moreau`; known: event-driven, time-stepping"),
-        "{e}"
-    );
+    // Each refused before anything is run, naming the option and the way out: time-stepping
+    // takes no ODE solver and no treatment of v = 0 but its own (a study under it has one
+    // method, Moreau–Jean's), and θ is time-stepping's alone.
+    let ts = ["--scheme", "time-stepping"];
+    let cases: &[(&[&str], &[&str], &str)] = &[
+        (
+            &["simulate", "belt"],
+            &["--solver", "rk4"],
+            "option `--solver rk4` does not apply to --scheme time-stepping",
+        ),
+        (
+            &["simulate", "chain"],
+            &["--switching", "regularized"],
+            "option `--switching regularized` applies to --scheme event-driven",
+        ),
+        (
+            &["converge", "belt"],
+            &["--solvers", "rk4,dopri5"],
+            "option `--solvers rk4,dopri5` does not apply to --scheme time-stepping",
+        ),
+        (
+            &["independence", "belt"],
+            &["--solver", "rk4"],
+            "option `--solver rk4` does not apply to --scheme time-stepping",
+        ),
+    ];
+    for (command, option, message) in cases {
+        let args: Vec<&str> = [*command, &["--model", "CS"], &ts, *option].concat();
+        let e = rejected(&args);
+        assert!(e.contains(message), "{args:?}: {e}");
+    }
+    for (args, message) in [
+        (
+            ["simulate", "belt", "--model", "CS", "--theta", "0.7"],
+            "option `--theta 0.7` applies to --scheme time-stepping",
+        ),
+        (
+            ["simulate", "belt", "--model", "CS", "--scheme", "moreau"],
+            "unknown scheme `moreau`; known: event-driven, time-stepping",
+        ),
+    ] {
+        let e = rejected(&args);
+        assert!(e.contains(message), "{args:?}: {e}");
+    }
     // The former spelling `--switching timestepping` still runs the same scheme, bit for
     // bit, and says how it is spelt now.
     let dir = tempfile::tempdir().unwrap();

@@ -142,11 +142,6 @@ impl SolverOptions {
         self.solver.unwrap_or(Solver::Dopri5)
     }
 
-    /// The notes on the options' spelling ([`SchemeArgs::spelling_notes`]).
-    pub fn spelling_notes(&self) -> Vec<String> {
-        self.scheme.spelling_notes()
-    }
-
     /// The step control these options ask for.
     pub fn step(&self) -> StepControl {
         let fixed = self.solver().is_fixed_step() || self.fixed_step;
@@ -548,7 +543,7 @@ pub fn make_rig(
                 Some(model),
                 spec.switching,
             ))
-            .chain(args.solver.spelling_notes())
+            .chain(args.solver.scheme.spelling_notes())
             .collect(),
         failure: outcome.error.map(AppError::Solver),
     })

@@ -434,7 +434,7 @@ pub fn make(args: &SweepArgs) -> Result<Made, AppError> {
             args.run.solver.switching(),
         )
         .into_iter()
-        .chain(args.run.solver.spelling_notes())
+        .chain(args.run.solver.scheme.spelling_notes())
         .collect(),
         failure: (failed > 0).then(|| {
             AppError::StudyRun(format!(

@@ -531,7 +531,7 @@ pub fn make(args: &SimulateArgs, trajectory_as: TrajectoryAs) -> Result<Made, Ap
                 args.model,
                 args.solver.switching(),
             ))
-            .chain(args.solver.spelling_notes())
+            .chain(args.solver.scheme.spelling_notes())
             .collect(),
         failure: run.error.map(AppError::Solver),
     })

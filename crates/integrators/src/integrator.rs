@@ -197,7 +197,6 @@ impl<'a> Integrator<'a> {
         self.handle(found.t, found.indices)
     }
 
-    /// Applies the events `fired` at `t`, records both sides and restarts the method.
     /// After a step of a method that settles the modes itself (time-stepping) to `t1`: its
     /// switches applied and recorded as an event at the step's end, the output inside the step
     /// recorded with [`Stepper::modes_inside`], and, where events are recorded, the end of a
@@ -245,6 +244,7 @@ impl<'a> Integrator<'a> {
         StopReason::StepTaken { t: t1 }
     }
 
+    /// Applies the events `fired` at `t`, records both sides and restarts the method.
     fn handle(&mut self, t: f64, fired: Vec<usize>) -> Result<StopReason, SolverError> {
         self.cut_at_event += 1;
         self.record_grid_until(t, false);
