@@ -140,7 +140,7 @@ fn rig_break_away() -> (f64, f64) {
     let first = o
         .events
         .iter()
-        .find(|e| e.kind.starts_with("slip"))
+        .find(|e| e.to != friction_lab::friction_systems::STICK)
         .map_or(f64::NAN, |e| e.t);
     (first, 7.5 / (params.k * params.v_belt))
 }

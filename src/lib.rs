@@ -20,6 +20,7 @@ pub mod output;
 pub mod plot;
 pub mod progress;
 pub mod ranges;
+pub mod run_record;
 pub mod study;
 pub mod threads;
 pub mod trajectory;

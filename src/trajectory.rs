@@ -1,8 +1,12 @@
 //! A run's trajectory as columns of numbers: what `trajectory.csv` holds, for a front end that
 //! takes the numbers themselves (Python builds its arrays from them, with no text between).
 
+use crate::error::AppError;
+use friction_models::params::show;
 use friction_systems::{mode_name, Run};
+use integrators::Mode;
 use scenarios::Outcome;
+use std::path::Path;
 
 /// Where `simulate` puts a run's trajectory.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -27,9 +31,9 @@ pub struct Trajectory {
     pub v: Vec<f64>,
     /// The force the contact exerts on the body along +x, N, per row.
     pub friction: Vec<f64>,
-    /// The contact's mode per row (`slip+`, `slip-`, `stick`; `none` for a body without a
-    /// contact).
-    pub mode: Vec<&'static str>,
+    /// The contact's mode per row (`None` for a body without a contact; written `slip+`,
+    /// `slip-`, `stick` and `none`).
+    pub mode: Vec<Option<Mode>>,
     /// The internal state per row (NaN for a body whose model has none), where any model has
     /// one; `None` otherwise.
     pub z: Option<Vec<f64>>,
@@ -45,7 +49,7 @@ impl Trajectory {
             x: column(|r| r.x),
             v: column(|r| r.v),
             friction: column(|r| r.friction),
-            mode: o.rows.iter().map(|r| r.mode).collect(),
+            mode: o.rows.iter().map(|r| Some(r.mode)).collect(),
             z: has_state.then(|| column(|r| r.z.unwrap_or(f64::NAN))),
         }
     }
@@ -75,12 +79,71 @@ impl Trajectory {
                 t.x.push(b.x);
                 t.v.push(b.v);
                 t.friction.push(b.friction);
-                t.mode.push(b.mode.map_or("none", mode_name));
+                t.mode.push(b.mode);
                 if let Some(z) = &mut t.z {
                     z.push(b.z.unwrap_or(f64::NAN));
                 }
             }
         }
         t
+    }
+
+    /// The number of bodies per point: a system's bodies written, or a rig's one.
+    fn width(&self) -> usize {
+        self.bodies.as_ref().map_or(1, Vec::len)
+    }
+
+    /// `trajectory.csv`: `t`, for a system `body`, then `x`, `v`, `friction`, `mode` and, where
+    /// a model has one, `z` (an empty cell for a body whose model has none). Written row by
+    /// row from the columns, so that a long run needs no table of cells beside them; a
+    /// non-finite number is refused, naming its row and column.
+    pub fn to_csv(&self, path: &Path) -> Result<Vec<u8>, AppError> {
+        let io = |e: csv::Error| AppError::Io {
+            path: path.to_path_buf(),
+            source: std::io::Error::other(e),
+        };
+        let mut header = vec!["t"];
+        if self.bodies.is_some() {
+            header.push("body");
+        }
+        header.extend(["x", "v", "friction", "mode"]);
+        if self.z.is_some() {
+            header.push("z");
+        }
+        let mut w = csv::Writer::from_writer(Vec::new());
+        w.write_record(&header).map_err(io)?;
+        let width = self.width();
+        let mut record: Vec<String> = Vec::with_capacity(header.len());
+        for row in 0..self.x.len() {
+            let number = |column: &str, x: f64| {
+                if x.is_finite() {
+                    Ok(show(x))
+                } else {
+                    Err(AppError::NonFinite {
+                        path: path.to_path_buf(),
+                        what: format!("column `{column}` of data row {}", row + 1),
+                        value: x,
+                    })
+                }
+            };
+            record.clear();
+            record.push(number("t", self.t[row / width])?);
+            if let Some(bodies) = &self.bodies {
+                record.push(bodies[row % width].clone());
+            }
+            record.push(number("x", self.x[row])?);
+            record.push(number("v", self.v[row])?);
+            record.push(number("friction", self.friction[row])?);
+            record.push(self.mode[row].map_or("none", mode_name).to_string());
+            if let Some(z) = &self.z {
+                record.push(if z[row].is_nan() {
+                    String::new()
+                } else {
+                    number("z", z[row])?
+                });
+            }
+            w.write_record(&record).map_err(io)?;
+        }
+        w.into_inner().map_err(|e| io(e.into_error().into()))
     }
 }

@@ -379,28 +379,31 @@ fn simulate_writes_trajectory_summary_and_figures() {
     assert!(csv.contains(",stick,") && csv.contains(",slip-,"));
     let s: serde_json::Value =
         serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
-    for key in [
-        "scenario",
-        "model",
-        "solver",
-        "switching",
-        "parameters",
-        "status",
-        "error",
-        "final",
-        "events",
-        "stats",
-        "wall_time_s",
-        "energy_residual",
-    ] {
-        assert!(s.get(key).is_some(), "summary.json lacks {key}");
-    }
-    assert_eq!(s["status"], "ok");
-    assert_eq!(s["final"]["t"], 5.0);
-    assert_eq!(s["parameters"]["k"], 100.0);
+    assert_eq!(s["system"], "belt");
     assert_eq!(
-        s["stats"]["events"].as_u64().unwrap() as usize,
-        s["events"].as_array().unwrap().len()
+        (s["n_bodies"].as_u64(), s["n_contacts"].as_u64()),
+        (Some(1), Some(1))
+    );
+    assert_eq!(s["status"], "ok");
+    assert_eq!(s["t_reached"], 5.0);
+    assert_eq!(s["parameters"]["k"], 100.0);
+    // events.csv lists every switch, summary.json counts them by the mode entered.
+    let events = std::fs::read_to_string(out.join("events.csv")).unwrap();
+    let switches = events.lines().count() - 1;
+    assert_eq!(s["stats"]["events"].as_u64().unwrap() as usize, switches);
+    let counted: u64 = s["event_counts"]
+        .as_object()
+        .unwrap()
+        .values()
+        .map(|n| n.as_u64().unwrap())
+        .sum();
+    assert_eq!(counted as usize, switches);
+    assert!(events.starts_with("t,body,from,to\n") && events.contains(",body,stick,slip-\n"));
+    // final.csv: the one body at the end, as the trajectory's last row has it.
+    let last = csv.lines().last().unwrap().split_once(',').unwrap().1;
+    assert_eq!(
+        std::fs::read_to_string(out.join("final.csv")).unwrap(),
+        format!("body,x,v,friction,mode,z\nbody,{last}\n")
     );
     for stem in [
         "history-x",
@@ -826,6 +829,55 @@ fn simulate_chain_writes_the_system_files() {
         "velocity.svg",
     ] {
         assert!(out.join(f).exists(), "{f}");
+    }
+}
+
+/// A rig, the chain, a system file and a prescribed motion write one `summary.json` schema:
+/// the same fields in the same order (docs/files.md), and the same four data files.
+#[test]
+fn every_run_writes_one_summary_schema() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("two.toml");
+    std::fs::write(
+        &file,
+        "[[body]]\nname = \"a\"\nm = 1\nv0 = 0.1\n[[body]]\nname = \"b\"\nm = 1\n\
+         [[spring]]\nbetween = [\"a\", \"b\"]\nk = 10\n\
+         [[contact]]\nbody = \"a\"\nmodel = \"coulomb\"\n",
+    )
+    .unwrap();
+    let runs: [&[&str]; 4] = [
+        &["belt", "--model", "CVS", "--t-end", "2"],
+        &["prescribed-motion", "--model", "dahl"],
+        &[
+            "chain",
+            "--model",
+            "coulomb",
+            "--set",
+            "n_bodies=3",
+            "--t-end",
+            "2",
+        ],
+        &["--system", file.to_str().unwrap(), "--t-end", "2"],
+    ];
+    let mut schemas = Vec::new();
+    for (k, args) in runs.iter().enumerate() {
+        let out = dir.path().join(format!("run{k}"));
+        let mut all = vec!["simulate", "--out", out.to_str().unwrap()];
+        all.extend(*args);
+        let o = friction_lab(&all);
+        assert!(o.status.success(), "{args:?}: {}", stderr(&o));
+        let text = std::fs::read_to_string(out.join("summary.json")).unwrap();
+        let s: serde_json::Value = serde_json::from_str(&text).unwrap();
+        let keys: Vec<String> = s.as_object().unwrap().keys().cloned().collect();
+        schemas.push((args[0], keys));
+        for f in ["trajectory.csv", "final.csv", "events.csv"] {
+            assert!(out.join(f).is_file(), "{args:?}: {f}");
+        }
+        assert_eq!(s["status"], "ok", "{args:?}");
+        assert_eq!(s["t_reached"], s["t_end"], "{args:?}");
+    }
+    for (name, keys) in &schemas[1..] {
+        assert_eq!(keys, &schemas[0].1, "{name} against belt");
     }
 }
 
@@ -2423,7 +2475,7 @@ fn ctrl_c_stops_a_run_at_its_next_step_and_keeps_what_it_computed() {
     let error = summary["error"].as_str().unwrap();
     assert!(error.starts_with("interrupted at t = "), "{error}");
     // The trajectory up to the stop: past t = 0, short of the end.
-    let t = summary["final"].as_f64().unwrap();
+    let t = summary["t_reached"].as_f64().unwrap();
     assert!(
         t > 0.0 && t < summary["t_end"].as_f64().unwrap(),
         "{summary}"

@@ -24,7 +24,8 @@ class Result:
 
     def __init__(self, made: Made):
         self._made = made
-        #: The fields of ``summary.json``: parameters, status, error, final state, energy.
+        #: The fields of ``summary.json`` (docs/files.md): parameters, status, error, time
+        #: reached, event counts, energy.
         self.summary: Dict[str, Any] = made.json("summary.json")
         #: Solver statistics (steps, rejected, rhs_evals, jacobian_evals, ..., events).
         self.stats: Dict[str, Any] = self.summary["stats"]
@@ -42,18 +43,10 @@ class Result:
         names = np.array(c["mode_names"], dtype=object)
         self.mode: np.ndarray = names[np.frombuffer(c["mode"], dtype=np.uint8)].reshape(shape)
         self.z: Optional[np.ndarray] = None if c["z"] is None else doubles("z").reshape(shape)
-        #: Every mode switch: t, body, from, to.
-        self.events: pd.DataFrame = (made.table("events.csv") if self.is_system
-                                     else self._rig_events())
-
-    def _rig_events(self) -> pd.DataFrame:
-        """A rig's events of ``summary.json`` (t, kind) with the mode each one leaves."""
-        rows, mode = [], (self.mode[0] if len(self.mode) else "")
-        for e in self.summary["events"]:
-            rows.append({"t": e["t"], "body": "body", "from": mode, "to": e["kind"]})
-            if e["kind"] != "reversal":
-                mode = e["kind"]
-        return pd.DataFrame(rows, columns=["t", "body", "from", "to"])
+        #: Every switch of a contact: t, body, from, to (a rig's one body is ``body``).
+        self.events: pd.DataFrame = made.table("events.csv")
+        #: Every body's state at the last recorded point: body, x, v, friction, mode[, z].
+        self.final: pd.DataFrame = made.table("final.csv")
 
     def to_pandas(self) -> pd.DataFrame:
         """The tidy trajectory: the rows and columns of ``trajectory.csv`` (``t``, for a system
@@ -70,7 +63,7 @@ class Result:
         return pd.DataFrame(rows)
 
     def __repr__(self) -> str:
-        what = self.summary.get("scenario") or self.summary.get("system")
+        what = self.summary["system"]
         return (f"<friction_lab.Result {what}: {len(self.t)} points, "
                 f"{self.stats['steps']} steps, status {self.summary['status']}>")
 

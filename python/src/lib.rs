@@ -11,8 +11,9 @@
 
 use clap::{CommandFactory, Parser};
 use friction_lab::error::AppError;
+use friction_lab::friction_systems::mode_name;
 use friction_lab::trajectory::Trajectory;
-use integrators::SolverError as RunError;
+use integrators::{Mode, SolverError as RunError};
 use pyo3::create_exception;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
@@ -66,19 +67,20 @@ fn trajectory<'py>(py: Python<'py>, t: &Trajectory) -> PyResult<Bound<'py, PyDic
     d.set_item("v", doubles(py, &t.v))?;
     d.set_item("friction", doubles(py, &t.friction))?;
     d.set_item("z", t.z.as_deref().map(|z| doubles(py, z)))?;
-    let mut names: Vec<&str> = Vec::new();
+    let mut modes: Vec<Option<Mode>> = Vec::new();
     let codes: Vec<u8> = t
         .mode
         .iter()
-        .map(|m| match names.iter().position(|n| n == m) {
+        .map(|m| match modes.iter().position(|n| n == m) {
             Some(k) => k as u8,
             None => {
-                names.push(m);
-                (names.len() - 1) as u8
+                modes.push(*m);
+                (modes.len() - 1) as u8
             }
         })
         .collect();
     d.set_item("mode", PyBytes::new(py, &codes))?;
+    let names: Vec<&str> = modes.iter().map(|m| m.map_or("none", mode_name)).collect();
     d.set_item("mode_names", names)?;
     d.set_item("bodies", t.bodies.clone())?;
     Ok(d)

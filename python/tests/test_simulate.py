@@ -64,6 +64,10 @@ def test_a_rig_equals_the_command_lines_trajectory(cli, tmp_path):
     # entered.
     assert np.all(r.v[r.mode == "stick"] == 0.1)
     assert (r.events["from"].iloc[1:].to_numpy() == r.events["to"].iloc[:-1].to_numpy()).all()
+    # The one body's final state is the trajectory's last point.
+    assert list(r.final["body"]) == ["body"]
+    assert (r.final["x"].iloc[0], r.final["v"].iloc[0]) == (r.x[-1], r.v[-1])
+    assert r.summary["t_reached"] == r.t[-1] == 20.0
 
 
 def test_coulomb_block_pushed_past_friction_follows_the_closed_form():

@@ -6,20 +6,22 @@ use crate::artifacts::{Artifacts, Made};
 use crate::commands::curve::used_parameters;
 use crate::error::AppError;
 use crate::options::{LimitArgs, ModelOptions, SchemeArgs, SchemeName};
-use crate::output::{Cell, Table};
 use crate::plot::{Corner, Marker, Plot, Series, BLUE};
 use crate::progress::Progress;
 use crate::ranges;
+use crate::run_record::{
+    event_counts, scheme_parameters, Integrated, RunRecord, RunSetup, RunSummary, RIG_BODY,
+};
 use crate::trajectory::{Trajectory, TrajectoryAs};
 use crate::warnings::{coarse_step_warning, failure_warnings, stiffness_warning, unread_warnings};
 use clap::Args;
 use friction_models::{ModelId, Parameters};
+use friction_systems::{BodyState, ContactEvent};
 use integrators::{Solver, StepControl};
-use scenarios::run::{EventEntry, Outcome};
+use scenarios::run::Outcome;
 use scenarios::{Law, Limits, RunSpec, Scenario, SwitchingKind};
-use serde::Serialize;
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// Options that choose and tune the solver, shared by every command that integrates.
 #[derive(Args, Clone, Debug)]
@@ -220,49 +222,6 @@ pub struct SimulateArgs {
     pub model_options: ModelOptions,
 }
 
-#[derive(Serialize)]
-struct Final {
-    t: f64,
-    x: f64,
-    v: f64,
-}
-
-#[derive(Serialize)]
-struct StatsEntry {
-    steps: usize,
-    rejected: usize,
-    rhs_evals: usize,
-    jacobian_evals: usize,
-    lu_factorizations: usize,
-    newton_iterations: usize,
-    events: usize,
-}
-
-#[derive(Serialize)]
-struct Summary<'a> {
-    scenario: &'a str,
-    model: &'a str,
-    variant: friction_models::Variant,
-    solver: &'a str,
-    scheme: &'a str,
-    switching: &'a str,
-    step: StepControl,
-    t_end: f64,
-    parameters: BTreeMap<&'a str, f64>,
-    status: &'a str,
-    error: Option<String>,
-    #[serde(rename = "final")]
-    final_state: Option<Final>,
-    events: &'a [EventEntry],
-    stats: StatsEntry,
-    wall_time_s: f64,
-    energy_residual: Option<f64>,
-    energy: Option<friction_systems::EnergyBalance>,
-    friction_work: Option<f64>,
-    loop_area: Option<f64>,
-    stiffness_detected_at: Option<f64>,
-}
-
 impl SimulateArgs {
     /// `--t-end`, checked.
     pub fn checked_t_end(&self) -> Result<Option<f64>, AppError> {
@@ -312,26 +271,47 @@ pub fn spec(args: &SimulateArgs, scenario: Scenario) -> Result<RunSpec, AppError
     })
 }
 
-fn trajectory(o: &Outcome, has_state: bool, path: &Path) -> Result<Vec<u8>, AppError> {
-    let mut header = vec!["t", "x", "v", "friction", "mode"];
-    if has_state {
-        header.push("z");
+/// The one run record of a rig's `outcome` (a system of one body, named `body`, and one
+/// contact), described by `setup`.
+fn rig_record(outcome: &Outcome, setup: RunSetup, has_state: bool) -> RunRecord {
+    let state = |r: &scenarios::Row| BodyState {
+        t: r.t,
+        x: r.x,
+        v: r.v,
+        friction: r.friction,
+        mode: Some(r.mode),
+        z: r.z,
+    };
+    let events: Vec<ContactEvent> = outcome
+        .events
+        .iter()
+        .map(|e| ContactEvent {
+            t: e.t,
+            contact: 0,
+            body: 0,
+            from: e.from,
+            to: e.to,
+        })
+        .collect();
+    let integrated = Integrated {
+        error: outcome.error.clone(),
+        t_reached: outcome.last().map(|r| r.t),
+        event_counts: event_counts(&events),
+        stats: outcome.stats.into(),
+        wall_time_s: outcome.wall_time_s,
+        energy_residual: outcome.energy.map(|e| e.residual),
+        energy: outcome.energy,
+        friction_work: outcome.friction_work,
+        loop_area: outcome.loop_area,
+        stiffness_detected_at: outcome.stiffness_detected_at,
+    };
+    RunRecord {
+        summary: RunSummary::new(setup, integrated),
+        bodies: vec![RIG_BODY.to_string()],
+        trajectory: Trajectory::of_outcome(outcome, has_state),
+        finals: outcome.last().map(state).into_iter().collect(),
+        events,
     }
-    let mut table = Table::new(&header);
-    for r in &o.rows {
-        let mut row = vec![
-            Cell::Num(r.t),
-            Cell::Num(r.x),
-            Cell::Num(r.v),
-            Cell::Num(r.friction),
-            Cell::Text(r.mode.into()),
-        ];
-        if let Some(z) = r.z {
-            row.push(Cell::Num(z));
-        }
-        table.rows.push(row);
-    }
-    table.to_csv(path)
 }
 
 /// The rows a figure draws: the trajectory's, with the body just before each switch put
@@ -457,70 +437,33 @@ pub fn make_rig(
         spec.switching.name()
     );
     let mut files = Artifacts::default();
-    let columns = match trajectory_as {
-        TrajectoryAs::File => {
-            let csv = args.out.join("trajectory.csv");
-            files.add(csv.clone(), trajectory(&outcome, has_state, &csv)?);
-            None
-        }
-        TrajectoryAs::Columns => Some(Trajectory::of_outcome(&outcome, has_state)),
-    };
     for (stem, p) in figures(&outcome, &name) {
         files.add_plot(&args.out.join(stem), &p)?;
     }
-    let mut parameters = used_parameters(model, &spec.friction);
+    let mut parameters: BTreeMap<String, f64> = used_parameters(model, &spec.friction)
+        .into_iter()
+        .map(|(k, v)| (k.to_string(), v))
+        .collect();
     for &p in spec.scenario.parameters() {
-        parameters.insert(p, spec.params.value(p).expect("scenario parameters exist"));
+        let value = spec.params.value(p).expect("scenario parameters exist");
+        parameters.insert(p.to_string(), value);
     }
-    match spec.switching {
-        SwitchingKind::Regularized => {
-            parameters.insert("epsilon", spec.friction.epsilon);
-        }
-        SwitchingKind::TimeStepping { theta } => {
-            parameters.insert("theta", theta);
-        }
-        _ => {}
-    }
-    let s = outcome.stats;
-    let summary = Summary {
-        scenario: spec.scenario.name(),
-        model: model.name(),
-        variant,
-        solver: method,
+    parameters.extend(scheme_parameters(spec.switching, &spec.friction));
+    let setup = RunSetup {
+        system: spec.scenario.name().to_string(),
+        model: Some(model.name().to_string()),
+        variant: Some(variant),
+        n_bodies: 1,
+        n_contacts: 1,
         scheme: SchemeName::of(spec.switching).name(),
+        solver: method,
         switching: spec.switching.name(),
         step: spec.step,
         t_end,
         parameters,
-        status: if outcome.error.is_some() {
-            "failed"
-        } else {
-            "ok"
-        },
-        error: outcome.error.as_ref().map(|e| e.to_string()),
-        final_state: outcome.last().map(|r| Final {
-            t: r.t,
-            x: r.x,
-            v: r.v,
-        }),
-        events: &outcome.events,
-        stats: StatsEntry {
-            steps: s.steps,
-            rejected: s.rejected(),
-            rhs_evals: s.rhs_evals,
-            jacobian_evals: s.jacobian_evals,
-            lu_factorizations: s.lu_factorizations,
-            newton_iterations: s.newton_iterations,
-            events: s.events,
-        },
-        wall_time_s: outcome.wall_time_s,
-        energy_residual: outcome.energy.map(|e| e.residual),
-        energy: outcome.energy,
-        friction_work: outcome.friction_work,
-        loop_area: outcome.loop_area,
-        stiffness_detected_at: outcome.stiffness_detected_at,
     };
-    files.add_json(args.out.join("summary.json"), &summary)?;
+    let record = rig_record(&outcome, setup, has_state);
+    let columns = record.add_files(&mut files, &args.out, trajectory_as)?;
     Ok(Made {
         files,
         trajectory: columns,
@@ -580,7 +523,11 @@ mod tests {
         }
         // The friction before a re-stick is CVS's at v_rel = 0⁻: −(F_c + C2) = −7.5 N.
         let p = FrictionParams::paper();
-        for b in o.before_switches.iter().filter(|b| b.mode != "stick") {
+        for b in o
+            .before_switches
+            .iter()
+            .filter(|b| b.mode != friction_systems::STICK)
+        {
             assert!((b.friction + p.f_c + p.c2).abs() < 1e-9, "{b:?}");
         }
     }

@@ -12,16 +12,16 @@ use crate::output::{Cell, Table};
 use crate::plot::{self, Corner, Marker, Plot, Raster, Series, PALETTE};
 use crate::progress::Progress;
 use crate::ranges;
+use crate::run_record::{
+    event_counts, scheme_parameters, Integrated, RunRecord, RunSetup, RunSummary,
+};
 use crate::trajectory::{Trajectory, TrajectoryAs};
 use friction_models::{FrictionParams, ModelId};
 use friction_systems::chain::{ChainParams, CHAIN_PARAMETERS};
-use friction_systems::{
-    mode_name, BodyState, EnergyBalance, Run, System, SLIP_NEGATIVE, SLIP_POSITIVE,
-};
+use friction_systems::{mode_name, Run, System, SLIP_NEGATIVE, SLIP_POSITIVE};
 use integrators::{Options, Output};
 use scenarios::chain::ChainSource;
 use scenarios::Law;
-use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -219,77 +219,6 @@ fn no_body(system: &System, token: &str) -> AppError {
     ))
 }
 
-/// A table of body states: `[t,] body, x, v, friction, mode[, z]` (the `z` column only when
-/// some contact has an internal state; empty for the bodies without one).
-struct BodyTable<'r> {
-    run: &'r Run<'r>,
-    table: Table,
-    states: bool,
-}
-
-impl<'r> BodyTable<'r> {
-    fn new(run: &'r Run<'r>, with_time: bool) -> Self {
-        let states = run.problem.layout.has_states();
-        let columns = ["t", "body", "x", "v", "friction", "mode", "z"];
-        let columns = &columns[usize::from(!with_time)..columns.len() - usize::from(!states)];
-        BodyTable {
-            run,
-            table: Table::new(columns),
-            states,
-        }
-    }
-
-    /// Adds body `i` in state `b`, with the time when the table has that column.
-    fn push(&mut self, i: usize, b: &BodyState) {
-        let mut row = Vec::with_capacity(self.table.header.len());
-        if self.table.header[0] == "t" {
-            row.push(Cell::Num(b.t));
-        }
-        row.extend([
-            Cell::Text(self.run.problem.system.bodies[i].name.clone()),
-            Cell::Num(b.x),
-            Cell::Num(b.v),
-            Cell::Num(b.friction),
-            Cell::Text(b.mode.map_or("none", mode_name).into()),
-        ]);
-        if self.states {
-            row.push(b.z.map_or(Cell::Text(String::new()), Cell::Num));
-        }
-        self.table.rows.push(row);
-    }
-}
-
-fn final_table(run: &Run, path: &Path) -> Result<Vec<u8>, AppError> {
-    let mut t = BodyTable::new(run, false);
-    for (i, b) in run.final_states().iter().enumerate() {
-        t.push(i, b);
-    }
-    t.table.to_csv(path)
-}
-
-fn events_table(run: &Run, path: &Path) -> Result<Vec<u8>, AppError> {
-    let mut t = Table::new(&["t", "body", "from", "to"]);
-    for e in run.contact_events() {
-        t.rows.push(vec![
-            Cell::Num(e.t),
-            Cell::Text(run.problem.system.bodies[e.body].name.clone()),
-            Cell::Text(mode_name(e.from).into()),
-            Cell::Text(mode_name(e.to).into()),
-        ]);
-    }
-    t.to_csv(path)
-}
-
-fn trajectory_table(run: &Run, bodies: &[usize], path: &Path) -> Result<Vec<u8>, AppError> {
-    let mut t = BodyTable::new(run, true);
-    for k in 0..run.solution.len() {
-        for &i in bodies {
-            t.push(i, &run.body_at(i, k));
-        }
-    }
-    t.table.to_csv(path)
-}
-
 /// The space–time picture: body index against time, coloured by contact mode, sampled on at
 /// most [`RASTER`] columns and rows; with its data as a CSV table. The solution must hold a
 /// point (a run that failed before its first one has no picture).
@@ -353,27 +282,11 @@ fn space_time(run: &Run, title: &str, path: &Path) -> Result<(Raster, Vec<u8>), 
     Ok((raster, table.to_csv(path)?))
 }
 
-#[derive(Serialize)]
-struct SystemSummary<'a> {
-    system: &'a str,
-    n_bodies: usize,
-    n_contacts: usize,
-    solver: &'a str,
-    scheme: &'a str,
-    switching: &'a str,
-    step: integrators::StepControl,
-    t_end: f64,
-    parameters: &'a BTreeMap<String, f64>,
-    status: &'a str,
-    error: Option<String>,
-    #[serde(rename = "final")]
-    final_t: Option<f64>,
-    event_counts: BTreeMap<&'static str, usize>,
-    stats: integrators::Stats,
-    wall_time_s: f64,
-    energy_residual: Option<f64>,
-    energy: Option<EnergyBalance>,
-    stiffness_detected_at: Option<f64>,
+/// The friction law of every contact of `system`, by name; `None` when they differ.
+fn common_model(system: &System) -> Option<String> {
+    let mut names = system.contacts.iter().map(|c| c.model.name());
+    let first = names.next()?;
+    names.all(|n| n == first).then(|| first.to_string())
 }
 
 /// The options of a system run from the command line: its step control and limits, checked,
@@ -399,15 +312,11 @@ pub fn make(args: &SimulateArgs, trajectory_as: TrajectoryAs) -> Result<Made, Ap
         ..
     } = system_of(args.system.as_deref(), args.model, &args.model_options)?;
     args.solver.checked_step()?;
-    if let scenarios::SwitchingKind::TimeStepping { theta } = args.solver.switching() {
-        parameters.insert("theta".into(), theta);
-    }
+    let switching = args.solver.switching();
+    parameters.extend(scheme_parameters(switching, &friction));
     system.validate()?;
     let bodies = chosen_bodies(&system, &args.bodies)?;
-    let scheme = args
-        .solver
-        .switching()
-        .scheme(args.solver.solver(), &friction);
+    let scheme = switching.scheme(args.solver.solver(), &friction);
     let t_end = args
         .checked_t_end()?
         .unwrap_or_else(|| default_t_end(args.system.as_deref()));
@@ -419,28 +328,8 @@ pub fn make(args: &SimulateArgs, trajectory_as: TrajectoryAs) -> Result<Made, Ap
     let run = friction_systems::simulate(&system, scheme, options, &mut |t| bar.at(t))?;
     bar.finish();
 
-    let title = format!(
-        "{name} ({method}, {} switching)",
-        args.solver.switching().name()
-    );
+    let title = format!("{name} ({method}, {} switching)", switching.name());
     let mut files = Artifacts::default();
-    for (file, bytes) in [
-        ("final.csv", final_table(&run, &args.out.join("final.csv"))?),
-        (
-            "events.csv",
-            events_table(&run, &args.out.join("events.csv"))?,
-        ),
-    ] {
-        files.add(args.out.join(file), bytes);
-    }
-    let columns = match trajectory_as {
-        TrajectoryAs::File => {
-            let csv = args.out.join("trajectory.csv");
-            files.add(csv.clone(), trajectory_table(&run, &bodies, &csv)?);
-            None
-        }
-        TrajectoryAs::Columns => Some(Trajectory::of_run(&run, &bodies)),
-    };
     if !run.solution.is_empty() {
         let (raster, data) = space_time(&run, &title, &args.out.join("space-time.csv"))?;
         files.add(args.out.join("space-time.csv"), data);
@@ -475,32 +364,41 @@ pub fn make(args: &SimulateArgs, trajectory_as: TrajectoryAs) -> Result<Made, Ap
         log: false,
     };
     files.add_plot(&args.out.join("velocity"), &velocity)?;
-    let mut event_counts = BTreeMap::new();
-    for e in run.contact_events() {
-        *event_counts.entry(mode_name(e.to)).or_insert(0) += 1;
-    }
-    let energy = run.energy();
-    let summary = SystemSummary {
-        system: &name,
+    let setup = RunSetup {
+        system: name,
+        model: common_model(&system),
+        variant: args.system.is_none().then_some(args.model_options.variant),
         n_bodies: system.bodies.len(),
         n_contacts: system.contacts.len(),
+        scheme: SchemeName::of(switching).name(),
         solver: method,
-        scheme: SchemeName::of(args.solver.switching()).name(),
-        switching: args.solver.switching().name(),
+        switching: switching.name(),
         step,
         t_end,
-        parameters: &parameters,
-        status: if run.error.is_some() { "failed" } else { "ok" },
-        error: run.error.as_ref().map(|e| e.to_string()),
-        final_t: run.solution.t.last().copied(),
-        event_counts,
-        stats: run.solution.stats,
+        parameters,
+    };
+    let events = run.contact_events();
+    let energy = run.energy();
+    let integrated = Integrated {
+        error: run.error.clone(),
+        t_reached: run.solution.t.last().copied(),
+        event_counts: event_counts(&events),
+        stats: run.solution.stats.into(),
         wall_time_s: run.wall_time_s,
         energy_residual: energy.map(|e| e.residual),
         energy,
+        friction_work: None,
+        loop_area: None,
         stiffness_detected_at: run.solution.stiffness_detected_at,
     };
-    files.add_json(args.out.join("summary.json"), &summary)?;
+    let record = RunRecord {
+        summary: RunSummary::new(setup, integrated),
+        bodies: system.bodies.iter().map(|b| b.name.clone()).collect(),
+        trajectory: Trajectory::of_run(&run, &bodies),
+        finals: run.final_states(),
+        events,
+    };
+    let columns = record.add_files(&mut files, &args.out, trajectory_as)?;
     let period = integrators::OdeProblem::time_scale(&run.problem);
     Ok(Made {
         files,
@@ -520,7 +418,7 @@ pub fn make(args: &SimulateArgs, trajectory_as: TrajectoryAs) -> Result<Made, Ap
             .chain(crate::warnings::coarse_step_warning(step, period))
             .chain(crate::warnings::failure_warnings(
                 args.solver.solver(),
-                args.solver.switching(),
+                switching,
                 step,
                 t_end,
                 period,
@@ -529,7 +427,7 @@ pub fn make(args: &SimulateArgs, trajectory_as: TrajectoryAs) -> Result<Made, Ap
             .chain(crate::warnings::unread_warnings(
                 &args.model_options.params.set,
                 args.model,
-                args.solver.switching(),
+                switching,
             ))
             .chain(args.solver.scheme.spelling_notes())
             .collect(),

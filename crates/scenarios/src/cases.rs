@@ -112,10 +112,7 @@ impl Measures {
     pub fn of(o: &Outcome) -> Measures {
         let event_times: Vec<f64> = o.events.iter().map(|e| e.t).collect();
         let mut sticks = Vec::new();
-        stick_durations(
-            o.events.iter().map(|e| (e.t, e.kind == "stick")),
-            &mut sticks,
-        );
+        stick_durations(o.events.iter().map(|e| (e.t, e.to == STICK)), &mut sticks);
         let grid = o
             .rows
             .iter()

@@ -7,10 +7,10 @@ use crate::params::ScenarioParams;
 use crate::scenario::Scenario;
 use friction_models::{FrictionModel, FrictionParams, ModelId, ParamError, Parameters, Variant};
 use friction_systems::{
-    mode_name, End, EnergyBalance, Profile, Scheme, Switching, System, SystemError, STICK,
+    End, EnergyBalance, Profile, Scheme, Switching, System, SystemError, STICK,
 };
 use integrators::{
-    Failure, OdeProblem, Options, Output, Solution, Solver, SolverError, Stats, StepControl,
+    Failure, Mode, OdeProblem, Options, Output, Solution, Solver, SolverError, Stats, StepControl,
 };
 use serde::Serialize;
 use std::sync::Arc;
@@ -276,8 +276,9 @@ pub struct Row {
     pub v: f64,
     /// Friction force, N.
     pub friction: f64,
-    /// `slip+`, `slip-` or `stick`.
-    pub mode: &'static str,
+    /// The contact's mode: [`friction_systems::SLIP_POSITIVE`], `SLIP_NEGATIVE` or `STICK`
+    /// (written `slip+`, `slip-`, `stick` by [`friction_systems::mode_name`]).
+    pub mode: Mode,
     /// Internal state (Dahl or LuGre), when the model has one.
     pub z: Option<f64>,
 }
@@ -294,13 +295,17 @@ impl Row {
     }
 }
 
-/// An event, as `summary.json` lists it.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+/// A switch of the rig's contact: its mode before and after (for a prescribed motion, a
+/// reversal of the motion is a switch between `slip+` and `slip-`). `from` equals `to` where
+/// v_rel touched zero and the contact slid on.
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct EventEntry {
     /// Time, s.
     pub t: f64,
-    /// What happened (`stick`, `slip+`, `slip-`, `reversal`).
-    pub kind: String,
+    /// The mode before.
+    pub from: Mode,
+    /// The mode after.
+    pub to: Mode,
 }
 
 /// What a simulation produced.
@@ -391,6 +396,9 @@ pub fn options(spec: &RunSpec, t_end: f64) -> Options {
     }
 }
 
+/// The name of a rig's one body (and of its row in `final.csv` and `events.csv`).
+pub const RIG_BODY: &str = "body";
+
 /// The system of a body scenario: one body, its spring to a wall, its applied force, its
 /// contact.
 pub fn body_system(spec: &RunSpec, model: Arc<dyn FrictionModel>) -> System {
@@ -400,7 +408,7 @@ pub fn body_system(spec: &RunSpec, model: Arc<dyn FrictionModel>) -> System {
         Scenario::PaperBlock | Scenario::Belt | Scenario::FreeVibration => (p.x0, p.v0),
         _ => (0.0, 0.0),
     };
-    let body = s.add_body("body", p.m, start.0, start.1);
+    let body = s.add_body(RIG_BODY, p.m, start.0, start.1);
     let mut surface_velocity = 0.0;
     match spec.scenario {
         Scenario::PaperBlock => s.add_force(body, p.f_ex, Profile::None),
@@ -453,7 +461,7 @@ fn run_body(
         x: b.x,
         v: b.v,
         friction: b.friction,
-        mode: mode_name(b.mode.unwrap_or(STICK)),
+        mode: b.mode.unwrap_or(STICK),
         z: b.z,
     };
     let rows: Vec<Row> = run
@@ -476,7 +484,8 @@ fn run_body(
             .iter()
             .map(|e| EventEntry {
                 t: e.t,
-                kind: mode_name(e.to).to_string(),
+                from: e.from,
+                to: e.to,
             })
             .collect(),
         stats: run.solution.stats,
@@ -527,7 +536,7 @@ pub fn run_motion(
                 x,
                 v,
                 friction: k.friction(s.t[i], y, s.modes_at(i)[0]),
-                mode: mode_name(s.modes_at(i)[0]),
+                mode: s.modes_at(i)[0],
                 z: friction_models::reported_state(&y[..w]),
             }
         })
@@ -540,9 +549,13 @@ pub fn run_motion(
         events: s
             .events
             .iter()
-            .map(|e| EventEntry {
-                t: e.t,
-                kind: e.names.join("+"),
+            // The motion's reversal is its one event, and it always switches the one mode.
+            .flat_map(|e| {
+                e.switches.iter().map(|m| EventEntry {
+                    t: e.t,
+                    from: m.from,
+                    to: m.to,
+                })
             })
             .collect(),
         stats: s.stats,

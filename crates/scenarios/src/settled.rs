@@ -12,6 +12,7 @@
 //! - the **friction** is its time mean over the window and the largest |F| in it.
 
 use crate::run::Outcome;
+use friction_systems::STICK;
 use serde::Serialize;
 
 /// One body's sampled run: times, displacement, velocity, friction, and the times at which
@@ -48,7 +49,7 @@ impl Trace {
         trace.stick_entries = o
             .events
             .iter()
-            .filter(|e| e.kind == "stick")
+            .filter(|e| e.to == STICK)
             .map(|e| e.t)
             .collect();
         trace

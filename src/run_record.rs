@@ -1,0 +1,227 @@
+//! The one result of `simulate`, for a rig and for a system alike (a rig is a system of one
+//! body), and the one path that writes it: `trajectory.csv` (or the trajectory as columns),
+//! `final.csv`, `events.csv` and `summary.json`, whose schema docs/files.md gives field by
+//! field. The figures differ by kind of run and are added by the command.
+
+use crate::artifacts::Artifacts;
+use crate::error::AppError;
+use crate::output::{Cell, Table};
+use crate::trajectory::{Trajectory, TrajectoryAs};
+use friction_models::{FrictionParams, Variant};
+use friction_systems::{mode_name, BodyState, ContactEvent, EnergyBalance};
+use integrators::{SolverError, Stats, StepControl};
+pub use scenarios::run::RIG_BODY;
+use scenarios::SwitchingKind;
+use serde::Serialize;
+use std::collections::BTreeMap;
+use std::path::Path;
+
+/// What `summary.json` says about one run of a rig or a system: what was run, its status, and
+/// what the integration produced, in this order (docs/files.md).
+#[derive(Clone, Debug, Serialize)]
+pub struct RunSummary {
+    /// What was run.
+    #[serde(flatten)]
+    pub setup: RunSetup,
+    /// `ok` or `failed`.
+    pub status: &'static str,
+    /// What the integration produced.
+    #[serde(flatten)]
+    pub integrated: Integrated,
+}
+
+impl RunSummary {
+    /// The summary of the run `setup` describes, which produced `integrated`.
+    pub fn new(setup: RunSetup, integrated: Integrated) -> RunSummary {
+        RunSummary {
+            setup,
+            status: if integrated.error.is_some() {
+                "failed"
+            } else {
+                "ok"
+            },
+            integrated,
+        }
+    }
+}
+
+/// What a run is: everything in its summary but what the integration produced.
+#[derive(Clone, Debug, Serialize)]
+pub struct RunSetup {
+    /// The rig's name (`belt`), the chain's (`chain of 10 coulomb`) or the system file's path.
+    pub system: String,
+    /// The friction law of every contact; `None` for a system file whose contacts name
+    /// different laws.
+    pub model: Option<String>,
+    /// The reading of a law of the catalog (rigs and the chain; `None` for a system file).
+    pub variant: Option<Variant>,
+    /// Bodies of the system (1 for a rig).
+    pub n_bodies: usize,
+    /// Contacts of the system (1 for a rig).
+    pub n_contacts: usize,
+    /// `event-driven` or `time-stepping`.
+    pub scheme: &'static str,
+    /// The method that integrated: the ODE solver, or `moreau-jean`.
+    pub solver: &'static str,
+    /// The treatment of v = 0: `event`, `regularized`, `naive`, or `timestepping`.
+    pub switching: &'static str,
+    /// The step control.
+    pub step: StepControl,
+    /// The end time asked for, s.
+    pub t_end: f64,
+    /// The parameters the run read, each in the unit `friction-lab models` lists: the rig's
+    /// or the chain's, its law's, and the scheme's (`epsilon` regularised, `theta`
+    /// time-stepped); a system file's own parameters are in the file.
+    pub parameters: BTreeMap<String, f64>,
+}
+
+/// What the integration of a run produced, as its summary writes it.
+#[derive(Clone, Debug, Serialize)]
+pub struct Integrated {
+    /// The solver's error, where it failed (written as its message: where and why).
+    #[serde(serialize_with = "scenarios::study_run::message")]
+    pub error: Option<SolverError>,
+    /// The time of the last recorded point, s (`t_end` when the run completed; `None` when
+    /// nothing was recorded).
+    pub t_reached: Option<f64>,
+    /// Contact switches by the mode entered (`slip+`, `slip-`, `stick`): [`event_counts`].
+    pub event_counts: BTreeMap<&'static str, usize>,
+    /// The solver's statistics.
+    pub stats: StatsRecord,
+    /// Wall time of the integration, s.
+    pub wall_time_s: f64,
+    /// The energy balance's relative residual (systems with bodies).
+    pub energy_residual: Option<f64>,
+    /// The energy balance, J (systems with bodies).
+    pub energy: Option<EnergyBalance>,
+    /// ∫F·v dt, J: the work done against friction (prescribed motions).
+    pub friction_work: Option<f64>,
+    /// ∮F dv, N·m/s: the friction–velocity loop area (prescribed motions).
+    pub loop_area: Option<f64>,
+    /// Where Hairer's stiffness test (Dormand–Prince) first judged the problem stiff, s.
+    pub stiffness_detected_at: Option<f64>,
+}
+
+/// The parameters of the scheme that `summary.json` reports: the regularisation width
+/// `epsilon` (from `friction`) of the regularised treatment, θ of time-stepping.
+pub fn scheme_parameters(
+    switching: SwitchingKind,
+    friction: &FrictionParams,
+) -> Option<(String, f64)> {
+    match switching {
+        SwitchingKind::Regularized => Some(("epsilon".into(), friction.epsilon)),
+        SwitchingKind::TimeStepping { theta } => Some(("theta".into(), theta)),
+        SwitchingKind::Event | SwitchingKind::Naive => None,
+    }
+}
+
+/// The switches `events` counted by the mode each one entered.
+pub fn event_counts(events: &[ContactEvent]) -> BTreeMap<&'static str, usize> {
+    let mut counts = BTreeMap::new();
+    for e in events {
+        *counts.entry(mode_name(e.to)).or_insert(0) += 1;
+    }
+    counts
+}
+
+/// The solver's statistics as `summary.json` writes them: [`Stats`]' counts and their sum
+/// `rejected` = `rejected_error + rejected_newton`.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct StatsRecord {
+    /// The counts.
+    #[serde(flatten)]
+    pub counts: Stats,
+    /// Rejected steps, whatever the cause.
+    pub rejected: usize,
+}
+
+impl From<Stats> for StatsRecord {
+    fn from(counts: Stats) -> Self {
+        StatsRecord {
+            counts,
+            rejected: counts.rejected(),
+        }
+    }
+}
+
+/// One run of a rig or a system: its summary, its trajectory, every body's final state and
+/// every switch of a contact.
+#[derive(Clone, Debug)]
+pub struct RunRecord {
+    /// What `summary.json` holds.
+    pub summary: RunSummary,
+    /// Every body's name, by index.
+    pub bodies: Vec<String>,
+    /// The trajectory of the bodies written.
+    pub trajectory: Trajectory,
+    /// Every body at the last recorded point (none when nothing was recorded).
+    pub finals: Vec<BodyState>,
+    /// Every switch of a contact, in time order.
+    pub events: Vec<ContactEvent>,
+}
+
+impl RunRecord {
+    /// Whether some body's law has an internal state (the tables then have a `z` column).
+    fn has_states(&self) -> bool {
+        self.trajectory.z.is_some()
+    }
+
+    /// `final.csv`: `body, x, v, friction, mode[, z]`, one row per body.
+    fn final_table(&self, path: &Path) -> Result<Vec<u8>, AppError> {
+        let states = self.has_states();
+        let columns = ["body", "x", "v", "friction", "mode", "z"];
+        let mut t = Table::new(&columns[..columns.len() - usize::from(!states)]);
+        for (name, b) in self.bodies.iter().zip(&self.finals) {
+            let mut row = vec![
+                Cell::Text(name.clone()),
+                Cell::Num(b.x),
+                Cell::Num(b.v),
+                Cell::Num(b.friction),
+                Cell::Text(b.mode.map_or("none", mode_name).into()),
+            ];
+            if states {
+                row.push(Cell::num(b.z.unwrap_or(f64::NAN)));
+            }
+            t.rows.push(row);
+        }
+        t.to_csv(path)
+    }
+
+    /// `events.csv`: `t, body, from, to`, one row per switch of a contact.
+    fn events_table(&self, path: &Path) -> Result<Vec<u8>, AppError> {
+        let mut t = Table::new(&["t", "body", "from", "to"]);
+        for e in &self.events {
+            t.rows.push(vec![
+                Cell::Num(e.t),
+                Cell::Text(self.bodies[e.body].clone()),
+                Cell::Text(mode_name(e.from).into()),
+                Cell::Text(mode_name(e.to).into()),
+            ]);
+        }
+        t.to_csv(path)
+    }
+
+    /// Adds the run's files in `out` to `files`: `trajectory.csv` (or, as `trajectory_as`
+    /// asks, nothing, and the trajectory is returned as columns), `final.csv`, `events.csv`
+    /// and `summary.json`.
+    pub fn add_files(
+        self,
+        files: &mut Artifacts,
+        out: &Path,
+        trajectory_as: TrajectoryAs,
+    ) -> Result<Option<Trajectory>, AppError> {
+        let path = out.join("final.csv");
+        files.add(path.clone(), self.final_table(&path)?);
+        let path = out.join("events.csv");
+        files.add(path.clone(), self.events_table(&path)?);
+        files.add_json(out.join("summary.json"), &self.summary)?;
+        Ok(match trajectory_as {
+            TrajectoryAs::File => {
+                let path = out.join("trajectory.csv");
+                files.add(path.clone(), self.trajectory.to_csv(&path)?);
+                None
+            }
+            TrajectoryAs::Columns => Some(self.trajectory),
+        })
+    }
+}
