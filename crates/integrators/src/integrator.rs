@@ -138,6 +138,22 @@ impl<'a> Integrator<'a> {
         }
     }
 
+    /// The grid points at the event time `t` itself (those before it are recorded from the
+    /// step's dense output): the state `y` after the event's action, which a run that ends at
+    /// the event would otherwise never record. Where events are recorded, that state is
+    /// already the point after the event, and the grid point is not written twice.
+    fn record_grid_at_event(&mut self, t: f64, y: &[f64]) {
+        let Some(times) = self.options.output.grid() else {
+            return;
+        };
+        while self.grid_next < times.len() && times[self.grid_next] == t {
+            if !self.options.output.records_events() {
+                self.solution.push(t, y, &self.modes);
+            }
+            self.grid_next += 1;
+        }
+    }
+
     /// Takes one step and says why it returned.
     pub fn step(&mut self) -> Result<StopReason, SolverError> {
         if self.done {
@@ -288,6 +304,7 @@ impl<'a> Integrator<'a> {
         if self.options.output.records_events() {
             self.solution.push(t, &y, &self.modes);
         }
+        self.record_grid_at_event(t, &y);
         let stop = control == Control::Stop;
         if stop || t >= self.options.t_end {
             self.done = true;

@@ -368,3 +368,58 @@ fn an_even_grid_ends_at_t_end_and_every_point_is_recorded() {
     let s = run(&Oscillator::plain(), dopri5(&o, 2), &[1.0, 0.0], o);
     assert_eq!(s.t, grid);
 }
+
+/// y' = 1 from y = 0 with an event at y = 1 whose action sets y to 5: with RK4's steps of
+/// 1/4 the event lands on t = 1 exactly, a point of the output grid.
+struct JumpAtOne;
+
+impl OdeProblem for JumpAtOne {
+    fn dim(&self) -> usize {
+        1
+    }
+    fn rhs(&self, _t: f64, _y: &[f64], _m: &[Mode], f: &mut [f64]) {
+        f[0] = 1.0;
+    }
+    fn n_events(&self) -> usize {
+        1
+    }
+    fn event_spec(&self, _i: usize, _m: &[Mode]) -> Option<integrators::EventSpec> {
+        Some(integrators::EventSpec {
+            name: "jump",
+            crossing: Crossing::Rising,
+        })
+    }
+    fn event(&self, _i: usize, _t: f64, y: &[f64], _m: &[Mode]) -> f64 {
+        y[0] - 1.0
+    }
+    fn on_events(&self, _i: &[usize], _t: f64, y: &mut [f64], _m: &mut [Mode]) -> Control {
+        y[0] = 5.0;
+        Control::Continue
+    }
+}
+
+#[test]
+fn a_grid_point_at_an_event_holds_the_state_after_it_once() {
+    // An event on the last grid point: a grid-only run (a system's) never recorded t_end and
+    // ended one point short, status ok. Where events are recorded, a grid point at an event
+    // was written twice.
+    let grid_run = |t_end: f64, output: fn(Vec<f64>) -> Output| {
+        let mut o = Options::adaptive(0.0, t_end, 1e-8, 1e-10);
+        o.step = StepControl::Fixed { h: 0.25 };
+        o.output = output(integrators::even_grid(
+            0.0,
+            t_end,
+            (2.0 * t_end) as usize + 1,
+        ));
+        run(&JumpAtOne, Box::new(Rk4::new(0.25, 1)), &[0.0], o)
+    };
+    for output in [Output::GridOnly as fn(Vec<f64>) -> Output, Output::Grid] {
+        let s = grid_run(1.0, output);
+        assert_eq!(s.t, [0.0, 0.5, 1.0]);
+        assert_eq!(s.y, [0.0, 0.5, 5.0]);
+        assert_eq!(s.events.len(), 1);
+        let s = grid_run(2.0, output);
+        assert_eq!(s.t, [0.0, 0.5, 1.0, 1.5, 2.0]);
+        assert_eq!(s.y, [0.0, 0.5, 5.0, 5.5, 6.0]);
+    }
+}
