@@ -15,6 +15,7 @@ pub mod artifacts;
 pub mod commands;
 pub mod error;
 pub mod figure;
+pub mod laws;
 pub mod options;
 pub mod output;
 pub mod plot;

@@ -124,7 +124,8 @@ def spelled(message: str, command: str) -> str:
 def words(command: str, *positional: Optional[str], **options: Any) -> List[str]:
     """The words of ``friction-lab COMMAND [POSITIONAL] --option value ...``.
 
-    ``params`` (a mapping of parameter names to values) becomes ``--set NAME=VALUE`` for each
+    ``model`` may be a friction law written in Python (docs/python.md), registered under its
+    name for the call. ``params`` (a mapping of parameter names to values) becomes ``--set NAME=VALUE`` for each
     item and ``grid`` (a mapping of names to lists, or to range strings such as
     ``"log:0.01:1:9"``) becomes ``--grid NAME=...``; ``True`` is a bare flag (of
     :data:`FLAGS` only), ``False`` and ``None`` leave the option out, and a list, tuple, range
@@ -140,7 +141,11 @@ def words(command: str, *positional: Optional[str], **options: Any) -> List[str]
     for name, value in options.items():
         if value is None or value is False:
             continue
-        if name == "params":
+        if name == "model" and not isinstance(value, (str, os.PathLike)):
+            # A friction law written in Python: registered under its name, which the
+            # command's --model then takes as it takes a model of the catalog.
+            argv += ["--model", _native.register_law(value)]
+        elif name == "params":
             for key, v in _mapping(name, value, "{'v_belt': 0.1}").items():
                 argv += ["--set", f"{key}={_word(key, v)}"]
         elif name == "grid":

@@ -9,6 +9,8 @@
 //! calling thread watches for Ctrl-C and stops the solvers through
 //! [`integrators::interrupt`].
 
+mod law;
+
 use clap::{CommandFactory, Parser};
 use friction_lab::error::AppError;
 use friction_lab::friction_systems::mode_name;
@@ -95,8 +97,13 @@ fn run(py: Python<'_>, argv: Vec<String>) -> PyResult<Made> {
         .chain(argv)
         .chain(["--out".to_string(), IN_MEMORY.to_string()]);
     let cli = friction_lab::Cli::try_parse_from(words).map_err(|e| usage(&e))?;
-    let made =
-        interruptible(py, || friction_lab::make_in_memory(&cli.command))?.map_err(to_python)?;
+    let made = interruptible(py, || friction_lab::make_in_memory(&cli.command))?;
+    // A law written in Python that raised stopped the run: its exception is the answer.
+    if let Some(e) = law::take_error() {
+        integrators::interrupt::clear();
+        return Err(e);
+    }
+    let made = made.map_err(to_python)?;
     let files = made
         .files
         .data(Path::new(IN_MEMORY))
@@ -185,7 +192,12 @@ fn interruptible<T: Send>(py: Python<'_>, work: impl FnOnce() -> T + Send) -> Py
         // Behind a lock only so that the closure handed to `detach` may borrow it.
         let finished = Mutex::new(finished);
         let worker = scope.spawn(move || {
-            let result = work();
+            // Attached once, for the worker's whole run, and detached at once: a law written
+            // in Python then takes the GIL on a thread state that lives as long as the run,
+            // where attaching a bare thread would create and destroy one per evaluation
+            // (11.8 µs an evaluation of a Coulomb law on the belt instead of 0.6 µs;
+            // docs/python.md).
+            let result = Python::attach(|py| py.detach(work));
             // The receiver outlives the worker: the calling thread waits for it below.
             let _ = done.send(());
             result
@@ -222,6 +234,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(models_json, m)?)?;
     m.add_function(wrap_pyfunction!(options, m)?)?;
+    m.add_function(wrap_pyfunction!(law::register_law, m)?)?;
     m.add("SolverError", m.py().get_type::<SolverError>())?;
     Ok(())
 }

@@ -4,10 +4,11 @@
 use crate::artifacts::{Artifacts, Made};
 use crate::error::AppError;
 use crate::figure::Drawn;
+use crate::laws::used_parameters;
 use crate::options::ModelOptions;
 use crate::ranges;
 use clap::Args;
-use friction_models::{CurveAxis, FrictionParams, ModelId, Parameters, StickInterval, Variant};
+use friction_models::{CurveAxis, ModelId, StickInterval, Variant};
 use scenarios::curves::{self, Curve};
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -114,15 +115,6 @@ fn extent(args: &CurveArgs) -> Result<f64, AppError> {
     own.map(|v| range.check(v))
         .transpose()
         .map(|v| v.unwrap_or_else(|| curves::default_extent(axis)))
-}
-
-/// The parameters the model reads, with their values.
-pub fn used_parameters(model: ModelId, p: &FrictionParams) -> BTreeMap<&'static str, f64> {
-    model
-        .parameters()
-        .iter()
-        .map(|&n| (n, p.value(n).expect("models name existing parameters")))
-        .collect()
 }
 
 /// Runs `curve`; its files in memory.

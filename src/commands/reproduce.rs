@@ -2,9 +2,10 @@
 //! says of each, what the equations give, and where the two disagree.
 
 use crate::artifacts::Artifacts;
-use crate::commands::curve::{used_parameters, KeyValues};
+use crate::commands::curve::KeyValues;
 use crate::error::AppError;
 use crate::figure::Drawn;
+use crate::laws::used_parameters;
 use crate::options::ParamOptions;
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Marker, Plot, Series, PALETTE};

@@ -3,8 +3,8 @@
 //! friction; phase portrait; friction against velocity and against displacement).
 
 use crate::artifacts::{Artifacts, Made};
-use crate::commands::curve::used_parameters;
 use crate::error::AppError;
+use crate::laws::ModelChoice;
 use crate::options::{LimitArgs, ModelOptions, SchemeArgs, SchemeName};
 use crate::plot::{Corner, Marker, Plot, Series, BLUE};
 use crate::progress::Progress;
@@ -15,12 +15,11 @@ use crate::run_record::{
 use crate::trajectory::{Trajectory, TrajectoryAs};
 use crate::warnings::{coarse_step_warning, failure_warnings, stiffness_warning, unread_warnings};
 use clap::Args;
-use friction_models::{ModelId, Parameters};
+use friction_models::Parameters;
 use friction_systems::{BodyState, ContactEvent};
 use integrators::{Solver, StepControl};
 use scenarios::run::Outcome;
-use scenarios::{Law, Limits, RunSpec, Scenario, SwitchingKind};
-use std::collections::BTreeMap;
+use scenarios::{Limits, RunSpec, Scenario, SwitchingKind};
 use std::path::PathBuf;
 
 /// Options that choose and tune the solver, shared by every command that integrates.
@@ -197,9 +196,10 @@ pub struct SimulateArgs {
     /// A system file (TOML, shared/spec/systems.md) to integrate instead of a scenario.
     #[arg(long, value_name = "FILE.toml")]
     pub system: Option<PathBuf>,
-    /// The friction model, as `friction-lab models` lists it (rigs and chain).
+    /// The friction model, as `friction-lab models` lists it, or a law registered by name
+    /// (from Python: docs/python.md) (rigs and chain).
     #[arg(long, value_name = "MODEL")]
-    pub model: Option<ModelId>,
+    pub model: Option<ModelChoice>,
     /// Folder to write into (created if missing).
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
@@ -235,8 +235,8 @@ impl SimulateArgs {
 }
 
 /// The model `--model` names, which a rig requires.
-fn model_of(args: &SimulateArgs, scenario: Scenario) -> Result<ModelId, AppError> {
-    args.model.ok_or_else(|| {
+fn model_of(args: &SimulateArgs, scenario: Scenario) -> Result<&ModelChoice, AppError> {
+    args.model.as_ref().ok_or_else(|| {
         AppError::Usage(format!(
             "option `--model` is required for scenario {scenario}: e.g. --model CS"
         ))
@@ -256,10 +256,7 @@ pub fn spec(args: &SimulateArgs, scenario: Scenario) -> Result<RunSpec, AppError
     let step = args.solver.checked_step()?;
     Ok(RunSpec {
         scenario,
-        law: Law::Catalog {
-            model,
-            variant: args.model_options.variant,
-        },
+        law: model.law(args.model_options.variant),
         friction,
         params,
         solver: args.solver.solver(),
@@ -440,10 +437,7 @@ pub fn make_rig(
     for (stem, p) in figures(&outcome, &name) {
         files.add_plot(&args.out.join(stem), &p)?;
     }
-    let mut parameters: BTreeMap<String, f64> = used_parameters(model, &spec.friction)
-        .into_iter()
-        .map(|(k, v)| (k.to_string(), v))
-        .collect();
+    let mut parameters = model.parameters_read(&spec.friction);
     for &p in spec.scenario.parameters() {
         let value = spec.params.value(p).expect("scenario parameters exist");
         parameters.insert(p.to_string(), value);
@@ -452,7 +446,7 @@ pub fn make_rig(
     let setup = RunSetup {
         system: spec.scenario.name().to_string(),
         model: Some(model.name().to_string()),
-        variant: Some(variant),
+        variant: model.catalog().map(|_| variant),
         n_bodies: 1,
         n_contacts: 1,
         scheme: SchemeName::of(spec.switching).name(),
@@ -483,7 +477,7 @@ pub fn make_rig(
             ))
             .chain(unread_warnings(
                 &args.model_options.params.set,
-                Some(model),
+                model.catalog(),
                 spec.switching,
             ))
             .chain(args.solver.scheme.spelling_notes())

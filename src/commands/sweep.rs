@@ -9,6 +9,7 @@ use crate::commands::system::{
     chosen_bodies, default_t_end, grid_options, system_of, system_points,
 };
 use crate::error::AppError;
+use crate::laws::ModelChoice;
 use crate::output::{Cell, Table};
 use crate::progress::Progress;
 use crate::ranges;
@@ -191,7 +192,12 @@ fn check_axes(axes: &[Axis], run: &SimulateArgs) -> Result<(), AppError> {
         }
     }
     names.iter().try_for_each(|name| {
-        crate::options::check_read("grid", name, run.model, run.solver.switching())
+        crate::options::check_read(
+            "grid",
+            name,
+            run.model.as_ref().and_then(ModelChoice::catalog),
+            run.solver.switching(),
+        )
     })
 }
 
@@ -255,7 +261,11 @@ fn prepare(args: &SimulateArgs) -> Result<Prepared, AppError> {
     match args.scenario {
         Some(Target::Rig(scenario)) => Ok(Prepared::Rig(spec(args, scenario)?)),
         _ => {
-            let described = system_of(args.system.as_deref(), args.model, &args.model_options)?;
+            let described = system_of(
+                args.system.as_deref(),
+                args.model.as_ref(),
+                &args.model_options,
+            )?;
             described.system.validate()?;
             let body = chosen_bodies(&described.system, &args.bodies)?
                 .first()
@@ -412,7 +422,7 @@ pub fn make(args: &SweepArgs) -> Result<Made, AppError> {
                 (_, Some(file)) => file.display().to_string(),
                 _ => "chain".into(),
             },
-            model: args.run.model.map(|m| m.name().to_string()),
+            model: args.run.model.as_ref().map(|m| m.name().to_string()),
             settle: args.settle,
             axes: &axes,
             grid_points: grid.len(),
@@ -430,7 +440,7 @@ pub fn make(args: &SweepArgs) -> Result<Made, AppError> {
         )],
         warnings: crate::warnings::unread_warnings(
             &args.run.model_options.params.set,
-            args.run.model,
+            args.run.model.as_ref().and_then(ModelChoice::catalog),
             args.run.solver.switching(),
         )
         .into_iter()

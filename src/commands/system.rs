@@ -4,9 +4,9 @@
 //! the contact modes; velocities of chosen bodies).
 
 use crate::artifacts::{Artifacts, Made};
-use crate::commands::curve::used_parameters;
 use crate::commands::simulate::SimulateArgs;
 use crate::error::AppError;
+use crate::laws::ModelChoice;
 use crate::options::{ModelOptions, SchemeName};
 use crate::output::{Cell, Table};
 use crate::plot::{self, Corner, Marker, Plot, Raster, Series, PALETTE};
@@ -16,12 +16,11 @@ use crate::run_record::{
     event_counts, scheme_parameters, Integrated, RunRecord, RunSetup, RunSummary,
 };
 use crate::trajectory::{Trajectory, TrajectoryAs};
-use friction_models::{FrictionParams, ModelId};
+use friction_models::FrictionParams;
 use friction_systems::chain::{ChainParams, CHAIN_PARAMETERS};
 use friction_systems::{mode_name, Run, System, SLIP_NEGATIVE, SLIP_POSITIVE};
 use integrators::{Options, Output};
 use scenarios::chain::ChainSource;
-use scenarios::Law;
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -104,7 +103,7 @@ pub struct Described {
 /// of `options` (chain parameters by `--set` too).
 pub fn system_of(
     file: Option<&Path>,
-    model: Option<ModelId>,
+    model: Option<&ModelChoice>,
     options: &ModelOptions,
 ) -> Result<Described, AppError> {
     if let Some(path) = file {
@@ -133,17 +132,11 @@ pub fn system_of(
         .resolve_with(&names, |name, value| Ok(chain.set(name, value)?))?;
     let source = ChainSource {
         chain,
-        law: Law::Catalog {
-            model,
-            variant: options.variant,
-        },
+        law: model.law(options.variant),
         friction,
     };
     let system = source.build()?;
-    let mut reported: BTreeMap<String, f64> = used_parameters(model, &friction)
-        .into_iter()
-        .map(|(k, v)| (k.to_string(), v))
-        .collect();
+    let mut reported = model.parameters_read(&friction);
     for (name, _) in CHAIN_PARAMETERS {
         let value = match name {
             "n_bodies" => chain.n_bodies as f64,
@@ -282,6 +275,20 @@ fn space_time(run: &Run, title: &str, path: &Path) -> Result<(Raster, Vec<u8>), 
     Ok((raster, table.to_csv(path)?))
 }
 
+/// The advice for a chain of a law of the user's own with a `spread` above 0: the spread
+/// scales the force levels of a law of the catalog, and an own law is the same on every block.
+fn unspread_warning(source: &ChainSource) -> Option<String> {
+    let spread = source.chain.spread;
+    (source.law.catalog().is_none() && spread > 0.0).then(|| {
+        format!(
+            "the chain's `spread` = {} scales the force levels of the catalog's laws; law `{}` \
+             is your own and acts the same on every block (set spread=0 to say so)",
+            ranges::show(spread),
+            source.law
+        )
+    })
+}
+
 /// The friction law of every contact of `system`, by name; `None` when they differ.
 fn common_model(system: &System) -> Option<String> {
     let mut names = system.contacts.iter().map(|c| c.model.name());
@@ -309,8 +316,12 @@ pub fn make(args: &SimulateArgs, trajectory_as: TrajectoryAs) -> Result<Made, Ap
         name,
         mut parameters,
         friction,
-        ..
-    } = system_of(args.system.as_deref(), args.model, &args.model_options)?;
+        source,
+    } = system_of(
+        args.system.as_deref(),
+        args.model.as_ref(),
+        &args.model_options,
+    )?;
     args.solver.checked_step()?;
     let switching = args.solver.switching();
     parameters.extend(scheme_parameters(switching, &friction));
@@ -367,7 +378,11 @@ pub fn make(args: &SimulateArgs, trajectory_as: TrajectoryAs) -> Result<Made, Ap
     let setup = RunSetup {
         system: name,
         model: common_model(&system),
-        variant: args.system.is_none().then_some(args.model_options.variant),
+        variant: args
+            .model
+            .as_ref()
+            .and_then(ModelChoice::catalog)
+            .map(|_| args.model_options.variant),
         n_bodies: system.bodies.len(),
         n_contacts: system.contacts.len(),
         scheme: SchemeName::of(switching).name(),
@@ -426,10 +441,11 @@ pub fn make(args: &SimulateArgs, trajectory_as: TrajectoryAs) -> Result<Made, Ap
             ))
             .chain(crate::warnings::unread_warnings(
                 &args.model_options.params.set,
-                args.model,
+                args.model.as_ref().and_then(ModelChoice::catalog),
                 switching,
             ))
             .chain(args.solver.scheme.spelling_notes())
+            .chain(source.as_ref().and_then(unspread_warning))
             .collect(),
         failure: run.error.map(AppError::Solver),
     })

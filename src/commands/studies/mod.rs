@@ -7,6 +7,7 @@ use crate::artifacts::{Artifacts, Made};
 use crate::commands::simulate::Target as Problem;
 use crate::commands::system::{chosen_bodies, study_t_end, system_of};
 use crate::error::AppError;
+use crate::laws::ModelChoice;
 use crate::options::{LimitArgs, ModelOptions, SchemeArgs};
 use crate::ranges;
 use crate::study::Target;
@@ -80,7 +81,11 @@ impl CaseArgs {
         let scenario = match self.scenario {
             Some(Problem::Rig(s)) => s,
             _ => {
-                let described = system_of(self.system.as_deref(), self.model, &self.model_options)?;
+                let described = system_of(
+                    self.system.as_deref(),
+                    self.model.map(ModelChoice::Catalog).as_ref(),
+                    &self.model_options,
+                )?;
                 described.system.validate()?;
                 let bodies = if self.bodies.is_empty() {
                     vec![0]

@@ -1,0 +1,157 @@
+"""Friction laws written in Python run as the catalog's laws do (docs/python.md)."""
+
+import numpy as np
+import pytest
+
+import friction_lab as fl
+
+
+class Coulomb:
+    """Coulomb's law F = F_c·s, stuck while the needed force is within ±F_c."""
+
+    name = "py-coulomb"
+
+    def __init__(self, f_c):
+        self.f_c = f_c
+
+    def force(self, x, v, s, z):
+        return self.f_c * s
+
+    def stick(self, x, z):
+        return self.f_c
+
+
+class Dahl:
+    """Dahl's law as the catalog writes it: F = z, ż = σ·(v − v·s·z/F_c)."""
+
+    name = "py-dahl"
+    n_states = 1
+
+    def __init__(self, sigma, f_c):
+        self.sigma, self.f_c = sigma, f_c
+
+    def force(self, x, v, s, z):
+        return z[0]
+
+    def rates(self, x, v, s, z):
+        return (self.sigma * (v - v * s * z[0] / self.f_c),)
+
+    def stick(self, x, z):
+        return (z[0], z[0])
+
+
+def test_a_python_coulomb_law_runs_the_belt_as_the_catalogs_to_the_bit():
+    # Event switching with Dormand–Prince: s is ±1 in a slip mode, the stick test reads the
+    # interval, and no partial derivative is used, so every number is the catalog's.
+    mine = fl.simulate("belt", model=Coulomb(6.0), t_end=10.0)
+    builtin = fl.simulate("belt", model="coulomb", params={"F_c": 6.0}, t_end=10.0)
+    assert mine.summary["model"] == "py-coulomb" and mine.summary["variant"] is None
+    assert len(mine.events) == len(builtin.events) >= 2
+    for column in ("t", "x", "v", "friction"):
+        assert np.array_equal(getattr(mine, column), getattr(builtin, column)), column
+    assert (mine.mode == builtin.mode).all()
+    assert mine.stats == builtin.stats
+
+
+def test_a_python_law_with_a_state_follows_the_catalogs_dahl():
+    # The paper's prescribed motion drives the state: F = z through the hysteresis loop.
+    params = {"F_c": 6.0, "sigma": 5.0}
+    mine = fl.simulate("prescribed-motion", model=Dahl(5.0, 6.0), t_end=4.0)
+    builtin = fl.simulate("prescribed-motion", model="dahl", params=params, t_end=4.0)
+    assert mine.z is not None
+    assert np.array_equal(mine.friction, builtin.friction)
+    assert np.array_equal(mine.z, builtin.z)
+    assert mine.summary["loop_area"] == builtin.summary["loop_area"]
+
+
+def test_an_implicit_solver_takes_finite_difference_partials_of_a_python_law():
+    # Regularised Coulomb under BDF: the Jacobian of the Python law is forward differences,
+    # the catalog's is analytic; the trajectories agree to the solver's tolerance.
+    options = dict(solver="bdf", switching="regularized", t_end=5.0, rtol=1e-8, atol=1e-10,
+                   params={"epsilon": 1e-3})
+    mine = fl.simulate("belt", model=Coulomb(6.0), **options)
+    builtin = fl.simulate("belt", model="coulomb", **{**options,
+                                                      "params": {"epsilon": 1e-3, "F_c": 6.0}})
+    assert mine.stats["jacobian_evals"] > 0
+    scale = np.abs(builtin.x).max()
+    assert np.abs(mine.x - builtin.x).max() < 1e-5 * scale
+
+
+def test_analytic_partials_replace_the_differences():
+    class Differenced(Coulomb):
+        name = "py-viscous-differenced"
+
+        def force(self, x, v, s, z):
+            return self.f_c * s + 0.5 * v
+
+    class Analytic(Differenced):
+        name = "py-viscous"
+        calls = 0
+
+        def partials(self, x, v, s, z):
+            Analytic.calls += 1
+            return (0.0, 0.5, self.f_c)
+
+    options = dict(solver="implicit-euler", switching="regularized", t_end=2.0,
+                   params={"epsilon": 1e-2})
+    analytic = fl.simulate("belt", model=Analytic(6.0), **options)
+    assert Analytic.calls == analytic.stats["jacobian_evals"] > 0
+    differenced = fl.simulate("belt", model=Differenced(6.0), **options)
+    assert np.abs(analytic.x - differenced.x).max() < 1e-9
+
+
+def test_a_python_law_runs_in_a_chain():
+    # Without the spread of force levels along the chain, which scales the catalog's laws
+    # only (said as a warning): every block breaks away when the driver's pull reaches F_c.
+    with pytest.warns(RuntimeWarning, match="law `py-coulomb` is your own"):
+        fl.simulate("chain", model=Coulomb(5.0), params={"n_bodies": 3}, t_end=1.0)
+    params = {"n_bodies": 3, "spread": 0.0}
+    mine = fl.simulate("chain", model=Coulomb(5.0), params=params, t_end=8.0)
+    builtin = fl.simulate("chain", model="coulomb", params={**params, "F_c": 5.0}, t_end=8.0)
+    assert np.array_equal(mine.x, builtin.x) and len(mine.t) == 2001
+    assert mine.events.equals(builtin.events) and len(mine.events) >= 3
+
+
+def test_an_exception_in_a_law_stops_the_run_and_is_raised():
+    class Broken(Coulomb):
+        name = "py-broken"
+
+        def force(self, x, v, s, z):
+            if x > 1e-3:
+                raise ZeroDivisionError("the law's own error")
+            return self.f_c * s
+
+    with pytest.raises(ZeroDivisionError, match="the law's own error"):
+        fl.simulate("paper-block", model=Broken(6.0), t_end=2.0)
+    # The next run is not stopped by the one before.
+    assert fl.simulate("paper-block", model=Coulomb(6.0), t_end=2.0).summary["status"] == "ok"
+
+
+def test_a_law_without_its_methods_or_with_a_catalog_name_is_refused():
+    class NoStick:
+        name = "py-no-stick"
+
+        def force(self, x, v, s, z):
+            return 0.0
+
+    with pytest.raises(TypeError, match=r"law `py-no-stick` has no method `stick\(x, z\)`"):
+        fl.simulate("belt", model=NoStick())
+
+    class Stateful(Coulomb):
+        name = "py-stateful"
+        n_states = 1
+
+    with pytest.raises(TypeError, match=r"has no method `rates\(x, v, s, z\)`"):
+        fl.simulate("belt", model=Stateful(6.0))
+
+    class TooMany(Dahl):
+        n_states = 17
+
+    with pytest.raises(ValueError, match=r"`n_states` = 17 is out of range: allowed \[0, 16\]"):
+        fl.simulate("belt", model=TooMany(5.0, 6.0))
+
+    class Named(Coulomb):
+        name = "coulomb"
+
+    with pytest.raises(ValueError, match="the catalog has a model of that name"):
+        fl.simulate("belt", model=Named(6.0))
