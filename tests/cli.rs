@@ -1890,6 +1890,43 @@ fn phenomena_judges_the_chosen_models_at_the_given_parameters() {
     assert!(!e.contains("`F_s`"), "{e}");
 }
 
+/// A study of a rig reads `--variant`: SD as printed (+F_s whatever the direction) is
+/// another law than its sign-consistent reading, and the study says which it ran.
+#[test]
+fn a_study_runs_the_reading_that_variant_names() {
+    let dir = tempfile::tempdir().unwrap();
+    let study = |variant: &str| {
+        let out = dir.path().join(variant);
+        let o = friction_lab(&[
+            "converge",
+            "belt",
+            "--model",
+            "SD",
+            "--variant",
+            variant,
+            "--t-end",
+            "3",
+            "--solvers",
+            "rk4",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let json: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(out.join("converge.json")).unwrap()).unwrap();
+        let csv = std::fs::read_to_string(out.join("converge.csv")).unwrap();
+        (
+            json["case"]["description"].as_str().unwrap().to_string(),
+            csv,
+        )
+    };
+    let (odd, odd_runs) = study("odd");
+    let (printed, printed_runs) = study("printed");
+    assert_eq!(odd, "belt with SD (event switching)");
+    assert_eq!(printed, "belt with SD (as printed) (event switching)");
+    assert_ne!(odd_runs, printed_runs);
+}
+
 #[test]
 fn converge_and_work_precision_name_the_runs_that_failed() {
     // LuGre's bristles are stiff: Dormand-Prince with fixed steps of 0.02 to 0.0025 s is

@@ -155,3 +155,15 @@ def test_a_law_without_its_methods_or_with_a_catalog_name_is_refused():
 
     with pytest.raises(ValueError, match="the catalog has a model of that name"):
         fl.simulate("belt", model=Named(6.0))
+
+
+def test_a_study_runs_a_python_law_as_the_catalogs():
+    # The runs of a convergence study on the pool's threads: the same numbers as the
+    # catalog's Coulomb (the description names the law).
+    options = dict(solvers=["rk4", "dopri5"], t_end=3.0, threads=2)
+    mine = fl.converge("belt", model=Coulomb(6.0), **options)
+    builtin = fl.converge("belt", model="coulomb", params={"F_c": 6.0}, **options)
+    assert mine.summary["case"]["description"] == "belt with py-coulomb (event switching)"
+    assert mine.runs.drop(columns="wall_time_s", errors="ignore").equals(
+        builtin.runs.drop(columns="wall_time_s", errors="ignore"))
+    assert len(mine.runs) >= 8

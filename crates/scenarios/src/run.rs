@@ -185,10 +185,15 @@ impl PartialEq for Law {
     }
 }
 
-/// The model's name as `friction-lab models` lists it, or the own law's name.
+/// The model's name as `friction-lab models` lists it (with `(as printed)` for the printed
+/// reading of a model that has one), or the own law's name.
 impl std::fmt::Display for Law {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
+            Law::Catalog {
+                model,
+                variant: Variant::Printed,
+            } if model.has_printed_form() => write!(f, "{model} (as printed)"),
             Law::Catalog { model, .. } => write!(f, "{model}"),
             Law::Own(law) => f.write_str(law.name()),
         }

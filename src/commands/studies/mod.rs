@@ -14,7 +14,6 @@ use crate::study::Target;
 use crate::warnings::{diverged_line, unread_warnings};
 use clap::Args;
 use friction_models::params::show;
-use friction_models::ModelId;
 use integrators::Solver;
 use scenarios::run::DEFAULT_THETA;
 use scenarios::studies::{Case, StepKind, StudyCase, StudyRun, SystemCase};
@@ -45,9 +44,10 @@ pub struct CaseArgs {
     /// A system file (TOML, shared/spec/systems.md) to study instead of a scenario.
     #[arg(long, value_name = "FILE.toml")]
     pub system: Option<PathBuf>,
-    /// The friction model (scenarios and chain).
+    /// The friction model (scenarios and chain), as `friction-lab models` lists it, or a law
+    /// registered by name (from Python: docs/python.md).
     #[arg(long, value_name = "MODEL")]
-    pub model: Option<ModelId>,
+    pub model: Option<ModelChoice>,
     /// Systems: the bodies whose trajectories, event times and stick phases are measured
     /// (names or 1-based indices) [default: the first body]; every body's final state is.
     #[arg(long, value_name = "LIST", value_delimiter = ',')]
@@ -83,7 +83,7 @@ impl CaseArgs {
             _ => {
                 let described = system_of(
                     self.system.as_deref(),
-                    self.model.map(ModelChoice::Catalog).as_ref(),
+                    self.model.as_ref(),
                     &self.model_options,
                 )?;
                 described.system.validate()?;
@@ -118,7 +118,7 @@ impl CaseArgs {
                 "option `--bodies` applies to systems (chain, --system), not to a rig".into(),
             ));
         }
-        let model = self.model.ok_or_else(|| {
+        let model = self.model.as_ref().ok_or_else(|| {
             AppError::Usage(format!(
                 "option `--model` is required for scenario {scenario}: e.g. --model CS"
             ))
@@ -130,7 +130,7 @@ impl CaseArgs {
         )?;
         Ok(Box::new(Case {
             scenario,
-            law: model.into(),
+            law: model.law(self.model_options.variant),
             friction,
             params,
             switching: self.treatment()?,
@@ -194,10 +194,14 @@ impl CaseArgs {
         Ok(Made {
             files,
             notes,
-            warnings: unread_warnings(&self.model_options.params.set, self.model, switching)
-                .into_iter()
-                .chain(self.scheme.spelling_notes())
-                .collect(),
+            warnings: unread_warnings(
+                &self.model_options.params.set,
+                self.model.as_ref().and_then(ModelChoice::catalog),
+                switching,
+            )
+            .into_iter()
+            .chain(self.scheme.spelling_notes())
+            .collect(),
             failure,
             trajectory: None,
         })

@@ -5,6 +5,7 @@ use super::CaseArgs;
 use crate::artifacts::Made;
 use crate::commands::simulate::Target as Problem;
 use crate::error::AppError;
+use crate::laws::ModelChoice;
 use crate::options::SchemeName;
 use crate::study::{conduct, StiffnessStudy};
 use clap::Args;
@@ -86,7 +87,12 @@ pub fn stiffness(a: &StiffnessArgs) -> Result<Made, AppError> {
     // parameter itself (`StudyCase::with_parameter`): epsilon, which under event switching
     // its regularised peer reads, and on the chain the chain's parameters and its law's.
     if let Some(Problem::Rig(_)) = case.scenario {
-        crate::options::check_read("parameter", &a.parameter, case.model, case.treatment()?)?;
+        crate::options::check_read(
+            "parameter",
+            &a.parameter,
+            case.model.as_ref().and_then(ModelChoice::catalog),
+            case.treatment()?,
+        )?;
     }
     case.make(|t, case| {
         let sweep = studies::Sweep {
