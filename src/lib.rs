@@ -118,15 +118,14 @@ impl Command {
             Command::WorkPrecision(a) => (&a.case.out, a.case.threads),
             Command::Stiffness(a) => (&a.case.out, a.case.threads),
             Command::Sweep(a) => (&a.run.out, a.threads),
-            Command::Models { .. } | Command::Phenomena(_) | Command::Reproduce(_) => {
-                (std::path::Path::new("."), None)
-            }
+            Command::Phenomena(a) => (&a.out, a.threads),
+            Command::Models { .. } | Command::Reproduce(_) => (std::path::Path::new("."), None),
         }
     }
 }
 
-/// Runs `curve`, `simulate`, a study or `sweep`, and keeps its files in memory instead of
-/// writing them (figures undrawn): the command line writes them. `models`, `phenomena` and
+/// Runs `curve`, `simulate`, a study, `sweep` or `phenomena`, and keeps its files in memory
+/// instead of writing them (figures undrawn): the command line writes them. `models` and
 /// `reproduce` are refused here.
 pub fn make(command: &Command) -> Result<artifacts::Made, AppError> {
     make_as(command, TrajectoryAs::File)
@@ -152,8 +151,9 @@ fn make_as(command: &Command, trajectory: TrajectoryAs) -> Result<artifacts::Mad
         Command::WorkPrecision(args) => commands::studies::work_precision(args),
         Command::Stiffness(args) => commands::studies::stiffness(args),
         Command::Sweep(args) => commands::sweep::make(args),
-        Command::Models { .. } | Command::Phenomena(_) | Command::Reproduce(_) => Err(
-            AppError::Usage("models, phenomena and reproduce write no in-memory result".into()),
-        ),
+        Command::Phenomena(args) => commands::phenomena::make(args),
+        Command::Models { .. } | Command::Reproduce(_) => Err(AppError::Usage(
+            "models and reproduce write no in-memory result".into(),
+        )),
     }
 }

@@ -58,6 +58,11 @@ def timed(f, n=7):
     return statistics.median(times), times[0], times[-1]
 
 
+def ms(m):
+    """A timing of :func:`timed` as `median ms (fastest–slowest)`."""
+    return f"{m[0] * 1e3:.1f} ms ({m[1] * 1e3:.1f}–{m[2] * 1e3:.1f})"
+
+
 def counting(law):
     """A copy of `law` that counts its calls of `force` and `stick` in `calls`."""
     base = type(law)
@@ -103,5 +108,12 @@ for what, rig, law, builtin, params, options in CASES:
     catalog_params = {**options.get("params", {}), **params}
     ours = timed(lambda: fl.simulate(rig, model=builtin, **{**options, "params": catalog_params}))
     per = (own[0] - ours[0]) / calls * 1e6
-    ms = lambda m: f"{m[0] * 1e3:.1f} ms ({m[1] * 1e3:.1f}–{m[2] * 1e3:.1f})"  # noqa: E731
     print(f"| {what} | {calls} | {ms(own)} | {ms(ours)} | {own[0] / ours[0]:.1f} | {per:.2f} µs |")
+
+# Table 2's protocols run on a pool of threads: each worker keeps its Python thread state.
+print()
+print("| Table 2 of one law (2 threads) | Python law | catalog's law | ratio |")
+print("|---|---|---|---|")
+own = timed(lambda: fl.phenomena([Coulomb(6.0)], threads=2), n=5)
+ours = timed(lambda: fl.phenomena(["coulomb"], threads=2), n=5)
+print(f"| Coulomb | {ms(own)} | {ms(ours)} | {own[0] / ours[0]:.1f} |")

@@ -18,12 +18,12 @@ import numpy as np
 
 from . import _native
 from ._command import SolverError, SystemFile, run, words
-from ._result import Result, Study
+from ._result import Result, Study, Table2
 from ._sweep import sweep
 
 
 __all__ = ["models", "curve", "simulate", "converge", "independence", "work_precision",
-           "stiffness", "sweep", "Result", "Study", "SolverError"]
+           "stiffness", "phenomena", "sweep", "Result", "Study", "Table2", "SolverError"]
 
 
 def models() -> List[Dict[str, Any]]:
@@ -91,3 +91,16 @@ def work_precision(scenario: str, *, params: Optional[Dict[str, float]] = None, 
 def stiffness(scenario: str, *, params: Optional[Dict[str, float]] = None, **options: Any) -> Study:
     """Where the implicit solvers overtake the explicit ones (``friction-lab stiffness``)."""
     return _study("stiffness", scenario, params, options)
+
+
+def phenomena(models: Any = None, *, params: Optional[Dict[str, float]] = None,
+              **options: Any) -> Table2:
+    """Table 2 decided by simulation (``friction-lab phenomena --help``): every phenomenon's
+    verdict for each law of ``models`` (names of the catalog, or laws written in Python;
+    default: every model of the catalog), beside the paper's claim, with its evidence."""
+    made = run(words("phenomena", params=params, model=models, **options))
+    table = Table2(made)
+    if made.failure is not None:
+        # Undecided cells: the table keeps the decided ones.
+        raise SolverError(made.failure, table)
+    return table

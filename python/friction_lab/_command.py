@@ -141,10 +141,13 @@ def words(command: str, *positional: Optional[str], **options: Any) -> List[str]
     for name, value in options.items():
         if value is None or value is False:
             continue
-        if name == "model" and not isinstance(value, (str, os.PathLike)):
-            # A friction law written in Python: registered under its name, which the
-            # command's --model then takes as it takes a model of the catalog.
-            argv += ["--model", _native.register_law(value)]
+        if name == "model":
+            # A name, or a friction law written in Python, registered under its name, which
+            # --model then takes as it takes a model of the catalog; several (phenomena's
+            # repeatable option) are written one --model each.
+            for law in (value if isinstance(value, (list, tuple)) else [value]):
+                argv += ["--model", law if isinstance(law, (str, os.PathLike))
+                         else _native.register_law(law)]
         elif name == "params":
             for key, v in _mapping(name, value, "{'v_belt': 0.1}").items():
                 argv += ["--set", f"{key}={_word(key, v)}"]

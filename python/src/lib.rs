@@ -231,6 +231,9 @@ fn interruptible<T: Send>(py: Python<'_>, work: impl FnOnce() -> T + Send) -> Py
 /// The module `friction_lab._native`.
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    // The pools' workers, as the run's worker in `interruptible`: attached once, detached at
+    // once, so that a law written in Python takes the GIL on a living thread state.
+    friction_lab::threads::set_worker_wrapper(|work| Python::attach(|py| py.detach(work)));
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(models_json, m)?)?;
     m.add_function(wrap_pyfunction!(options, m)?)?;

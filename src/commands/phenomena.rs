@@ -2,17 +2,18 @@
 //! models and the reference models, beside the paper's claims, with the numbers that
 //! decided each cell.
 
-use crate::artifacts::Artifacts;
+use crate::artifacts::{Artifacts, Made};
 use crate::error::AppError;
+use crate::laws::ModelChoice;
 use crate::options::{check_read, LimitArgs, ParamOptions};
 use crate::ranges;
 use crate::study::{check_decided, conduct, Table2Study, Target};
 use crate::threads::with_threads;
 use clap::Args;
-use friction_models::ModelId;
+use friction_models::{ModelId, Variant};
 use integrators::{Solver, StepControl};
-use scenarios::phenomena::{Protocol, PROTOCOL_PARAMETERS};
-use scenarios::SwitchingKind;
+use scenarios::phenomena::{catalog_laws, Protocol, PROTOCOL_PARAMETERS};
+use scenarios::{Law, SwitchingKind};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -46,9 +47,10 @@ pub struct PhenomenaArgs {
     /// The table does not depend on it.
     #[arg(long, value_name = "N", allow_hyphen_values = true)]
     pub threads: Option<i64>,
-    /// The models to judge, repeatable [default: every model].
+    /// The models to judge, repeatable: names `friction-lab models` lists, or laws registered
+    /// by name (from Python: docs/python.md) [default: every model of the catalog].
     #[arg(long = "model", value_name = "MODEL")]
-    pub models: Vec<ModelId>,
+    pub models: Vec<ModelChoice>,
     /// Parameters for every judged model (`--param-set`, `--params`, `--set`, friction
     /// parameters only) [default: each model at its own set, `paper`, or `lugre-1995` for
     /// the bristle models lugre, lugre-vd, elasto-plastic and gms]. Naming `--param-set paper`
@@ -60,8 +62,28 @@ pub struct PhenomenaArgs {
     pub limits: LimitArgs,
 }
 
-/// Runs `phenomena`.
+/// Runs `phenomena`: its files written, then the advice and the failure of undecided cells.
 pub fn run(args: &PhenomenaArgs) -> Result<(), AppError> {
+    let start = Instant::now();
+    let threads = ranges::threads(args.threads)?;
+    let made = make(args)?;
+    let files = made.files;
+    let written = with_threads(threads, || files.write(&args.out))??;
+    println!(
+        "wrote {} files into {} in {:.1} s",
+        written.len(),
+        args.out.display(),
+        start.elapsed().as_secs_f64()
+    );
+    for warning in &made.warnings {
+        eprintln!("note: {warning}");
+    }
+    made.failure.map_or(Ok(()), Err)
+}
+
+/// Decides Table 2 as `phenomena` asks, its files in memory: `table2.md` and `table2.json`,
+/// the advice about parameters no judged law reads, and the failure of undecided cells.
+pub fn make(args: &PhenomenaArgs) -> Result<Made, AppError> {
     let step = StepControl::Adaptive {
         rtol: ranges::RTOL.check(args.rtol)?,
         atol: ranges::ATOL.check(args.atol)?,
@@ -88,15 +110,14 @@ pub fn run(args: &PhenomenaArgs) -> Result<(), AppError> {
     } else {
         None
     };
-    let start = Instant::now();
     let mut files = Artifacts::default();
-    let models = if args.models.is_empty() {
-        ModelId::ALL.to_vec()
+    let laws: Vec<Law> = if args.models.is_empty() {
+        catalog_laws()
     } else {
-        args.models.clone()
+        args.models.iter().map(|m| m.law(Variant::Odd)).collect()
     };
     let study = Table2Study {
-        models: &models,
+        laws: &laws,
         protocol: Protocol {
             solver: args.solver,
             step,
@@ -111,35 +132,33 @@ pub fn run(args: &PhenomenaArgs) -> Result<(), AppError> {
         failure: None,
     };
     let rows = conduct(&study, &mut target, "table2")?;
-    let written = with_threads(threads, || files.write(&args.out))??;
-    println!(
-        "wrote {} files into {} in {:.1} s",
-        written.len(),
-        args.out.display(),
-        start.elapsed().as_secs_f64()
-    );
-    for warning in unread_by_all(&p.set, &models) {
-        eprintln!("note: {warning}");
-    }
-    check_decided(&rows)
+    Ok(Made {
+        files,
+        notes: Vec::new(),
+        warnings: unread_by_all(&p.set, &laws),
+        failure: check_decided(&rows).err(),
+        trajectory: None,
+    })
 }
 
 /// The advice given for each `--set` of a friction parameter that neither the protocols
 /// ([`PROTOCOL_PARAMETERS`]) nor any of the judged `models` reads under the protocols' event
 /// switching ([`check_read`]; `epsilon` never): accepted, as `simulate` accepts it, but
 /// said: every value would give the same table.
-fn unread_by_all(set: &[String], models: &[ModelId]) -> Vec<String> {
+fn unread_by_all(set: &[String], laws: &[Law]) -> Vec<String> {
     let unread = |name: &str, m: ModelId| check_read("set", name, Some(m), SwitchingKind::Event);
+    // A law of one's own may read any friction parameter through the rigs' scales.
+    let unread_by = |name: &str, law: &Law| law.catalog().is_some_and(|m| unread(name, m).is_err());
     set.iter()
         .filter_map(|s| s.split_once('=').map(|(name, _)| name.trim()))
         .filter(|name| !PROTOCOL_PARAMETERS.contains(name))
-        .filter(|name| models.iter().all(|&m| unread(name, m).is_err()))
-        .map(|name| match (name, models) {
+        .filter(|name| *name == "epsilon" || laws.iter().all(|law| unread_by(name, law)))
+        .map(|name| match (name, laws) {
             ("epsilon", _) => "option `set`: parameter `epsilon` is not read by the \
                  protocols, which switch at v = 0 by events: every value would give the same \
                  table"
                 .to_string(),
-            (_, [m]) => unread(name, *m)
+            (_, [Law::Catalog { model, .. }]) => unread(name, *model)
                 .expect_err("unread by every model")
                 .to_string(),
             _ => format!(
@@ -169,10 +188,13 @@ mod tests {
     #[test]
     fn undecided_cells_are_counted_and_the_first_named() {
         let failed = || cell(Err("too many steps".into()));
-        let decided = vec![(ModelId::Cs, vec![(Phenomenon::Stiction, cell(Ok(true)))])];
+        let decided = vec![(
+            ModelId::Cs.into(),
+            vec![(Phenomenon::Stiction, cell(Ok(true)))],
+        )];
         assert!(check_decided(&decided).is_ok());
         let one = vec![(
-            ModelId::Cs,
+            ModelId::Cs.into(),
             vec![
                 (Phenomenon::Stiction, cell(Ok(true))),
                 (Phenomenon::Hysteresis, failed()),
@@ -184,7 +206,7 @@ mod tests {
              table2.json); the first: CS hysteresis: too many steps"
         );
         let two = vec![(
-            ModelId::Cs,
+            ModelId::Cs.into(),
             vec![
                 (Phenomenon::Stiction, failed()),
                 (Phenomenon::Hysteresis, failed()),

@@ -655,8 +655,9 @@ pub fn run(args: &ReproduceArgs) -> Result<(), AppError> {
         args.out.join("paper-experiment.md"),
         format!("# The paper's experiment\n\n{experiment_md}").into_bytes(),
     );
+    let laws = scenarios::phenomena::catalog_laws();
     let table2 = Table2Study {
-        models: &ModelId::ALL,
+        laws: &laws,
         protocol: Protocol::default(),
         parameters: None,
     };

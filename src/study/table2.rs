@@ -6,14 +6,14 @@ use super::{Study, StudyFiles};
 use crate::error::AppError;
 use friction_models::{FrictionParams, ModelId};
 use scenarios::phenomena::{table, thresholds, Cell, Phenomenon, Protocol, Row};
-use scenarios::ScenarioError;
+use scenarios::{Law, ScenarioError};
 use serde_json::{json, Map, Value};
 
-/// Table 2 for `models` under `protocol`, each model at its own parameter set or all at
-/// `parameters` (with the words that describe them).
+/// Table 2 for `laws` under `protocol`, each at its own parameter set or all at `parameters`
+/// (with the words that describe them).
 pub struct Table2Study<'a> {
-    /// The models, in column order.
-    pub models: &'a [ModelId],
+    /// The laws, in column order: models of the catalog, or laws of one's own.
+    pub laws: &'a [Law],
     /// The solver, tolerances and bounds of every protocol run.
     pub protocol: Protocol,
     /// Parameters for every model, with their description; `None`: each model at its own set.
@@ -21,19 +21,19 @@ pub struct Table2Study<'a> {
 }
 
 impl Study for Table2Study<'_> {
-    type Result = Vec<(ModelId, Row)>;
+    type Result = Vec<(Law, Row)>;
 
     fn name(&self) -> &'static str {
         "Table 2"
     }
 
     fn runs(&self) -> usize {
-        self.models.len() * Phenomenon::ALL.len()
+        self.laws.len() * Phenomenon::ALL.len()
     }
 
     fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<Self::Result, ScenarioError> {
         let parameters = self.parameters.as_ref().map(|p| &p.0);
-        table(self.models, self.protocol, parameters, true, progress)
+        table(self.laws, self.protocol, parameters, true, progress)
     }
 
     /// `{stem}.md` (the table beside the paper's, with the protocols and their verdicts over
@@ -56,7 +56,7 @@ impl Study for Table2Study<'_> {
 /// evidence, region}}}`: `measured` null and `failed` the reason for a cell whose run failed,
 /// `region` the verdict over the cell's grid of rig parameters (axes, points, fraction,
 /// flips, undecided).
-fn json_table(rows: &[(ModelId, Row)]) -> Value {
+fn json_table(rows: &[(Law, Row)]) -> Value {
     let mut out = Map::new();
     for (model, row) in rows {
         let mut cells = Map::new();
@@ -72,7 +72,7 @@ fn json_table(rows: &[(ModelId, Row)]) -> Value {
                 }),
             );
         }
-        out.insert(model.name().into(), Value::Object(cells));
+        out.insert(model.to_string(), Value::Object(cells));
     }
     Value::Object(out)
 }
@@ -100,7 +100,7 @@ fn mark(c: &Cell) -> String {
 const FLIPS_LISTED: usize = 4;
 
 /// The section of `table2.md` on the verdicts over the grids of rig parameters.
-fn regions_markdown(rows: &[(ModelId, Row)]) -> String {
+fn regions_markdown(rows: &[(Law, Row)]) -> String {
     if !rows
         .iter()
         .any(|(_, r)| r.iter().any(|(_, c)| c.region.is_some()))
@@ -177,7 +177,7 @@ fn regions_markdown(rows: &[(ModelId, Row)]) -> String {
 }
 
 /// Table 2 as markdown: the measured table beside the paper's, then the evidence.
-pub fn markdown(rows: &[(ModelId, Row)], protocol: &Protocol, parameters: &str) -> String {
+pub fn markdown(rows: &[(Law, Row)], protocol: &Protocol, parameters: &str) -> String {
     let mut s = String::from("# Table 2, decided by simulation\n\n");
     s += &format!(
         "Written by `friction-lab phenomena` with solver {} ({:?}), event switching, {parameters}. \
@@ -193,10 +193,14 @@ pub fn markdown(rows: &[(ModelId, Row)], protocol: &Protocol, parameters: &str) 
     s += "\n|---|";
     s += &"---|".repeat(rows.len());
     s += "\n| parameters read (paper's count) |";
-    for (m, _) in rows {
+    for (law, _) in rows {
         let paper = [4, 4, 4, 3, 3, 4];
+        let Some(m) = law.catalog() else {
+            s += " (its own) |";
+            continue;
+        };
         let n = m.parameters().len();
-        match ModelId::PAPER.iter().position(|p| p == m) {
+        match ModelId::PAPER.iter().position(|&p| p == m) {
             Some(i) => s += &format!(" {n} ({}) |", paper[i]),
             None => s += &format!(" {n} |"),
         }
@@ -281,7 +285,7 @@ fn own_parameters() -> String {
 }
 
 /// The cells whose protocol failed, as `model phenomenon: why`, in the table's order.
-pub fn undecided(rows: &[(ModelId, Row)]) -> Vec<String> {
+pub fn undecided(rows: &[(Law, Row)]) -> Vec<String> {
     rows.iter()
         .flat_map(|(m, row)| row.iter().map(move |(p, c)| (m, p, c)))
         .filter_map(|(m, p, c)| {
@@ -293,7 +297,7 @@ pub fn undecided(rows: &[(ModelId, Row)]) -> Vec<String> {
 
 /// The failure of a command whose Table 2 has undecided cells (exit 1, after its files are
 /// written), or `Ok` if every cell was decided.
-pub fn check_decided(rows: &[(ModelId, Row)]) -> Result<(), AppError> {
+pub fn check_decided(rows: &[(Law, Row)]) -> Result<(), AppError> {
     let failed = undecided(rows);
     match failed.first() {
         None => Ok(()),

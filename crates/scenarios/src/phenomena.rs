@@ -768,10 +768,16 @@ pub fn region(
     })
 }
 
+/// Every model of the catalog, in its sign-consistent reading: the columns of the paper's
+/// Table 2 and of the reference models.
+pub fn catalog_laws() -> Vec<Law> {
+    ModelId::ALL.iter().map(|&m| Law::from(m)).collect()
+}
+
 /// One model's row of Table 2: each phenomenon with its cell.
 pub type Row = Vec<(Phenomenon, Cell)>;
 
-/// Table 2 for `models`: every protocol for every model, run in parallel on rayon's pool
+/// Table 2 for `laws`: every protocol for every law, run in parallel on rayon's pool
 /// (the result does not depend on the number of threads: each cell is computed alone and
 /// collected in order).
 ///
@@ -779,28 +785,34 @@ pub type Row = Vec<(Phenomenon, Cell)>;
 /// ([`region`]): about 20 times the work. A cell whose protocol fails in the solver is kept,
 /// undecided ([`Cell::measured`] holds why), and the others are decided; bad input fails the
 /// table. `progress` is called after each cell.
+///
+/// A law of the catalog is judged at `parameters` or its own set ([`parameters_for`]) and
+/// beside the paper's claim; a law of one's own at `parameters` or the paper's set (which then
+/// sets only the rigs' scales), with no claim.
 pub fn table(
-    models: &[ModelId],
+    laws: &[Law],
     protocol: Protocol,
     parameters: Option<&FrictionParams>,
     regions: bool,
     progress: &(dyn Fn() + Sync),
-) -> Result<Vec<(ModelId, Row)>, ScenarioError> {
+) -> Result<Vec<(Law, Row)>, ScenarioError> {
     use rayon::prelude::*;
-    let jobs: Vec<(ModelId, Phenomenon)> = models
+    let jobs: Vec<(&Law, Phenomenon)> = laws
         .iter()
-        .flat_map(|&m| Phenomenon::ALL.iter().map(move |&p| (m, p)))
+        .flat_map(|law| Phenomenon::ALL.iter().map(move |&p| (law, p)))
         .collect();
     let cells: Vec<Result<Cell, ScenarioError>> = jobs
         .par_iter()
-        .map(|&(model, phenomenon)| {
-            let p = parameters.copied().unwrap_or_else(|| parameters_for(model));
-            let law = Law::from(model);
-            let paper = phenomenon.paper_claim(model);
-            let cell = match decide(phenomenon, &law, &p, protocol) {
+        .map(|&(law, phenomenon)| {
+            let p = parameters.copied().unwrap_or_else(|| {
+                law.catalog()
+                    .map_or_else(FrictionParams::paper, parameters_for)
+            });
+            let paper = law.catalog().and_then(|m| phenomenon.paper_claim(m));
+            let cell = match decide(phenomenon, law, &p, protocol) {
                 Ok(v) => Ok(Cell {
                     region: regions
-                        .then(|| region(phenomenon, &law, &p, protocol, v.measured))
+                        .then(|| region(phenomenon, law, &p, protocol, v.measured))
                         .transpose()?,
                     measured: Ok(v.measured),
                     paper,
@@ -819,14 +831,13 @@ pub fn table(
         })
         .collect();
     let mut cells = cells.into_iter();
-    models
-        .iter()
-        .map(|&m| {
+    laws.iter()
+        .map(|law| {
             let row = Phenomenon::ALL
                 .iter()
                 .map(|&p| Ok((p, cells.next().expect("one cell per job")?)))
                 .collect::<Result<Vec<_>, ScenarioError>>()?;
-            Ok((m, row))
+            Ok((law.clone(), row))
         })
         .collect()
 }
