@@ -9,10 +9,12 @@ same inputs whatever the split, so the two ways give the same DataFrame, bit for
 from __future__ import annotations
 
 import math
+import os
 from typing import Any, Dict, List, Optional, Sequence, Union
 
 import pandas as pd
 
+from . import _native
 from ._command import Made, SolverError, run, table, words
 
 
@@ -37,7 +39,9 @@ def sweep(scenario: str, *, grid: Dict[str, Union[Sequence[float], str]],
         frame = made.table("sweep.csv")
         failure = made.failure
     else:
-        frame = _on_dask(client, argv, chunk_size)
+        model = options.get("model")
+        laws = [] if model is None or isinstance(model, (str, os.PathLike)) else [model]
+        frame = _on_dask(client, argv, chunk_size, laws)
         failed = int((frame["status"] != "ok").sum())
         failure = f"{failed} of {len(frame)} runs failed; sweep.csv says which and why" if failed else None
     if failure is not None:
@@ -45,13 +49,17 @@ def sweep(scenario: str, *, grid: Dict[str, Union[Sequence[float], str]],
     return frame
 
 
-def _chunk(argv: List[str], start: int, end: int) -> bytes:
-    """One Dask task: the points START <= i < END of the sweep, as ``sweep.csv`` bytes."""
+def _chunk(argv: List[str], start: int, end: int, laws: List[Any]) -> bytes:
+    """One Dask task: the points START <= i < END of the sweep, as ``sweep.csv`` bytes; a
+    friction law written in Python (``laws``) is registered in the worker's process first."""
+    for law in laws:
+        _native.register_law(law)
     made: Made = run(argv + ["--point-range", f"{start}:{end}"])
     return made.files["sweep.csv"]
 
 
-def _on_dask(client: Any, argv: List[str], chunk_size: Optional[int]) -> pd.DataFrame:
+def _on_dask(client: Any, argv: List[str], chunk_size: Optional[int],
+             laws: List[Any]) -> pd.DataFrame:
     # Every point is checked here, before any task is sent (bad input raises ValueError).
     head = run(argv + ["--point-range", "0:0"])
     n = head.json("sweep.json")["grid_points"]
@@ -65,7 +73,7 @@ def _on_dask(client: Any, argv: List[str], chunk_size: Optional[int]) -> pd.Data
         argv = argv + ["--threads", "1"]
     bounds = [(s, min(s + chunk_size, n)) for s in range(0, n, chunk_size)]
     futures = client.map(_chunk, [argv] * len(bounds), [b[0] for b in bounds],
-                         [b[1] for b in bounds], pure=False)
+                         [b[1] for b in bounds], [laws] * len(bounds), pure=False)
     parts = [table(data) for data in client.gather(futures)]
     if not parts:
         return head.table("sweep.csv")

@@ -1,6 +1,7 @@
 """Friction laws written in Python run as the catalog's laws do (docs/python.md)."""
 
 import numpy as np
+import pandas as pd
 import pytest
 
 import friction_lab as fl
@@ -180,3 +181,20 @@ def test_table_2_judges_a_python_law_as_the_catalogs():
     assert t.cells["paper"].isna().all() and t.cells["failed"].isna().all()
     assert "| phenomenon | coulomb | py-coulomb |" in t.markdown
     assert "(its own)" in t.markdown
+
+
+def test_a_sweep_of_a_python_law_in_process_and_on_dask_is_the_catalogs():
+    # On Dask the law travels with each task (pickled) and is registered in the worker's
+    # process before its points run.
+    distributed = pytest.importorskip("distributed")
+    grid = {"v_belt": [0.05, 0.1], "k": [10, 100]}
+    builtin = fl.sweep("belt", model="coulomb", params={"F_c": 6.0}, grid=grid, t_end=20.0)
+    local = fl.sweep("belt", model=Coulomb(6.0), grid=grid, t_end=20.0)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as cluster, \
+            distributed.Client(cluster) as client:
+        on_dask = fl.sweep("belt", model=Coulomb(6.0), grid=grid, t_end=20.0, client=client,
+                           chunk_size=1)
+    pd.testing.assert_frame_equal(local, builtin, check_exact=True)
+    pd.testing.assert_frame_equal(on_dask, local, check_exact=True)
+    assert (local["status"] == "ok").all() and len(local) == 4
