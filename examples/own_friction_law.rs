@@ -176,7 +176,7 @@ pub fn run() -> Report {
     let rk4_order = study
         .orders
         .iter()
-        .find(|o| o.measure == "event_times")
+        .find(|o| o.measure == studies::ErrorMeasure::EventTimes)
         .and_then(|o| o.fitted_slope);
     let table2 = Phenomenon::ALL
         .iter()

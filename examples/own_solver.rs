@@ -19,7 +19,7 @@ use friction_lab::integrators::stepper::{
 use friction_lab::integrators::{
     Ode, OneStepMethod, Options, Solver, SolverError, Stats, StepControl, Stepper, StepperState,
 };
-use friction_lab::scenarios::studies::{self, Method, SystemCase};
+use friction_lab::scenarios::studies::{self, ErrorMeasure, Method, SystemCase};
 use std::sync::Arc;
 
 // The Butcher tableau of Bogacki & Shampine (1989), Table 1: nodes, stages, third-order
@@ -304,7 +304,7 @@ pub fn run() -> Report {
     let steps = [0.01, 0.005, 0.0025, 0.00125];
     let convergence =
         studies::convergence(&case, &[bs23], &steps, &[], &|| {}).expect("the study runs");
-    let fitted = |measure: &str| {
+    let fitted = |measure: ErrorMeasure| {
         convergence
             .orders
             .iter()
@@ -326,8 +326,8 @@ pub fn run() -> Report {
     Report {
         switches: (n_bs23, n_dopri5),
         final_gap: (a[0] - b[0]).abs().max((a[1] - b[1]).abs()),
-        event_order: fitted("event_times"),
-        final_order: fitted("final_state"),
+        event_order: fitted(ErrorMeasure::EventTimes),
+        final_order: fitted(ErrorMeasure::FinalState),
         at_1e8: [at("bs23"), at("dopri5")],
     }
 }

@@ -26,6 +26,7 @@ use scenarios::figures::{
 };
 use scenarios::paper::{experiment, Asymptote, ExperimentFailure, ExperimentRow};
 use scenarios::phenomena::Protocol;
+use scenarios::studies::ErrorMeasure;
 use scenarios::studies::{Case, Method, StudyCase, SystemCase};
 use scenarios::Limits;
 use scenarios::{Scenario, SwitchingKind};
@@ -230,7 +231,7 @@ fn case(
     }
 }
 
-fn slopes(c: &scenarios::studies::Convergence, measure: &str) -> String {
+fn slopes(c: &scenarios::studies::Convergence, measure: ErrorMeasure) -> String {
     c.orders
         .iter()
         .filter(|t| t.measure == measure)
@@ -430,9 +431,9 @@ fn add_studies(
          studies/work-precision-belt-CS-timing.csv.\n\
          - [Cost to reach error 1e-3 against the regularisation width](studies/stiffness-belt-CS-epsilon.png): \
          {}.\n{chain}",
-        slopes(&smooth, "grid_max"),
-        slopes(&naive, "grid_max"),
-        slopes(&switched, "grid_max"),
+        slopes(&smooth, ErrorMeasure::GridMax),
+        slopes(&naive, ErrorMeasure::GridMax),
+        slopes(&switched, ErrorMeasure::GridMax),
         verdict(&av),
         verdict(&cs),
         stiff.verdict(),

@@ -2,7 +2,7 @@
 
 use crate::error::AppError;
 use crate::output::{Cell, Table};
-use scenarios::studies::{StepKind, StudyRun};
+use scenarios::studies::{ErrorMeasure, StepKind, StudyRun};
 use std::path::Path;
 
 /// The columns `h` and `tol` of a run with `resolution` of kind `step` (a step size or a
@@ -18,40 +18,36 @@ pub fn resolution_cells(step: Option<StepKind>, resolution: Option<f64>) -> [Cel
 
 /// One CSV row per run: solver, step size or tolerance, the errors, the work.
 pub fn runs_table(runs: &[StudyRun], path: &Path) -> Result<Vec<u8>, AppError> {
-    let mut t = Table::new(&[
-        "solver",
-        "step",
-        "h",
-        "tol",
-        "work",
-        "error_final_state",
-        "error_grid_max",
-        "error_event_times",
-        "error_stick_durations",
-        "steps",
-        "rejected",
-        "rhs_evals",
-        "jacobian_evals",
-        "lu_factorizations",
-        "newton_iterations",
-        "events",
-        "status",
-    ]);
+    let errors = ErrorMeasure::ALL.map(|m| format!("error_{}", m.name()));
+    let header: Vec<&str> = ["solver", "step", "h", "tol", "work"]
+        .into_iter()
+        .chain(errors.iter().map(String::as_str))
+        .chain([
+            "steps",
+            "rejected",
+            "rhs_evals",
+            "jacobian_evals",
+            "lu_factorizations",
+            "newton_iterations",
+            "events",
+            "status",
+        ])
+        .collect();
+    let mut t = Table::new(&header);
     for r in runs {
         // A missing measure (no events to compare) is written as an empty cell, never NaN.
         let num = Cell::num;
         let s = r.stats;
         let [h, tol] = resolution_cells(Some(r.step), Some(r.resolution));
-        t.rows.push(vec![
+        let mut row = vec![
             Cell::Text(r.solver.clone()),
             Cell::Text(r.step.name().into()),
             h,
             tol,
             Cell::Num(r.work as f64),
-            num(r.errors.final_state),
-            num(r.errors.grid_max),
-            num(r.errors.event_times),
-            num(r.errors.stick_durations),
+        ];
+        row.extend(ErrorMeasure::ALL.map(|m| num(m.of(&r.errors))));
+        row.extend([
             Cell::Num(s.steps as f64),
             Cell::Num(s.rejected() as f64),
             Cell::Num(s.rhs_evals as f64),
@@ -61,6 +57,7 @@ pub fn runs_table(runs: &[StudyRun], path: &Path) -> Result<Vec<u8>, AppError> {
             Cell::Num(s.events as f64),
             Cell::Text(r.failure.as_ref().map_or("ok".into(), |e| e.to_string())),
         ]);
+        t.rows.push(row);
     }
     t.to_csv(path)
 }

@@ -19,6 +19,58 @@ pub struct Errors {
     pub stick_durations: f64,
 }
 
+/// One of a run's errors against its reference ([`Errors`]), by the name the study files give
+/// it (`final_state`, `grid_max`, `event_times`, `stick_durations`; the runs' tables prefix
+/// `error_`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ErrorMeasure {
+    /// [`Errors::final_state`].
+    FinalState,
+    /// [`Errors::grid_max`].
+    GridMax,
+    /// [`Errors::event_times`].
+    EventTimes,
+    /// [`Errors::stick_durations`].
+    StickDurations,
+}
+
+impl ErrorMeasure {
+    /// Every measure, in the order the study files list them.
+    pub const ALL: [ErrorMeasure; 4] = [
+        ErrorMeasure::FinalState,
+        ErrorMeasure::GridMax,
+        ErrorMeasure::EventTimes,
+        ErrorMeasure::StickDurations,
+    ];
+
+    /// The name the study files give it.
+    pub fn name(self) -> &'static str {
+        match self {
+            ErrorMeasure::FinalState => "final_state",
+            ErrorMeasure::GridMax => "grid_max",
+            ErrorMeasure::EventTimes => "event_times",
+            ErrorMeasure::StickDurations => "stick_durations",
+        }
+    }
+
+    /// Its value among `errors`.
+    pub fn of(self, errors: &Errors) -> f64 {
+        match self {
+            ErrorMeasure::FinalState => errors.final_state,
+            ErrorMeasure::GridMax => errors.grid_max,
+            ErrorMeasure::EventTimes => errors.event_times,
+            ErrorMeasure::StickDurations => errors.stick_durations,
+        }
+    }
+}
+
+impl std::fmt::Display for ErrorMeasure {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.pad(self.name())
+    }
+}
+
 fn max_diff(a: &[f64], b: &[f64]) -> f64 {
     if a.len() != b.len() {
         return f64::NAN;

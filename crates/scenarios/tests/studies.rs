@@ -3,7 +3,7 @@
 
 use friction_models::{FrictionParams, ModelId};
 use integrators::Solver;
-use scenarios::studies::{convergence, independence, Case, Reference, StudyCase};
+use scenarios::studies::{convergence, independence, Case, ErrorMeasure, Reference, StudyCase};
 use scenarios::{Limits, Scenario, SwitchingKind};
 
 /// The block pushed by 15 N against viscous friction: smooth, with a closed form.
@@ -19,7 +19,7 @@ fn viscous_block() -> Case {
     }
 }
 
-fn slope(case: &Case, solver: Solver, steps: &[f64], measure: &str) -> f64 {
+fn slope(case: &Case, solver: Solver, steps: &[f64], measure: ErrorMeasure) -> f64 {
     let c = convergence(case, &[solver], steps, &[], &|| {}).unwrap();
     let t = c.orders.iter().find(|t| t.measure == measure).unwrap();
     t.fitted_slope.unwrap()
@@ -34,15 +34,25 @@ fn the_study_recovers_the_orders_of_the_methods_on_a_smooth_problem() {
         "{:?}",
         c.reference
     );
-    let rk4 = slope(&case, Solver::Rk4, &[0.4, 0.2, 0.1, 0.05], "grid_max");
+    let rk4 = slope(
+        &case,
+        Solver::Rk4,
+        &[0.4, 0.2, 0.1, 0.05],
+        ErrorMeasure::GridMax,
+    );
     assert!((rk4 - 4.0).abs() < 0.2, "rk4 {rk4}");
-    let dopri5 = slope(&case, Solver::Dopri5, &[1.0, 0.5, 0.25, 0.125], "grid_max");
+    let dopri5 = slope(
+        &case,
+        Solver::Dopri5,
+        &[1.0, 0.5, 0.25, 0.125],
+        ErrorMeasure::GridMax,
+    );
     assert!((dopri5 - 5.0).abs() < 0.3, "dopri5 {dopri5}");
     let euler = slope(
         &case,
         Solver::ImplicitEuler,
         &[0.04, 0.02, 0.01, 0.005],
-        "grid_max",
+        ErrorMeasure::GridMax,
     );
     assert!((euler - 1.0).abs() < 0.1, "implicit Euler {euler}");
 }
@@ -69,14 +79,14 @@ fn stepping_through_v_0_costs_rk4_its_order_and_event_location_restores_it() {
         &coulomb_vibration(SwitchingKind::Naive),
         Solver::Rk4,
         &steps,
-        "grid_max",
+        ErrorMeasure::GridMax,
     );
     assert!((naive - 1.0).abs() < 0.25, "naive {naive}");
     let switched = slope(
         &coulomb_vibration(SwitchingKind::Event),
         Solver::Rk4,
         &steps,
-        "grid_max",
+        ErrorMeasure::GridMax,
     );
     assert!((switched - 4.0).abs() < 0.25, "switched {switched}");
     // The switched events are the closed form's: reversals every π/ω.
@@ -587,7 +597,7 @@ fn an_unfitted_order_counts_the_flags_of_its_pairs() {
         let (pairs, fitted_slope) = orders(points, 1.0);
         OrderTable {
             solver: "implicit-euler".into(),
-            measure: "grid_max",
+            measure: ErrorMeasure::GridMax,
             pairs,
             fitted_slope,
         }
@@ -686,7 +696,11 @@ fn a_time_stepped_study_measures_moreau_jeans_order_under_its_own_name() {
             .runs
             .iter()
             .all(|r| r.failure.is_none() && r.step == scenarios::studies::StepKind::Fixed));
-        let grid = c.orders.iter().find(|t| t.measure == "grid_max").unwrap();
+        let grid = c
+            .orders
+            .iter()
+            .find(|t| t.measure == ErrorMeasure::GridMax)
+            .unwrap();
         assert_eq!(grid.solver, "moreau-jean (timestepping)");
         let p = grid.fitted_slope.unwrap();
         println!("θ = {theta}: observed order {p:.3}");

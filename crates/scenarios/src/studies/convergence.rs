@@ -1,7 +1,7 @@
 //! The convergence study: observed orders of every error measure against a reference.
 
 use super::{
-    run_against_reference, slope, Errors, Measures, Method, Reference, StudyCase, StudyRun,
+    run_against_reference, slope, ErrorMeasure, Measures, Method, Reference, StudyCase, StudyRun,
 };
 use crate::run::ScenarioError;
 use integrators::Solver;
@@ -98,7 +98,7 @@ pub struct OrderTable {
     /// The method's label ([`Method::label`]).
     pub solver: String,
     /// Which error: `final_state`, `grid_max`, `event_times`, `stick_durations`.
-    pub measure: &'static str,
+    pub measure: ErrorMeasure,
     /// Each refinement pair.
     pub pairs: Vec<PairOrder>,
     /// Least-squares slope over the reliable pairs.
@@ -164,17 +164,10 @@ pub fn convergence(
     for method in &methods {
         let label = method.label();
         let mine: Vec<&StudyRun> = runs.iter().filter(|r| r.solver == label).collect();
-        type Pick = fn(&Errors) -> f64;
-        let measures: [(&str, Pick); 4] = [
-            ("final_state", |e| e.final_state),
-            ("grid_max", |e| e.grid_max),
-            ("event_times", |e| e.event_times),
-            ("stick_durations", |e| e.stick_durations),
-        ];
-        for (name, pick) in measures {
+        for measure in ErrorMeasure::ALL {
             let points: Vec<(f64, f64)> = mine
                 .iter()
-                .map(|r| (r.resolution, pick(&r.errors)))
+                .map(|r| (r.resolution, measure.of(&r.errors)))
                 .collect();
             if points.iter().all(|p| p.1.is_nan() || p.1 == 0.0) {
                 continue;
@@ -182,7 +175,7 @@ pub fn convergence(
             let (pairs, fitted_slope) = orders(&points, sc);
             tables.push(OrderTable {
                 solver: label.clone(),
-                measure: name,
+                measure,
                 pairs,
                 fitted_slope,
             });
