@@ -10,6 +10,7 @@
 //! write side by side into one parent folder (a shell loop in the background, a cluster
 //! job array) never remove each other's folders.
 
+use crate::destination::{MARKER, TEMPORARY_PREFIX};
 use crate::error::AppError;
 use crate::figure::{self, Drawn};
 use crate::output::{share_folder, to_json, write_file};
@@ -130,7 +131,7 @@ impl Artifacts {
             path: root.to_path_buf(),
             why,
         };
-        check_target(root).map_err(refuse)?;
+        crate::destination::check(root)?;
         std::fs::create_dir_all(&parent)
             .map_err(|e| refuse(format!("its parent folder cannot be created: {e}")))?;
         remove_stale_temporaries(&parent);
@@ -203,37 +204,8 @@ impl Made {
     }
 }
 
-/// The file that marks a folder as friction-lab's output (replaceable by the next run).
-pub const MARKER: &str = ".friction-lab-output";
 const MARKER_TEXT: &str =
     "This folder was written by friction-lab; the next run into it replaces it whole.\n";
-/// Prefix of the temporary folders (and of the folder set aside while swapping).
-pub const TEMPORARY_PREFIX: &str = ".friction-lab-";
-
-/// Whether `root` may be written: absent, an empty folder, or a folder friction-lab wrote.
-fn check_target(root: &Path) -> Result<(), String> {
-    let Ok(meta) = std::fs::symlink_metadata(root) else {
-        return Ok(());
-    };
-    if !meta.is_dir() {
-        return Err("it exists and is not a folder".into());
-    }
-    if root.join(MARKER).is_file() {
-        return Ok(());
-    }
-    let empty = std::fs::read_dir(root)
-        .map_err(|e| format!("it cannot be read: {e}"))?
-        .next()
-        .is_none();
-    if empty {
-        Ok(())
-    } else {
-        Err(format!(
-            "it is a folder that friction-lab did not write and it is not empty (no {MARKER} \
-             in it): choose a new or empty folder"
-        ))
-    }
-}
 
 /// Writes the marker into the temporary folder `tmp` and returns it open and locked: the
 /// marker is written under another name, locked, then renamed (the lock stays with the file),

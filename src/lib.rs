@@ -13,6 +13,7 @@ pub use scenarios;
 
 pub mod artifacts;
 pub mod commands;
+pub mod destination;
 pub mod error;
 pub mod figure;
 pub mod laws;
@@ -92,8 +93,11 @@ pub enum Command {
     Reproduce(commands::reproduce::ReproduceArgs),
 }
 
-/// Runs one parsed command.
+/// Runs one parsed command, its output folder checked first ([`destination::check`]).
 pub fn run(cli: Cli) -> Result<(), AppError> {
+    if let Some(out) = cli.command.out_folder() {
+        destination::check(out)?;
+    }
     match &cli.command {
         Command::Models { json } => commands::models::run(*json),
         Command::Phenomena(args) => commands::phenomena::run(args),
@@ -107,6 +111,16 @@ pub fn run(cli: Cli) -> Result<(), AppError> {
 }
 
 impl Command {
+    /// The folder the command writes into (`models` writes none).
+    fn out_folder(&self) -> Option<&std::path::Path> {
+        match self {
+            Command::Models { .. } => None,
+            Command::Phenomena(a) => Some(&a.out),
+            Command::Reproduce(a) => Some(&a.out),
+            other => Some(other.destination().0),
+        }
+    }
+
     /// The output folder and `--threads` of a command that makes one run's or one study's
     /// files (the commands [`make`] runs).
     fn destination(&self) -> (&std::path::Path, Option<i64>) {

@@ -2659,3 +2659,69 @@ fn the_scheme_is_chosen_apart_from_the_treatment_of_v_zero() {
         "{note}"
     );
 }
+
+/// `--out` is checked before any work: each folder that cannot be written as a whole is
+/// refused with exit 2 at once, naming it and why. `reproduce` computes for 13 s or more
+/// before writing, so a check after the work would not end within the bound below.
+#[test]
+fn an_output_folder_that_cannot_be_written_is_refused_before_any_work() {
+    let dir = tempfile::tempdir().unwrap();
+    let at = |name: &str| dir.path().join(name);
+    std::fs::write(at("afile"), "").unwrap();
+    std::fs::create_dir(at("foreign")).unwrap();
+    std::fs::write(at("foreign").join("x"), "").unwrap();
+    #[cfg(unix)]
+    std::os::unix::fs::symlink(at("foreign"), at("link")).unwrap();
+    let long = at(&"a".repeat(300));
+    let cases: Vec<(std::path::PathBuf, &str)> = vec![
+        (at("afile"), "it exists and is not a folder"),
+        ("/dev/null".into(), "it exists and is not a folder"),
+        (
+            at("foreign"),
+            "friction-lab did not write and it is not empty",
+        ),
+        (at("link"), "it is a symbolic link (to `"),
+        (".".into(), "it names no folder of its own"),
+        (
+            at(".friction-lab-x"),
+            "are friction-lab's temporary folders",
+        ),
+        (long, "its name is 300 bytes long: allowed at most 255"),
+        (at("afile").join("below"), "afile` above it is not a folder"),
+    ];
+    for (out, why) in cases {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_friction-lab"))
+            .args(["reproduce", "--out"])
+            .arg(&out)
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        let start = std::time::Instant::now();
+        while child.try_wait().unwrap().is_none() {
+            if start.elapsed().as_secs() > 10 {
+                child.kill().unwrap();
+                panic!(
+                    "{}: still running after 10 s: computing before checking",
+                    out.display()
+                );
+            }
+            std::thread::sleep(std::time::Duration::from_millis(20));
+        }
+        let o = child.wait_with_output().unwrap();
+        let text = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{}: {text}", out.display());
+        assert!(
+            text.contains(&format!("output folder {}: ", out.display())) && text.contains(why),
+            "{}: {text}",
+            out.display()
+        );
+    }
+    // Nothing was created, beside the folder's own files.
+    let mut left: Vec<String> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    left.sort();
+    assert_eq!(left, ["afile", "foreign", "link"]);
+}
