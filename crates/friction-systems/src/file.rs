@@ -14,6 +14,25 @@ use thiserror::Error;
 /// The largest system file read, bytes.
 pub const MAX_FILE_BYTES: u64 = 64 << 20;
 
+/// The longest name of a body or an anchor, bytes.
+pub const MAX_NAME_BYTES: usize = 256;
+
+/// The most characters of a name or a word of the file that a message repeats.
+const ECHOED: usize = 40;
+
+/// `text` as a message repeats it: whole up to [`ECHOED`] characters, else its beginning
+/// with the count of the rest.
+fn echo(text: &str) -> String {
+    match text.char_indices().nth(ECHOED) {
+        None => text.to_string(),
+        Some((cut, _)) => format!(
+            "{}… ({} more characters)",
+            &text[..cut],
+            text[cut..].chars().count()
+        ),
+    }
+}
+
 /// A system file that cannot be read or does not declare a valid system.
 #[derive(Debug, Error)]
 #[error("system file {}: {message}", path.display())]
@@ -64,7 +83,7 @@ struct FileAnchor {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct FileSpring {
-    between: [String; 2],
+    between: Vec<String>,
     k: f64,
     #[serde(default)]
     c: f64,
@@ -137,6 +156,22 @@ fn build(file: FileSystem) -> Result<System, String> {
         None => FrictionParams::paper(),
     };
     let mut s = System::default();
+    let check_name = |table: &str, i: usize, name: &str| {
+        if name.is_empty() || name.len() > MAX_NAME_BYTES {
+            return Err(format!(
+                "[[{table}]] {}: `name` is {} bytes long: allowed 1 to {MAX_NAME_BYTES}",
+                i + 1,
+                name.len()
+            ));
+        }
+        Ok(())
+    };
+    for (i, b) in file.body.iter().enumerate() {
+        check_name("body", i, &b.name)?;
+    }
+    for (i, a) in file.anchor.iter().enumerate() {
+        check_name("anchor", i, &a.name)?;
+    }
     for b in &file.body {
         s.add_body(&b.name, b.m, b.x0, b.v0);
     }
@@ -144,30 +179,49 @@ fn build(file: FileSystem) -> Result<System, String> {
         s.add_anchor(&a.name, a.x0, a.v);
     }
     s.check_names().map_err(|e| e.to_string())?;
+    // Every name once, looked up per end: a file of N bodies loads in O(N log N).
+    let ends: BTreeMap<&str, End> = (s.bodies.iter().enumerate())
+        .map(|(i, b)| (b.name.as_str(), End::Body(i)))
+        .chain(
+            s.anchors
+                .iter()
+                .enumerate()
+                .map(|(i, a)| (a.name.as_str(), End::Anchor(i))),
+        )
+        .collect();
     let end = |table: &str, i: usize, key: &str, name: &str| -> Result<End, String> {
-        if let Some(b) = s.bodies.iter().position(|b| b.name == name) {
-            Ok(End::Body(b))
-        } else if let Some(a) = s.anchors.iter().position(|a| a.name == name) {
-            Ok(End::Anchor(a))
-        } else {
-            Err(format!(
-                "[[{table}]] {}: `{key}` names \"{name}\", which is no body or anchor of the file",
-                i + 1
-            ))
-        }
+        ends.get(name).copied().ok_or_else(|| {
+            format!(
+                "[[{table}]] {}: `{key}` names \"{}\", which is no body or anchor of the file",
+                i + 1,
+                echo(name)
+            )
+        })
     };
     let body = |table: &str, i: usize, name: &str| match end(table, i, "body", name)? {
         End::Body(b) => Ok(b),
         End::Anchor(_) => Err(format!(
-            "[[{table}]] {}: `body` names the anchor \"{name}\"; allowed: the name of a [[body]]",
-            i + 1
+            "[[{table}]] {}: `body` names the anchor \"{}\"; allowed: the name of a [[body]]",
+            i + 1,
+            echo(name)
         )),
     };
     let mut springs = Vec::new();
     for (i, sp) in file.spring.iter().enumerate() {
-        let a = end("spring", i, "between", &sp.between[0])?;
-        let b = end("spring", i, "between", &sp.between[1])?;
-        springs.push((a, b, sp.k, sp.c));
+        let [a, b] = sp.between.as_slice() else {
+            return Err(format!(
+                "[[spring]] {}: `between` names {} ends: allowed exactly two (a body and a \
+                 body or an anchor)",
+                i + 1,
+                sp.between.len()
+            ));
+        };
+        springs.push((
+            end("spring", i, "between", a)?,
+            end("spring", i, "between", b)?,
+            sp.k,
+            sp.c,
+        ));
     }
     let mut contacts = Vec::new();
     for (i, c) in file.contact.iter().enumerate() {
@@ -202,7 +256,16 @@ fn contact_model(
     base: &FrictionParams,
 ) -> Result<Arc<dyn FrictionModel>, String> {
     let at = |key: &str, e: String| format!("[[contact]] {}: `{key}`: {e}", i + 1);
-    let id = ModelId::from_name(&c.model).map_err(|e| at("model", e))?;
+    let id = ModelId::from_name(&c.model).map_err(|_| {
+        at(
+            "model",
+            format!(
+                "unknown model `{}`; known models: {}",
+                echo(&c.model),
+                ModelId::ALL.map(ModelId::name).join(", ")
+            ),
+        )
+    })?;
     let variant = match &c.variant {
         Some(v) => v.parse::<Variant>().map_err(|e| at("variant", e))?,
         None => Variant::Odd,

@@ -154,9 +154,47 @@ fn every_error_names_the_table_the_key_and_the_range() {
             TWO_MASSES.replace("m = 1.0", "m = \"heavy\""),
             "invalid type: string \"heavy\", expected f64",
         ),
+        (
+            TWO_MASSES.replace(
+                "between = [\"b1\", \"b2\"]",
+                "between = [\"b1\", \"b2\", \"driver\"]",
+            ),
+            "[[spring]] 2: `between` names 3 ends: allowed exactly two",
+        ),
+        (
+            TWO_MASSES.replace("between = [\"b1\", \"b2\"]", "between = [\"b1\"]"),
+            "[[spring]] 2: `between` names 1 ends: allowed exactly two",
+        ),
+        (
+            TWO_MASSES.replace("name = \"b2\"", "name = \"\""),
+            "[[body]] 2: `name` is 0 bytes long: allowed 1 to 256",
+        ),
+        (
+            TWO_MASSES.replace(
+                "name = \"driver\"",
+                &format!("name = \"{}\"", "d".repeat(300)),
+            ),
+            "[[anchor]] 1: `name` is 300 bytes long: allowed 1 to 256",
+        ),
+        (
+            // A name or a word of the file is repeated up to 40 characters, never whole.
+            TWO_MASSES.replace(
+                "model = \"lugre\"",
+                &format!("model = \"{}\"", "x".repeat(100_000)),
+            ),
+            &format!(
+                "`model`: unknown model `{}… (99960 more characters)`",
+                "x".repeat(40)
+            ),
+        ),
     ];
-    for (text, expected) in cases {
-        let e = error_of(&text);
+    for (text, expected) in &cases {
+        let e = error_of(text);
+        assert!(
+            e.len() < 1000,
+            "the message repeats too much: {} bytes",
+            e.len()
+        );
         assert!(e.contains(expected), "expected `{expected}` in:\n{e}");
     }
     // A TOML syntax or type error says where.

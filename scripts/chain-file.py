@@ -1,0 +1,31 @@
+#!/usr/bin/env python3
+"""Writes a system file of a chain of N bodies for measuring how fast files load.
+
+    python3 scripts/chain-file.py N OUT.toml [--contact-every K] [--inline]
+
+An anchor `d` driven at 0.1 m/s, N bodies `b1`..`bN` of 1 kg, springs from the anchor to b1
+and between neighbours, and a Coulomb contact on every K-th body (default every body).
+`--inline` writes the tables as inline arrays, about half the size (10⁶ bodies with a contact
+on every tenth: 62 MB, under the 64 MiB limit). docs/performance.md, "Loading a system file".
+"""
+import argparse
+
+parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+parser.add_argument("n", type=int)
+parser.add_argument("out")
+parser.add_argument("--contact-every", type=int, default=1)
+parser.add_argument("--inline", action="store_true")
+args = parser.parse_args()
+n, every = args.n, args.contact_every
+# Each row as its key = value pairs.
+bodies = [(f'name="b{i}"', "m=1") for i in range(1, n + 1)]
+springs = [('between=["d","b1"]', "k=10")] + [
+    (f'between=["b{i}","b{i + 1}"]', "k=9") for i in range(1, n)]
+contacts = [(f'body="b{i}"', 'model="coulomb"') for i in range(1, n + 1, every)]
+with open(args.out, "w") as f:
+    f.write('[[anchor]]\nname="d"\nv=0.1\n')
+    for table, rows in (("body", bodies), ("spring", springs), ("contact", contacts)):
+        if args.inline:
+            f.write(f"{table}=[\n" + ",\n".join("{" + ",".join(r) + "}" for r in rows) + "]\n")
+        else:
+            f.write("".join(f"[[{table}]]\n" + "\n".join(r) + "\n" for r in rows))
