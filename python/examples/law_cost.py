@@ -84,36 +84,42 @@ def counting(law):
     return counted
 
 
-# Dormand–Prince finds the long Dahl run stiff, which is the same for both laws.
-warnings.simplefilter("ignore", RuntimeWarning)
+def main():
+    """Prints the two tables."""
+    # Dormand–Prince finds the long Dahl run stiff, which is the same for both laws.
+    warnings.simplefilter("ignore", RuntimeWarning)
 
-#: (what, rig, Python law, catalog's law, the catalog law's parameters, options).
-CASES = [
-    ("belt, Coulomb, dopri5, event switching, 200 s", "belt", Coulomb(6.0), "coulomb",
-     {"F_c": 6.0}, dict(t_end=200.0)),
-    ("belt, Coulomb, bdf, regularised (ε = 1e-3), 50 s", "belt", Coulomb(6.0), "coulomb",
-     {"F_c": 6.0}, dict(t_end=50.0, solver="bdf", switching="regularized",
-                        params={"epsilon": 1e-3})),
-    ("prescribed motion, Dahl (one state), dopri5, 40 s", "prescribed-motion", Dahl(5.0, 6.0),
-     "dahl", {"F_c": 6.0, "sigma": 5.0}, dict(t_end=40.0)),
-]
+    #: (what, rig, Python law, catalog's law, the catalog law's parameters, options).
+    CASES = [
+        ("belt, Coulomb, dopri5, event switching, 200 s", "belt", Coulomb(6.0), "coulomb",
+         {"F_c": 6.0}, dict(t_end=200.0)),
+        ("belt, Coulomb, bdf, regularised (ε = 1e-3), 50 s", "belt", Coulomb(6.0), "coulomb",
+         {"F_c": 6.0}, dict(t_end=50.0, solver="bdf", switching="regularized",
+                            params={"epsilon": 1e-3})),
+        ("prescribed motion, Dahl (one state), dopri5, 40 s", "prescribed-motion", Dahl(5.0, 6.0),
+         "dahl", {"F_c": 6.0, "sigma": 5.0}, dict(t_end=40.0)),
+    ]
 
-print("| run | evaluations | Python law | catalog's law | ratio | per evaluation |")
-print("|---|---|---|---|---|---|")
-for what, rig, law, builtin, params, options in CASES:
-    counted = counting(law)
-    fl.simulate(rig, model=counted, **options)
-    calls = type(counted).calls
-    own = timed(lambda: fl.simulate(rig, model=law, **options))
-    catalog_params = {**options.get("params", {}), **params}
-    ours = timed(lambda: fl.simulate(rig, model=builtin, **{**options, "params": catalog_params}))
-    per = (own[0] - ours[0]) / calls * 1e6
-    print(f"| {what} | {calls} | {ms(own)} | {ms(ours)} | {own[0] / ours[0]:.1f} | {per:.2f} µs |")
+    print("| run | evaluations | Python law | catalog's law | ratio | per evaluation |")
+    print("|---|---|---|---|---|---|")
+    for what, rig, law, builtin, params, options in CASES:
+        counted = counting(law)
+        fl.simulate(rig, model=counted, **options)
+        calls = type(counted).calls
+        own = timed(lambda: fl.simulate(rig, model=law, **options))
+        catalog_params = {**options.get("params", {}), **params}
+        ours = timed(lambda: fl.simulate(rig, model=builtin, **{**options, "params": catalog_params}))
+        per = (own[0] - ours[0]) / calls * 1e6
+        print(f"| {what} | {calls} | {ms(own)} | {ms(ours)} | {own[0] / ours[0]:.1f} | {per:.2f} µs |")
 
-# Table 2's protocols run on a pool of threads: each worker keeps its Python thread state.
-print()
-print("| Table 2 of one law (2 threads) | Python law | catalog's law | ratio |")
-print("|---|---|---|---|")
-own = timed(lambda: fl.phenomena([Coulomb(6.0)], threads=2), n=5)
-ours = timed(lambda: fl.phenomena(["coulomb"], threads=2), n=5)
-print(f"| Coulomb | {ms(own)} | {ms(ours)} | {own[0] / ours[0]:.1f} |")
+    # Table 2's protocols run on a pool of threads: each worker keeps its Python thread state.
+    print()
+    print("| Table 2 of one law (2 threads) | Python law | catalog's law | ratio |")
+    print("|---|---|---|---|")
+    own = timed(lambda: fl.phenomena([Coulomb(6.0)], threads=2), n=5)
+    ours = timed(lambda: fl.phenomena(["coulomb"], threads=2), n=5)
+    print(f"| Coulomb | {ms(own)} | {ms(ours)} | {own[0] / ours[0]:.1f} |")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,5 +1,8 @@
 """Friction laws written in Python run as the catalog's laws do (docs/python.md)."""
 
+import sys
+from pathlib import Path
+
 import numpy as np
 import pandas as pd
 import pytest
@@ -7,38 +10,10 @@ import pytest
 import friction_lab as fl
 
 
-class Coulomb:
-    """Coulomb's law F = F_c·s, stuck while the needed force is within ±F_c."""
-
-    name = "py-coulomb"
-
-    def __init__(self, f_c):
-        self.f_c = f_c
-
-    def force(self, x, v, s, z):
-        return self.f_c * s
-
-    def stick(self, x, z):
-        return self.f_c
-
-
-class Dahl:
-    """Dahl's law as the catalog writes it: F = z, ż = σ·(v − v·s·z/F_c)."""
-
-    name = "py-dahl"
-    n_states = 1
-
-    def __init__(self, sigma, f_c):
-        self.sigma, self.f_c = sigma, f_c
-
-    def force(self, x, v, s, z):
-        return z[0]
-
-    def rates(self, x, v, s, z):
-        return (self.sigma * (v - v * s * z[0] / self.f_c),)
-
-    def stick(self, x, z):
-        return (z[0], z[0])
+# The laws of the example that measures their cost (python/examples/law_cost.py): Coulomb's
+# F = F_c·s and Dahl's F = z, ż = σ·(v − v·s·z/F_c), as the catalog writes them.
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "examples"))
+from law_cost import Coulomb, Dahl  # noqa: E402
 
 
 def test_a_python_coulomb_law_runs_the_belt_as_the_catalogs_to_the_bit():
