@@ -17,7 +17,7 @@
 //! solvers' interrupt) and is raised by the call that ran it.
 
 use friction_lab::friction_models::{
-    FrictionModel, Partials, SignLaw, StatePartials, StickInterval, MAX_STATES,
+    FrictionModel, ModelId, Partials, SignLaw, StatePartials, StickInterval, MAX_STATES,
 };
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::intern;
@@ -68,7 +68,16 @@ impl PyLaw {
             Some(n) => n
                 .extract()
                 .map_err(|_| PyTypeError::new_err("a law's `name` must be a string"))?,
-            None => object.get_type().name()?.extract()?,
+            None => {
+                let class: String = object.get_type().name()?.extract()?;
+                if let Ok(model) = ModelId::from_name(&class) {
+                    return Err(PyValueError::new_err(format!(
+                        "law class `{class}` has no `name`, and its class's name is the \
+                         catalog's model `{model}`: give the law a `name` of its own"
+                    )));
+                }
+                class
+            }
         };
         let n_states: i64 = match object.getattr_opt(intern!(py, "n_states"))? {
             Some(n) => n.extract().map_err(|_| {

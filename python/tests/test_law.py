@@ -132,6 +132,18 @@ def test_a_law_without_its_methods_or_with_a_catalog_name_is_refused():
     with pytest.raises(ValueError, match="the catalog has a model of that name"):
         fl.simulate("belt", model=Named(6.0))
 
+    # Without a `name`, the class's name is the law's, and a class named as a model of the
+    # catalog is told to take a name of its own.
+    class CS:
+        def force(self, x, v, s, z):
+            return 6.0 * s
+
+        def stick(self, x, z):
+            return 6.0
+
+    with pytest.raises(ValueError, match="law class `CS` has no `name`.*model `CS`"):
+        fl.simulate("belt", model=CS())
+
 
 def test_a_study_runs_a_python_law_as_the_catalogs():
     # The runs of a convergence study on the pool's threads: the same numbers as the
