@@ -1930,8 +1930,9 @@ fn a_study_runs_the_reading_that_variant_names() {
 #[test]
 fn converge_and_work_precision_name_the_runs_that_failed() {
     // LuGre's bristles are stiff: Dormand-Prince with fixed steps of 0.02 to 0.0025 s is
-    // unstable at every one, and no order line has anything to fit; the study still succeeds
-    // (a failed run is data) and says so, with the first failure.
+    // unstable at every one, and no order line has anything to fit. The study writes its files
+    // and says so, with the first failure; with nothing measured it exits 1 (a study with one
+    // run measured exits 0, as work-precision below).
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("c");
     let o = friction_lab(&[
@@ -1944,7 +1945,12 @@ fn converge_and_work_precision_name_the_runs_that_failed() {
         "--out",
         out.to_str().unwrap(),
     ]);
-    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("error: converge: every run failed (4 of 4), nothing was measured"),
+        "{}",
+        stderr(&o)
+    );
     let text = String::from_utf8_lossy(&o.stdout);
     assert!(
         text.contains(
@@ -2724,4 +2730,37 @@ fn an_output_folder_that_cannot_be_written_is_refused_before_any_work() {
         .collect();
     left.sort();
     assert_eq!(left, ["afile", "foreign", "link"]);
+}
+
+/// A study in which every run failed measured nothing, and says so with exit 1 after writing
+/// the files that say which and why (it exited 0).
+#[test]
+fn a_study_in_which_every_run_failed_exits_one() {
+    let dir = tempfile::tempdir().unwrap();
+    // LuGre's stiff bristles at fixed steps of 0.02 and 0.01 s: every explicit run diverges.
+    // (With v_belt = 1e308 work-precision's reference run fails first, and the study stops.)
+    for (study, solvers) in [("converge", "rk4,dopri5"), ("work-precision", "rk4")] {
+        let out = dir.path().join(study);
+        let o = friction_lab(&[
+            study,
+            "belt",
+            "--model",
+            "lugre",
+            "--solvers",
+            solvers,
+            "--dt-list",
+            "0.02,0.01",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        let text = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{study}: {text}");
+        assert!(
+            text.contains(&format!("error: {study}: every run failed (")),
+            "{study}: {text}"
+        );
+        assert!(text.contains("nothing was measured; the first, "), "{text}");
+        let csv = std::fs::read_to_string(out.join(format!("{study}.csv"))).unwrap();
+        assert!(csv.lines().skip(1).all(|l| !l.ends_with(",ok")), "{csv}");
+    }
 }

@@ -45,6 +45,11 @@ impl Study for ConvergenceStudy<'_> {
         studies::convergence(self.case, self.solvers, self.steps, self.tols, progress)
     }
 
+    /// Every run failed: nothing to show ([`super::nothing_measured`]).
+    fn failure(&self, c: &Convergence) -> Option<AppError> {
+        super::nothing_measured("converge", &c.runs)
+    }
+
     /// `{stem}.csv` (a row per run), `{stem}.json` and `{stem}.png`/`.svg`.
     fn write(&self, c: &Convergence, out: &mut StudyFiles) -> Result<(), AppError> {
         let case = self.case;

@@ -29,7 +29,7 @@ use crate::error::AppError;
 use crate::progress::Progress;
 use crate::threads::with_threads;
 use integrators::Solver;
-use scenarios::studies::{Method, StudyCase};
+use scenarios::studies::{Method, StepKind, StudyCase, StudyRun};
 use scenarios::{ScenarioError, SwitchingKind};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -63,6 +63,26 @@ pub trait Study: Sync {
 
     /// Adds its tables, JSON and figures to `out`.
     fn write(&self, result: &Self::Result, out: &mut StudyFiles) -> Result<(), AppError>;
+}
+
+/// The failure of a study none of whose `runs` measured anything: every one failed (exit 1,
+/// after the files that say which and why are written). A study with one run that succeeded
+/// has something to show; one with none must not end as a success.
+pub fn nothing_measured(study: &str, runs: &[StudyRun]) -> Option<AppError> {
+    let first = runs.first()?.failure.as_ref()?;
+    runs.iter().all(|r| r.failure.is_some()).then(|| {
+        AppError::StudyRun(format!(
+            "{study}: every run failed ({n} of {n}), nothing was measured; the first, {} at {} = \
+             {}: {first}",
+            runs[0].solver,
+            match runs[0].step {
+                StepKind::Fixed => "h",
+                StepKind::Adaptive => "tol",
+            },
+            friction_models::params::show(runs[0].resolution),
+            n = runs.len()
+        ))
+    })
 }
 
 /// Where a study's files go: a folder, a file stem, and the files being prepared.

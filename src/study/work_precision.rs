@@ -54,6 +54,11 @@ impl Study for WorkPrecisionStudy<'_> {
         )
     }
 
+    /// Every run failed: nothing to show ([`super::nothing_measured`]).
+    fn failure(&self, w: &WorkPrecision) -> Option<AppError> {
+        super::nothing_measured("work-precision", &w.runs)
+    }
+
     /// `{stem}.csv` (a row per run), `{stem}-timing.csv` (their median wall times, which
     /// vary between runs), `{stem}.json` and `{stem}.png`/`.svg`.
     fn write(&self, w: &WorkPrecision, out: &mut StudyFiles) -> Result<(), AppError> {
