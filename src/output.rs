@@ -41,6 +41,28 @@ impl Cell {
     }
 }
 
+/// A number of data row `row` (0-based) in `column` of the CSV file `path`, as the files write
+/// it ([`show`]); a non-finite number is refused, naming its row and column.
+pub fn csv_number(path: &Path, column: &str, row: usize, x: f64) -> Result<String, AppError> {
+    if x.is_finite() {
+        Ok(show(x))
+    } else {
+        Err(AppError::NonFinite {
+            path: path.to_path_buf(),
+            what: format!("column `{column}` of data row {}", row + 1),
+            value: x,
+        })
+    }
+}
+
+/// The error of the CSV writer of the file `path`.
+pub fn csv_error(path: &Path) -> impl Fn(csv::Error) -> AppError + '_ {
+    move |e| AppError::Io {
+        path: path.to_path_buf(),
+        source: std::io::Error::other(e),
+    }
+}
+
 /// A CSV table: a header row and rows of cells.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Table {
@@ -62,27 +84,17 @@ impl Table {
     /// The table as CSV bytes; fails on a non-finite number, naming its row and column.
     pub fn to_csv(&self, path: &Path) -> Result<Vec<u8>, AppError> {
         let mut w = csv::Writer::from_writer(Vec::new());
-        let io = |e: csv::Error| AppError::Io {
-            path: path.to_path_buf(),
-            source: std::io::Error::other(e),
-        };
-        w.write_record(&self.header).map_err(io)?;
+        let io = csv_error(path);
+        w.write_record(&self.header).map_err(&io)?;
         for (i, row) in self.rows.iter().enumerate() {
             let mut record = Vec::with_capacity(row.len());
             for (cell, name) in row.iter().zip(&self.header) {
                 record.push(match cell {
-                    Cell::Num(x) if !x.is_finite() => {
-                        return Err(AppError::NonFinite {
-                            path: path.to_path_buf(),
-                            what: format!("column `{name}` of data row {}", i + 1),
-                            value: *x,
-                        })
-                    }
-                    Cell::Num(x) => show(*x),
+                    Cell::Num(x) => csv_number(path, name, i, *x)?,
                     Cell::Text(s) => s.clone(),
                 });
             }
-            w.write_record(&record).map_err(io)?;
+            w.write_record(&record).map_err(&io)?;
         }
         w.into_inner().map_err(|e| io(e.into_error().into()))
     }

@@ -2,7 +2,7 @@
 //! takes the numbers themselves (Python builds its arrays from them, with no text between).
 
 use crate::error::AppError;
-use friction_models::params::show;
+use crate::output::{csv_error, csv_number};
 use friction_systems::{mode_name, Run};
 use integrators::Mode;
 use scenarios::Outcome;
@@ -98,10 +98,7 @@ impl Trajectory {
     /// row from the columns, so that a long run needs no table of cells beside them; a
     /// non-finite number is refused, naming its row and column.
     pub fn to_csv(&self, path: &Path) -> Result<Vec<u8>, AppError> {
-        let io = |e: csv::Error| AppError::Io {
-            path: path.to_path_buf(),
-            source: std::io::Error::other(e),
-        };
+        let io = csv_error(path);
         let mut header = vec!["t"];
         if self.bodies.is_some() {
             header.push("body");
@@ -111,21 +108,11 @@ impl Trajectory {
             header.push("z");
         }
         let mut w = csv::Writer::from_writer(Vec::new());
-        w.write_record(&header).map_err(io)?;
+        w.write_record(&header).map_err(&io)?;
         let width = self.width();
         let mut record: Vec<String> = Vec::with_capacity(header.len());
         for row in 0..self.x.len() {
-            let number = |column: &str, x: f64| {
-                if x.is_finite() {
-                    Ok(show(x))
-                } else {
-                    Err(AppError::NonFinite {
-                        path: path.to_path_buf(),
-                        what: format!("column `{column}` of data row {}", row + 1),
-                        value: x,
-                    })
-                }
-            };
+            let number = |column: &str, x: f64| csv_number(path, column, row, x);
             record.clear();
             record.push(number("t", self.t[row / width])?);
             if let Some(bodies) = &self.bodies {
@@ -142,7 +129,7 @@ impl Trajectory {
                     number("z", z[row])?
                 });
             }
-            w.write_record(&record).map_err(io)?;
+            w.write_record(&record).map_err(&io)?;
         }
         w.into_inner().map_err(|e| io(e.into_error().into()))
     }

@@ -218,17 +218,19 @@ impl FrictionModel for PyLaw {
             // ∂/∂v, and F's where the law gives no partials.
             let (mut fx, mut fv) = (f64::NAN, f64::NAN);
             if !self.analytic || n > 0 {
-                let hx = step(x);
-                fx = (self.response_at(py, x + hx, v, s, z, shifted) - force) / hx;
-                for (d, (r1, r0)) in states.iter_mut().zip(shifted.iter().zip(rate.iter())) {
-                    d.rate_dx = (r1 - r0) / hx;
-                }
-                let hv = step(v);
-                let sv = sign(law, v + hv).0;
-                fv = (self.response_at(py, x, v + hv, sv, z, shifted) - force) / hv;
-                for (d, (r1, r0)) in states.iter_mut().zip(shifted.iter().zip(rate.iter())) {
-                    d.rate_dv = (r1 - r0) / hv;
-                }
+                // One forward difference over h to (x1, v1) with sign s1: F's, returned, and
+                // each state's rate's, written into the field `of` its partials.
+                type Field = fn(&mut StatePartials) -> &mut f64;
+                let mut forward = |x1: f64, v1: f64, s1: f64, h: f64, of: Field| {
+                    let f1 = self.response_at(py, x1, v1, s1, z, shifted);
+                    for (d, (r1, r0)) in states.iter_mut().zip(shifted.iter().zip(rate.iter())) {
+                        *of(d) = (r1 - r0) / h;
+                    }
+                    (f1 - force) / h
+                };
+                let (hx, hv) = (step(x), step(v));
+                fx = forward(x + hx, v, s, hx, |d| &mut d.rate_dx);
+                fv = forward(x, v + hv, sign(law, v + hv).0, hv, |d| &mut d.rate_dv);
             }
             // Each state's own: the state block of the Jacobian is diagonal.
             let mut zi = [0.0; MAX_STATES];
