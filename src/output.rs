@@ -30,11 +30,16 @@ pub enum Cell {
 }
 
 impl Cell {
+    /// An empty cell: a quantity that does not exist for the row.
+    pub fn empty() -> Cell {
+        Cell::Text(String::new())
+    }
+
     /// A number, or an empty cell where it is undefined (NaN): numeric columns hold numbers
     /// or nothing, never `NaN`.
     pub fn num(x: f64) -> Cell {
         if x.is_nan() {
-            Cell::Text(String::new())
+            Cell::empty()
         } else {
             Cell::Num(x)
         }

@@ -908,8 +908,8 @@ fn stiffness_of_the_chain_sweeps_its_coupling_spring() {
     let work = |value: usize, solver: &str| -> f64 {
         let costs = json["points"][value]["costs"].as_array().unwrap();
         let cost = costs.iter().find(|c| c["solver"] == solver).unwrap();
-        assert!(!cost["resolution"].is_null(), "{solver} reached the target");
-        cost["work"].as_f64().unwrap()
+        assert!(!cost["reached"].is_null(), "{solver} reached the target");
+        cost["reached"]["work"].as_f64().unwrap()
     };
     let (explicit, implicit) = (
         work(1, "dopri5") / work(0, "dopri5"),
@@ -1492,14 +1492,15 @@ fn a_study_bounds_each_run_and_draws_the_failed_ones() {
     // h = 0.02 takes 50 steps; 0.01, 0.005 and 0.0025 take more than 100.
     assert_eq!(failed, 3, "{csv}");
     // A failed run stopped early: it has no error against the reference (the four error
-    // columns, 6 to 9, are empty), while the run that finished has all four.
+    // columns, 6 to 9, are empty), while the run that finished has the three that exist for it
+    // (one event and no completed stick phase: its stick-duration error is undefined).
     for line in csv.lines().skip(1) {
         let errors = &line.split(',').collect::<Vec<_>>()[5..9];
         let measured = errors.iter().filter(|e| !e.is_empty()).count();
         let expected = if line.contains("too many steps") {
             0
         } else {
-            4
+            3
         };
         assert_eq!(measured, expected, "{line}");
     }
@@ -2762,5 +2763,114 @@ fn a_study_in_which_every_run_failed_exits_one() {
         assert!(text.contains("nothing was measured; the first, "), "{text}");
         let csv = std::fs::read_to_string(out.join(format!("{study}.csv"))).unwrap();
         assert!(csv.lines().skip(1).all(|l| !l.ends_with(",ok")), "{csv}");
+    }
+}
+
+/// A measure that does not exist for a run is an empty cell and JSON `null`, never 0 (which
+/// reads as exact): LuGre has no stick phases, a regularised run no events, and a solver that
+/// never met a stiffness study's target paid no cost.
+#[test]
+fn a_measure_that_does_not_exist_is_empty_never_zero() {
+    let dir = tempfile::tempdir().unwrap();
+    let cell = |csv: &str, row: usize, column: &str| -> String {
+        let mut lines = csv.lines();
+        let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+        let k = header.iter().position(|h| *h == column).unwrap();
+        lines
+            .nth(row)
+            .unwrap()
+            .split(',')
+            .nth(k)
+            .unwrap()
+            .to_string()
+    };
+    let study = |name: &str, args: &[&str]| -> (String, serde_json::Value) {
+        let out = dir.path().join(name);
+        let mut all = args.to_vec();
+        all.extend(["--out", out.to_str().unwrap()]);
+        let o = friction_lab(&all);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let csv = std::fs::read_to_string(out.join(format!("{}.csv", args[0]))).unwrap();
+        let json = std::fs::read(out.join(format!("{}.json", args[0]))).unwrap();
+        (csv, serde_json::from_slice(&json).unwrap())
+    };
+    let (csv, json) = study(
+        "lugre",
+        &[
+            "converge",
+            "belt",
+            "--model",
+            "lugre",
+            "--t-end",
+            "2",
+            "--solvers",
+            "rk4",
+            "--dt-list",
+            "0.002,0.001",
+        ],
+    );
+    for row in 0..2 {
+        assert_eq!(cell(&csv, row, "error_stick_durations"), "", "{csv}");
+        assert!(
+            json["runs"][row]["errors"]["stick_durations"].is_null(),
+            "{json}"
+        );
+        assert_ne!(cell(&csv, row, "error_final_state"), "", "{csv}");
+    }
+    let (csv, json) = study(
+        "regularised",
+        &[
+            "converge",
+            "belt",
+            "--model",
+            "CS",
+            "--switching",
+            "regularized",
+            "--t-end",
+            "2",
+            "--solvers",
+            "rk4",
+            "--dt-list",
+            "0.002,0.001",
+        ],
+    );
+    for row in 0..2 {
+        assert_eq!(cell(&csv, row, "events"), "0", "{csv}");
+        assert_eq!(cell(&csv, row, "error_event_times"), "", "{csv}");
+        assert!(
+            json["runs"][row]["errors"]["event_times"].is_null(),
+            "{json}"
+        );
+    }
+    let (csv, json) = study(
+        "stiffness",
+        &[
+            "stiffness",
+            "belt",
+            "--model",
+            "CS",
+            "--values",
+            "1e-2",
+            "--solvers",
+            "rk4,bdf",
+            "--target",
+            "1e-9",
+            "--dt-list",
+            "0.01",
+            "--tol-list",
+            "1e-4",
+            "--t-end",
+            "1",
+        ],
+    );
+    for row in 0..2 {
+        assert_eq!(cell(&csv, row, "reached"), "false", "{csv}");
+        for column in ["error", "rhs_evals", "jacobian_evals", "lu_factorizations"] {
+            assert_eq!(cell(&csv, row, column), "", "{column}: {csv}");
+        }
+        assert!(
+            json["points"][0]["costs"][row]["reached"].is_null(),
+            "{json}"
+        );
     }
 }

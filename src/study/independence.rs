@@ -147,14 +147,14 @@ impl Study for IndependenceStudy<'_> {
                     tol,
                     Cell::Num(*v),
                     if i == 0 {
-                        Cell::Text(String::new())
+                        Cell::empty()
                     } else {
                         Cell::Num(o.differences[i - 1])
                     },
                     if i + 1 == o.values.len() && o.remaining_error.is_finite() {
                         Cell::Num(o.remaining_error)
                     } else {
-                        Cell::Text(String::new())
+                        Cell::empty()
                     },
                     Cell::Text(o.independent.to_string()),
                 ]);

@@ -10,7 +10,7 @@ use crate::error::AppError;
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Marker, Plot, Series, PALETTE};
 use integrators::Solver;
-use scenarios::studies::{self, Stiffness, StudyCase, Sweep};
+use scenarios::studies::{self, Reached, Stiffness, StudyCase, Sweep};
 use scenarios::ScenarioError;
 
 /// The most values a sweep takes.
@@ -90,19 +90,22 @@ impl Study for StiffnessStudy<'_> {
         ]);
         for p in &s.points {
             for c in &p.costs {
-                // Numeric columns hold numbers or nothing: `reached` says why both are empty.
-                let [h, tol] = resolution_cells(c.step, c.resolution);
+                // Numeric columns hold numbers or nothing: `reached` says why they are empty.
+                let r = c.reached.as_ref();
+                let [h, tol] = resolution_cells(r.map(|r| r.step), r.map(|r| r.resolution));
+                let count =
+                    |n: fn(&Reached) -> usize| r.map_or(Cell::empty(), |r| Cell::Num(n(r) as f64));
                 table.rows.push(vec![
                     Cell::Num(p.value),
                     Cell::Text(c.solver.clone()),
                     Cell::Text(c.implicit.to_string()),
-                    Cell::Text(c.resolution.is_some().to_string()),
+                    Cell::Text(r.is_some().to_string()),
                     h,
                     tol,
-                    Cell::num(c.error),
-                    Cell::Num(c.stats.rhs_evals as f64),
-                    Cell::Num(c.stats.jacobian_evals as f64),
-                    Cell::Num(c.stats.lu_factorizations as f64),
+                    r.map_or(Cell::empty(), |r| Cell::num(r.error)),
+                    count(|r| r.stats.rhs_evals),
+                    count(|r| r.stats.jacobian_evals),
+                    count(|r| r.stats.lu_factorizations),
                     Cell::Text(p.implicit_wins.to_string()),
                 ]);
             }
@@ -119,8 +122,7 @@ impl Study for StiffnessStudy<'_> {
             .flat_map(|p| {
                 p.costs
                     .iter()
-                    .filter(|c| c.resolution.is_some())
-                    .map(|c| (p.value, c.work as f64))
+                    .filter_map(|c| Some((p.value, c.reached.as_ref()?.work as f64)))
             })
             .collect();
         let largest = reached.iter().map(|p| p.1).fold(1.0, f64::max);
@@ -134,12 +136,11 @@ impl Study for StiffnessStudy<'_> {
                     .filter_map(|p| Some((p.value, p.costs.iter().find(|c| c.solver == label)?)))
             };
             let met: Vec<(f64, f64)> = costs()
-                .filter(|(_, c)| c.resolution.is_some())
-                .map(|(v, c)| (v, c.work as f64))
+                .filter_map(|(v, c)| Some((v, c.reached.as_ref()?.work as f64)))
                 .collect();
             let top = row_at_top(largest, rows);
             let missed: Vec<(f64, f64)> = costs()
-                .filter(|(_, c)| c.resolution.is_none())
+                .filter(|(_, c)| c.reached.is_none())
                 .map(|(v, _)| (v, top))
                 .collect();
             if !met.is_empty() {

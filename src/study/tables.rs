@@ -8,11 +8,10 @@ use std::path::Path;
 /// The columns `h` and `tol` of a run with `resolution` of kind `step` (a step size or a
 /// tolerance): the one that applies, the other empty, so that each column holds one quantity.
 pub fn resolution_cells(step: Option<StepKind>, resolution: Option<f64>) -> [Cell; 2] {
-    let empty = || Cell::Text(String::new());
     match (step, resolution) {
-        (Some(StepKind::Fixed), Some(h)) => [Cell::Num(h), empty()],
-        (Some(_), Some(tol)) => [empty(), Cell::Num(tol)],
-        _ => [empty(), empty()],
+        (Some(StepKind::Fixed), Some(h)) => [Cell::Num(h), Cell::empty()],
+        (Some(_), Some(tol)) => [Cell::empty(), Cell::Num(tol)],
+        _ => [Cell::empty(), Cell::empty()],
     }
 }
 

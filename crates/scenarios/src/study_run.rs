@@ -6,16 +6,19 @@ use crate::method::StepKind;
 use integrators::{SolverError, Stats, StepControl};
 use serde::Serialize;
 
-/// Errors of a run against the reference.
+/// Errors of a run against the reference. An error that does not exist for the run is NaN,
+/// written as an empty cell and JSON `null`, never 0 (which would read as exact).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Errors {
     /// max |Δx|, |Δv| over every body at the end.
     pub final_state: f64,
     /// max |Δx|, |Δv| of the measured bodies over the common grid.
     pub grid_max: f64,
-    /// max |Δt| over the events (NaN when the numbers of events differ).
+    /// max |Δt| over the events: NaN when there are none (a regularised run, LuGre) or when
+    /// the numbers of events differ.
     pub event_times: f64,
-    /// max |Δ| over the stick durations (NaN when their numbers differ).
+    /// max |Δ| over the stick durations: NaN when there are no stick phases or when their
+    /// numbers differ.
     pub stick_durations: f64,
 }
 
@@ -71,6 +74,7 @@ impl std::fmt::Display for ErrorMeasure {
     }
 }
 
+/// max |a_i − b_i|; NaN (undefined) when the lengths differ.
 fn max_diff(a: &[f64], b: &[f64]) -> f64 {
     if a.len() != b.len() {
         return f64::NAN;
@@ -79,6 +83,15 @@ fn max_diff(a: &[f64], b: &[f64]) -> f64 {
         .zip(b)
         .map(|(x, y)| (x - y).abs())
         .fold(0.0, f64::max)
+}
+
+/// [`max_diff`] of lists of things that may not exist at all (events, stick phases): NaN
+/// where neither list has any, as where their lengths differ.
+fn max_diff_of_some(a: &[f64], b: &[f64]) -> f64 {
+    if a.is_empty() && b.is_empty() {
+        return f64::NAN;
+    }
+    max_diff(a, b)
 }
 
 impl Errors {
@@ -104,8 +117,8 @@ impl Errors {
         Errors {
             final_state: max_diff(&m.final_state, &reference.final_state),
             grid_max,
-            event_times: max_diff(&m.event_times, &reference.event_times),
-            stick_durations: max_diff(&m.stick_durations, &reference.stick_durations),
+            event_times: max_diff_of_some(&m.event_times, &reference.event_times),
+            stick_durations: max_diff_of_some(&m.stick_durations, &reference.stick_durations),
         }
     }
 }

@@ -166,7 +166,7 @@ fn levels_outside_the_asymptotic_range_do_not_make_a_small_richardson_estimate()
 
 #[test]
 fn the_stiffness_verdict_names_a_crossover_only_inside_the_sweep() {
-    use scenarios::studies::{crossover, Cost, Stiffness, StiffnessPoint};
+    use scenarios::studies::{crossover, Cost, Reached, StepKind, Stiffness, StiffnessPoint};
     // Each value's winner (None: no method met the target there), among the methods studied.
     let studied = |outcomes: &[Option<bool>], kinds: &[bool]| {
         let points: Vec<StiffnessPoint> = outcomes
@@ -179,11 +179,13 @@ fn the_stiffness_verdict_names_a_crossover_only_inside_the_sweep() {
                     .map(|&implicit| Cost {
                         solver: if implicit { "bdf" } else { "dopri5" }.into(),
                         implicit,
-                        resolution: w.map(|_| 1e-6),
-                        step: None,
-                        error: 1e-4,
-                        stats: integrators::Stats::default(),
-                        work: 10,
+                        reached: w.map(|_| Reached {
+                            resolution: 1e-6,
+                            step: StepKind::Adaptive,
+                            error: 1e-4,
+                            stats: integrators::Stats::default(),
+                            work: 10,
+                        }),
                     })
                     .collect(),
                 implicit_wins: w == Some(true),

@@ -20,7 +20,7 @@ pub use convergence::{convergence, observed_order, orders, Convergence, OrderTab
 pub use independence::{independence, FailedLevel, Independence, OutputCheck};
 use integrators::{Solver, StepControl};
 pub use scaling::{scaling, Scaling, ScalingRun};
-pub use stiffness::{crossover, stiffness, Cost, Stiffness, StiffnessPoint, Sweep};
+pub use stiffness::{crossover, stiffness, Cost, Reached, Stiffness, StiffnessPoint, Sweep};
 pub use work_precision::{work_precision, WorkPrecision};
 
 /// Runs `case` with each (method, step) against its reference for a study of `studied`

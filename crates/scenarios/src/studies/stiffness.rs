@@ -6,18 +6,26 @@ use crate::run::ScenarioError;
 use integrators::Stats;
 use serde::Serialize;
 
-/// The cheapest run of one solver that met the target at one stiffness value.
+/// One solver at one stiffness value: its cheapest run that met the target, if one did.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Cost {
     /// The method's label.
     pub solver: String,
     /// Whether it is implicit.
     pub implicit: bool,
-    /// The resolution that first met the target (None: none did).
-    pub resolution: Option<f64>,
-    /// Which that resolution is: `fixed` or `adaptive` (None: none met the target).
-    pub step: Option<StepKind>,
-    /// Its error.
+    /// Its cheapest run that met the target; `None` (JSON `null`, empty cells) where no run
+    /// did: a cost that was not paid is not a cost of 0.
+    pub reached: Option<Reached>,
+}
+
+/// The cheapest run of a solver that met a stiffness study's target.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Reached {
+    /// Its resolution: a step size or a tolerance.
+    pub resolution: f64,
+    /// Which that resolution is: `fixed` or `adaptive`.
+    pub step: StepKind,
+    /// Its error (maximum over the time grid).
     pub error: f64,
     /// Its statistics.
     pub stats: Stats,
@@ -53,7 +61,7 @@ pub struct Stiffness {
 impl StiffnessPoint {
     /// Whether some method met the target at this value (where none did, neither kind wins).
     pub fn decided(&self) -> bool {
-        self.costs.iter().any(|c| c.resolution.is_some())
+        self.costs.iter().any(|c| c.reached.is_some())
     }
 }
 
@@ -215,19 +223,21 @@ pub fn stiffness(
                 Cost {
                     solver: label,
                     implicit: m.is_implicit(),
-                    resolution: met.map(|r| r.resolution),
-                    step: met.map(|r| r.step),
-                    error: met.map_or(f64::NAN, |r| r.errors.grid_max),
-                    stats: met.map_or(Stats::default(), |r| r.stats),
-                    work: met.map_or(0, |r| r.work),
+                    reached: met.map(|r| Reached {
+                        resolution: r.resolution,
+                        step: r.step,
+                        error: r.errors.grid_max,
+                        stats: r.stats,
+                        work: r.work,
+                    }),
                 }
             })
             .collect();
         let best = |implicit: bool| {
             costs
                 .iter()
-                .filter(|c| c.implicit == implicit && c.resolution.is_some())
-                .map(|c| c.work)
+                .filter(|c| c.implicit == implicit)
+                .filter_map(|c| c.reached.as_ref().map(|r| r.work))
                 .min()
         };
         let implicit_wins = match (best(true), best(false)) {
