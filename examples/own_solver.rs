@@ -309,7 +309,7 @@ pub fn run() -> Report {
             .orders
             .iter()
             .find(|o| o.measure == measure)
-            .and_then(|o| o.fitted_slope)
+            .and_then(|o| o.fit.map(|f| f.slope))
     };
     let methods = [Method::of(bs23), Method::of(Solver::Dopri5)];
     let tolerances = [1e-4, 1e-6, 1e-8];

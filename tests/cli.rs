@@ -1016,7 +1016,7 @@ fn simulate_and_study_a_system_file() {
         .unwrap()
         .iter()
         .find(|o| o["measure"] == "final_state")
-        .unwrap()["fitted_slope"]
+        .unwrap()["order"]
         .as_f64()
         .unwrap();
     assert!((order - 4.0).abs() < 0.5, "RK4 order {order}");
@@ -2020,8 +2020,13 @@ fn a_study_of_the_chain_spans_its_horizon_of_predictability_by_default() {
         .iter()
         .find(|o| o["solver"] == "rk4" && o["measure"] == "grid_max")
         .unwrap();
-    let slope = rk4["fitted_slope"].as_f64().unwrap();
-    assert!((slope - 4.0).abs() < 0.3, "{slope}");
+    let order = rk4["order"].as_f64().unwrap();
+    assert!((order - 4.0).abs() < 0.3, "{rk4}");
+    let ci: Vec<f64> = (rk4["order_ci"].as_array().unwrap().iter())
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    assert!(ci[0] <= order && order <= ci[1], "{rk4}");
+    assert!(rk4["pairs_used"].as_u64().unwrap() >= 2, "{rk4}");
 }
 
 #[test]

@@ -63,9 +63,13 @@ def test_a_convergence_study_measures_rk4s_fourth_order():
     assert rk4["h"].tolist() == [0.02, 0.01, 0.005, 0.0025] and rk4["tol"].isna().all()
     assert bdf["tol"].tolist() == [1e-4, 1e-6] and bdf["h"].isna().all()
     assert set(s.runs["step"]) == {"fixed", "adaptive"}
-    slopes = [o["fitted_slope"] for o in s.summary["orders"] if o["solver"] == "rk4"]
-    assert slopes and all(abs(p - 4.0) < 0.3 for p in slopes), slopes
-    assert any("fitted slope" in n for n in s.notes)
+    orders = [o for o in s.summary["orders"] if o["solver"] == "rk4"]
+    assert orders and all(abs(o["order"] - 4.0) < 0.3 for o in orders), orders
+    assert all(o["order_ci"][0] <= 4.0 <= o["order_ci"][1] for o in orders), orders
+    # BDF's runs are over tolerances: tolerance proportionality, never called an order.
+    bdf = [o for o in s.summary["orders"] if o["solver"] == "bdf"]
+    assert bdf and all("order" not in o and "tolerance_exponent" in o for o in bdf), bdf
+    assert any(n.startswith("rk4") and " order 4." in n for n in s.notes), s.notes
 
 
 def test_a_stiffness_study_of_the_chain_sweeps_its_coupling():

@@ -231,7 +231,7 @@ fn case(
     }
 }
 
-fn slopes(c: &scenarios::studies::Convergence, measure: ErrorMeasure) -> String {
+fn observed_orders(c: &scenarios::studies::Convergence, measure: ErrorMeasure) -> String {
     c.orders
         .iter()
         .filter(|t| t.measure == measure)
@@ -239,7 +239,9 @@ fn slopes(c: &scenarios::studies::Convergence, measure: ErrorMeasure) -> String 
             format!(
                 "{} {}",
                 t.solver,
-                t.fitted_slope.map_or("-".into(), |s| format!("{s:.2}"))
+                t.fit.map_or("- (no asymptotic range)".into(), |f| {
+                    format!("{:.2} (95 % CI {:.2} to {:.2})", f.slope, f.ci[0], f.ci[1])
+                })
             )
         })
         .collect::<Vec<_>>()
@@ -419,7 +421,7 @@ fn add_studies(
         "\n## Solver studies\n\nThe files are in `studies/` (CSV per run, JSON summary, PNG and SVG); \
          docs/studies.md explains each study and how to read its plot.\n\n\
          - [Convergence on the paper block (CVS)](studies/converge-paper-block-CVS.png): observed orders \
-         (fitted slopes of the grid error) {}.\n\
+         of the grid error over each method's asymptotic range {}.\n\
          - [Stepping blindly through v = 0](studies/converge-free-vibration-naive.png) against \
          [event-located switching](studies/converge-free-vibration-event.png) on Coulomb free vibration \
          (closed-form reversals every pi/omega): RK4's order is {} naive and {} switched.\n\
@@ -431,9 +433,9 @@ fn add_studies(
          studies/work-precision-belt-CS-timing.csv.\n\
          - [Cost to reach error 1e-3 against the regularisation width](studies/stiffness-belt-CS-epsilon.png): \
          {}.\n{chain}",
-        slopes(&smooth, ErrorMeasure::GridMax),
-        slopes(&naive, ErrorMeasure::GridMax),
-        slopes(&switched, ErrorMeasure::GridMax),
+        observed_orders(&smooth, ErrorMeasure::GridMax),
+        observed_orders(&naive, ErrorMeasure::GridMax),
+        observed_orders(&switched, ErrorMeasure::GridMax),
         verdict(&av),
         verdict(&cs),
         stiff.verdict(),

@@ -1,13 +1,14 @@
 //! The convergence study: observed orders of every solver against a reference
-//! ([`scenarios::studies::convergence`]), one panel for fixed steps and one for tolerances.
+//! ([`scenarios::studies::convergence`]), one panel for fixed steps and one for tolerances,
+//! each fit drawn through its asymptotic range.
 
-use super::draw::{per_solver_series, slope_lines};
+use super::draw::{fitted_guides, per_solver_series};
 use super::tables::runs_table;
 use super::{check_lists, study_file, Study, StudyFiles};
 use crate::error::AppError;
 use crate::plot::{Corner, Plot};
 use integrators::Solver;
-use scenarios::studies::{self, Convergence, StepKind, StudyCase};
+use scenarios::studies::{self, Convergence, ErrorMeasure, OrderTable, StepKind, StudyCase};
 use scenarios::ScenarioError;
 
 /// Every solver of `solvers` on `case` at the fixed step sizes `steps` (those that take fixed
@@ -57,27 +58,31 @@ impl Study for ConvergenceStudy<'_> {
         out.files.add(csv.clone(), runs_table(&c.runs, &csv)?);
         out.files
             .add_json(out.path(".json"), &study_file(case, c))?;
-        // Step sizes and tolerances are different things: one panel each.
-        let panel = |step: StepKind, x_label: &str, slopes: &[f64]| {
+        // Step sizes and tolerances are different things: one panel each, each fitted slope
+        // drawn through the asymptotic range it rests on.
+        let panel = |step: StepKind, x_label: &str| {
             let mut series = per_solver_series(
                 &c.runs,
                 |r| r.step == step,
                 |r| r.resolution,
                 |r| r.errors.grid_max,
             );
-            series.extend(slope_lines(&series, slopes));
+            let tables: Vec<&OrderTable> = (c.orders.iter())
+                .filter(|t| t.step == step && t.measure == ErrorMeasure::GridMax)
+                .collect();
+            series.extend(fitted_guides(&tables));
             Plot {
                 title: format!("Convergence ({} steps): {}", step.name(), case.describe()),
                 x_label: x_label.into(),
-                y_label: "max error on the time grid".into(),
+                y_label: "max error on the time grid, max(|Δx| m, |Δv| m/s)".into(),
                 series,
                 legend: Corner::default(),
                 log: true,
             }
         };
         let panels: Vec<Plot> = [
-            panel(StepKind::Fixed, "step size h (s)", &[1.0, 4.0, 5.0]),
-            panel(StepKind::Adaptive, "tolerance (rtol = atol)", &[1.0]),
+            panel(StepKind::Fixed, "step size h (s)"),
+            panel(StepKind::Adaptive, "tolerance (rtol = atol)"),
         ]
         .into_iter()
         .filter(|p| !p.series.is_empty())

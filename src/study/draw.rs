@@ -1,8 +1,8 @@
 //! The figures' pieces the studies share: one series per solver with its failed runs drawn
-//! at the top, and reference slopes.
+//! at the top, and the guides of fitted orders.
 
 use crate::plot::{Marker, Series, PALETTE};
-use scenarios::studies::StudyRun;
+use scenarios::studies::{OrderTable, StepKind, StudyRun};
 
 /// The height of the `row`-th row of crosses above the data of a log plot, whose largest value
 /// is `largest`: three times it, then 1.5 times higher for each row, one row per solver with
@@ -68,31 +68,29 @@ pub fn per_solver_series(
     series
 }
 
-/// Reference lines of slope `p` (on log–log axes) through the first point of the first
-/// series, drawn only over that series' x-range.
-pub fn slope_lines(series: &[Series], slopes: &[f64]) -> Vec<Series> {
-    let Some(first) = series.iter().find(|s| s.marker == Marker::Dot) else {
-        return Vec::new();
-    };
-    let (x0, y0) = first.points[0];
-    let (lo, hi) = first
-        .points
+/// A guide for each table's fit, drawn through its asymptotic range only: the fitted line
+/// error = e^intercept · h^slope from the finest to the coarsest resolution it rests on, named
+/// with the solver, the slope and its 95 % interval (tables without a fit draw none).
+pub fn fitted_guides(tables: &[&OrderTable]) -> Vec<Series> {
+    tables
         .iter()
-        .fold((f64::INFINITY, 0.0f64), |(lo, hi), p| {
-            (lo.min(p.0), hi.max(p.0))
-        });
-    slopes
-        .iter()
-        .zip([170u8, 120, 70].iter().cycle())
-        .map(|(&p, &shade)| Series {
-            label: Some(format!("slope {p}")),
-            points: [lo, hi]
-                .iter()
-                .map(|&x| (x, y0 * (x / x0).powf(p)))
-                .collect(),
-            color: plotters::style::RGBColor(shade, shade, shade),
-            width: 1,
-            marker: Marker::None,
+        .filter_map(|t| Some((t, t.fit?)))
+        .zip([120u8, 160, 80].iter().cycle())
+        .map(|((t, f), &shade)| {
+            let slope = match t.step {
+                StepKind::Fixed => "order",
+                StepKind::Adaptive => "tol exponent",
+            };
+            Series {
+                label: Some(format!(
+                    "{}: {slope} {:.2} ({:.2} to {:.2}), {} pairs",
+                    t.solver, f.slope, f.ci[0], f.ci[1], f.pairs_used
+                )),
+                points: f.range.iter().map(|&h| (h, f.at(h))).collect(),
+                color: plotters::style::RGBColor(shade, shade, shade),
+                width: 1,
+                marker: Marker::None,
+            }
         })
         .collect()
 }

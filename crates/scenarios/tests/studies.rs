@@ -3,7 +3,9 @@
 
 use friction_models::{FrictionParams, ModelId};
 use integrators::Solver;
-use scenarios::studies::{convergence, independence, Case, ErrorMeasure, Reference, StudyCase};
+use scenarios::studies::{
+    convergence, independence, Case, ErrorMeasure, Fit, Reference, StudyCase,
+};
 use scenarios::{Limits, Scenario, SwitchingKind};
 
 /// The block pushed by 15 N against viscous friction: smooth, with a closed form.
@@ -19,10 +21,14 @@ fn viscous_block() -> Case {
     }
 }
 
-fn slope(case: &Case, solver: Solver, steps: &[f64], measure: ErrorMeasure) -> f64 {
+fn fit(case: &Case, solver: Solver, steps: &[f64], measure: ErrorMeasure) -> Fit {
     let c = convergence(case, &[solver], steps, &[], &|| {}).unwrap();
     let t = c.orders.iter().find(|t| t.measure == measure).unwrap();
-    t.fitted_slope.unwrap()
+    t.fit.expect("an asymptotic range")
+}
+
+fn slope(case: &Case, solver: Solver, steps: &[f64], measure: ErrorMeasure) -> f64 {
+    fit(case, solver, steps, measure).slope
 }
 
 #[test]
@@ -34,13 +40,17 @@ fn the_study_recovers_the_orders_of_the_methods_on_a_smooth_problem() {
         "{:?}",
         c.reference
     );
-    let rk4 = slope(
+    // RK4's order, with an interval that holds 4, from every pair of the four steps.
+    let rk4 = fit(
         &case,
         Solver::Rk4,
         &[0.4, 0.2, 0.1, 0.05],
         ErrorMeasure::GridMax,
     );
-    assert!((rk4 - 4.0).abs() < 0.2, "rk4 {rk4}");
+    assert!((rk4.slope - 4.0).abs() < 0.2, "rk4 {rk4:?}");
+    assert!(rk4.ci[0] < 4.0 && 4.0 < rk4.ci[1], "rk4 {rk4:?}");
+    assert!(rk4.ci[1] - rk4.ci[0] < 0.5, "rk4 {rk4:?}");
+    assert_eq!((rk4.pairs_used, rk4.range), (3, [0.05, 0.4]));
     let dopri5 = slope(
         &case,
         Solver::Dopri5,
@@ -528,21 +538,31 @@ fn a_sweep_in_one_list_gives_each_case_its_own_results_on_one_or_two_threads() {
 }
 
 /// A pair whose error does not decrease far above round-off is stalled, not round-off; one at
-/// the floor is round-off; neither enters the fitted slope.
+/// the floor is round-off; one whose coarser run has no correct digit is out too; none of them
+/// enters the asymptotic range.
 #[test]
-fn pairs_at_the_floor_are_round_off_and_pairs_that_do_not_decrease_are_stalled() {
+fn pairs_at_the_floor_stalled_or_without_a_correct_digit_stay_out_of_the_range() {
     use scenarios::studies::orders;
-    // Second order down to h = 0.025, then at the floor (scale 1: below 1e-12).
+    let flags = |pairs: &[scenarios::studies::PairOrder]| -> Vec<(bool, bool, bool)> {
+        pairs
+            .iter()
+            .map(|p| (p.round_off, p.stalled, p.in_range))
+            .collect()
+    };
+    // Second order down to h = 0.0125, then at the floor (scale 1: below 1e-12).
     let floor = [
         (0.1, 1e-2),
         (0.05, 2.5e-3),
         (0.025, 6.25e-4),
-        (0.0125, 1e-13),
+        (0.0125, 1.5625e-4),
+        (0.00625, 1e-13),
     ];
-    let (pairs, slope) = orders(&floor, 1.0);
-    let flags: Vec<(bool, bool)> = pairs.iter().map(|p| (p.round_off, p.stalled)).collect();
-    assert_eq!(flags, [(false, false), (false, false), (true, false)]);
-    assert!((slope.unwrap() - 2.0).abs() < 1e-12, "{slope:?}");
+    let (pairs, fit) = orders(&floor, 1.0);
+    let (t, f, o) = (true, false, true);
+    assert_eq!(flags(&pairs), [(f, f, o), (f, f, o), (f, f, o), (t, f, f)]);
+    let fit = fit.unwrap();
+    assert!((fit.slope - 2.0).abs() < 1e-12, "{fit:?}");
+    assert_eq!((fit.pairs_used, fit.range), (3, [0.0125, 0.1]));
     // An error saturated at 0.21 (a limit cycle's phase drift), then first order.
     let saturated = [
         (0.04, 0.21),
@@ -551,77 +571,131 @@ fn pairs_at_the_floor_are_round_off_and_pairs_that_do_not_decrease_are_stalled()
         (0.005, 0.05),
         (0.0025, 0.025),
     ];
-    let (pairs, slope) = orders(&saturated, 1.0);
-    let flags: Vec<(bool, bool)> = pairs.iter().map(|p| (p.round_off, p.stalled)).collect();
-    assert_eq!(
-        flags,
-        [
-            (false, true),
-            (false, false),
-            (false, false),
-            (false, false)
-        ]
-    );
+    let (pairs, fit) = orders(&saturated, 1.0);
+    assert_eq!(flags(&pairs), [(f, t, f), (f, f, o), (f, f, o), (f, f, o)]);
     // The stalled pair is left out; the other three lie on a slope of 1 (0.21 → 0.1 is 1.07).
-    assert!((slope.unwrap() - 1.0).abs() < 0.03, "{slope:?}");
-    // A missing error (event counts that differ from the reference's) leaves its pairs out.
+    let fit = fit.unwrap();
+    assert!((fit.slope - 1.0).abs() < 0.03, "{fit:?}");
+    assert!(fit.ci[0] < 1.0 && 1.0 < fit.ci[1], "{fit:?}");
+    // A missing error (event counts that differ from the reference's) leaves its pair out.
     let missing = [
         (0.02, f64::NAN),
         (0.01, 0.04),
         (0.005, 0.02),
         (0.0025, 0.01),
     ];
-    let (pairs, slope) = orders(&missing, 1.0);
+    let (pairs, fit) = orders(&missing, 1.0);
     assert!(pairs[0].round_off && !pairs[1].round_off);
-    assert!((slope.unwrap() - 1.0).abs() < 1e-12, "{slope:?}");
+    assert_eq!(fit.unwrap().pairs_used, 2);
     // RK4 past its stability bound at the coarsest step (the belt at h = 0.5, k = 100: an
-    // error of 1e51), then fourth order: the unstable run has no correct digit and its pair
-    // is pre-asymptotic, even where it is the only other pair (no median to stand against).
-    for unstable in [
-        &[(0.5, 1e51), (0.25, 0.16), (0.125, 0.01)][..],
-        &[(0.5, 1e51), (0.25, 0.16)][..],
-    ] {
-        let (pairs, slope) = orders(unstable, 1.0);
-        assert!(pairs[0].pre_asymptotic, "{pairs:?}");
-        assert_eq!(slope.is_some(), unstable.len() == 3, "{slope:?}");
-        if let Some(p) = slope {
-            assert!((p - 4.0).abs() < 1e-12, "{p}");
+    // error of 1e51), then fourth order: the unstable run has no correct digit. With one
+    // fourth-order pair left there is no asymptotic range; with two there is.
+    let unstable = [(0.5, 1e51), (0.25, 0.16), (0.125, 0.01), (0.0625, 0.000625)];
+    for n in [3, 4] {
+        let (pairs, fit) = orders(&unstable[..n], 1.0);
+        assert!(pairs[0].no_correct_digit && !pairs[0].in_range, "{pairs:?}");
+        assert_eq!(fit.is_some(), n == 4, "{fit:?}");
+        if let Some(fit) = fit {
+            assert!((fit.slope - 4.0).abs() < 1e-12, "{fit:?}");
+            assert!(
+                fit.ci[1] - fit.ci[0] < 1e-9,
+                "three points on a line: {fit:?}"
+            );
         }
     }
 }
 
-/// A table without a fitted slope says why, counting its pairs' flags; one with a slope says
-/// nothing.
+/// The asymptotic range is the longest run of consecutive usable pairs whose local orders
+/// agree within 0.5 (of two equally long, the finer); orders that never agree give none, and
+/// the verdict says so and why.
 #[test]
-fn an_unfitted_order_counts_the_flags_of_its_pairs() {
-    use scenarios::studies::{orders, OrderTable};
-    let table = |points: &[(f64, f64)]| {
-        let (pairs, fitted_slope) = orders(points, 1.0);
+fn the_order_rests_on_the_longest_run_of_agreeing_pairs_or_there_is_none() {
+    use scenarios::studies::{orders, OrderTable, StepKind};
+    let table = |points: &[(f64, f64)], step| {
+        let (pairs, fit) = orders(points, 1.0);
         OrderTable {
-            solver: "implicit-euler".into(),
-            measure: ErrorMeasure::GridMax,
+            solver: "rk4".into(),
+            measure: ErrorMeasure::FinalState,
+            step,
             pairs,
-            fitted_slope,
+            fit,
         }
     };
-    // A coarsest run with no correct digit (an error above the scale), then an error held
-    // at 0.21 by a stick-slip cycle more than the reference's.
-    let stuck = table(&[(0.04, 2.0), (0.02, 0.21), (0.01, 0.21), (0.005, 0.21)]);
-    assert_eq!(stuck.fitted_slope, None, "{stuck:?}");
+    // Halving h from 0.001, each pair with local order p: errors e_(k+1) = e_k / 2^p.
+    let halving = |e0: f64, local: &[f64]| -> Vec<(f64, f64)> {
+        let mut points = vec![(0.001, e0)];
+        for p in local {
+            let (h, e) = *points.last().unwrap();
+            points.push((h / 2.0, e / 2f64.powf(*p)));
+        }
+        points
+    };
+    // The LuGre belt's RK4 final state of issue 36: orders 20.8, stalled (−1.01), 3.26, 7.88.
+    let t = table(&halving(1e-2, &[20.8, -1.01, 3.26, 7.88]), StepKind::Fixed);
+    assert_eq!(t.fit, None, "{t:?}");
+    assert!(t.pairs.iter().all(|p| !p.in_range));
     assert_eq!(
-        stuck.unfitted().as_deref(),
-        Some("of 3 pairs: 2 stalled, 1 pre-asymptotic")
+        t.verdict(),
+        "no asymptotic range (of 4 pairs: 1 stalled; 3 usable (20.80, 3.26, 7.88), no 2 \
+         consecutive of which agree within 0.5)"
     );
-    let undefined = table(&[(0.02, f64::NAN), (0.01, f64::NAN)]);
+    // A pre-asymptotic start (orders 2.9, 3.2), then fourth order over three pairs: the range
+    // is the three, not the two.
+    let t = table(
+        &halving(1e-3, &[2.9, 3.2, 4.05, 3.98, 4.0]),
+        StepKind::Fixed,
+    );
+    let fit = t.fit.unwrap();
+    assert_eq!(fit.pairs_used, 3, "{t:?}");
+    assert_eq!(fit.range, [0.001 / 32.0, 0.001 / 4.0]);
+    assert!(fit.ci[0] < 4.0 && 4.0 < fit.ci[1], "{fit:?}");
+    assert!(fit.ci[1] - fit.ci[0] < 1.0, "{fit:?}");
+    assert!(t.verdict().starts_with("order 4.0"), "{}", t.verdict());
+    // Two runs of two agreeing pairs: the finer is taken.
+    let fit = table(&halving(1e-3, &[1.0, 1.1, 3.0, 2.0, 2.1]), StepKind::Fixed).fit;
+    assert!((fit.unwrap().slope - 2.05).abs() < 0.01, "{fit:?}");
+    // An error that has saturated (local orders agreeing near 0) is not called converged.
+    let t = table(&halving(0.2, &[0.1, -0.05, 0.12]), StepKind::Fixed);
+    assert!(t.pairs[1].stalled, "{t:?}");
+    let t = table(&halving(0.2, &[0.1, 0.02, 0.12]), StepKind::Fixed);
+    assert!(
+        t.verdict()
+            .ends_with("the interval holds 0: no convergence shown"),
+        "{}",
+        t.verdict()
+    );
+    // Over tolerances the slope is tolerance proportionality, never called an order.
+    let t = table(
+        &[(1e-4, 1e-3), (1e-6, 1e-5), (1e-8, 1e-7)],
+        StepKind::Adaptive,
+    );
+    assert!(
+        t.verdict().starts_with("error ∝ tol^1.00"),
+        "{}",
+        t.verdict()
+    );
+    assert_eq!(t.quantity(), "tolerance_exponent");
+    let undefined = table(&[(0.02, f64::NAN), (0.01, f64::NAN)], StepKind::Fixed);
     assert_eq!(
-        undefined.unfitted().as_deref(),
-        Some("of 1 pairs: 1 at round-off or undefined")
+        undefined.verdict(),
+        "no asymptotic range (of 1 pairs: 1 at round-off or undefined)"
     );
+    let single = table(&[(0.02, 0.1)], StepKind::Fixed);
     assert_eq!(
-        table(&[(0.02, 0.1)]).unfitted().as_deref(),
-        Some("fewer than two resolutions")
+        single.verdict(),
+        "no asymptotic range (fewer than two resolutions)"
     );
-    assert_eq!(table(&[(0.02, 0.1), (0.01, 0.05)]).unfitted(), None);
+}
+
+/// The 95 % factor of Student's t: the table's values, and the expansion joining them.
+#[test]
+fn the_confidence_factor_is_students_t() {
+    use scenarios::studies::student_t_975;
+    assert_eq!(student_t_975(1), 12.706);
+    assert_eq!(student_t_975(30), 2.042);
+    // t(0.975; 40) = 2.0211, t(0.975; 120) = 1.9799 (Abramowitz & Stegun, Table 26.10).
+    assert!((student_t_975(40) - 2.0211).abs() < 2e-4);
+    assert!((student_t_975(120) - 1.9799).abs() < 1e-4);
 }
 
 /// Dormand–Prince under a name of the user's choosing.
@@ -704,7 +778,7 @@ fn a_time_stepped_study_measures_moreau_jeans_order_under_its_own_name() {
             .find(|t| t.measure == ErrorMeasure::GridMax)
             .unwrap();
         assert_eq!(grid.solver, "moreau-jean (timestepping)");
-        let p = grid.fitted_slope.unwrap();
+        let p = grid.fit.expect("an asymptotic range").slope;
         println!("θ = {theta}: observed order {p:.3}");
         assert!((p - order).abs() < 0.15, "θ = {theta}: order {p}");
     }

@@ -48,14 +48,10 @@ pub fn converge(a: &ConvergeArgs) -> Result<Made, AppError> {
             tols: &a.tol_list,
         };
         let c = conduct(&study, t, "converge")?;
-        let orders = c.orders.iter().map(|o| {
-            // No slope: say why (docs/studies.md, "Observed orders").
-            let slope = match o.fitted_slope {
-                Some(s) => format!("{s:.3}"),
-                None => format!("- ({})", o.unfitted().unwrap_or_default()),
-            };
-            format!("{:15} {:16} fitted slope {slope}", o.solver, o.measure)
-        });
+        // The order over the asymptotic range, or why there is none (docs/studies.md,
+        // "Observed orders").
+        let orders =
+            (c.orders.iter()).map(|o| format!("{:15} {:16} {}", o.solver, o.measure, o.verdict()));
         Ok(orders.chain(failures(&c.runs, "converge.csv")).collect())
     })
 }

@@ -1,86 +1,14 @@
-//! The convergence study: observed orders of every error measure against a reference.
+//! The convergence study: observed orders of every error measure against a reference, over
+//! each method's asymptotic range ([`super::orders`]).
 
-use super::{
-    run_against_reference, slope, ErrorMeasure, Measures, Method, Reference, StudyCase, StudyRun,
-};
+use super::orders::{orders, Fit, PairOrder, MIN_PAIRS, ORDER_AGREEMENT};
+use super::{run_against_reference, ErrorMeasure, Measures, Method, Reference, StepKind};
+use super::{StudyCase, StudyRun};
 use crate::run::ScenarioError;
+use friction_models::params::show;
 use integrators::Solver;
-use serde::Serialize;
-
-/// The observed order between two refinements: log(e_i/e_(i+1)) / log(h_i/h_(i+1)), which
-/// does not assume halving.
-pub fn observed_order(e: (f64, f64), h: (f64, f64)) -> f64 {
-    (e.0 / e.1).ln() / (h.0 / h.1).ln()
-}
-
-/// The order of one refinement pair, with what may make it unreliable.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct PairOrder {
-    /// Coarser resolution.
-    pub from: f64,
-    /// Finer resolution.
-    pub to: f64,
-    /// Observed order.
-    pub order: f64,
-    /// The finer error is at the round-off floor (below 1e-12 of the solution's scale), or an
-    /// error of the pair is missing (not finite): the pair says nothing of the order.
-    pub round_off: bool,
-    /// Above that floor, the finer error did not decrease: the refinement has not reached the
-    /// asymptotic range, or the error has saturated (a limit cycle's phase drift, for one,
-    /// holds it at the cycle's amplitude): the pair says nothing of the order either.
-    pub stalled: bool,
-    /// Outside the asymptotic range: the coarser error is as large as the solution's scale
-    /// (the run has no correct digit: an unstable or unresolved step), or the order differs by
-    /// more than 0.5 from the median of the other usable pairs.
-    pub pre_asymptotic: bool,
-}
-
-/// Orders of successive pairs of (resolution, error), and the least-squares slope of
-/// log(error) against log(resolution) over the pairs that are neither round-off, stalled nor
-/// pre-asymptotic (see [`PairOrder`]; `scale` is the solution's).
-pub fn orders(points: &[(f64, f64)], scale: f64) -> (Vec<PairOrder>, Option<f64>) {
-    let mut pairs: Vec<PairOrder> = points
-        .windows(2)
-        .map(|w| {
-            let round_off = w[1].1 <= 1e-12 * scale || !(w[0].1.is_finite() && w[1].1.is_finite());
-            let stalled = !round_off && w[1].1 >= w[0].1;
-            PairOrder {
-                from: w[0].0,
-                to: w[1].0,
-                order: observed_order((w[0].1, w[1].1), (w[0].0, w[1].0)),
-                round_off,
-                stalled,
-                pre_asymptotic: !round_off && !stalled && w[0].1 >= scale,
-            }
-        })
-        .collect();
-    let usable = |p: &PairOrder| !p.round_off && !p.stalled && !p.pre_asymptotic;
-    let mut orders: Vec<f64> = pairs
-        .iter()
-        .filter(|p| usable(p))
-        .map(|p| p.order)
-        .collect();
-    orders.sort_by(f64::total_cmp);
-    if let Some(&median) = orders.get(orders.len() / 2) {
-        for p in pairs.iter_mut().filter(|p| usable(p)) {
-            p.pre_asymptotic = (p.order - median).abs() > 0.5;
-        }
-    }
-    // Least squares over the points joined by good pairs.
-    let mut xs = Vec::new();
-    for (i, p) in pairs.iter().enumerate() {
-        if !p.round_off && !p.stalled && !p.pre_asymptotic {
-            for point in [points[i], points[i + 1]] {
-                let xy = (point.0.ln(), point.1.ln());
-                if !xs.contains(&xy) {
-                    xs.push(xy);
-                }
-            }
-        }
-    }
-    let slope = (xs.len() >= 2).then(|| slope(&xs));
-    (pairs, slope)
-}
+use serde::ser::SerializeStruct;
+use serde::{Serialize, Serializer};
 
 /// The scale of the solution: the largest |x| or |v| of the reference.
 fn scale(reference: &Measures) -> f64 {
@@ -92,46 +20,126 @@ fn scale(reference: &Measures) -> f64 {
         .max(f64::MIN_POSITIVE)
 }
 
-/// Orders for one solver and one error measure.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+/// What one method's error does under refinement of one measure: the local order of each
+/// pair, and the fit over the asymptotic range, if there is one. Over step sizes the fit's
+/// slope is the observed **order**; over tolerances (adaptive methods) it is the exponent of
+/// **tolerance proportionality**, error ∝ tol^a, which is not an order in h and is never
+/// called one.
+#[derive(Clone, Debug, PartialEq)]
 pub struct OrderTable {
     /// The method's label ([`Method::label`]).
     pub solver: String,
-    /// Which error: `final_state`, `grid_max`, `event_times`, `stick_durations`.
+    /// Which error.
     pub measure: ErrorMeasure,
-    /// Each refinement pair.
+    /// What the resolutions are: step sizes (`fixed`) or tolerances (`adaptive`).
+    pub step: StepKind,
+    /// Each refinement pair, coarse to fine.
     pub pairs: Vec<PairOrder>,
-    /// Least-squares slope over the reliable pairs.
-    pub fitted_slope: Option<f64>,
+    /// The fit over the asymptotic range; `None` where fewer than two pairs are in it.
+    pub fit: Option<Fit>,
 }
 
 impl OrderTable {
-    /// Why there is no fitted slope (`None` when there is one): how many pairs were stalled,
-    /// pre-asymptotic, or at round-off or undefined (see [`PairOrder`]), e.g. "of 3 pairs: 2
-    /// stalled, 1 pre-asymptotic".
-    pub fn unfitted(&self) -> Option<String> {
-        if self.fitted_slope.is_some() {
-            return None;
+    /// The name of the fitted slope: `order` over step sizes, `tolerance_exponent` over
+    /// tolerances.
+    pub fn quantity(&self) -> &'static str {
+        match self.step {
+            StepKind::Fixed => "order",
+            StepKind::Adaptive => "tolerance_exponent",
         }
+    }
+
+    /// What the table concludes, in words: the fitted order with its interval, the pairs it
+    /// rests on and their range, as "order 4.00 (95 % CI 3.97 to 4.03) from 3 pairs, h 0.0025
+    /// to 0.02"; "error ∝ tol^0.98 (…)" over tolerances; or "no asymptotic range" and why. An
+    /// interval that holds 0 adds "no convergence shown": the error has saturated.
+    pub fn verdict(&self) -> String {
+        let Some(f) = &self.fit else {
+            return format!("no asymptotic range ({})", self.why_none());
+        };
+        let slope = match self.step {
+            StepKind::Fixed => format!("order {:.2}", f.slope),
+            StepKind::Adaptive => format!("error ∝ tol^{:.2}", f.slope),
+        };
+        let h = match self.step {
+            StepKind::Fixed => "h",
+            StepKind::Adaptive => "tol",
+        };
+        // Local orders that agree near 0 are an error that has saturated, not converged.
+        let saturated = if f.ci[0] <= 0.0 {
+            "; the interval holds 0: no convergence shown"
+        } else {
+            ""
+        };
+        format!(
+            "{slope} (95 % CI {:.2} to {:.2}) from {} pairs, {h} {} to {}{saturated}",
+            f.ci[0],
+            f.ci[1],
+            f.pairs_used,
+            show(f.range[0]),
+            show(f.range[1])
+        )
+    }
+
+    /// Why there is no fit: how many pairs were stalled, without a correct digit, at
+    /// round-off or undefined, and the local orders of the usable ones, e.g. "of 4 pairs: 1
+    /// stalled, 1 without a correct digit; 2 usable (3.26, 7.88), no 2 consecutive of which
+    /// agree within 0.5".
+    fn why_none(&self) -> String {
         if self.pairs.is_empty() {
-            return Some("fewer than two resolutions".into());
+            return "fewer than two resolutions".into();
         }
         let count = |flag: fn(&PairOrder) -> bool| self.pairs.iter().filter(|p| flag(p)).count();
         let kinds = [
             (count(|p| p.stalled), "stalled"),
-            (count(|p| p.pre_asymptotic), "pre-asymptotic"),
+            (count(|p| p.no_correct_digit), "without a correct digit"),
             (count(|p| p.round_off), "at round-off or undefined"),
         ];
-        let named: Vec<String> = kinds
+        let mut named: Vec<String> = kinds
             .iter()
             .filter(|(n, _)| *n > 0)
             .map(|(n, kind)| format!("{n} {kind}"))
             .collect();
-        Some(format!(
-            "of {} pairs: {}",
-            self.pairs.len(),
-            named.join(", ")
-        ))
+        let usable: Vec<String> = (self.pairs.iter())
+            .filter(|p| p.usable())
+            .map(|p| format!("{:.2}", p.order))
+            .collect();
+        let (n, orders) = (usable.len(), usable.join(", "));
+        if n >= MIN_PAIRS {
+            named.push(format!(
+                "{n} usable ({orders}), no {MIN_PAIRS} consecutive of which agree within \
+                 {ORDER_AGREEMENT}"
+            ));
+        } else if n > 0 {
+            named.push(format!("{n} usable ({orders}), fewer than {MIN_PAIRS}"));
+        }
+        format!("of {} pairs: {}", self.pairs.len(), named.join("; "))
+    }
+}
+
+/// The JSON of a table: `solver`, `measure`, `step`, `pairs`, then the fit under its own name
+/// (`order` and `order_ci`, or `tolerance_exponent` and `tolerance_exponent_ci`; `null` without
+/// an asymptotic range), `pairs_used`, `asymptotic_range` (finest and coarsest resolution, or
+/// `null`) and `verdict`.
+impl Serialize for OrderTable {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let quantity = self.quantity();
+        let mut s = serializer.serialize_struct("OrderTable", 9)?;
+        s.serialize_field("solver", &self.solver)?;
+        s.serialize_field("measure", &self.measure)?;
+        s.serialize_field("step", &self.step)?;
+        s.serialize_field("pairs", &self.pairs)?;
+        let fit = self.fit.as_ref();
+        s.serialize_field(quantity, &fit.map(|f| f.slope))?;
+        let ci = match self.step {
+            StepKind::Fixed => "order_ci",
+            StepKind::Adaptive => "tolerance_exponent_ci",
+        };
+        s.serialize_field(ci, &fit.map(|f| f.ci))?;
+        s.serialize_field("pairs_used", &fit.map_or(0, |f| f.pairs_used))?;
+        s.serialize_field("asymptotic_range", &fit.map(|f| f.range))?;
+        s.serialize_field("verdict", &self.verdict())?;
+        s.end()
     }
 }
 
@@ -147,7 +155,7 @@ pub struct Convergence {
 }
 
 /// Runs each solver over the step sizes (or tolerances) against the reference and reports
-/// the observed orders of every error measure.
+/// the observed orders of every error measure that exists for it.
 pub fn convergence(
     case: &dyn StudyCase,
     solvers: &[Solver],
@@ -164,6 +172,9 @@ pub fn convergence(
     for method in &methods {
         let label = method.label();
         let mine: Vec<&StudyRun> = runs.iter().filter(|r| r.solver == label).collect();
+        let Some(step) = mine.first().map(|r| r.step) else {
+            continue;
+        };
         for measure in ErrorMeasure::ALL {
             let points: Vec<(f64, f64)> = mine
                 .iter()
@@ -172,12 +183,13 @@ pub fn convergence(
             if points.iter().all(|p| p.1.is_nan() || p.1 == 0.0) {
                 continue;
             }
-            let (pairs, fitted_slope) = orders(&points, sc);
+            let (pairs, fit) = orders(&points, sc);
             tables.push(OrderTable {
                 solver: label.clone(),
                 measure,
+                step,
                 pairs,
-                fitted_slope,
+                fit,
             });
         }
     }

@@ -6,6 +6,7 @@
 
 mod convergence;
 mod independence;
+mod orders;
 mod scaling;
 mod stiffness;
 mod work_precision;
@@ -16,9 +17,12 @@ pub use crate::cases::{Case, Measured, Measures, StudyCase, SystemCase, GRID_POI
 pub use crate::method::{resolution, steps_for, Method, StepKind};
 use crate::run::ScenarioError;
 pub use crate::study_run::{ErrorMeasure, Errors, Reference, StudyRun, REFERENCE_TOLERANCE};
-pub use convergence::{convergence, observed_order, orders, Convergence, OrderTable, PairOrder};
+pub use convergence::{convergence, Convergence, OrderTable};
 pub use independence::{independence, FailedLevel, Independence, OutputCheck};
 use integrators::{Solver, StepControl};
+pub use orders::{
+    observed_order, orders, student_t_975, Fit, PairOrder, MIN_PAIRS, ORDER_AGREEMENT, ROUND_OFF,
+};
 pub use scaling::{scaling, Scaling, ScalingRun};
 pub use stiffness::{crossover, stiffness, Cost, Reached, Stiffness, StiffnessPoint, Sweep};
 pub use work_precision::{work_precision, WorkPrecision};
