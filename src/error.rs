@@ -67,6 +67,9 @@ pub enum AppError {
     /// A run that a study needs failed in the solver.
     #[error("{0}")]
     StudyRun(String),
+    /// A run ended without a solver error, but its result diverged (the verdict's reason).
+    #[error("the run diverged: {0} (summary.json and trajectory.csv keep what was computed)")]
+    Diverged(String),
     /// A plot could not be drawn.
     #[error("drawing {path}: {message}")]
     Plot {
@@ -92,7 +95,8 @@ impl AppError {
             | AppError::Io { .. }
             | AppError::Plot { .. }
             | AppError::Solver(_)
-            | AppError::StudyRun(_) => 1,
+            | AppError::StudyRun(_)
+            | AppError::Diverged(_) => 1,
         }
     }
 }

@@ -11,6 +11,7 @@ use friction_models::{FrictionParams, Variant};
 use friction_systems::{mode_name, BodyState, ContactEvent, EnergyBalance};
 use integrators::{SolverError, Stats, StepControl};
 pub use scenarios::run::RIG_BODY;
+use scenarios::verdict::{Status, Verdict};
 use scenarios::SwitchingKind;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -23,25 +24,54 @@ pub struct RunSummary {
     /// What was run.
     #[serde(flatten)]
     pub setup: RunSetup,
-    /// `ok` or `failed`.
-    pub status: &'static str,
+    /// `ok`, `inaccurate`, `diverged` or `failed`, and why (`status`, `reason`).
+    #[serde(flatten)]
+    pub verdict: Verdict,
     /// What the integration produced.
     #[serde(flatten)]
     pub integrated: Integrated,
 }
 
 impl RunSummary {
-    /// The summary of the run `setup` describes, which produced `integrated`.
+    /// The summary of the run `setup` describes, which produced `integrated`, judged: by the
+    /// solver's error where it stopped, otherwise by its energy balance (systems with bodies;
+    /// [`Verdict::of_energy`]).
     pub fn new(setup: RunSetup, integrated: Integrated) -> RunSummary {
+        let verdict = Verdict::of_error(integrated.error.as_ref()).unwrap_or_else(|| {
+            (integrated.energy.as_ref())
+                .map_or(Verdict::OK, |e| Verdict::of_energy(e.relative_residual))
+        });
         RunSummary {
             setup,
-            status: if integrated.error.is_some() {
-                "failed"
-            } else {
-                "ok"
-            },
+            verdict,
             integrated,
         }
+    }
+
+    /// The failure the command exits with (1) once the files are written: the solver's error,
+    /// or a divergence its verdict found.
+    pub fn failure(&self) -> Option<AppError> {
+        match (&self.integrated.error, &self.verdict) {
+            (Some(e), _) => Some(AppError::Solver(e.clone())),
+            (
+                None,
+                Verdict {
+                    status: Status::Diverged,
+                    reason,
+                },
+            ) => Some(AppError::Diverged(reason.clone().unwrap_or_default())),
+            _ => None,
+        }
+    }
+
+    /// The warning of an inaccurate run (it still exits 0).
+    pub fn caution(&self) -> Option<String> {
+        (self.verdict.status == Status::Inaccurate).then(|| {
+            format!(
+                "the run is inaccurate: {}",
+                self.verdict.reason.as_deref().unwrap_or_default()
+            )
+        })
     }
 }
 

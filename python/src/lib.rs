@@ -133,6 +133,7 @@ fn failure_message(e: &AppError) -> String {
             format!("stopped: {s} ({KEPT} there)")
         }
         AppError::Solver(s) => format!("the solver failed: {s} ({KEPT} the failure)"),
+        AppError::Diverged(why) => format!("the run diverged: {why} ({KEPT} its end)"),
         other => other.to_string(),
     }
 }

@@ -457,6 +457,7 @@ pub fn make_rig(
         parameters,
     };
     let record = rig_record(&outcome, setup, has_state);
+    let (failure, caution) = (record.summary.failure(), record.summary.caution());
     let columns = record.add_files(&mut files, &args.out, trajectory_as)?;
     Ok(Made {
         files,
@@ -481,8 +482,9 @@ pub fn make_rig(
                 spec.switching,
             ))
             .chain(args.solver.scheme.spelling_notes())
+            .chain(caution)
             .collect(),
-        failure: outcome.error.map(AppError::Solver),
+        failure,
     })
 }
 

@@ -413,6 +413,7 @@ pub fn make(args: &SimulateArgs, trajectory_as: TrajectoryAs) -> Result<Made, Ap
         finals: run.final_states(),
         events,
     };
+    let (failure, caution) = (record.summary.failure(), record.summary.caution());
     let columns = record.add_files(&mut files, &args.out, trajectory_as)?;
     let period = integrators::OdeProblem::time_scale(&run.problem);
     Ok(Made {
@@ -446,7 +447,8 @@ pub fn make(args: &SimulateArgs, trajectory_as: TrajectoryAs) -> Result<Made, Ap
             ))
             .chain(args.solver.scheme.spelling_notes())
             .chain(source.as_ref().and_then(unspread_warning))
+            .chain(caution)
             .collect(),
-        failure: run.error.map(AppError::Solver),
+        failure,
     })
 }

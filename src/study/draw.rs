@@ -11,8 +11,8 @@ pub fn row_at_top(largest: f64, row: i32) -> f64 {
     largest * 3.0 * 1.5f64.powi(row)
 }
 
-/// One series per solver of the runs `keep` selects, with a dot on every run that computed,
-/// and, per solver with failed runs, a series of crosses drawn at the top of the plot at their
+/// One series per solver of the runs `keep` selects, with a dot on every run judged `ok`, a
+/// cross where a run judged inaccurate lies, and, per solver with failed runs, a series of crosses drawn at the top of the plot at their
 /// x, named with their count (a failed run has no error to plot, but it is not left out), each
 /// such solver in a row of its own ([`row_at_top`]).
 pub fn per_solver_series(
@@ -28,10 +28,12 @@ pub fn per_solver_series(
             names.push(&r.solver);
         }
     }
-    let plotted = |r: &&&StudyRun| r.failure.is_none() && y(r) > 0.0 && y(r).is_finite();
+    let drawable = |r: &&&StudyRun| r.failure.is_none() && y(r) > 0.0 && y(r).is_finite();
+    let plotted = |r: &&&StudyRun| drawable(r) && r.verdict.is_ok();
+    let inaccurate = |r: &&&StudyRun| drawable(r) && !r.verdict.is_ok();
     let largest = runs
         .iter()
-        .filter(plotted)
+        .filter(drawable)
         .map(|r| y(r))
         .reduce(f64::max)
         .unwrap_or(1.0);
@@ -47,6 +49,20 @@ pub fn per_solver_series(
                 color,
                 width: 2,
                 marker: Marker::Dot,
+            });
+        }
+        // A run judged inaccurate is data, drawn where it is, but marked apart from the dots.
+        let judged: Vec<(f64, f64)> = mine().filter(inaccurate).map(|r| (x(r), y(r))).collect();
+        if !judged.is_empty() {
+            series.push(Series {
+                label: Some(format!(
+                    "{name}: {} inaccurate (error ≥ solution)",
+                    judged.len()
+                )),
+                points: judged,
+                color,
+                width: 0,
+                marker: Marker::Cross,
             });
         }
         let top = row_at_top(largest, rows);
@@ -100,8 +116,15 @@ mod tests {
     use super::*;
     use integrators::Stats;
     use scenarios::studies::Errors;
+    use scenarios::verdict::Verdict;
 
     fn run(solver: &str, h: f64, error: f64, failure: Option<f64>) -> StudyRun {
+        // A run that left the finite numbers at time t.
+        let failure = failure.map(|t| integrators::SolverError::NonFinite {
+            t,
+            h,
+            what: "state".into(),
+        });
         StudyRun {
             solver: solver.into(),
             resolution: h,
@@ -113,12 +136,8 @@ mod tests {
             measures: Default::default(),
             stats: Stats::default(),
             work: 0,
-            // A run that left the finite numbers at time t.
-            failure: failure.map(|t| integrators::SolverError::NonFinite {
-                t,
-                h,
-                what: "state".into(),
-            }),
+            verdict: Verdict::of_error(failure.as_ref()).unwrap_or(Verdict::OK),
+            failure,
             diverged: false,
             wall_time_s: 0.0,
         }

@@ -30,6 +30,7 @@ pub fn runs_table(runs: &[StudyRun], path: &Path) -> Result<Vec<u8>, AppError> {
             "newton_iterations",
             "events",
             "status",
+            "reason",
         ])
         .collect();
     let mut t = Table::new(&header);
@@ -54,7 +55,8 @@ pub fn runs_table(runs: &[StudyRun], path: &Path) -> Result<Vec<u8>, AppError> {
             Cell::Num(s.lu_factorizations as f64),
             Cell::Num(s.newton_iterations as f64),
             Cell::Num(s.events as f64),
-            Cell::Text(r.failure.as_ref().map_or("ok".into(), |e| e.to_string())),
+            Cell::Text(r.verdict.status.name().into()),
+            Cell::Text(r.verdict.reason.clone().unwrap_or_default()),
         ]);
         t.rows.push(row);
     }

@@ -14,6 +14,7 @@ use crate::method::{resolution, Method, StepKind};
 use crate::run::{ScenarioError, SwitchingKind};
 use crate::schedule;
 use crate::study_run::{Errors, Reference, StudyRun, REFERENCE_TOLERANCE};
+use crate::verdict::Verdict;
 use integrators::{DiffsolMethod, Solver, StepControl};
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -267,6 +268,7 @@ pub fn run_cases(
                 stats: o.stats,
                 work: o.stats.work(dims[case]),
                 diverged: crate::run::diverged(!method.is_implicit(), step, o.error.as_ref()),
+                verdict: Verdict::of_error(o.error.as_ref()).unwrap_or(Verdict::OK),
                 failure: o.error,
                 wall_time_s: o.wall_time_s,
             })))
@@ -301,6 +303,8 @@ pub fn run_cases(
             // no error against the reference.
             if let (Some((_, m)), None) = (&reference, &run.failure) {
                 run.errors = Errors::between(&run.measures, m);
+                let largest = run.errors.grid_max.max(run.errors.final_state);
+                run.verdict = Verdict::against_reference(largest, m.scale());
             }
             runs.push(*run);
         }

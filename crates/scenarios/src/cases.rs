@@ -34,6 +34,16 @@ pub struct Measures {
     pub peak_friction: f64,
 }
 
+impl Measures {
+    /// The scale of the solution: its largest |x| or |v| on the grid.
+    pub fn scale(&self) -> f64 {
+        (self.grid.iter())
+            .flat_map(|p| p.iter())
+            .fold(0.0, |a: f64, b| a.max(b.abs()))
+            .max(f64::MIN_POSITIVE)
+    }
+}
+
 /// One run of a case, measured.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Measured {

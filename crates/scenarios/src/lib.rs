@@ -5,7 +5,8 @@
 //! ([`figures`]); the rigs ([`scenario`], [`mod@run`]); the paper's experiment ([`paper`]);
 //! Table 2 by simulation ([`phenomena`]); the solver studies ([`studies`], [`cases`], the chain
 //! they build again for each swept value: [`chain`]; their
-//! runs as one list: [`batch`]); the settled state a parameter sweep measures ([`settled`]).
+//! runs as one list: [`batch`]); the settled state a parameter sweep measures ([`settled`]);
+//! what a run's result is worth ([`verdict`]).
 
 pub mod batch;
 pub mod cases;
@@ -25,6 +26,7 @@ pub mod settled;
 pub mod stick_slip;
 pub mod studies;
 pub mod study_run;
+pub mod verdict;
 
 pub use params::ScenarioParams;
 pub use run::{run, Law, Limits, Outcome, Row, RunSpec, ScenarioError, SwitchingKind};

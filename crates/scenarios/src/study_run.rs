@@ -3,6 +3,7 @@
 
 use crate::cases::Measures;
 use crate::method::StepKind;
+use crate::verdict::Verdict;
 use integrators::{SolverError, Stats, StepControl};
 use serde::Serialize;
 
@@ -165,6 +166,11 @@ pub struct StudyRun {
     /// The solver's error, if it failed (written as its message).
     #[serde(serialize_with = "message")]
     pub failure: Option<SolverError>,
+    /// What its result is worth: `failed` or `diverged` where the solver stopped, `inaccurate`
+    /// where its error is as large as the solution ([`Verdict::against_reference`]), else
+    /// `ok`. Only an `ok` run enters a fit or a crossover.
+    #[serde(flatten)]
+    pub verdict: Verdict,
     /// Whether it failed as an explicit method with a fixed step past its stability limit
     /// ([`crate::run::diverged`]).
     #[serde(skip)]

@@ -2,23 +2,13 @@
 //! each method's asymptotic range ([`super::orders`]).
 
 use super::orders::{orders, Fit, PairOrder, MIN_PAIRS, ORDER_AGREEMENT};
-use super::{run_against_reference, ErrorMeasure, Measures, Method, Reference, StepKind};
+use super::{run_against_reference, ErrorMeasure, Method, Reference, StepKind};
 use super::{StudyCase, StudyRun};
 use crate::run::ScenarioError;
 use friction_models::params::show;
 use integrators::Solver;
 use serde::ser::SerializeStruct;
 use serde::{Serialize, Serializer};
-
-/// The scale of the solution: the largest |x| or |v| of the reference.
-fn scale(reference: &Measures) -> f64 {
-    reference
-        .grid
-        .iter()
-        .flat_map(|p| p.iter())
-        .fold(0.0, |a: f64, b| a.max(b.abs()))
-        .max(f64::MIN_POSITIVE)
-}
 
 /// What one method's error does under refinement of one measure: the local order of each
 /// pair, and the fit over the asymptotic range, if there is one. Over step sizes the fit's
@@ -167,7 +157,7 @@ pub fn convergence(
     let jobs = Method::jobs(&methods, step_sizes, tolerances, true);
     let own = Method::own_solvers(&methods);
     let (reference, ref_measures, runs) = run_against_reference(case, &own, &jobs, progress)?;
-    let sc = scale(&ref_measures);
+    let sc = ref_measures.scale();
     let mut tables = Vec::new();
     for method in &methods {
         let label = method.label();

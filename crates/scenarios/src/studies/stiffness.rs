@@ -217,7 +217,7 @@ pub fn stiffness(
                 let met = runs
                     .iter()
                     .filter(|r| {
-                        r.solver == label && r.failure.is_none() && r.errors.grid_max <= target
+                        r.solver == label && r.verdict.is_ok() && r.errors.grid_max <= target
                     })
                     .min_by_key(|r| r.work);
                 Cost {
