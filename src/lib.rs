@@ -21,6 +21,7 @@ pub mod options;
 pub mod output;
 pub mod plot;
 pub mod progress;
+pub mod provenance;
 pub mod ranges;
 pub mod run_record;
 pub mod study;

@@ -132,15 +132,30 @@ fn reproduce_writes_six_figures_notes_and_report_deterministically() {
     }
     let notes = std::fs::read_to_string(a.join("reproduction.md")).unwrap();
     assert_eq!(notes.matches("## Figure ").count(), 6);
+    // The report names what computed it, where and when.
+    let report = std::fs::read_to_string(a.join("report.md")).unwrap();
+    let provenance = report.lines().nth(2).unwrap();
+    assert!(
+        provenance.starts_with(&format!(
+            "Computed by friction-lab {} (commit `",
+            env!("CARGO_PKG_VERSION")
+        )) && provenance.contains("logical cores")
+            && provenance.ends_with("threads."),
+        "{provenance}"
+    );
     // Figure 5 (two claims) and Figure 6 ("about -10") and Figure 7 (levels off).
     assert_eq!(notes.matches("**disagrees**").count(), 4, "{notes}");
     let table: serde_json::Value =
         serde_json::from_slice(&std::fs::read(a.join("table2.json")).unwrap()).unwrap();
-    assert_eq!(table["CVS"]["stick_slip"]["paper"], false);
-    assert_eq!(table["lugre"]["stribeck"]["paper"], serde_json::Value::Null);
+    let models = &table["models"];
+    assert_eq!(models["CVS"]["stick_slip"]["paper"], false);
     assert_eq!(
-        std::fs::read(a.join("table2.json")).unwrap(),
-        std::fs::read(b.join("table2.json")).unwrap()
+        models["lugre"]["stribeck"]["paper"],
+        serde_json::Value::Null
+    );
+    assert_eq!(
+        without_provenance(&a.join("table2.json")),
+        without_provenance(&b.join("table2.json"))
     );
     let report = std::fs::read_to_string(a.join("report.md")).unwrap();
     assert!(report.contains("[Figure 6 (SD)](figures/figure-6-SD.png)"));
@@ -593,15 +608,89 @@ fn identical_on_one_and_two_threads(
     };
     let (one, two) = (run("1"), run("2"));
     for name in files {
-        let a = std::fs::read(one.join(name)).unwrap();
+        let (a, b) = (
+            without_provenance(&one.join(name)),
+            without_provenance(&two.join(name)),
+        );
         assert_eq!(
-            a,
-            std::fs::read(two.join(name)).unwrap(),
+            a, b,
             "{name} of {} differs between 1 and 2 threads",
             args[0]
         );
     }
+    // The provenance says how many threads.
+    for (folder, threads) in [(&one, 1), (&two, 2)] {
+        if let Some(json) = files.iter().find(|f| f.ends_with(".json")) {
+            let v: serde_json::Value =
+                serde_json::from_slice(&std::fs::read(folder.join(json)).unwrap()).unwrap();
+            assert_eq!(v["provenance"]["threads"], threads, "{json}");
+        }
+    }
     one
+}
+
+/// The bytes of the file `path`; for a JSON file, its text without the `provenance` (the
+/// date, the machine and the thread count differ between runs; the results do not).
+fn without_provenance(path: &std::path::Path) -> Vec<u8> {
+    let bytes = std::fs::read(path).unwrap();
+    if path.extension().is_some_and(|e| e == "json") {
+        let mut v: serde_json::Value = serde_json::from_slice(&bytes).unwrap();
+        if let Some(o) = v.as_object_mut() {
+            o.remove("provenance");
+        }
+        return serde_json::to_vec_pretty(&v).unwrap();
+    }
+    bytes
+}
+
+/// Every study's JSON opens with its provenance: the version and git commit, the date, the
+/// machine and the thread count; `report.md` names the same.
+#[test]
+fn every_study_names_its_provenance() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("c");
+    let o = friction_lab(&[
+        "converge",
+        "belt",
+        "--model",
+        "CS",
+        "--t-end",
+        "1",
+        "--solvers",
+        "rk4",
+        "--dt-list",
+        "0.01,0.005,0.0025",
+        "--threads",
+        "1",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(out.join("converge.json")).unwrap();
+    assert!(
+        text.trim_start().starts_with("{\n  \"provenance\""),
+        "{text}"
+    );
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let p = &v["provenance"];
+    assert_eq!(p["friction_lab"], env!("CARGO_PKG_VERSION"));
+    let head = Command::new("git").args(["rev-parse", "HEAD"]).output();
+    if let Some(head) = head.ok().filter(|h| h.status.success()) {
+        assert_eq!(
+            p["commit"],
+            String::from_utf8_lossy(&head.stdout).trim(),
+            "{p}"
+        );
+    }
+    let date = p["date"].as_str().unwrap();
+    assert!(
+        date.len() == 20 && date.starts_with("20") && date.ends_with('Z'),
+        "{date}"
+    );
+    assert_eq!(p["threads"], 1);
+    let cores = std::thread::available_parallelism().unwrap().get();
+    assert_eq!(p["machine"]["logical_cores"], cores);
+    assert!(!p["machine"]["cpu"].as_str().unwrap().is_empty());
 }
 
 #[test]
@@ -1801,7 +1890,7 @@ fn phenomena_keeps_the_decided_cells_when_a_protocol_run_fails() {
     assert!(e.contains("10 steps"), "{e}");
     let table: serde_json::Value =
         serde_json::from_slice(&std::fs::read(out.join("table2.json")).unwrap()).unwrap();
-    let cells = table["coulomb"].as_object().unwrap();
+    let cells = table["models"]["coulomb"].as_object().unwrap();
     assert_eq!(cells.len(), 7);
     for (name, cell) in cells {
         assert!(cell["measured"].is_null(), "{name}: {cell}");
@@ -1833,7 +1922,7 @@ fn phenomena_judges_the_chosen_models_at_the_given_parameters() {
         let table: serde_json::Value =
             serde_json::from_slice(&std::fs::read(out.join("table2.json")).unwrap()).unwrap();
         let md = std::fs::read_to_string(out.join("table2.md")).unwrap();
-        (table, md)
+        (table["models"].clone(), md)
     };
     let (own, md) = judge("own", &[]);
     let models: Vec<&String> = own.as_object().unwrap().keys().collect();

@@ -90,17 +90,18 @@ class Table2:
     """Table 2 decided by simulation (``phenomena``): ``cells`` has one row per law and
     phenomenon (``law``, ``phenomenon``, ``measured``: True, False, or None where its protocol
     run failed, ``paper``: the paper's claim or None, ``failed``: why), ``json`` is
-    ``table2.json`` (with each cell's evidence and its verdict over a grid of rig
-    parameters) and ``markdown`` the text of ``table2.md``."""
+    ``table2.json`` (its ``provenance``, and under ``models`` each cell's evidence and its
+    verdict over a grid of rig parameters) and ``markdown`` the text of ``table2.md``."""
 
     def __init__(self, made: Made):
         self.json: Dict[str, Any] = made.json("table2.json")
         self.markdown: str = made.files["table2.md"].decode()
         rows = [{"law": law, "phenomenon": phenomenon, "measured": cell["measured"],
                  "paper": cell["paper"], "failed": cell["failed"]}
-                for law, cells in self.json.items() for phenomenon, cell in cells.items()]
+                for law, cells in self.json["models"].items()
+                for phenomenon, cell in cells.items()]
         self.cells: pd.DataFrame = pd.DataFrame(
             rows, columns=["law", "phenomenon", "measured", "paper", "failed"])
 
     def __repr__(self) -> str:
-        return f"<friction_lab.Table2: {', '.join(self.json)}>"
+        return f"<friction_lab.Table2: {', '.join(self.json['models'])}>"

@@ -162,9 +162,11 @@ def test_table_2_judges_a_python_law_as_the_catalogs():
     # evidence (at the paper's parameters, which both are judged at); a law of one's own has
     # no claim of the paper to stand beside.
     t = fl.phenomena(["coulomb", Coulomb(6.0)], threads=2)
-    assert list(t.json) == ["coulomb", "py-coulomb"]
-    assert t.json["py-coulomb"] == t.json["coulomb"]
-    assert len(t.cells) == 2 * len(t.json["coulomb"]) >= 12
+    assert list(t.json) == ["provenance", "models"]
+    assert list(t.json["models"]) == ["coulomb", "py-coulomb"]
+    models = t.json["models"]
+    assert models["py-coulomb"] == models["coulomb"]
+    assert len(t.cells) == 2 * len(models["coulomb"]) >= 12
     assert t.cells["paper"].isna().all() and t.cells["failed"].isna().all()
     assert "| phenomenon | coulomb | py-coulomb |" in t.markdown
     assert "(its own)" in t.markdown

@@ -9,6 +9,7 @@ use crate::laws::used_parameters;
 use crate::options::ParamOptions;
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Marker, Plot, Series, PALETTE};
+use crate::provenance::Provenance;
 use crate::ranges;
 use crate::study::{
     check_decided, conduct, ConvergenceStudy, IndependenceStudy, Refinement, ScalingStudy,
@@ -543,8 +544,9 @@ fn add_chain_studies(t: &mut Target, friction: &FrictionParams) -> Result<String
     ))
 }
 
-fn report(reproduced: &[Reproduced], header: &str) -> String {
+fn report(reproduced: &[Reproduced], header: &str, provenance: &Provenance) -> String {
     let mut s = String::from("# friction-lab: reproduction of the paper\n\n");
+    s += &format!("Computed by {}.\n\n", provenance.markdown());
     s += header;
     s += "\n## Figures 2-7: the friction curves\n\n";
     s += "Each figure draws the model's equations with the parameters of Table 1 \
@@ -676,7 +678,8 @@ pub fn run(args: &ReproduceArgs) -> Result<(), AppError> {
         .flat_map(|(_, r)| r.iter())
         .filter(|(_, c)| c.disagrees())
         .count();
-    let mut report_md = report(&reproduced, &header);
+    let provenance = Provenance::now(with_threads(threads, rayon::current_num_threads)?);
+    let mut report_md = report(&reproduced, &header, &provenance);
     report_md += &format!(
         "\n{experiment_md}\n## Table 2, decided by simulation\n\n\
         [table2.md](table2.md) (and table2.json) decides every cell of the paper's Table 2 by a \

@@ -56,8 +56,7 @@ impl Study for ConvergenceStudy<'_> {
         let case = self.case;
         let csv = out.path(".csv");
         out.files.add(csv.clone(), runs_table(&c.runs, &csv)?);
-        out.files
-            .add_json(out.path(".json"), &study_file(case, c))?;
+        out.add_json(&study_file(case, c))?;
         // Step sizes and tolerances are different things: one panel each, each fitted slope
         // drawn through the asymptotic range it rests on.
         let panel = |step: StepKind, x_label: &str| {

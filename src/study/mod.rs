@@ -27,6 +27,7 @@ pub use work_precision::WorkPrecisionStudy;
 use crate::artifacts::Artifacts;
 use crate::error::AppError;
 use crate::progress::Progress;
+use crate::provenance::Provenance;
 use crate::threads::with_threads;
 use integrators::Solver;
 use scenarios::studies::{Method, StepKind, StudyCase, StudyRun};
@@ -93,12 +94,33 @@ pub struct StudyFiles<'a> {
     pub dir: &'a Path,
     /// The stem every file of the study starts with (`converge` for `converge.csv`).
     pub stem: &'a str,
+    /// Where the study's result comes from: its JSON opens with it.
+    pub provenance: &'a Provenance,
 }
 
 impl StudyFiles<'_> {
     /// The path of the study's file `{stem}{suffix}`, e.g. `.csv` or `-timing.csv`.
     pub fn path(&self, suffix: &str) -> PathBuf {
         self.dir.join(format!("{}{suffix}", self.stem))
+    }
+
+    /// Adds the study's JSON `{stem}.json`: `provenance` ([`Provenance`]), then the fields of
+    /// `value` (a JSON object).
+    pub fn add_json<T: Serialize>(&mut self, value: &T) -> Result<(), AppError> {
+        #[derive(Serialize)]
+        struct WithProvenance<'a, T: Serialize> {
+            provenance: &'a Provenance,
+            #[serde(flatten)]
+            value: &'a T,
+        }
+        let path = self.path(".json");
+        self.files.add_json(
+            path,
+            &WithProvenance {
+                provenance: self.provenance,
+                value,
+            },
+        )
     }
 }
 
@@ -125,7 +147,10 @@ pub fn conduct<S: Study>(
 ) -> Result<S::Result, AppError> {
     study.check()?;
     let bar = Progress::runs(study.runs(), study.name());
-    let result = with_threads(target.threads, || study.run(&|| bar.inc()))??;
+    let (result, threads) = with_threads(target.threads, || {
+        (study.run(&|| bar.inc()), rayon::current_num_threads())
+    })?;
+    let result = result?;
     bar.finish();
     if let Some(failure) = study.failure(&result) {
         target.failure.get_or_insert(failure);
@@ -136,6 +161,7 @@ pub fn conduct<S: Study>(
             files: target.files,
             dir: target.dir,
             stem,
+            provenance: &Provenance::now(threads),
         },
     )?;
     Ok(result)

@@ -113,7 +113,7 @@ impl Study for ScalingStudy<'_> {
                 .collect(),
             study: s,
         };
-        out.files.add_json(out.path(".json"), &file)?;
+        out.add_json(&file)?;
         // Wall time per step against N, with each method's fitted slope: the one figure of the
         // study that varies between runs (hence `-timing`).
         let mut series = Vec::new();

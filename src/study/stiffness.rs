@@ -112,8 +112,7 @@ impl Study for StiffnessStudy<'_> {
         }
         let csv = out.path(".csv");
         out.files.add(csv.clone(), table.to_csv(&csv)?);
-        out.files
-            .add_json(out.path(".json"), &study_file(case, s))?;
+        out.add_json(&study_file(case, s))?;
         // A solver that met the target at a value: a dot at its cost; one that did not: a cross
         // at the top of the plot, named, each such solver in a row of its own.
         let reached: Vec<(f64, f64)> = s

@@ -48,7 +48,7 @@ impl Study for Table2Study<'_> {
             out.path(".md"),
             markdown(rows, &self.protocol, described).into_bytes(),
         );
-        out.files.add_json(out.path(".json"), &json_table(rows))
+        out.add_json(&json!({ "models": json_table(rows) }))
     }
 }
 

@@ -78,8 +78,7 @@ impl Study for WorkPrecisionStudy<'_> {
         let timing_csv = out.path("-timing.csv");
         out.files
             .add(timing_csv.clone(), timing.to_csv(&timing_csv)?);
-        out.files
-            .add_json(out.path(".json"), &study_file(case, w))?;
+        out.add_json(&study_file(case, w))?;
         let plot = Plot {
             title: format!("Work-precision: {}", case.describe()),
             x_label: "work (f evaluations + dim per Jacobian)".into(),
