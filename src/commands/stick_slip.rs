@@ -5,7 +5,7 @@
 use crate::error::AppError;
 use crate::study::{conduct, BifurcationStudy, StickSlipMapStudy, Target};
 use friction_models::{FrictionParams, ModelId};
-use scenarios::stick_slip::{belt_run, log_space, Regime};
+use scenarios::stick_slip::{belt_run, log_space, MapPoint, Regime};
 
 /// The measured, settled part of each run (its last half).
 const SETTLE: f64 = 0.5;
@@ -42,40 +42,51 @@ pub fn add_stick_slip(t: &mut Target, friction: &FrictionParams) -> Result<Strin
         })
         .map(|b| b.v_belt)
         .collect();
-    let stick_slip = points
-        .iter()
-        .filter(|p| p.regime == Regime::StickSlip)
-        .count();
-    let decided: Vec<_> = points
-        .iter()
-        .filter(|p| p.regime != Regime::Stuck)
-        .collect();
-    let agree = decided
-        .iter()
-        .filter(|p| p.linearly_unstable == (p.regime != Regime::SteadySliding))
-        .count();
+    let count = |keep: &dyn Fn(&&MapPoint) -> bool| points.iter().filter(keep).count();
+    let stick_slip = count(&|p| p.regime == Regime::StickSlip);
+    let (stuck, unsettled) = (
+        count(&|p| p.regime == Regime::Stuck),
+        count(&|p| p.regime == Regime::Unsettled),
+    );
+    let settled = points.len() - stuck - unsettled;
+    // Linear theory against the settled regimes, each way it can disagree counted.
+    let decided = |p: &&MapPoint| !p.regime.is_transient();
+    let moving_where_stable =
+        count(&|p| decided(p) && !p.linearly_unstable && p.regime != Regime::SteadySliding);
+    let sliding_where_unstable =
+        count(&|p| decided(p) && p.linearly_unstable && p.regime == Regime::SteadySliding);
+    let agree = settled - moving_where_stable - sliding_where_unstable;
+    let max_span = points.iter().map(|p| p.settled.to).fold(0.0, f64::max);
     let span = |v: &[f64]| match (v.first(), v.last()) {
         (Some(a), Some(b)) => format!("{a:.4} to {b:.4} m/s"),
         _ => "nowhere".into(),
     };
     Ok(format!(
         "\n## Stick-slip on the belt: the map and the bifurcation diagram\n\n\
-         The belt rig with CVS at the paper's parameters (m = 1, c = 0, 40 s, the last 20 s \
-         measured; `scenarios::stick_slip`, docs/sweep.md):\n\n\
+         The belt rig with CVS at the paper's parameters (m = 1, c = 0; each run 40 s, the last \
+         half measured, and doubled up to {max_extension} times while it has not settled: \
+         `scenarios::stick_slip`, docs/sweep.md):\n\n\
          - [The settled regime over belt speed and stiffness](stick-slip/map.png), from rest: \
-         stick-slip at {stick_slip} of {} points ({} carried by the belt through the whole \
-         run: their cycle is longer than 40 s); linear stability theory (steady sliding \
-         unstable where c + dF/dv < 0 at v = -v_belt, here for v_belt from {}) agrees with the \
-         regime at {agree} of the {} others: the rest are stick-slip reached from rest where \
-         sliding is stable.\n\
+         stick-slip at {stick_slip} of {} points; {settled} settled, {stuck} carried by the belt \
+         through the whole run (a first stick phase longer than the run) and {unsettled} not \
+         settled (a transient at the longest run, {}): both counted apart. Linear stability \
+         theory (steady sliding unstable where c + dF/dv < 0 at v = -v_belt, here for v_belt \
+         from {}) agrees with the settled regime at {agree} of the {settled}; \
+         {moving_where_stable} are stick-slip or an oscillation reached from rest where sliding \
+         is stable, and {sliding_where_unstable} steady sliding where it is unstable.\n\
          - [The bifurcation diagram at k = 100 N/m](stick-slip/bifurcation.png): the settled \
-         amplitude from rest and from steady sliding; the two coexist (stick-slip from rest, \
-         steady sliding kept) from {}: a subcritical boundary, where the paper's reading of \
-         stick-slip as a property of the model alone does not hold.\n",
+         amplitude from rest and from steady sliding (a run that did not settle is a cross of \
+         its own); the two coexist (stick-slip from rest, steady sliding kept) from {}: a \
+         subcritical boundary, where the paper's reading of stick-slip as a property of the \
+         model alone does not hold.\n",
         points.len(),
-        points.len() - decided.len(),
+        if unsettled > 0 {
+            format!("{max_span} s")
+        } else {
+            "none".into()
+        },
         span(boundary),
-        decided.len(),
         span(&coexist),
+        max_extension = scenarios::stick_slip::MAX_EXTENSION,
     ))
 }

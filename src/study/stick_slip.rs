@@ -7,6 +7,7 @@ use super::{Study, StudyFiles};
 use crate::error::AppError;
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Marker, Plot, Series, BLUE, PALETTE};
+use scenarios::settled::Settled;
 use scenarios::stick_slip::{
     bifurcation, log_space, map, stability_boundary, Branches, MapPoint, Regime,
 };
@@ -83,6 +84,8 @@ impl Study for StickSlipMapStudy<'_> {
             "stick_per_cycle",
             "period",
             "x_amplitude",
+            "t_end",
+            "drift",
         ]);
         let num = Cell::num;
         for p in points {
@@ -94,6 +97,8 @@ impl Study for StickSlipMapStudy<'_> {
                 num(p.settled.stick_per_cycle),
                 num(p.settled.period),
                 num(p.settled.x_amplitude),
+                Cell::Num(p.settled.to),
+                num(p.settled.drift),
             ]);
         }
         let csv = out.path(".csv");
@@ -122,6 +127,12 @@ impl Study for StickSlipMapStudy<'_> {
                 Regime::Stuck,
                 "carried by the belt all along",
                 PALETTE[3],
+                Marker::Cross,
+            ),
+            regime_series(
+                Regime::Unsettled,
+                "not settled within 8 spans (a transient)",
+                PALETTE[4],
                 Marker::Cross,
             ),
         ];
@@ -201,44 +212,64 @@ impl Study for BifurcationStudy<'_> {
             "v_belt",
             "from_rest_regime",
             "from_rest_x_amplitude",
+            "from_rest_t_end",
             "from_sliding_regime",
             "from_sliding_x_amplitude",
+            "from_sliding_t_end",
         ]);
         for b in branches {
             table.rows.push(vec![
                 Cell::Num(b.v_belt),
                 Cell::Text(format!("{:?}", Regime::of(&b.from_rest, b.v_belt))),
                 num(b.from_rest.x_amplitude),
+                Cell::Num(b.from_rest.to),
                 Cell::Text(format!("{:?}", Regime::of(&b.from_sliding, b.v_belt))),
                 num(b.from_sliding.x_amplitude),
+                Cell::Num(b.from_sliding.to),
             ]);
         }
         let csv = out.path(".csv");
         out.files.add(csv.clone(), table.to_csv(&csv)?);
+        // A branch's settled amplitudes joined by a line; a run that did not settle is no
+        // amplitude of the branch: a cross of its own, apart.
         let branch = |label: &str,
-                      pick: fn(&scenarios::stick_slip::Branches) -> f64,
+                      pick: fn(&scenarios::stick_slip::Branches) -> &Settled,
                       color,
                       marker| Series {
             label: Some(label.into()),
-            points: branches.iter().map(|b| (b.v_belt, pick(b))).collect(),
+            points: (branches.iter())
+                .filter(|b| Regime::of(pick(b), b.v_belt) != Regime::Unsettled)
+                .map(|b| (b.v_belt, pick(b).x_amplitude))
+                .collect(),
             color,
             width: 1,
             marker,
         };
+        let unsettled: Vec<(f64, f64)> = (branches.iter())
+            .flat_map(|b| [&b.from_rest, &b.from_sliding].map(|s| (b.v_belt, s)))
+            .filter(|(v, s)| Regime::of(s, *v) == Regime::Unsettled)
+            .map(|(v, s)| (v, s.x_amplitude))
+            .collect();
         let mut series = vec![
-            branch(
-                "from rest",
-                |b| b.from_rest.x_amplitude,
-                PALETTE[0],
-                Marker::Dot,
-            ),
+            branch("from rest", |b| &b.from_rest, PALETTE[0], Marker::Dot),
             branch(
                 "from steady sliding",
-                |b| b.from_sliding.x_amplitude,
+                |b| &b.from_sliding,
                 BLUE,
                 Marker::Cross,
             ),
+            Series {
+                label: Some(format!(
+                    "not settled within 8 spans: {} run(s), amplitude at the end",
+                    unsettled.len()
+                )),
+                points: unsettled,
+                color: PALETTE[4],
+                width: 0,
+                marker: Marker::Cross,
+            },
         ];
+        series.retain(|s| !s.points.is_empty());
         let top = branches
             .iter()
             .map(|b| b.from_rest.x_amplitude.max(b.from_sliding.x_amplitude))

@@ -10,10 +10,31 @@
 //! - the **stick phases** are the switches into stick in the window (from the switching log),
 //!   and per cycle they are divided by window / period;
 //! - the **friction** is its time mean over the window and the largest |F| in it.
+//!
+//! A run has **settled** when its cycle-to-cycle return has converged: the two halves of the
+//! window each hold at least [`MIN_CYCLES`] cycles, and their periods, their half ranges of
+//! x − v̄·t and of v, and their stick phases per cycle agree within [`SETTLE_TOLERANCE`]
+//! ([`Settled::drift`], the largest relative difference). A run with no oscillation left (v's
+//! half range at most [`REST_AMPLITUDE`] of the mean speed, or of 1e-3 m/s) has settled too.
+//! A transient (an oscillation still growing or decaying, a first stick phase that fills half
+//! the window) has not: the map, the bifurcation diagram and `sweep` say so instead of calling
+//! it a regime.
 
 use crate::run::Outcome;
 use friction_systems::STICK;
 use serde::Serialize;
+
+/// The relative difference between the two halves of the window (period, amplitudes, stick
+/// phases per cycle) up to which a run has settled: 1 %.
+pub const SETTLE_TOLERANCE: f64 = 1e-2;
+
+/// The fewest complete cycles each half of the window must hold for its returns to be
+/// compared.
+pub const MIN_CYCLES: usize = 2;
+
+/// v's half range, relative to the mean speed (or to 1e-3 m/s, whichever is larger), at or
+/// below which no oscillation is left: the run has settled at rest relative to its mean motion.
+pub const REST_AMPLITUDE: f64 = 1e-6;
 
 /// One body's sampled run: times, displacement, velocity, friction, and the times at which
 /// its contact switched into stick.
@@ -62,6 +83,8 @@ impl Trace {
 pub struct Settled {
     /// Start of the measured window, s.
     pub from: f64,
+    /// Its end: the end of the run, s.
+    pub to: f64,
     /// Switches into stick in the window.
     pub stick_phases: usize,
     /// Stick phases per cycle of the oscillation.
@@ -82,6 +105,87 @@ pub struct Settled {
     pub friction_mean: f64,
     /// Largest |friction|, N.
     pub friction_peak: f64,
+    /// The largest relative difference between the window's two halves in period, half
+    /// range of x − v̄·t, half range of v and stick phases per cycle (the last relative to
+    /// one); NaN where a half holds fewer than [`MIN_CYCLES`] cycles.
+    pub drift: f64,
+    /// Whether the run has settled: no oscillation left, or a `drift` of at most
+    /// [`SETTLE_TOLERANCE`].
+    pub settled: bool,
+}
+
+/// The measures of one half of the window that its returns are compared by.
+struct Half {
+    cycles: usize,
+    period: f64,
+    x_amplitude: f64,
+    v_amplitude: f64,
+    stick_per_cycle: f64,
+}
+
+/// The upward crossings of `v` through `level` among the samples `k` of `t`, located
+/// linearly between samples.
+fn crossings(t: &[f64], v: &[f64], k: &[usize], level: f64) -> Vec<f64> {
+    k.windows(2)
+        .filter(|w| v[w[0]] < level && v[w[1]] >= level)
+        .map(|w| {
+            let (a, b) = (v[w[0]] - level, v[w[1]] - level);
+            t[w[0]] + (t[w[1]] - t[w[0]]) * a / (a - b)
+        })
+        .collect()
+}
+
+impl Half {
+    /// The measures of the samples `k` of `trace`, about the mean velocity `v_mean`.
+    fn of(trace: &Trace, k: &[usize], v_mean: f64) -> Half {
+        let c = crossings(&trace.t, &trace.v, k, v_mean);
+        let cycles = c.len().saturating_sub(1);
+        let period = if cycles > 0 {
+            (c[cycles] - c[0]) / cycles as f64
+        } else {
+            f64::NAN
+        };
+        let half_range = |f: &dyn Fn(usize) -> f64| {
+            let (lo, hi) = k
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &i| {
+                    (lo.min(f(i)), hi.max(f(i)))
+                });
+            0.5 * (hi - lo)
+        };
+        let sticks = match (c.first(), c.last()) {
+            (Some(&a), Some(&b)) if cycles > 0 => trace
+                .stick_entries
+                .iter()
+                .filter(|&&s| s >= a && s < b)
+                .count(),
+            _ => 0,
+        };
+        Half {
+            cycles,
+            period,
+            x_amplitude: half_range(&|i| trace.x[i] - v_mean * trace.t[i]),
+            v_amplitude: half_range(&|i| trace.v[i]),
+            stick_per_cycle: sticks as f64 / cycles.max(1) as f64,
+        }
+    }
+
+    /// The largest relative difference to `other` ([`Settled::drift`]); NaN where either
+    /// holds fewer than [`MIN_CYCLES`] cycles.
+    fn drift(&self, other: &Half) -> f64 {
+        if self.cycles < MIN_CYCLES || other.cycles < MIN_CYCLES {
+            return f64::NAN;
+        }
+        let relative = |a: f64, b: f64| (a - b).abs() / a.abs().max(b.abs()).max(f64::MIN_POSITIVE);
+        [
+            relative(self.period, other.period),
+            relative(self.x_amplitude, other.x_amplitude),
+            relative(self.v_amplitude, other.v_amplitude),
+            (self.stick_per_cycle - other.stick_per_cycle).abs(),
+        ]
+        .into_iter()
+        .fold(0.0, f64::max)
+    }
 }
 
 /// `late / early`, undefined (NaN) where `early` is zero.
@@ -121,6 +225,7 @@ impl Settled {
         if k.is_empty() {
             return Settled {
                 from,
+                to: t1,
                 stick_phases: 0,
                 stick_per_cycle: f64::NAN,
                 period: f64::NAN,
@@ -130,6 +235,8 @@ impl Settled {
                 v_mean: f64::NAN,
                 friction_mean: f64::NAN,
                 friction_peak: f64::NAN,
+                drift: f64::NAN,
+                settled: false,
             };
         }
         let v_mean = time_mean(t, &trace.v, &k);
@@ -144,14 +251,7 @@ impl Settled {
         let range = |f: &dyn Fn(usize) -> f64| half_range(&k, f);
         let (first, second) = k.split_at(k.len() / 2);
         let v_of = |i: usize| trace.v[i];
-        let crossings: Vec<f64> = k
-            .windows(2)
-            .filter(|w| trace.v[w[0]] < v_mean && trace.v[w[1]] >= v_mean)
-            .map(|w| {
-                let (a, b) = (trace.v[w[0]] - v_mean, trace.v[w[1]] - v_mean);
-                t[w[0]] + (t[w[1]] - t[w[0]]) * a / (a - b)
-            })
-            .collect();
+        let crossings = crossings(t, &trace.v, &k, v_mean);
         let period = match crossings.len() {
             0 | 1 => f64::NAN,
             n => (crossings[n - 1] - crossings[0]) / (n - 1) as f64,
@@ -172,13 +272,17 @@ impl Settled {
             .iter()
             .filter(|&&s| s >= from && s <= t1)
             .count();
+        let v_amplitude = range(&v_of);
+        let at_rest = v_amplitude <= REST_AMPLITUDE * v_mean.abs().max(1e-3);
+        let drift = Half::of(trace, first, v_mean).drift(&Half::of(trace, second, v_mean));
         Settled {
             from,
+            to: t1,
             stick_phases,
             stick_per_cycle: stick_phases as f64 * period / (t1 - from),
             period,
             x_amplitude: range(&|i| trace.x[i] - v_mean * t[i]),
-            v_amplitude: range(&v_of),
+            v_amplitude,
             v_amplitude_ratio: ratio(half_range(second, &v_of), half_range(first, &v_of)),
             v_mean,
             friction_mean: time_mean(t, &trace.friction, &k),
@@ -186,6 +290,8 @@ impl Settled {
                 .iter()
                 .map(|&i| trace.friction[i].abs())
                 .fold(0.0, f64::max),
+            drift,
+            settled: at_rest || drift <= SETTLE_TOLERANCE,
         }
     }
 }

@@ -46,10 +46,9 @@ pub const STICK_SLIP_THRESHOLD: f64 = 0.5;
 /// steady sliding.
 pub const STEADY_AMPLITUDE: f64 = 1e-6;
 
-/// The ratio of the velocity amplitude over the second half of the window to that over the
-/// first above which an oscillation counts as sustained (below it, it dies out towards
-/// steady sliding).
-pub const SUSTAINED_RATIO: f64 = 0.95;
+/// How far a run that has not settled in its base span is extended: its span doubled until it
+/// settles, up to this many times the base (40 s → 320 s), after which it is `Unsettled`.
+pub const MAX_EXTENSION: u32 = 8;
 
 /// The settled state of the belt at one point.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -60,26 +59,37 @@ pub enum Regime {
     Oscillation,
     /// Carried by the belt through the whole window (a cycle longer than the run).
     Stuck,
-    /// Steady sliding: no oscillation left, or one dying out.
+    /// Steady sliding: no oscillation left (a velocity amplitude below
+    /// [`STEADY_AMPLITUDE`] of the belt speed).
     SteadySliding,
+    /// Not settled ([`Settled::settled`]): an oscillation still growing or dying out, or a
+    /// first stick phase that fills half the window. A transient is no regime.
+    Unsettled,
 }
 
 impl Regime {
-    /// The regime of a settled run on a belt at `v_belt`.
+    /// The regime of a run on a belt at `v_belt`: carried by the belt, at rest relative to
+    /// it, not settled, or by its stick phases per cycle.
     pub fn of(s: &Settled, v_belt: f64) -> Regime {
         let carried = s.v_amplitude <= 1e-12 * v_belt.abs().max(1.0)
             && (s.v_mean - v_belt).abs() <= 1e-9 * v_belt.abs().max(1.0);
         if carried {
             Regime::Stuck
+        } else if s.v_amplitude <= STEADY_AMPLITUDE * v_belt.abs().max(1e-3) {
+            Regime::SteadySliding
+        } else if !s.settled {
+            Regime::Unsettled
         } else if s.stick_per_cycle >= STICK_SLIP_THRESHOLD {
             Regime::StickSlip
-        } else if s.v_amplitude > STEADY_AMPLITUDE * v_belt.abs().max(1e-3)
-            && s.v_amplitude_ratio > SUSTAINED_RATIO
-        {
-            Regime::Oscillation
         } else {
-            Regime::SteadySliding
+            Regime::Oscillation
         }
+    }
+
+    /// Whether a longer run could change it: a transient, or a first stick phase longer than
+    /// the run.
+    pub fn is_transient(self) -> bool {
+        matches!(self, Regime::Unsettled | Regime::Stuck)
     }
 }
 
@@ -150,7 +160,27 @@ fn belt_spec(base: &RunSpec, v_belt: f64, k: f64, x0: f64) -> RunSpec {
     spec
 }
 
+/// The settled state of the belt run `spec` over the last `settle` of its span, which is
+/// doubled while the run has not settled ([`Regime::is_transient`]), up to [`MAX_EXTENSION`]
+/// times, the output points with it (the same spacing).
 fn settled(spec: &RunSpec, settle: f64) -> Result<Settled, ScenarioError> {
+    let base =
+        (spec.t_end).unwrap_or_else(|| spec.scenario.default_t_end(&spec.params, &spec.friction));
+    let mut factor = 1;
+    loop {
+        let mut longer = spec.clone();
+        longer.t_end = Some(base * f64::from(factor));
+        longer.output_points = (spec.output_points - 1) * factor as usize + 1;
+        let s = measured(&longer, settle)?;
+        if factor >= MAX_EXTENSION || !Regime::of(&s, spec.params.v_belt).is_transient() {
+            return Ok(s);
+        }
+        factor *= 2;
+    }
+}
+
+/// The settled-state measures of one run of `spec` over the last `settle` of its span.
+fn measured(spec: &RunSpec, settle: f64) -> Result<Settled, ScenarioError> {
     let o = run(spec, &mut |_| {})?;
     if let Some(error) = o.error {
         return Err(ScenarioError::Solver {

@@ -90,3 +90,25 @@ fn a_motion_that_starts_late_in_the_window_has_no_decay_ratio() {
     let r = Settled::of(&decaying, 0.5).v_amplitude_ratio;
     assert!(r > 0.5 && r < 1.0, "{r}");
 }
+
+/// A sustained oscillation has settled: its two half windows agree (drift near 0); one that
+/// dies out by a few per cent a cycle has not, whatever its ratio of amplitudes once allowed.
+#[test]
+fn a_run_has_settled_when_its_returns_agree_and_not_while_it_decays() {
+    let s = Settled::of(&harmonic(0.3, 0.02, 7.0, 2.0), 0.5);
+    assert!(s.settled && s.drift < 1e-3, "{s:?}");
+    let mut decaying = harmonic(0.3, 0.02, 7.0, 2.0);
+    let t_end = *decaying.t.last().unwrap();
+    for (i, t) in decaying.t.clone().iter().enumerate() {
+        let fade = (-0.5 * t / t_end).exp();
+        decaying.v[i] = 0.3 + (decaying.v[i] - 0.3) * fade;
+        decaying.x[i] = 0.3 * t + (decaying.x[i] - 0.3 * t) * fade;
+    }
+    let s = Settled::of(&decaying, 0.5);
+    assert!(!s.settled && s.drift > 0.1, "{s:?}");
+    // No oscillation at all has settled (at rest about its mean motion).
+    let mut still = harmonic(0.3, 0.0, 7.0, 2.0);
+    still.stick_entries.clear();
+    let s = Settled::of(&still, 0.5);
+    assert!(s.settled && s.drift.is_nan(), "{s:?}");
+}

@@ -2,7 +2,7 @@
 
 use friction_models::{FrictionParams, ModelId, Variant};
 use scenarios::stick_slip::{
-    belt_run, bifurcation, map, sliding_slope, stability_boundary, Regime,
+    belt_run, bifurcation, log_space, map, sliding_slope, stability_boundary, Regime,
 };
 
 fn cvs_belt() -> scenarios::RunSpec {
@@ -66,4 +66,46 @@ fn stick_slip_from_rest_coexists_with_stable_steady_sliding() {
         "{:?}",
         b[0].from_sliding
     );
+}
+
+/// Issue 36's three cells of `reproduce`'s map: inside the linearly unstable band, and called
+/// steady sliding from a 40 s run whose first stick phase (the body carried until the spring
+/// reaches F_s, 30 s at v_b = 0.0044 m/s with k = 56.2 N/m) filled half the window. Extended
+/// until their cycle-to-cycle returns converge, all three are stick-slip, as linear theory
+/// says.
+#[test]
+fn cells_whose_window_held_the_transient_are_extended_until_they_settle() {
+    let v = log_space(3e-3, 1.0, 16);
+    let k = log_space(10.0, 1000.0, 9);
+    for (v_belt, k) in [(v[1], k[3]), (v[2], k[2]), (v[4], k[0])] {
+        let p = map(&cvs_belt(), &[v_belt], &[k], 0.5, &|| {}).unwrap()[0];
+        assert!(p.linearly_unstable, "{p:?}");
+        assert_eq!(
+            p.regime,
+            Regime::StickSlip,
+            "v_b = {v_belt}, k = {k}: {p:?}"
+        );
+        assert!(p.settled.settled && p.settled.drift <= 1e-2, "{p:?}");
+        assert!(p.settled.to > 40.0, "extended: {p:?}");
+    }
+}
+
+/// Issue 36's two points of the bifurcation diagram from steady sliding: at 0.20 m/s the 40 s
+/// run drew 0.037 m, a transient above the 0.030 m cycle it grows into; at 0.22 m/s, just
+/// inside the linear boundary (0.2211 m/s), the oscillation grows so slowly that 320 s do not
+/// settle it, and it is drawn as unsettled instead of as an amplitude of 9e-8 m.
+#[test]
+fn transients_of_the_bifurcation_diagram_are_settled_or_called_unsettled() {
+    let b = bifurcation(&cvs_belt(), &[0.2, 0.22], 0.5, &|| {}).unwrap();
+    let (rest, sliding) = (&b[0].from_rest, &b[0].from_sliding);
+    assert_eq!(Regime::of(sliding, 0.2), Regime::StickSlip, "{sliding:?}");
+    assert!(
+        (sliding.x_amplitude - rest.x_amplitude).abs() < 1e-4,
+        "one cycle from both states: {} and {}",
+        sliding.x_amplitude,
+        rest.x_amplitude
+    );
+    let sliding = &b[1].from_sliding;
+    assert_eq!(Regime::of(sliding, 0.22), Regime::Unsettled, "{sliding:?}");
+    assert_eq!(sliding.to, 320.0, "extended to the bound: {sliding:?}");
 }
