@@ -2077,7 +2077,7 @@ fn converge_and_work_precision_name_the_runs_that_failed() {
     let text = String::from_utf8_lossy(&o.stdout);
     assert!(
         text.contains(
-            "rk4             2 of 4 runs failed (status in work-precision.csv); the first, at \
+            "rk4             2 of 6 runs failed (status in work-precision.csv); the first, at \
              h = 0.01: non-finite state"
         ),
         "{text}"

@@ -86,7 +86,10 @@ impl Study for StiffnessStudy<'_> {
             "rhs_evals",
             "jacobian_evals",
             "lu_factorizations",
-            "implicit_wins",
+            "work_estimate",
+            "work_low",
+            "work_high",
+            "winner",
         ]);
         for p in &s.points {
             for c in &p.costs {
@@ -106,25 +109,25 @@ impl Study for StiffnessStudy<'_> {
                     count(|r| r.stats.rhs_evals),
                     count(|r| r.stats.jacobian_evals),
                     count(|r| r.stats.lu_factorizations),
-                    Cell::Text(p.implicit_wins.to_string()),
+                    r.map_or(Cell::empty(), |r| Cell::Num(r.work_estimate)),
+                    r.and_then(|r| r.work_bracket[0])
+                        .map_or(Cell::empty(), Cell::Num),
+                    r.and_then(|r| r.work_bracket[1])
+                        .map_or(Cell::empty(), Cell::Num),
+                    Cell::Text(p.winner.map_or("", |w| w.name()).into()),
                 ]);
             }
         }
         let csv = out.path(".csv");
         out.files.add(csv.clone(), table.to_csv(&csv)?);
         out.add_json(&study_file(case, s))?;
-        // A solver that met the target at a value: a dot at its cost; one that did not: a cross
-        // at the top of the plot, named, each such solver in a row of its own.
-        let reached: Vec<(f64, f64)> = s
-            .points
-            .iter()
-            .flat_map(|p| {
-                p.costs
-                    .iter()
-                    .filter_map(|c| Some((p.value, c.reached.as_ref()?.work as f64)))
-            })
-            .collect();
-        let largest = reached.iter().map(|p| p.1).fold(1.0, f64::max);
+        // A solver that met the target at a value: a dot at its interpolated cost and a bar
+        // over the bracket its resolutions leave; one that did not: a cross at the top of the
+        // plot, named, each such solver in a row of its own.
+        let largest = (s.points.iter())
+            .flat_map(|p| p.costs.iter().filter_map(|c| c.reached.as_ref()))
+            .map(|r| r.work_bracket[1].unwrap_or(r.work_estimate))
+            .fold(1.0, f64::max);
         let mut series = Vec::new();
         let mut rows = 0;
         for (method, &color) in methods.iter().zip(PALETTE.iter().cycle()) {
@@ -135,8 +138,21 @@ impl Study for StiffnessStudy<'_> {
                     .filter_map(|p| Some((p.value, p.costs.iter().find(|c| c.solver == label)?)))
             };
             let met: Vec<(f64, f64)> = costs()
-                .filter_map(|(v, c)| Some((v, c.reached.as_ref()?.work as f64)))
+                .filter_map(|(v, c)| Some((v, c.reached.as_ref()?.work_estimate)))
                 .collect();
+            for (v, r) in costs().filter_map(|(v, c)| Some((v, c.reached.as_ref()?))) {
+                let [lo, hi] = r.work_bracket;
+                series.push(Series {
+                    label: None,
+                    points: vec![
+                        (v, lo.unwrap_or(r.work_estimate)),
+                        (v, hi.unwrap_or(r.work_estimate)),
+                    ],
+                    color,
+                    width: 1,
+                    marker: Marker::None,
+                });
+            }
             let top = row_at_top(largest, rows);
             let missed: Vec<(f64, f64)> = costs()
                 .filter(|(_, c)| c.reached.is_none())
@@ -171,7 +187,8 @@ impl Study for StiffnessStudy<'_> {
                 case.describe()
             ),
             x_label: parameter.to_string(),
-            y_label: "work (f evaluations + dim per Jacobian)".into(),
+            y_label: "work at the target (f evaluations + dim per Jacobian), with its bracket"
+                .into(),
             series,
             legend: Corner::UpperRight,
             log: true,

@@ -176,7 +176,9 @@ fn levels_outside_the_asymptotic_range_do_not_make_a_small_richardson_estimate()
 
 #[test]
 fn the_stiffness_verdict_names_a_crossover_only_inside_the_sweep() {
-    use scenarios::studies::{crossover, Cost, Reached, StepKind, Stiffness, StiffnessPoint};
+    use scenarios::studies::{
+        crossover, Cost, Reached, StepKind, Stiffness, StiffnessPoint, Winner,
+    };
     // Each value's winner (None: no method met the target there), among the methods studied.
     let studied = |outcomes: &[Option<bool>], kinds: &[bool]| {
         let points: Vec<StiffnessPoint> = outcomes
@@ -195,10 +197,18 @@ fn the_stiffness_verdict_names_a_crossover_only_inside_the_sweep() {
                             error: 1e-4,
                             stats: integrators::Stats::default(),
                             work: 10,
+                            work_estimate: 10.0,
+                            work_bracket: [Some(9.0), Some(10.0)],
                         }),
                     })
                     .collect(),
-                implicit_wins: w == Some(true),
+                winner: w.map(|i| {
+                    if i {
+                        Winner::Implicit
+                    } else {
+                        Winner::Explicit
+                    }
+                }),
             })
             .collect();
         Stiffness {
@@ -696,6 +706,73 @@ fn the_confidence_factor_is_students_t() {
     // t(0.975; 40) = 2.0211, t(0.975; 120) = 1.9799 (Abramowitz & Stegun, Table 26.10).
     assert!((student_t_975(40) - 2.0211).abs() < 2e-4);
     assert!((student_t_975(120) - 1.9799).abs() < 1e-4);
+}
+
+/// A run of a stiffness study at tolerance `tol` with grid error `error` and `work`.
+fn costed(tol: f64, error: f64, work: usize) -> scenarios::studies::StudyRun {
+    scenarios::studies::StudyRun {
+        solver: "m".into(),
+        resolution: tol,
+        step: scenarios::studies::StepKind::Adaptive,
+        errors: scenarios::studies::Errors {
+            grid_max: error,
+            ..scenarios::studies::Errors::UNMEASURED
+        },
+        measures: Default::default(),
+        stats: integrators::Stats::default(),
+        work,
+        failure: None,
+        verdict: scenarios::verdict::Verdict::OK,
+        diverged: false,
+        wall_time_s: 0.0,
+    }
+}
+
+/// The cost to reach a target is interpolated in log–log between the runs that bracket it,
+/// with the bracket as its uncertainty; two kinds within each other's brackets are a tie
+/// (issue 36: Dormand–Prince at 86 evaluations and BDF at 74 were read as an implicit win).
+#[test]
+fn the_cost_at_the_target_is_interpolated_and_overlapping_brackets_tie() {
+    use scenarios::studies::{reached, winner, Cost, Winner};
+    let runs = [costed(1e-2, 1e-2, 100), costed(1e-3, 1e-4, 1000)];
+    let r = reached(&runs.iter().collect::<Vec<_>>(), 1e-3).unwrap();
+    // Half way in log(error) from 1e-2 to 1e-4: half way in log(work), 10^2.5.
+    assert!((r.work_estimate - 10f64.powf(2.5)).abs() < 1e-9, "{r:?}");
+    assert_eq!(r.work_bracket, [Some(100.0), Some(1000.0)]);
+    assert_eq!((r.resolution, r.work), (1e-3, 1000));
+    // The loosest run already meets it: the cost is at most its work.
+    let r = reached(&[&costed(1e-2, 1e-4, 50)], 1e-3).unwrap();
+    assert_eq!(
+        (r.work_estimate, r.work_bracket),
+        (50.0, [None, Some(50.0)])
+    );
+    // A run judged inaccurate does not meet the target; before one that does, it bounds the
+    // cost from below but is no point to interpolate from.
+    let mut bad = costed(1e-2, 1e-4, 20);
+    bad.verdict = scenarios::verdict::Verdict::against_reference(1.0, 0.5);
+    assert_eq!(reached(&[&bad], 1e-3), None);
+    let r = reached(&[&bad, &costed(1e-3, 1e-4, 80)], 1e-3).unwrap();
+    assert_eq!(
+        (r.work_estimate, r.work_bracket),
+        (80.0, [Some(20.0), Some(80.0)])
+    );
+    let cost = |implicit: bool, estimate: f64, lo: f64, hi: f64| Cost {
+        solver: if implicit { "bdf" } else { "dopri5" }.into(),
+        implicit,
+        reached: Some(scenarios::studies::Reached {
+            work_estimate: estimate,
+            work_bracket: [Some(lo), Some(hi)],
+            ..reached(&[&costed(1e-2, 1e-4, 50)], 1e-3).unwrap()
+        }),
+    };
+    let tie = [cost(false, 86.0, 60.0, 120.0), cost(true, 74.0, 50.0, 90.0)];
+    assert_eq!(winner(&tie), Some(Winner::Tie));
+    let apart = [
+        cost(false, 300.0, 200.0, 400.0),
+        cost(true, 74.0, 50.0, 90.0),
+    ];
+    assert_eq!(winner(&apart), Some(Winner::Implicit));
+    assert_eq!(winner(&apart[..1]), Some(Winner::Explicit));
 }
 
 /// Dormand–Prince under a name of the user's choosing.

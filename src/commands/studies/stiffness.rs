@@ -53,19 +53,20 @@ pub struct StiffnessArgs {
         allow_hyphen_values = true
     )]
     pub target: f64,
-    /// Step sizes of rk4, coarse to fine.
+    /// Step sizes of rk4, coarse to fine (three a decade).
     #[arg(
         long,
         value_delimiter = ',',
         allow_hyphen_values = true,
-        default_value = "0.01,0.001,0.0001"
+        default_value = "0.01,0.00464,0.00215,0.001,0.000464,0.000215,0.0001"
     )]
     pub dt_list: Vec<f64>,
-    /// Tolerances tried, loose to tight.
+    /// Tolerances tried, loose to tight (three a decade: the cost at the target is
+    /// interpolated between the two that bracket it).
     #[arg(
         long,
         value_delimiter = ',',
-        default_value = "1e-2,1e-3,1e-4,1e-5,1e-6,1e-7"
+        default_value = "0.01,0.00464,0.00215,0.001,0.000464,0.000215,0.0001,4.64e-5,2.15e-5,1e-5,4.64e-6,2.15e-6,1e-6,4.64e-7,2.15e-7,1e-7"
     )]
     pub tol_list: Vec<f64>,
 }

@@ -24,7 +24,9 @@ pub use orders::{
     observed_order, orders, student_t_975, Fit, PairOrder, MIN_PAIRS, ORDER_AGREEMENT, ROUND_OFF,
 };
 pub use scaling::{scaling, Scaling, ScalingRun};
-pub use stiffness::{crossover, stiffness, Cost, Reached, Stiffness, StiffnessPoint, Sweep};
+pub use stiffness::{
+    crossover, reached, stiffness, winner, Cost, Reached, Stiffness, StiffnessPoint, Sweep, Winner,
+};
 pub use work_precision::{work_precision, WorkPrecision};
 
 /// Runs `case` with each (method, step) against its reference for a study of `studied`

@@ -1,36 +1,70 @@
-//! The stiffness study: the cheapest run of each method that meets a target error, over the
-//! values of a stiffness parameter, and where the implicit methods overtake the explicit ones.
+//! The stiffness study: each method's cost to reach a target error, interpolated between the
+//! resolutions that bracket it, over the values of a stiffness parameter, and where the
+//! implicit methods overtake the explicit ones (a tie where the brackets cannot tell).
 
-use super::{batch, Method, StepKind, StudyCase};
+use super::{batch, Method, StepKind, StudyCase, StudyRun};
 use crate::run::ScenarioError;
 use integrators::Stats;
 use serde::Serialize;
 
-/// One solver at one stiffness value: its cheapest run that met the target, if one did.
+/// One solver at one stiffness value: how it met the target, if it did.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Cost {
     /// The method's label.
     pub solver: String,
     /// Whether it is implicit.
     pub implicit: bool,
-    /// Its cheapest run that met the target; `None` (JSON `null`, empty cells) where no run
+    /// How it met the target ([`reached`]); `None` (JSON `null`, empty cells) where no run
     /// did: a cost that was not paid is not a cost of 0.
     pub reached: Option<Reached>,
 }
 
-/// The cheapest run of a solver that met a stiffness study's target.
+/// How a solver met a stiffness study's target: its loosest run that met it, and its cost at
+/// the target itself, interpolated between the runs that bracket it.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Reached {
-    /// Its resolution: a step size or a tolerance.
+    /// The loosest resolution that met the target: a step size or a tolerance.
     pub resolution: f64,
     /// Which that resolution is: `fixed` or `adaptive`.
     pub step: StepKind,
-    /// Its error (maximum over the time grid).
+    /// That run's error (maximum over the time grid).
     pub error: f64,
-    /// Its statistics.
+    /// That run's statistics.
     pub stats: Stats,
-    /// Its work ([`Stats::work`]).
+    /// That run's work ([`Stats::work`]).
     pub work: usize,
+    /// The work at the target error: log(work) interpolated linearly in log(error) between
+    /// the last run that missed the target and the first that met it (that run's work where
+    /// none missed it before).
+    pub work_estimate: f64,
+    /// The work the bracket leaves possible: from the run that missed to the run that met;
+    /// the lower bound is `None` where the loosest run already met the target (the cost is
+    /// at most its work).
+    pub work_bracket: [Option<f64>; 2],
+}
+
+/// Which kind of method reaches the target more cheaply at one value.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Winner {
+    /// The cheapest implicit method, beyond the bracket of the cheapest explicit one.
+    Implicit,
+    /// The cheapest explicit method, beyond the bracket of the cheapest implicit one.
+    Explicit,
+    /// The two cheapest are within each other's brackets: the grid of resolutions cannot
+    /// tell them apart.
+    Tie,
+}
+
+impl Winner {
+    /// Its name, as the files write it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Winner::Implicit => "implicit",
+            Winner::Explicit => "explicit",
+            Winner::Tie => "tie",
+        }
+    }
 }
 
 /// The costs at one value of the stiffness parameter.
@@ -40,9 +74,78 @@ pub struct StiffnessPoint {
     pub value: f64,
     /// One cost per solver.
     pub costs: Vec<Cost>,
-    /// Whether the cheapest implicit solver beats the cheapest explicit one in work
-    /// ([`Stats::work`]).
-    pub implicit_wins: bool,
+    /// Which kind wins ([`winner`]); `None` where no method met the target.
+    pub winner: Option<Winner>,
+}
+
+/// The kind that reaches the target more cheaply among `costs`: the cheapest estimate of each
+/// kind compared, a tie where their brackets overlap (an open lower bound reaching down to 0);
+/// the one kind that met it where the other did not; `None` where neither did.
+pub fn winner(costs: &[Cost]) -> Option<Winner> {
+    let best = |implicit: bool| {
+        (costs.iter())
+            .filter(|c| c.implicit == implicit)
+            .filter_map(|c| c.reached.as_ref())
+            .min_by(|a, b| a.work_estimate.total_cmp(&b.work_estimate))
+    };
+    match (best(true), best(false)) {
+        (Some(i), Some(e)) => {
+            let range = |r: &Reached| {
+                let [lo, hi] = r.work_bracket;
+                (lo.unwrap_or(0.0), hi.unwrap_or(r.work_estimate))
+            };
+            let ((i_lo, i_hi), (e_lo, e_hi)) = (range(i), range(e));
+            Some(if i_lo.max(e_lo) <= i_hi.min(e_hi) {
+                Winner::Tie
+            } else if i.work_estimate < e.work_estimate {
+                Winner::Implicit
+            } else {
+                Winner::Explicit
+            })
+        }
+        (Some(_), None) => Some(Winner::Implicit),
+        (None, Some(_)) => Some(Winner::Explicit),
+        (None, None) => None,
+    }
+}
+
+/// How one method's `runs` (loose to tight) meet `target`: its first `ok` run whose grid
+/// error meets it, and the cost at the target interpolated against the run before it ([`Reached`]).
+/// The run before is the last that ran to its end (a failed run says nothing of its error); if
+/// it was judged inaccurate, its work still bounds the cost from below, but its error is no
+/// point to interpolate from: the estimate is then the work of the run that met the target.
+pub fn reached(runs: &[&StudyRun], target: f64) -> Option<Reached> {
+    let ended: Vec<&&StudyRun> = (runs.iter())
+        .filter(|r| r.failure.is_none() && r.errors.grid_max.is_finite())
+        .collect();
+    let j = (ended.iter()).position(|r| r.verdict.is_ok() && r.errors.grid_max <= target)?;
+    let met = ended[j];
+    let (work_estimate, work_bracket) = match j.checked_sub(1).map(|i| ended[i]) {
+        Some(missed) => {
+            let (e0, w0) = (missed.errors.grid_max.ln(), (missed.work as f64).ln());
+            let (e1, w1) = (met.errors.grid_max.ln(), (met.work as f64).ln());
+            let estimate = if missed.verdict.is_ok() && e1 < e0 {
+                (w0 + (target.ln() - e0) * (w1 - w0) / (e1 - e0)).exp()
+            } else {
+                met.work as f64
+            };
+            let (lo, hi) = (
+                (missed.work.min(met.work)) as f64,
+                (missed.work.max(met.work)) as f64,
+            );
+            (estimate.clamp(lo, hi), [Some(lo), Some(hi)])
+        }
+        None => (met.work as f64, [None, Some(met.work as f64)]),
+    };
+    Some(Reached {
+        resolution: met.resolution,
+        step: met.step,
+        error: met.errors.grid_max,
+        stats: met.stats,
+        work: met.work,
+        work_estimate,
+        work_bracket,
+    })
 }
 
 /// A stiffness sweep.
@@ -63,6 +166,16 @@ impl StiffnessPoint {
     pub fn decided(&self) -> bool {
         self.costs.iter().any(|c| c.reached.is_some())
     }
+
+    /// Whether one kind wins outright (not a tie, not undecided).
+    fn won(&self) -> bool {
+        matches!(self.winner, Some(Winner::Implicit | Winner::Explicit))
+    }
+
+    /// Whether the implicit methods win outright.
+    pub fn implicit_wins(&self) -> bool {
+        self.winner == Some(Winner::Implicit)
+    }
 }
 
 /// The first value (in sweep order) from which the implicit solvers win, where the explicit
@@ -71,9 +184,9 @@ impl StiffnessPoint {
 /// kind wins at every value or the winner changes more than once (as [`Stiffness::verdict`]
 /// says).
 pub fn crossover(points: &[StiffnessPoint]) -> Option<f64> {
-    let decided: Vec<&StiffnessPoint> = points.iter().filter(|p| p.decided()).collect();
-    let k = decided.iter().position(|p| p.implicit_wins)?;
-    (k > 0 && decided[k..].iter().all(|p| p.implicit_wins)).then(|| decided[k].value)
+    let decided: Vec<&StiffnessPoint> = points.iter().filter(|p| p.won()).collect();
+    let k = decided.iter().position(|p| p.implicit_wins())?;
+    (k > 0 && decided[k..].iter().all(|p| p.implicit_wins())).then(|| decided[k].value)
 }
 
 impl Stiffness {
@@ -118,25 +231,45 @@ impl Stiffness {
                 self.parameter
             );
         }
-        let verdict = self.winners(&decided);
-        if undecided.is_empty() {
-            verdict
-        } else {
+        let won: Vec<&StiffnessPoint> = decided.iter().copied().filter(|p| p.won()).collect();
+        let ties: Vec<String> = (decided.iter())
+            .filter(|p| p.winner == Some(Winner::Tie))
+            .map(|p| p.value.to_string())
+            .collect();
+        let mut verdict = if won.is_empty() {
             format!(
-                "{verdict}; no method met the target at {} = {}",
+                "a tie at every {} where a method met the target: the cheapest implicit and \
+                 explicit methods are within each other's brackets",
+                self.parameter
+            )
+        } else {
+            self.winners(&won)
+        };
+        if !won.is_empty() && !ties.is_empty() {
+            verdict += &format!(
+                "; a tie (within the brackets of the resolutions) at {} = {}",
+                self.parameter,
+                ties.join(", ")
+            );
+        }
+        if !undecided.is_empty() {
+            verdict += &format!(
+                "; no method met the target at {} = {}",
                 self.parameter,
                 undecided.join(", ")
-            )
+            );
         }
+        verdict
     }
 
-    /// Which kind wins over the `decided` values: everywhere, from a crossover on, or by turns.
+    /// Which kind wins over the `decided` values (each won outright): everywhere, from a
+    /// crossover on, or by turns.
     fn winners(&self, decided: &[&StiffnessPoint]) -> String {
-        let wins: Vec<bool> = decided.iter().map(|p| p.implicit_wins).collect();
+        let wins: Vec<bool> = decided.iter().map(|p| p.implicit_wins()).collect();
         let values = |implicit: bool| {
             decided
                 .iter()
-                .filter(|p| p.implicit_wins == implicit)
+                .filter(|p| p.implicit_wins() == implicit)
                 .map(|p| p.value.to_string())
                 .collect::<Vec<_>>()
                 .join(", ")
@@ -183,8 +316,9 @@ pub struct Sweep<'a> {
     pub target: f64,
 }
 
-/// Sweeps the parameter over its values (every value's runs in one list) and finds, for each solver, the cheapest
-/// resolution in `step_sizes` (or `tolerances`) whose grid error meets the target.
+/// Sweeps the parameter over its values (every value's runs in one list) and finds, for each
+/// solver, its cost to reach the target ([`reached`]) among `step_sizes` (or `tolerances`),
+/// and at each value which kind wins ([`winner`]).
 pub fn stiffness(
     case: &dyn StudyCase,
     sweep: Sweep,
@@ -214,41 +348,20 @@ pub fn stiffness(
             .iter()
             .map(|m| {
                 let label = m.label();
-                let met = runs
-                    .iter()
-                    .filter(|r| {
-                        r.solver == label && r.verdict.is_ok() && r.errors.grid_max <= target
-                    })
-                    .min_by_key(|r| r.work);
+                let mut mine: Vec<&StudyRun> = runs.iter().filter(|r| r.solver == label).collect();
+                // Loose to tight: the largest step size or tolerance first.
+                mine.sort_by(|a, b| b.resolution.total_cmp(&a.resolution));
                 Cost {
                     solver: label,
                     implicit: m.is_implicit(),
-                    reached: met.map(|r| Reached {
-                        resolution: r.resolution,
-                        step: r.step,
-                        error: r.errors.grid_max,
-                        stats: r.stats,
-                        work: r.work,
-                    }),
+                    reached: reached(&mine, target),
                 }
             })
             .collect();
-        let best = |implicit: bool| {
-            costs
-                .iter()
-                .filter(|c| c.implicit == implicit)
-                .filter_map(|c| c.reached.as_ref().map(|r| r.work))
-                .min()
-        };
-        let implicit_wins = match (best(true), best(false)) {
-            (Some(i), Some(e)) => i < e,
-            (Some(_), None) => true,
-            _ => false,
-        };
         points.push(StiffnessPoint {
             value,
+            winner: winner(&costs),
             costs,
-            implicit_wins,
         });
     }
     Ok(Stiffness {
