@@ -176,8 +176,29 @@ fn reproduce_writes_six_figures_notes_and_report_deterministically() {
         "cost-chain-timing.png",
         "cost-chain-timing.csv",
         "work-precision-chain-100.png",
+        "work-precision-belt-CS-timing.png",
     ] {
         assert!(a.join("studies").join(f).exists(), "{f}");
+    }
+    // The belt's wall times: five repeats each, their median within their extremes and
+    // quartiles.
+    let timing =
+        std::fs::read_to_string(a.join("studies/work-precision-belt-CS-timing.csv")).unwrap();
+    let mut rows = timing.lines();
+    assert_eq!(
+        rows.next().unwrap(),
+        "solver,h,tol,repeats,wall_time_median_s,wall_time_min_s,wall_time_q1_s,\
+         wall_time_q3_s,wall_time_max_s"
+    );
+    for row in rows {
+        let cells: Vec<&str> = row.split(',').collect();
+        let t: Vec<f64> = cells[4..].iter().map(|c| c.parse().unwrap()).collect();
+        assert_eq!(cells[3], "5", "{row}");
+        let [median, min, q1, q3, max] = [t[0], t[1], t[2], t[3], t[4]];
+        assert!(
+            min <= q1 && q1 <= median && median <= q3 && q3 <= max,
+            "{row}"
+        );
     }
     assert_eq!(
         std::fs::read(a.join("studies/cost-chain.csv")).unwrap(),

@@ -379,7 +379,7 @@ fn add_studies(
                 0.001, 0.000464, 0.000215, 0.0001, 4.64e-5, 2.15e-5, 1e-5, 4.64e-6, 2.15e-6, 1e-6,
                 4.64e-7, 2.15e-7, 1e-7, 4.64e-8, 2.15e-8, 1e-8,
             ],
-            repeats: 3,
+            repeats: 5,
         },
         &mut t,
         "work-precision-belt-CS",

@@ -139,7 +139,7 @@ mod tests {
             verdict: Verdict::of_error(failure.as_ref()).unwrap_or(Verdict::OK),
             failure,
             diverged: false,
-            wall_time_s: 0.0,
+            wall_time: Default::default(),
         }
     }
 

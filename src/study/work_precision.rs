@@ -59,34 +59,73 @@ impl Study for WorkPrecisionStudy<'_> {
         super::nothing_measured("work-precision", &w.runs)
     }
 
-    /// `{stem}.csv` (a row per run), `{stem}-timing.csv` (their median wall times, which
-    /// vary between runs), `{stem}.json` and `{stem}.png`/`.svg`.
+    /// `{stem}.csv` (a row per run), `{stem}-timing.csv` (their wall times over the repeats:
+    /// median, extremes and quartiles, which vary between runs), `{stem}.json`,
+    /// `{stem}.png`/`.svg` (error against counted work) and `{stem}-timing.png`/`.svg` (error
+    /// against the median wall time).
     fn write(&self, w: &WorkPrecision, out: &mut StudyFiles) -> Result<(), AppError> {
         let case = self.case;
         let csv = out.path(".csv");
         out.files.add(csv.clone(), runs_table(&w.runs, &csv)?);
-        let mut timing = Table::new(&["solver", "h", "tol", "wall_time_median_s"]);
+        let mut timing = Table::new(&[
+            "solver",
+            "h",
+            "tol",
+            "repeats",
+            "wall_time_median_s",
+            "wall_time_min_s",
+            "wall_time_q1_s",
+            "wall_time_q3_s",
+            "wall_time_max_s",
+        ]);
         for r in &w.runs {
             let [h, tol] = resolution_cells(Some(r.step), Some(r.resolution));
+            let t = r.wall_time;
             timing.rows.push(vec![
                 Cell::Text(r.solver.clone()),
                 h,
                 tol,
-                Cell::Num(r.wall_time_s),
+                Cell::Num(t.repeats as f64),
+                Cell::Num(t.median),
+                Cell::Num(t.min),
+                Cell::Num(t.q1),
+                Cell::Num(t.q3),
+                Cell::Num(t.max),
             ]);
         }
         let timing_csv = out.path("-timing.csv");
         out.files
             .add(timing_csv.clone(), timing.to_csv(&timing_csv)?);
         out.add_json(&study_file(case, w))?;
+        let error = "max error on the time grid, max(|Δx| m, |Δv| m/s)";
         let plot = Plot {
             title: format!("Work-precision: {}", case.describe()),
             x_label: "work (f evaluations + dim per Jacobian)".into(),
-            y_label: "max error on the time grid".into(),
+            y_label: error.into(),
             series: per_solver_series(&w.runs, |_| true, |r| r.work as f64, |r| r.errors.grid_max),
             legend: Corner::UpperRight,
             log: true,
         };
-        out.files.add_plot(&out.path(""), &plot)
+        out.files.add_plot(&out.path(""), &plot)?;
+        // Error against wall time, the median of the repeats: a figure of its own, as the
+        // timing table (it differs from run to run).
+        let timed = Plot {
+            title: format!(
+                "Work-precision against wall time (median of {} repeats): {}",
+                self.repeats,
+                case.describe()
+            ),
+            x_label: "wall time, median (s)".into(),
+            y_label: error.into(),
+            series: per_solver_series(
+                &w.runs,
+                |_| true,
+                |r| r.wall_time.median,
+                |r| r.errors.grid_max,
+            ),
+            legend: Corner::UpperRight,
+            log: true,
+        };
+        out.files.add_plot(&out.path("-timing"), &timed)
     }
 }

@@ -212,6 +212,7 @@ where
             rejected_newton: d.number_of_nonlinear_solver_fails,
             lu_factorizations: d.number_of_linear_solver_setups,
             newton_iterations: d.number_of_nonlinear_solver_iterations,
+            linear_solves: d.number_of_nonlinear_solver_iterations,
             ..Stats::default()
         }
     }

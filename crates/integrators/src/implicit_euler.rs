@@ -185,6 +185,7 @@ impl ImplicitEuler {
                 self.delta[i] = -(m * (self.y_new[i] - self.state.y[i]) - h * self.f_new[i]);
             }
             self.stats.newton_iterations += 1;
+            self.stats.linear_solves += 1;
             if !self.lu.solve(&mut self.delta) {
                 return Err("the linear solve gave a non-finite correction".into());
             }

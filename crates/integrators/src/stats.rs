@@ -21,8 +21,12 @@ pub struct Stats {
     pub jacobian_evals: usize,
     /// LU factorisations of the iteration matrix M − h·γ·J.
     pub lu_factorizations: usize,
-    /// Newton iterations (each one linear solve).
+    /// Newton iterations.
     pub newton_iterations: usize,
+    /// Linear back-solves with a factorised iteration matrix: one a Newton iteration in
+    /// implicit Euler and in diffsol's implicit methods (whose Newton solver makes one linear
+    /// solve an iteration), one a correction in Moreau–Jean's scheme.
+    pub linear_solves: usize,
     /// Events handled.
     pub events: usize,
 }
@@ -52,6 +56,7 @@ impl AddAssign for Stats {
         self.jacobian_evals += o.jacobian_evals;
         self.lu_factorizations += o.lu_factorizations;
         self.newton_iterations += o.newton_iterations;
+        self.linear_solves += o.linear_solves;
         self.events += o.events;
     }
 }

@@ -65,7 +65,9 @@ fn diffsol_and_native_solvers_agree_on_robertson() {
             method.name()
         );
         assert!(
-            s.stats.lu_factorizations > 0 && s.stats.newton_iterations > 0,
+            s.stats.lu_factorizations > 0
+                && s.stats.newton_iterations > 0
+                && s.stats.linear_solves == s.stats.newton_iterations,
             "{:?}",
             s.stats
         );

@@ -98,6 +98,18 @@ fn implicit_euler_is_stable_where_rk4_is_not() {
         "{:?}",
         s.stats
     );
+    // One back-solve with the factorised matrix per Newton iteration, and no other: the
+    // counted cost of the run, pinned (a change of the Newton iteration or of its convergence
+    // test shows here): 48 evaluations, 1 Jacobian, 1 LU factorisation, 27 Newton iterations
+    // and 27 back-solves.
+    let s = s.stats;
+    let counts = (
+        s.rhs_evals,
+        s.jacobian_evals,
+        s.lu_factorizations,
+        s.newton_iterations,
+    );
+    assert_eq!((counts, s.linear_solves), ((48, 1, 1, 27), 27), "{s:?}");
     let explicit = solve(&ProtheroRobinson, Box::new(Rk4::new(0.05, 1)), &[0.0], o);
     let error = explicit.unwrap_err().error;
     assert!(matches!(error, SolverError::NonFinite { .. }), "{error}");

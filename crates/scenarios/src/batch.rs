@@ -13,7 +13,7 @@ use crate::cases::{Measures, StudyCase};
 use crate::method::{resolution, Method, StepKind};
 use crate::run::{ScenarioError, SwitchingKind};
 use crate::schedule;
-use crate::study_run::{Errors, Reference, StudyRun, REFERENCE_TOLERANCE};
+use crate::study_run::{Errors, Reference, StudyRun, WallTimes, REFERENCE_TOLERANCE};
 use crate::verdict::Verdict;
 use integrators::{DiffsolMethod, Solver, StepControl};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -179,7 +179,7 @@ fn check_labels(jobs: &[(Method, StepControl)]) -> Result<(), ScenarioError> {
 }
 
 /// Runs `jobs` on every case of `cases`, each `1 + repeats` times (the repeats only for their
-/// wall time: [`StudyRun::wall_time_s`] is the median), with each case's reference when
+/// wall time: [`StudyRun::wall_time`] is their median and spread), with each case's reference when
 /// `studied` gives the solvers of the study, as one list (see the module). `progress` is told
 /// of every run and repeat (not of the reference runs). Errors: the first failing reference
 /// (by case), then the first run that could not be set up; before any run, two different
@@ -270,7 +270,7 @@ pub fn run_cases(
                 diverged: crate::run::diverged(!method.is_implicit(), step, o.error.as_ref()),
                 verdict: Verdict::of_error(o.error.as_ref()).unwrap_or(Verdict::OK),
                 failure: o.error,
-                wall_time_s: o.wall_time_s,
+                wall_time: WallTimes::of(&[o.wall_time_s]),
             })))
         }
     })?;
@@ -292,13 +292,12 @@ pub fn run_cases(
             let Some(Done::Run(mut run)) = done.next() else {
                 unreachable!("results come back in the order of the tasks")
             };
-            let mut times = vec![run.wall_time_s];
+            let mut times = vec![run.wall_time.median];
             times.extend(done.by_ref().take(repeats).filter_map(|d| match d {
                 Done::Time(t) => t,
                 _ => unreachable!("results come back in the order of the tasks"),
             }));
-            times.sort_by(f64::total_cmp);
-            run.wall_time_s = times[times.len() / 2];
+            run.wall_time = WallTimes::of(&times);
             // A failed run ends early: its last state is not a state at the end, and it has
             // no error against the reference.
             if let (Some((_, m)), None) = (&reference, &run.failure) {

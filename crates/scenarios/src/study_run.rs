@@ -175,10 +175,49 @@ pub struct StudyRun {
     /// ([`crate::run::diverged`]).
     #[serde(skip)]
     pub diverged: bool,
-    /// Wall time of the run, s: the median over it and its timing repeats (not
-    /// deterministic: kept out of the study's main files).
+    /// Wall time of the run over it and its timing repeats (not deterministic: kept out of
+    /// the study's main files).
     #[serde(skip)]
-    pub wall_time_s: f64,
+    pub wall_time: WallTimes,
+}
+
+/// The wall times of a run over its repeats, s: their median and spread.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct WallTimes {
+    /// How many times the run was timed.
+    pub repeats: usize,
+    /// The median.
+    pub median: f64,
+    /// The smallest.
+    pub min: f64,
+    /// The first quartile (linear interpolation between order statistics, Hyndman & Fan's
+    /// type 7, as numpy's default).
+    pub q1: f64,
+    /// The third quartile.
+    pub q3: f64,
+    /// The largest.
+    pub max: f64,
+}
+
+impl WallTimes {
+    /// The median and spread of `times` (at least one).
+    pub fn of(times: &[f64]) -> WallTimes {
+        let mut t = times.to_vec();
+        t.sort_by(f64::total_cmp);
+        let quantile = |p: f64| {
+            let x = p * (t.len() - 1) as f64;
+            let (i, f) = (x.floor() as usize, x.fract());
+            t[i] + f * (t[(i + 1).min(t.len() - 1)] - t[i])
+        };
+        WallTimes {
+            repeats: t.len(),
+            median: quantile(0.5),
+            min: t[0],
+            q1: quantile(0.25),
+            q3: quantile(0.75),
+            max: t[t.len() - 1],
+        }
+    }
 }
 
 /// A run's failure as its message, or null: what the study files write.

@@ -444,7 +444,9 @@ fn a_run_that_failed_is_not_timed_again() {
         w.runs[0].failure,
         Some(integrators::SolverError::TooManySteps { .. })
     ));
-    assert!(w.runs[0].wall_time_s > 0.0 && w.runs[1].failure.is_none());
+    assert!(w.runs[0].wall_time.median > 0.0 && w.runs[1].failure.is_none());
+    // The failed run was timed once, the other four times.
+    assert_eq!((w.runs[0].wall_time.repeats, w.runs[1].wall_time.repeats), (1, 4));
 }
 
 #[test]
@@ -512,7 +514,7 @@ fn a_sweep_in_one_list_gives_each_case_its_own_results_on_one_or_two_threads() {
     assert!((steps(3) - 50.0).abs() < 1e-9, "{}", steps(3));
     // Debug text compares NaN errors (event counts that differ) as equal.
     let without_times = |mut runs: Vec<scenarios::studies::StudyRun>| {
-        runs.iter_mut().for_each(|r| r.wall_time_s = 0.0);
+        runs.iter_mut().for_each(|r| r.wall_time = Default::default());
         format!("{runs:?}")
     };
     let alone: Vec<_> = cases
@@ -724,8 +726,19 @@ fn costed(tol: f64, error: f64, work: usize) -> scenarios::studies::StudyRun {
         failure: None,
         verdict: scenarios::verdict::Verdict::OK,
         diverged: false,
-        wall_time_s: 0.0,
+        wall_time: Default::default(),
     }
+}
+
+/// The median and spread of a run's wall times: quartiles by linear interpolation between
+/// the order statistics (numpy's default).
+#[test]
+fn wall_times_give_their_median_extremes_and_quartiles() {
+    let t = scenarios::studies::WallTimes::of(&[5.0, 1.0, 4.0, 2.0, 3.0]);
+    assert_eq!((t.repeats, t.median, t.min, t.max), (5, 3.0, 1.0, 5.0));
+    assert_eq!((t.q1, t.q3), (2.0, 4.0));
+    let t = scenarios::studies::WallTimes::of(&[1.0, 2.0, 3.0, 10.0]);
+    assert_eq!((t.median, t.q1, t.q3), (2.5, 1.75, 4.75));
 }
 
 /// The cost to reach a target is interpolated in log–log between the runs that bracket it,

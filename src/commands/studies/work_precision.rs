@@ -33,11 +33,12 @@ pub struct WorkPrecisionArgs {
         default_value = "0.001,0.000464,0.000215,0.0001,4.64e-5,2.15e-5,1e-5,4.64e-6,2.15e-6,1e-6,4.64e-7,2.15e-7,1e-7,4.64e-8,2.15e-8,1e-8"
     )]
     pub tol_list: Vec<f64>,
-    /// Repetitions of each run for the median wall time.
+    /// Timings of each run: the median wall time, its extremes and quartiles (five at least
+    /// for a spread worth quoting).
     #[arg(
         long,
         value_name = "N",
-        default_value_t = 3,
+        default_value_t = 5,
         allow_hyphen_values = true
     )]
     pub repeats: i64,

@@ -491,7 +491,8 @@ impl Stepper for TimeStepper<'_, '_> {
         }
     }
 
-    /// Gauss–Seidel sweeps as evaluations, their Newton iterations and corrections, and the
+    /// Gauss–Seidel sweeps as evaluations, their Newton iterations, their corrections (each a
+    /// factorisation and a solve), and the
     /// steps that switched a mode as events.
     fn stats(&self) -> Stats {
         Stats {
@@ -499,6 +500,7 @@ impl Stepper for TimeStepper<'_, '_> {
             rhs_evals: self.problem.sweeps,
             newton_iterations: self.problem.iterations,
             lu_factorizations: self.problem.corrections,
+            linear_solves: self.problem.corrections,
             events: self.switched_steps,
             ..Stats::default()
         }

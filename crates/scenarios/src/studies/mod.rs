@@ -16,7 +16,9 @@ pub use crate::batch::reference;
 pub use crate::cases::{Case, Measured, Measures, StudyCase, SystemCase, GRID_POINTS};
 pub use crate::method::{resolution, steps_for, Method, StepKind};
 use crate::run::ScenarioError;
-pub use crate::study_run::{ErrorMeasure, Errors, Reference, StudyRun, REFERENCE_TOLERANCE};
+pub use crate::study_run::{
+    ErrorMeasure, Errors, Reference, StudyRun, WallTimes, REFERENCE_TOLERANCE,
+};
 pub use convergence::{convergence, Convergence, OrderTable};
 pub use independence::{independence, FailedLevel, Independence, OutputCheck};
 use integrators::{Solver, StepControl};
