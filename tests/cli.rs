@@ -3075,3 +3075,47 @@ fn every_run_is_judged_and_a_diverged_run_exits_one() {
         "{bdf}"
     );
 }
+
+/// The reference is always cross-checked, its estimated error written beside it, and a study
+/// whose finest error is less than 100 times that estimate says its finest runs are limited
+/// by the reference (RK4 down to h = 5e-4 on the belt: 2.3e-10 against a reference good to
+/// about 4e-12); a coarser study does not.
+#[test]
+fn a_study_says_when_its_finest_runs_are_limited_by_the_reference() {
+    let dir = tempfile::tempdir().unwrap();
+    let study = |name: &str, steps: &str| {
+        let out = dir.path().join(name);
+        let o = friction_lab(&[
+            "converge",
+            "belt",
+            "--model",
+            "CVS",
+            "--solvers",
+            "rk4",
+            "--dt-list",
+            steps,
+            "--t-end",
+            "2",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let json: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(out.join("converge.json")).unwrap()).unwrap();
+        (String::from_utf8_lossy(&o.stdout).into_owned(), json)
+    };
+    let (text, json) = study("fine", "0.004,0.002,0.001,0.0005");
+    let check = &json["reference"]["Run"]["cross_check"];
+    assert_eq!(check[0], "tsit45", "{json}");
+    let estimate = check[1].as_f64().unwrap();
+    assert!(estimate > 0.0 && estimate < 1e-10, "{estimate:e}");
+    let limit = json["reference_limit"].as_str().unwrap();
+    assert!(
+        limit.starts_with("the finest runs are limited by the reference"),
+        "{limit}"
+    );
+    assert!(text.contains(limit), "{text}");
+    let (text, json) = study("coarse", "0.02,0.01,0.005");
+    assert!(json["reference_limit"].is_null(), "{json}");
+    assert!(!text.contains("limited by the reference"), "{text}");
+}

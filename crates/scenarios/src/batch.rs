@@ -42,7 +42,7 @@ enum Plan {
     Runs {
         own: Box<dyn StudyCase>,
         solver: Solver,
-        check: Option<Solver>,
+        check: Solver,
     },
 }
 
@@ -55,19 +55,19 @@ const REFERENCE_STEP: StepControl = StepControl::Adaptive {
 
 /// The reference of `case` for a study of `studied` solvers: the closed form where one
 /// exists; otherwise a run at rtol = atol = [`REFERENCE_TOLERANCE`] of Dormand–Prince, or,
-/// when Dormand–Prince itself is studied, of diffsol's Tsit45 (an independent 5(4) pair);
-/// when both are studied, Dormand–Prince's tight run cross-checked by Tsit45's. Event
-/// switching for a naive or a time-stepped study (the exact solution of the discontinuous
-/// problem both approximate), the study's own switching otherwise.
+/// when Dormand–Prince itself is studied (and Tsit45 not), of diffsol's Tsit45 (an independent
+/// 5(4) pair, its own error control and dense output), always cross-checked by a tight run of
+/// the other: their largest difference on the time grid is the reference's estimated error.
+/// Event switching for a naive or a time-stepped study (the exact solution of the
+/// discontinuous problem both approximate), the study's own switching otherwise.
 fn plan(case: &dyn StudyCase, studied: &[Solver]) -> Plan {
     if let Some((name, m)) = case.closed_form() {
         return Plan::Exact(Reference::ClosedForm(name), m);
     }
     let tsit45 = Solver::Diffsol(DiffsolMethod::Tsit45);
     let (solver, check) = match (studied.contains(&Solver::Dopri5), studied.contains(&tsit45)) {
-        (false, _) => (Solver::Dopri5, None),
-        (true, false) => (tsit45, None),
-        (true, true) => (Solver::Dopri5, Some(tsit45)),
+        (true, false) => (tsit45, Solver::Dopri5),
+        _ => (Solver::Dopri5, tsit45),
     };
     // Naive stepping and time-stepping approximate the discontinuous problem, whose exact
     // solution event switching computes (time-stepping takes no tolerance, so it could not
@@ -95,10 +95,8 @@ fn reference_run(own: &dyn StudyCase, solver: Solver) -> Result<Measures, Scenar
     }
 }
 
-/// The reference of `case` for a study of `studied` solvers: the closed form where one
-/// exists; otherwise a run at rtol = atol = [`REFERENCE_TOLERANCE`] of Dormand–Prince, or,
-/// when Dormand–Prince itself is studied, of diffsol's Tsit45; when both are studied,
-/// Dormand–Prince's tight run cross-checked by Tsit45's. Its runs are concurrent.
+/// The reference of `case` for a study of `studied` solvers ([`plan`]: the closed form, or a
+/// tight run cross-checked by another). Its runs are concurrent.
 pub fn reference(
     case: &dyn StudyCase,
     studied: &[Solver],
@@ -115,9 +113,8 @@ fn reference_of(plan: Plan, tight: Vec<Measures>) -> (Reference, Measures) {
         Plan::Runs { solver, check, .. } => {
             let mut tight = tight.into_iter();
             let measures = tight.next().expect("one run per reference solver");
-            let cross_check = check
-                .zip(tight.next())
-                .map(|(other, m)| (other.name(), Errors::between(&m, &measures).grid_max));
+            let checked = tight.next().expect("one run per reference solver");
+            let cross_check = (check.name(), Errors::between(&checked, &measures).grid_max);
             let reference = Reference::Run {
                 solver: solver.name(),
                 step: REFERENCE_STEP,
@@ -201,7 +198,7 @@ pub fn run_cases(
     let mut tasks = Vec::new();
     for (case, p) in plans.iter().enumerate() {
         if let Some(Plan::Runs { solver, check, .. }) = p {
-            for solver in std::iter::once(*solver).chain(*check) {
+            for solver in [*solver, *check] {
                 tasks.push(Task::Reference { case, solver });
             }
         }

@@ -4,6 +4,7 @@
 use crate::cases::Measures;
 use crate::method::StepKind;
 use crate::verdict::Verdict;
+use friction_models::params::show;
 use integrators::{SolverError, Stats, StepControl};
 use serde::Serialize;
 
@@ -135,11 +136,56 @@ pub enum Reference {
         solver: &'static str,
         /// Its step control.
         step: StepControl,
-        /// A second tight run by an independent solver, where the first one is also studied:
-        /// the solver, and the largest difference of the two on the time grid (a bound on the
-        /// reference's own error).
-        cross_check: Option<(&'static str, f64)>,
+        /// A second tight run by an independent solver: the solver, and the largest
+        /// difference of the two on the time grid, the reference's estimated error.
+        cross_check: (&'static str, f64),
     },
+}
+
+/// The smallest error a study may report against a reference whose estimated error is `e`:
+/// `REFERENCE_MARGIN · e`. Below it, the error measured is the reference's as much as the
+/// run's.
+pub const REFERENCE_MARGIN: f64 = 100.0;
+
+impl Reference {
+    /// Its estimated error on the time grid: 0 for a closed form, the cross-check's
+    /// difference for a tight run.
+    pub fn estimated_error(&self) -> f64 {
+        match self {
+            Reference::ClosedForm(_) => 0.0,
+            Reference::Run { cross_check, .. } => cross_check.1,
+        }
+    }
+
+    /// Whether the reference limits the finest of `runs`: its estimated error above
+    /// 1/[`REFERENCE_MARGIN`] of the smallest grid error of an `ok` run; `None` where it does
+    /// not, or the sentence that says so.
+    pub fn limits(&self, runs: &[StudyRun]) -> Option<String> {
+        let finest = (runs.iter())
+            .filter(|r| r.verdict.is_ok() && r.errors.grid_max > 0.0)
+            .min_by(|a, b| a.errors.grid_max.total_cmp(&b.errors.grid_max))?;
+        let (e, smallest) = (self.estimated_error(), finest.errors.grid_max);
+        let Reference::Run {
+            solver,
+            cross_check,
+            ..
+        } = self
+        else {
+            return None;
+        };
+        (REFERENCE_MARGIN * e > smallest).then(|| {
+            format!(
+                "the finest runs are limited by the reference: its estimated error {} ({solver} \
+                 against {} at {REFERENCE_TOLERANCE:e}) is more than 1/{REFERENCE_MARGIN} of the \
+                 smallest error reported, {} ({} at {})",
+                show(e),
+                cross_check.0,
+                show(smallest),
+                finest.solver,
+                show(finest.resolution)
+            )
+        })
+    }
 }
 
 /// The tolerance of a reference run, rtol = atol.

@@ -291,7 +291,7 @@ fn switched_belt() -> Case {
 }
 
 #[test]
-fn the_reference_is_an_independent_tight_run_and_is_cross_checked_when_both_are_studied() {
+fn the_reference_is_an_independent_tight_run_cross_checked_by_another() {
     use scenarios::studies::reference;
     let case = switched_belt();
     let tsit45 = Solver::from_name("tsit45").unwrap();
@@ -303,17 +303,18 @@ fn the_reference_is_an_independent_tight_run_and_is_cross_checked_when_both_are_
         } => (*solver, *cross_check),
         other => panic!("{other:?}"),
     };
+    // Always cross-checked by the other 5(4) pair: their difference is the reference's
+    // estimated error.
     let (r, _) = reference(&case, &[Solver::Rk4]).unwrap();
-    assert_eq!(solver_of(&r), ("dopri5", None));
+    assert_eq!((solver_of(&r).0, solver_of(&r).1 .0), ("dopri5", "tsit45"));
     let (r, _) = reference(&case, &[Solver::Dopri5]).unwrap();
-    assert_eq!(solver_of(&r), ("tsit45", None));
+    assert_eq!((solver_of(&r).0, solver_of(&r).1 .0), ("tsit45", "dopri5"));
     let (r, _) = reference(&case, &[Solver::Dopri5, tsit45]).unwrap();
-    let (solver, check) = solver_of(&r);
-    assert_eq!(solver, "dopri5");
-    let (other, difference) = check.unwrap();
-    assert_eq!(other, "tsit45");
+    let (solver, (other, difference)) = solver_of(&r);
+    assert_eq!((solver, other), ("dopri5", "tsit45"));
     // Two independent 5(4) codes at 1e-13 agree far below the tolerances a study uses.
     assert!(difference < 1e-10, "{difference:e}");
+    assert_eq!(r.estimated_error(), difference);
 }
 
 #[test]
@@ -446,7 +447,10 @@ fn a_run_that_failed_is_not_timed_again() {
     ));
     assert!(w.runs[0].wall_time.median > 0.0 && w.runs[1].failure.is_none());
     // The failed run was timed once, the other four times.
-    assert_eq!((w.runs[0].wall_time.repeats, w.runs[1].wall_time.repeats), (1, 4));
+    assert_eq!(
+        (w.runs[0].wall_time.repeats, w.runs[1].wall_time.repeats),
+        (1, 4)
+    );
 }
 
 #[test]
@@ -514,7 +518,8 @@ fn a_sweep_in_one_list_gives_each_case_its_own_results_on_one_or_two_threads() {
     assert!((steps(3) - 50.0).abs() < 1e-9, "{}", steps(3));
     // Debug text compares NaN errors (event counts that differ) as equal.
     let without_times = |mut runs: Vec<scenarios::studies::StudyRun>| {
-        runs.iter_mut().for_each(|r| r.wall_time = Default::default());
+        runs.iter_mut()
+            .for_each(|r| r.wall_time = Default::default());
         format!("{runs:?}")
     };
     let alone: Vec<_> = cases

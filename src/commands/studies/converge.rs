@@ -52,6 +52,10 @@ pub fn converge(a: &ConvergeArgs) -> Result<Made, AppError> {
         // "Observed orders").
         let orders =
             (c.orders.iter()).map(|o| format!("{:15} {:16} {}", o.solver, o.measure, o.verdict()));
-        Ok(orders.chain(failures(&c.runs, "converge.csv")).collect())
+        let limit = c.reference_limit.clone();
+        Ok(orders
+            .chain(failures(&c.runs, "converge.csv"))
+            .chain(limit)
+            .collect())
     })
 }

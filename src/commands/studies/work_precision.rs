@@ -54,6 +54,10 @@ pub fn work_precision(a: &WorkPrecisionArgs) -> Result<Made, AppError> {
             tols: &a.tol_list,
             repeats: ranges::REPEATS.count(a.repeats)?,
         };
-        conduct(&study, t, "work-precision").map(|w| failures(&w.runs, "work-precision.csv"))
+        let w = conduct(&study, t, "work-precision")?;
+        Ok(failures(&w.runs, "work-precision.csv")
+            .into_iter()
+            .chain(w.reference_limit)
+            .collect())
     })
 }

@@ -142,6 +142,9 @@ pub struct Convergence {
     pub runs: Vec<StudyRun>,
     /// Observed orders.
     pub orders: Vec<OrderTable>,
+    /// Where the reference limits the finest runs, the sentence that says so
+    /// ([`Reference::limits`]).
+    pub reference_limit: Option<String>,
 }
 
 /// Runs each solver over the step sizes (or tolerances) against the reference and reports
@@ -184,6 +187,7 @@ pub fn convergence(
         }
     }
     Ok(Convergence {
+        reference_limit: reference.limits(&runs),
         reference,
         runs,
         orders: tables,

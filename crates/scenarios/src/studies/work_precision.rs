@@ -9,8 +9,11 @@ use serde::Serialize;
 pub struct WorkPrecision {
     /// The reference.
     pub reference: Reference,
-    /// Every run, its wall time the median over the repetitions.
+    /// Every run, its wall time over the repetitions.
     pub runs: Vec<StudyRun>,
+    /// Where the reference limits the finest runs, the sentence that says so
+    /// ([`Reference::limits`]).
+    pub reference_limit: Option<String>,
 }
 
 /// Runs every method over its step sizes or tolerances, `repeats` times each for the
@@ -30,6 +33,7 @@ pub fn work_precision(
     let c = batch::run_cases(&[case], Some(&own), &jobs, repeats.max(1) - 1, progress)?.remove(0);
     let (reference, _) = c.reference.expect("a reference was asked for");
     Ok(WorkPrecision {
+        reference_limit: reference.limits(&c.runs),
         reference,
         runs: c.runs,
     })
