@@ -120,7 +120,8 @@ pub struct Integrated {
     pub stats: StatsRecord,
     /// Wall time of the integration, s.
     pub wall_time_s: f64,
-    /// The energy balance's relative residual (systems with bodies).
+    /// The energy balance's residual, J (systems with bodies; its relative residual is in
+    /// `energy`).
     pub energy_residual: Option<f64>,
     /// The energy balance, J (systems with bodies).
     pub energy: Option<EnergyBalance>,

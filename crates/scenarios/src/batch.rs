@@ -95,8 +95,10 @@ fn reference_run(own: &dyn StudyCase, solver: Solver) -> Result<Measures, Scenar
     }
 }
 
-/// The reference of `case` for a study of `studied` solvers ([`plan`]: the closed form, or a
-/// tight run cross-checked by another). Its runs are concurrent.
+/// The reference of `case` for a study of `studied` solvers: the closed form where one
+/// exists; otherwise a run at rtol = atol = [`REFERENCE_TOLERANCE`] of Dormand–Prince (of
+/// Tsit45 when Dormand–Prince is studied and Tsit45 not), cross-checked by a tight run of the
+/// other, whose difference is its estimated error. Its runs are concurrent.
 pub fn reference(
     case: &dyn StudyCase,
     studied: &[Solver],
