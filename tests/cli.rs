@@ -2531,16 +2531,9 @@ fn sweep_runs_a_system_file_over_the_regularisation_width() {
     let file = dir.path().join("two.toml");
     std::fs::write(&file, TWO_BODIES).unwrap();
     let path = file.to_str().unwrap();
-    let common = [
-        "--system",
-        path,
-        "--switching",
-        "regularized",
-        "--t-end",
-        "5",
-    ];
+    let common = ["--system", path, "--switching", "regularized"];
     let out = dir.path().join("sweep");
-    let mut args = vec!["sweep", "--grid", "epsilon=1e-3,1e-2"];
+    let mut args = vec!["sweep", "--grid", "epsilon=1e-3,1e-2", "--t-end", "5"];
     args.extend(common);
     args.extend(["--out", out.to_str().unwrap()]);
     let o = friction_lab(&args);
@@ -2559,10 +2552,14 @@ fn sweep_runs_a_system_file_over_the_regularisation_width() {
         steps[0] > steps[1],
         "a narrower width takes more steps: {steps:?}"
     );
+    // The same run as `simulate` gives, over the span the point needed to settle (a point
+    // that has not settled in its span is run again over twice the span).
+    let span = json["points"][0]["settled"]["to"].as_f64().unwrap();
+    let span = span.to_string();
     let single = dir.path().join("single");
     let mut args = vec!["simulate", "--set", "epsilon=1e-3"];
     args.extend(common);
-    args.extend(["--out", single.to_str().unwrap()]);
+    args.extend(["--t-end", &span, "--out", single.to_str().unwrap()]);
     let o = friction_lab(&args);
     assert!(o.status.success(), "{}", stderr(&o));
     let summary: serde_json::Value =
@@ -3118,4 +3115,46 @@ fn a_study_says_when_its_finest_runs_are_limited_by_the_reference() {
     let (text, json) = study("coarse", "0.02,0.01,0.005");
     assert!(json["reference_limit"].is_null(), "{json}");
     assert!(!text.contains("limited by the reference"), "{text}");
+}
+
+/// `sweep` extends a point that has not settled: at v_belt = 0.0044 m/s with k = 56.2 N/m the
+/// body is carried by the belt for its first 30 s (the spring loading to F_s), a transient
+/// that a 20 s run took for steady sliding; doubled to 80 s, the run settles on stick–slip,
+/// one stick phase a cycle. A point that settles at once keeps its span.
+#[test]
+fn sweep_extends_a_point_until_it_settles() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("s");
+    let o = friction_lab(&[
+        "sweep",
+        "belt",
+        "--model",
+        "CVS",
+        "--grid",
+        "v_belt=0.0044,0.05",
+        "--set",
+        "k=56.2341",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(out.join("sweep.csv")).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    let cell =
+        |row: usize, column: &str| rows[row][header.iter().position(|h| *h == column).unwrap()];
+    assert_eq!(
+        (cell(0, "settled"), cell(0, "t_end")),
+        ("true", "80"),
+        "{csv}"
+    );
+    let per_cycle: f64 = cell(0, "stick_per_cycle").parse().unwrap();
+    assert!((per_cycle - 1.0).abs() < 0.01, "{csv}");
+    assert!(cell(0, "drift").parse::<f64>().unwrap() <= 0.01, "{csv}");
+    assert_eq!(
+        (cell(1, "settled"), cell(1, "t_end")),
+        ("true", "20"),
+        "{csv}"
+    );
 }

@@ -6,7 +6,7 @@
 use crate::artifacts::{Artifacts, Made};
 use crate::commands::simulate::{spec, SimulateArgs, Target};
 use crate::commands::system::{
-    chosen_bodies, default_t_end, grid_options, system_of, system_points,
+    chosen_bodies, default_t_end, grid_options, system_of, system_points, RECORD_LIMIT,
 };
 use crate::error::AppError;
 use crate::laws::ModelChoice;
@@ -19,6 +19,7 @@ use friction_systems::{simulate, STICK};
 use integrators::Stats;
 use rayon::prelude::*;
 use scenarios::settled::{Settled, Trace};
+use scenarios::stick_slip::MAX_EXTENSION;
 use serde::Serialize;
 
 /// Most values on one axis.
@@ -277,14 +278,39 @@ fn prepare(args: &SimulateArgs) -> Result<Prepared, AppError> {
     }
 }
 
-/// Runs one prepared point and measures its settled state.
+/// Runs one prepared point and measures its settled state: its span doubled (the output
+/// spacing kept) while the run ends without an error and has not settled
+/// ([`Settled::settled`]), up to [`MAX_EXTENSION`] times.
 fn run_point(
     args: &SimulateArgs,
     prepared: Prepared,
     settle: f64,
 ) -> Result<PointResult, AppError> {
+    let mut factor = 1;
+    loop {
+        let point = run_spanned(args, &prepared, settle, factor)?;
+        if point.settled.settled || point.error.is_some() || factor >= MAX_EXTENSION {
+            return Ok(point);
+        }
+        factor *= 2;
+    }
+}
+
+/// Runs one prepared point over `factor` times its span, with `factor` times its output
+/// intervals, and measures its settled state.
+fn run_spanned(
+    args: &SimulateArgs,
+    prepared: &Prepared,
+    settle: f64,
+    factor: u32,
+) -> Result<PointResult, AppError> {
     let (trace, stats, error) = match prepared {
         Prepared::Rig(spec) => {
+            let mut spec = spec.clone();
+            let base = (spec.t_end)
+                .unwrap_or_else(|| spec.scenario.default_t_end(&spec.params, &spec.friction));
+            spec.t_end = Some(base * f64::from(factor));
+            spec.output_points = (spec.output_points - 1) * factor as usize + 1;
             let o = scenarios::run(&spec, &mut |_| {})?;
             (
                 Trace::of_outcome(&o),
@@ -293,12 +319,15 @@ fn run_point(
             )
         }
         Prepared::System { described, body } => {
+            let body = *body;
             let t_end = args
                 .checked_t_end()?
                 .unwrap_or_else(|| default_t_end(args.system.as_deref()));
             let dim = friction_systems::Layout::of(&described.system).dim();
-            let points = system_points(args, dim)?;
-            let options = grid_options(args, t_end, points)?;
+            // The output spacing kept, within the numbers a run may record.
+            let points = ((system_points(args, dim)? - 1) * factor as usize + 1)
+                .min(RECORD_LIMIT / dim.max(1));
+            let options = grid_options(args, t_end * f64::from(factor), points)?;
             let scheme = args
                 .solver
                 .switching()
@@ -385,6 +414,7 @@ pub fn make(args: &SweepArgs) -> Result<Made, AppError> {
         "friction_peak",
         "settled",
         "drift",
+        "t_end",
         "steps",
         "rhs_evals",
         "events",
@@ -408,6 +438,7 @@ pub fn make(args: &SweepArgs) -> Result<Made, AppError> {
             num(s.friction_peak),
             Cell::Text(s.settled.to_string()),
             num(s.drift),
+            Cell::Num(s.to),
             Cell::Num(r.stats.steps as f64),
             Cell::Num(r.stats.rhs_evals as f64),
             Cell::Num(r.stats.events as f64),

@@ -15,7 +15,8 @@
 //! window each hold at least [`MIN_CYCLES`] cycles, and their periods, their half ranges of
 //! x − v̄·t and of v, and their stick phases per cycle agree within [`SETTLE_TOLERANCE`]
 //! ([`Settled::drift`], the largest relative difference). A run with no oscillation left (v's
-//! half range at most [`REST_AMPLITUDE`] of the mean speed, or of 1e-3 m/s) has settled too.
+//! half range at most [`REST_AMPLITUDE`] of the run's largest speed, or of 1e-3 m/s, and the
+//! friction's at most [`REST_AMPLITUDE`] of its peak) has settled too.
 //! A transient (an oscillation still growing or decaying, a first stick phase that fills half
 //! the window) has not: the map, the bifurcation diagram and `sweep` say so instead of calling
 //! it a regime.
@@ -32,8 +33,9 @@ pub const SETTLE_TOLERANCE: f64 = 1e-2;
 /// compared.
 pub const MIN_CYCLES: usize = 2;
 
-/// v's half range, relative to the mean speed (or to 1e-3 m/s, whichever is larger), at or
-/// below which no oscillation is left: the run has settled at rest relative to its mean motion.
+/// v's half range, relative to the run's largest speed (or to 1e-3 m/s, whichever is larger),
+/// at or below which no oscillation is left, and the friction's half range relative to its
+/// peak: the run has settled at rest relative to its mean motion, under a constant force.
 pub const REST_AMPLITUDE: f64 = 1e-6;
 
 /// One body's sampled run: times, displacement, velocity, friction, and the times at which
@@ -273,7 +275,19 @@ impl Settled {
             .filter(|&&s| s >= from && s <= t1)
             .count();
         let v_amplitude = range(&v_of);
-        let at_rest = v_amplitude <= REST_AMPLITUDE * v_mean.abs().max(1e-3);
+        // At rest about the mean motion, and under a constant force: a body carried by a
+        // belt while a spring loads it is at rest too, but its friction still ramps (a first
+        // stick phase longer than the window), and that is a transient.
+        let friction_peak = k
+            .iter()
+            .map(|&i| trace.friction[i].abs())
+            .fold(0.0, f64::max);
+        let speed = trace
+            .v
+            .iter()
+            .fold(v_mean.abs().max(1e-3), |a, v| a.max(v.abs()));
+        let at_rest = v_amplitude <= REST_AMPLITUDE * speed
+            && range(&|i| trace.friction[i]) <= REST_AMPLITUDE * friction_peak;
         let drift = Half::of(trace, first, v_mean).drift(&Half::of(trace, second, v_mean));
         Settled {
             from,
@@ -286,10 +300,7 @@ impl Settled {
             v_amplitude_ratio: ratio(half_range(second, &v_of), half_range(first, &v_of)),
             v_mean,
             friction_mean: time_mean(t, &trace.friction, &k),
-            friction_peak: k
-                .iter()
-                .map(|&i| trace.friction[i].abs())
-                .fold(0.0, f64::max),
+            friction_peak,
             drift,
             settled: at_rest || drift <= SETTLE_TOLERANCE,
         }
