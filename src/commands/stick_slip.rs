@@ -87,6 +87,6 @@ pub fn add_stick_slip(t: &mut Target, friction: &FrictionParams) -> Result<Strin
         },
         span(boundary),
         span(&coexist),
-        max_extension = scenarios::stick_slip::MAX_EXTENSION,
+        max_extension = scenarios::settled::MAX_EXTENSION,
     ))
 }

@@ -18,8 +18,7 @@ use clap::Args;
 use friction_systems::{simulate, STICK};
 use integrators::Stats;
 use rayon::prelude::*;
-use scenarios::settled::{Settled, Trace};
-use scenarios::stick_slip::MAX_EXTENSION;
+use scenarios::settled::{spanned, until_settled, Settled, Trace};
 use serde::Serialize;
 
 /// Most values on one axis.
@@ -280,20 +279,16 @@ fn prepare(args: &SimulateArgs) -> Result<Prepared, AppError> {
 
 /// Runs one prepared point and measures its settled state: its span doubled (the output
 /// spacing kept) while the run ends without an error and has not settled
-/// ([`Settled::settled`]), up to [`MAX_EXTENSION`] times.
+/// ([`Settled::settled`]; [`until_settled`]).
 fn run_point(
     args: &SimulateArgs,
     prepared: Prepared,
     settle: f64,
 ) -> Result<PointResult, AppError> {
-    let mut factor = 1;
-    loop {
-        let point = run_spanned(args, &prepared, settle, factor)?;
-        if point.settled.settled || point.error.is_some() || factor >= MAX_EXTENSION {
-            return Ok(point);
-        }
-        factor *= 2;
-    }
+    until_settled(
+        |factor| run_spanned(args, &prepared, settle, factor),
+        |point| point.settled.settled || point.error.is_some(),
+    )
 }
 
 /// Runs one prepared point over `factor` times its span, with `factor` times its output
@@ -306,12 +301,7 @@ fn run_spanned(
 ) -> Result<PointResult, AppError> {
     let (trace, stats, error) = match prepared {
         Prepared::Rig(spec) => {
-            let mut spec = spec.clone();
-            let base = (spec.t_end)
-                .unwrap_or_else(|| spec.scenario.default_t_end(&spec.params, &spec.friction));
-            spec.t_end = Some(base * f64::from(factor));
-            spec.output_points = (spec.output_points - 1) * factor as usize + 1;
-            let o = scenarios::run(&spec, &mut |_| {})?;
+            let o = scenarios::run(&spanned(spec, factor), &mut |_| {})?;
             (
                 Trace::of_outcome(&o),
                 o.stats,

@@ -21,7 +21,7 @@
 //! the window) has not: the map, the bifurcation diagram and `sweep` say so instead of calling
 //! it a regime.
 
-use crate::run::Outcome;
+use crate::run::{Outcome, RunSpec};
 use friction_systems::STICK;
 use serde::Serialize;
 
@@ -37,6 +37,37 @@ pub const MIN_CYCLES: usize = 2;
 /// at or below which no oscillation is left, and the friction's half range relative to its
 /// peak: the run has settled at rest relative to its mean motion, under a constant force.
 pub const REST_AMPLITUDE: f64 = 1e-6;
+
+/// How far a run that has not settled in its base span is extended: its span doubled until it
+/// settles, up to this many times the base (40 s → 320 s on the map).
+pub const MAX_EXTENSION: u32 = 8;
+
+/// The result of `run(factor)` for factor = 1, 2, 4, … up to [`MAX_EXTENSION`], stopping at
+/// the first that `settled` accepts (or at the bound): a run extended until it settles.
+pub fn until_settled<T, E>(
+    mut run: impl FnMut(u32) -> Result<T, E>,
+    settled: impl Fn(&T) -> bool,
+) -> Result<T, E> {
+    let mut factor = 1;
+    loop {
+        let result = run(factor)?;
+        if factor >= MAX_EXTENSION || settled(&result) {
+            return Ok(result);
+        }
+        factor *= 2;
+    }
+}
+
+/// `spec` over `factor` times its span (its end time, or its scenario's default), with
+/// `factor` times its output intervals: the same output spacing.
+pub fn spanned(spec: &RunSpec, factor: u32) -> RunSpec {
+    let base =
+        (spec.t_end).unwrap_or_else(|| spec.scenario.default_t_end(&spec.params, &spec.friction));
+    let mut longer = spec.clone();
+    longer.t_end = Some(base * f64::from(factor));
+    longer.output_points = (spec.output_points - 1) * factor as usize + 1;
+    longer
+}
 
 /// One body's sampled run: times, displacement, velocity, friction, and the times at which
 /// its contact switched into stick.
@@ -125,6 +156,16 @@ struct Half {
     stick_per_cycle: f64,
 }
 
+/// Half the range of `f` over the samples `k`.
+fn half_range(k: &[usize], f: &dyn Fn(usize) -> f64) -> f64 {
+    let (lo, hi) = k
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &i| {
+            (lo.min(f(i)), hi.max(f(i)))
+        });
+    0.5 * (hi - lo)
+}
+
 /// The upward crossings of `v` through `level` among the samples `k` of `t`, located
 /// linearly between samples.
 fn crossings(t: &[f64], v: &[f64], k: &[usize], level: f64) -> Vec<f64> {
@@ -147,14 +188,7 @@ impl Half {
         } else {
             f64::NAN
         };
-        let half_range = |f: &dyn Fn(usize) -> f64| {
-            let (lo, hi) = k
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &i| {
-                    (lo.min(f(i)), hi.max(f(i)))
-                });
-            0.5 * (hi - lo)
-        };
+        let half_range = |f: &dyn Fn(usize) -> f64| half_range(k, f);
         let sticks = match (c.first(), c.last()) {
             (Some(&a), Some(&b)) if cycles > 0 => trace
                 .stick_entries
@@ -242,14 +276,6 @@ impl Settled {
             };
         }
         let v_mean = time_mean(t, &trace.v, &k);
-        let half_range = |k: &[usize], f: &dyn Fn(usize) -> f64| {
-            let (lo, hi) = k
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &i| {
-                    (lo.min(f(i)), hi.max(f(i)))
-                });
-            0.5 * (hi - lo)
-        };
         let range = |f: &dyn Fn(usize) -> f64| half_range(&k, f);
         let (first, second) = k.split_at(k.len() / 2);
         let v_of = |i: usize| trace.v[i];

@@ -11,7 +11,7 @@
 
 use crate::run::{run, Limits, RunSpec, ScenarioError, SwitchingKind};
 use crate::scenario::Scenario;
-use crate::settled::{Settled, Trace};
+use crate::settled::{spanned, until_settled, Settled, Trace};
 use friction_models::{steady, Direction, FrictionModel, SignLaw};
 use friction_models::{FrictionParams, ModelId};
 use integrators::{Solver, StepControl};
@@ -45,10 +45,6 @@ pub const STICK_SLIP_THRESHOLD: f64 = 0.5;
 /// A velocity amplitude (relative to the belt speed) below which the settled state counts as
 /// steady sliding.
 pub const STEADY_AMPLITUDE: f64 = 1e-6;
-
-/// How far a run that has not settled in its base span is extended: its span doubled until it
-/// settles, up to this many times the base (40 s → 320 s), after which it is `Unsettled`.
-pub const MAX_EXTENSION: u32 = 8;
 
 /// The settled state of the belt at one point.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -161,22 +157,12 @@ fn belt_spec(base: &RunSpec, v_belt: f64, k: f64, x0: f64) -> RunSpec {
 }
 
 /// The settled state of the belt run `spec` over the last `settle` of its span, which is
-/// doubled while the run has not settled ([`Regime::is_transient`]), up to [`MAX_EXTENSION`]
-/// times, the output points with it (the same spacing).
+/// doubled while the run has not settled ([`Regime::is_transient`]; [`until_settled`]).
 fn settled(spec: &RunSpec, settle: f64) -> Result<Settled, ScenarioError> {
-    let base =
-        (spec.t_end).unwrap_or_else(|| spec.scenario.default_t_end(&spec.params, &spec.friction));
-    let mut factor = 1;
-    loop {
-        let mut longer = spec.clone();
-        longer.t_end = Some(base * f64::from(factor));
-        longer.output_points = (spec.output_points - 1) * factor as usize + 1;
-        let s = measured(&longer, settle)?;
-        if factor >= MAX_EXTENSION || !Regime::of(&s, spec.params.v_belt).is_transient() {
-            return Ok(s);
-        }
-        factor *= 2;
-    }
+    until_settled(
+        |factor| measured(&spanned(spec, factor), settle),
+        |s| !Regime::of(s, spec.params.v_belt).is_transient(),
+    )
 }
 
 /// The settled-state measures of one run of `spec` over the last `settle` of its span.

@@ -46,15 +46,37 @@ pub fn run_against_reference(
 
 /// The least-squares slope of `points` (NaN for fewer than two).
 pub fn slope(points: &[(f64, f64)]) -> f64 {
+    line(points).slope
+}
+
+/// The least-squares line through `points`: y = intercept + slope·x.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Line {
+    /// Its slope (NaN for fewer than two points).
+    pub slope: f64,
+    /// Its value at x = 0.
+    pub intercept: f64,
+    /// Σ (x − x̄)², which the slope's standard error divides by.
+    pub sxx: f64,
+}
+
+/// The least-squares line through `points`.
+pub fn line(points: &[(f64, f64)]) -> Line {
     let n = points.len() as f64;
-    if points.len() < 2 {
-        return f64::NAN;
-    }
     let (mx, my) = (
         points.iter().map(|p| p.0).sum::<f64>() / n,
         points.iter().map(|p| p.1).sum::<f64>() / n,
     );
     let sxy: f64 = points.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
     let sxx: f64 = points.iter().map(|p| (p.0 - mx).powi(2)).sum();
-    sxy / sxx
+    let slope = if points.len() < 2 {
+        f64::NAN
+    } else {
+        sxy / sxx
+    };
+    Line {
+        slope,
+        intercept: my - slope * mx,
+        sxx,
+    }
 }

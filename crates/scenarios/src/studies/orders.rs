@@ -159,15 +159,11 @@ fn asymptotic_range(pairs: &[PairOrder]) -> (usize, usize) {
 /// The least-squares line through `points` (at least three): its slope, its intercept, and
 /// the half-width of the slope's 95 % confidence interval.
 fn least_squares(points: &[(f64, f64)]) -> (f64, f64, f64) {
-    let n = points.len() as f64;
-    let (mx, my) = (
-        points.iter().map(|p| p.0).sum::<f64>() / n,
-        points.iter().map(|p| p.1).sum::<f64>() / n,
-    );
-    let sxy: f64 = points.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
-    let sxx: f64 = points.iter().map(|p| (p.0 - mx).powi(2)).sum();
-    let slope = sxy / sxx;
-    let intercept = my - slope * mx;
+    let super::Line {
+        slope,
+        intercept,
+        sxx,
+    } = super::line(points);
     let residuals: f64 = points
         .iter()
         .map(|p| (p.1 - intercept - slope * p.0).powi(2))
