@@ -321,13 +321,13 @@ pub fn run() -> Report {
             .iter()
             .find(|r| r.solver == name && r.resolution == 1e-8)
             .expect("a run at 1e-8");
-        (r.errors.final_state, r.work)
+        (r.errors.final_relative, r.work)
     };
     Report {
         switches: (n_bs23, n_dopri5),
         final_gap: (a[0] - b[0]).abs().max((a[1] - b[1]).abs()),
         event_order: fitted(ErrorMeasure::EventTimes),
-        final_order: fitted(ErrorMeasure::FinalState),
+        final_order: fitted(ErrorMeasure::FinalRelative),
         at_1e8: [at("bs23"), at("dopri5")],
     }
 }

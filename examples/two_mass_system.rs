@@ -90,7 +90,7 @@ pub fn run() -> Report {
                 .runs
                 .iter()
                 .filter(|r| r.solver == name)
-                .map(|r| r.errors.grid_max)
+                .map(|r| r.errors.grid_relative)
                 .fold(f64::INFINITY, f64::min);
             (name, best)
         })

@@ -54,13 +54,14 @@ fn an_own_two_mass_system_runs_event_driven_regularised_and_in_a_study() {
     // A narrower regularisation comes closer to the switched solution.
     let [wide, narrow] = r.regularisation_gaps;
     assert!(narrow < wide / 2.0, "gaps {wide} (1e-3), {narrow} (1e-4)");
-    // At tolerances down to 1e-8: Dormand–Prince's error follows the tolerance; implicit
-    // Euler's, controlled per step, falls only like its square root (docs/solvers.md).
+    // At tolerances down to 1e-8: Dormand–Prince's relative error on the grid follows the
+    // tolerance; implicit Euler's, controlled per step, falls only like its square root
+    // (docs/solvers.md).
     let [(_, dopri5), (_, implicit_euler)] = r.best_errors[..] else {
         panic!("two solvers")
     };
     assert!(dopri5 < 1e-5, "dopri5: {dopri5}");
-    assert!(implicit_euler < 1e-2, "implicit-euler: {implicit_euler}");
+    assert!(implicit_euler < 2e-2, "implicit-euler: {implicit_euler}");
     assert!(dopri5 < implicit_euler / 100.0);
 }
 

@@ -428,21 +428,21 @@ fn add_studies(
         "\n## Solver studies\n\nThe files are in `studies/` (CSV per run, JSON summary, PNG and SVG); \
          docs/studies.md explains each study and how to read its plot.\n\n\
          - [Convergence on the paper block (CVS)](studies/converge-paper-block-CVS.png): observed orders \
-         of the grid error over each method's asymptotic range {}.\n\
+         of the relative grid error over each method's asymptotic range {}.\n\
          - [Stepping blindly through v = 0](studies/converge-free-vibration-naive.png) against \
          [event-located switching](studies/converge-free-vibration-event.png) on Coulomb free vibration \
          (closed-form reversals every pi/omega): RK4's order is {} naive and {} switched.\n\
          - [The paper's step-size claim on AV](studies/independence-paper-block-AV.png) (RK4 from \
          dt = 1e-3, halved three times, relative tolerance 1e-6): {}.\n\
          - [The same check on CS stick-slip stepped blindly](studies/independence-belt-CS-naive.png): {}.\n\
-         - [Work against precision on the belt](studies/work-precision-belt-CS.png): error against \
+         - [Work against precision on the belt](studies/work-precision-belt-CS.png): relative error against \
          f evaluations (plus n per Jacobian) for all seven solvers; wall times in \
          studies/work-precision-belt-CS-timing.csv.\n\
-         - [Cost to reach error 1e-3 against the regularisation width](studies/stiffness-belt-CS-epsilon.png): \
+         - [Cost to reach relative error 1e-3 against the regularisation width](studies/stiffness-belt-CS-epsilon.png): \
          {}.\n{chain}",
-        observed_orders(&smooth, ErrorMeasure::GridMax),
-        observed_orders(&naive, ErrorMeasure::GridMax),
-        observed_orders(&switched, ErrorMeasure::GridMax),
+        observed_orders(&smooth, ErrorMeasure::GridRelative),
+        observed_orders(&naive, ErrorMeasure::GridRelative),
+        observed_orders(&switched, ErrorMeasure::GridRelative),
         verdict(&av),
         verdict(&cs),
         stiff.verdict(),

@@ -64,16 +64,16 @@ impl Study for ConvergenceStudy<'_> {
                 &c.runs,
                 |r| r.step == step,
                 |r| r.resolution,
-                |r| r.errors.grid_max,
+                |r| r.errors.grid_relative,
             );
             let tables: Vec<&OrderTable> = (c.orders.iter())
-                .filter(|t| t.step == step && t.measure == ErrorMeasure::GridMax)
+                .filter(|t| t.step == step && t.measure == ErrorMeasure::GridRelative)
                 .collect();
             series.extend(fitted_guides(&tables));
             Plot {
                 title: format!("Convergence ({} steps): {}", step.name(), case.describe()),
                 x_label: x_label.into(),
-                y_label: "max error on the time grid, max(|Δx| m, |Δv| m/s)".into(),
+                y_label: ErrorMeasure::GridRelative.label().into(),
                 series,
                 legend: Corner::default(),
                 log: true,

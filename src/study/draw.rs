@@ -130,7 +130,7 @@ mod tests {
             resolution: h,
             step: scenarios::studies::StepKind::Fixed,
             errors: Errors {
-                final_state: error,
+                final_relative: error,
                 ..Errors::UNMEASURED
             },
             measures: Default::default(),
@@ -154,7 +154,12 @@ mod tests {
             run("dopri5", 0.01, 1e-6, None),
             run("implicit-euler", 0.02, 1e-2, None),
         ];
-        let series = per_solver_series(&runs, |_| true, |r| r.resolution, |r| r.errors.final_state);
+        let series = per_solver_series(
+            &runs,
+            |_| true,
+            |r| r.resolution,
+            |r| r.errors.final_relative,
+        );
         let crosses: Vec<(f64, f64)> = series
             .iter()
             .filter(|s| s.marker == Marker::Cross)
@@ -179,7 +184,12 @@ mod tests {
             "moreau-jean (timestepping)",
         ];
         let runs: Vec<StudyRun> = names.iter().map(|n| run(n, 0.01, 1e-4, None)).collect();
-        let series = per_solver_series(&runs, |_| true, |r| r.resolution, |r| r.errors.final_state);
+        let series = per_solver_series(
+            &runs,
+            |_| true,
+            |r| r.resolution,
+            |r| r.errors.final_relative,
+        );
         assert_eq!(series.len(), names.len());
         for (i, a) in series.iter().enumerate() {
             for b in &series[..i] {

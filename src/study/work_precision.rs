@@ -8,7 +8,7 @@ use crate::error::AppError;
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Plot};
 use integrators::Solver;
-use scenarios::studies::{self, StudyCase, WorkPrecision};
+use scenarios::studies::{self, ErrorMeasure, StudyCase, WorkPrecision};
 use scenarios::ScenarioError;
 
 /// Every solver of `solvers` on `case`, and the case's peers (methods under another treatment
@@ -97,12 +97,17 @@ impl Study for WorkPrecisionStudy<'_> {
         out.files
             .add(timing_csv.clone(), timing.to_csv(&timing_csv)?);
         out.add_json(&study_file(case, w))?;
-        let error = "max error on the time grid, max(|Δx| m, |Δv| m/s)";
+        let error = ErrorMeasure::GridRelative.label();
         let plot = Plot {
             title: format!("Work-precision: {}", case.describe()),
             x_label: "work (f evaluations + dim per Jacobian)".into(),
             y_label: error.into(),
-            series: per_solver_series(&w.runs, |_| true, |r| r.work as f64, |r| r.errors.grid_max),
+            series: per_solver_series(
+                &w.runs,
+                |_| true,
+                |r| r.work as f64,
+                |r| r.errors.grid_relative,
+            ),
             legend: Corner::UpperRight,
             log: true,
         };
@@ -121,7 +126,7 @@ impl Study for WorkPrecisionStudy<'_> {
                 &w.runs,
                 |_| true,
                 |r| r.wall_time.median,
-                |r| r.errors.grid_max,
+                |r| r.errors.grid_relative,
             ),
             legend: Corner::UpperRight,
             log: true,

@@ -36,7 +36,7 @@ pub fn expected_steps(method: &Method, step: StepControl, t_span: f64) -> f64 {
 /// How a case's reference is obtained.
 enum Plan {
     /// Its closed form.
-    Exact(Reference, Measures),
+    Exact(Reference, Box<Measures>),
     /// A tight run of a solver under a treatment of v = 0, and maybe a second solver's
     /// tight run to cross-check it.
     Runs {
@@ -62,7 +62,7 @@ const REFERENCE_STEP: StepControl = StepControl::Adaptive {
 /// discontinuous problem both approximate), the study's own switching otherwise.
 fn plan(case: &dyn StudyCase, studied: &[Solver]) -> Plan {
     if let Some((name, m)) = case.closed_form() {
-        return Plan::Exact(Reference::ClosedForm(name), m);
+        return Plan::Exact(Reference::ClosedForm(name), Box::new(m));
     }
     let tsit45 = Solver::Diffsol(DiffsolMethod::Tsit45);
     let (solver, check) = match (studied.contains(&Solver::Dopri5), studied.contains(&tsit45)) {
@@ -111,12 +111,15 @@ pub fn reference(
 /// solver's, then the cross-check's), the cross-check's difference on the time grid.
 fn reference_of(plan: Plan, tight: Vec<Measures>) -> (Reference, Measures) {
     match plan {
-        Plan::Exact(r, m) => (r, m),
+        Plan::Exact(r, m) => (r, *m),
         Plan::Runs { solver, check, .. } => {
             let mut tight = tight.into_iter();
             let measures = tight.next().expect("one run per reference solver");
             let checked = tight.next().expect("one run per reference solver");
-            let cross_check = (check.name(), Errors::between(&checked, &measures).grid_max);
+            let cross_check = (
+                check.name(),
+                Errors::between(&checked, &measures).grid_relative,
+            );
             let reference = Reference::Run {
                 solver: solver.name(),
                 step: REFERENCE_STEP,
@@ -301,8 +304,8 @@ pub fn run_cases(
             // no error against the reference.
             if let (Some((_, m)), None) = (&reference, &run.failure) {
                 run.errors = Errors::between(&run.measures, m);
-                let largest = run.errors.grid_max.max(run.errors.final_state);
-                run.verdict = Verdict::against_reference(largest, m.scale());
+                let largest = run.errors.grid_relative.max(run.errors.final_relative);
+                run.verdict = Verdict::against_reference(largest);
             }
             runs.push(*run);
         }

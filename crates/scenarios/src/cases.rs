@@ -5,14 +5,15 @@
 use crate::chain::ChainSource;
 use crate::method::Method;
 use crate::motion::Kinematic;
+use crate::quantity::Quantity;
 use crate::run::Limits;
 use crate::run::{
-    body_system, run, Law, Outcome, RunSpec, ScenarioError, SwitchingKind, DEFAULT_THETA,
+    body_system, run, Law, Outcome, Row, RunSpec, ScenarioError, SwitchingKind, DEFAULT_THETA,
 };
 use crate::scenario::Scenario;
 use crate::ScenarioParams;
 use friction_models::{FrictionParams, ModelId, Parameters};
-use friction_systems::{simulate, Layout, Run, System, STICK};
+use friction_systems::{simulate, EnergyBalance, Layout, Run, System, STICK};
 use integrators::{DiffsolMethod, Options, Output, Solver, SolverError, Stats, StepControl};
 use serde::Serialize;
 
@@ -22,26 +23,36 @@ pub const GRID_POINTS: usize = 201;
 /// What a run is judged by.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct Measures {
-    /// (x, v) of every body at the end, body after body.
+    /// Every body's state at the end, body after body: x, v and, for a law with internal
+    /// states, z.
     pub final_state: Vec<f64>,
-    /// (x, v) of the measured bodies on the common grid, one row per grid point.
+    /// The quantity of each entry of `final_state`.
+    pub final_quantities: Vec<Quantity>,
+    /// The measured bodies' states on the common grid (x, v and z, body after body), one row
+    /// per grid point.
     pub grid: Vec<Vec<f64>>,
+    /// The quantity of each column of `grid`.
+    pub quantities: Vec<Quantity>,
     /// Times of the measured bodies' events, body after body.
     pub event_times: Vec<f64>,
     /// Durations of the measured bodies' completed stick phases, body after body.
     pub stick_durations: Vec<f64>,
     /// Largest |friction| of the measured bodies on the grid.
     pub peak_friction: f64,
+    /// The run's energy balance, where it keeps one (not the prescribed motions).
+    pub energy: Option<EnergyBalance>,
 }
 
-impl Measures {
-    /// The scale of the solution: its largest |x| or |v| on the grid.
-    pub fn scale(&self) -> f64 {
-        (self.grid.iter())
-            .flat_map(|p| p.iter())
-            .fold(0.0, |a: f64, b| a.max(b.abs()))
-            .max(f64::MIN_POSITIVE)
+/// The state of one body as the measures hold it, with the quantity of each entry: x, v,
+/// and z where the law has an internal state.
+fn body_state(x: f64, v: f64, z: Option<f64>) -> (Vec<f64>, Vec<Quantity>) {
+    let mut state = vec![x, v];
+    let mut quantities = vec![Quantity::Position, Quantity::Velocity];
+    if let Some(z) = z {
+        state.push(z);
+        quantities.push(Quantity::InternalState);
     }
+    (state, quantities)
 }
 
 /// One run of a case, measured.
@@ -123,18 +134,27 @@ impl Measures {
         let event_times: Vec<f64> = o.events.iter().map(|e| e.t).collect();
         let mut sticks = Vec::new();
         stick_durations(o.events.iter().map(|e| (e.t, e.to == STICK)), &mut sticks);
-        let grid = o
-            .rows
-            .iter()
+        let state = |r: &Row| body_state(r.x, r.v, r.z);
+        let (final_state, final_quantities) = match o.last() {
+            Some(r) => state(r),
+            None => (
+                vec![f64::NAN; 2],
+                vec![Quantity::Position, Quantity::Velocity],
+            ),
+        };
+        let grid = (o.rows.iter())
             .filter(|r| !event_times.contains(&r.t))
-            .map(|r| vec![r.x, r.v])
+            .map(|r| state(r).0)
             .collect();
         Measures {
-            final_state: o.last().map_or(vec![f64::NAN; 2], |r| vec![r.x, r.v]),
+            final_state,
+            quantities: final_quantities.clone(),
+            final_quantities,
             grid,
             event_times,
             stick_durations: sticks,
             peak_friction: o.rows.iter().map(|r| r.friction.abs()).fold(0.0, f64::max),
+            energy: o.energy,
         }
     }
 
@@ -142,16 +162,30 @@ impl Measures {
     /// stick phases of `bodies`.
     pub fn of_run(run: &Run, bodies: &[usize]) -> Measures {
         let n = run.problem.system.bodies.len();
-        let last = run.solution.len().checked_sub(1);
-        let final_state = match last {
-            Some(k) => (0..n)
-                .flat_map(|i| {
-                    let b = run.body_at(i, k);
-                    [b.x, b.v]
-                })
-                .collect(),
-            None => vec![f64::NAN; 2 * n],
+        let state = |i: usize, k: usize| {
+            let b = run.body_at(i, k);
+            body_state(b.x, b.v, b.z)
         };
+        let (mut final_state, mut final_quantities) = (Vec::new(), Vec::new());
+        match run.solution.len().checked_sub(1) {
+            Some(k) => {
+                for i in 0..n {
+                    let (s, q) = state(i, k);
+                    final_state.extend(s);
+                    final_quantities.extend(q);
+                }
+            }
+            None => {
+                final_state = vec![f64::NAN; 2 * n];
+                final_quantities = [Quantity::Position, Quantity::Velocity].repeat(n);
+            }
+        }
+        let mut quantities = Vec::new();
+        if !run.solution.is_empty() {
+            for &i in bodies {
+                quantities.extend(state(i, 0).1);
+            }
+        }
         let mut peak: f64 = 0.0;
         let grid = (0..run.solution.len())
             .map(|k| {
@@ -160,7 +194,7 @@ impl Measures {
                     .flat_map(|&i| {
                         let b = run.body_at(i, k);
                         peak = peak.max(b.friction.abs());
-                        [b.x, b.v]
+                        body_state(b.x, b.v, b.z).0
                     })
                     .collect()
             })
@@ -175,10 +209,13 @@ impl Measures {
         }
         Measures {
             final_state,
+            final_quantities,
             grid,
+            quantities,
             event_times,
             stick_durations: sticks,
             peak_friction: peak,
+            energy: run.energy(),
         }
     }
 }
@@ -326,10 +363,13 @@ impl StudyCase for Case {
             name.to_string(),
             Measures {
                 final_state: vec![x, v],
+                final_quantities: vec![Quantity::Position, Quantity::Velocity],
                 grid,
+                quantities: vec![Quantity::Position, Quantity::Velocity],
                 event_times: vec![],
                 stick_durations: vec![],
                 peak_friction: peak,
+                energy: None,
             },
         ))
     }

@@ -2,128 +2,12 @@
 //! errors against it, and the record a study keeps of the run.
 
 use crate::cases::Measures;
+pub use crate::errors::{ErrorMeasure, Errors};
 use crate::method::StepKind;
 use crate::verdict::Verdict;
 use friction_models::params::show;
 use integrators::{SolverError, Stats, StepControl};
 use serde::Serialize;
-
-/// Errors of a run against the reference. An error that does not exist for the run is NaN,
-/// written as an empty cell and JSON `null`, never 0 (which would read as exact).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct Errors {
-    /// max |Δx|, |Δv| over every body at the end.
-    pub final_state: f64,
-    /// max |Δx|, |Δv| of the measured bodies over the common grid.
-    pub grid_max: f64,
-    /// max |Δt| over the events: NaN when there are none (a regularised run, LuGre) or when
-    /// the numbers of events differ.
-    pub event_times: f64,
-    /// max |Δ| over the stick durations: NaN when there are no stick phases or when their
-    /// numbers differ.
-    pub stick_durations: f64,
-}
-
-/// One of a run's errors against its reference ([`Errors`]), by the name the study files give
-/// it (`final_state`, `grid_max`, `event_times`, `stick_durations`; the runs' tables prefix
-/// `error_`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum ErrorMeasure {
-    /// [`Errors::final_state`].
-    FinalState,
-    /// [`Errors::grid_max`].
-    GridMax,
-    /// [`Errors::event_times`].
-    EventTimes,
-    /// [`Errors::stick_durations`].
-    StickDurations,
-}
-
-impl ErrorMeasure {
-    /// Every measure, in the order the study files list them.
-    pub const ALL: [ErrorMeasure; 4] = [
-        ErrorMeasure::FinalState,
-        ErrorMeasure::GridMax,
-        ErrorMeasure::EventTimes,
-        ErrorMeasure::StickDurations,
-    ];
-
-    /// The name the study files give it.
-    pub fn name(self) -> &'static str {
-        match self {
-            ErrorMeasure::FinalState => "final_state",
-            ErrorMeasure::GridMax => "grid_max",
-            ErrorMeasure::EventTimes => "event_times",
-            ErrorMeasure::StickDurations => "stick_durations",
-        }
-    }
-
-    /// Its value among `errors`.
-    pub fn of(self, errors: &Errors) -> f64 {
-        match self {
-            ErrorMeasure::FinalState => errors.final_state,
-            ErrorMeasure::GridMax => errors.grid_max,
-            ErrorMeasure::EventTimes => errors.event_times,
-            ErrorMeasure::StickDurations => errors.stick_durations,
-        }
-    }
-}
-
-impl std::fmt::Display for ErrorMeasure {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.pad(self.name())
-    }
-}
-
-/// max |a_i − b_i|; NaN (undefined) when the lengths differ.
-fn max_diff(a: &[f64], b: &[f64]) -> f64 {
-    if a.len() != b.len() {
-        return f64::NAN;
-    }
-    a.iter()
-        .zip(b)
-        .map(|(x, y)| (x - y).abs())
-        .fold(0.0, f64::max)
-}
-
-/// [`max_diff`] of lists of things that may not exist at all (events, stick phases): NaN
-/// where neither list has any, as where their lengths differ.
-fn max_diff_of_some(a: &[f64], b: &[f64]) -> f64 {
-    if a.is_empty() && b.is_empty() {
-        return f64::NAN;
-    }
-    max_diff(a, b)
-}
-
-impl Errors {
-    /// Not measured (yet): every error NaN.
-    pub const UNMEASURED: Errors = Errors {
-        final_state: f64::NAN,
-        grid_max: f64::NAN,
-        event_times: f64::NAN,
-        stick_durations: f64::NAN,
-    };
-
-    /// The errors of `m` against `reference`.
-    pub fn between(m: &Measures, reference: &Measures) -> Errors {
-        let grid_max = if m.grid.len() == reference.grid.len() {
-            m.grid
-                .iter()
-                .zip(&reference.grid)
-                .map(|(a, b)| max_diff(a, b))
-                .fold(0.0, f64::max)
-        } else {
-            f64::NAN
-        };
-        Errors {
-            final_state: max_diff(&m.final_state, &reference.final_state),
-            grid_max,
-            event_times: max_diff_of_some(&m.event_times, &reference.event_times),
-            stick_durations: max_diff_of_some(&m.stick_durations, &reference.stick_durations),
-        }
-    }
-}
 
 /// Where the reference comes from.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -137,7 +21,8 @@ pub enum Reference {
         /// Its step control.
         step: StepControl,
         /// A second tight run by an independent solver: the solver, and the largest
-        /// difference of the two on the time grid, the reference's estimated error.
+        /// relative difference of the two on the time grid ([`Errors::grid_relative`]), the
+        /// reference's estimated error.
         cross_check: (&'static str, f64),
     },
 }
@@ -162,9 +47,9 @@ impl Reference {
     /// not, or the sentence that says so.
     pub fn limits(&self, runs: &[StudyRun]) -> Option<String> {
         let finest = (runs.iter())
-            .filter(|r| r.verdict.is_ok() && r.errors.grid_max > 0.0)
-            .min_by(|a, b| a.errors.grid_max.total_cmp(&b.errors.grid_max))?;
-        let (e, smallest) = (self.estimated_error(), finest.errors.grid_max);
+            .filter(|r| r.verdict.is_ok() && r.errors.grid_relative > 0.0)
+            .min_by(|a, b| a.errors.grid_relative.total_cmp(&b.errors.grid_relative))?;
+        let (e, smallest) = (self.estimated_error(), finest.errors.grid_relative);
         let Reference::Run {
             solver,
             cross_check,

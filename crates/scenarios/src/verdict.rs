@@ -106,17 +106,16 @@ impl Verdict {
         }
     }
 
-    /// The verdict on a study run's largest `error` against a reference (over the time grid
-    /// and at the end) whose solution has the scale `scale` (its largest |x| or |v|):
+    /// The verdict on a study run's largest `relative` error against a reference (over the
+    /// time grid and at the end, each quantity over the solution's scale in it):
     /// `inaccurate` where the error is as large as the solution (no correct digit).
-    pub fn against_reference(error: f64, scale: f64) -> Verdict {
-        if error >= scale {
+    pub fn against_reference(relative: f64) -> Verdict {
+        if relative >= 1.0 {
             Verdict::new(
                 Status::Inaccurate,
                 format!(
-                    "its error {} is as large as the solution's scale {} (no correct digit)",
-                    friction_models::params::show(error),
-                    friction_models::params::show(scale)
+                    "its relative error {} is at least 1: no correct digit",
+                    friction_models::params::show(relative),
                 ),
             )
         } else {

@@ -45,7 +45,7 @@ fn the_study_recovers_the_orders_of_the_methods_on_a_smooth_problem() {
         &case,
         Solver::Rk4,
         &[0.4, 0.2, 0.1, 0.05],
-        ErrorMeasure::GridMax,
+        ErrorMeasure::GridRelative,
     );
     assert!((rk4.slope - 4.0).abs() < 0.2, "rk4 {rk4:?}");
     assert!(rk4.ci[0] < 4.0 && 4.0 < rk4.ci[1], "rk4 {rk4:?}");
@@ -55,14 +55,14 @@ fn the_study_recovers_the_orders_of_the_methods_on_a_smooth_problem() {
         &case,
         Solver::Dopri5,
         &[1.0, 0.5, 0.25, 0.125],
-        ErrorMeasure::GridMax,
+        ErrorMeasure::GridRelative,
     );
     assert!((dopri5 - 5.0).abs() < 0.3, "dopri5 {dopri5}");
     let euler = slope(
         &case,
         Solver::ImplicitEuler,
         &[0.04, 0.02, 0.01, 0.005],
-        ErrorMeasure::GridMax,
+        ErrorMeasure::GridRelative,
     );
     assert!((euler - 1.0).abs() < 0.1, "implicit Euler {euler}");
 }
@@ -89,14 +89,14 @@ fn stepping_through_v_0_costs_rk4_its_order_and_event_location_restores_it() {
         &coulomb_vibration(SwitchingKind::Naive),
         Solver::Rk4,
         &steps,
-        ErrorMeasure::GridMax,
+        ErrorMeasure::GridRelative,
     );
     assert!((naive - 1.0).abs() < 0.25, "naive {naive}");
     let switched = slope(
         &coulomb_vibration(SwitchingKind::Event),
         Solver::Rk4,
         &steps,
-        ErrorMeasure::GridMax,
+        ErrorMeasure::GridRelative,
     );
     assert!((switched - 4.0).abs() < 0.25, "switched {switched}");
     // The switched events are the closed form's: reversals every π/ω.
@@ -479,7 +479,7 @@ fn a_system_study_draws_regularised_bdf_and_time_stepping_beside_its_solvers() {
         w.runs
             .iter()
             .filter(|r| r.solver == label)
-            .map(|r| r.errors.grid_max)
+            .map(|r| r.errors.grid_relative)
             .collect()
     };
     // Time-stepping takes the step sizes and converges (Coulomb: continuous at break-away).
@@ -546,7 +546,7 @@ fn a_sweep_in_one_list_gives_each_case_its_own_results_on_one_or_two_threads() {
         assert_eq!(counted.into_inner(), 2 * jobs.len() * 3);
         for (c, (r, m, runs)) in together.into_iter().zip(&alone) {
             assert_eq!(c.reference.as_ref(), Some(&(r.clone(), m.clone())));
-            assert!(c.runs.iter().all(|r| r.errors.grid_max.is_finite()));
+            assert!(c.runs.iter().all(|r| r.errors.grid_relative.is_finite()));
             assert_eq!(&without_times(c.runs), runs, "{threads} threads");
         }
     }
@@ -632,7 +632,7 @@ fn the_order_rests_on_the_longest_run_of_agreeing_pairs_or_there_is_none() {
         let (pairs, fit) = orders(points, 1.0);
         OrderTable {
             solver: "rk4".into(),
-            measure: ErrorMeasure::FinalState,
+            measure: ErrorMeasure::FinalRelative,
             step,
             pairs,
             fit,
@@ -722,7 +722,7 @@ fn costed(tol: f64, error: f64, work: usize) -> scenarios::studies::StudyRun {
         resolution: tol,
         step: scenarios::studies::StepKind::Adaptive,
         errors: scenarios::studies::Errors {
-            grid_max: error,
+            grid_relative: error,
             ..scenarios::studies::Errors::UNMEASURED
         },
         measures: Default::default(),
@@ -767,7 +767,7 @@ fn the_cost_at_the_target_is_interpolated_and_overlapping_brackets_tie() {
     // A run judged inaccurate does not meet the target; before one that does, it bounds the
     // cost from below but is no point to interpolate from.
     let mut bad = costed(1e-2, 1e-4, 20);
-    bad.verdict = scenarios::verdict::Verdict::against_reference(1.0, 0.5);
+    bad.verdict = scenarios::verdict::Verdict::against_reference(2.0);
     assert_eq!(reached(&[&bad], 1e-3), None);
     let r = reached(&[&bad, &costed(1e-3, 1e-4, 80)], 1e-3).unwrap();
     assert_eq!(
@@ -836,7 +836,7 @@ fn an_own_method_is_studied_beside_the_built_ins_under_its_own_name_only() {
     let wp = run(&MINE).unwrap();
     let of = |name: &str| -> Vec<_> {
         let runs = wp.runs.iter().filter(|r| r.solver == name);
-        runs.map(|r| (r.resolution, r.stats, r.errors.final_state))
+        runs.map(|r| (r.resolution, r.stats, r.errors.final_relative))
             .collect()
     };
     assert_eq!(of("my-dopri5").len(), 2);
@@ -870,7 +870,7 @@ fn a_time_stepped_study_measures_moreau_jeans_order_under_its_own_name() {
         let grid = c
             .orders
             .iter()
-            .find(|t| t.measure == ErrorMeasure::GridMax)
+            .find(|t| t.measure == ErrorMeasure::GridRelative)
             .unwrap();
         assert_eq!(grid.solver, "moreau-jean (timestepping)");
         let p = grid.fit.expect("an asymptotic range").slope;
@@ -905,4 +905,35 @@ fn a_time_stepped_study_without_a_closed_form_takes_the_event_driven_reference()
         stepped_reference.final_state, event_reference.final_state,
         "the same run"
     );
+}
+
+/// LuGre on the belt: its bristle deflection z is measured in its own unit beside x and v,
+/// each relative to the solution's scale in that quantity, and the energy balance closes to
+/// the tolerance.
+#[test]
+fn a_law_with_an_internal_state_has_its_error_in_z() {
+    let case = Case {
+        scenario: Scenario::Belt,
+        law: ModelId::LuGre.into(),
+        params: Scenario::Belt.defaults(),
+        t_end: 2.0,
+        ..viscous_block()
+    };
+    let bdf = Solver::Diffsol(integrators::DiffsolMethod::Bdf);
+    let c = convergence(&case, &[bdf], &[], &[1e-5, 1e-7], &|| {}).unwrap();
+    for r in &c.runs {
+        let e = r.errors;
+        assert!(e.z > 0.0 && e.z_relative > 0.0, "{e:?}");
+        // The bristles deflect by micrometres: z's absolute error is far below x's, while its
+        // relative error is of the order of the others.
+        assert!(e.z < e.x && e.z_relative > 1e-3 * e.grid_relative, "{e:?}");
+        let largest = [e.x_relative, e.v_relative, e.z_relative]
+            .into_iter()
+            .fold(0.0, f64::max);
+        assert_eq!(e.grid_relative, largest, "{e:?}");
+        assert!(e.energy_relative < 1e-3, "{e:?}");
+    }
+    // Tightening the tolerance by 100 reduces every error.
+    let [loose, tight] = [&c.runs[0], &c.runs[1]].map(|r| r.errors);
+    assert!(tight.x < loose.x && tight.v < loose.v && tight.z < loose.z);
 }

@@ -45,7 +45,8 @@ pub struct StiffnessArgs {
     /// time-stepping, whose one method is Moreau–Jean's scheme].
     #[arg(long, value_delimiter = ',')]
     pub solvers: Vec<Solver>,
-    /// The error to reach (maximum over the time grid).
+    /// The error to reach: `grid_relative`, the largest error on the time grid over the
+    /// solution's scale in each quantity (dimensionless).
     #[arg(
         long,
         value_name = "E",

@@ -4,6 +4,7 @@
 use super::orders::{orders, Fit, PairOrder, MIN_PAIRS, ORDER_AGREEMENT};
 use super::{run_against_reference, ErrorMeasure, Method, Reference, StepKind};
 use super::{StudyCase, StudyRun};
+use crate::errors::Scales;
 use crate::run::ScenarioError;
 use friction_models::params::show;
 use integrators::Solver;
@@ -160,7 +161,7 @@ pub fn convergence(
     let jobs = Method::jobs(&methods, step_sizes, tolerances, true);
     let own = Method::own_solvers(&methods);
     let (reference, ref_measures, runs) = run_against_reference(case, &own, &jobs, progress)?;
-    let sc = ref_measures.scale();
+    let scales = Scales::of(&ref_measures);
     let mut tables = Vec::new();
     for method in &methods {
         let label = method.label();
@@ -168,7 +169,7 @@ pub fn convergence(
         let Some(step) = mine.first().map(|r| r.step) else {
             continue;
         };
-        for measure in ErrorMeasure::ALL {
+        for measure in ErrorMeasure::ORDERED {
             let points: Vec<(f64, f64)> = mine
                 .iter()
                 .map(|r| (r.resolution, measure.of(&r.errors)))
@@ -176,7 +177,7 @@ pub fn convergence(
             if points.iter().all(|p| p.1.is_nan() || p.1 == 0.0) {
                 continue;
             }
-            let (pairs, fit) = orders(&points, sc);
+            let (pairs, fit) = orders(&points, measure.scale(&scales, case.t_end()));
             tables.push(OrderTable {
                 solver: label.clone(),
                 measure,

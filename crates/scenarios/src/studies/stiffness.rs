@@ -116,14 +116,14 @@ pub fn winner(costs: &[Cost]) -> Option<Winner> {
 /// point to interpolate from: the estimate is then the work of the run that met the target.
 pub fn reached(runs: &[&StudyRun], target: f64) -> Option<Reached> {
     let ended: Vec<&&StudyRun> = (runs.iter())
-        .filter(|r| r.failure.is_none() && r.errors.grid_max.is_finite())
+        .filter(|r| r.failure.is_none() && r.errors.grid_relative.is_finite())
         .collect();
-    let j = (ended.iter()).position(|r| r.verdict.is_ok() && r.errors.grid_max <= target)?;
+    let j = (ended.iter()).position(|r| r.verdict.is_ok() && r.errors.grid_relative <= target)?;
     let met = ended[j];
     let (work_estimate, work_bracket) = match j.checked_sub(1).map(|i| ended[i]) {
         Some(missed) => {
-            let (e0, w0) = (missed.errors.grid_max.ln(), (missed.work as f64).ln());
-            let (e1, w1) = (met.errors.grid_max.ln(), (met.work as f64).ln());
+            let (e0, w0) = (missed.errors.grid_relative.ln(), (missed.work as f64).ln());
+            let (e1, w1) = (met.errors.grid_relative.ln(), (met.work as f64).ln());
             let estimate = if missed.verdict.is_ok() && e1 < e0 {
                 (w0 + (target.ln() - e0) * (w1 - w0) / (e1 - e0)).exp()
             } else {
@@ -140,7 +140,7 @@ pub fn reached(runs: &[&StudyRun], target: f64) -> Option<Reached> {
     Some(Reached {
         resolution: met.resolution,
         step: met.step,
-        error: met.errors.grid_max,
+        error: met.errors.grid_relative,
         stats: met.stats,
         work: met.work,
         work_estimate,
