@@ -2199,7 +2199,7 @@ fn stiffness_of_a_rig_over_epsilon_is_regularized_unless_told_otherwise() {
         "--model",
         "CS",
         "--values",
-        "1e-1,1e-3",
+        "1e-1,1e-4",
         "--solvers",
         "dopri5",
         "--t-end",
@@ -2216,6 +2216,17 @@ fn stiffness_of_a_rig_over_epsilon_is_regularized_unless_told_otherwise() {
         .map(|r| r.split(',').nth(column).unwrap().parse().unwrap())
         .collect();
     assert!(evals[1] > 5.0 * evals[0], "{evals:?}");
+    // At epsilon = 1e-4 Dormand–Prince's stiffness test fires: the reference there is BDF's
+    // tight run, cross-checked by the explicit pair (Tsit45, as Dormand–Prince is studied).
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("stiffness.json")).unwrap())
+            .unwrap();
+    let reference = |i: usize| &json["points"][i]["reference"]["Run"];
+    assert_eq!(reference(0)["solver"], "tsit45", "{}", reference(0));
+    assert!(reference(0)["stiffness_detected_at"].is_null());
+    assert_eq!(reference(1)["solver"], "bdf", "{}", reference(1));
+    assert_eq!(reference(1)["cross_check"][0], "tsit45");
+    assert!(reference(1)["stiffness_detected_at"].as_f64().unwrap() < 2.0);
     let e = rejected(&["stiffness", "belt", "--model", "CS", "--switching", "event"]);
     assert!(
         e.contains("option `parameter`: parameter `epsilon` is read only under --switching regularized, not event"),

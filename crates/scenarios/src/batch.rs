@@ -9,13 +9,14 @@
 //! The expected cost only orders the list: every result depends on its run alone, so the
 //! results are the same for any number of threads and any order.
 
-use crate::cases::{Measures, StudyCase};
+use crate::cases::{Measured, Measures, StudyCase};
 use crate::method::{resolution, Method, StepKind};
 use crate::run::{ScenarioError, SwitchingKind};
 use crate::schedule;
 use crate::study_run::{Errors, Reference, StudyRun, WallTimes, REFERENCE_TOLERANCE};
 use crate::verdict::Verdict;
 use integrators::{DiffsolMethod, Solver, StepControl};
+use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 /// The steps a run is expected to take, to order the list: `T/h` with a fixed step;
@@ -37,8 +38,9 @@ pub fn expected_steps(method: &Method, step: StepControl, t_span: f64) -> f64 {
 enum Plan {
     /// Its closed form.
     Exact(Reference, Box<Measures>),
-    /// A tight run of a solver under a treatment of v = 0, and maybe a second solver's
-    /// tight run to cross-check it.
+    /// Tight runs of two explicit 5(4) pairs under a treatment of v = 0, the first the
+    /// reference and the second its cross-check; and, if Dormand–Prince's stiffness test
+    /// fires in either, a tight run of an implicit method that becomes the reference.
     Runs {
         own: Box<dyn StudyCase>,
         solver: Solver,
@@ -53,11 +55,22 @@ const REFERENCE_STEP: StepControl = StepControl::Adaptive {
     h0: None,
 };
 
+/// The implicit method a stiff case's reference is computed with: diffsol's variable-order
+/// BDF (orders 1 to 5), even where it is studied. Of diffsol's implicit methods at
+/// rtol = atol = 1e-13 it alone comes close to Dormand–Prince's tight run: within 1.6e-9
+/// relative on the belt with CS regularised at ε = 1e-4 and 1.7e-8 with LuGre at σ0 = 1e7,
+/// against 7.2e-8 and 3.2e-7 for ESDIRK34 and 5.5e-7 and 2.2e-6 for TR-BDF2 (docs/studies.md).
+const STIFF_REFERENCE: Solver = Solver::Diffsol(DiffsolMethod::Bdf);
+
 /// The reference of `case` for a study of `studied` solvers: the closed form where one
 /// exists; otherwise a run at rtol = atol = [`REFERENCE_TOLERANCE`] of Dormand–Prince, or,
 /// when Dormand–Prince itself is studied (and Tsit45 not), of diffsol's Tsit45 (an independent
 /// 5(4) pair, its own error control and dense output), always cross-checked by a tight run of
 /// the other: their largest difference on the time grid is the reference's estimated error.
+/// Where Dormand–Prince's stiffness test (Hairer & Wanner II, §IV.2) fires in its tight run
+/// the case is stiff: an explicit method's tight run is then limited by its stability, not its
+/// accuracy, and the reference is a tight run of an implicit method ([`STIFF_REFERENCE`]),
+/// cross-checked by the explicit one (another family: one-step explicit against implicit).
 /// Event switching for a naive or a time-stepped study (the exact solution of the
 /// discontinuous problem both approximate), the study's own switching otherwise.
 fn plan(case: &dyn StudyCase, studied: &[Solver]) -> Plan {
@@ -84,14 +97,14 @@ fn plan(case: &dyn StudyCase, studied: &[Solver]) -> Plan {
 }
 
 /// One tight run of a reference; a failure is the study's error.
-fn reference_run(own: &dyn StudyCase, solver: Solver) -> Result<Measures, ScenarioError> {
+fn reference_run(own: &dyn StudyCase, solver: Solver) -> Result<Measured, ScenarioError> {
     let o = own.measure(solver, REFERENCE_STEP)?;
     match o.error {
         Some(error) => Err(ScenarioError::Solver {
             what: format!("the reference run ({})", solver.name()),
             error,
         }),
-        None => Ok(o.measures),
+        None => Ok(o),
     }
 }
 
@@ -107,15 +120,25 @@ pub fn reference(
     Ok(out.remove(0).reference.expect("a reference was asked for"))
 }
 
-/// The reference a plan gives with the measures of its tight runs (`tight`: the reference
-/// solver's, then the cross-check's), the cross-check's difference on the time grid.
-fn reference_of(plan: Plan, tight: Vec<Measures>) -> (Reference, Measures) {
+/// The reference a plan gives with its tight runs (`tight`: the first explicit solver's,
+/// then the cross-check's; `implicit_run`: the implicit method's, run where the case is
+/// stiff), and the cross-check's relative difference on the time grid.
+fn reference_of(
+    plan: Plan,
+    tight: Vec<Measured>,
+    implicit_run: Option<Measures>,
+) -> (Reference, Measures) {
     match plan {
         Plan::Exact(r, m) => (r, *m),
         Plan::Runs { solver, check, .. } => {
-            let mut tight = tight.into_iter();
-            let measures = tight.next().expect("one run per reference solver");
-            let checked = tight.next().expect("one run per reference solver");
+            let [first, second]: [Measured; 2] =
+                tight.try_into().expect("two explicit reference runs");
+            let stiffness_detected_at =
+                first.stiffness_detected_at.or(second.stiffness_detected_at);
+            let (solver, measures, check, checked) = match implicit_run {
+                Some(m) => (STIFF_REFERENCE, m, solver, first.measures),
+                None => (solver, first.measures, check, second.measures),
+            };
             let cross_check = (
                 check.name(),
                 Errors::between(&checked, &measures).grid_relative,
@@ -124,6 +147,7 @@ fn reference_of(plan: Plan, tight: Vec<Measures>) -> (Reference, Measures) {
                 solver: solver.name(),
                 step: REFERENCE_STEP,
                 cross_check,
+                stiffness_detected_at,
             };
             (reference, measures)
         }
@@ -155,7 +179,7 @@ enum Task {
 
 /// What an entry of the list gave.
 enum Done {
-    Reference(Measures),
+    Reference(Box<Measured>),
     Run(Box<StudyRun>),
     /// A timing repeat's wall time; `None` for the repeat of a run that failed, not run.
     Time(Option<f64>),
@@ -244,7 +268,7 @@ pub fn run_cases(
             let Some(Plan::Runs { own, .. }) = &plans[case] else {
                 unreachable!("reference tasks come from run plans")
             };
-            reference_run(own.as_ref(), solver).map(Done::Reference)
+            reference_run(own.as_ref(), solver).map(|m| Done::Reference(Box::new(m)))
         }
         Task::Run { case, job, repeat } => {
             let (method, step) = jobs[job];
@@ -277,18 +301,29 @@ pub fn run_cases(
         }
     })?;
     let mut done = done.into_iter().map(|(_, d)| d);
-    let mut tight: Vec<Vec<Measures>> = vec![Vec::new(); cases.len()];
+    let mut tight: Vec<Vec<Measured>> = (0..cases.len()).map(|_| Vec::new()).collect();
     for t in &tasks {
         if let Task::Reference { case, .. } = *t {
             let Some(Done::Reference(m)) = done.next() else {
                 unreachable!("results come back in the order of the tasks")
             };
-            tight[case].push(m);
+            tight[case].push(*m);
         }
     }
+    // A stiff case's reference is an implicit method's tight run (see `plan`).
+    let implicit_runs: Vec<Option<Measures>> = (plans.par_iter().zip(&tight))
+        .map(|(plan, tight)| match plan {
+            Some(Plan::Runs { own, .. })
+                if tight.iter().any(|m| m.stiffness_detected_at.is_some()) =>
+            {
+                reference_run(own.as_ref(), STIFF_REFERENCE).map(|m| Some(m.measures))
+            }
+            _ => Ok(None),
+        })
+        .collect::<Result<_, _>>()?;
     let mut out: Vec<CaseRuns> = Vec::with_capacity(cases.len());
-    for (plan, tight) in plans.into_iter().zip(tight) {
-        let reference = plan.map(|p| reference_of(p, tight));
+    for ((plan, tight), implicit_run) in plans.into_iter().zip(tight).zip(implicit_runs) {
+        let reference = plan.map(|p| reference_of(p, tight, implicit_run));
         let mut runs = Vec::with_capacity(jobs.len());
         for _ in jobs {
             let Some(Done::Run(mut run)) = done.next() else {

@@ -66,6 +66,9 @@ pub struct Measured {
     pub error: Option<SolverError>,
     /// Wall time of the integration, s.
     pub wall_time_s: f64,
+    /// Where Hairer's stiffness test (Dormand–Prince's) first judged the problem stiff;
+    /// `None` for another solver or a run it did not judge stiff.
+    pub stiffness_detected_at: Option<f64>,
 }
 
 /// A problem a study integrates with many solvers and steps.
@@ -314,6 +317,7 @@ impl StudyCase for Case {
             stats: o.stats,
             error: o.error,
             wall_time_s: o.wall_time_s,
+            stiffness_detected_at: o.stiffness_detected_at,
         })
     }
 
@@ -530,6 +534,7 @@ impl StudyCase for SystemCase {
         Ok(Measured {
             measures: Measures::of_run(&run, &self.bodies),
             stats: run.solution.stats,
+            stiffness_detected_at: run.solution.stiffness_detected_at,
             error: run.error,
             wall_time_s: run.wall_time_s,
         })

@@ -24,6 +24,10 @@ pub enum Reference {
         /// relative difference of the two on the time grid ([`Errors::grid_relative`]), the
         /// reference's estimated error.
         cross_check: (&'static str, f64),
+        /// Where Dormand–Prince's stiffness test fired in its tight run: the case is stiff,
+        /// and `solver` is an implicit method cross-checked by an explicit one; `None`
+        /// where it did not, and `solver` is an explicit 5(4) pair.
+        stiffness_detected_at: Option<f64>,
     },
 }
 

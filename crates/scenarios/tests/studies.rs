@@ -209,6 +209,8 @@ fn the_stiffness_verdict_names_a_crossover_only_inside_the_sweep() {
                         Winner::Explicit
                     }
                 }),
+                reference: Reference::ClosedForm("exact".into()),
+                reference_limit: None,
             })
             .collect();
         Stiffness {
@@ -936,4 +938,52 @@ fn a_law_with_an_internal_state_has_its_error_in_z() {
     // Tightening the tolerance by 100 reduces every error.
     let [loose, tight] = [&c.runs[0], &c.runs[1]].map(|r| r.errors);
     assert!(tight.x < loose.x && tight.v < loose.v && tight.z < loose.z);
+}
+
+/// A stiff case (CS regularised at ε = 1e-4: a slope of F_c/ε across v = 0) is judged stiff by
+/// Dormand–Prince's own test in its tight run; its reference is then BDF's tight run,
+/// cross-checked by the explicit 5(4) pair, a method of another family. A case that is not
+/// stiff keeps the explicit pair.
+#[test]
+fn a_stiff_case_has_an_implicit_reference_checked_by_an_explicit_one() {
+    let belt = |switching, epsilon| {
+        let mut friction = FrictionParams::paper();
+        friction.epsilon = epsilon;
+        Case {
+            scenario: Scenario::Belt,
+            law: ModelId::Cs.into(),
+            friction,
+            params: Scenario::Belt.defaults(),
+            switching,
+            t_end: 2.0,
+            ..viscous_block()
+        }
+    };
+    let stiff = belt(SwitchingKind::Regularized, 1e-4);
+    let (r, _) = scenarios::studies::reference(&stiff, &[Solver::Rk4]).unwrap();
+    let Reference::Run {
+        solver,
+        cross_check: (check, estimate),
+        stiffness_detected_at,
+        ..
+    } = r
+    else {
+        panic!("{r:?}")
+    };
+    assert_eq!(solver, "bdf");
+    assert_eq!(check, "dopri5");
+    let t = stiffness_detected_at.expect("judged stiff");
+    assert!(t > 0.0 && t < 2.0, "{t}");
+    assert!(estimate > 0.0 && estimate < 1e-7, "{estimate}");
+    let smooth = belt(SwitchingKind::Event, 1e-4);
+    let (r, _) = scenarios::studies::reference(&smooth, &[Solver::Rk4]).unwrap();
+    let Reference::Run {
+        solver,
+        stiffness_detected_at: None,
+        ..
+    } = r
+    else {
+        panic!("{r:?}")
+    };
+    assert_eq!(solver, "dopri5");
 }

@@ -110,6 +110,14 @@ pub fn stiffness(a: &StiffnessArgs) -> Result<Made, AppError> {
             tols: &a.tol_list,
         };
         let s = conduct(&study, t, "stiffness")?;
-        Ok(vec![s.verdict()])
+        let limits = (s.points.iter()).filter_map(|p| {
+            Some(format!(
+                "at {} = {}: {}",
+                s.parameter,
+                p.value,
+                p.reference_limit.as_ref()?
+            ))
+        });
+        Ok(std::iter::once(s.verdict()).chain(limits).collect())
     })
 }

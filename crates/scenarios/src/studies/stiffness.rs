@@ -2,7 +2,7 @@
 //! resolutions that bracket it, over the values of a stiffness parameter, and where the
 //! implicit methods overtake the explicit ones (a tie where the brackets cannot tell).
 
-use super::{batch, Method, StepKind, StudyCase, StudyRun};
+use super::{batch, Method, Reference, StepKind, StudyCase, StudyRun};
 use crate::run::ScenarioError;
 use integrators::Stats;
 use serde::Serialize;
@@ -27,7 +27,7 @@ pub struct Reached {
     pub resolution: f64,
     /// Which that resolution is: `fixed` or `adaptive`.
     pub step: StepKind,
-    /// That run's error (maximum over the time grid).
+    /// That run's error ([`crate::errors::Errors::grid_relative`]).
     pub error: f64,
     /// That run's statistics.
     pub stats: Stats,
@@ -76,6 +76,11 @@ pub struct StiffnessPoint {
     pub costs: Vec<Cost>,
     /// Which kind wins ([`winner`]); `None` where no method met the target.
     pub winner: Option<Winner>,
+    /// The reference at this value, with its estimated error.
+    pub reference: Reference,
+    /// Where the reference limits the finest runs at this value, the sentence that says so
+    /// ([`Reference::limits`]).
+    pub reference_limit: Option<String>,
 }
 
 /// The kind that reaches the target more cheaply among `costs`: the cheapest estimate of each
@@ -153,7 +158,7 @@ pub fn reached(runs: &[&StudyRun], target: f64) -> Option<Reached> {
 pub struct Stiffness {
     /// The swept parameter.
     pub parameter: String,
-    /// The target error (grid maximum).
+    /// The target error ([`crate::errors::Errors::grid_relative`]).
     pub target: f64,
     /// Every value.
     pub points: Vec<StiffnessPoint>,
@@ -312,7 +317,7 @@ pub struct Sweep<'a> {
     pub parameter: &'a str,
     /// Its values, in sweep order.
     pub values: &'a [f64],
-    /// The error to reach (maximum over the time grid).
+    /// The error to reach ([`crate::errors::Errors::grid_relative`]).
     pub target: f64,
 }
 
@@ -343,7 +348,8 @@ pub fn stiffness(
     // the one before.
     let done = batch::run_cases(&cases, Some(&own), &jobs, 0, progress)?;
     let mut points = Vec::new();
-    for (&value, batch::CaseRuns { runs, .. }) in values.iter().zip(done) {
+    for (&value, batch::CaseRuns { runs, reference }) in values.iter().zip(done) {
+        let (reference, _) = reference.expect("a stiffness study asks for its references");
         let costs: Vec<Cost> = methods
             .iter()
             .map(|m| {
@@ -362,6 +368,8 @@ pub fn stiffness(
             value,
             winner: winner(&costs),
             costs,
+            reference_limit: reference.limits(&runs),
+            reference,
         });
     }
     Ok(Stiffness {
