@@ -436,7 +436,7 @@ fn add_studies(
          dt = 1e-3, halved three times, relative tolerance 1e-6): {}.\n\
          - [The same check on CS stick-slip stepped blindly](studies/independence-belt-CS-naive.png): {}.\n\
          - [Work against precision on the belt](studies/work-precision-belt-CS.png): relative error against \
-         f evaluations (plus n per Jacobian) for all seven solvers; wall times in \
+         counted work (f evaluations, with Jacobians, LU factorisations and back-solves weighted by their operation counts) for all seven solvers; wall times in \
          studies/work-precision-belt-CS-timing.csv.\n\
          - [Cost to reach relative error 1e-3 against the regularisation width](studies/stiffness-belt-CS-epsilon.png): \
          {}.\n{chain}",
@@ -545,7 +545,7 @@ fn add_chain_studies(t: &mut Target, friction: &FrictionParams) -> Result<String
          (N = 10 to 1000 over 4 s; Dormand–Prince and \
          regularised BDF at tolerance 1e-6, time-stepping at h = 1e-3; studies/cost-chain.csv \
          has steps and work, studies/cost-chain-timing.csv the wall times). Fitted slopes of \
-         work per step (f evaluations, plus N per Jacobian) against N: {exponents}.\n",
+         counted work per step against N: {exponents}.\n",
         friction.epsilon
     ))
 }

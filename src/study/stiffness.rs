@@ -187,7 +187,7 @@ impl Study for StiffnessStudy<'_> {
                 case.describe()
             ),
             x_label: parameter.to_string(),
-            y_label: "work at the target (f evaluations + dim per Jacobian), with its bracket"
+            y_label: "work at the target (f evaluations; Jacobians, LU and solves weighted), with its bracket"
                 .into(),
             series,
             legend: Corner::UpperRight,

@@ -100,7 +100,7 @@ impl Study for WorkPrecisionStudy<'_> {
         let error = ErrorMeasure::GridRelative.label();
         let plot = Plot {
             title: format!("Work-precision: {}", case.describe()),
-            x_label: "work (f evaluations + dim per Jacobian)".into(),
+            x_label: "work (f evaluations; Jacobians, LU and solves weighted by flops)".into(),
             y_label: error.into(),
             series: per_solver_series(
                 &w.runs,

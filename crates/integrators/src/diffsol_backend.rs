@@ -103,6 +103,8 @@ struct Shared<'a> {
     start: RefCell<Vec<f64>>,
     rhs_evals: Cell<usize>,
     jacobian_products: Cell<usize>,
+    /// The most stored entries of an analytic Jacobian seen (0: none, or finite differences).
+    jacobian_entries: Cell<usize>,
     jacobian: RefCell<Vec<crate::problem::Entry>>,
     /// Divide f by this regular mass diagonal (ODE path); `None` for the identity or a DAE.
     inverse_mass: Option<&'a [f64]>,
@@ -123,6 +125,8 @@ impl Shared<'_> {
         let mut jac = self.jacobian.borrow_mut();
         jac.clear();
         if self.problem.jacobian(t, y, &self.modes.borrow(), &mut jac) {
+            self.jacobian_entries
+                .set(self.jacobian_entries.get().max(jac.len()));
             jv.iter_mut().for_each(|x| *x = 0.0);
             for &(i, j, a) in jac.iter() {
                 jv[i] += a * v[j];
@@ -325,6 +329,15 @@ where
         s.rhs_evals = self.shared.rhs_evals.get();
         // A dense Jacobian costs n products; report whole Jacobians.
         s.jacobian_evals = self.shared.jacobian_products.get().div_ceil(n);
+        if s.lu_factorizations > 0 {
+            // The matrix factorised is n × n with the Jacobian's pattern (dense where the
+            // Jacobian comes from finite differences).
+            s.matrix_order = n;
+            s.matrix_entries = match self.shared.jacobian_entries.get() {
+                0 => n * n,
+                entries => entries,
+            };
+        }
         s
     }
 }
@@ -495,6 +508,7 @@ pub fn solve_observed(
         start: RefCell::new(y0.to_vec()),
         rhs_evals: Cell::new(0),
         jacobian_products: Cell::new(0),
+        jacobian_entries: Cell::new(0),
         jacobian: RefCell::new(Vec::new()),
         inverse_mass: if dae { None } else { mass },
     };

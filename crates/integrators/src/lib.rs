@@ -45,5 +45,5 @@ pub use problem::{Control, Crossing, Entry, EventSpec, Mode, OdeProblem};
 pub use rk4::Rk4;
 pub use solution::{EventRecord, Failure, ModeSwitch, Solution};
 pub use solver::{OneStepMethod, Solver};
-pub use stats::Stats;
+pub use stats::{Stats, WorkWeights};
 pub use stepper::{Ode, Stepper, StepperState};

@@ -24,7 +24,9 @@ pub enum NewtonKind {
 pub fn jacobian(ode: &Ode, t: f64, y: &[f64], f0: &[f64], jac: &mut Vec<Entry>, stats: &mut Stats) {
     jac.clear();
     stats.jacobian_evals += 1;
+    stats.matrix_order = y.len();
     if ode.problem.jacobian(t, y, ode.modes, jac) {
+        stats.matrix_entries = stats.matrix_entries.max(jac.len());
         return;
     }
     let n = y.len();
@@ -42,6 +44,7 @@ pub fn jacobian(ode: &Ode, t: f64, y: &[f64], f0: &[f64], jac: &mut Vec<Entry>, 
             }
         }
     }
+    stats.matrix_entries = stats.matrix_entries.max(jac.len());
 }
 
 /// The iteration matrix `M − c·J` as entries (M the diagonal mass matrix, identity when

@@ -110,6 +110,11 @@ fn implicit_euler_is_stable_where_rk4_is_not() {
         s.newton_iterations,
     );
     assert_eq!((counts, s.linear_solves), ((48, 1, 1, 27), 27), "{s:?}");
+    // The counted work weighs them by their operation counts (`WorkWeights`): f of this
+    // 1 × 1 problem costs one flop, an LU 2/3 and a back-solve 2, so 48 evaluations + 1 per
+    // Jacobian + 2/3 + 2·27 = 103.67, rounded to 104.
+    assert_eq!((s.matrix_order, s.matrix_entries), (1, 1), "{s:?}");
+    assert_eq!(s.work(1), 104, "{s:?}");
     let explicit = solve(&ProtheroRobinson, Box::new(Rk4::new(0.05, 1)), &[0.0], o);
     let error = explicit.unwrap_err().error;
     assert!(matches!(error, SolverError::NonFinite { .. }), "{error}");

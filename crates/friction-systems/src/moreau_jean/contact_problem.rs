@@ -57,6 +57,10 @@ impl Matrix {
     pub(super) fn row(&self, k: usize) -> &[(usize, f64)] {
         &self.coupling[self.start[k]..self.start[k + 1]]
     }
+    /// Its stored entries: the diagonal and the couplings.
+    pub(super) fn entries(&self) -> usize {
+        self.start.len() - 1 + self.coupling.len()
+    }
 }
 
 /// The order in which Gauss–Seidel visits `n` bodies coupled by `edges`: a greedy colouring

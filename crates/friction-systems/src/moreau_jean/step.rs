@@ -492,10 +492,21 @@ impl Stepper for TimeStepper<'_, '_> {
     }
 
     /// Gauss–Seidel sweeps as evaluations, their Newton iterations, their corrections (each a
-    /// factorisation and a solve), and the
-    /// steps that switched a mode as events.
+    /// factorisation and a solve of Ŵ's pattern over the bodies, whose order and entries weigh
+    /// them in the counted work), and the steps that switched a mode as events.
     fn stats(&self) -> Stats {
+        let corrected = self.problem.corrections > 0;
         Stats {
+            matrix_order: if corrected {
+                self.problem.bodies.len()
+            } else {
+                0
+            },
+            matrix_entries: if corrected {
+                self.problem.matrix.entries()
+            } else {
+                0
+            },
             steps: self.taken,
             rhs_evals: self.problem.sweeps,
             newton_iterations: self.problem.iterations,
