@@ -9,6 +9,7 @@ use crate::output::{Cell, Table};
 use crate::trajectory::{Trajectory, TrajectoryAs};
 use friction_models::{FrictionParams, Variant};
 use friction_systems::{mode_name, BodyState, ContactEvent, EnergyBalance};
+use integrators::stability::Instability;
 use integrators::{SolverError, Stats, StepControl};
 pub use scenarios::run::RIG_BODY;
 use scenarios::verdict::{Status, Verdict};
@@ -37,10 +38,12 @@ impl RunSummary {
     /// solver's error where it stopped, otherwise by its energy balance (systems with bodies;
     /// [`Verdict::of_energy`]).
     pub fn new(setup: RunSetup, integrated: Integrated) -> RunSummary {
-        let verdict = Verdict::of_error(integrated.error.as_ref()).unwrap_or_else(|| {
-            (integrated.energy.as_ref())
-                .map_or(Verdict::OK, |e| Verdict::of_energy(e.relative_residual))
-        });
+        let verdict = Verdict::of_error(integrated.error.as_ref())
+            .unwrap_or_else(|| {
+                (integrated.energy.as_ref())
+                    .map_or(Verdict::OK, |e| Verdict::of_energy(e.relative_residual))
+            })
+            .with_instability(integrated.instability.as_ref());
         RunSummary {
             setup,
             verdict,
@@ -131,6 +134,10 @@ pub struct Integrated {
     pub loop_area: Option<f64>,
     /// Where Hairer's stiffness test (Dormand–Prince) first judged the problem stiff, s.
     pub stiffness_detected_at: Option<f64>,
+    /// The decaying mode at the start that an explicit method's fixed step amplifies
+    /// (`lambda_re`, `lambda_im` in 1/s, `h` in s, `amplification` |R(hλ)|), if any: the run
+    /// is then at least `inaccurate`.
+    pub instability: Option<Instability>,
 }
 
 /// The parameters of the scheme that `summary.json` reports: the regularisation width

@@ -3065,6 +3065,50 @@ fn every_run_is_judged_and_a_diverged_run_exits_one() {
         (s["status"].as_str(), s["reason"].is_null()),
         (Some("ok"), true)
     );
+    // A fixed step beyond RK4's stability limit: regularised at ε = 1e-4, the slope F_c/ε of
+    // the law near v = 0 is a mode of about −7e4 1/s, which h = 1e-3 multiplies by 1e6 a step
+    // (the block chatters within ±ε). The run is judged `inaccurate` for it, saying where: the
+    // mode, its factor and its time. At h = 2e-5 it is damped.
+    let regularised = |name: &str, dt: &str| {
+        let out = dir.path().join(name);
+        let o = friction_lab(&[
+            "simulate",
+            "belt",
+            "--model",
+            "CS",
+            "--switching",
+            "regularized",
+            "--set",
+            "epsilon=1e-4",
+            "--solver",
+            "rk4",
+            "--dt",
+            dt,
+            "--t-end",
+            "1",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        let summary: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
+        (o, summary)
+    };
+    let (o, s) = regularised("unstable", "1e-3");
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert_eq!(s["status"], "inaccurate", "{s}");
+    let reason = s["reason"].as_str().unwrap();
+    assert!(
+        reason.contains("the fixed step h = 0.001 s is beyond the method's stability limit"),
+        "{reason}"
+    );
+    let mode = &s["instability"];
+    let lambda = mode["lambda_re"].as_f64().unwrap();
+    assert!((-1e5..-5e4).contains(&lambda), "{mode}");
+    assert!(mode["amplification"].as_f64().unwrap() > 1e5, "{mode}");
+    let (o, s) = regularised("stable", "2e-5");
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(s["status"], "ok", "{s}");
+    assert!(s["instability"].is_null(), "{s}");
     // BDF at tolerance 1e-3 on the regularised belt (ε = 1e-4): a grid error of 463 on a
     // motion of scale 0.19. Issue 36 found it `ok` and in the fit.
     let out = dir.path().join("wp");

@@ -301,6 +301,7 @@ fn rig_record(outcome: &Outcome, setup: RunSetup, has_state: bool) -> RunRecord 
         friction_work: outcome.friction_work,
         loop_area: outcome.loop_area,
         stiffness_detected_at: outcome.stiffness_detected_at,
+        instability: outcome.instability,
     };
     RunRecord {
         summary: RunSummary::new(setup, integrated),

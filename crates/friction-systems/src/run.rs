@@ -7,7 +7,8 @@ use crate::hybrid::FrictionSystem;
 use crate::moreau_jean::{self, MoreauJean};
 use crate::scheme::Scheme;
 use crate::system::{System, SystemError};
-use integrators::{EventRecord, Failure, Mode, Options, Solution, SolverError};
+use integrators::stability::Instability;
+use integrators::{EventRecord, Failure, Mode, Options, Solution, SolverError, StepControl};
 use std::time::Instant;
 
 /// A switch (or a touch of v_rel = 0 that kept the mode) of one contact.
@@ -193,6 +194,33 @@ impl Run<'_> {
             }
         }
         out
+    }
+
+    /// The decaying mode that the fixed step of `scheme`'s solver amplifies most over the
+    /// recorded states (each with its modes), if any
+    /// ([`integrators::stability::unstable_mode`]; at most
+    /// [`integrators::stability::CHECK_BUDGET`]` / n³` states, evenly spread, the first
+    /// included); `None` for an adaptive step, for time-stepping, for an implicit method and
+    /// for a method whose stability polynomial is not known.
+    pub fn instability(&self, scheme: &Scheme, step: StepControl) -> Option<Instability> {
+        use integrators::stability::{unstable_mode, CHECK_BUDGET};
+        let (Scheme::EventDriven { solver, .. }, StepControl::Fixed { h }) = (scheme, step) else {
+            return None;
+        };
+        let r = solver.stability_polynomial()?;
+        let s = &self.solution;
+        let n = integrators::OdeProblem::dim(&self.problem).max(1);
+        let states = (CHECK_BUDGET / n.pow(3)).clamp(1, s.len().max(1));
+        let at = |k: usize| match s.len() {
+            0 => unstable_mode(&self.problem, self.t0, &self.y0, &self.modes0, h, r),
+            len => {
+                let i = k * (len - 1) / (states - 1).max(1);
+                unstable_mode(&self.problem, s.t[i], s.y_at(i), s.modes_at(i), h, r)
+            }
+        };
+        (0..states)
+            .filter_map(at)
+            .max_by(|a, b| a.amplification.total_cmp(&b.amplification))
     }
 
     /// The energy balance from the start to the last recorded point.

@@ -30,6 +30,7 @@ pub mod problem;
 pub mod rk4;
 pub mod solution;
 pub mod solver;
+pub mod stability;
 pub mod stats;
 pub mod stepper;
 pub mod symmetric;

@@ -107,6 +107,17 @@ impl Solver {
             })
     }
 
+    /// The stability polynomial `R(z)` (ascending powers) of an explicit method that can take
+    /// a fixed step: RK4's and Dormand–Prince's ([`crate::stability`]); `None` for the
+    /// implicit methods, for Tsit45 (adaptive only) and for an own method.
+    pub fn stability_polynomial(self) -> Option<&'static [f64]> {
+        match self {
+            Solver::Rk4 => Some(&crate::stability::RK4_POLYNOMIAL),
+            Solver::Dopri5 => Some(&crate::stability::DOPRI5_POLYNOMIAL),
+            _ => None,
+        }
+    }
+
     /// Whether the method is implicit (solves a nonlinear system per step).
     pub fn is_implicit(self) -> bool {
         match self {

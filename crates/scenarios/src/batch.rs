@@ -294,7 +294,9 @@ pub fn run_cases(
                 stats: o.stats,
                 work: o.stats.work(dims[case]),
                 diverged: crate::run::diverged(!method.is_implicit(), step, o.error.as_ref()),
-                verdict: Verdict::of_error(o.error.as_ref()).unwrap_or(Verdict::OK),
+                verdict: Verdict::of_error(o.error.as_ref())
+                    .unwrap_or(Verdict::OK)
+                    .with_instability(o.instability.as_ref()),
                 failure: o.error,
                 wall_time: WallTimes::of(&[o.wall_time_s]),
             })))
@@ -340,7 +342,7 @@ pub fn run_cases(
             if let (Some((_, m)), None) = (&reference, &run.failure) {
                 run.errors = Errors::between(&run.measures, m);
                 let largest = run.errors.grid_relative.max(run.errors.final_relative);
-                run.verdict = Verdict::against_reference(largest);
+                run.verdict = (run.verdict.clone()).and(Verdict::against_reference(largest));
             }
             runs.push(*run);
         }

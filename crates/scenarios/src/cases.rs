@@ -14,6 +14,7 @@ use crate::scenario::Scenario;
 use crate::ScenarioParams;
 use friction_models::{FrictionParams, ModelId, Parameters};
 use friction_systems::{simulate, EnergyBalance, Layout, Run, System, STICK};
+use integrators::stability::Instability;
 use integrators::{DiffsolMethod, Options, Output, Solver, SolverError, Stats, StepControl};
 use serde::Serialize;
 
@@ -69,6 +70,9 @@ pub struct Measured {
     /// Where Hairer's stiffness test (Dormand–Prince's) first judged the problem stiff;
     /// `None` for another solver or a run it did not judge stiff.
     pub stiffness_detected_at: Option<f64>,
+    /// The decaying mode at the start that an explicit method's fixed step amplifies, if any
+    /// ([`integrators::stability`]): the run is `inaccurate` for it.
+    pub instability: Option<Instability>,
 }
 
 /// A problem a study integrates with many solvers and steps.
@@ -318,6 +322,7 @@ impl StudyCase for Case {
             error: o.error,
             wall_time_s: o.wall_time_s,
             stiffness_detected_at: o.stiffness_detected_at,
+            instability: o.instability,
         })
     }
 
@@ -525,16 +530,13 @@ impl StudyCase for SystemCase {
             time_limit: self.limits.time_limit,
             ..Options::adaptive(0.0, self.t_end, 1e-8, 1e-10)
         };
-        let run = simulate(
-            &self.system,
-            self.switching.scheme(solver, &friction),
-            options,
-            &mut |_| {},
-        )?;
+        let scheme = self.switching.scheme(solver, &friction);
+        let run = simulate(&self.system, scheme, options, &mut |_| {})?;
         Ok(Measured {
             measures: Measures::of_run(&run, &self.bodies),
             stats: run.solution.stats,
             stiffness_detected_at: run.solution.stiffness_detected_at,
+            instability: run.instability(&scheme, step),
             error: run.error,
             wall_time_s: run.wall_time_s,
         })

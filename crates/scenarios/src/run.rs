@@ -9,6 +9,7 @@ use friction_models::{FrictionModel, FrictionParams, ModelId, ParamError, Parame
 use friction_systems::{
     End, EnergyBalance, Profile, Scheme, Switching, System, SystemError, STICK,
 };
+use integrators::stability::Instability;
 use integrators::{
     Failure, Mode, OdeProblem, Options, Output, Solution, Solver, SolverError, Stats, StepControl,
 };
@@ -342,6 +343,9 @@ pub struct Outcome {
     /// The body's shortest natural period `2π·√(m/k)` (body scenarios held by a spring;
     /// `None` otherwise): the scale a fixed step is judged against.
     pub time_scale: Option<f64>,
+    /// The decaying mode at the start that an explicit method's fixed step amplifies, if any
+    /// ([`friction_systems::Run::instability`]; body scenarios).
+    pub instability: Option<Instability>,
 }
 
 impl Outcome {
@@ -455,12 +459,9 @@ fn run_body(
     observe: &mut dyn FnMut(f64),
 ) -> Result<Outcome, ScenarioError> {
     let system = body_system(spec, model);
-    let run = friction_systems::simulate(
-        &system,
-        spec.switching.scheme(spec.solver, &spec.friction),
-        options(spec, t_end),
-        observe,
-    )?;
+    let scheme = spec.switching.scheme(spec.solver, &spec.friction);
+    let run = friction_systems::simulate(&system, scheme, options(spec, t_end), observe)?;
+    let instability = run.instability(&scheme, spec.step);
     let row = |b: friction_systems::BodyState| Row {
         t: b.t,
         x: b.x,
@@ -501,6 +502,7 @@ fn run_body(
         wall_time_s: run.wall_time_s,
         stiffness_detected_at: run.solution.stiffness_detected_at,
         time_scale: run.problem.time_scale(),
+        instability,
     })
 }
 
@@ -571,6 +573,7 @@ pub fn run_motion(
         wall_time_s,
         stiffness_detected_at: s.stiffness_detected_at,
         time_scale: None,
+        instability: None,
     }
 }
 
@@ -590,6 +593,7 @@ fn run_sweep(spec: &RunSpec, model: &dyn FrictionModel, observe: &mut dyn FnMut(
         wall_time_s: 0.0,
         stiffness_detected_at: None,
         time_scale: None,
+        instability: None,
     };
     let v_max = spec.params.v_max;
     let velocities = (1..=20)

@@ -4,6 +4,7 @@
 //! itself has no correct digit. Each verdict says why, in words and numbers
 //! (docs/studies.md, "Verdicts").
 
+use integrators::stability::Instability;
 use integrators::SolverError;
 use serde::Serialize;
 
@@ -17,7 +18,8 @@ pub const ENERGY_INACCURATE: f64 = 1e-2;
 pub const ENERGY_DIVERGED: f64 = 0.9;
 
 /// What a run's result is worth.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+/// Ordered from best to worst: a run's status is the worst any check gives it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Status {
     /// Nothing found against it.
@@ -120,6 +122,27 @@ impl Verdict {
             )
         } else {
             Verdict::OK
+        }
+    }
+
+    /// This verdict and `other` together: the worse status, and both reasons.
+    pub fn and(self, other: Verdict) -> Verdict {
+        let reason = match (self.reason, other.reason) {
+            (Some(a), Some(b)) => Some(format!("{a}; {b}")),
+            (a, b) => a.or(b),
+        };
+        Verdict {
+            status: self.status.max(other.status),
+            reason,
+        }
+    }
+
+    /// This verdict and, where a fixed step is beyond the method's stability limit at the
+    /// start ([`integrators::stability`]), `inaccurate` for that reason.
+    pub fn with_instability(self, instability: Option<&Instability>) -> Verdict {
+        match instability {
+            Some(i) => self.and(Verdict::new(Status::Inaccurate, i.to_string())),
+            None => self,
         }
     }
 

@@ -1,0 +1,190 @@
+//! Linear stability of a fixed step: whether `h·λ` lies in an explicit method's region of
+//! absolute stability `|R(z)| ≤ 1` for every eigenvalue λ of the problem's Jacobian at a state
+//! (Hairer & Wanner, *Solving ODEs II*, §IV.2). An explicit Runge–Kutta method applied to
+//! `y' = λy` multiplies the solution by its stability polynomial `R(hλ)` each step: where
+//! `|R(hλ)| > 1` for a decaying mode, the numerical mode grows instead.
+
+use crate::problem::{Entry, Mode, OdeProblem};
+use nalgebra::DMatrix;
+use serde::Serialize;
+
+/// The stability polynomial of the classical fourth-order Runge–Kutta method,
+/// `R(z) = 1 + z + z²/2 + z³/6 + z⁴/24` (Hairer & Wanner II, §IV.2, eq. (2.4)): its interval
+/// on the negative real axis reaches −2.785, on the imaginary axis ±2.828.
+pub const RK4_POLYNOMIAL: [f64; 5] = [1.0, 1.0, 0.5, 1.0 / 6.0, 1.0 / 24.0];
+
+/// The stability polynomial of Dormand–Prince 5(4)'s fifth-order solution (seven stages),
+/// `R(z) = Σ_{k≤5} z^k/k! + z⁶/600` (Hairer & Wanner II, §IV.2, the one of DOPRI5): its
+/// interval on the negative real axis reaches −3.307.
+pub const DOPRI5_POLYNOMIAL: [f64; 7] = [
+    1.0,
+    1.0,
+    0.5,
+    1.0 / 6.0,
+    1.0 / 24.0,
+    1.0 / 120.0,
+    1.0 / 600.0,
+];
+
+/// The largest system whose eigenvalues are computed (a dense Schur decomposition, O(n³)):
+/// above it the check is not made.
+pub const MAX_CHECKED_DIM: usize = 400;
+
+/// The most iterations of the Schur decomposition before a state's check is given up.
+const SCHUR_ITERATIONS: usize = 10_000;
+
+/// The most operations (n³ per state) a run's check spends: a run of n unknowns is checked at
+/// `max(1, CHECK_BUDGET / n³)` of its recorded states, evenly spread (every state of a rig; 11
+/// of a 100-block chain).
+pub const CHECK_BUDGET: usize = 100_000_000;
+
+/// A decaying mode that a fixed step amplifies.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Instability {
+    /// The eigenvalue λ of the Jacobian, 1/s: real part.
+    pub lambda_re: f64,
+    /// Its imaginary part, 1/s.
+    pub lambda_im: f64,
+    /// The step, s.
+    pub h: f64,
+    /// The time of the state whose Jacobian has the mode, s.
+    pub t: f64,
+    /// |R(h·λ)| > 1: the factor the mode grows by each step.
+    pub amplification: f64,
+}
+
+impl std::fmt::Display for Instability {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let lambda = match self.lambda_im.abs() {
+            0.0 => format!("{:.4}", self.lambda_re),
+            im => format!("{:.4} ± {:.4}i", self.lambda_re, im),
+        };
+        write!(
+            f,
+            "the fixed step h = {} s is beyond the method's stability limit: |R(hλ)| = {:.3} > 1 \
+             for the decaying mode λ = {lambda} 1/s of the Jacobian at t = {} s (|hλ| = {:.3})",
+            self.h,
+            self.amplification,
+            self.t,
+            self.h * self.lambda_re.hypot(self.lambda_im)
+        )
+    }
+}
+
+/// |R(z)| for the polynomial `coefficients` (ascending powers) at z = re + i·im.
+pub fn amplification(coefficients: &[f64], re: f64, im: f64) -> f64 {
+    // Horner's scheme in complex arithmetic.
+    let (mut a, mut b) = (0.0, 0.0);
+    for &c in coefficients.iter().rev() {
+        (a, b) = (a * re - b * im + c, a * im + b * re);
+    }
+    a.hypot(b)
+}
+
+/// The Jacobian of `problem` at (t, y) in `modes` over its unknowns other than the quadratures,
+/// with the mass matrix divided out: analytic where the problem gives one, else forward
+/// differences. `None` for a differential–algebraic problem (a zero on the mass diagonal).
+fn jacobian(problem: &dyn OdeProblem, t: f64, y: &[f64], modes: &[Mode]) -> Option<DMatrix<f64>> {
+    let n = problem.dim() - problem.quadratures();
+    let mut j = DMatrix::zeros(n, n);
+    let mut entries: Vec<Entry> = Vec::new();
+    if problem.jacobian(t, y, modes, &mut entries) {
+        for (r, c, v) in entries {
+            if r < n && c < n {
+                j[(r, c)] += v;
+            }
+        }
+    } else {
+        let mut f0 = vec![0.0; y.len()];
+        let mut f1 = vec![0.0; y.len()];
+        problem.rhs(t, y, modes, &mut f0);
+        let mut yd = y.to_vec();
+        for c in 0..n {
+            let delta = (1e-16 * y[c].abs().max(1e-5)).sqrt();
+            yd[c] = y[c] + delta;
+            problem.rhs(t, &yd, modes, &mut f1);
+            yd[c] = y[c];
+            for r in 0..n {
+                j[(r, c)] = (f1[r] - f0[r]) / delta;
+            }
+        }
+    }
+    if let Some(m) = problem.mass() {
+        for (r, &mass) in m.iter().take(n).enumerate() {
+            if mass == 0.0 {
+                return None;
+            }
+            j.row_mut(r).scale_mut(1.0 / mass);
+        }
+    }
+    Some(j)
+}
+
+/// The decaying mode of `problem` at (t, y) in `modes` that the fixed step `h` of the explicit
+/// method with stability polynomial `coefficients` amplifies most, if any: over the
+/// eigenvalues λ of the Jacobian with Re λ ≤ 0, the largest `|R(hλ)|` above 1 — a mode the
+/// exact flow damps (a spring, a steep regularised slope) that the step makes grow. A growing
+/// mode (a Stribeck slope's negative damping) grows in the exact solution too: it is not
+/// judged here but by the run's energy balance and its error. `None` where no decaying mode is
+/// amplified, for a differential–algebraic problem, and above [`MAX_CHECKED_DIM`] unknowns.
+pub fn unstable_mode(
+    problem: &dyn OdeProblem,
+    t: f64,
+    y: &[f64],
+    modes: &[Mode],
+    h: f64,
+    coefficients: &[f64],
+) -> Option<Instability> {
+    if problem.dim() > MAX_CHECKED_DIM {
+        return None;
+    }
+    let j = jacobian(problem, t, y, modes)?;
+    if !j.iter().all(|v| v.is_finite()) {
+        return None;
+    }
+    // A mode is decaying (or neutral) when its real part is not positive beyond round-off of
+    // its size.
+    let decaying = |re: f64, im: f64| re <= 1e-12 * re.hypot(im);
+    // The Schur iteration with a bound: a state that has left every scale (a diverged run)
+    // may give a matrix on which it would not converge.
+    let schur = nalgebra::linalg::Schur::try_new(j, f64::EPSILON, SCHUR_ITERATIONS)?;
+    (schur.complex_eigenvalues().iter())
+        .filter(|l| decaying(l.re, l.im))
+        .map(|l| Instability {
+            lambda_re: l.re,
+            lambda_im: l.im,
+            h,
+            t,
+            amplification: amplification(coefficients, h * l.re, h * l.im),
+        })
+        .filter(|i| i.amplification > 1.0 + 1e-9)
+        .max_by(|a, b| a.amplification.total_cmp(&b.amplification))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Where |R| crosses 1 along a ray from 0, by bisection.
+    fn limit(coefficients: &[f64], re: f64, im: f64) -> f64 {
+        let (mut lo, mut hi) = (0.1, 10.0);
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if amplification(coefficients, mid * re, mid * im) > 1.0 {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        lo
+    }
+
+    #[test]
+    fn the_stability_intervals_are_hairers() {
+        // Hairer & Wanner II, Table IV.2.1 and Fig. IV.2.1: RK4 reaches −2.785 on the real
+        // axis and ±2√2 on the imaginary one; DOPRI5 reaches −3.307.
+        assert!((limit(&RK4_POLYNOMIAL, -1.0, 0.0) - 2.785).abs() < 1e-3);
+        assert!((limit(&RK4_POLYNOMIAL, 0.0, 1.0) - 8f64.sqrt()).abs() < 1e-9);
+        assert!((limit(&DOPRI5_POLYNOMIAL, -1.0, 0.0) - 3.307).abs() < 1e-3);
+    }
+}
