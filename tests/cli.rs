@@ -3001,7 +3001,13 @@ fn a_measure_that_does_not_exist_is_empty_never_zero() {
     );
     for row in 0..2 {
         assert_eq!(cell(&csv, row, "reached"), "false", "{csv}");
-        for column in ["error", "rhs_evals", "jacobian_evals", "lu_factorizations"] {
+        for column in [
+            "error",
+            "rhs_evals",
+            "jacobian_evals",
+            "lu_factorizations",
+            "linear_solves",
+        ] {
             assert_eq!(cell(&csv, row, column), "", "{column}: {csv}");
         }
         assert!(

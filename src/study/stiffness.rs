@@ -86,6 +86,7 @@ impl Study for StiffnessStudy<'_> {
             "rhs_evals",
             "jacobian_evals",
             "lu_factorizations",
+            "linear_solves",
             "work_estimate",
             "work_low",
             "work_high",
@@ -109,6 +110,7 @@ impl Study for StiffnessStudy<'_> {
                     count(|r| r.stats.rhs_evals),
                     count(|r| r.stats.jacobian_evals),
                     count(|r| r.stats.lu_factorizations),
+                    count(|r| r.stats.linear_solves),
                     r.map_or(Cell::empty(), |r| Cell::Num(r.work_estimate)),
                     r.and_then(|r| r.work_bracket[0])
                         .map_or(Cell::empty(), Cell::Num),

@@ -125,8 +125,8 @@ mod tests {
 
     #[test]
     fn the_weights_follow_the_operation_counts_of_the_factorisation() {
-        // A belt (5 unknowns, 10 Jacobian entries), dense: an LU is 2·125/3 flops and a
-        // solve 50, against 10 for f.
+        // A system of 5 unknowns and 10 Jacobian entries, dense: an LU is 2·125/3 flops and
+        // a solve 50, against 10 for f.
         let w = WorkWeights::of(5, 5, 10);
         assert_eq!(w.jacobian, 5.0);
         assert!((w.factorization - 250.0 / 30.0).abs() < 1e-12, "{w:?}");
