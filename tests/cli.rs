@@ -3026,25 +3026,19 @@ fn a_measure_that_does_not_exist_is_empty_never_zero() {
 #[test]
 fn every_run_is_judged_and_a_diverged_run_exits_one() {
     let dir = tempfile::tempdir().unwrap();
-    let simulate = |name: &str, dt: &str| {
+    // `simulate` with `args` into `name`: its output and its summary.
+    let simulate = |name: &str, args: &[&str]| {
         let out = dir.path().join(name);
-        let o = friction_lab(&[
-            "simulate",
-            "belt",
-            "--model",
-            "CVS",
-            "--solver",
-            "rk4",
-            "--dt",
-            dt,
-            "--out",
-            out.to_str().unwrap(),
-        ]);
+        let mut argv = vec!["simulate"];
+        argv.extend_from_slice(args);
+        argv.extend(["--out", out.to_str().unwrap()]);
+        let o = friction_lab(&argv);
         let summary: serde_json::Value =
             serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
         (o, summary)
     };
-    let (o, s) = simulate("diverged", "1");
+    let cvs = |dt| ["belt", "--model", "CVS", "--solver", "rk4", "--dt", dt];
+    let (o, s) = simulate("diverged", &cvs("1"));
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert_eq!(s["status"], "diverged", "{s}");
     let reason = s["reason"].as_str().unwrap();
@@ -3057,7 +3051,7 @@ fn every_run_is_judged_and_a_diverged_run_exits_one() {
         "{}",
         stderr(&o)
     );
-    let (o, s) = simulate("inaccurate", "0.3");
+    let (o, s) = simulate("inaccurate", &cvs("0.3"));
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     assert_eq!(s["status"], "inaccurate", "{s}");
     assert!(
@@ -3065,7 +3059,7 @@ fn every_run_is_judged_and_a_diverged_run_exits_one() {
         "{}",
         stderr(&o)
     );
-    let (o, s) = simulate("fine", "0.001");
+    let (o, s) = simulate("fine", &cvs("0.001"));
     assert!(o.status.success(), "{}", stderr(&o));
     assert_eq!(
         (s["status"].as_str(), s["reason"].is_null()),
@@ -3075,31 +3069,17 @@ fn every_run_is_judged_and_a_diverged_run_exits_one() {
     // the law near v = 0 is a mode of about −7e4 1/s, which h = 1e-3 multiplies by 1e6 a step
     // (the block chatters within ±ε). The run is judged `inaccurate` for it, saying where: the
     // mode, its factor and its time. At h = 2e-5 it is damped.
-    let regularised = |name: &str, dt: &str| {
-        let out = dir.path().join(name);
-        let o = friction_lab(&[
-            "simulate",
-            "belt",
-            "--model",
-            "CS",
-            "--switching",
-            "regularized",
-            "--set",
-            "epsilon=1e-4",
-            "--solver",
-            "rk4",
-            "--dt",
-            dt,
-            "--t-end",
-            "1",
-            "--out",
-            out.to_str().unwrap(),
-        ]);
-        let summary: serde_json::Value =
-            serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
-        (o, summary)
-    };
-    let (o, s) = regularised("unstable", "1e-3");
+    let belt = [
+        "belt",
+        "--model",
+        "CS",
+        "--switching",
+        "regularized",
+        "--set",
+        "epsilon=1e-4",
+    ];
+    let regularised = |dt| [&belt[..], &["--solver", "rk4", "--dt", dt, "--t-end", "1"]].concat();
+    let (o, s) = simulate("unstable", &regularised("1e-3"));
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     assert_eq!(s["status"], "inaccurate", "{s}");
     let reason = s["reason"].as_str().unwrap();
@@ -3111,29 +3091,28 @@ fn every_run_is_judged_and_a_diverged_run_exits_one() {
     let lambda = mode["lambda_re"].as_f64().unwrap();
     assert!((-1e5..-5e4).contains(&lambda), "{mode}");
     assert!(mode["amplification"].as_f64().unwrap() > 1e5, "{mode}");
-    let (o, s) = regularised("stable", "2e-5");
+    let (o, s) = simulate("stable", &regularised("2e-5"));
     assert!(o.status.success(), "{}", stderr(&o));
     assert_eq!(s["status"], "ok", "{s}");
     assert!(s["instability"].is_null(), "{s}");
-    // BDF at tolerance 1e-3 on the regularised belt (ε = 1e-4): a grid error of 463 on a
-    // motion of scale 0.19. Issue 36 found it `ok` and in the fit.
+    // BDF at tolerance 1e-3 on the regularised belt (ε = 1e-4): a velocity error of 463 m/s on
+    // a motion of scale 0.19 m/s. Issue 36 found it `ok` and in the fit.
     let out = dir.path().join("wp");
-    let o = friction_lab(&[
-        "work-precision",
-        "belt",
-        "--model",
-        "CS",
-        "--switching",
-        "regularized",
-        "--set",
-        "epsilon=1e-4",
-        "--solvers",
-        "bdf",
-        "--tol-list",
-        "1e-3",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let o = friction_lab(
+        &[
+            &["work-precision"][..],
+            &belt,
+            &[
+                "--solvers",
+                "bdf",
+                "--tol-list",
+                "1e-3",
+                "--out",
+                out.to_str().unwrap(),
+            ],
+        ]
+        .concat(),
+    );
     assert!(o.status.success(), "{}", stderr(&o));
     let csv = std::fs::read_to_string(out.join("work-precision.csv")).unwrap();
     let bdf = csv.lines().find(|l| l.starts_with("bdf,")).unwrap();
