@@ -20,7 +20,9 @@ pub enum NewtonKind {
 
 /// Evaluates ∂f/∂y at (t, y) into `jac` (cleared first): the problem's analytic Jacobian,
 /// or forward differences with increments `sqrt(UROUND·max(1e-5, |y_j|))` (as radau5.f),
-/// which need `f0 = f(t, y)`.
+/// which need `f0 = f(t, y)`. Either counts as one Jacobian; the evaluations of f that forward
+/// differences make are not counted in `rhs_evals` (as radau5.f's NFCN), since the counted
+/// work charges a Jacobian `n` evaluations ([`Stats::work`]).
 pub fn jacobian(ode: &Ode, t: f64, y: &[f64], f0: &[f64], jac: &mut Vec<Entry>, stats: &mut Stats) {
     jac.clear();
     stats.jacobian_evals += 1;
@@ -35,7 +37,7 @@ pub fn jacobian(ode: &Ode, t: f64, y: &[f64], f0: &[f64], jac: &mut Vec<Entry>, 
     for j in 0..n {
         let delta = (UROUND * y[j].abs().max(1e-5)).sqrt();
         yd[j] = y[j] + delta;
-        ode.rhs(t, &yd, &mut fd, stats);
+        ode.problem.rhs(t, &yd, ode.modes, &mut fd);
         yd[j] = y[j];
         for i in 0..n {
             let d = (fd[i] - f0[i]) / delta;

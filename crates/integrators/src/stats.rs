@@ -15,7 +15,8 @@ pub struct Stats {
     /// Accepted steps whose end was discarded because an event occurred inside them; the
     /// solution is kept up to the event and the solver restarts there.
     pub cut_at_event: usize,
-    /// Right-hand side evaluations (including those of finite-difference Jacobians).
+    /// Right-hand side evaluations, not counting those of finite-difference Jacobians (as
+    /// radau5.f's NFCN): a Jacobian, analytic or not, is charged `n` in [`Stats::work`].
     pub rhs_evals: usize,
     /// Jacobian evaluations (analytic or by finite differences).
     pub jacobian_evals: usize,

@@ -49,6 +49,18 @@ impl OdeProblem for ProtheroRobinson {
     }
 }
 
+/// A problem's right-hand side without its analytic Jacobian: the solvers difference it.
+struct WithoutJacobian<P>(P);
+
+impl<P: OdeProblem> OdeProblem for WithoutJacobian<P> {
+    fn dim(&self) -> usize {
+        self.0.dim()
+    }
+    fn rhs(&self, t: f64, y: &[f64], m: &[Mode], f: &mut [f64]) {
+        self.0.rhs(t, y, m, f)
+    }
+}
+
 #[test]
 fn implicit_euler_converges_with_order_one() {
     let steps = [0.02, 0.01, 0.005, 0.0025];
@@ -115,6 +127,26 @@ fn implicit_euler_is_stable_where_rk4_is_not() {
     // Jacobian + 2/3 + 2·27 = 103.67, rounded to 104.
     assert_eq!((s.matrix_order, s.matrix_entries), (1, 1), "{s:?}");
     assert_eq!(s.work(1), 104, "{s:?}");
+    // The same problem without its analytic Jacobian: the Jacobian by forward differences
+    // costs one Jacobian in the count, as the analytic one, and not also its evaluation of f.
+    // (Its rounding changes Newton's convergence test: 30 iterations, each one evaluation,
+    // against 27; the evaluations outside Newton's iteration are the same 21.)
+    let d = solve(
+        &WithoutJacobian(ProtheroRobinson),
+        implicit_euler(&o, NewtonKind::Modified, 1),
+        &[0.0],
+        o.clone(),
+    )
+    .unwrap()
+    .stats;
+    assert_eq!(d.jacobian_evals, 1, "{d:?}");
+    assert_eq!(d.rhs_evals - d.newton_iterations, 21, "{d:?}");
+    assert_eq!(s.rhs_evals - s.newton_iterations, 21, "{s:?}");
+    assert_eq!(
+        d.work(1),
+        d.rhs_evals + 1 + 2 * d.linear_solves + 1,
+        "{d:?}"
+    );
     let explicit = solve(&ProtheroRobinson, Box::new(Rk4::new(0.05, 1)), &[0.0], o);
     let error = explicit.unwrap_err().error;
     assert!(matches!(error, SolverError::NonFinite { .. }), "{error}");
