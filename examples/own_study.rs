@@ -218,6 +218,7 @@ pub fn run(dir: &Path) -> Result<Outcome, AppError> {
     let counts = conduct(&study, &mut target, "step-counts")?;
     let written = files.write(dir)?;
     let mut files: Vec<String> = written
+        .files
         .iter()
         .map(|p| p.strip_prefix(dir).unwrap_or(p).display().to_string())
         .collect();

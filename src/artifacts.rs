@@ -4,17 +4,23 @@
 //! renamed into place; a target folder that friction-lab wrote before (it holds the marker
 //! file [`MARKER`]) is replaced, and any other non-empty folder is refused.
 //!
+//! A command stopped by a signal writes what it computed as a partial result, marked so in the
+//! marker's first line (`status: stopped`, where a complete folder says `status: complete`).
+//! It never replaces a complete folder: if the target holds one, the partial result is written
+//! beside it, as `<name>.stopped` ([`Written::kept`]).
+//!
 //! A run killed while writing leaves its temporary folder behind; the next run into the same
 //! parent folder removes it. A run still writing holds a lock on its temporary folder's marker
 //! (an advisory file lock, which the system releases when the process ends), so runs that
 //! write side by side into one parent folder (a shell loop in the background, a cluster
 //! job array) never remove each other's folders.
 
-use crate::destination::{MARKER, TEMPORARY_PREFIX};
+use crate::destination::{MARKER, NAME_MAX, TEMPORARY_PREFIX};
 use crate::error::AppError;
 use crate::figure::{self, Drawn};
 use crate::output::{share_folder, to_json, write_file};
 use crate::plot::{self, Plot};
+use crate::progress::Progress;
 use friction_models::ModelId;
 use rayon::prelude::*;
 use std::path::{Path, PathBuf};
@@ -121,8 +127,10 @@ impl Artifacts {
     }
 
     /// Writes every file as the folder `root` (every path must lie inside it): into a temporary
-    /// folder beside `root`, renamed into place once all files are written. Returns the paths.
-    pub fn write(self, root: &Path) -> Result<Vec<PathBuf>, AppError> {
+    /// folder beside `root`, renamed into place once all files are written. A command stopped
+    /// by a signal ([`integrators::interrupt::requested`]) writes a partial result, marked so,
+    /// and writes it beside `root` where `root` holds a complete one ([`Written::kept`]).
+    pub fn write(self, root: &Path) -> Result<Written, AppError> {
         let parent = match root.parent() {
             Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
             _ => PathBuf::from("."),
@@ -132,6 +140,12 @@ impl Artifacts {
             why,
         };
         crate::destination::check(root)?;
+        let stopped = integrators::interrupt::requested();
+        let kept = (stopped && holds_complete(root)).then(|| root.to_path_buf());
+        let folder = match &kept {
+            Some(_) => stopped_beside(root)?,
+            None => root.to_path_buf(),
+        };
         std::fs::create_dir_all(&parent)
             .map_err(|e| refuse(format!("its parent folder cannot be created: {e}")))?;
         remove_stale_temporaries(&parent);
@@ -140,13 +154,21 @@ impl Artifacts {
             .tempdir_in(&parent)
             .map_err(|e| refuse(format!("no temporary folder can be made beside it: {e}")))?;
         // Held until the folder is in place: the lock tells other runs it is not stale.
-        let _claim = claim(tmp.path())?;
+        let _claim = claim(tmp.path(), stopped)?;
+        let what = format!("writing into {}", folder.display());
+        let progress = Progress::count(self.files.len(), "files drawn", &what);
         // Figures are drawn here, in parallel, in order; the first error (in file order) wins.
         let files: Vec<(PathBuf, Vec<u8>)> = self
             .files
             .into_par_iter()
-            .map(|(path, content)| content.render(&path).map(|bytes| (path, bytes)))
+            .map(|(path, content)| {
+                let rendered = content.render(&path).map(|bytes| (path, bytes));
+                progress.inc();
+                rendered
+            })
             .collect::<Result<_, _>>()?;
+        progress.finish();
+        let progress = Progress::count(files.len(), "files written", &what);
         let mut written = Vec::with_capacity(files.len());
         for (path, bytes) in files {
             let relative = path
@@ -162,12 +184,126 @@ impl Artifacts {
                     })?;
             }
             write_file(&staged, &bytes)?;
-            written.push(path);
+            written.push(folder.join(relative));
+            progress.inc();
         }
-        swap_into_place(tmp, root)?;
-        Ok(written)
+        progress.finish();
+        swap_into_place(tmp, &folder)?;
+        Ok(Written {
+            files: written,
+            folder,
+            stopped,
+            kept,
+        })
     }
 }
+
+/// What [`Artifacts::write`] wrote, and where.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Written {
+    /// The folder written: the target, or the folder beside it that holds a partial result.
+    pub folder: PathBuf,
+    /// The files written, each by its path inside [`Written::folder`] (the marker not listed).
+    pub files: Vec<PathBuf>,
+    /// Whether the command was stopped by a signal: the folder holds a partial result.
+    pub stopped: bool,
+    /// The target, where it held a complete result that the partial one did not replace.
+    pub kept: Option<PathBuf>,
+}
+
+impl Written {
+    /// The line the command prints: "wrote N files into FOLDER".
+    pub fn line(&self) -> String {
+        format!(
+            "wrote {} files into {}",
+            self.files.len(),
+            self.folder.display()
+        )
+    }
+
+    /// For a partial result, what the user must know: where it is, and what was kept.
+    pub fn stop_note(&self) -> Option<String> {
+        if !self.stopped {
+            return None;
+        }
+        Some(match &self.kept {
+            Some(kept) => format!(
+                "stopped by a signal: the partial result is in {}; {} keeps the complete \
+                 result of an earlier run",
+                self.folder.display(),
+                kept.display()
+            ),
+            None => format!(
+                "stopped by a signal: {} holds a partial result (its {MARKER} says \
+                 `{STOPPED_STATUS}`)",
+                self.folder.display()
+            ),
+        })
+    }
+}
+
+/// The paragraph at the top of a report (report.md, table2.md) written by a command that a
+/// signal stopped: the result is partial, and `what` says how.
+pub fn stopped_banner(what: &str) -> String {
+    format!(
+        "**Partial result: the command was stopped by a signal (exit 130).** The runs in \
+         progress ended at their next step; {what}.\n\n"
+    )
+}
+
+/// The marker's first line in a complete folder.
+pub const COMPLETE_STATUS: &str = "status: complete";
+
+/// The marker's first line in a folder that holds what a stopped command computed.
+pub const STOPPED_STATUS: &str = "status: stopped";
+
+/// Whether `root` holds a complete result of an earlier run: its marker does not say
+/// [`STOPPED_STATUS`] (a marker of a version before the status line counts as complete).
+fn holds_complete(root: &Path) -> bool {
+    std::fs::read_to_string(root.join(MARKER))
+        .is_ok_and(|text| text.lines().next() != Some(STOPPED_STATUS))
+}
+
+/// Whether `path` holds a partial result, which a later partial result may replace.
+fn holds_stopped(path: &Path) -> bool {
+    std::fs::read_to_string(path.join(MARKER))
+        .is_ok_and(|text| text.lines().next() == Some(STOPPED_STATUS))
+}
+
+/// The folder beside `root` for a partial result that must not replace `root`'s complete one:
+/// `<name>.stopped`, or `<name>.stopped-2`, `-3`, … where a folder of that name exists and is
+/// not itself a partial result (the name shortened to stay within [`NAME_MAX`] bytes).
+fn stopped_beside(root: &Path) -> Result<PathBuf, AppError> {
+    let name = root
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    for k in 1..=STOPPED_CANDIDATES {
+        let suffix = if k == 1 {
+            ".stopped".to_string()
+        } else {
+            format!(".stopped-{k}")
+        };
+        let mut end = name.len().min(NAME_MAX - suffix.len());
+        while !name.is_char_boundary(end) {
+            end -= 1;
+        }
+        let candidate = root.with_file_name(format!("{}{suffix}", &name[..end]));
+        if std::fs::symlink_metadata(&candidate).is_err() || holds_stopped(&candidate) {
+            return Ok(candidate);
+        }
+    }
+    Err(AppError::OutputFolder {
+        path: root.to_path_buf(),
+        why: format!(
+            "the command was stopped and its partial result must not replace the complete one \
+             in it, but the {STOPPED_CANDIDATES} names beside it for a partial result are taken"
+        ),
+    })
+}
+
+/// How many names [`stopped_beside`] tries.
+const STOPPED_CANDIDATES: usize = 100;
 
 /// What a command made: its files staged in memory (figures not drawn yet), the lines it
 /// prints once they are written, and the failure of a run whose partial results the files
@@ -193,24 +329,30 @@ impl Made {
     pub fn deliver(self, out: &Path, threads: Option<usize>) -> Result<(), AppError> {
         let files = self.files;
         let written = crate::threads::with_threads(threads, || files.write(out))??;
-        println!("wrote {} files into {}", written.len(), out.display());
+        println!("{}", written.line());
         for note in &self.notes {
             println!("{note}");
         }
-        for warning in &self.warnings {
+        for warning in self.warnings.iter().chain(written.stop_note().iter()) {
             eprintln!("note: {warning}");
         }
         self.failure.map_or(Ok(()), Err)
     }
 }
 
+/// The marker's text after its status line.
 const MARKER_TEXT: &str =
     "This folder was written by friction-lab; the next run into it replaces it whole.\n";
 
-/// Writes the marker into the temporary folder `tmp` and returns it open and locked: the
+/// What the marker adds in a folder that holds a partial result.
+const STOPPED_TEXT: &str = "A signal stopped the command that wrote it: it holds what was \
+    computed until then, a partial result.\n";
+
+/// Writes the marker (its first line the status: [`COMPLETE_STATUS`], or [`STOPPED_STATUS`]
+/// when `stopped`) into the temporary folder `tmp` and returns it open and locked: the
 /// marker is written under another name, locked, then renamed (the lock stays with the file),
 /// so no other run ever sees the marker unlocked while this one lives.
-fn claim(tmp: &Path) -> Result<std::fs::File, AppError> {
+fn claim(tmp: &Path, stopped: bool) -> Result<std::fs::File, AppError> {
     let (pending, marker) = (tmp.join(CLAIM), tmp.join(MARKER));
     let io = |path: &Path| {
         let path = path.to_path_buf();
@@ -218,7 +360,12 @@ fn claim(tmp: &Path) -> Result<std::fs::File, AppError> {
     };
     let file = std::fs::File::create(&pending).map_err(io(&pending))?;
     file.lock().map_err(io(&pending))?;
-    write_file(&pending, MARKER_TEXT.as_bytes())?;
+    let text = if stopped {
+        format!("{STOPPED_STATUS}\n{MARKER_TEXT}{STOPPED_TEXT}")
+    } else {
+        format!("{COMPLETE_STATUS}\n{MARKER_TEXT}")
+    };
+    write_file(&pending, text.as_bytes())?;
     std::fs::rename(&pending, &marker).map_err(io(&marker))?;
     Ok(file)
 }

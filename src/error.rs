@@ -70,6 +70,10 @@ pub enum AppError {
     /// A run ended without a solver error, but its result diverged (the verdict's reason).
     #[error("the run diverged: {0} (summary.json and trajectory.csv keep what was computed)")]
     Diverged(String),
+    /// A signal stopped the command before anything was computed (while loading its input):
+    /// nothing was written.
+    #[error("stopped while {0}: nothing was run or written")]
+    Stopped(String),
     /// A plot could not be drawn.
     #[error("drawing {path}: {message}")]
     Plot {
@@ -81,7 +85,8 @@ pub enum AppError {
 }
 
 impl AppError {
-    /// The process exit code: 2 for bad input, 1 for a failure while running.
+    /// The process exit code: 2 for bad input, 1 for a failure while running, 130 for a
+    /// command stopped by a signal before it computed anything.
     pub fn exit_code(&self) -> i32 {
         match self {
             AppError::Param(_)
@@ -97,6 +102,7 @@ impl AppError {
             | AppError::Solver(_)
             | AppError::StudyRun(_)
             | AppError::Diverged(_) => 1,
+            AppError::Stopped(_) => 130,
         }
     }
 }

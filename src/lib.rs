@@ -41,7 +41,9 @@ pub const EXIT_CODES: &str = "Exit codes:
     2  bad input (an option, a parameter, a file, the output folder): nothing was run or
        written
   130  stopped by Ctrl-C, SIGTERM or SIGHUP: the runs in progress end at their next step and
-       the files keep what was computed, as for 1 (a second signal quits, writing nothing)";
+       the files keep what was computed, as for 1, marked partial (`status: stopped` in their
+       .friction-lab-output) and written beside --out as <out>.stopped where it holds a
+       complete result (a second signal quits, writing nothing)";
 
 /// Dry-friction models and the solvers that integrate them.
 #[derive(Parser, Debug)]

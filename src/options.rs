@@ -35,9 +35,16 @@ pub struct LimitArgs {
         default_value_t = 10_000_000
     )]
     pub max_steps: i64,
-    /// Wall-clock limit of a run, s: it ends with an error, keeping what it computed.
+    /// Wall-clock limit of the command, s, counted from its start: a run in progress when it
+    /// passes ends with an error, keeping what it computed, and a run not started yet ends at
+    /// its first step (a study or a sweep of many runs is bounded as a whole).
     #[arg(long, value_name = "S", allow_hyphen_values = true)]
     pub time_limit: Option<f64>,
+    /// When `--time-limit` started counting: set by a command that checks these bounds once
+    /// for each of its runs (`sweep`), so that they bound the whole command; `None` for the
+    /// moment they are checked.
+    #[arg(skip)]
+    pub since: Option<std::time::Instant>,
 }
 
 impl LimitArgs {
@@ -49,6 +56,7 @@ impl LimitArgs {
                 .time_limit
                 .map(|t| ranges::TIME_LIMIT.check(t))
                 .transpose()?,
+            time_limit_since: Some(self.since.unwrap_or_else(std::time::Instant::now)),
         })
     }
 }

@@ -6,6 +6,7 @@
 use crate::artifacts::Artifacts;
 use crate::error::AppError;
 use crate::output::{Cell, Table};
+use crate::progress::Progress;
 use crate::trajectory::{Trajectory, TrajectoryAs};
 use friction_models::{FrictionParams, Variant};
 use friction_systems::{mode_name, BodyState, ContactEvent, EnergyBalance};
@@ -256,7 +257,10 @@ impl RunRecord {
         Ok(match trajectory_as {
             TrajectoryAs::File => {
                 let path = out.join("trajectory.csv");
-                files.add(path.clone(), self.trajectory.to_csv(&path)?);
+                let progress = Progress::elapsed("formatting trajectory.csv");
+                let bytes = self.trajectory.to_csv(&path)?;
+                progress.finish();
+                files.add(path, bytes);
                 None
             }
             TrajectoryAs::Columns => Some(self.trajectory),

@@ -171,7 +171,7 @@ mod tests {
             switching: SwitchingKind::Naive,
             limits: scenarios::Limits {
                 max_steps: 2000,
-                time_limit: None,
+                ..scenarios::Limits::default()
             },
             ..scenarios::stick_slip::belt_run(ModelId::Cs, &FrictionParams::paper())
         };

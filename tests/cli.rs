@@ -1,7 +1,8 @@
 //! The `friction-lab` program as a user runs it: its files, its listing, and its errors on
 //! bad input (a clear message naming the field, a non-zero exit code, and no output).
 
-use std::path::Path;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 fn friction_lab(args: &[&str]) -> Output {
@@ -2662,6 +2663,80 @@ fn ctrl_c_stops_a_run_at_its_next_step_and_keeps_what_it_computed() {
     );
     let rows = std::fs::read_to_string(out.join("trajectory.csv")).unwrap();
     assert!(rows.lines().count() > 2, "{rows}");
+    // With no earlier folder, the partial result is written in place, marked as such.
+    let marker = std::fs::read_to_string(out.join(".friction-lab-output")).unwrap();
+    assert!(marker.starts_with("status: stopped\n"), "{marker}");
+    assert!(
+        text.contains(&format!(
+            "note: stopped by a signal: {} holds a partial result",
+            out.display()
+        )),
+        "{text}"
+    );
+}
+
+/// Every file under `dir` (hidden ones included) with its bytes, by relative path.
+fn folder_bytes(dir: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
+    let mut files = BTreeMap::new();
+    let mut pending = vec![dir.to_path_buf()];
+    while let Some(d) = pending.pop() {
+        for entry in std::fs::read_dir(&d).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                pending.push(path);
+            } else {
+                let bytes = std::fs::read(&path).unwrap();
+                files.insert(path.strip_prefix(dir).unwrap().to_path_buf(), bytes);
+            }
+        }
+    }
+    files
+}
+
+#[test]
+fn a_stopped_rerun_keeps_the_complete_folder_and_writes_its_partial_result_beside_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("run");
+    let o = out.to_str().unwrap();
+    let chain = [
+        "simulate",
+        "chain",
+        "--model",
+        "lugre",
+        "--solver",
+        "implicit-euler",
+    ];
+    let short = friction_lab(&[&chain[..], &["--t-end", "0.01", "--out", o]].concat());
+    assert!(short.status.success(), "{}", stderr(&short));
+    let complete = folder_bytes(&out);
+    let marker = String::from_utf8(complete[Path::new(".friction-lab-output")].clone()).unwrap();
+    assert!(marker.starts_with("status: complete\n"), "{marker}");
+    // The same run over its default minute, stopped twice: the second partial result
+    // replaces the first beside the complete folder, which is never touched.
+    let beside = dir.path().join("run.stopped");
+    for _ in 0..2 {
+        let (_, text, code) = interrupted_at_first_heartbeat(&[&chain[..], &["--out", o]].concat());
+        assert_eq!(code, Some(130), "{text}");
+        assert!(
+            text.contains(&format!(
+                "note: stopped by a signal: the partial result is in {}; {} keeps the \
+                 complete result of an earlier run",
+                beside.display(),
+                out.display()
+            )),
+            "{text}"
+        );
+        assert_eq!(folder_bytes(&out), complete);
+        let partial = std::fs::read_to_string(beside.join(".friction-lab-output")).unwrap();
+        assert!(partial.starts_with("status: stopped\n"), "{partial}");
+        let summary = std::fs::read_to_string(beside.join("summary.json")).unwrap();
+        assert!(summary.contains("interrupted at t = "), "{summary}");
+    }
+    let names: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(names.len(), 2, "{names:?}");
 }
 
 #[test]
@@ -2692,7 +2767,14 @@ fn ctrl_c_during_reproduce_writes_what_it_computed_and_names_what_it_did_not_run
         ),
         "{report}"
     );
-    assert!(report.contains("## Stopped\n"), "{report}");
+    // The report says at its top that it is partial, and so does the marker.
+    assert!(
+        report.contains("\n\n**Partial result: the command was stopped by a signal (exit 130).**")
+            && report.find("**Partial result").unwrap() < report.find("## Figures 2-7").unwrap(),
+        "{report}"
+    );
+    let marker = std::fs::read_to_string(out.join(".friction-lab-output")).unwrap();
+    assert!(marker.starts_with("status: stopped\n"), "{marker}");
 }
 
 #[test]
@@ -3208,4 +3290,182 @@ fn sweep_extends_a_point_until_it_settles() {
         ("true", "20"),
         "{csv}"
     );
+}
+
+#[test]
+fn phenomena_refuses_a_method_that_cannot_reach_its_tolerance() {
+    // Implicit Euler at the default rtol 1e-10 needs about 1e10 steps a simulated second.
+    let e = rejected(&["phenomena", "--solver", "implicit-euler"]);
+    assert!(
+        e.contains(
+            "option `--rtol` = 1e-10 is out of reach of solver `implicit-euler`, of order 1: a \
+             protocol run would take about 1e10 steps per simulated second"
+        ) && e.contains("allowed with it: --rtol >= 1e-6"),
+        "{e}"
+    );
+    let e = rejected(&["phenomena", "--solver", "tr-bdf2", "--rtol", "1e-13"]);
+    assert!(e.contains("allowed with it: --rtol >= 1e-12"), "{e}");
+    // Within reach: implicit Euler at 1e-5 decides a model's row.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("t");
+    let o = friction_lab(&[
+        "phenomena",
+        "--solver",
+        "implicit-euler",
+        "--rtol",
+        "1e-5",
+        "--atol",
+        "1e-7",
+        "--model",
+        "CS",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+}
+
+#[test]
+fn the_time_limit_bounds_a_command_of_many_runs_as_a_whole() {
+    // Table 2 on one thread takes well over a second; with --time-limit 1 the runs that start
+    // after the first second end at their first step, at t = 0, and their cells are undecided.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("t");
+    let o = friction_lab(&[
+        "phenomena",
+        "--threads",
+        "1",
+        "--time-limit",
+        "1",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let table: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("table2.json")).unwrap()).unwrap();
+    let failed: Vec<&str> = table["models"]
+        .as_object()
+        .unwrap()
+        .values()
+        .flat_map(|row| row.as_object().unwrap().values())
+        .filter_map(|cell| cell["failed"].as_str())
+        .collect();
+    let unstarted = failed
+        .iter()
+        .filter(|f| f.contains("time limit: 1 s of wall time used by t = 0 without"))
+        .count();
+    assert!(unstarted > 0, "{failed:?}");
+    assert!(
+        failed.iter().all(|f| f.contains("time limit")),
+        "{failed:?}"
+    );
+    // A sweep likewise; a point stopped at t = 0 measures nothing and has not settled.
+    let out = dir.path().join("s");
+    let o = friction_lab(&[
+        "sweep",
+        "belt",
+        "--model",
+        "lugre",
+        "--solver",
+        "implicit-euler",
+        "--grid",
+        "v_belt=0.01:0.2:8",
+        "--threads",
+        "1",
+        "--time-limit",
+        "1",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(out.join("sweep.csv")).unwrap();
+    let unstarted: Vec<&str> = csv
+        .lines()
+        .filter(|l| {
+            l.ends_with("time limit: 1 s of wall time used by t = 0 without reaching the end")
+        })
+        .collect();
+    assert!(!unstarted.is_empty(), "{csv}");
+    for row in unstarted {
+        // v_belt, stick_phases, then nine measures empty, settled false, drift empty.
+        let cells: Vec<&str> = row.split(',').collect();
+        assert_eq!(cells[1], "0", "{row}");
+        assert!(cells[2..10].iter().all(|c| c.is_empty()), "{row}");
+        assert_eq!(cells[10], "false", "{row}");
+    }
+}
+
+/// Writes a chain of `n` bodies as the system file `chain.toml` in `dir` (inline tables, a
+/// Coulomb contact on the first body only) and returns its path.
+fn chain_file(dir: &Path, n: usize) -> PathBuf {
+    let file = dir.join("chain.toml");
+    let mut text = String::from("anchor=[{name=\"d\",v=0.1}]\nbody=[\n");
+    text += &(1..=n)
+        .map(|i| format!("{{name=\"b{i}\",m=1}}"))
+        .collect::<Vec<_>>()
+        .join(",\n");
+    text += "]\nspring=[\n{between=[\"d\",\"b1\"],k=10}";
+    for i in 1..n {
+        text += &format!(",\n{{between=[\"b{i}\",\"b{}\"],k=9}}", i + 1);
+    }
+    text += "]\ncontact=[\n{body=\"b1\",model=\"coulomb\"}]\n";
+    std::fs::write(&file, text).unwrap();
+    file
+}
+
+#[test]
+fn loading_a_system_file_talks_off_a_terminal() {
+    // A chain of 10^5 bodies in a file: loading takes about a second, in which no run
+    // advances; the heartbeat reports it all the same.
+    let dir = tempfile::tempdir().unwrap();
+    let file = chain_file(dir.path(), 100_000);
+    let out = dir.path().join("run");
+    let o = Command::new(env!("CARGO_BIN_EXE_friction-lab"))
+        .args(["simulate", "--system", file.to_str().unwrap()])
+        .args([
+            "--t-end",
+            "0.001",
+            "--points",
+            "2",
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .env("FRICTION_LAB_HEARTBEAT_S", "0.05")
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stderr(&o);
+    let loading = format!("loading {}: ", file.display());
+    assert!(
+        text.lines()
+            .any(|l| l.starts_with(&loading) && l.ends_with(" s elapsed")),
+        "{text}"
+    );
+}
+
+#[test]
+fn a_signal_stops_the_loading_of_a_system_file_at_once() {
+    // 3·10^5 bodies: about 3 s to load; stopped at the first heartbeat, 0.2 s in.
+    let dir = tempfile::tempdir().unwrap();
+    let file = chain_file(dir.path(), 300_000);
+    let out = dir.path().join("run");
+    let start = std::time::Instant::now();
+    let (first, text, code) = interrupted_at_first_heartbeat(&[
+        "simulate",
+        "--system",
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(first.starts_with("loading "), "{first}");
+    assert_eq!(code, Some(130), "{text}");
+    assert!(
+        text.contains(&format!(
+            "error: stopped while loading {}: nothing was run or written",
+            file.display()
+        )),
+        "{text}"
+    );
+    assert!(!out.exists());
+    // Well before the load could have ended.
+    assert!(start.elapsed().as_secs_f64() < 2.0, "{:?}", start.elapsed());
 }

@@ -195,7 +195,7 @@ proptest! {
             step,
             t_end: Some(1.0),
             output_points: 11,
-            limits: Limits { max_steps: 200_000, time_limit: Some(5.0) },
+            limits: Limits { max_steps: 200_000, time_limit: Some(5.0), ..Limits::default() },
         };
         let o = run(&spec, &mut |_| {}).expect("valid input");
         prop_assert!(!o.rows.is_empty());

@@ -70,15 +70,39 @@ pub fn run(args: &PhenomenaArgs) -> Result<(), AppError> {
     let files = made.files;
     let written = with_threads(threads, || files.write(&args.out))??;
     println!(
-        "wrote {} files into {} in {:.1} s",
-        written.len(),
-        args.out.display(),
+        "{} in {:.1} s",
+        written.line(),
         start.elapsed().as_secs_f64()
     );
-    for warning in &made.warnings {
+    for warning in made.warnings.iter().chain(written.stop_note().iter()) {
         eprintln!("note: {warning}");
     }
     made.failure.map_or(Ok(()), Err)
+}
+
+/// The most steps a protocol run may be expected to need per second of simulated time,
+/// [`reachable`]'s bound: about 10 s of one core for a rig.
+pub const MAX_STEPS_PER_SECOND: f64 = 1e6;
+
+/// Refuses a method whose order cannot reach the relative tolerance `rtol` in a bounded
+/// number of steps: a method of order p keeps its global error near rtol with steps of about
+/// rtol^(1/p) s (on a problem whose time scale is a second, as the protocols' rigs), so a
+/// protocol run takes rtol^(−1/p) steps per second: 1e10 for implicit Euler at the default
+/// 1e-10. Refused above [`MAX_STEPS_PER_SECOND`], naming the smallest rtol the method reaches.
+pub fn reachable(solver: Solver, rtol: f64) -> Result<(), AppError> {
+    let order = solver.order() as f64;
+    let steps = rtol.powf(-1.0 / order);
+    if steps <= MAX_STEPS_PER_SECOND {
+        return Ok(());
+    }
+    Err(AppError::Usage(format!(
+        "option `--rtol` = {rtol:e} is out of reach of solver `{}`, of order {order}: a \
+         protocol run would take about {steps:.0e} steps per simulated second (rtol^(-1/order)), \
+         more than the {MAX_STEPS_PER_SECOND:.0e} allowed; allowed with it: --rtol >= {:e}, or \
+         choose a method of higher order (the default, bdf)",
+        solver.name(),
+        MAX_STEPS_PER_SECOND.powf(-order),
+    )))
 }
 
 /// Decides Table 2 as `phenomena` asks, its files in memory: `table2.md` and `table2.json`,
@@ -89,6 +113,7 @@ pub fn make(args: &PhenomenaArgs) -> Result<Made, AppError> {
         atol: ranges::ATOL.check(args.atol)?,
         h0: None,
     };
+    reachable(args.solver, args.rtol)?;
     let threads = ranges::threads(args.threads)?;
     if args.solver.is_fixed_step() {
         return Err(AppError::Usage(format!(

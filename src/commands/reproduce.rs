@@ -12,8 +12,8 @@ use crate::plot::{Corner, Marker, Plot, Series, PALETTE};
 use crate::provenance::Provenance;
 use crate::ranges;
 use crate::study::{
-    check_decided, conduct, ConvergenceStudy, IndependenceStudy, Refinement, ScalingStudy,
-    StiffnessStudy, Table2Study, Target, WorkPrecisionStudy,
+    check_decided, conduct, undecided, ConvergenceStudy, IndependenceStudy, Refinement,
+    ScalingStudy, StiffnessStudy, Table2Study, Target, WorkPrecisionStudy,
 };
 use crate::threads::with_threads;
 use clap::Args;
@@ -712,18 +712,24 @@ pub fn run(args: &ReproduceArgs) -> Result<(), AppError> {
         crate::commands::stick_slip::add_stick_slip(&mut t, &params)
     })?;
     if interrupt::requested() {
-        report_md += "\n## Stopped\n\nThe command was stopped by a signal (exit 130): the runs \
-                      in progress then ended at their next step, and their studies' files mark \
-                      them as failed; a section after it was not run.\n";
+        let title = report_md.find("\n\n").map_or(0, |i| i + 2);
+        let banner = crate::artifacts::stopped_banner(&format!(
+            "their studies' files mark them as failed, the sections after it say \
+             \"Not run\", and {} of Table 2's cells are undecided",
+            undecided(&table).len()
+        ));
+        report_md.insert_str(title, &banner);
     }
     files.add(args.out.join("report.md"), report_md.into_bytes());
     let written = with_threads(threads, || files.write(&args.out))??;
     println!(
-        "wrote {} files into {} in {:.2} s",
-        written.len(),
-        args.out.display(),
+        "{} in {:.2} s",
+        written.line(),
         start.elapsed().as_secs_f64()
     );
+    if let Some(note) = written.stop_note() {
+        eprintln!("note: {note}");
+    }
     let failed: Vec<&ExperimentFailure> = rows.iter().filter_map(|r| r.as_ref().err()).collect();
     if let Some(first) = failed.first() {
         let models: Vec<String> = failed.iter().map(|f| f.model.to_string()).collect();

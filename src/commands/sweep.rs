@@ -339,9 +339,13 @@ fn run_spanned(
             (trace, run.solution.stats, run.error.map(|e| e.to_string()))
         }
     };
+    let mut settled = Settled::of(&trace, settle);
+    // A run that failed stopped short of its span: whatever its window shows, it is no
+    // settled state.
+    settled.settled &= error.is_none();
     Ok(PointResult {
         values: Vec::new(),
-        settled: Settled::of(&trace, settle),
+        settled,
         stats,
         error,
     })
@@ -370,7 +374,16 @@ pub fn make(args: &SweepArgs) -> Result<Made, AppError> {
         )));
     }
     // Every point is checked (names, ranges, combinations) before any runs.
-    let runs: Vec<SimulateArgs> = grid.iter().map(|p| at_point(&args.run, p)).collect();
+    // `--time-limit` bounds the whole sweep: every point counts from here.
+    let since = std::time::Instant::now();
+    let runs: Vec<SimulateArgs> = grid
+        .iter()
+        .map(|p| {
+            let mut a = at_point(&args.run, p);
+            a.solver.limits.since = Some(since);
+            a
+        })
+        .collect();
     for a in &runs {
         prepare(a)?;
     }

@@ -99,6 +99,40 @@ pub struct Described {
     pub source: Option<ChainSource>,
 }
 
+/// How often [`load`] looks for a signal, s.
+const LOAD_POLL_S: f64 = 0.05;
+
+/// Reads the system file at `path` with a heartbeat, on a thread of its own: a signal stops the
+/// command at once ([`AppError::Stopped`]; the parse cannot be stopped inside, so it is left to
+/// end with the process), where a file of 10⁶ bodies takes seconds to parse.
+fn load(path: &Path) -> Result<friction_systems::System, AppError> {
+    let progress = Progress::elapsed(&format!("loading {}", path.display()));
+    let (send, receive) = std::sync::mpsc::channel();
+    let owned = path.to_path_buf();
+    std::thread::spawn(move || {
+        let _ = send.send(friction_systems::file::read(&owned));
+    });
+    let poll = std::time::Duration::from_secs_f64(LOAD_POLL_S);
+    loop {
+        if integrators::interrupt::requested() {
+            return Err(AppError::Stopped(format!("loading {}", path.display())));
+        }
+        match receive.recv_timeout(poll) {
+            Ok(read) => {
+                progress.finish();
+                return Ok(read?);
+            }
+            Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {}
+            Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => {
+                return Err(AppError::StudyRun(format!(
+                    "loading {} ended without a result",
+                    path.display()
+                )))
+            }
+        }
+    }
+}
+
 /// The system of `--system FILE` or, without one, the chain with `model` and the parameters
 /// of `options` (chain parameters by `--set` too).
 pub fn system_of(
@@ -115,7 +149,7 @@ pub fn system_of(
             ));
         }
         return Ok(Described {
-            system: friction_systems::file::read(path)?,
+            system: load(path)?,
             name: path.display().to_string(),
             parameters: BTreeMap::new(),
             friction: options.params.resolve()?,
@@ -304,6 +338,7 @@ pub fn grid_options(args: &SimulateArgs, t_end: f64, points: usize) -> Result<Op
         step: args.solver.checked_step()?,
         max_steps: limits.max_steps,
         time_limit: limits.time_limit,
+        time_limit_since: limits.time_limit_since,
         output: Output::GridOnly(integrators::even_grid(0.0, t_end, points)),
         ..Options::adaptive(0.0, t_end, 1e-8, 1e-10)
     })

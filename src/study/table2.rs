@@ -179,6 +179,12 @@ fn regions_markdown(rows: &[(Law, Row)]) -> String {
 /// Table 2 as markdown: the measured table beside the paper's, then the evidence.
 pub fn markdown(rows: &[(Law, Row)], protocol: &Protocol, parameters: &str) -> String {
     let mut s = String::from("# Table 2, decided by simulation\n\n");
+    if integrators::interrupt::requested() {
+        s += &crate::artifacts::stopped_banner(&format!(
+            "{} of its cells are undecided",
+            undecided(rows).len()
+        ));
+    }
     s += &format!(
         "Written by `friction-lab phenomena` with solver {} ({:?}), event switching, {parameters}. \
          Each cell reads `measured = paper`; a disagreement is \

@@ -52,7 +52,8 @@ pub struct Integrator<'a> {
     cut_at_event: usize,
     /// Steps taken through [`Integrator::step`], for the step cap of every method.
     steps: usize,
-    /// When the integration started, for the wall-clock limit.
+    /// When the wall-clock limit started counting: the start of the integration, or
+    /// [`Options::time_limit_since`].
     clock: std::time::Instant,
     done: bool,
 }
@@ -93,6 +94,9 @@ impl<'a> Integrator<'a> {
                 }
             }
         }
+        let clock = options
+            .time_limit_since
+            .unwrap_or_else(std::time::Instant::now);
         Ok(Integrator {
             problem,
             stepper,
@@ -107,7 +111,7 @@ impl<'a> Integrator<'a> {
             y_grid: vec![0.0; problem.dim()],
             cut_at_event: 0,
             steps: 0,
-            clock: std::time::Instant::now(),
+            clock,
             done: false,
         })
     }

@@ -124,6 +124,10 @@ pub struct Options {
     /// Wall-clock limit of the integration, s: the run ends with [`SolverError::TimeLimit`]
     /// and keeps what it computed. `None`: no limit.
     pub time_limit: Option<f64>,
+    /// When the wall-clock limit starts counting: `None` for the start of this run; a command
+    /// of many runs gives its own start, so that [`Options::time_limit`] bounds the whole
+    /// command (a run started after it has passed ends at its first step).
+    pub time_limit_since: Option<std::time::Instant>,
     /// Chattering guard.
     pub zeno: ZenoGuard,
     /// What to record.
@@ -144,6 +148,7 @@ impl Options {
             h_max: None,
             max_steps: 10_000_000,
             time_limit: None,
+            time_limit_since: None,
             zeno: ZenoGuard::default(),
             output: Output::Steps,
         }

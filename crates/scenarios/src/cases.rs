@@ -528,6 +528,7 @@ impl StudyCase for SystemCase {
             output: Output::GridOnly(grid),
             max_steps: self.limits.max_steps,
             time_limit: self.limits.time_limit,
+            time_limit_since: self.limits.time_limit_since,
             ..Options::adaptive(0.0, self.t_end, 1e-8, 1e-10)
         };
         let scheme = self.switching.scheme(solver, &friction);

@@ -234,6 +234,9 @@ pub struct Limits {
     pub max_steps: usize,
     /// Wall-clock limit, s.
     pub time_limit: Option<f64>,
+    /// When the wall-clock limit starts counting: `None` for the start of each run, or the
+    /// start of a command, whose runs it then bounds together.
+    pub time_limit_since: Option<std::time::Instant>,
 }
 
 impl Default for Limits {
@@ -242,6 +245,7 @@ impl Default for Limits {
         Limits {
             max_steps: 10_000_000,
             time_limit: None,
+            time_limit_since: None,
         }
     }
 }
@@ -401,6 +405,7 @@ pub fn options(spec: &RunSpec, t_end: f64) -> Options {
         output: Output::Grid(grid),
         max_steps: spec.limits.max_steps,
         time_limit: spec.limits.time_limit,
+        time_limit_since: spec.limits.time_limit_since,
         ..Options::adaptive(0.0, t_end, 1e-8, 1e-10)
     }
 }

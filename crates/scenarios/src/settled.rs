@@ -249,7 +249,8 @@ fn time_mean(t: &[f64], y: &[f64], k: &[usize]) -> f64 {
 }
 
 impl Settled {
-    /// The measures of `trace` over the last `settle` fraction (0, 1] of its time span.
+    /// The measures of `trace` over the last `settle` fraction (0, 1] of its time span; all
+    /// undefined (NaN), and not settled, where the window holds fewer than two instants.
     pub fn of(trace: &Trace, settle: f64) -> Settled {
         let t = &trace.t;
         let (t0, t1) = match (t.first(), t.last()) {
@@ -258,7 +259,9 @@ impl Settled {
         };
         let from = t1 - settle * (t1 - t0);
         let k: Vec<usize> = (0..t.len()).filter(|&i| t[i] >= from).collect();
-        if k.is_empty() {
+        // A window of one instant (a run that stopped at its start) measures nothing: at rest
+        // there only because no time passed, it is not settled.
+        if k.len() < 2 || t1 <= t0 {
             return Settled {
                 from,
                 to: t1,

@@ -112,3 +112,29 @@ fn a_run_has_settled_when_its_returns_agree_and_not_while_it_decays() {
     let s = Settled::of(&still, 0.5);
     assert!(s.settled && s.drift.is_nan(), "{s:?}");
 }
+
+#[test]
+fn a_run_that_stopped_at_its_start_measures_nothing_and_has_not_settled() {
+    // One instant (a run stopped at t = 0), and two at the same time: no window at all.
+    for t in [vec![0.0], vec![0.0, 0.0]] {
+        let n = t.len();
+        let trace = Trace {
+            t,
+            x: vec![0.0; n],
+            v: vec![0.0; n],
+            friction: vec![-28.9; n],
+            stick_entries: Vec::new(),
+        };
+        let s = Settled::of(&trace, 0.5);
+        assert!(!s.settled, "{s:?}");
+        for m in [
+            s.x_amplitude,
+            s.v_amplitude,
+            s.v_mean,
+            s.friction_mean,
+            s.friction_peak,
+        ] {
+            assert!(m.is_nan(), "{s:?}");
+        }
+    }
+}

@@ -329,7 +329,7 @@ fn a_study_whose_reference_fails_starts_no_run_after_it() {
     let case = Case {
         limits: Limits {
             max_steps: 100,
-            time_limit: None,
+            ..Limits::default()
         },
         ..switched_belt()
     };
@@ -400,7 +400,7 @@ impl StudyCase for Counted {
         let capped = Case {
             limits: Limits {
                 max_steps: 10,
-                time_limit: None,
+                ..Limits::default()
             },
             ..self.block.clone()
         };
