@@ -20,7 +20,7 @@ import os
 import tempfile
 import warnings
 from dataclasses import dataclass, field
-from typing import Any, Dict, List, Mapping, Optional, Union
+from typing import Any, Callable, Dict, List, Mapping, Optional, Union
 
 import numpy as np
 import pandas as pd
@@ -217,12 +217,14 @@ class SolverError(RuntimeError):
         self.result = result
 
 
-def run(argv: List[str]) -> Made:
+def run(argv: List[str], stop: Optional[Callable[[], bool]] = None) -> Made:
     """Runs ``friction-lab ARGV`` in memory (GIL released, Ctrl-C honoured). Bad input raises
-    ``ValueError``; a failure with no result raises ``SolverError``."""
+    ``ValueError``; a failure with no result raises ``SolverError``. ``stop``, if given, is
+    asked every 50 ms while the run goes on: once it returns true the run stops as on Ctrl-C
+    and ``_native.Cancelled`` is raised."""
     command = argv[0]
     try:
-        files, notes, advice, failure, trajectory = _native.run(argv)
+        files, notes, advice, failure, trajectory = _native.run(argv, stop)
     except _native.SolverError as e:
         raise SolverError(spelled(str(e), command)) from None
     except ValueError as e:

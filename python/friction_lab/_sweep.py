@@ -4,13 +4,19 @@ On a Dask cluster the grid's points are cut into chunks of consecutive points; e
 ``friction-lab sweep ... --point-range START:END`` (the same Rust code, one thread), and the
 chunks' tables are joined in grid order. Every point is computed by the same code from the
 same inputs whatever the split, so the two ways give the same DataFrame, bit for bit.
+
+Ctrl-C (or any exception) while the chunks run cancels the sweep's futures and sets a Dask
+``Event`` of the sweep's own that every chunk asks for every half second: the running chunks
+stop at their next step (as on Ctrl-C in process) and the workers are free for the next call.
 """
 
 from __future__ import annotations
 
 import math
 import os
-from typing import Any, Dict, List, Optional, Sequence, Union
+import time
+import uuid
+from typing import Any, Callable, Dict, List, Optional, Sequence, Union
 
 import pandas as pd
 
@@ -49,12 +55,35 @@ def sweep(scenario: str, *, grid: Dict[str, Union[Sequence[float], str]],
     return frame
 
 
-def _chunk(argv: List[str], start: int, end: int, laws: List[Any]) -> bytes:
+#: How often a chunk asks whether its sweep was stopped, s (a round trip to the scheduler).
+STOP_POLL_S = 0.5
+
+
+def _stopped(name: str) -> Callable[[], bool]:
+    """Whether the Dask ``Event`` ``name`` is set, asked at most every :data:`STOP_POLL_S`."""
+    import distributed
+
+    event = distributed.Event(name)
+    last = [time.monotonic()]
+
+    def stopped() -> bool:
+        now = time.monotonic()
+        if now - last[0] < STOP_POLL_S:
+            return False
+        last[0] = now
+        return event.is_set()
+
+    return stopped
+
+
+def _chunk(argv: List[str], start: int, end: int, laws: List[Any], stop: str) -> bytes:
     """One Dask task: the points START <= i < END of the sweep, as ``sweep.csv`` bytes; a
-    friction law written in Python (``laws``) is registered in the worker's process first."""
+    friction law written in Python (``laws``) is registered in the worker's process first.
+    The run stops at its next step once the sweep's Event ``stop`` is set. The stop reaches
+    every run of the worker's process, as Ctrl-C would (docs/python.md)."""
     for law in laws:
         _native.register_law(law)
-    made: Made = run(argv + ["--point-range", f"{start}:{end}"])
+    made: Made = run(argv + ["--point-range", f"{start}:{end}"], stop=_stopped(stop))
     return made.files["sweep.csv"]
 
 
@@ -72,9 +101,20 @@ def _on_dask(client: Any, argv: List[str], chunk_size: Optional[int],
         # One Rust thread per task: Dask's workers are the parallelism.
         argv = argv + ["--threads", "1"]
     bounds = [(s, min(s + chunk_size, n)) for s in range(0, n, chunk_size)]
+    stop = f"friction-lab-sweep-{uuid.uuid4().hex}"
     futures = client.map(_chunk, [argv] * len(bounds), [b[0] for b in bounds],
-                         [b[1] for b in bounds], [laws] * len(bounds), pure=False)
-    parts = [table(data) for data in client.gather(futures)]
+                         [b[1] for b in bounds], [laws] * len(bounds), [stop] * len(bounds),
+                         pure=False)
+    try:
+        results = client.gather(futures)
+    except BaseException:
+        # Ctrl-C, or a chunk that raised: nothing left should run.
+        import distributed
+
+        distributed.Event(stop, client=client).set()
+        client.cancel(futures, force=True)
+        raise
+    parts = [table(data) for data in results]
     if not parts:
         return head.table("sweep.csv")
     return pd.concat(parts, ignore_index=True)

@@ -31,6 +31,13 @@ create_exception!(
     "A run failed in the solver (or a sweep had failed points); `result` keeps what was computed."
 );
 
+create_exception!(
+    _native,
+    Cancelled,
+    PyRuntimeError,
+    "A run stopped because its caller's `stop` said so (a Dask task of an interrupted sweep)."
+);
+
 /// How often the calling thread looks for Ctrl-C while a run goes on.
 const SIGNAL_POLL: Duration = Duration::from_millis(50);
 
@@ -90,14 +97,20 @@ fn trajectory<'py>(py: Python<'py>, t: &Trajectory) -> PyResult<Bound<'py, PyDic
 
 /// Runs `friction-lab ARGV...` (the program name not included) in memory. Bad input raises
 /// `ValueError` with the command line's message; a failure without a result raises
-/// `SolverError`; Ctrl-C stops the solvers and raises `KeyboardInterrupt`.
+/// `SolverError`; Ctrl-C stops the solvers and raises `KeyboardInterrupt`. `stop`, if given,
+/// is called every [`SIGNAL_POLL`] while the run goes on; once it returns true the solvers
+/// stop as for Ctrl-C and `Cancelled` is raised (how a Dask task learns that its sweep was
+/// cancelled).
 #[pyfunction]
-fn run(py: Python<'_>, argv: Vec<String>) -> PyResult<Made> {
+#[pyo3(signature = (argv, stop=None))]
+fn run(py: Python<'_>, argv: Vec<String>, stop: Option<Bound<'_, PyAny>>) -> PyResult<Made> {
     let words = std::iter::once("friction-lab".to_string())
         .chain(argv)
         .chain(["--out".to_string(), IN_MEMORY.to_string()]);
     let cli = friction_lab::Cli::try_parse_from(words).map_err(|e| usage(&e))?;
-    let made = interruptible(py, || friction_lab::make_in_memory(&cli.command))?;
+    let made = interruptible(py, stop.as_ref(), || {
+        friction_lab::make_in_memory(&cli.command)
+    })?;
     // A law written in Python that raised stopped the run: its exception is the answer.
     if let Some(e) = law::take_error() {
         integrators::interrupt::clear();
@@ -187,7 +200,13 @@ fn to_python(e: AppError) -> PyErr {
 /// Runs `work` on a worker thread with the GIL released, looking for Ctrl-C on the calling
 /// thread every [`SIGNAL_POLL`]: on `KeyboardInterrupt` (or any exception a signal handler
 /// raises) the solvers are asked to stop, the worker is awaited, and the exception is raised.
-fn interruptible<T: Send>(py: Python<'_>, work: impl FnOnce() -> T + Send) -> PyResult<T> {
+/// `stop` is asked at the same moments; once it returns true (or raises), the solvers stop
+/// likewise and `Cancelled` (or its exception) is raised.
+fn interruptible<T: Send>(
+    py: Python<'_>,
+    stop: Option<&Bound<'_, PyAny>>,
+    work: impl FnOnce() -> T + Send,
+) -> PyResult<T> {
     std::thread::scope(|scope| {
         let (done, finished) = mpsc::channel();
         // Behind a lock only so that the closure handed to `detach` may borrow it.
@@ -210,7 +229,14 @@ fn interruptible<T: Send>(py: Python<'_>, work: impl FnOnce() -> T + Send) -> Py
         };
         while py.detach(wait).is_err() {
             if signal.is_none() {
-                if let Err(e) = py.check_signals() {
+                let stopped = match stop.map(|s| s.call0().and_then(|r| r.is_truthy())) {
+                    Some(Ok(true)) => Err(Cancelled::new_err(
+                        "stopped: the caller cancelled the run (its sweep was interrupted)",
+                    )),
+                    Some(Err(e)) => Err(e),
+                    _ => Ok(()),
+                };
+                if let Err(e) = py.check_signals().and(stopped) {
                     integrators::interrupt::request();
                     signal = Some(e);
                 }
@@ -240,5 +266,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(options, m)?)?;
     m.add_function(wrap_pyfunction!(law::register_law, m)?)?;
     m.add("SolverError", m.py().get_type::<SolverError>())?;
+    m.add("Cancelled", m.py().get_type::<Cancelled>())?;
     Ok(())
 }

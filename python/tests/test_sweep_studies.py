@@ -124,3 +124,29 @@ def test_ctrl_c_stops_a_long_run_and_the_next_run_works():
     assert time.monotonic() - start < 5.0
     r = fl.simulate("belt", model="CVS", t_end=1.0)
     assert r.summary["status"] == "ok" and np.isclose(r.t[-1], 1.0)
+
+
+@pytest.mark.parametrize("processes", [True, False], ids=["processes", "threads"])
+def test_ctrl_c_stops_a_sweep_on_dask_and_the_next_call_starts_at_once(processes):
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=processes,
+                                  dashboard_address=None) as cluster, \
+            distributed.Client(cluster) as client:
+        # The workers have the package loaded before the clock starts.
+        fl.sweep("belt", model="CVS", grid={"v_belt": [0.1, 0.2]}, client=client, chunk_size=1)
+        timer = threading.Timer(1.0, os.kill, (os.getpid(), signal.SIGINT))
+        start = time.monotonic()
+        timer.start()
+        with pytest.raises(KeyboardInterrupt):
+            # Four chunks of about a minute each (the chain of the in-process test).
+            fl.sweep("chain", model="coulomb", params={"n_bodies": 2000}, t_end=1000.0,
+                     scheme="time-stepping", points=101,
+                     grid={"k_chain": [1e3, 2e3, 3e3, 4e3]}, client=client, chunk_size=1)
+        stopped = time.monotonic() - start
+        # The next call finds the workers free: the chunks stopped at their next step.
+        df = fl.sweep("belt", model="CVS", grid={"v_belt": [0.05, 0.1]}, client=client,
+                      chunk_size=1)
+        again = time.monotonic() - start - stopped
+        assert (df["status"] == "ok").all()
+        assert stopped < 5.0, stopped
+        assert again < 10.0, again
