@@ -169,8 +169,18 @@ impl Artifacts {
             .collect::<Result<_, _>>()?;
         progress.finish();
         let progress = Progress::count(files.len(), "files written", &what);
+        let needed: u64 = files.iter().map(|(_, b)| b.len() as u64).sum();
+        // A failure names the output folder and the file in it, not the temporary folder
+        // (removed with `tmp`), and says how much room the whole folder needs.
+        let failed = |file: &Path, source: std::io::Error| AppError::Write {
+            folder: folder.clone(),
+            file: file.to_path_buf(),
+            files: files.len(),
+            needed,
+            source,
+        };
         let mut written = Vec::with_capacity(files.len());
-        for (path, bytes) in files {
+        for (path, bytes) in &files {
             let relative = path
                 .strip_prefix(root)
                 .expect("every output file lies inside the output folder");
@@ -178,12 +188,12 @@ impl Artifacts {
             if let Some(dir) = staged.parent() {
                 std::fs::create_dir_all(dir)
                     .and_then(|_| share_folder(dir))
-                    .map_err(|source| AppError::Io {
-                        path: path.clone(),
-                        source,
-                    })?;
+                    .map_err(|source| failed(relative, source))?;
             }
-            write_file(&staged, &bytes)?;
+            write_file(&staged, bytes).map_err(|e| match e {
+                AppError::Io { source, .. } => failed(relative, source),
+                other => other,
+            })?;
             written.push(folder.join(relative));
             progress.inc();
         }

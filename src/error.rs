@@ -70,6 +70,25 @@ pub enum AppError {
     /// A run ended without a solver error, but its result diverged (the verdict's reason).
     #[error("the run diverged: {0} (summary.json and trajectory.csv keep what was computed)")]
     Diverged(String),
+    /// The output folder could not be written (a full disk): the files were staged in a
+    /// temporary folder beside it, which is removed, and the folder is left as it was.
+    #[error(
+        "writing the output folder {folder} failed at {file}: {source}; its {files} files need \
+         {} in all, and nothing was written (the folder is as it was)",
+        bytes(*.needed)
+    )]
+    Write {
+        /// The output folder.
+        folder: PathBuf,
+        /// The file that failed, by its path inside the folder.
+        file: PathBuf,
+        /// The number of files.
+        files: usize,
+        /// The bytes of all the files.
+        needed: u64,
+        /// The operating system's error.
+        source: std::io::Error,
+    },
     /// A signal stopped the command before anything was computed (while loading its input):
     /// nothing was written.
     #[error("stopped while {0}: nothing was run or written")]
@@ -99,6 +118,7 @@ impl AppError {
             AppError::NonFinite { .. }
             | AppError::Io { .. }
             | AppError::Plot { .. }
+            | AppError::Write { .. }
             | AppError::Solver(_)
             | AppError::StudyRun(_)
             | AppError::Diverged(_) => 1,
@@ -121,6 +141,16 @@ impl From<ScenarioError> for AppError {
     }
 }
 
+/// A size in bytes as a reader takes it in: `512 bytes`, `3.4 MB` (decimal units).
+fn bytes(n: u64) -> String {
+    match n {
+        0..1_000 => format!("{n} bytes"),
+        1_000..1_000_000 => format!("{:.1} kB", n as f64 / 1e3),
+        1_000_000..1_000_000_000 => format!("{:.1} MB", n as f64 / 1e6),
+        _ => format!("{:.2} GB", n as f64 / 1e9),
+    }
+}
+
 /// The message of a run that ended in the solver: stopped by a signal
 /// ([`SolverError::Interrupted`]), or failed.
 fn solver_failure(e: &SolverError) -> String {
@@ -132,5 +162,59 @@ fn solver_failure(e: &SolverError) -> String {
             "the solver failed: {e} (summary.json and trajectory.csv keep the run up to the \
              failure)"
         ),
+    }
+}
+
+/// The longest word a message repeats whole, in bytes: PATH_MAX, so that every path a
+/// message names is whole; a longer word (a 5 MB model name, a file pasted by mistake) is
+/// shortened by [`bounded`].
+pub const MAX_ECHO: usize = 4096;
+
+/// `message` with every word (a run of non-whitespace) longer than [`MAX_ECHO`] bytes cut to
+/// its first 100 and last 20 characters around `…[N bytes]…`: what a user typed is echoed in
+/// a message, never megabytes of it.
+pub fn bounded(message: &str) -> String {
+    let mut out = String::with_capacity(message.len().min(64 * 1024));
+    let mut rest = message;
+    while !rest.is_empty() {
+        let word_end = rest.find(char::is_whitespace).unwrap_or(rest.len());
+        let (word, after) = rest.split_at(word_end);
+        if word.len() > MAX_ECHO {
+            let head: String = word.chars().take(100).collect();
+            let tail: Vec<char> = word.chars().rev().take(20).collect();
+            let tail: String = tail.into_iter().rev().collect();
+            out += &format!("{head}…[{} bytes]…{tail}", word.len());
+        } else {
+            out += word;
+        }
+        let space_end = after
+            .find(|c: char| !c.is_whitespace())
+            .unwrap_or(after.len());
+        out += &after[..space_end];
+        rest = &after[space_end..];
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{bounded, MAX_ECHO};
+
+    #[test]
+    fn a_long_word_is_cut_and_the_rest_kept() {
+        let name = "x".repeat(5_000_000);
+        let message = format!("unknown model `{name}`; known:\n  CS, CVS");
+        let cut = bounded(&message);
+        assert_eq!(
+            cut,
+            format!(
+                "unknown model `{}…[5000003 bytes]…{}`; known:\n  CS, CVS",
+                "x".repeat(99),
+                "x".repeat(18)
+            )
+        );
+        // Words up to the limit, and every space, are kept as they are.
+        let fits = format!("a  {} \tb\n", "y".repeat(MAX_ECHO));
+        assert_eq!(bounded(&fits), fits);
     }
 }

@@ -174,3 +174,45 @@ fn make_as(command: &Command, trajectory: TrajectoryAs) -> Result<artifacts::Mad
         )),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::Cli;
+    use clap::{CommandFactory, Parser};
+
+    #[test]
+    fn every_numeric_option_takes_a_value_that_begins_with_a_hyphen() {
+        // A negative number must reach the option's own range check (docs/inputs.md), not
+        // clap's "unexpected argument '-1'".
+        let type_of = |parser: clap::builder::ValueParser| {
+            clap::Arg::new("x")
+                .value_parser(parser)
+                .get_value_parser()
+                .type_id()
+        };
+        let numeric = [
+            type_of(clap::value_parser!(f64).into()),
+            type_of(clap::value_parser!(i64).into()),
+        ];
+        let cli = Cli::command();
+        let mut refused = Vec::new();
+        for command in cli.get_subcommands() {
+            for arg in command.get_arguments() {
+                let Some(long) = arg.get_long() else {
+                    continue;
+                };
+                if !numeric.contains(&arg.get_value_parser().type_id()) {
+                    continue;
+                }
+                let option = format!("--{long}");
+                let words = ["friction-lab", command.get_name(), &option, "-1e-3"];
+                if let Err(e) = Cli::try_parse_from(words) {
+                    if e.kind() == clap::error::ErrorKind::UnknownArgument {
+                        refused.push(format!("{} {option}", command.get_name()));
+                    }
+                }
+            }
+        }
+        assert!(refused.is_empty(), "{refused:?}");
+    }
+}

@@ -1,6 +1,7 @@
 //! The `friction-lab` command line; see `shared/spec/cli.md` and `friction-lab --help`.
 
 use clap::Parser;
+use friction_lab::error::bounded;
 use friction_lab::integrators::interrupt;
 
 /// The exit code of a command stopped by a signal (Ctrl-C, SIGTERM, SIGHUP): 128 + SIGINT's 2,
@@ -28,11 +29,20 @@ fn stop_on_signal() {
 }
 
 fn main() {
-    let cli = friction_lab::Cli::parse();
+    let cli = match friction_lab::Cli::try_parse() {
+        Ok(cli) => cli,
+        // --help and --version print as they are; a usage error with what was typed shortened
+        // (error::bounded).
+        Err(e) if !e.use_stderr() => e.exit(),
+        Err(e) => {
+            eprint!("{}", bounded(&e.render().to_string()));
+            std::process::exit(e.exit_code());
+        }
+    };
     stop_on_signal();
     let result = friction_lab::run(cli);
     if let Err(e) = &result {
-        eprintln!("error: {e}");
+        eprintln!("error: {}", bounded(&e.to_string()));
     }
     if interrupt::requested() {
         std::process::exit(INTERRUPTED);

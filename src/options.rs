@@ -135,7 +135,11 @@ impl ParamOptions {
         };
         if let Some(path) = &self.params {
             for (name, value) in read_file(path)? {
-                apply(&name, value)?;
+                // A value from the file is blamed on the file (exit 2 all the same).
+                apply(&name, value).map_err(|e| AppError::ParamFile {
+                    path: path.clone(),
+                    message: e.to_string(),
+                })?;
             }
         }
         let assignments = self

@@ -343,6 +343,12 @@ fn bad_options_and_files_are_rejected() {
     std::fs::write(&twice, "F_s = 7\nF_c = 6\nF_s = 8\n").unwrap();
     let text_value = dir.path().join("text.toml");
     std::fs::write(&text_value, "F_s = \"high\"\n").unwrap();
+    let negative = dir.path().join("negative.toml");
+    std::fs::write(&negative, "F_s = -1\n").unwrap();
+    let negative_message = format!(
+        "parameter file {}: parameter `F_s` = -1 is out of range",
+        negative.display()
+    );
     let unknown = dir.path().join("unknown.toml");
     std::fs::write(&unknown, "mass = 2.0\n").unwrap();
     let missing = dir.path().join("missing.toml");
@@ -382,6 +388,35 @@ fn bad_options_and_files_are_rejected() {
         (
             vec!["curve", "AV", "--params", unknown.to_str().unwrap()],
             "unknown parameter `mass`",
+        ),
+        (
+            vec!["curve", "AV", "--params", negative.to_str().unwrap()],
+            &negative_message,
+        ),
+        // An end time derived from the parameters is blamed on them, before any run.
+        (
+            vec![
+                "simulate",
+                "force-ramp",
+                "--model",
+                "CS",
+                "--set",
+                "rate=1e308",
+            ],
+            "the end time of scenario force-ramp, 2·max(F_s, F_c)/rate with F_s = 7.5, F_c = \
+             6, rate = 1e308, is 1.500e-307 s: allowed [1e-6, 1e6] s",
+        ),
+        (
+            vec![
+                "independence",
+                "oscillation",
+                "--model",
+                "dahl",
+                "--set",
+                "omega=1e-9",
+            ],
+            "the end time of scenario oscillation, three periods, 6π/omega with omega = 1e-9, \
+             is 1.885e10 s",
         ),
         (
             vec!["curve", "AV", "--params", missing.to_str().unwrap()],
@@ -1246,9 +1281,12 @@ fn bad_system_input_is_rejected_and_writes_nothing() {
         ),
         (
             // The report time-steps the chain with `static` friction, whose sliding force
-            // at rest (F_c) lies outside its stick interval [-F_s, F_s] once F_s = 0.
+            // at rest (F_c) lies outside its stick interval [-F_s, F_s] once F_s = 0; the
+            // message speaks of what reproduce takes (no file, no --switching).
             &["reproduce", "--set", "F_s=0"],
-            "[[contact]] 1: model `static`: its sliding force at v_rel = 0+",
+            "the parameters given cannot be used by reproduce: its chain studies time-step \
+             the chain (Moreau-Jean), and with them model `static`: its sliding force at \
+             v_rel = 0+",
         ),
         (
             // Its numbers as every message shows them: an exponent from 1e6 on.
@@ -1259,7 +1297,13 @@ fn bad_system_input_is_rejected_and_writes_nothing() {
     ];
     for (args, message) in cases {
         let text = rejected(args);
-        assert!(text.contains(message), "{args:?}: {text}");
+        assert!(text.contains(message), "{args:?}: {text}"); // reproduce takes no --switching and no file: its messages do not speak of them.
+        if args[0] == "reproduce" {
+            assert!(
+                !text.contains("--switching") && !text.contains("[[contact]]"),
+                "{text}"
+            );
+        }
     }
 }
 
@@ -2982,6 +3026,34 @@ fn a_study_in_which_every_run_failed_exits_one() {
         let csv = std::fs::read_to_string(out.join(format!("{study}.csv"))).unwrap();
         assert!(csv.lines().skip(1).all(|l| !l.ends_with(",ok")), "{csv}");
     }
+    // A stiffness study in which no method meets the target at any value.
+    let out = dir.path().join("stiffness");
+    let o = friction_lab(&[
+        "stiffness",
+        "belt",
+        "--model",
+        "CS",
+        "--values",
+        "1e-2,1e-3",
+        "--target",
+        "1e-30",
+        "--solvers",
+        "dopri5,bdf",
+        "--tol-list",
+        "1e-3,1e-4",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let text = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{text}");
+    assert!(
+        text.contains(
+            "error: stiffness: no method reached the target 1e-30 at any of the 2 values of \
+             `epsilon`, nothing was measured"
+        ),
+        "{text}"
+    );
+    assert!(out.join("stiffness.csv").is_file());
 }
 
 /// A measure that does not exist for a run is an empty cell and JSON `null`, never 0 (which
@@ -3007,7 +3079,9 @@ fn a_measure_that_does_not_exist_is_empty_never_zero() {
         let mut all = args.to_vec();
         all.extend(["--out", out.to_str().unwrap()]);
         let o = friction_lab(&all);
-        assert!(o.status.success(), "{}", stderr(&o));
+        // The stiffness study below has no method meet its target: nothing measured, exit 1.
+        let code = if args[0] == "stiffness" { 1 } else { 0 };
+        assert_eq!(o.status.code(), Some(code), "{}", stderr(&o));
         let csv = std::fs::read_to_string(out.join(format!("{}.csv", args[0]))).unwrap();
         let json = std::fs::read(out.join(format!("{}.json", args[0]))).unwrap();
         (csv, serde_json::from_slice(&json).unwrap())
@@ -3468,4 +3542,71 @@ fn a_signal_stops_the_loading_of_a_system_file_at_once() {
     assert!(!out.exists());
     // Well before the load could have ended.
     assert!(start.elapsed().as_secs_f64() < 2.0, "{:?}", start.elapsed());
+}
+
+#[test]
+fn a_full_disk_names_the_output_folder_and_the_room_it_needs() {
+    // A 64 kB tmpfs: the belt's files (1.3 MB) do not fit. Mounting needs root; where it
+    // cannot be done the test says so and checks nothing (docs/inputs.md).
+    let dir = tempfile::tempdir().unwrap();
+    let small = dir.path().join("small");
+    std::fs::create_dir(&small).unwrap();
+    let mounted = Command::new("mount")
+        .args(["-t", "tmpfs", "-o", "size=64k", "tmpfs"])
+        .arg(&small)
+        .output();
+    if !mounted.is_ok_and(|o| o.status.success()) {
+        eprintln!("skipped: no tmpfs can be mounted here (it needs root)");
+        return;
+    }
+    let out = small.join("run");
+    let o = friction_lab(&[
+        "simulate",
+        "belt",
+        "--model",
+        "CS",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let listing: Vec<_> = std::fs::read_dir(&small)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    let _ = Command::new("umount").arg(&small).status();
+    let text = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{text}");
+    assert!(
+        text.contains(&format!(
+            "error: writing the output folder {} failed at ",
+            out.display()
+        )) && text.contains("No space left on device")
+            && text.contains(" files need ")
+            && text.contains(" MB in all, and nothing was written"),
+        "{text}"
+    );
+    assert!(!text.contains(".friction-lab-"), "{text}");
+    // The temporary folder is gone with the failure.
+    assert!(listing.is_empty(), "{listing:?}");
+}
+
+#[test]
+fn a_huge_value_is_echoed_shortened() {
+    // 100 kB (near the most one argument may hold) where a name or a number belongs: the
+    // message names it by its first
+    // characters and its length, in a few hundred bytes (from clap and from the program).
+    let huge = "x".repeat(100_000);
+    let set_value = format!("F_s={huge}");
+    let set_name = format!("{huge}=1");
+    for args in [
+        vec!["simulate", "belt", "--model", &huge],
+        vec!["simulate", &huge, "--model", "CS"],
+        vec!["simulate", "belt", "--model", "CS", "--solver", &huge],
+        vec!["simulate", "belt", "--model", "CS", "--set", &set_value],
+        vec!["simulate", "belt", "--model", "CS", "--set", &set_name],
+        vec!["simulate", "belt", "--model", "CS", "--param-set", &huge],
+    ] {
+        let text = rejected(&args);
+        assert!(text.len() < 1000, "{} bytes", text.len());
+        assert!(text.contains(" bytes]…"), "{text}");
+    }
 }

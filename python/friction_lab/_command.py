@@ -244,13 +244,21 @@ class SystemFile:
         if system is None:
             self.path = None
         elif isinstance(system, Mapping):
+            # Made whole (and refused, naming `system`) before the file is created: nothing
+            # is left behind by a dict that cannot be written.
+            text = json.dumps(_plain(system))
             self._temporary = tempfile.NamedTemporaryFile(
                 "w", suffix=".json", prefix="friction-lab-system-", delete=False)
-            json.dump(_plain(system), self._temporary)
-            self._temporary.close()
+            try:
+                self._temporary.write(text)
+            finally:
+                self._temporary.close()
             self.path = self._temporary.name
-        else:
+        elif isinstance(system, (str, os.PathLike)):
             self.path = os.fspath(system)
+        else:
+            raise TypeError("system: expected a path (str or os.PathLike) or a dict with the "
+                            f"keys of docs/systems.md, got {type(system).__name__}")
 
     def __enter__(self) -> "SystemFile":
         return self
@@ -267,7 +275,8 @@ class SystemFile:
 
 
 def _plain(value: Any) -> Any:
-    """``value`` with numpy scalars and tuples made plain JSON; a non-finite number refused."""
+    """``value`` with numpy scalars and tuples made plain JSON; a non-finite number, and a
+    value JSON cannot hold, refused naming ``system``."""
     if isinstance(value, Mapping):
         return {str(k): _plain(v) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
@@ -280,4 +289,7 @@ def _plain(value: Any) -> Any:
         if not math.isfinite(value):
             raise ValueError(f"system: {value!r} is not a finite number")
         return float(value)
-    return value
+    if value is None:
+        return value
+    raise TypeError(f"system: {value!r} ({type(value).__name__}) is not a number, a string, "
+                    "a list or a dict")

@@ -12,7 +12,7 @@
 mod law;
 
 use clap::{CommandFactory, Parser};
-use friction_lab::error::AppError;
+use friction_lab::error::{bounded, AppError};
 use friction_lab::friction_systems::mode_name;
 use friction_lab::trajectory::Trajectory;
 use integrators::{Mode, SolverError as RunError};
@@ -184,16 +184,16 @@ fn usage(e: &clap::Error) -> PyErr {
         .collect();
     let message = message.join("\n");
     let message = message.trim().trim_start_matches("error: ");
-    PyValueError::new_err(message.to_string())
+    PyValueError::new_err(bounded(message))
 }
 
 /// A failed command: bad input (exit code 2) as `ValueError`, anything else as `SolverError`;
 /// the message is the one the command line prints after `error: `.
 fn to_python(e: AppError) -> PyErr {
     if e.exit_code() == 2 {
-        PyValueError::new_err(e.to_string())
+        PyValueError::new_err(bounded(&e.to_string()))
     } else {
-        SolverError::new_err(failure_message(&e))
+        SolverError::new_err(bounded(&failure_message(&e)))
     }
 }
 

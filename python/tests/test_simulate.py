@@ -1,5 +1,6 @@
 """simulate(): rigs and systems, equal to the command line's files and to closed forms."""
 
+import os
 import numpy as np
 import pandas as pd
 import pytest
@@ -152,8 +153,17 @@ def test_bad_options_raise_value_error_naming_the_field(cli, tmp_path):
     assert (done.returncode, done.stderr.strip()) == (2, f"error: {e.value}")
     with pytest.raises(ValueError, match="v_belt"):
         fl.simulate("belt", model="CVS", params={"v_belt": float("nan")})
+    import glob
+    import tempfile
+    left = set(glob.glob(os.path.join(tempfile.gettempdir(), "friction-lab-system-*")))
     with pytest.raises(ValueError, match="not a finite number"):
         fl.simulate(system={"body": [{"name": "b", "m": float("inf")}]})
+    with pytest.raises(TypeError, match=r"^system: \{1\} \(set\) is not a number"):
+        fl.simulate(system={"body": [{"name": "b", "m": {1}}]})
+    with pytest.raises(TypeError, match="^system: expected a path .* or a dict .*, got int$"):
+        fl.simulate(system=123)
+    # A dict refused before the native call leaves no temporary file behind.
+    assert set(glob.glob(os.path.join(tempfile.gettempdir(), "friction-lab-system-*"))) <= left
     with pytest.raises(ValueError, match="unknown field `mass`") as e:
         fl.simulate(system={"body": [{"name": "b", "mass": 1.0}]})
     # The message names the dict, not the temporary file it was written to.

@@ -601,7 +601,17 @@ pub fn run(args: &ReproduceArgs) -> Result<(), AppError> {
     })?;
     // The chain studies time-step the chain: parameters at which its law cannot be
     // time-stepped are refused before anything runs, not after the figures and Table 2.
-    friction_systems::moreau_jean::check_contacts(&chain_case(1, &params, 1.0)?.system)?;
+    for contact in &chain_case(1, &params, 1.0)?.system.contacts {
+        let model = contact.model.as_ref();
+        if let Some(outside) = friction_systems::moreau_jean::sliding_outside_stick(model) {
+            return Err(AppError::Usage(format!(
+                "the parameters given cannot be used by reproduce: its chain studies time-step \
+                 the chain (Moreau-Jean), and with them {}; reproduce takes friction \
+                 parameters at which every part of it runs",
+                outside.describe(model.name())
+            )));
+        }
+    }
     let mut files = Artifacts::default();
     let mut reproduced = Vec::new();
     let mut md = String::new();

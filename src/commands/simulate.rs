@@ -243,6 +243,25 @@ fn model_of(args: &SimulateArgs, scenario: Scenario) -> Result<&ModelChoice, App
     })
 }
 
+/// The end time `scenario` derives from its parameters where `--t-end` is not given, checked
+/// against `--t-end`'s range; out of it, the message blames the parameters it is derived from
+/// (the user set those, not `--t-end`).
+pub fn derived_t_end(
+    scenario: Scenario,
+    params: &scenarios::ScenarioParams,
+    friction: &friction_models::FrictionParams,
+) -> Result<f64, AppError> {
+    let t_end = scenario.default_t_end(params, friction);
+    match scenario.t_end_rule(params, friction) {
+        Some(rule) if ranges::T_END.check(t_end).is_err() => Err(AppError::Usage(format!(
+            "the end time of scenario {scenario}, {rule}, is {t_end:.3e} s: allowed {} s; \
+             choose these parameters so that it falls within, or give --t-end",
+            ranges::T_END.range
+        ))),
+        _ => Ok(t_end),
+    }
+}
+
 /// The spec of a run of rig `scenario` from the command line.
 pub fn spec(args: &SimulateArgs, scenario: Scenario) -> Result<RunSpec, AppError> {
     let model = model_of(args, scenario)?;
@@ -252,7 +271,9 @@ pub fn spec(args: &SimulateArgs, scenario: Scenario) -> Result<RunSpec, AppError
         ));
     }
     let (friction, params) = args.model_options.params.resolve_for(Some(scenario))?;
-    args.checked_t_end()?;
+    if args.checked_t_end()?.is_none() {
+        derived_t_end(scenario, &params, &friction)?;
+    }
     let step = args.solver.checked_step()?;
     Ok(RunSpec {
         scenario,

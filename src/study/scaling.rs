@@ -53,6 +53,22 @@ impl Study for ScalingStudy<'_> {
         studies::scaling(self.cases, self.methods, progress)
     }
 
+    /// Every run failed: no cost was measured.
+    fn failure(&self, s: &studies::Scaling) -> Option<AppError> {
+        let first = s.runs.first()?;
+        let why = first.failure.as_ref()?;
+        s.runs.iter().all(|r| r.failure.is_some()).then(|| {
+            AppError::StudyRun(format!(
+                "{}: every run failed ({n} of {n}), nothing was measured; the first, {} on {} \
+                 bodies: {why}",
+                self.name(),
+                first.solver,
+                first.size,
+                n = s.runs.len()
+            ))
+        })
+    }
+
     /// The runs (`{stem}.csv`, `{stem}.json`: steps, work, work per step and its fitted
     /// exponent in N), and their wall times (`{stem}-timing.csv`) with wall time per step
     /// against the number of bodies on log–log axes (`{stem}-timing.png`, `.svg`): the files
@@ -142,5 +158,58 @@ impl Study for ScalingStudy<'_> {
             log: true,
         };
         out.files.add_plot(&out.path("-timing"), &plot)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{ScalingStudy, Study};
+    use integrators::{SolverError, Stats};
+    use scenarios::studies::{Scaling, ScalingRun, StepKind};
+
+    fn run(size: usize, failure: Option<SolverError>) -> ScalingRun {
+        ScalingRun {
+            size,
+            solver: "dopri5".into(),
+            resolution: 1e-6,
+            step: StepKind::Adaptive,
+            stats: Stats::default(),
+            work: 0,
+            work_per_step: f64::NAN,
+            failure,
+            wall_time_s: 0.0,
+        }
+    }
+
+    #[test]
+    fn a_study_whose_every_run_failed_has_measured_nothing() {
+        let study = ScalingStudy {
+            cases: &[],
+            methods: &[],
+        };
+        let cap = |t| SolverError::TooManySteps {
+            t,
+            h: 1e-3,
+            max: 10,
+        };
+        let all_failed = Scaling {
+            runs: vec![run(10, Some(cap(0.5))), run(100, Some(cap(0.25)))],
+            exponents: Vec::new(),
+        };
+        let e = study.failure(&all_failed).expect("nothing was measured");
+        assert_eq!(e.exit_code(), 1);
+        assert_eq!(
+            e.to_string(),
+            format!(
+                "cost against size: every run failed (2 of 2), nothing was measured; the \
+                 first, dopri5 on 10 bodies: {}",
+                cap(0.5)
+            )
+        );
+        let one_ran = Scaling {
+            runs: vec![run(10, Some(cap(0.5))), run(100, None)],
+            exponents: Vec::new(),
+        };
+        assert!(study.failure(&one_ran).is_none());
     }
 }

@@ -57,6 +57,21 @@ impl Study for StiffnessStudy<'_> {
         runs_with_peers(self.case, self.solvers, self.steps, self.tols) * self.sweep.values.len()
     }
 
+    /// No method met the target at any value: no cost was measured, no kind wins anywhere.
+    fn failure(&self, s: &Stiffness) -> Option<AppError> {
+        if s.points.iter().any(|p| p.decided()) {
+            return None;
+        }
+        Some(AppError::StudyRun(format!(
+            "stiffness: no method reached the target {} at any of the {} values of `{}`, \
+             nothing was measured (the study's files give each method's closest error, or why \
+             its runs failed)",
+            friction_models::params::show(s.target),
+            s.points.len(),
+            s.parameter
+        )))
+    }
+
     fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<Stiffness, ScenarioError> {
         let methods = methods_with_peers(self.case, self.solvers);
         studies::stiffness(

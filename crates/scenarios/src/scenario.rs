@@ -123,6 +123,26 @@ impl Scenario {
         }
     }
 
+    /// How [`Scenario::default_t_end`] derives the end time from the parameters, with their
+    /// values (`2·max(F_s, F_c)/rate with F_s = 7.5, F_c = 5, rate = 1`), for a rig whose end
+    /// time depends on them; `None` for a fixed one.
+    pub fn t_end_rule(self, p: &ScenarioParams, f: &FrictionParams) -> Option<String> {
+        use friction_models::params::show;
+        match self {
+            Scenario::Oscillation | Scenario::VelocityOscillation => Some(format!(
+                "three periods, 6π/omega with omega = {}",
+                show(p.omega)
+            )),
+            Scenario::ForceRamp => Some(format!(
+                "2·max(F_s, F_c)/rate with F_s = {}, F_c = {}, rate = {}",
+                show(f.f_s),
+                show(f.f_c),
+                show(p.rate)
+            )),
+            _ => None,
+        }
+    }
+
     /// The default end time, s.
     pub fn default_t_end(self, p: &ScenarioParams, f: &FrictionParams) -> f64 {
         match self {

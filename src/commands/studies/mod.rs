@@ -4,7 +4,7 @@
 //! cannot be reproduced, go to a separate `*-timing.csv`).
 
 use crate::artifacts::{Artifacts, Made};
-use crate::commands::simulate::Target as Problem;
+use crate::commands::simulate::{derived_t_end, Target as Problem};
 use crate::commands::system::{chosen_bodies, study_t_end, system_of};
 use crate::error::AppError;
 use crate::laws::ModelChoice;
@@ -124,10 +124,10 @@ impl CaseArgs {
             ))
         })?;
         let (friction, params) = self.model_options.params.resolve_for(Some(scenario))?;
-        let t_end = check_t_end(
-            self.t_end
-                .unwrap_or_else(|| scenario.default_t_end(&params, &friction)),
-        )?;
+        let t_end = match self.t_end {
+            Some(t) => check_t_end(t)?,
+            None => check_t_end(derived_t_end(scenario, &params, &friction)?)?,
+        };
         Ok(Box::new(Case {
             scenario,
             law: model.law(self.model_options.variant),

@@ -67,6 +67,7 @@ pub struct StiffnessArgs {
     #[arg(
         long,
         value_delimiter = ',',
+        allow_hyphen_values = true,
         default_value = "0.01,0.00464,0.00215,0.001,0.000464,0.000215,0.0001,4.64e-5,2.15e-5,1e-5,4.64e-6,2.15e-6,1e-6,4.64e-7,2.15e-7,1e-7"
     )]
     pub tol_list: Vec<f64>,

@@ -30,6 +30,7 @@ pub struct WorkPrecisionArgs {
     #[arg(
         long,
         value_delimiter = ',',
+        allow_hyphen_values = true,
         default_value = "0.001,0.000464,0.000215,0.0001,4.64e-5,2.15e-5,1e-5,4.64e-6,2.15e-6,1e-6,4.64e-7,2.15e-7,1e-7,4.64e-8,2.15e-8,1e-8"
     )]
     pub tol_list: Vec<f64>,

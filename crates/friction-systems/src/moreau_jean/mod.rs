@@ -45,7 +45,7 @@ use crate::local;
 use crate::switching::{SLIP_NEGATIVE, STICK};
 use crate::system::{System, SystemError};
 use friction_models::params::show;
-use friction_models::{Direction, SignLaw};
+use friction_models::{Direction, FrictionModel, SignLaw};
 use integrators::{EventRecord, Failure, Integrator, Mode, ModeSwitch, Options, Solution};
 use step::TimeStepper;
 
@@ -67,44 +67,74 @@ pub const CORRECT_AFTER: usize = 3;
 /// The scheme's name in solutions and summaries.
 pub const NAME: &str = "moreau-jean";
 
-/// Refuses, with a clear error, a contact the scheme cannot solve: a static map that ignores
-/// x (`local::invariant_at_rest`) whose sliding force at v_rel = 0± lies outside its stick
-/// interval beyond rounding (CS or CVS with F_s below F_c + C1; static or Karnopp with F_s
-/// below F_c): a holding force between the interval's bound and that sliding force has
-/// neither rest nor sliding as a solution, and the step that meets one could only fail.
-pub fn check_contacts(system: &System) -> Result<(), SystemError> {
-    for (j, c) in system.contacts.iter().enumerate() {
-        let model = c.model.as_ref();
-        let refuse = |why: String| SystemError::Invalid {
-            what: format!("[[contact]] {}", j + 1),
-            why,
-        };
-        if !local::invariant_at_rest(model) {
-            continue;
-        }
-        let interval = model.stick_interval(0.0, &[]);
-        for d in [Direction::Positive, Direction::Negative] {
+/// A static law whose sliding force at v_rel = 0± lies outside its stick interval beyond
+/// rounding: Moreau–Jean cannot time-step it ([`check_contacts`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SlidingOutsideStick {
+    /// The side of rest: `0+` or `0-`.
+    pub side: &'static str,
+    /// The sliding force there, N.
+    pub force: f64,
+    /// The stick interval at rest, N.
+    pub interval: (f64, f64),
+}
+
+impl SlidingOutsideStick {
+    /// Why the law cannot be time-stepped, and the least F_s that would mend a catalog law.
+    pub fn describe(&self, model: &str) -> String {
+        format!(
+            "model `{model}`: its sliding force at v_rel = {}, {} N, lies outside its stick \
+             interval [{}, {}] N; a holding force between them has neither rest nor sliding, \
+             so time-stepping (Moreau-Jean) needs the sliding force at rest within the stick \
+             interval: widen it (for the catalog's laws, F_s >= {})",
+            self.side,
+            show(self.force),
+            show(self.interval.0),
+            show(self.interval.1),
+            show(self.force.abs())
+        )
+    }
+}
+
+/// Whether `model` is a static map that ignores x (`local::invariant_at_rest`) whose sliding
+/// force at v_rel = 0± lies outside its stick interval beyond rounding (CS or CVS with F_s
+/// below F_c + C1; static or Karnopp with F_s below F_c): a holding force between the
+/// interval's bound and that sliding force has neither rest nor sliding as a solution.
+pub fn sliding_outside_stick(model: &dyn FrictionModel) -> Option<SlidingOutsideStick> {
+    if !local::invariant_at_rest(model) {
+        return None;
+    }
+    let interval = model.stick_interval(0.0, &[]);
+    [Direction::Positive, Direction::Negative]
+        .into_iter()
+        .find_map(|d| {
             let (force, _) = model.evaluate(0.0, 0.0, &[], SignLaw::Frozen(d), &mut [], &mut []);
             let (bound, beyond) = match d {
                 Direction::Positive => (interval.upper, force > interval.upper),
                 Direction::Negative => (interval.lower, force < interval.lower),
             };
             let rounding = 4.0 * f64::EPSILON * (force.abs() + bound.abs());
-            if beyond && (force - bound).abs() > rounding {
-                let side = if d == Direction::Positive { "0+" } else { "0-" };
-                return Err(refuse(format!(
-                    "model `{}`: its sliding force at v_rel = {side}, {} N, lies outside \
-                     its stick interval [{}, {}] N; a holding force between them has neither \
-                     rest nor sliding, so time-stepping (Moreau-Jean) needs the sliding force at \
-                     rest within the stick interval: widen it (for the catalog's laws, \
-                     F_s >= {}), or use --switching event or regularized",
-                    model.name(),
-                    show(force),
-                    show(interval.lower),
-                    show(interval.upper),
-                    show(force.abs())
-                )));
-            }
+            (beyond && (force - bound).abs() > rounding).then_some(SlidingOutsideStick {
+                side: if d == Direction::Positive { "0+" } else { "0-" },
+                force,
+                interval: (interval.lower, interval.upper),
+            })
+        })
+}
+
+/// Refuses, with a clear error, a contact the scheme cannot solve
+/// ([`sliding_outside_stick`]): the step that meets its gap could only fail.
+pub fn check_contacts(system: &System) -> Result<(), SystemError> {
+    for (j, c) in system.contacts.iter().enumerate() {
+        let model = c.model.as_ref();
+        if let Some(outside) = sliding_outside_stick(model) {
+            return Err(SystemError::Invalid {
+                what: format!("[[contact]] {}", j + 1),
+                why: format!(
+                    "{}, or use --switching event or regularized",
+                    outside.describe(model.name())
+                ),
+            });
         }
     }
     Ok(())
