@@ -107,13 +107,54 @@ fn existing_folder(root: &Path) -> Result<(), AppError> {
 }
 
 /// Whether the folder `root` (of metadata `meta`) is a mount point: on another device than
-/// its parent (a bind mount of the same device is not seen here; the rename into place then
-/// fails with the system's reason, exit 1).
+/// its parent, or (a bind mount of the same device) listed as one in the system's mount
+/// table ([`listed_mount_point`]).
 #[cfg(unix)]
 fn mount_point(root: &Path, meta: &std::fs::Metadata) -> bool {
     use std::os::unix::fs::MetadataExt;
     let parent = parent_of(root);
-    std::fs::metadata(parent).is_ok_and(|p| p.dev() != meta.dev())
+    std::fs::metadata(parent).is_ok_and(|p| p.dev() != meta.dev()) || listed_mount_point(root)
+}
+
+/// Whether `root`, made absolute with its links resolved, is the mount point of a line of
+/// `/proc/self/mountinfo` (Linux: the fifth field, with spaces and the like written `\040`;
+/// elsewhere the file is absent and nothing is listed).
+#[cfg(unix)]
+fn listed_mount_point(root: &Path) -> bool {
+    let (Ok(table), Ok(root)) = (
+        std::fs::read_to_string("/proc/self/mountinfo"),
+        std::fs::canonicalize(root),
+    ) else {
+        return false;
+    };
+    table
+        .lines()
+        .filter_map(|line| line.split(' ').nth(4))
+        .any(|field| Path::new(&unescape_octal(field)) == root)
+}
+
+/// A field of the mount table with its octal escapes (`\040` for a space) undone.
+#[cfg(unix)]
+fn unescape_octal(field: &str) -> String {
+    let bytes = field.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        let octal = bytes
+            .get(i + 1..i + 4)
+            .filter(|d| bytes[i] == b'\\' && d.iter().all(|c| (b'0'..=b'7').contains(c)));
+        match octal {
+            Some(d) => {
+                out.push(d.iter().fold(0u8, |n, c| n.wrapping_mul(8) + (c - b'0')));
+                i += 4;
+            }
+            None => {
+                out.push(bytes[i]);
+                i += 1;
+            }
+        }
+    }
+    String::from_utf8_lossy(&out).into_owned()
 }
 
 /// Whether the folder `root` is a mount point: not known on this platform; the rename into
@@ -169,4 +210,17 @@ fn writable_beside(root: &Path) -> Result<(), AppError> {
                 ancestor.display()
             ))
         })
+}
+
+#[cfg(all(test, unix))]
+mod tests {
+    use super::unescape_octal;
+
+    #[test]
+    fn the_mount_tables_escapes_are_undone() {
+        assert_eq!(unescape_octal("/mnt/my\\040disk"), "/mnt/my disk");
+        assert_eq!(unescape_octal("/a\\011b\\134c"), "/a\tb\\c");
+        // Not an escape: left as it is.
+        assert_eq!(unescape_octal("/a\\9x\\04"), "/a\\9x\\04");
+    }
 }

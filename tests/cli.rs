@@ -3610,3 +3610,32 @@ fn a_huge_value_is_echoed_shortened() {
         assert!(text.contains(" bytes]…"), "{text}");
     }
 }
+
+#[test]
+fn a_bind_mount_of_the_same_device_is_refused_before_any_work() {
+    // Same device as its parent, so only the mount table tells; mounting needs root, and
+    // where it cannot be done the test says so and checks nothing.
+    let dir = tempfile::tempdir().unwrap();
+    let (source, target) = (dir.path().join("source"), dir.path().join("target"));
+    std::fs::create_dir(&source).unwrap();
+    std::fs::create_dir(&target).unwrap();
+    let mounted = Command::new("mount")
+        .arg("--bind")
+        .args([&source, &target])
+        .output();
+    if !mounted.is_ok_and(|o| o.status.success()) {
+        eprintln!("skipped: no bind mount can be made here (it needs root)");
+        return;
+    }
+    let o = friction_lab(&["curve", "SV", "--out", target.to_str().unwrap()]);
+    let _ = Command::new("umount").arg(&target).status();
+    let text = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{text}");
+    assert!(
+        text.contains(&format!(
+            "output folder {}: it is a mount point",
+            target.display()
+        )),
+        "{text}"
+    );
+}

@@ -11,8 +11,13 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use thiserror::Error;
 
-/// The largest system file read, bytes.
+/// The largest TOML system file read, bytes: its parse holds about 50 bytes of memory a byte
+/// of text (3 GB for a 62 MB chain of 10⁶ bodies; docs/performance.md).
 pub const MAX_FILE_BYTES: u64 = 64 << 20;
+
+/// The largest JSON system file read, bytes: JSON is read straight into the system's tables,
+/// about 16 bytes of memory a byte of text (1.1 GB for a chain of 10⁶ bodies).
+pub const MAX_JSON_FILE_BYTES: u64 = 256 << 20;
 
 /// The longest name of a body or an anchor, bytes.
 pub const MAX_NAME_BYTES: usize = 256;
@@ -111,25 +116,36 @@ struct FileForce {
     rate: f64,
 }
 
-/// Reads the system declared in the file at `path` (at most [`MAX_FILE_BYTES`]).
+/// Reads the system declared in the file at `path`: JSON if its name ends `.json` (at most
+/// [`MAX_JSON_FILE_BYTES`]), TOML otherwise (at most [`MAX_FILE_BYTES`]).
 pub fn read(path: &Path) -> Result<System, SystemFileError> {
     let error = |message: String| SystemFileError {
         path: path.to_path_buf(),
         message,
     };
-    let file = std::fs::File::open(path).map_err(|e| error(e.to_string()))?;
-    let mut text = String::new();
-    file.take(MAX_FILE_BYTES + 1)
-        .read_to_string(&mut text)
-        .map_err(|e| error(e.to_string()))?;
-    if text.len() as u64 > MAX_FILE_BYTES {
-        return Err(error(format!(
-            "larger than {MAX_FILE_BYTES} bytes, the most a system file may hold"
-        )));
-    }
     let json = path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("json"));
+    let (limit, kind) = if json {
+        (MAX_JSON_FILE_BYTES, "JSON")
+    } else {
+        (MAX_FILE_BYTES, "TOML")
+    };
+    let file = std::fs::File::open(path).map_err(|e| error(e.to_string()))?;
+    let mut text = String::new();
+    file.take(limit + 1)
+        .read_to_string(&mut text)
+        .map_err(|e| error(e.to_string()))?;
+    if text.len() as u64 > limit {
+        let advice = if json {
+            ""
+        } else {
+            " (a JSON system file, with the same keys, may hold 256 MiB)"
+        };
+        return Err(error(format!(
+            "larger than {limit} bytes, the most a {kind} system file may hold{advice}"
+        )));
+    }
     if json {
         parse_json(&text)
     } else {
