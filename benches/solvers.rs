@@ -111,9 +111,9 @@ fn study_threads(c: &mut Criterion) {
         limits: Limits::default(),
     };
     let four = [
-        Solver::Rk4,
-        Solver::Dopri5,
-        Solver::ImplicitEuler,
+        Solver::RK4,
+        Solver::DOPRI5,
+        Solver::IMPLICIT_EULER,
         Solver::from_name("bdf").unwrap(),
     ]
     .map(studies::Method::of);

@@ -62,10 +62,10 @@ fn chains(c: &mut Criterion) {
     for n in [10, 100, 1000] {
         let system = chain(n);
         let o = options(50.0, 1e-8, 1e-10);
-        let (steps, events) = run(&system, Solver::Dopri5, o.clone());
+        let (steps, events) = run(&system, Solver::DOPRI5, o.clone());
         println!("N = {n}: {steps} steps, {events} events");
         group.bench_function(format!("N = {n}"), |b| {
-            b.iter(|| black_box(run(&system, Solver::Dopri5, o.clone())))
+            b.iter(|| black_box(run(&system, Solver::DOPRI5, o.clone())))
         });
     }
     group.finish();
@@ -109,10 +109,10 @@ fn chains(c: &mut Criterion) {
     for n in [100, 1000] {
         let system = chain(n);
         let o = options(10.0, 1e-4, 1e-6);
-        let (steps, events) = run(&system, Solver::ImplicitEuler, o.clone());
+        let (steps, events) = run(&system, Solver::IMPLICIT_EULER, o.clone());
         println!("N = {n}: {steps} steps, {events} events");
         group.bench_function(format!("N = {n}"), |b| {
-            b.iter(|| black_box(run(&system, Solver::ImplicitEuler, o.clone())))
+            b.iter(|| black_box(run(&system, Solver::IMPLICIT_EULER, o.clone())))
         });
     }
     group.finish();

@@ -57,7 +57,7 @@ fn friction_lab(system: &System, tol: f64) -> ([f64; 2], usize) {
     let run = simulate(
         system,
         Scheme::EventDriven {
-            solver: Solver::Dopri5,
+            solver: Solver::DOPRI5,
             switching: Switching::Event,
         },
         options,

@@ -125,7 +125,7 @@ fn rig_break_away() -> (f64, f64) {
         law: Law::Own(law()),
         friction: FrictionParams::paper(),
         params,
-        solver: Solver::Dopri5,
+        solver: Solver::DOPRI5,
         switching: SwitchingKind::Event,
         step: StepControl::Adaptive {
             rtol: 1e-10,
@@ -153,7 +153,7 @@ pub fn run() -> Report {
     let r = simulate(
         &system,
         Scheme::EventDriven {
-            solver: Solver::Dopri5,
+            solver: Solver::DOPRI5,
             switching: Switching::Event,
         },
         options,
@@ -168,7 +168,7 @@ pub fn run() -> Report {
     let case = SystemCase::new("belt with Tustin's law", system.clone(), 3.0);
     let study = studies::convergence(
         &case,
-        &[Solver::Rk4],
+        &[Solver::RK4],
         &[0.01, 0.005, 0.0025, 0.00125],
         &[],
         &|| {},

@@ -4,7 +4,7 @@
 //! `ode23`): three new stages a step (the fourth is the next step's first, FSAL), a
 //! third-order solution with an embedded second-order one for the error estimate, and the
 //! cubic Hermite interpolant of the step's ends as dense output (third order, as the method).
-//! It implements the public `Stepper` and `OneStepMethod` traits; wrapped as `Solver::Own`, it
+//! It implements the public `Stepper` and `OneStepMethod` traits; wrapped as `Solver::own`, it
 //! integrates a stick–slip belt with event location on its dense output, goes through a
 //! convergence study at fixed steps and a work–precision study beside Dormand–Prince,
 //! without a line of friction-lab changed.
@@ -49,7 +49,7 @@ const EXPONENT: f64 = 1.0 / 3.0;
 #[derive(Debug)]
 pub struct BogackiShampine;
 
-/// The one instance `Solver::Own` refers to.
+/// The one instance `Solver::own` refers to.
 pub static BS23: BogackiShampine = BogackiShampine;
 
 impl OneStepMethod for BogackiShampine {
@@ -282,8 +282,8 @@ pub fn belt() -> System {
 /// work–precision beside Dormand–Prince.
 pub fn run() -> Report {
     let system = belt();
-    let bs23 = Solver::Own(&BS23);
-    let simulated = [bs23, Solver::Dopri5].map(|solver| {
+    let bs23 = Solver::own(&BS23);
+    let simulated = [bs23, Solver::DOPRI5].map(|solver| {
         let options = Options::adaptive(0.0, 10.0, 1e-8, 1e-8);
         let r = simulate(
             &system,
@@ -311,7 +311,7 @@ pub fn run() -> Report {
             .find(|o| o.measure == measure)
             .and_then(|o| o.fit.map(|f| f.slope))
     };
-    let methods = [Method::of(bs23), Method::of(Solver::Dopri5)];
+    let methods = [Method::of(bs23), Method::of(Solver::DOPRI5)];
     let tolerances = [1e-4, 1e-6, 1e-8];
     let wp = studies::work_precision(&case, &methods, &[], &tolerances, 0, &|| {})
         .expect("the study runs");

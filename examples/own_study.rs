@@ -204,8 +204,8 @@ pub fn run(dir: &Path) -> Result<Outcome, AppError> {
     let study = StepCountStudy {
         case: &case,
         solvers: &[
-            (Solver::Dopri5, &[1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12]),
-            (Solver::ImplicitEuler, &[1e-3, 1e-4, 1e-5, 1e-6, 1e-7]),
+            (Solver::DOPRI5, &[1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12]),
+            (Solver::IMPLICIT_EULER, &[1e-3, 1e-4, 1e-5, 1e-6, 1e-7]),
         ],
     };
     let mut files = Artifacts::default();

@@ -48,7 +48,7 @@ pub fn run() -> Report {
     let event = simulate(
         &system,
         Scheme::EventDriven {
-            solver: Solver::Dopri5,
+            solver: Solver::DOPRI5,
             switching: Switching::Event,
         },
         options(),
@@ -60,7 +60,7 @@ pub fn run() -> Report {
         let smooth = simulate(
             &system,
             Scheme::EventDriven {
-                solver: Solver::Dopri5,
+                solver: Solver::DOPRI5,
                 switching: Switching::Regularized { epsilon },
             },
             options(),
@@ -76,7 +76,7 @@ pub fn run() -> Report {
     };
     let wp = studies::work_precision(
         &case,
-        &[Solver::Dopri5, Solver::ImplicitEuler].map(studies::Method::of),
+        &[Solver::DOPRI5, Solver::IMPLICIT_EULER].map(studies::Method::of),
         &[],
         &[1e-4, 1e-6, 1e-8],
         1,

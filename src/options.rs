@@ -23,6 +23,14 @@ pub struct ParamOptions {
     pub set: Vec<String>,
 }
 
+/// The help of a solver option: `what`, the names of [`integrators::Solver::ALL`] (the list
+/// the option takes, from the one registry of built-in solvers), then `then` (its default and
+/// when it is refused).
+pub fn solver_help(what: &str, then: &str) -> String {
+    let names: Vec<&str> = integrators::Solver::ALL.iter().map(|s| s.name()).collect();
+    format!("{what}: {} {then}", names.join(", "))
+}
+
 /// The bounds of a run: a step cap and a wall-clock limit.
 #[derive(Args, Clone, Debug)]
 pub struct LimitArgs {

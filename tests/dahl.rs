@@ -25,8 +25,8 @@ fn integrated_dahl_state_matches_the_closed_form_to_1e_10() {
         let model = id.build(Variant::Odd, &p).unwrap();
         let problem = PrescribedDahl(model.as_ref());
         for (solver, options) in [
-            (Solver::Rk4, Options::fixed(0.0, 2.0, 1e-3)),
-            (Solver::Dopri5, Options::adaptive(0.0, 2.0, 1e-13, 1e-13)),
+            (Solver::RK4, Options::fixed(0.0, 2.0, 1e-3)),
+            (Solver::DOPRI5, Options::adaptive(0.0, 2.0, 1e-13, 1e-13)),
         ] {
             let s = solver.solve(&problem, &[0.0], &[Mode(0)], options).unwrap();
             for i in 1..s.len() {

@@ -23,9 +23,17 @@ pub struct PhenomenaArgs {
     /// Folder to write into (created if missing).
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
-    /// The solver every protocol uses (adaptive solvers only; BDF by default: the bristle
-    /// models' stiff states make Dormand-Prince four times slower, with the same verdicts).
-    #[arg(long, value_name = "SOLVER", default_value = "bdf")]
+    /// The solver every protocol uses (its help lists the built-in solvers).
+    #[arg(
+        long,
+        value_name = "SOLVER",
+        default_value = "bdf",
+        help = crate::options::solver_help(
+            "The solver every protocol uses, one of",
+            "(adaptive solvers only; BDF by default: the bristle models' stiff states make \
+             Dormand-Prince four times slower, with the same verdicts)"
+        )
+    )]
     pub solver: Solver,
     /// Relative tolerance.
     #[arg(

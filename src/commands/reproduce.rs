@@ -269,8 +269,8 @@ fn add_studies(
         levels: 4,
         tol: 1e-6,
     };
-    let rk4 = [Solver::Rk4];
-    let native = [Solver::Rk4, Solver::Dopri5, Solver::ImplicitEuler];
+    let rk4 = [Solver::RK4];
+    let native = [Solver::RK4, Solver::DOPRI5, Solver::IMPLICIT_EULER];
     let steps = [0.02, 0.01, 0.005, 0.0025];
     let solver = |name| Solver::from_name(name).expect("a known solver");
     let smooth = conduct(
@@ -330,7 +330,7 @@ fn add_studies(
                 friction,
                 5.0,
             ),
-            solver: Solver::Rk4,
+            solver: Solver::RK4,
             refinement: from_paper_dt,
         },
         &mut t,
@@ -345,7 +345,7 @@ fn add_studies(
                 friction,
                 20.0,
             ),
-            solver: Solver::Rk4,
+            solver: Solver::RK4,
             refinement: from_paper_dt,
         },
         &mut t,
@@ -356,9 +356,9 @@ fn add_studies(
         return Err(failure);
     }
     let all = [
-        Solver::Rk4,
-        Solver::Dopri5,
-        Solver::ImplicitEuler,
+        Solver::RK4,
+        Solver::DOPRI5,
+        Solver::IMPLICIT_EULER,
         solver("bdf"),
         solver("tr-bdf2"),
         solver("esdirk34"),
@@ -385,9 +385,9 @@ fn add_studies(
         "work-precision-belt-CS",
     )?;
     let explicit_implicit = [
-        Solver::Dopri5,
+        Solver::DOPRI5,
         solver("tsit45"),
-        Solver::ImplicitEuler,
+        Solver::IMPLICIT_EULER,
         solver("bdf"),
         solver("esdirk34"),
     ];
@@ -485,7 +485,7 @@ fn add_chain_studies(t: &mut Target, friction: &FrictionParams) -> Result<String
     conduct(
         &WorkPrecisionStudy {
             case: &chain_case(100, friction, 5.0)?,
-            solvers: &[Solver::Dopri5, bdf],
+            solvers: &[Solver::DOPRI5, bdf],
             steps: &[0.01, 0.00464, 0.00215, 0.001, 0.000464],
             tols: &[
                 1e-4, 4.64e-5, 2.15e-5, 1e-5, 4.64e-6, 2.15e-6, 1e-6, 4.64e-7, 2.15e-7, 1e-7,
@@ -511,7 +511,7 @@ fn add_chain_studies(t: &mut Target, friction: &FrictionParams) -> Result<String
         atol: 1e-6,
         h0: None,
     };
-    let mut methods = vec![(Method::of(Solver::Dopri5), adaptive)];
+    let mut methods = vec![(Method::of(Solver::DOPRI5), adaptive)];
     methods.extend(cases[0].1.peers().into_iter().map(|m| {
         let step = if m.is_fixed_step() {
             StepControl::Fixed { h: 1e-3 }

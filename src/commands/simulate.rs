@@ -28,9 +28,15 @@ pub struct SolverOptions {
     /// The scheme, and the treatment of v = 0 under the event-driven one.
     #[command(flatten)]
     pub scheme: SchemeArgs,
-    /// The solver of event-driven integration: rk4, dopri5, implicit-euler, bdf, tr-bdf2,
-    /// esdirk34 (diffsol), tsit45 (diffsol) [default: dopri5; refused under time-stepping].
-    #[arg(long, value_name = "SOLVER")]
+    /// The solver of event-driven integration (its help lists the built-in solvers).
+    #[arg(
+        long,
+        value_name = "SOLVER",
+        help = crate::options::solver_help(
+            "The solver of event-driven integration",
+            "[default: dopri5; refused under time-stepping]"
+        )
+    )]
     pub solver: Option<Solver>,
     /// θ of --scheme time-stepping: the weight of the step's end on the smooth forces,
     /// 0.5 (trapezoidal, second order) to 1 (implicit Euler, first order) [default: 0.5;
@@ -140,7 +146,7 @@ impl SolverOptions {
 
     /// The solver of event-driven integration: `--solver`, or Dormand–Prince.
     pub fn solver(&self) -> Solver {
-        self.solver.unwrap_or(Solver::Dopri5)
+        self.solver.unwrap_or(Solver::DOPRI5)
     }
 
     /// The step control these options ask for.

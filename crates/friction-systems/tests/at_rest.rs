@@ -24,7 +24,7 @@ fn a_body_at_rest_under_no_force_stays_at_rest_with_every_model_and_solver() {
             switching: Switching::Event,
         };
         for scheme in [
-            event_driven(Solver::Dopri5),
+            event_driven(Solver::DOPRI5),
             event_driven(Solver::from_name("bdf").expect("a solver")),
             Scheme::TimeStepping { theta: 0.5 },
         ] {

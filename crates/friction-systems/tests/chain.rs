@@ -17,7 +17,7 @@ fn switched(system: &System, options: Options) -> Run<'_> {
     let run = simulate(
         system,
         Scheme::EventDriven {
-            solver: Solver::Dopri5,
+            solver: Solver::DOPRI5,
             switching: Switching::Event,
         },
         options,
@@ -142,12 +142,12 @@ fn regularised_and_naive_treatments_run_a_chain_too() {
     for (switching, solver, options) in [
         (
             Switching::Regularized { epsilon: 1e-3 },
-            Solver::Dopri5,
+            Solver::DOPRI5,
             Options::adaptive(0.0, 10.0, 1e-8, 1e-10),
         ),
         (
             Switching::Naive,
-            Solver::Rk4,
+            Solver::RK4,
             Options::fixed(0.0, 10.0, 1e-3),
         ),
     ] {

@@ -208,7 +208,7 @@ fn the_closed_forms_agree_with_event_driven_dormand_prince() {
             let run = simulate(
                 &case.system,
                 Scheme::EventDriven {
-                    solver: Solver::Dopri5,
+                    solver: Solver::DOPRI5,
                     switching: Switching::Event,
                 },
                 options,
@@ -306,7 +306,7 @@ fn a_100_block_chain_time_stepped_converges_to_the_event_driven_solution() {
     let reference = simulate(
         &system,
         Scheme::EventDriven {
-            solver: Solver::Dopri5,
+            solver: Solver::DOPRI5,
             switching: Switching::Event,
         },
         Options {
@@ -391,7 +391,7 @@ fn models_with_an_internal_state_converge_at_second_order_at_theta_half() {
         let reference = simulate(
             &system,
             Scheme::EventDriven {
-                solver: Solver::Diffsol(integrators::DiffsolMethod::Bdf),
+                solver: Solver::BDF,
                 switching: Switching::Event,
             },
             Options {

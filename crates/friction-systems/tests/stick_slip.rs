@@ -152,7 +152,7 @@ fn before_each_switch_the_friction_is_that_of_the_mode_left() {
     let run = friction_systems::simulate(
         &system,
         friction_systems::Scheme::EventDriven {
-            solver: integrators::Solver::Dopri5,
+            solver: integrators::Solver::DOPRI5,
             switching: Switching::Event,
         },
         options,

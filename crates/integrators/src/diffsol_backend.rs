@@ -22,6 +22,7 @@
 
 use crate::error::SolverError;
 use crate::integrator::Integrator;
+use crate::method::OneStepMethod;
 use crate::options::{Options, StepControl};
 use crate::problem::{Mode, OdeProblem};
 use crate::solution::{Failure, Solution};
@@ -74,6 +75,50 @@ pub enum DiffsolMethod {
     Tsit45,
 }
 
+/// diffsol's methods run on diffsol's own driver ([`solve_observed`]): they provide
+/// `solve_observed`, and make no [`Stepper`] for the [`Integrator`].
+impl OneStepMethod for DiffsolMethod {
+    fn name(&self) -> &'static str {
+        DiffsolMethod::name(*self)
+    }
+
+    /// Their global order (BDF: its highest, 5; Tsit45: 5).
+    fn order(&self) -> usize {
+        match self {
+            DiffsolMethod::Bdf | DiffsolMethod::Tsit45 => 5,
+            DiffsolMethod::TrBdf2 => 2,
+            DiffsolMethod::Esdirk34 => 3,
+        }
+    }
+
+    fn is_implicit(&self) -> bool {
+        *self != DiffsolMethod::Tsit45
+    }
+
+    fn is_fixed_step(&self) -> bool {
+        false
+    }
+
+    /// Refused: diffsol's methods take tolerances and run on diffsol's driver.
+    fn stepper(&self, _options: &Options, _dim: usize) -> Result<Box<dyn Stepper>, SolverError> {
+        Err(SolverError::Unsupported {
+            solver: DiffsolMethod::name(*self),
+            why: "diffsol's methods run on diffsol's own driver, not on a stepper".into(),
+        })
+    }
+
+    fn solve_observed(
+        &self,
+        problem: &dyn OdeProblem,
+        y0: &[f64],
+        modes: &[Mode],
+        options: Options,
+        observe: &mut dyn FnMut(f64),
+    ) -> Result<Solution, Failure> {
+        solve_observed(problem, *self, y0, modes, options, observe)
+    }
+}
+
 impl DiffsolMethod {
     /// The name the command line takes.
     pub fn name(self) -> &'static str {
@@ -86,7 +131,7 @@ impl DiffsolMethod {
     }
 
     /// The order diffsol's initial-step heuristic is told.
-    fn order(self) -> usize {
+    fn initial_step_order(self) -> usize {
         match self {
             DiffsolMethod::Bdf => 1,
             DiffsolMethod::TrBdf2 => 2,
@@ -406,7 +451,7 @@ where
 macro_rules! drive_implicit {
     ($method:expr, $ds:expr, $shared:expr, $algebraic:expr, $start:expr, $lu:ty) => {{
         let (method, algebraic): (DiffsolMethod, &[usize]) = ($method, $algebraic);
-        let (order, quadratures) = (method.order(), $shared.problem.quadratures());
+        let (order, quadratures) = (method.initial_step_order(), $shared.problem.quadratures());
         match method {
             DiffsolMethod::Bdf => drive(
                 method,
@@ -561,7 +606,7 @@ pub fn solve_observed(
     if method == DiffsolMethod::Tsit45 {
         let mut ds = builder!(Dense).build().map_err(build_error)?;
         set_limits(&mut ds);
-        let (order, quadratures) = (method.order(), problem.quadratures());
+        let (order, quadratures) = (method.initial_step_order(), problem.quadratures());
         return drive(
             method,
             &ds,

@@ -5,7 +5,8 @@
 //! stiffness test. A fixed-step mode (no error control) exists for convergence studies.
 
 use crate::error::SolverError;
-use crate::options::StepControl;
+use crate::method::OneStepMethod;
+use crate::options::{Options, StepControl};
 use crate::stats::Stats;
 use crate::stepper::{
     check_finite, check_limits, next_grid_point, wrms, Ode, Stepper, StepperState,
@@ -91,6 +92,45 @@ fn stage<const S: usize>(out: &mut [f64], y: &[f64], h: f64, a: [f64; S], k: [&V
     let (y, k) = (&y[..n], k.map(|k| &k[..n]));
     for (i, o) in out.iter_mut().enumerate() {
         *o = y[i] + h * weighted(&a, &k, i);
+    }
+}
+
+/// Dormand–Prince as a method (`dopri5`): order 5, explicit, adaptive or at a fixed step.
+#[derive(Clone, Copy, Debug)]
+pub struct Dopri5Method;
+
+impl OneStepMethod for Dopri5Method {
+    fn name(&self) -> &'static str {
+        "dopri5"
+    }
+
+    fn order(&self) -> usize {
+        5
+    }
+
+    fn is_implicit(&self) -> bool {
+        false
+    }
+
+    fn is_fixed_step(&self) -> bool {
+        false
+    }
+
+    fn takes_fixed_steps(&self) -> bool {
+        true
+    }
+
+    fn stability_polynomial(&self) -> Option<&'static [f64]> {
+        Some(&crate::stability::DOPRI5_POLYNOMIAL)
+    }
+
+    fn stepper(&self, options: &Options, dim: usize) -> Result<Box<dyn Stepper>, SolverError> {
+        Ok(Box::new(Dopri5::new(
+            options.step,
+            options.h_max(),
+            options.max_steps,
+            dim,
+        )))
     }
 }
 

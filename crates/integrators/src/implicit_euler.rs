@@ -8,8 +8,9 @@
 
 use crate::error::SolverError;
 use crate::linear::{self, LinearSolver};
+use crate::method::OneStepMethod;
 use crate::newton::{self, NewtonKind};
-use crate::options::StepControl;
+use crate::options::{Options, StepControl};
 use crate::problem::Entry;
 use crate::stats::Stats;
 use crate::stepper::{
@@ -44,6 +45,43 @@ const REFACTOR_TOLERANCE: f64 = 1e-8;
 const MAX_NEWTON_CUTS: usize = 10;
 /// First step of an adaptive run without a given one, as a fraction of the largest step.
 const INITIAL_FRACTION: f64 = 1e-4;
+
+/// Implicit Euler as a method (`implicit-euler`): order 1, modified Newton, adaptive or at a
+/// fixed step.
+#[derive(Clone, Copy, Debug)]
+pub struct ImplicitEulerMethod;
+
+impl OneStepMethod for ImplicitEulerMethod {
+    fn name(&self) -> &'static str {
+        "implicit-euler"
+    }
+
+    fn order(&self) -> usize {
+        1
+    }
+
+    fn is_implicit(&self) -> bool {
+        true
+    }
+
+    fn is_fixed_step(&self) -> bool {
+        false
+    }
+
+    fn takes_fixed_steps(&self) -> bool {
+        true
+    }
+
+    fn stepper(&self, options: &Options, dim: usize) -> Result<Box<dyn Stepper>, SolverError> {
+        Ok(Box::new(ImplicitEuler::new(
+            options.step,
+            NewtonKind::Modified,
+            options.h_max(),
+            options.max_steps,
+            dim,
+        )))
+    }
+}
 
 /// Implicit Euler with Newton's method.
 pub struct ImplicitEuler {

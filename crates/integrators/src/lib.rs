@@ -13,7 +13,7 @@
 //! A problem implements [`OdeProblem`]; an [`Integrator`] drives a [`Stepper`] over it and
 //! returns a [`Solution`] with its [`Stats`], or a [`Failure`] that keeps what was computed.
 //! A method written elsewhere implements [`Stepper`] and [`OneStepMethod`] and runs as
-//! [`Solver::Own`] wherever a built-in solver runs.
+//! [`Solver::own`] wherever a built-in solver runs.
 
 pub mod counting;
 pub mod diffsol_backend;
@@ -24,6 +24,7 @@ pub mod implicit_euler;
 pub mod integrator;
 pub mod interrupt;
 pub mod linear;
+pub mod method;
 pub mod newton;
 pub mod options;
 pub mod problem;
@@ -40,11 +41,12 @@ pub use dopri5::Dopri5;
 pub use error::SolverError;
 pub use implicit_euler::ImplicitEuler;
 pub use integrator::{Integrator, StopReason};
+pub use method::OneStepMethod;
 pub use newton::NewtonKind;
 pub use options::{even_grid, Options, Output, StepControl, ZenoGuard};
 pub use problem::{Control, Crossing, Entry, EventSpec, Mode, OdeProblem};
 pub use rk4::Rk4;
 pub use solution::{EventRecord, Failure, ModeSwitch, Solution};
-pub use solver::{OneStepMethod, Solver};
+pub use solver::Solver;
 pub use stats::{Stats, WorkWeights};
 pub use stepper::{Ode, Stepper, StepperState};

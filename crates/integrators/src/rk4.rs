@@ -5,8 +5,47 @@
 //! four evaluations of f after the first.
 
 use crate::error::SolverError;
+use crate::method::OneStepMethod;
+use crate::options::{Options, StepControl};
 use crate::stats::Stats;
 use crate::stepper::{check_finite, hermite_cubic, next_grid_point, Ode, Stepper, StepperState};
+
+/// RK4 as a method (`rk4`): order 4, explicit, fixed steps only.
+#[derive(Clone, Copy, Debug)]
+pub struct Rk4Method;
+
+impl OneStepMethod for Rk4Method {
+    fn name(&self) -> &'static str {
+        "rk4"
+    }
+
+    fn order(&self) -> usize {
+        4
+    }
+
+    fn is_implicit(&self) -> bool {
+        false
+    }
+
+    fn is_fixed_step(&self) -> bool {
+        true
+    }
+
+    fn stability_polynomial(&self) -> Option<&'static [f64]> {
+        Some(&crate::stability::RK4_POLYNOMIAL)
+    }
+
+    /// RK4 at the fixed step of `options`; tolerances are refused (it has no error estimate).
+    fn stepper(&self, options: &Options, dim: usize) -> Result<Box<dyn Stepper>, SolverError> {
+        match options.step {
+            StepControl::Fixed { h } => Ok(Box::new(Rk4::new(h, dim))),
+            StepControl::Adaptive { .. } => Err(SolverError::Unsupported {
+                solver: "rk4",
+                why: "RK4 has no error estimate: give a fixed step (--dt)".into(),
+            }),
+        }
+    }
+}
 
 /// RK4 with constant step `h`.
 #[derive(Clone, Debug)]

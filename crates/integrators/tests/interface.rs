@@ -21,7 +21,7 @@ fn every_solver_is_found_by_name_and_integrates_the_oscillator() {
             .unwrap();
         let x = s.last().unwrap().1[0];
         // Implicit Euler is first order: its error at tol 1e-9 is about sqrt(tol).
-        let tolerance = if solver == Solver::ImplicitEuler {
+        let tolerance = if solver == Solver::IMPLICIT_EULER {
             1e-3
         } else {
             1e-6
@@ -37,7 +37,7 @@ fn every_solver_is_found_by_name_and_integrates_the_oscillator() {
 
 #[test]
 fn rk4_asks_for_a_fixed_step() {
-    let f = Solver::Rk4
+    let f = Solver::RK4
         .solve(
             &Oscillator::plain(),
             &[1.0, 0.0],
@@ -89,7 +89,7 @@ impl OdeProblem for TwoWatchers {
 
 #[test]
 fn simultaneous_events_are_handled_in_one_call() {
-    let s = Solver::Dopri5
+    let s = Solver::DOPRI5
         .solve(
             &TwoWatchers,
             &[1.0, 0.0],
@@ -111,7 +111,7 @@ fn simultaneous_events_are_handled_in_one_call() {
 fn a_non_finite_state_and_a_step_size_underflow_are_reported() {
     // RK4 with h = 0.5 on y' = y² overflows to infinity: the step from t = 1.5 ends at a
     // finite y whose square is not.
-    let f = Solver::Rk4
+    let f = Solver::RK4
         .solve(&BlowUp, &[1.0], &[Mode(0)], Options::fixed(0.0, 5.0, 0.5))
         .unwrap_err();
     let message = f.error.to_string();
@@ -131,7 +131,7 @@ fn a_non_finite_state_and_a_step_size_underflow_are_reported() {
         atol: 1e-6,
         h0: None,
     };
-    let f = Solver::Dopri5
+    let f = Solver::DOPRI5
         .solve(&BlowUp, &[1.0], &[Mode(0)], o)
         .unwrap_err();
     match f.error {
@@ -187,12 +187,12 @@ static RENAMED: Renamed = Renamed;
 
 #[test]
 fn an_own_method_is_driven_like_a_built_in_one() {
-    let own = Solver::Own(&RENAMED);
+    let own = Solver::own(&RENAMED);
     assert_eq!(own.name(), "my-rk4");
     assert_eq!((own.order(), own.is_implicit()), (4, false));
     assert!(own.is_fixed_step() && own.takes_fixed_steps());
-    assert_eq!(own, Solver::Own(&RENAMED));
-    assert_ne!(own, Solver::Rk4);
+    assert_eq!(own, Solver::own(&RENAMED));
+    assert_ne!(own, Solver::RK4);
     // The same steps, events and dense output as the built-in RK4 it wraps, bit for bit.
     let problem = Oscillator::watching(Crossing::Either, Control::Continue);
     let run = |solver: Solver| {
@@ -205,7 +205,7 @@ fn an_own_method_is_driven_like_a_built_in_one() {
             )
             .unwrap()
     };
-    let (mine, theirs) = (run(own), run(Solver::Rk4));
+    let (mine, theirs) = (run(own), run(Solver::RK4));
     assert_eq!(mine.solver, "my-rk4");
     assert_eq!(
         (mine.t.clone(), mine.stats),
@@ -265,8 +265,8 @@ fn a_finite_step_end_whose_derivative_is_not_is_refused_where_it_is_made() {
     // The end value y1 = 0.5 uses neither, so it is finite, but the dense output (read by the
     // event location) and the next step would read the NaN.
     for (solver, nan_at, what) in [
-        (Solver::Dopri5, 7, "Dormand-Prince f at the step's end"),
-        (Solver::Rk4, 5, "RK4 f at the step's end"),
+        (Solver::DOPRI5, 7, "Dormand-Prince f at the step's end"),
+        (Solver::RK4, 5, "RK4 f at the step's end"),
     ] {
         let problem = NanAt {
             nan_at,

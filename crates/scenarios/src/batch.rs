@@ -15,7 +15,7 @@ use crate::run::{ScenarioError, SwitchingKind};
 use crate::schedule;
 use crate::study_run::{Errors, Reference, StudyRun, WallTimes, REFERENCE_TOLERANCE};
 use crate::verdict::Verdict;
-use integrators::{DiffsolMethod, Solver, StepControl};
+use integrators::{Solver, StepControl};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -60,7 +60,7 @@ const REFERENCE_STEP: StepControl = StepControl::Adaptive {
 /// rtol = atol = 1e-13 it alone comes close to Dormand–Prince's tight run: within 1.6e-9
 /// relative on the belt with CS regularised at ε = 1e-4 and 1.7e-8 with LuGre at σ0 = 1e7,
 /// against 7.2e-8 and 3.2e-7 for ESDIRK34 and 5.5e-7 and 2.2e-6 for TR-BDF2 (docs/studies.md).
-const STIFF_REFERENCE: Solver = Solver::Diffsol(DiffsolMethod::Bdf);
+const STIFF_REFERENCE: Solver = Solver::BDF;
 
 /// The reference of `case` for a study of `studied` solvers: the closed form where one
 /// exists; otherwise a run at rtol = atol = [`REFERENCE_TOLERANCE`] of Dormand–Prince, or,
@@ -77,10 +77,10 @@ fn plan(case: &dyn StudyCase, studied: &[Solver]) -> Plan {
     if let Some((name, m)) = case.closed_form() {
         return Plan::Exact(Reference::ClosedForm(name), Box::new(m));
     }
-    let tsit45 = Solver::Diffsol(DiffsolMethod::Tsit45);
-    let (solver, check) = match (studied.contains(&Solver::Dopri5), studied.contains(&tsit45)) {
-        (true, false) => (tsit45, Solver::Dopri5),
-        _ => (Solver::Dopri5, tsit45),
+    let tsit45 = Solver::TSIT45;
+    let (solver, check) = match (studied.contains(&Solver::DOPRI5), studied.contains(&tsit45)) {
+        (true, false) => (tsit45, Solver::DOPRI5),
+        _ => (Solver::DOPRI5, tsit45),
     };
     // Naive stepping and time-stepping approximate the discontinuous problem, whose exact
     // solution event switching computes (time-stepping takes no tolerance, so it could not

@@ -15,7 +15,7 @@ use crate::ScenarioParams;
 use friction_models::{FrictionParams, ModelId, Parameters};
 use friction_systems::{simulate, EnergyBalance, Layout, Run, System, STICK};
 use integrators::stability::Instability;
-use integrators::{DiffsolMethod, Options, Output, Solver, SolverError, Stats, StepControl};
+use integrators::{Options, Output, Solver, SolverError, Stats, StepControl};
 use serde::Serialize;
 
 /// Points of the common time grid on which trajectories are compared.
@@ -293,7 +293,7 @@ impl StudyCase for Case {
             return Ok(Kinematic::dim_of(model.as_ref()));
         }
         // The solver and step do not change the system.
-        let spec = self.spec(Solver::Dopri5, StepControl::Fixed { h: self.t_end });
+        let spec = self.spec(Solver::DOPRI5, StepControl::Fixed { h: self.t_end });
         Ok(Layout::of(&body_system(&spec, model)).dim())
     }
 
@@ -507,11 +507,11 @@ impl StudyCase for SystemCase {
         }
         vec![
             Method {
-                solver: Solver::Diffsol(DiffsolMethod::Bdf),
+                solver: Solver::BDF,
                 switching: Some(SwitchingKind::Regularized),
             },
             Method {
-                solver: Solver::Rk4,
+                solver: Solver::RK4,
                 switching: Some(SwitchingKind::TimeStepping {
                     theta: DEFAULT_THETA,
                 }),

@@ -44,7 +44,7 @@ impl Method {
     pub fn studied(switching: SwitchingKind, solvers: &[Solver]) -> Vec<Method> {
         match switching {
             s @ SwitchingKind::TimeStepping { .. } => vec![Method {
-                solver: Solver::Rk4,
+                solver: Solver::RK4,
                 switching: Some(s),
             }],
             _ => solvers.iter().map(|&s| Method::of(s)).collect(),

@@ -94,7 +94,7 @@ fn spec(
         law: model.into(),
         friction: *p,
         params: *s,
-        solver: Solver::Dopri5,
+        solver: Solver::DOPRI5,
         switching: SwitchingKind::Event,
         step: StepControl::Adaptive {
             rtol: 1e-12,

@@ -7,7 +7,7 @@ use crate::run::{run, run_motion, settling_time, Law, RunSpec, ScenarioError, Sw
 use crate::scenario::Scenario;
 use crate::ScenarioParams;
 use friction_models::{FrictionModel, FrictionParams, ModelId, Parameters};
-use integrators::{DiffsolMethod, Solver, SolverError, StepControl};
+use integrators::{Solver, SolverError, StepControl};
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -176,7 +176,7 @@ impl Default for Protocol {
     /// four times as long over the whole table (docs/performance.md).
     fn default() -> Self {
         Protocol {
-            solver: Solver::Diffsol(DiffsolMethod::Bdf),
+            solver: Solver::BDF,
             step: StepControl::Adaptive {
                 rtol: 1e-10,
                 atol: 1e-12,

@@ -26,7 +26,7 @@ pub fn belt_run(model: ModelId, friction: &FrictionParams) -> RunSpec {
         law: model.into(),
         friction: *friction,
         params: Scenario::Belt.defaults(),
-        solver: Solver::Dopri5,
+        solver: Solver::DOPRI5,
         switching: SwitchingKind::Event,
         step: StepControl::Adaptive {
             rtol: 1e-8,

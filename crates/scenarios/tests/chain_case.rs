@@ -45,13 +45,13 @@ fn a_swept_chain_parameter_builds_the_chain_a_direct_build_gives() {
     let direct = case(source(4, 1e4), 10.0);
     assert_eq!(swept.describe(), "chain of 4 CS (event switching)");
     let (a, b) = (
-        run(swept.as_ref(), Solver::Dopri5, 1e-8),
-        run(&direct, Solver::Dopri5, 1e-8),
+        run(swept.as_ref(), Solver::DOPRI5, 1e-8),
+        run(&direct, Solver::DOPRI5, 1e-8),
     );
     assert_eq!(a.measures, b.measures);
     assert_eq!(a.stats.rhs_evals, b.stats.rhs_evals);
     // And the value changed the run: the stiffer chain is another motion.
-    let soft = run(&case(source(4, 100.0), 10.0), Solver::Dopri5, 1e-8);
+    let soft = run(&case(source(4, 100.0), 10.0), Solver::DOPRI5, 1e-8);
     assert_ne!(soft.measures.final_state, a.measures.final_state);
     // A friction parameter of the law, with the levels scaled along the chain as before.
     let f_c = case(source(4, 100.0), 10.0)
@@ -60,8 +60,8 @@ fn a_swept_chain_parameter_builds_the_chain_a_direct_build_gives() {
     let mut lower = source(4, 100.0);
     lower.friction.f_c = 5.0;
     assert_eq!(
-        run(f_c.as_ref(), Solver::Dopri5, 1e-8).measures,
-        run(&case(lower, 10.0), Solver::Dopri5, 1e-8).measures
+        run(f_c.as_ref(), Solver::DOPRI5, 1e-8).measures,
+        run(&case(lower, 10.0), Solver::DOPRI5, 1e-8).measures
     );
 }
 

@@ -10,7 +10,7 @@ fn belt(model: ModelId, switching: SwitchingKind, rtol: f64) -> friction_systems
         law: model.into(),
         friction: FrictionParams::paper(),
         params: Scenario::Belt.defaults(),
-        solver: Solver::Dopri5,
+        solver: Solver::DOPRI5,
         switching,
         step: StepControl::Adaptive {
             rtol,

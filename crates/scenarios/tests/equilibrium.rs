@@ -6,7 +6,7 @@
 //! against the true 40 %).
 
 use friction_models::{FrictionParams, ModelId, Parameters};
-use integrators::{DiffsolMethod, Solver, StepControl};
+use integrators::{Solver, StepControl};
 use scenarios::{run, Limits, RunSpec, Scenario, SwitchingKind};
 
 fn end_displacement(solver: Solver, step: StepControl) -> f64 {
@@ -36,9 +36,9 @@ fn a_lugre_body_released_from_an_equilibrium_comes_back_the_same_with_every_solv
         atol: 1e-12,
         h0: None,
     };
-    let dopri5 = end_displacement(Solver::Dopri5, tight);
-    let bdf = end_displacement(Solver::Diffsol(DiffsolMethod::Bdf), tight);
-    let rk4 = end_displacement(Solver::Rk4, StepControl::Fixed { h: 1e-5 });
+    let dopri5 = end_displacement(Solver::DOPRI5, tight);
+    let bdf = end_displacement(Solver::BDF, tight);
+    let rk4 = end_displacement(Solver::RK4, StepControl::Fixed { h: 1e-5 });
     assert!(
         (dopri5 - bdf).abs() < 1e-6 * bdf.abs(),
         "{dopri5:e} vs {bdf:e}"

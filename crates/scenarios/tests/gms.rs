@@ -4,7 +4,7 @@
 
 use friction_models::{FrictionModel, FrictionParams, ModelId, Parameters, SignLaw, Variant};
 use friction_systems::Switching;
-use integrators::{DiffsolMethod, Options, Solver};
+use integrators::{Options, Solver};
 use scenarios::motion::{Kinematic, Motion};
 
 /// Slow enough that the Stribeck curve is at F_s (v ≪ v_s) and damping is negligible.
@@ -34,7 +34,7 @@ fn walk(model: &dyn FrictionModel, path: &[f64]) -> Vec<f64> {
         let mut y0 = z.clone();
         y0.extend([0.0, 0.0]);
         let t_end = (target - x).abs() / SPEED;
-        let s = Solver::Diffsol(DiffsolMethod::Bdf)
+        let s = Solver::BDF
             .solve(
                 &k,
                 &y0,

@@ -95,7 +95,7 @@ fn paper_block(model: ModelId, p: FrictionParams) -> Vec<(f64, f64, f64)> {
         law: model.into(),
         friction: p,
         params: ScenarioParams::default(),
-        solver: Solver::Dopri5,
+        solver: Solver::DOPRI5,
         switching: SwitchingKind::Event,
         step: StepControl::Adaptive {
             rtol: 1e-12,

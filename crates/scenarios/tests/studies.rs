@@ -34,7 +34,7 @@ fn slope(case: &Case, solver: Solver, steps: &[f64], measure: ErrorMeasure) -> f
 #[test]
 fn the_study_recovers_the_orders_of_the_methods_on_a_smooth_problem() {
     let case = viscous_block();
-    let c = convergence(&case, &[Solver::Rk4], &[0.4, 0.2], &[], &|| {}).unwrap();
+    let c = convergence(&case, &[Solver::RK4], &[0.4, 0.2], &[], &|| {}).unwrap();
     assert!(
         matches!(c.reference, Reference::ClosedForm(_)),
         "{:?}",
@@ -43,7 +43,7 @@ fn the_study_recovers_the_orders_of_the_methods_on_a_smooth_problem() {
     // RK4's order, with an interval that holds 4, from every pair of the four steps.
     let rk4 = fit(
         &case,
-        Solver::Rk4,
+        Solver::RK4,
         &[0.4, 0.2, 0.1, 0.05],
         ErrorMeasure::GridRelative,
     );
@@ -53,14 +53,14 @@ fn the_study_recovers_the_orders_of_the_methods_on_a_smooth_problem() {
     assert_eq!((rk4.pairs_used, rk4.range), (3, [0.05, 0.4]));
     let dopri5 = slope(
         &case,
-        Solver::Dopri5,
+        Solver::DOPRI5,
         &[1.0, 0.5, 0.25, 0.125],
         ErrorMeasure::GridRelative,
     );
     assert!((dopri5 - 5.0).abs() < 0.3, "dopri5 {dopri5}");
     let euler = slope(
         &case,
-        Solver::ImplicitEuler,
+        Solver::IMPLICIT_EULER,
         &[0.04, 0.02, 0.01, 0.005],
         ErrorMeasure::GridRelative,
     );
@@ -87,14 +87,14 @@ fn stepping_through_v_0_costs_rk4_its_order_and_event_location_restores_it() {
     let steps = [2e-2, 1e-2, 5e-3, 2.5e-3];
     let naive = slope(
         &coulomb_vibration(SwitchingKind::Naive),
-        Solver::Rk4,
+        Solver::RK4,
         &steps,
         ErrorMeasure::GridRelative,
     );
     assert!((naive - 1.0).abs() < 0.25, "naive {naive}");
     let switched = slope(
         &coulomb_vibration(SwitchingKind::Event),
-        Solver::Rk4,
+        Solver::RK4,
         &steps,
         ErrorMeasure::GridRelative,
     );
@@ -102,7 +102,7 @@ fn stepping_through_v_0_costs_rk4_its_order_and_event_location_restores_it() {
     // The switched events are the closed form's: reversals every π/ω.
     let c = convergence(
         &coulomb_vibration(SwitchingKind::Event),
-        &[Solver::Rk4],
+        &[Solver::RK4],
         &[1e-3],
         &[],
         &|| {},
@@ -125,9 +125,9 @@ fn stepping_through_v_0_costs_rk4_its_order_and_event_location_restores_it() {
 #[test]
 fn the_independence_verdict_is_negative_for_a_coarse_step_and_positive_for_a_fine_one() {
     let case = viscous_block();
-    let coarse = independence(&case, Solver::Rk4, 2.0, 2.0, 3, 1e-6, &|| {}).unwrap();
+    let coarse = independence(&case, Solver::RK4, 2.0, 2.0, 3, 1e-6, &|| {}).unwrap();
     assert!(!coarse.independent, "{:?}", coarse.outputs);
-    let fine = independence(&case, Solver::Rk4, 1e-2, 2.0, 3, 1e-6, &|| {}).unwrap();
+    let fine = independence(&case, Solver::RK4, 1e-2, 2.0, 3, 1e-6, &|| {}).unwrap();
     assert!(fine.independent, "{:?}", fine.outputs);
     // The Richardson estimate of the remaining error in v(5) bounds the true error.
     let v = fine
@@ -156,7 +156,7 @@ fn levels_outside_the_asymptotic_range_do_not_make_a_small_richardson_estimate()
         t_end: 10.0,
         ..viscous_block()
     };
-    let study = independence(&case, Solver::Rk4, 1e-3, 2.0, 4, 1e-6, &|| {}).unwrap();
+    let study = independence(&case, Solver::RK4, 1e-3, 2.0, 4, 1e-6, &|| {}).unwrap();
     assert_eq!(study.first_level, 1, "{:?}", study.failed);
     let x = &study.outputs[0];
     assert!(x.name.starts_with("final x"), "{x:?}");
@@ -307,11 +307,11 @@ fn the_reference_is_an_independent_tight_run_cross_checked_by_another() {
     };
     // Always cross-checked by the other 5(4) pair: their difference is the reference's
     // estimated error.
-    let (r, _) = reference(&case, &[Solver::Rk4]).unwrap();
+    let (r, _) = reference(&case, &[Solver::RK4]).unwrap();
     assert_eq!((solver_of(&r).0, solver_of(&r).1 .0), ("dopri5", "tsit45"));
-    let (r, _) = reference(&case, &[Solver::Dopri5]).unwrap();
+    let (r, _) = reference(&case, &[Solver::DOPRI5]).unwrap();
     assert_eq!((solver_of(&r).0, solver_of(&r).1 .0), ("tsit45", "dopri5"));
-    let (r, _) = reference(&case, &[Solver::Dopri5, tsit45]).unwrap();
+    let (r, _) = reference(&case, &[Solver::DOPRI5, tsit45]).unwrap();
     let (solver, (other, difference)) = solver_of(&r);
     assert_eq!((solver, other), ("dopri5", "tsit45"));
     // Two independent 5(4) codes at 1e-13 agree far below the tolerances a study uses.
@@ -342,7 +342,7 @@ fn a_study_whose_reference_fails_starts_no_run_after_it() {
         .install(|| {
             work_precision(
                 &case,
-                &[Method::of(Solver::Rk4)],
+                &[Method::of(Solver::RK4)],
                 &[1e-3, 1e-4],
                 &[],
                 1,
@@ -428,7 +428,7 @@ fn a_run_that_failed_is_not_timed_again() {
         .install(|| {
             work_precision(
                 &case,
-                &[Method::of(Solver::Rk4)],
+                &[Method::of(Solver::RK4)],
                 &[0.01, 0.005],
                 &[],
                 4,
@@ -474,7 +474,7 @@ fn a_system_study_draws_regularised_bdf_and_time_stepping_beside_its_solvers() {
     let peers = case.peers();
     let labels: Vec<String> = peers.iter().map(Method::label).collect();
     assert_eq!(labels, ["bdf (regularized)", "moreau-jean (timestepping)"]);
-    let mut methods = vec![Method::of(Solver::Dopri5)];
+    let mut methods = vec![Method::of(Solver::DOPRI5)];
     methods.extend(peers);
     let w = work_precision(&case, &methods, &[1e-2, 1e-3], &[1e-6, 1e-8], 1, &|| {}).unwrap();
     let errors = |label: &str| -> Vec<f64> {
@@ -508,7 +508,7 @@ fn a_sweep_in_one_list_gives_each_case_its_own_results_on_one_or_two_threads() {
     let belt = switched_belt();
     let stiff = belt.with_parameter("k", 400.0).unwrap();
     let cases: [&dyn StudyCase; 2] = [&belt, stiff.as_ref()];
-    let solvers = [Solver::Rk4, Solver::Dopri5, Solver::ImplicitEuler];
+    let solvers = [Solver::RK4, Solver::DOPRI5, Solver::IMPLICIT_EULER];
     let methods = solvers.map(Method::of);
     let jobs = Method::jobs(&methods, &[0.01, 0.005], &[1e-4, 1e-6], false);
     assert_eq!(jobs.len(), 6);
@@ -831,7 +831,7 @@ fn an_own_method_is_studied_beside_the_built_ins_under_its_own_name_only() {
     let case = switched_belt();
     let tolerances = [1e-6, 1e-8];
     let run = |own: &'static Named| {
-        let methods = [Method::of(Solver::Dopri5), Method::of(Solver::Own(own))];
+        let methods = [Method::of(Solver::DOPRI5), Method::of(Solver::own(own))];
         work_precision(&case, &methods, &[], &tolerances, 0, &|| {})
     };
     // Under a name of its own: the same runs as the built-in method it wraps.
@@ -854,7 +854,7 @@ fn an_own_method_is_studied_beside_the_built_ins_under_its_own_name_only() {
 /// Euler (order 1).
 #[test]
 fn a_time_stepped_study_measures_moreau_jeans_order_under_its_own_name() {
-    let solvers = [Solver::Rk4, Solver::Dopri5, Solver::ImplicitEuler];
+    let solvers = [Solver::RK4, Solver::DOPRI5, Solver::IMPLICIT_EULER];
     let steps = [0.04, 0.02, 0.01, 0.005];
     for (theta, order) in [(0.5, 2.0), (1.0, 1.0)] {
         let case = Case {
@@ -892,7 +892,7 @@ fn a_time_stepped_study_without_a_closed_form_takes_the_event_driven_reference()
         switching: SwitchingKind::TimeStepping { theta: 0.5 },
         ..switched_belt()
     };
-    let c = convergence(&stepped, &[Solver::Dopri5], &[0.01, 0.005], &[1e-6], &|| {}).unwrap();
+    let c = convergence(&stepped, &[Solver::DOPRI5], &[0.01, 0.005], &[1e-6], &|| {}).unwrap();
     let Reference::Run { solver, .. } = c.reference else {
         panic!("{:?}", c.reference)
     };
@@ -921,7 +921,7 @@ fn a_law_with_an_internal_state_has_its_error_in_z() {
         t_end: 2.0,
         ..viscous_block()
     };
-    let bdf = Solver::Diffsol(integrators::DiffsolMethod::Bdf);
+    let bdf = Solver::BDF;
     let c = convergence(&case, &[bdf], &[], &[1e-5, 1e-7], &|| {}).unwrap();
     for r in &c.runs {
         let e = r.errors;
@@ -960,7 +960,7 @@ fn a_stiff_case_has_an_implicit_reference_checked_by_an_explicit_one() {
         }
     };
     let stiff = belt(SwitchingKind::Regularized, 1e-4);
-    let (r, _) = scenarios::studies::reference(&stiff, &[Solver::Rk4]).unwrap();
+    let (r, _) = scenarios::studies::reference(&stiff, &[Solver::RK4]).unwrap();
     let Reference::Run {
         solver,
         cross_check: (check, estimate),
@@ -976,7 +976,7 @@ fn a_stiff_case_has_an_implicit_reference_checked_by_an_explicit_one() {
     assert!(t > 0.0 && t < 2.0, "{t}");
     assert!(estimate > 0.0 && estimate < 1e-7, "{estimate}");
     let smooth = belt(SwitchingKind::Event, 1e-4);
-    let (r, _) = scenarios::studies::reference(&smooth, &[Solver::Rk4]).unwrap();
+    let (r, _) = scenarios::studies::reference(&smooth, &[Solver::RK4]).unwrap();
     let Reference::Run {
         solver,
         stiffness_detected_at: None,

@@ -13,7 +13,7 @@ fn a_one_body_system_file_equals_the_belt_rig() {
         law: ModelId::Cvs.into(),
         friction: FrictionParams::paper(),
         params: Scenario::Belt.defaults(),
-        solver: Solver::Dopri5,
+        solver: Solver::DOPRI5,
         switching: SwitchingKind::Event,
         step: StepControl::Adaptive {
             rtol: 1e-9,

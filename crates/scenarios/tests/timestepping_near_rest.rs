@@ -28,7 +28,7 @@ fn outcome_with(
     h: f64,
 ) -> Outcome {
     let (solver, step) = match switching {
-        SwitchingKind::TimeStepping { .. } => (Solver::Rk4, StepControl::Fixed { h }),
+        SwitchingKind::TimeStepping { .. } => (Solver::RK4, StepControl::Fixed { h }),
         _ => (
             Solver::from_name("bdf").expect("a solver"),
             StepControl::Adaptive {

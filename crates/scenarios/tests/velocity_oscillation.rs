@@ -11,7 +11,7 @@ fn oscillate(model: ModelId) -> Outcome {
         law: model.into(),
         friction: FrictionParams::paper(),
         params: Scenario::VelocityOscillation.defaults(),
-        solver: Solver::Dopri5,
+        solver: Solver::DOPRI5,
         switching: SwitchingKind::Event,
         step: StepControl::Adaptive {
             rtol: 1e-10,

@@ -8,7 +8,7 @@ use clap::Args;
 use integrators::Solver;
 
 /// The solvers `converge` compares by default.
-const CONVERGE_SOLVERS: [Solver; 3] = [Solver::Rk4, Solver::Dopri5, Solver::ImplicitEuler];
+const CONVERGE_SOLVERS: [Solver; 3] = [Solver::RK4, Solver::DOPRI5, Solver::IMPLICIT_EULER];
 
 /// Options of `converge`.
 #[derive(Args, Debug)]
@@ -16,9 +16,16 @@ pub struct ConvergeArgs {
     /// The problem.
     #[command(flatten)]
     pub case: CaseArgs,
-    /// Solvers, comma-separated [default: rk4,dopri5,implicit-euler; refused under --scheme
-    /// time-stepping, whose one method is Moreau–Jean's scheme].
-    #[arg(long, value_delimiter = ',')]
+    /// Solvers, comma-separated (its help lists the built-in solvers).
+    #[arg(
+        long,
+        value_delimiter = ',',
+        help = crate::options::solver_help(
+            "Solvers, comma-separated, of",
+            "[default: rk4,dopri5,implicit-euler; refused under --scheme time-stepping, whose one method \
+             is Moreau–Jean's scheme]"
+        )
+    )]
     pub solvers: Vec<Solver>,
     /// Step sizes of rk4, dopri5 and implicit-euler (fixed steps), coarse to fine.
     #[arg(

@@ -15,9 +15,16 @@ pub struct IndependenceArgs {
     /// The problem.
     #[command(flatten)]
     pub case: CaseArgs,
-    /// The solver [default: rk4; refused under --scheme time-stepping, whose one method is
-    /// Moreau–Jean's scheme].
-    #[arg(long, value_name = "SOLVER")]
+    /// The solver (its help lists the built-in solvers).
+    #[arg(
+        long,
+        value_name = "SOLVER",
+        help = crate::options::solver_help(
+            "The solver",
+            "[default: rk4; refused under --scheme time-stepping, whose one method is \
+             Moreau–Jean's scheme]"
+        )
+    )]
     pub solver: Option<Solver>,
     /// The coarsest step size (rk4) or tolerance (adaptive solvers).
     #[arg(
@@ -66,7 +73,7 @@ pub fn independence(a: &IndependenceArgs) -> Result<Made, AppError> {
             case,
             solver: a
                 .case
-                .solvers("solver", a.solver.as_slice(), &[Solver::Rk4])?[0],
+                .solvers("solver", a.solver.as_slice(), &[Solver::RK4])?[0],
             refinement: r,
         };
         let s = conduct(&study, t, "independence")?;

@@ -9,17 +9,17 @@ use crate::laws::ModelChoice;
 use crate::options::SchemeName;
 use crate::study::{conduct, StiffnessStudy};
 use clap::Args;
-use integrators::{DiffsolMethod, Solver};
+use integrators::Solver;
 use scenarios::studies;
 use scenarios::SwitchingKind;
 
 /// The solvers `stiffness` compares by default: two explicit, three implicit.
 const STIFFNESS_SOLVERS: [Solver; 5] = [
-    Solver::Dopri5,
-    Solver::Diffsol(DiffsolMethod::Tsit45),
-    Solver::ImplicitEuler,
-    Solver::Diffsol(DiffsolMethod::Bdf),
-    Solver::Diffsol(DiffsolMethod::Esdirk34),
+    Solver::DOPRI5,
+    Solver::TSIT45,
+    Solver::IMPLICIT_EULER,
+    Solver::BDF,
+    Solver::ESDIRK34,
 ];
 
 /// Options of `stiffness`.
@@ -41,9 +41,16 @@ pub struct StiffnessArgs {
         default_value = "1e-1,1e-2,1e-3,1e-4"
     )]
     pub values: Vec<f64>,
-    /// Solvers, comma-separated [default: dopri5,tsit45,implicit-euler,bdf,esdirk34; refused under --scheme
-    /// time-stepping, whose one method is Moreau–Jean's scheme].
-    #[arg(long, value_delimiter = ',')]
+    /// Solvers, comma-separated (its help lists the built-in solvers).
+    #[arg(
+        long,
+        value_delimiter = ',',
+        help = crate::options::solver_help(
+            "Solvers, comma-separated, of",
+            "[default: dopri5,tsit45,implicit-euler,bdf,esdirk34; refused under --scheme time-stepping, whose one method \
+             is Moreau–Jean's scheme]"
+        )
+    )]
     pub solvers: Vec<Solver>,
     /// The error to reach: `grid_relative`, the largest error on the time grid over the
     /// solution's scale in each quantity (dimensionless).

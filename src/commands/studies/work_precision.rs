@@ -14,9 +14,16 @@ pub struct WorkPrecisionArgs {
     /// The problem.
     #[command(flatten)]
     pub case: CaseArgs,
-    /// Solvers, comma-separated [default: rk4,dopri5,implicit-euler,bdf,tr-bdf2,esdirk34,tsit45; refused under --scheme
-    /// time-stepping, whose one method is Moreau–Jean's scheme].
-    #[arg(long, value_delimiter = ',')]
+    /// Solvers, comma-separated (its help lists the built-in solvers).
+    #[arg(
+        long,
+        value_delimiter = ',',
+        help = crate::options::solver_help(
+            "Solvers, comma-separated, of",
+            "[default: rk4,dopri5,implicit-euler,bdf,tr-bdf2,esdirk34,tsit45; refused under --scheme time-stepping, whose one method \
+             is Moreau–Jean's scheme]"
+        )
+    )]
     pub solvers: Vec<Solver>,
     /// Step sizes of rk4, coarse to fine.
     #[arg(
