@@ -272,7 +272,6 @@ fn add_studies(
     let rk4 = [Solver::RK4];
     let native = [Solver::RK4, Solver::DOPRI5, Solver::IMPLICIT_EULER];
     let steps = [0.02, 0.01, 0.005, 0.0025];
-    let solver = |name| Solver::from_name(name).expect("a known solver");
     let smooth = conduct(
         &ConvergenceStudy {
             case: &case(
@@ -355,15 +354,7 @@ fn add_studies(
     if let Some(failure) = t.failure.take() {
         return Err(failure);
     }
-    let all = [
-        Solver::RK4,
-        Solver::DOPRI5,
-        Solver::IMPLICIT_EULER,
-        solver("bdf"),
-        solver("tr-bdf2"),
-        solver("esdirk34"),
-        solver("tsit45"),
-    ];
+    let all = Solver::ALL;
     conduct(
         &WorkPrecisionStudy {
             case: &case(
@@ -386,10 +377,10 @@ fn add_studies(
     )?;
     let explicit_implicit = [
         Solver::DOPRI5,
-        solver("tsit45"),
+        Solver::TSIT45,
         Solver::IMPLICIT_EULER,
-        solver("bdf"),
-        solver("esdirk34"),
+        Solver::BDF,
+        Solver::ESDIRK34,
     ];
     let sweep = scenarios::studies::Sweep {
         parameter: "epsilon",
@@ -481,7 +472,7 @@ fn chain_case(n: usize, friction: &FrictionParams, t_end: f64) -> Result<SystemC
 /// Event-driving, regularisation and time-stepping on the chain: work–precision at N = 100
 /// and the cost per step against N up to 1000, with their report section.
 fn add_chain_studies(t: &mut Target, friction: &FrictionParams) -> Result<String, AppError> {
-    let bdf = Solver::from_name("bdf").expect("a known solver");
+    let bdf = Solver::BDF;
     conduct(
         &WorkPrecisionStudy {
             case: &chain_case(100, friction, 5.0)?,
