@@ -4,6 +4,7 @@
 //! coloured cells (`raster`).
 
 mod axes;
+mod glyphs;
 mod legend;
 mod raster;
 
@@ -336,11 +337,11 @@ fn render_svg(
 fn render_png(
     (w, h): (u32, u32),
     path: &Path,
-    paint: impl FnOnce(DrawingArea<BitMapBackend, Shift>) -> Result<(), String>,
+    paint: impl FnOnce(DrawingArea<glyphs::Glyphs, Shift>) -> Result<(), String>,
 ) -> Result<Vec<u8>, AppError> {
     register_font();
     let mut pixels = vec![0u8; (w * h * 3) as usize];
-    paint(BitMapBackend::with_buffer(&mut pixels, (w, h)).into_drawing_area())
+    paint(glyphs::Glyphs(BitMapBackend::with_buffer(&mut pixels, (w, h))).into_drawing_area())
         .map_err(|message| plot_error(path, message))?;
     encode_png(&pixels, (w, h), path)
 }
