@@ -116,6 +116,38 @@ impl ParamOptions {
         Ok((friction, rig))
     }
 
+    /// Refuses what a system file does not read: a parameter set other than `paper`, and any
+    /// parameter of `--params` or `--set` but `epsilon` (the regularisation width of the
+    /// run): each `[[contact]]` of the file names its own model and parameters (exit 2 where
+    /// they were ignored before).
+    pub fn check_for_system_file(&self) -> Result<(), AppError> {
+        const READ: &str = "each [[contact]] of the file names its own parameters (the file's \
+                            `param_set` and a contact's `params`); of the friction parameters a \
+                            system file run reads only `epsilon`, the regularisation width";
+        if self.param_set != "paper" {
+            return Err(AppError::Usage(format!(
+                "option `--param-set` does not apply to --system: {READ}"
+            )));
+        }
+        if let Some(path) = &self.params {
+            if let Some((name, _)) = read_file(path)?.into_iter().find(|(n, _)| n != "epsilon") {
+                return Err(AppError::ParamFile {
+                    path: path.clone(),
+                    message: format!("parameter `{name}` does not apply to --system: {READ}"),
+                });
+            }
+        }
+        for assignment in &self.set {
+            let (name, _) = parse_assignment(assignment)?;
+            if name != "epsilon" {
+                return Err(AppError::Usage(format!(
+                    "option `--set`: parameter `{name}` does not apply to --system: {READ}"
+                )));
+            }
+        }
+        Ok(())
+    }
+
     /// The friction parameters, with the names that are not friction parameters given to
     /// `other` (a rig's or a system's own parameters), which says whether it took each; a
     /// name nobody takes is unknown, and the message lists the friction parameters and

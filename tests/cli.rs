@@ -2636,6 +2636,50 @@ fn sweep_runs_a_system_file_over_the_regularisation_width() {
         e.contains("parameter `F_s` cannot be swept on a system file"),
         "{e}"
     );
+    // What a system file does not read is refused, never ignored: its contacts carry their
+    // own parameters, and of the friction parameters only epsilon applies.
+    let params = dir.path().join("p.toml");
+    std::fs::write(&params, "epsilon = 1e-3\nF_s = 1\n").unwrap();
+    let p = params.to_str().unwrap();
+    for (args, message) in [
+        (
+            vec!["simulate", "--system", path, "--set", "F_s=1"],
+            "option `--set`: parameter `F_s` does not apply to --system",
+        ),
+        (
+            vec!["converge", "--system", path, "--set", "mu_v=1"],
+            "option `--set`: parameter `mu_v` does not apply to --system",
+        ),
+        (
+            vec!["simulate", "--system", path, "--param-set", "lugre-1995"],
+            "option `--param-set` does not apply to --system",
+        ),
+        (
+            vec!["simulate", "--system", path, "--params", p],
+            "parameter `F_s` does not apply to --system",
+        ),
+        (
+            vec![
+                "sweep",
+                "--system",
+                path,
+                "--switching",
+                "regularized",
+                "--set",
+                "F_c=1",
+                "--grid",
+                "epsilon=1e-3",
+            ],
+            "option `--set`: parameter `F_c` does not apply to --system",
+        ),
+        (
+            vec!["simulate", "--system", path, "--variant", "printed"],
+            "option `--variant` does not apply to --system",
+        ),
+    ] {
+        let e = rejected(&args);
+        assert!(e.contains(message), "{args:?}: {e}");
+    }
 }
 
 /// Runs friction-lab with `args` and a heartbeat every 0.2 s, sends it SIGINT once it has

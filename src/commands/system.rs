@@ -148,6 +148,14 @@ pub fn system_of(
                     .into(),
             ));
         }
+        options.params.check_for_system_file()?;
+        if options.variant != friction_models::Variant::Odd {
+            return Err(AppError::Usage(
+                "option `--variant` does not apply to --system: each [[contact]] of the file \
+                 names its variant"
+                    .into(),
+            ));
+        }
         return Ok(Described {
             system: load(path)?,
             name: path.display().to_string(),
