@@ -3683,3 +3683,33 @@ fn a_bind_mount_of_the_same_device_is_refused_before_any_work() {
         "{text}"
     );
 }
+
+#[test]
+fn a_sweep_ranges_points_read_as_written() {
+    // 0.1 + 6·0.1 is 0.7000000000000001 in floating point: the point is 0.7, as one writes it.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("s");
+    let o = friction_lab(&[
+        "sweep",
+        "belt",
+        "--model",
+        "CS",
+        "--grid",
+        "v_belt=0.1:1:10",
+        "--t-end",
+        "1",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(out.join("sweep.csv")).unwrap();
+    let column: Vec<&str> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').next().unwrap())
+        .collect();
+    assert_eq!(
+        column,
+        ["0.1", "0.2", "0.3", "0.4", "0.5", "0.6", "0.7", "0.8", "0.9", "1"]
+    );
+}

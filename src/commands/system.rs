@@ -99,6 +99,11 @@ pub struct Described {
     pub source: Option<ChainSource>,
 }
 
+/// `n` and the noun in its number: `1 body`, `2 bodies`.
+fn counted(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
+}
+
 /// How often [`load`] looks for a signal, s.
 const LOAD_POLL_S: f64 = 0.05;
 
@@ -464,10 +469,10 @@ pub fn make(args: &SimulateArgs, trajectory_as: TrajectoryAs) -> Result<Made, Ap
         files,
         trajectory: columns,
         notes: vec![format!(
-            "{} bodies, {} steps, {} events, {:.3} s",
-            system.bodies.len(),
-            run.solution.stats.steps,
-            run.solution.stats.events,
+            "{}, {}, {}, {:.3} s",
+            counted(system.bodies.len(), "body", "bodies"),
+            counted(run.solution.stats.steps, "step", "steps"),
+            counted(run.solution.stats.events, "event", "events"),
             run.wall_time_s
         )],
         warnings: run

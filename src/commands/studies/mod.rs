@@ -49,7 +49,8 @@ pub struct CaseArgs {
     #[arg(long, value_name = "MODEL")]
     pub model: Option<ModelChoice>,
     /// Systems: the bodies whose trajectories, event times and stick phases are measured
-    /// (names or 1-based indices) [default: the first body]; every body's final state is.
+    /// (names or 1-based indices) [default: the first body]; the final state is measured on
+    /// every body.
     #[arg(long, value_name = "LIST", value_delimiter = ',')]
     pub bodies: Vec<String>,
     /// The scheme, and the treatment of v = 0 under the event-driven one.
