@@ -141,7 +141,7 @@ impl Artifacts {
         };
         crate::destination::check(root)?;
         let stopped = integrators::interrupt::requested();
-        let kept = (stopped && holds_complete(root)).then(|| root.to_path_buf());
+        let kept = (stopped && holds_stopped(root) == Some(false)).then(|| root.to_path_buf());
         let folder = match &kept {
             Some(_) => stopped_beside(root)?,
             None => root.to_path_buf(),
@@ -267,17 +267,14 @@ pub const COMPLETE_STATUS: &str = "status: complete";
 /// The marker's first line in a folder that holds what a stopped command computed.
 pub const STOPPED_STATUS: &str = "status: stopped";
 
-/// Whether `root` holds a complete result of an earlier run: its marker does not say
-/// [`STOPPED_STATUS`] (a marker of a version before the status line counts as complete).
-fn holds_complete(root: &Path) -> bool {
-    std::fs::read_to_string(root.join(MARKER))
-        .is_ok_and(|text| text.lines().next() != Some(STOPPED_STATUS))
-}
-
-/// Whether `path` holds a partial result, which a later partial result may replace.
-fn holds_stopped(path: &Path) -> bool {
-    std::fs::read_to_string(path.join(MARKER))
-        .is_ok_and(|text| text.lines().next() == Some(STOPPED_STATUS))
+/// Whether the folder `dir` holds friction-lab's output, and then whether it is a partial
+/// result: `Some(true)` where its marker says [`STOPPED_STATUS`], `Some(false)` for a complete
+/// one (a marker of a version before the status line counts as complete), `None` without a
+/// marker.
+fn holds_stopped(dir: &Path) -> Option<bool> {
+    std::fs::read_to_string(dir.join(MARKER))
+        .ok()
+        .map(|text| text.lines().next() == Some(STOPPED_STATUS))
 }
 
 /// The folder beside `root` for a partial result that must not replace `root`'s complete one:
@@ -299,7 +296,8 @@ fn stopped_beside(root: &Path) -> Result<PathBuf, AppError> {
             end -= 1;
         }
         let candidate = root.with_file_name(format!("{}{suffix}", &name[..end]));
-        if std::fs::symlink_metadata(&candidate).is_err() || holds_stopped(&candidate) {
+        if std::fs::symlink_metadata(&candidate).is_err() || holds_stopped(&candidate) == Some(true)
+        {
             return Ok(candidate);
         }
     }

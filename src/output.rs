@@ -19,6 +19,11 @@ pub fn write_file(path: &Path, bytes: &[u8]) -> Result<(), AppError> {
     Ok(())
 }
 
+/// `n` and the noun in its number, for the lines a command prints: `1 body`, `2 bodies`.
+pub fn counted(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
+}
+
 /// A cell of a CSV table.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Cell {

@@ -10,7 +10,7 @@ use crate::commands::system::{
 };
 use crate::error::AppError;
 use crate::laws::ModelChoice;
-use crate::output::{Cell, Table};
+use crate::output::{counted, Cell, Table};
 use crate::progress::Progress;
 use crate::ranges;
 use crate::threads::with_threads;
@@ -479,9 +479,8 @@ pub fn make(args: &SweepArgs) -> Result<Made, AppError> {
     Ok(Made {
         files,
         notes: vec![format!(
-            "{} point{}, {failed} failed",
-            results.len(),
-            if results.len() == 1 { "" } else { "s" }
+            "{}, {failed} failed",
+            counted(results.len(), "point", "points")
         )],
         warnings: crate::warnings::unread_warnings(
             &args.run.model_options.params.set,

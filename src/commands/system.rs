@@ -8,7 +8,7 @@ use crate::commands::simulate::SimulateArgs;
 use crate::error::AppError;
 use crate::laws::ModelChoice;
 use crate::options::{ModelOptions, SchemeName};
-use crate::output::{Cell, Table};
+use crate::output::{counted, Cell, Table};
 use crate::plot::{self, Corner, Marker, Plot, Raster, Series, PALETTE};
 use crate::progress::Progress;
 use crate::ranges;
@@ -97,11 +97,6 @@ pub struct Described {
     pub friction: FrictionParams,
     /// What the chain was built from (`None` for a system file).
     pub source: Option<ChainSource>,
-}
-
-/// `n` and the noun in its number: `1 body`, `2 bodies`.
-fn counted(n: usize, one: &str, many: &str) -> String {
-    format!("{n} {}", if n == 1 { one } else { many })
 }
 
 /// How often [`load`] looks for a signal, s.

@@ -138,9 +138,12 @@ pub fn read(path: &Path) -> Result<System, SystemFileError> {
         .map_err(|e| error(e.to_string()))?;
     if text.len() as u64 > limit {
         let advice = if json {
-            ""
+            String::new()
         } else {
-            " (a JSON system file, with the same keys, may hold 256 MiB)"
+            format!(
+                " (a JSON system file, with the same keys, may hold {} MiB)",
+                MAX_JSON_FILE_BYTES >> 20
+            )
         };
         return Err(error(format!(
             "larger than {limit} bytes, the most a {kind} system file may hold{advice}"

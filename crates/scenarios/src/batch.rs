@@ -77,10 +77,10 @@ fn plan(case: &dyn StudyCase, studied: &[Solver]) -> Plan {
     if let Some((name, m)) = case.closed_form() {
         return Plan::Exact(Reference::ClosedForm(name), Box::new(m));
     }
-    let tsit45 = Solver::TSIT45;
-    let (solver, check) = match (studied.contains(&Solver::DOPRI5), studied.contains(&tsit45)) {
-        (true, false) => (tsit45, Solver::DOPRI5),
-        _ => (Solver::DOPRI5, tsit45),
+    let (dopri5, tsit45) = (Solver::DOPRI5, Solver::TSIT45);
+    let (solver, check) = match (studied.contains(&dopri5), studied.contains(&tsit45)) {
+        (true, false) => (tsit45, dopri5),
+        _ => (dopri5, tsit45),
     };
     // Naive stepping and time-stepping approximate the discontinuous problem, whose exact
     // solution event switching computes (time-stepping takes no tolerance, so it could not
