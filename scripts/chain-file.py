@@ -5,10 +5,10 @@
     python3 scripts/chain-file.py N OUT.json [--contact-every K]
 
 An anchor `d` driven at 0.1 m/s, N bodies `b1`..`bN` of 1 kg, springs from the anchor to b1
-and between neighbours, and a Coulomb contact on every K-th body (default every body).
-`--inline` writes the tables as inline arrays, about half the size (10⁶ bodies with a contact
-on every tenth: 62 MB, under the 64 MiB limit). A name ending `.json` writes the same system as
-JSON (71 MB; JSON files may hold 256 MiB). docs/performance.md, "Loading a system file".
+and between neighbours, and a Coulomb contact on every K-th body (default every body). 10⁶ bodies with a contact on
+every tenth: 77 MB of `[[table]]`s. `--inline` writes the tables as inline arrays instead
+(62 MB), which a TOML file may hold up to 32 MiB of. A name ending `.json` writes the same
+system as JSON (68 MB). docs/performance.md, "Loading a system file".
 """
 import argparse
 

@@ -11,13 +11,17 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use thiserror::Error;
 
-/// The largest TOML system file read, bytes: its parse holds about 50 bytes of memory a byte
-/// of text (3 GB for a 62 MB chain of 10⁶ bodies; docs/performance.md).
-pub const MAX_FILE_BYTES: u64 = 64 << 20;
+mod toml_parts;
 
-/// The largest JSON system file read, bytes: JSON is read straight into the system's tables,
-/// about 16 bytes of memory a byte of text (1.1 GB for a chain of 10⁶ bodies).
-pub const MAX_JSON_FILE_BYTES: u64 = 256 << 20;
+/// The largest system file read, TOML or JSON, bytes.
+pub const MAX_FILE_BYTES: u64 = 256 << 20;
+
+/// The largest piece of a TOML file parsed at once, bytes. A TOML file is read in parts of a
+/// thousand `[[table]]`s, each parsed alone (a whole-document parse holds about 50 bytes of
+/// memory a byte of text); a file written with inline arrays (`body = [{...}, ...]`) is one
+/// part. JSON is read straight into the system's tables. Memory is then that of the system,
+/// about 16 bytes a byte of text (docs/performance.md, "Loading a system file").
+pub const MAX_TOML_PART_BYTES: usize = 32 << 20;
 
 /// The longest name of a body or an anchor, bytes.
 pub const MAX_NAME_BYTES: usize = 256;
@@ -48,7 +52,7 @@ pub struct SystemFileError {
     pub message: String,
 }
 
-#[derive(Deserialize)]
+#[derive(Deserialize, Default)]
 #[serde(deny_unknown_fields)]
 struct FileSystem {
     param_set: Option<String>,
@@ -62,6 +66,19 @@ struct FileSystem {
     contact: Vec<FileContact>,
     #[serde(default)]
     force: Vec<FileForce>,
+}
+
+impl FileSystem {
+    /// Appends the tables of a later part of the same file (whose root keys are all in the
+    /// first part).
+    fn append(&mut self, mut part: FileSystem) {
+        self.param_set = self.param_set.take().or(part.param_set);
+        self.body.append(&mut part.body);
+        self.anchor.append(&mut part.anchor);
+        self.spring.append(&mut part.spring);
+        self.contact.append(&mut part.contact);
+        self.force.append(&mut part.force);
+    }
 }
 
 #[derive(Deserialize)]
@@ -116,8 +133,8 @@ struct FileForce {
     rate: f64,
 }
 
-/// Reads the system declared in the file at `path`: JSON if its name ends `.json` (at most
-/// [`MAX_JSON_FILE_BYTES`]), TOML otherwise (at most [`MAX_FILE_BYTES`]).
+/// Reads the system declared in the file at `path` (at most [`MAX_FILE_BYTES`]): JSON if its
+/// name ends `.json`, TOML otherwise.
 pub fn read(path: &Path) -> Result<System, SystemFileError> {
     let error = |message: String| SystemFileError {
         path: path.to_path_buf(),
@@ -126,27 +143,15 @@ pub fn read(path: &Path) -> Result<System, SystemFileError> {
     let json = path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("json"));
-    let (limit, kind) = if json {
-        (MAX_JSON_FILE_BYTES, "JSON")
-    } else {
-        (MAX_FILE_BYTES, "TOML")
-    };
+    let limit = MAX_FILE_BYTES;
     let file = std::fs::File::open(path).map_err(|e| error(e.to_string()))?;
     let mut text = String::new();
     file.take(limit + 1)
         .read_to_string(&mut text)
         .map_err(|e| error(e.to_string()))?;
     if text.len() as u64 > limit {
-        let advice = if json {
-            String::new()
-        } else {
-            format!(
-                " (a JSON system file, with the same keys, may hold {} MiB)",
-                MAX_JSON_FILE_BYTES >> 20
-            )
-        };
         return Err(error(format!(
-            "larger than {limit} bytes, the most a {kind} system file may hold{advice}"
+            "larger than {limit} bytes, the most a system file may hold"
         )));
     }
     if json {
@@ -159,7 +164,24 @@ pub fn read(path: &Path) -> Result<System, SystemFileError> {
 
 /// Parses the text of a system file.
 pub fn parse(text: &str) -> Result<System, String> {
-    build(toml::from_str(text).map_err(|e| e.to_string().trim().to_string())?)
+    let mut file = FileSystem::default();
+    for (offset, part) in toml_parts::parts(text) {
+        if part.len() > MAX_TOML_PART_BYTES {
+            return Err(format!(
+                "{} bytes from line {} are one piece: a TOML system file is read {} \
+                 `[[table]]`s at a time, each piece at most {MAX_TOML_PART_BYTES} bytes (write \
+                 the tables as `[[body]]`, `[[spring]]`, ... headers rather than inline arrays, \
+                 or write the file as JSON)",
+                part.len(),
+                text[..offset].matches('\n').count() + 1,
+                toml_parts::PART_TABLES
+            ));
+        }
+        let part: FileSystem =
+            toml::from_str(part).map_err(|e| toml_parts::message(text, offset, &e))?;
+        file.append(part);
+    }
+    build(file)
 }
 
 /// Parses a system written as JSON with the keys and tables of the TOML file (each

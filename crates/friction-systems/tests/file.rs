@@ -200,3 +200,92 @@ fn every_error_names_the_table_the_key_and_the_range() {
     // A TOML syntax or type error says where.
     assert!(error_of("[[body]]\nname = \"a\"\nm = ").contains("line 3"));
 }
+
+/// A chain of `n` bodies as `[[table]]`s, the same as JSON, and the line of body `at`'s mass.
+fn chain(n: usize, at: usize) -> (String, String, usize) {
+    let mut toml = String::from("param_set = \"paper\"\n[[anchor]]\nname = \"d\"\nv = 0.1\n");
+    let mut bodies = Vec::new();
+    let mut line = 0;
+    for i in 1..=n {
+        toml += &format!("[[body]]\nname = \"b{i}\"\n");
+        if i == at {
+            line = toml.matches('\n').count() + 1;
+        }
+        toml += &format!("m = {i}\n[[spring]]\nbetween = [\"d\", \"b{i}\"]\nk = 9\n");
+        bodies.push(format!(r#"{{"name": "b{i}", "m": {i}}}"#));
+    }
+    let springs: Vec<String> = (1..=n)
+        .map(|i| format!(r#"{{"between": ["d", "b{i}"], "k": 9}}"#))
+        .collect();
+    let json = format!(
+        r#"{{"param_set": "paper", "anchor": [{{"name": "d", "v": 0.1}}], "body": [{}], "spring": [{}]}}"#,
+        bodies.join(","),
+        springs.join(",")
+    );
+    (toml, json, line)
+}
+
+#[test]
+fn a_long_file_read_in_parts_declares_what_it_says() {
+    // 5000 bodies and 5000 springs: ten parts of a thousand tables.
+    let (toml, json, _) = chain(5000, 0);
+    let (a, b) = (parse(&toml).unwrap(), parse_json(&json).unwrap());
+    assert_eq!(a.bodies.len(), 5000);
+    assert_eq!(a.bodies, b.bodies);
+    assert_eq!(a.anchors, b.anchors);
+    assert_eq!(a.springs, b.springs);
+    assert_eq!(a.bodies[4321].name, "b4322");
+}
+
+#[test]
+fn an_error_in_a_later_part_is_placed_in_the_whole_file() {
+    let (toml, _, line) = chain(5000, 4500);
+    // A syntax error: the message is the `toml` crate's for the whole document, line and all.
+    let broken = toml.replace("m = 4500\n", "m = \n");
+    let whole = toml::from_str::<toml::Table>(&broken)
+        .unwrap_err()
+        .to_string();
+    let e = error_of(&broken);
+    assert_eq!(e, whole.trim());
+    assert!(
+        e.starts_with(&format!("TOML parse error at line {line}, column 5")),
+        "{e}"
+    );
+    // A value of the wrong type, placed likewise.
+    let e = error_of(&toml.replace("m = 4500\n", "m = \"x\"\n"));
+    assert!(
+        e.starts_with(&format!("TOML parse error at line {line}, column 5")),
+        "{e}"
+    );
+    assert!(e.contains(&format!("{line} | m = \"x\"")), "{e}");
+}
+
+#[test]
+fn a_root_array_extended_by_headers_is_refused_as_toml_refuses_it() {
+    // `body = [...]` and then `[[body]]` headers beyond the first part: TOML forbids
+    // extending a static array, and reading in parts must not hide it.
+    let (toml, _, _) = chain(3000, 0);
+    let text = toml.replace(
+        "param_set = \"paper\"\n",
+        "param_set = \"paper\"\nbody = [{name = \"b0\", m = 1}]\n",
+    );
+    assert!(toml::from_str::<toml::Table>(&text).is_err());
+    let e = error_of(&text);
+    assert!(e.starts_with("TOML parse error"), "{e}");
+}
+
+#[test]
+fn an_inline_array_larger_than_a_part_is_refused_with_the_way_out() {
+    let row = "{name = \"b\", m = 1},\n";
+    let text = format!(
+        "[[anchor]]\nname = \"d\"\nbody = [\n{}]\n",
+        row.repeat(friction_systems::file::MAX_TOML_PART_BYTES / row.len() + 1)
+    );
+    let e = error_of(&text);
+    assert!(
+        e.contains("bytes from line 1 are one piece")
+            && e.contains("at most 33554432 bytes")
+            && e.contains("or write the file as JSON"),
+        "{e}"
+    );
+}
