@@ -16,6 +16,7 @@
 //! [`Solver::own`] wherever a built-in solver runs.
 
 pub mod counting;
+pub mod decsol;
 pub mod diffsol_backend;
 pub mod dopri5;
 pub mod error;
@@ -28,6 +29,8 @@ pub mod method;
 pub mod newton;
 pub mod options;
 pub mod problem;
+pub mod radau5;
+pub mod radau_systems;
 pub mod rk4;
 pub mod solution;
 pub mod solver;
@@ -45,6 +48,7 @@ pub use method::OneStepMethod;
 pub use newton::NewtonKind;
 pub use options::{even_grid, Options, Output, StepControl, ZenoGuard};
 pub use problem::{Control, Crossing, Entry, EventSpec, Mode, OdeProblem};
+pub use radau5::Radau5;
 pub use rk4::Rk4;
 pub use solution::{EventRecord, Failure, ModeSwitch, Solution};
 pub use solver::Solver;

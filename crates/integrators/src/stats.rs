@@ -28,6 +28,12 @@ pub struct Stats {
     /// implicit Euler and in diffsol's implicit methods (whose Newton solver makes one linear
     /// solve an iteration), one a correction in Moreau–Jean's scheme.
     pub linear_solves: usize,
+    /// LU factorisations of a complex matrix of the same order, Radau IIA's second system
+    /// `(α + iβ)/h·M − J` (radau5.f's NDEC counts one with each real one); weighed as four
+    /// real ones in [`Stats::work`], a complex multiply–add being four real ones.
+    pub complex_lu_factorizations: usize,
+    /// Back-solves with that complex matrix, one a Newton iteration (radau5.f's NSOL).
+    pub complex_linear_solves: usize,
     /// Events handled.
     pub events: usize,
     /// The order of the matrix the method factorises: the problem's dimension for the
@@ -80,15 +86,22 @@ impl WorkWeights {
     }
 }
 
+/// Real operations a complex one of linear algebra costs: a complex multiply–add is four real
+/// multiplications and four additions.
+const COMPLEX_COST: usize = 4;
+
 impl Stats {
     /// The work of a run in right-hand-side evaluations, for a problem of `dim` unknowns:
-    /// `rhs_evals + w_J·jacobian_evals + w_LU·lu_factorizations + w_s·linear_solves`, with
-    /// the weights of [`WorkWeights::of`] for the matrix the run factorised, rounded to the
-    /// nearest evaluation. The one definition of work that the studies use.
+    /// `rhs_evals + w_J·jacobian_evals + w_LU·F + w_s·S`, with F = `lu_factorizations +
+    /// 4·complex_lu_factorizations` and S = `linear_solves + 4·complex_linear_solves`, the
+    /// weights of
+    /// [`WorkWeights::of`] for the matrix the run factorised, rounded to the nearest
+    /// evaluation. The one definition of work that the studies use.
     pub fn work(&self, dim: usize) -> usize {
         let w = self.weights(dim);
-        let linear_algebra =
-            w.factorization * self.lu_factorizations as f64 + w.solve * self.linear_solves as f64;
+        let factorizations = self.lu_factorizations + COMPLEX_COST * self.complex_lu_factorizations;
+        let solves = self.linear_solves + COMPLEX_COST * self.complex_linear_solves;
+        let linear_algebra = w.factorization * factorizations as f64 + w.solve * solves as f64;
         self.rhs_evals + dim * self.jacobian_evals + linear_algebra.round() as usize
     }
 
@@ -114,6 +127,8 @@ impl AddAssign for Stats {
         self.lu_factorizations += o.lu_factorizations;
         self.newton_iterations += o.newton_iterations;
         self.linear_solves += o.linear_solves;
+        self.complex_lu_factorizations += o.complex_lu_factorizations;
+        self.complex_linear_solves += o.complex_linear_solves;
         self.events += o.events;
         self.matrix_order = self.matrix_order.max(o.matrix_order);
         self.matrix_entries = self.matrix_entries.max(o.matrix_entries);
@@ -153,5 +168,19 @@ mod tests {
         };
         // 60 + 5·2 + 25 + 150.
         assert_eq!(implicit.work(5), 245);
+        // Radau IIA: one real and one complex factorisation and solve, the complex ones
+        // weighed four times: 60 + 5·2 + (1 + 4)·25/3 + (1 + 4)·5 ≈ 136.67.
+        let radau = Stats {
+            rhs_evals: 60,
+            jacobian_evals: 2,
+            lu_factorizations: 1,
+            complex_lu_factorizations: 1,
+            linear_solves: 1,
+            complex_linear_solves: 1,
+            matrix_order: 5,
+            matrix_entries: 10,
+            ..Stats::default()
+        };
+        assert_eq!(radau.work(5), 137);
     }
 }

@@ -1,0 +1,424 @@
+//! Radau IIA(5): parity with Hairer's radau5.f on the drivers of the stiff test set (Van der
+//! Pol, Robertson), count for count and value for value.
+//!
+//! The references are the outputs of Hairer's radau5.f with decsol.f and dc_decsol.f
+//! (compiled with gfortran 12, `-O0`), driven as his drivers drive them: the analytic
+//! Jacobian, IOUT = 1, every WORK and IWORK entry left at 0. radau5.f's NFCN counts the first
+//! evaluation of f and none of a finite-difference Jacobian, as `rhs_evals` does; its NSTEP
+//! counts every attempt (accepted, rejected by the error test, rejected by Newton's
+//! iteration); its NREJCT leaves out rejections before the first accepted step. The values
+//! agree to 1e-14 relative, the sixteen digits printed.
+//!
+//! Beyond parity: events located on the dense output, an index-1 DAE through a singular mass
+//! matrix, quadratures, the error against the tolerance on a stiff problem with a closed
+//! form, and the refusal of a fixed step.
+
+// The references as radau5.f printed them, trailing zeros included.
+#![allow(clippy::excessive_precision)]
+
+mod common;
+
+use approx::assert_relative_eq;
+use common::Oscillator;
+use integrators::radau5::Radau5Method;
+use integrators::{
+    Control, Crossing, Entry, Mode, OdeProblem, OneStepMethod, Options, Output, Solution,
+    StepControl,
+};
+
+/// Van der Pol's equation in Hairer's scaling, `y1' = y2`, `y2' = ((1 − y1²)·y2 − y1)/ε`.
+struct VanDerPol {
+    eps: f64,
+}
+
+impl OdeProblem for VanDerPol {
+    fn dim(&self) -> usize {
+        2
+    }
+    fn rhs(&self, _t: f64, y: &[f64], _m: &[Mode], f: &mut [f64]) {
+        f[0] = y[1];
+        f[1] = ((1.0 - y[0].powi(2)) * y[1] - y[0]) / self.eps;
+    }
+    fn jacobian(&self, _t: f64, y: &[f64], _m: &[Mode], jac: &mut Vec<Entry>) -> bool {
+        jac.extend([
+            (0, 1, 1.0),
+            (1, 0, (-2.0 * y[0] * y[1] - 1.0) / self.eps),
+            (1, 1, (1.0 - y[0].powi(2)) / self.eps),
+        ]);
+        true
+    }
+}
+
+/// Robertson's chemical reactions (Hairer & Wanner, *Solving ODEs II*, sec. IV.1).
+struct Robertson;
+
+impl OdeProblem for Robertson {
+    fn dim(&self) -> usize {
+        3
+    }
+    fn rhs(&self, _t: f64, y: &[f64], _m: &[Mode], f: &mut [f64]) {
+        f[0] = -0.04 * y[0] + 1e4 * y[1] * y[2];
+        f[2] = 3e7 * y[1] * y[1];
+        f[1] = -f[0] - f[2];
+    }
+    fn jacobian(&self, _t: f64, y: &[f64], _m: &[Mode], jac: &mut Vec<Entry>) -> bool {
+        let (prod1, prod2, prod3) = (1e4 * y[1], 1e4 * y[2], 6e7 * y[1]);
+        jac.extend([
+            (0, 0, -0.04),
+            (0, 1, prod2),
+            (0, 2, prod1),
+            (1, 0, 0.04),
+            (1, 1, -prod2 - prod3),
+            (1, 2, -prod1),
+            (2, 1, prod3),
+        ]);
+        true
+    }
+}
+
+fn options(t_end: f64, rtol: f64, atol: f64, output: Output) -> Options {
+    let mut o = Options::adaptive(0.0, t_end, rtol, atol);
+    o.step = StepControl::Adaptive {
+        rtol,
+        atol,
+        h0: Some(1e-6),
+    };
+    o.output = output;
+    o
+}
+
+#[test]
+fn radau5_matches_hairers_van_der_pol_driver() {
+    // dr1_radau5.f: ε = 1e-6, y0 = (2, −0.66) on [0, 2], RTOL = ATOL = 1e-4, H = 1e-6; its
+    // SOLOUT prints CONTR5 at x = 0.2, 0.4, …, 2.0.
+    let printed = [
+        (0.2, 1.858198963529426, -0.7574791034458630),
+        (0.4, 1.693205231356672, -0.9069021616882742),
+        (0.6, 1.484565763233076, -1.233096964774197),
+        (0.8, 1.083912894828025, -6.196077501343200),
+        (1.0, -1.863645642467308, 0.7535323766548747),
+        (1.2, -1.699724325407358, 0.8997692747329687),
+        (1.4, -1.493375073281624, 1.213880891197609),
+        (1.6, -1.120780440545238, 4.374794948980488),
+        (1.8, 1.869050586423352, -0.7495753072331208),
+        (2.0, 1.706161100558755, -0.8928074776815651),
+    ];
+    let grid = printed.iter().map(|p| p.0).collect();
+    let o = options(2.0, 1e-4, 1e-4, Output::GridOnly(grid));
+    let s = Radau5Method
+        .solve_observed(
+            &VanDerPol { eps: 1e-6 },
+            &[2.0, -0.66],
+            &[Mode(0)],
+            o,
+            &mut |_| {},
+        )
+        .unwrap();
+    for (i, (t, y1, y2)) in printed.into_iter().enumerate() {
+        assert_eq!(s.t[i], t);
+        assert_relative_eq!(s.y_at(i)[0], y1, max_relative = 1e-14);
+        assert_relative_eq!(s.y_at(i)[1], y2, max_relative = 1e-14);
+    }
+    // NFCN 2218, NJAC 161, NDEC 248, NSOL 660, NSTEP 275, NACCPT 238, NREJCT 8.
+    let st = s.stats;
+    assert_eq!(st.rhs_evals, 2218);
+    assert_eq!(st.jacobian_evals, 161);
+    assert_eq!(st.lu_factorizations, 248);
+    assert_eq!(st.complex_lu_factorizations, 248);
+    assert_eq!(st.complex_linear_solves, 660);
+    assert_eq!(st.steps, 238);
+    assert_eq!(st.rejected_error, 8);
+    assert_eq!(st.steps + st.rejected_error + st.rejected_newton, 275);
+}
+
+#[test]
+fn radau5_matches_hairers_robertson_driver() {
+    // Robertson to x = 0.3, RTOL = 1e-2, ATOL = 1e-8, H = 1e-6; SOLOUT prints every
+    // accepted step.
+    let printed = [
+        [
+            9.999999600000008e-01,
+            3.999998320000048e-08,
+            1.599999952000000e-14,
+        ],
+        [
+            9.999996400000648e-01,
+            3.599882716565646e-07,
+            1.166354336752796e-11,
+        ],
+        [
+            9.999970800042659e-01,
+            2.913787382334434e-06,
+            6.208351820680937e-09,
+        ],
+        [
+            9.999863148909263e-01,
+            1.307919521098008e-05,
+            6.059138628105538e-07,
+        ],
+        [
+            9.999755499712033e-01,
+            2.135889538415425e-05,
+            3.091133412644609e-06,
+        ],
+        [
+            9.999647854413735e-01,
+            2.724901208916896e-05,
+            7.965546537469531e-06,
+        ],
+        [
+            9.999478453625211e-01,
+            3.255484201352816e-05,
+            1.959979546541985e-05,
+        ],
+        [
+            9.999253573022412e-01,
+            3.530902486682289e-05,
+            3.933367289202561e-05,
+        ],
+        [
+            9.999028742076045e-01,
+            3.614958793293449e-05,
+            6.097620446265629e-05,
+        ],
+        [
+            9.998490892191750e-01,
+            3.647645985151893e-05,
+            1.144343209735185e-04,
+        ],
+        [
+            9.997567898163745e-01,
+            3.647881802650698e-05,
+            2.067313655991122e-04,
+        ],
+        [
+            9.995023134527544e-01,
+            3.643227719665359e-05,
+            4.612542700490673e-04,
+        ],
+        [
+            9.982091577136206e-01,
+            3.619191783743626e-05,
+            1.754650368542118e-03,
+        ],
+        [
+            9.930472117084378e-01,
+            3.525604364520644e-05,
+            6.917532247917142e-03,
+        ],
+        [
+            9.886740138499884e-01,
+            3.447720471782071e-05,
+            1.129150894529390e-02,
+        ],
+    ];
+    let o = options(0.3, 1e-2, 1e-8, Output::Steps);
+    let s = Radau5Method
+        .solve_observed(&Robertson, &[1.0, 0.0, 0.0], &[Mode(0)], o, &mut |_| {})
+        .unwrap();
+    assert_eq!(s.len(), 1 + printed.len());
+    assert_eq!(s.t[printed.len()], 0.3);
+    for (i, y) in printed.iter().enumerate() {
+        for (a, b) in s.y_at(i + 1).iter().zip(y) {
+            assert_relative_eq!(*a, *b, max_relative = 1e-14);
+        }
+    }
+    // NFCN 87, NJAC 8, NDEC 15, NSOL 24, NSTEP 17, NACCPT 15, NREJCT 1.
+    let st = s.stats;
+    assert_eq!(st.rhs_evals, 87);
+    assert_eq!(st.jacobian_evals, 8);
+    assert_eq!(st.lu_factorizations, 15);
+    assert_eq!(st.complex_lu_factorizations, 15);
+    assert_eq!(st.complex_linear_solves, 24);
+    assert_eq!(st.steps, 15);
+    assert_eq!(st.rejected_error, 1);
+    assert_eq!(st.steps + st.rejected_error + st.rejected_newton, 17);
+}
+
+fn solve(problem: &dyn OdeProblem, y0: &[f64], o: Options) -> Solution {
+    Radau5Method
+        .solve_observed(problem, y0, &[Mode(0)], o, &mut |_| {})
+        .unwrap()
+}
+
+#[test]
+fn events_are_located_on_the_collocation_polynomial() {
+    // x = cos t crosses zero falling at π/2; the collocation polynomial is of order 3 in the
+    // step, located to 1e-10 at tolerance 1e-12.
+    let p = Oscillator::watching(Crossing::Falling, Control::Stop);
+    let s = solve(&p, &[1.0, 0.0], Options::adaptive(0.0, 3.0, 1e-12, 1e-12));
+    assert_eq!(s.events.len(), 1);
+    let t = s.events[0].t;
+    assert!((t - std::f64::consts::FRAC_PI_2).abs() < 1e-10, "{t}");
+    assert_eq!(s.last().unwrap().0, t, "Stop ends the run at the event");
+}
+
+/// Robertson as an index-1 DAE: the third equation replaced by the conservation law
+/// `0 = y1 + y2 + y3 − 1`, with mass matrix diag(1, 1, 0).
+struct RobertsonDae;
+
+impl OdeProblem for RobertsonDae {
+    fn dim(&self) -> usize {
+        3
+    }
+    fn rhs(&self, t: f64, y: &[f64], m: &[Mode], f: &mut [f64]) {
+        Robertson.rhs(t, y, m, f);
+        f[2] = y[0] + y[1] + y[2] - 1.0;
+    }
+    fn mass(&self) -> Option<&[f64]> {
+        Some(&[1.0, 1.0, 0.0])
+    }
+}
+
+#[test]
+fn an_index_one_dae_is_integrated_through_its_singular_mass_matrix() {
+    let o = |t_end| Options::adaptive(0.0, t_end, 1e-8, 1e-12);
+    let (dae, ode) = (
+        solve(&RobertsonDae, &[1.0, 0.0, 0.0], o(40.0)),
+        solve(&Robertson, &[1.0, 0.0, 0.0], o(40.0)),
+    );
+    let (y, z) = (dae.last().unwrap().1, ode.last().unwrap().1);
+    // The algebraic equation holds at every step, and the DAE follows the ODE.
+    for i in 0..dae.len() {
+        let sum: f64 = dae.y_at(i).iter().sum();
+        assert!((sum - 1.0).abs() < 1e-13, "step {i}: {sum}");
+    }
+    for (a, b) in y.iter().zip(z) {
+        assert_relative_eq!(*a, *b, max_relative = 1e-6);
+    }
+    // Robertson at t = 40 (Hairer & Wanner, sec. IV.10): y1 = 0.7158270687.
+    assert_relative_eq!(y[0], 0.7158270687, max_relative = 1e-7);
+}
+
+/// Prothero and Robinson's stiff problem `y' = λ·(y − sin t) + cos t`, λ = −1e6, whose
+/// solution from y(0) = 0 is sin t; a second component integrates `sin t` as a quadrature
+/// (`q' = y`, read by nothing), so `q(t) = 1 − cos t`.
+struct ProtheroRobinson;
+
+impl OdeProblem for ProtheroRobinson {
+    fn dim(&self) -> usize {
+        2
+    }
+    fn rhs(&self, t: f64, y: &[f64], _m: &[Mode], f: &mut [f64]) {
+        f[0] = -1e6 * (y[0] - t.sin()) + t.cos();
+        f[1] = y[0];
+    }
+    fn jacobian(&self, _t: f64, _y: &[f64], _m: &[Mode], jac: &mut Vec<Entry>) -> bool {
+        jac.push((0, 0, -1e6));
+        true
+    }
+    fn quadratures(&self) -> usize {
+        1
+    }
+}
+
+#[test]
+fn the_error_follows_the_tolerance_on_a_stiff_problem() {
+    // The stiff component is slaved to sin t: Radau IIA is stiffly accurate, so its end value
+    // keeps full accuracy at every tolerance (no order reduction at the step's end: Hairer &
+    // Wanner, sec. IV.15). The quadrature is the smooth part the error control must follow:
+    // its error at t = 10 stays within the tolerance and falls with it. Reference values:
+    // sin 10 and 1 − cos 10.
+    let mut previous = f64::INFINITY;
+    for tol in [1e-4, 1e-6, 1e-8, 1e-10] {
+        let s = solve(
+            &ProtheroRobinson,
+            &[0.0, 0.0],
+            Options::adaptive(0.0, 10.0, tol, tol),
+        );
+        let y = s.last().unwrap().1;
+        let stiff = (y[0] - 10f64.sin()).abs();
+        assert!(
+            stiff < 1e-9,
+            "tol {tol}: error of the stiff component {stiff:e}"
+        );
+        let smooth = (y[1] - (1.0 - 10f64.cos())).abs();
+        assert!(
+            smooth < tol,
+            "tol {tol}: error of the quadrature {smooth:e}"
+        );
+        assert!(
+            smooth < previous / 10.0,
+            "tol {tol}: {smooth:e} against {previous:e}"
+        );
+        previous = smooth;
+    }
+}
+
+#[test]
+fn a_fixed_step_is_refused_with_the_reason() {
+    let f = Radau5Method
+        .solve_observed(
+            &Robertson,
+            &[1.0, 0.0, 0.0],
+            &[Mode(0)],
+            Options::fixed(0.0, 1.0, 1e-3),
+            &mut |_| {},
+        )
+        .unwrap_err();
+    assert_eq!(
+        f.error.to_string(),
+        "radau5 cannot integrate this problem: it takes adaptive steps only: give tolerances, \
+         not a fixed step"
+    );
+}
+
+/// The heat equation on n interior points, `u' = k·(u_{i−1} − 2u_i + u_{i+1})`, stiff (its
+/// eigenvalues reach −4k) and sparse (a tridiagonal Jacobian).
+struct Heat {
+    n: usize,
+    k: f64,
+}
+
+impl OdeProblem for Heat {
+    fn dim(&self) -> usize {
+        self.n
+    }
+    fn rhs(&self, _t: f64, u: &[f64], _m: &[Mode], f: &mut [f64]) {
+        for i in 0..self.n {
+            let left = if i > 0 { u[i - 1] } else { 0.0 };
+            let right = if i + 1 < self.n { u[i + 1] } else { 0.0 };
+            f[i] = self.k * (left - 2.0 * u[i] + right);
+        }
+    }
+    fn jacobian(&self, _t: f64, _u: &[f64], _m: &[Mode], jac: &mut Vec<Entry>) -> bool {
+        for i in 0..self.n {
+            jac.push((i, i, -2.0 * self.k));
+            if i > 0 {
+                jac.push((i, i - 1, self.k));
+            }
+            if i + 1 < self.n {
+                jac.push((i, i + 1, self.k));
+            }
+        }
+        true
+    }
+}
+
+#[test]
+fn a_sparse_stiff_system_goes_through_the_sparse_lu() {
+    // 400 unknowns, 1198 Jacobian entries: faer's sparse LU (real, and the complex system as
+    // a real one of order 800). The first sine mode decays as exp(λ₁t),
+    // λ₁ = −4k·sin²(π/(2(n+1))); the stiffest mode's h·λ reaches −4k·h ≈ −1e4.
+    let (n, k) = (400, 1e4);
+    let u0: Vec<f64> = (1..=n)
+        .map(|i| (std::f64::consts::PI * i as f64 / (n + 1) as f64).sin())
+        .collect();
+    let s = solve(
+        &Heat { n, k },
+        &u0,
+        Options::adaptive(0.0, 1.0, 1e-8, 1e-10),
+    );
+    let lambda = -4.0 * k * (std::f64::consts::PI / (2 * (n + 1)) as f64).sin().powi(2);
+    let decay = lambda.exp();
+    let u = s.last().unwrap().1;
+    for (got, start) in u.iter().zip(&u0) {
+        assert!(
+            (got - start * decay).abs() < 1e-8,
+            "{got} vs {}",
+            start * decay
+        );
+    }
+    assert_eq!(s.stats.matrix_order, n);
+    assert!(s.stats.steps < 100, "{:?}", s.stats);
+}
