@@ -118,12 +118,12 @@ fn study_threads(c: &mut Criterion) {
     ]
     .map(studies::Method::of);
     // The command's defaults: `friction-lab work-precision belt --model CS`.
-    let seven = Solver::ALL.map(studies::Method::of);
+    let all = Solver::ALL.map(studies::Method::of);
     let configurations: [(&str, &[studies::Method], usize); 2] = [
         ("work-precision sweep (belt CS, 28 runs)", &four, 1),
         (
             "work-precision study (belt CS, 40 runs, 3 repeats)",
-            &seven,
+            &all,
             3,
         ),
     ];

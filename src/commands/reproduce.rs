@@ -427,7 +427,7 @@ fn add_studies(
          dt = 1e-3, halved three times, relative tolerance 1e-6): {}.\n\
          - [The same check on CS stick-slip stepped blindly](studies/independence-belt-CS-naive.png): {}.\n\
          - [Work against precision on the belt](studies/work-precision-belt-CS.png): relative error against \
-         counted work (f evaluations, with Jacobians, LU factorisations and back-solves weighted by their operation counts) for all seven solvers; wall times in \
+         counted work (f evaluations, with Jacobians, LU factorisations and back-solves weighted by their operation counts) for every solver; wall times in \
          studies/work-precision-belt-CS-timing.csv.\n\
          - [Cost to reach relative error 1e-3 against the regularisation width](studies/stiffness-belt-CS-epsilon.png): \
          {}.\n{chain}",

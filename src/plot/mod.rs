@@ -77,8 +77,8 @@ pub const BLUE: RGBColor = RGBColor(30, 80, 200);
 /// Third series colour.
 pub const GREEN: RGBColor = RGBColor(20, 140, 60);
 
-/// Colours for figures with several series, in order: one for each of a study's nine methods
-/// at most (the seven solvers, and a system's regularised BDF and time-stepping).
+/// Colours for figures with several series, in order: one for each of a study's ten methods
+/// at most (the eight solvers, and a system's regularised BDF and time-stepping).
 pub const PALETTE: [RGBColor; 10] = [
     RED,
     BLUE,

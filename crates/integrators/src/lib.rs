@@ -7,6 +7,7 @@
 //! - [`Dopri5`]: Dormand–Prince 5(4) as in Hairer's `dopri5.f`;
 //! - [`ImplicitEuler`]: implicit Euler with full or modified Newton, fixed or adaptive steps;
 //! - diffsol's BDF, TR-BDF2, ESDIRK34 and Tsit45 behind the same [`Stepper`] interface;
+//! - [`Radau5`]: Radau IIA of order 5 as in Hairer's `radau5.f`;
 //! - event location on each method's dense output, simultaneous events handled in one call,
 //!   one mode per component of the discrete state.
 //!

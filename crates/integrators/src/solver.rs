@@ -8,6 +8,7 @@ use crate::implicit_euler::ImplicitEulerMethod;
 use crate::method::OneStepMethod;
 use crate::options::Options;
 use crate::problem::{Mode, OdeProblem};
+use crate::radau5::Radau5Method;
 use crate::rk4::Rk4Method;
 use crate::solution::{Failure, Solution};
 
@@ -55,9 +56,11 @@ impl Solver {
     pub const ESDIRK34: Solver = Solver::built_in(&DiffsolMethod::Esdirk34);
     /// diffsol's Tsitouras 5(4).
     pub const TSIT45: Solver = Solver::built_in(&DiffsolMethod::Tsit45);
+    /// Radau IIA of order 5, Hairer's RADAU5.
+    pub const RADAU5: Solver = Solver::built_in(&Radau5Method);
 
     /// Every built-in solver, in listing order: the ones the command line names.
-    pub const ALL: [Solver; 7] = [
+    pub const ALL: [Solver; 8] = [
         Solver::RK4,
         Solver::DOPRI5,
         Solver::IMPLICIT_EULER,
@@ -65,6 +68,7 @@ impl Solver {
         Solver::TR_BDF2,
         Solver::ESDIRK34,
         Solver::TSIT45,
+        Solver::RADAU5,
     ];
 
     const fn built_in(method: &'static dyn OneStepMethod) -> Solver {
