@@ -24,6 +24,9 @@ use scenarios::chain::ChainSource;
 use std::collections::BTreeMap;
 use std::path::Path;
 
+/// The most bodies a system's velocity figure draws, one colour each.
+const DRAWN_BODIES: usize = 10;
+
 /// Bodies written to the trajectory when none are chosen: all of a chain this long or shorter,
 /// otherwise this many evenly spaced.
 pub const DEFAULT_TRAJECTORY_BODIES: usize = 20;
@@ -389,8 +392,8 @@ pub fn make(args: &SimulateArgs, trajectory_as: TrajectoryAs) -> Result<Made, Ap
         files.add(args.out.join("space-time.csv"), data);
         files.add_raster(&args.out.join("space-time"), &raster)?;
     }
-    // One colour each: the first bodies written, as many as the palette has colours.
-    let drawn = bodies.len().min(PALETTE.len());
+    // One colour each: the first bodies written, at most ten.
+    let drawn = bodies.len().min(DRAWN_BODIES);
     let velocity = Plot {
         title: if drawn < bodies.len() {
             format!(

@@ -77,9 +77,9 @@ pub const BLUE: RGBColor = RGBColor(30, 80, 200);
 /// Third series colour.
 pub const GREEN: RGBColor = RGBColor(20, 140, 60);
 
-/// Colours for figures with several series, in order: one for each of a study's ten methods
-/// at most (the eight solvers, and a system's regularised BDF and time-stepping).
-pub const PALETTE: [RGBColor; 10] = [
+/// Colours for figures with several series, in order: one for each of a study's eleven
+/// methods at most (the nine solvers, and a system's regularised BDF and time-stepping).
+pub const PALETTE: [RGBColor; 11] = [
     RED,
     BLUE,
     GREEN,
@@ -90,6 +90,7 @@ pub const PALETTE: [RGBColor; 10] = [
     RGBColor(140, 90, 40),
     RGBColor(220, 60, 150),
     RGBColor(150, 160, 0),
+    RGBColor(40, 40, 120),
 ];
 
 static FONT: Once = Once::new();

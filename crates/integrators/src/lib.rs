@@ -8,6 +8,7 @@
 //! - [`ImplicitEuler`]: implicit Euler with full or modified Newton, fixed or adaptive steps;
 //! - diffsol's BDF, TR-BDF2, ESDIRK34 and Tsit45 behind the same [`Stepper`] interface;
 //! - [`Radau5`]: Radau IIA of order 5 as in Hairer's `radau5.f`;
+//! - [`Rodas`]: the Rosenbrock method RODAS as in Hairer's `rodas.f`;
 //! - event location on each method's dense output, simultaneous events handled in one call,
 //!   one mode per component of the discrete state.
 //!
@@ -25,14 +26,15 @@ pub mod events;
 pub mod implicit_euler;
 pub mod integrator;
 pub mod interrupt;
+pub mod iteration_matrix;
 pub mod linear;
 pub mod method;
 pub mod newton;
 pub mod options;
 pub mod problem;
 pub mod radau5;
-pub mod radau_systems;
 pub mod rk4;
+pub mod rodas;
 pub mod solution;
 pub mod solver;
 pub mod stability;
@@ -51,6 +53,7 @@ pub use options::{even_grid, Options, Output, StepControl, ZenoGuard};
 pub use problem::{Control, Crossing, Entry, EventSpec, Mode, OdeProblem};
 pub use radau5::Radau5;
 pub use rk4::Rk4;
+pub use rodas::Rodas;
 pub use solution::{EventRecord, Failure, ModeSwitch, Solution};
 pub use solver::Solver;
 pub use stats::{Stats, WorkWeights};

@@ -7,7 +7,7 @@
 //! last step's collocation polynomial; and its dense output (CONTR5). Constants are named as
 //! in the Fortran and traced to the statement that sets them; the dense linear algebra is
 //! `decsol.f`'s ([`crate::decsol`]), so that a run matches `radau5.f`'s count for count, and
-//! a sparse Jacobian goes to faer's sparse LU ([`crate::radau_systems`]).
+//! a sparse Jacobian goes to faer's sparse LU ([`crate::iteration_matrix`]).
 //!
 //! The mass matrix is diagonal ([`crate::OdeProblem::mass`]); zeros on it make an index-1
 //! DAE, which the method integrates as it stands. Events are located by the driver on the
@@ -22,11 +22,11 @@
 #![allow(clippy::excessive_precision)]
 
 use crate::error::SolverError;
+use crate::iteration_matrix::RadauSystems;
 use crate::method::OneStepMethod;
 use crate::newton;
 use crate::options::{Options, StepControl};
 use crate::problem::Entry;
-use crate::radau_systems::RadauSystems;
 use crate::stats::Stats;
 use crate::stepper::{check_finite, Ode, Stepper, StepperState};
 
@@ -314,9 +314,6 @@ impl Radau5 {
     /// DECOMC); `false` when either is singular.
     fn factorize(&mut self, mass: Option<&[f64]>) -> bool {
         let (n, h) = (self.state.y.len(), self.state.h);
-        if !self.systems.suits(n, self.jac.len()) {
-            self.systems = RadauSystems::for_size(n, self.jac.len());
-        }
         let k = &self.k;
         let coefficients = (k.u1 / h, k.alph / h, k.beta / h);
         self.systems.factor(n, &self.jac, mass, coefficients)
@@ -400,8 +397,8 @@ impl Radau5 {
             z2[i] = TI21 * a1 + TI22 * a2 + TI23 * a3 + s2 * alphn - s3 * betan;
             z3[i] = TI31 * a1 + TI32 * a2 + TI33 * a3 + s3 * alphn + s2 * betan;
         }
-        self.systems.solve_real(z1);
-        self.systems.solve_complex(z2, z3);
+        self.systems.real.solve(z1);
+        self.systems.complex.solve(z2, z3);
         self.stats.newton_iterations += 1;
         self.stats.linear_solves += 1;
         self.stats.complex_linear_solves += 1;
@@ -470,7 +467,7 @@ impl Radau5 {
             self.est[i] = mass.map_or(1.0, |m| m[i]) * f1;
             self.arg[i] = self.est[i] + self.f0[i];
         }
-        self.systems.solve_real(&mut self.arg);
+        self.systems.real.solve(&mut self.arg);
         self.stats.linear_solves += 1;
         let mut err = self.scaled_norm();
         if err >= 1.0 && (self.first || self.reject) {
@@ -482,7 +479,7 @@ impl Radau5 {
             for i in 0..n {
                 self.arg[i] = self.w[0][i] + self.est[i];
             }
-            self.systems.solve_real(&mut self.arg);
+            self.systems.real.solve(&mut self.arg);
             self.stats.linear_solves += 1;
             err = self.scaled_norm();
         }

@@ -10,6 +10,7 @@ use crate::options::Options;
 use crate::problem::{Mode, OdeProblem};
 use crate::radau5::Radau5Method;
 use crate::rk4::Rk4Method;
+use crate::rodas::RodasMethod;
 use crate::solution::{Failure, Solution};
 
 /// A solver of friction-lab: a [`OneStepMethod`], built in or a user's own.
@@ -58,9 +59,11 @@ impl Solver {
     pub const TSIT45: Solver = Solver::built_in(&DiffsolMethod::Tsit45);
     /// Radau IIA of order 5, Hairer's RADAU5.
     pub const RADAU5: Solver = Solver::built_in(&Radau5Method);
+    /// The Rosenbrock method RODAS, Hairer's RODAS.
+    pub const RODAS: Solver = Solver::built_in(&RodasMethod);
 
     /// Every built-in solver, in listing order: the ones the command line names.
-    pub const ALL: [Solver; 8] = [
+    pub const ALL: [Solver; 9] = [
         Solver::RK4,
         Solver::DOPRI5,
         Solver::IMPLICIT_EULER,
@@ -69,6 +72,7 @@ impl Solver {
         Solver::ESDIRK34,
         Solver::TSIT45,
         Solver::RADAU5,
+        Solver::RODAS,
     ];
 
     const fn built_in(method: &'static dyn OneStepMethod) -> Solver {

@@ -1,7 +1,7 @@
 //! Test problems shared by the integrator tests.
 #![allow(dead_code)]
 
-use integrators::{Control, Crossing, EventSpec, Mode, OdeProblem};
+use integrators::{Control, Crossing, Entry, EventSpec, Mode, OdeProblem};
 
 /// The Arenstorf orbit (Hairer, Nørsett, Wanner, *Solving ODEs I*, sec. II.0, eq. (0.1)).
 pub struct Arenstorf;
@@ -164,5 +164,129 @@ impl OdeProblem for BlowUp {
     }
     fn rhs(&self, _t: f64, y: &[f64], _m: &[Mode], f: &mut [f64]) {
         f[0] = y[0] * y[0];
+    }
+}
+
+/// Van der Pol's equation in Hairer's scaling, `y1' = y2`, `y2' = ((1 − y1²)·y2 − y1)/ε`.
+pub struct VanDerPol {
+    /// ε, the small parameter.
+    pub eps: f64,
+}
+
+impl OdeProblem for VanDerPol {
+    fn dim(&self) -> usize {
+        2
+    }
+    fn rhs(&self, _t: f64, y: &[f64], _m: &[Mode], f: &mut [f64]) {
+        f[0] = y[1];
+        f[1] = ((1.0 - y[0].powi(2)) * y[1] - y[0]) / self.eps;
+    }
+    fn jacobian(&self, _t: f64, y: &[f64], _m: &[Mode], jac: &mut Vec<Entry>) -> bool {
+        jac.extend([
+            (0, 1, 1.0),
+            (1, 0, (-2.0 * y[0] * y[1] - 1.0) / self.eps),
+            (1, 1, (1.0 - y[0].powi(2)) / self.eps),
+        ]);
+        true
+    }
+}
+
+/// Robertson's chemical reactions (Hairer & Wanner, *Solving ODEs II*, sec. IV.1).
+pub struct Robertson;
+
+impl OdeProblem for Robertson {
+    fn dim(&self) -> usize {
+        3
+    }
+    fn rhs(&self, _t: f64, y: &[f64], _m: &[Mode], f: &mut [f64]) {
+        f[0] = -0.04 * y[0] + 1e4 * y[1] * y[2];
+        f[2] = 3e7 * y[1] * y[1];
+        f[1] = -f[0] - f[2];
+    }
+    fn jacobian(&self, _t: f64, y: &[f64], _m: &[Mode], jac: &mut Vec<Entry>) -> bool {
+        let (prod1, prod2, prod3) = (1e4 * y[1], 1e4 * y[2], 6e7 * y[1]);
+        jac.extend([
+            (0, 0, -0.04),
+            (0, 1, prod2),
+            (0, 2, prod1),
+            (1, 0, 0.04),
+            (1, 1, -prod2 - prod3),
+            (1, 2, -prod1),
+            (2, 1, prod3),
+        ]);
+        true
+    }
+}
+
+/// Robertson as an index-1 DAE: the third equation replaced by the conservation law
+/// `0 = y1 + y2 + y3 − 1`, with mass matrix diag(1, 1, 0).
+pub struct RobertsonDae;
+
+impl OdeProblem for RobertsonDae {
+    fn dim(&self) -> usize {
+        3
+    }
+    fn rhs(&self, t: f64, y: &[f64], m: &[Mode], f: &mut [f64]) {
+        Robertson.rhs(t, y, m, f);
+        f[2] = y[0] + y[1] + y[2] - 1.0;
+    }
+    fn mass(&self) -> Option<&[f64]> {
+        Some(&[1.0, 1.0, 0.0])
+    }
+}
+
+/// Prothero and Robinson's stiff problem `y' = λ·(y − sin t) + cos t`, λ = −1e6, whose
+/// solution from y(0) = 0 is sin t; a second component integrates `sin t` as a quadrature
+/// (`q' = y`, read by nothing), so `q(t) = 1 − cos t`.
+pub struct ProtheroRobinson;
+
+impl OdeProblem for ProtheroRobinson {
+    fn dim(&self) -> usize {
+        2
+    }
+    fn rhs(&self, t: f64, y: &[f64], _m: &[Mode], f: &mut [f64]) {
+        f[0] = -1e6 * (y[0] - t.sin()) + t.cos();
+        f[1] = y[0];
+    }
+    fn jacobian(&self, _t: f64, _y: &[f64], _m: &[Mode], jac: &mut Vec<Entry>) -> bool {
+        jac.push((0, 0, -1e6));
+        true
+    }
+    fn quadratures(&self) -> usize {
+        1
+    }
+}
+
+/// The heat equation on n interior points, `u' = k·(u_{i−1} − 2u_i + u_{i+1})`, stiff (its
+/// eigenvalues reach −4k) and sparse (a tridiagonal Jacobian).
+pub struct Heat {
+    /// Interior points.
+    pub n: usize,
+    /// The diffusion coefficient over the squared spacing.
+    pub k: f64,
+}
+
+impl OdeProblem for Heat {
+    fn dim(&self) -> usize {
+        self.n
+    }
+    fn rhs(&self, _t: f64, u: &[f64], _m: &[Mode], f: &mut [f64]) {
+        for i in 0..self.n {
+            let left = if i > 0 { u[i - 1] } else { 0.0 };
+            let right = if i + 1 < self.n { u[i + 1] } else { 0.0 };
+            f[i] = self.k * (left - 2.0 * u[i] + right);
+        }
+    }
+    fn jacobian(&self, _t: f64, _u: &[f64], _m: &[Mode], jac: &mut Vec<Entry>) -> bool {
+        for i in 0..self.n {
+            jac.push((i, i, -2.0 * self.k));
+            if i > 0 {
+                jac.push((i, i - 1, self.k));
+            }
+            if i + 1 < self.n {
+                jac.push((i, i + 1, self.k));
+            }
+        }
+        true
     }
 }

@@ -19,62 +19,11 @@
 mod common;
 
 use approx::assert_relative_eq;
-use common::Oscillator;
+use common::{Heat, Oscillator, ProtheroRobinson, Robertson, RobertsonDae, VanDerPol};
 use integrators::radau5::Radau5Method;
 use integrators::{
-    Control, Crossing, Entry, Mode, OdeProblem, OneStepMethod, Options, Output, Solution,
-    StepControl,
+    Control, Crossing, Mode, OdeProblem, OneStepMethod, Options, Output, Solution, StepControl,
 };
-
-/// Van der Pol's equation in Hairer's scaling, `y1' = y2`, `y2' = ((1 − y1²)·y2 − y1)/ε`.
-struct VanDerPol {
-    eps: f64,
-}
-
-impl OdeProblem for VanDerPol {
-    fn dim(&self) -> usize {
-        2
-    }
-    fn rhs(&self, _t: f64, y: &[f64], _m: &[Mode], f: &mut [f64]) {
-        f[0] = y[1];
-        f[1] = ((1.0 - y[0].powi(2)) * y[1] - y[0]) / self.eps;
-    }
-    fn jacobian(&self, _t: f64, y: &[f64], _m: &[Mode], jac: &mut Vec<Entry>) -> bool {
-        jac.extend([
-            (0, 1, 1.0),
-            (1, 0, (-2.0 * y[0] * y[1] - 1.0) / self.eps),
-            (1, 1, (1.0 - y[0].powi(2)) / self.eps),
-        ]);
-        true
-    }
-}
-
-/// Robertson's chemical reactions (Hairer & Wanner, *Solving ODEs II*, sec. IV.1).
-struct Robertson;
-
-impl OdeProblem for Robertson {
-    fn dim(&self) -> usize {
-        3
-    }
-    fn rhs(&self, _t: f64, y: &[f64], _m: &[Mode], f: &mut [f64]) {
-        f[0] = -0.04 * y[0] + 1e4 * y[1] * y[2];
-        f[2] = 3e7 * y[1] * y[1];
-        f[1] = -f[0] - f[2];
-    }
-    fn jacobian(&self, _t: f64, y: &[f64], _m: &[Mode], jac: &mut Vec<Entry>) -> bool {
-        let (prod1, prod2, prod3) = (1e4 * y[1], 1e4 * y[2], 6e7 * y[1]);
-        jac.extend([
-            (0, 0, -0.04),
-            (0, 1, prod2),
-            (0, 2, prod1),
-            (1, 0, 0.04),
-            (1, 1, -prod2 - prod3),
-            (1, 2, -prod1),
-            (2, 1, prod3),
-        ]);
-        true
-    }
-}
 
 fn options(t_end: f64, rtol: f64, atol: f64, output: Output) -> Options {
     let mut o = Options::adaptive(0.0, t_end, rtol, atol);
@@ -253,23 +202,6 @@ fn events_are_located_on_the_collocation_polynomial() {
     assert_eq!(s.last().unwrap().0, t, "Stop ends the run at the event");
 }
 
-/// Robertson as an index-1 DAE: the third equation replaced by the conservation law
-/// `0 = y1 + y2 + y3 − 1`, with mass matrix diag(1, 1, 0).
-struct RobertsonDae;
-
-impl OdeProblem for RobertsonDae {
-    fn dim(&self) -> usize {
-        3
-    }
-    fn rhs(&self, t: f64, y: &[f64], m: &[Mode], f: &mut [f64]) {
-        Robertson.rhs(t, y, m, f);
-        f[2] = y[0] + y[1] + y[2] - 1.0;
-    }
-    fn mass(&self) -> Option<&[f64]> {
-        Some(&[1.0, 1.0, 0.0])
-    }
-}
-
 #[test]
 fn an_index_one_dae_is_integrated_through_its_singular_mass_matrix() {
     let o = |t_end| Options::adaptive(0.0, t_end, 1e-8, 1e-12);
@@ -288,28 +220,6 @@ fn an_index_one_dae_is_integrated_through_its_singular_mass_matrix() {
     }
     // Robertson at t = 40 (Hairer & Wanner, sec. IV.10): y1 = 0.7158270687.
     assert_relative_eq!(y[0], 0.7158270687, max_relative = 1e-7);
-}
-
-/// Prothero and Robinson's stiff problem `y' = λ·(y − sin t) + cos t`, λ = −1e6, whose
-/// solution from y(0) = 0 is sin t; a second component integrates `sin t` as a quadrature
-/// (`q' = y`, read by nothing), so `q(t) = 1 − cos t`.
-struct ProtheroRobinson;
-
-impl OdeProblem for ProtheroRobinson {
-    fn dim(&self) -> usize {
-        2
-    }
-    fn rhs(&self, t: f64, y: &[f64], _m: &[Mode], f: &mut [f64]) {
-        f[0] = -1e6 * (y[0] - t.sin()) + t.cos();
-        f[1] = y[0];
-    }
-    fn jacobian(&self, _t: f64, _y: &[f64], _m: &[Mode], jac: &mut Vec<Entry>) -> bool {
-        jac.push((0, 0, -1e6));
-        true
-    }
-    fn quadratures(&self) -> usize {
-        1
-    }
 }
 
 #[test]
@@ -361,38 +271,6 @@ fn a_fixed_step_is_refused_with_the_reason() {
         "radau5 cannot integrate this problem: it takes adaptive steps only: give tolerances, \
          not a fixed step"
     );
-}
-
-/// The heat equation on n interior points, `u' = k·(u_{i−1} − 2u_i + u_{i+1})`, stiff (its
-/// eigenvalues reach −4k) and sparse (a tridiagonal Jacobian).
-struct Heat {
-    n: usize,
-    k: f64,
-}
-
-impl OdeProblem for Heat {
-    fn dim(&self) -> usize {
-        self.n
-    }
-    fn rhs(&self, _t: f64, u: &[f64], _m: &[Mode], f: &mut [f64]) {
-        for i in 0..self.n {
-            let left = if i > 0 { u[i - 1] } else { 0.0 };
-            let right = if i + 1 < self.n { u[i + 1] } else { 0.0 };
-            f[i] = self.k * (left - 2.0 * u[i] + right);
-        }
-    }
-    fn jacobian(&self, _t: f64, _u: &[f64], _m: &[Mode], jac: &mut Vec<Entry>) -> bool {
-        for i in 0..self.n {
-            jac.push((i, i, -2.0 * self.k));
-            if i > 0 {
-                jac.push((i, i - 1, self.k));
-            }
-            if i + 1 < self.n {
-                jac.push((i, i + 1, self.k));
-            }
-        }
-        true
-    }
 }
 
 #[test]
