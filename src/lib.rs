@@ -90,6 +90,11 @@ pub enum Command {
     /// (stick phases per cycle, amplitude and period, friction, solver statistics).
     #[command(after_help = EXIT_CODES)]
     Sweep(commands::sweep::SweepArgs),
+    /// Run one problem of the standard stiff test set (van-der-pol, robertson, hires, orego):
+    /// the state at the end time and the significant correct digits against its published
+    /// reference.
+    #[command(after_help = EXIT_CODES)]
+    Testset(commands::testset::TestsetArgs),
     /// Reproduce the paper into one folder: Figures 2-7 with notes, the experiment, Table 2,
     /// the solver studies, and a report.md that links them.
     #[command(after_help = EXIT_CODES)]
@@ -135,13 +140,14 @@ impl Command {
             Command::WorkPrecision(a) => (&a.case.out, a.case.threads),
             Command::Stiffness(a) => (&a.case.out, a.case.threads),
             Command::Sweep(a) => (&a.run.out, a.threads),
+            Command::Testset(a) => (&a.out, None),
             Command::Phenomena(a) => (&a.out, a.threads),
             Command::Models { .. } | Command::Reproduce(_) => (std::path::Path::new("."), None),
         }
     }
 }
 
-/// Runs `curve`, `simulate`, a study, `sweep` or `phenomena`, and keeps its files in memory
+/// Runs `curve`, `simulate`, a study, `sweep`, `testset` or `phenomena`, and keeps its files in memory
 /// instead of writing them (figures undrawn): the command line writes them. `models` and
 /// `reproduce` are refused here.
 pub fn make(command: &Command) -> Result<artifacts::Made, AppError> {
@@ -168,6 +174,7 @@ fn make_as(command: &Command, trajectory: TrajectoryAs) -> Result<artifacts::Mad
         Command::WorkPrecision(args) => commands::studies::work_precision(args),
         Command::Stiffness(args) => commands::studies::stiffness(args),
         Command::Sweep(args) => commands::sweep::make(args),
+        Command::Testset(args) => commands::testset::make(args),
         Command::Phenomena(args) => commands::phenomena::make(args),
         Command::Models { .. } | Command::Reproduce(_) => Err(AppError::Usage(
             "models and reproduce write no in-memory result".into(),

@@ -39,6 +39,12 @@ pub const T_END: OptionRange = OptionRange {
     unit: "s",
     range: closed(1e-6, 1e6),
 };
+/// End time of a test-set problem (`testset --t-end`): up to 1e12, beyond Robertson's 1e11.
+pub const TESTSET_T_END: OptionRange = OptionRange {
+    name: "t-end",
+    unit: "",
+    range: left_open(0.0, 1e12),
+};
 /// Fixed step, or initial step: 1e-10 s to 10 s.
 pub const DT: OptionRange = OptionRange {
     name: "dt",

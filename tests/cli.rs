@@ -3713,3 +3713,88 @@ fn a_sweep_ranges_points_read_as_written() {
         ["0.1", "0.2", "0.3", "0.4", "0.5", "0.6", "0.7", "0.8", "0.9", "1"]
     );
 }
+
+/// `testset`: a problem of the stiff test set by one solver, its end state and its significant
+/// correct digits against the published reference; elsewhere than the reference's end time
+/// there is no reference, and `scd` is null, not 0.
+#[test]
+fn testset_writes_the_end_state_and_the_digits_against_the_reference() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("hires");
+    let o = friction_lab(&[
+        "testset",
+        "hires",
+        "--rtol",
+        "1e-8",
+        "--atol",
+        "1e-8",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(out.join("final.csv")).unwrap();
+    let lines: Vec<&str> = csv.lines().collect();
+    assert_eq!(lines[0], "t,y1,y2,y3,y4,y5,y6,y7,y8");
+    assert_eq!(lines.len(), 2, "{csv}");
+    assert!(lines[1].starts_with("3.218122e2,"), "{csv}");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(json["solver"], "radau5");
+    let stats = &json["stats"];
+    let scd = stats["scd"].as_f64().unwrap();
+    assert!(scd > 5.0 && scd < 12.0, "{json}");
+    assert_eq!(
+        stats["steps"].as_u64().unwrap(),
+        stats["accepted"].as_u64().unwrap() + stats["rejected"].as_u64().unwrap()
+    );
+    for field in [
+        "rhs_evals",
+        "jacobian_evals",
+        "lu_factorizations",
+        "linear_solves",
+        "newton_iterations",
+    ] {
+        assert!(stats[field].as_u64().unwrap() > 0, "{field}: {json}");
+    }
+    // Elsewhere than t = 321.8122: no reference, no digits.
+    let early = dir.path().join("early");
+    let o = friction_lab(&[
+        "testset",
+        "orego",
+        "--solver",
+        "rodas",
+        "--t-end",
+        "100",
+        "--out",
+        early.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(early.join("summary.json")).unwrap())
+            .unwrap();
+    assert!(json["stats"]["scd"].is_null(), "{json}");
+    assert_eq!(json["t_reached"], 100.0);
+    // Bad input: exit 2, nothing written, the alternatives named.
+    for (args, message) in [
+        (
+            vec!["testset", "e5"],
+            "unknown test problem `e5`; known problems: van-der-pol, robertson, hires, orego",
+        ),
+        (
+            vec!["testset", "hires", "--solver", "rk4"],
+            "option `--solver rk4` takes a fixed step",
+        ),
+        (
+            vec!["testset", "hires", "--rtol", "0"],
+            "option `rtol` = 0 is out of range",
+        ),
+    ] {
+        let bad = dir.path().join("bad");
+        let mut all = args.clone();
+        all.extend(["--out", bad.to_str().unwrap()]);
+        let o = friction_lab(&all);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains(message), "{args:?}: {}", stderr(&o));
+        assert!(!bad.exists(), "{args:?}");
+    }
+}

@@ -9,3 +9,4 @@ pub mod stick_slip;
 pub mod studies;
 pub mod sweep;
 pub mod system;
+pub mod testset;

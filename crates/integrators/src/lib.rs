@@ -9,6 +9,7 @@
 //! - diffsol's BDF, TR-BDF2, ESDIRK34 and Tsit45 behind the same [`Stepper`] interface;
 //! - [`Radau5`]: Radau IIA of order 5 as in Hairer's `radau5.f`;
 //! - [`Rodas`]: the Rosenbrock method RODAS as in Hairer's `rodas.f`;
+//! - [`testset`]: the standard stiff test problems with their published references;
 //! - event location on each method's dense output, simultaneous events handled in one call,
 //!   one mode per component of the discrete state.
 //!
@@ -41,6 +42,7 @@ pub mod stability;
 pub mod stats;
 pub mod stepper;
 pub mod symmetric;
+pub mod testset;
 
 pub use diffsol_backend::DiffsolMethod;
 pub use dopri5::Dopri5;

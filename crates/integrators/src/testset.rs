@@ -1,0 +1,309 @@
+//! The standard stiff test problems, each with its published reference solution at its end
+//! time: where an analyst checks a new stiff code first (Hairer & Wanner, *Solving ODEs II*,
+//! sec. IV.10; F. Mazzia and F. Iavernaro, *Test Set for IVP Solvers*, Release 2.4,
+//! University of Bari, 2008, whose Fortran files give the references, computed with RADAU5
+//! in quadruple precision or at tolerance 1.1e-18). [`TestProblem::scd`] measures a result
+//! as the test set does: significant correct digits, −log10 of the largest relative error.
+
+// The references as the test set publishes them, trailing zeros included.
+#![allow(clippy::excessive_precision)]
+
+use crate::problem::{Entry, Mode, OdeProblem};
+
+/// A problem of the test set: its equations, initial values, end time and reference.
+pub struct TestProblem {
+    /// The name the command line takes (`friction-lab testset NAME`).
+    pub name: &'static str,
+    /// What it models.
+    pub title: &'static str,
+    /// Where its reference solution is published.
+    pub source: &'static str,
+    /// y(0) (the problems start at t = 0).
+    pub y0: &'static [f64],
+    /// The end time of the reference.
+    pub t_end: f64,
+    /// y(t_end), as published.
+    pub reference: &'static [f64],
+    /// The equations.
+    pub problem: &'static dyn OdeProblem,
+}
+
+impl TestProblem {
+    /// Significant correct digits of `y` at the end time: `−log10(max_i |y_i − ref_i|/|ref_i|)`
+    /// (every reference component here is non-zero).
+    pub fn scd(&self, y: &[f64]) -> f64 {
+        let worst = y
+            .iter()
+            .zip(self.reference)
+            .map(|(y, r)| ((y - r) / r).abs())
+            .fold(0.0f64, f64::max);
+        -worst.log10()
+    }
+}
+
+/// The test set, in listing order.
+pub const TESTSET: [TestProblem; 4] = [
+    TestProblem {
+        name: "van-der-pol",
+        title: "Van der Pol's oscillator, y1'' = ((1 − y1²)·y1' − y1)/ε with ε = 1e-6 (Hairer's \
+                scaling)",
+        source: "Mazzia & Iavernaro, Test Set for IVP Solvers 2.4, problem VDPOLM (vdpolm.f, \
+                 t' = 1000·t, y2 = 1000·y2'): y(2) = (1.706167732170469, −0.8928097010248125)",
+        y0: &[2.0, 0.0],
+        t_end: 2.0,
+        reference: &[0.1706167732170469e1, -0.8928097010248125],
+        problem: &VanDerPol,
+    },
+    TestProblem {
+        name: "robertson",
+        title: "Robertson's autocatalytic reactions (three species, rate constants 0.04, 1e4, \
+                3e7)",
+        source: "Mazzia & Iavernaro, Test Set for IVP Solvers 2.4, problem ROBER (rober.f): \
+                 y(1e11)",
+        y0: &[1.0, 0.0, 0.0],
+        t_end: 1e11,
+        reference: &[
+            0.2083340149701255e-7,
+            0.8333360770334713e-13,
+            0.9999999791665050,
+        ],
+        problem: &Robertson,
+    },
+    TestProblem {
+        name: "hires",
+        title: "HIRES: the growth and differentiation of plant tissue under high irradiance \
+                (Schäfer 1975), eight species",
+        source: "Mazzia & Iavernaro, Test Set for IVP Solvers 2.4, problem HIRES (hires.f): \
+                 y(321.8122)",
+        y0: &[1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0057],
+        t_end: 321.8122,
+        reference: &[
+            0.7371312573325668e-3,
+            0.1442485726316185e-3,
+            0.5888729740967575e-4,
+            0.1175651343283149e-2,
+            0.2386356198831331e-2,
+            0.6238968252742796e-2,
+            0.2849998395185769e-2,
+            0.2850001604814231e-2,
+        ],
+        problem: &Hires,
+    },
+    TestProblem {
+        name: "orego",
+        title: "OREGO: the Oregonator, Field and Noyes' model of the Belousov–Zhabotinskii \
+                reaction",
+        source: "Mazzia & Iavernaro, Test Set for IVP Solvers 2.4, problem OREGO (orego.f): \
+                 y(360)",
+        y0: &[1.0, 2.0, 3.0],
+        t_end: 360.0,
+        reference: &[
+            0.1000814870318523e1,
+            0.1228178521549917e4,
+            0.1320554942846706e3,
+        ],
+        problem: &Orego,
+    },
+];
+
+/// The problem of the test set called `name`.
+pub fn named(name: &str) -> Result<&'static TestProblem, String> {
+    TESTSET.iter().find(|p| p.name == name).ok_or_else(|| {
+        let known: Vec<_> = TESTSET.iter().map(|p| p.name).collect();
+        format!(
+            "unknown test problem `{name}`; known problems: {}",
+            known.join(", ")
+        )
+    })
+}
+
+/// ε of Van der Pol's equation in Hairer's scaling.
+const VDP_EPS: f64 = 1e-6;
+
+/// `y1' = y2`, `y2' = ((1 − y1²)·y2 − y1)/ε`.
+pub struct VanDerPol;
+
+impl OdeProblem for VanDerPol {
+    fn dim(&self) -> usize {
+        2
+    }
+    fn rhs(&self, _t: f64, y: &[f64], _m: &[Mode], f: &mut [f64]) {
+        f[0] = y[1];
+        f[1] = ((1.0 - y[0] * y[0]) * y[1] - y[0]) / VDP_EPS;
+    }
+    fn jacobian(&self, _t: f64, y: &[f64], _m: &[Mode], jac: &mut Vec<Entry>) -> bool {
+        jac.extend([
+            (0, 1, 1.0),
+            (1, 0, (-2.0 * y[0] * y[1] - 1.0) / VDP_EPS),
+            (1, 1, (1.0 - y[0] * y[0]) / VDP_EPS),
+        ]);
+        true
+    }
+}
+
+/// `y1' = −0.04·y1 + 1e4·y2·y3`, `y2' = 0.04·y1 − 1e4·y2·y3 − 3e7·y2²`, `y3' = 3e7·y2²`.
+pub struct Robertson;
+
+impl OdeProblem for Robertson {
+    fn dim(&self) -> usize {
+        3
+    }
+    fn rhs(&self, _t: f64, y: &[f64], _m: &[Mode], f: &mut [f64]) {
+        f[0] = -0.04 * y[0] + 1e4 * y[1] * y[2];
+        f[2] = 3e7 * y[1] * y[1];
+        f[1] = -f[0] - f[2];
+    }
+    fn jacobian(&self, _t: f64, y: &[f64], _m: &[Mode], jac: &mut Vec<Entry>) -> bool {
+        let (p1, p2, p3) = (1e4 * y[1], 1e4 * y[2], 6e7 * y[1]);
+        jac.extend([
+            (0, 0, -0.04),
+            (0, 1, p2),
+            (0, 2, p1),
+            (1, 0, 0.04),
+            (1, 1, -p2 - p3),
+            (1, 2, -p1),
+            (2, 1, p3),
+        ]);
+        true
+    }
+}
+
+/// HIRES (hires.f's FEVAL).
+pub struct Hires;
+
+impl OdeProblem for Hires {
+    fn dim(&self) -> usize {
+        8
+    }
+    fn rhs(&self, _t: f64, y: &[f64], _m: &[Mode], f: &mut [f64]) {
+        f[0] = -1.71 * y[0] + 0.43 * y[1] + 8.32 * y[2] + 0.0007;
+        f[1] = 1.71 * y[0] - 8.75 * y[1];
+        f[2] = -10.03 * y[2] + 0.43 * y[3] + 0.035 * y[4];
+        f[3] = 8.32 * y[1] + 1.71 * y[2] - 1.12 * y[3];
+        f[4] = -1.745 * y[4] + 0.43 * y[5] + 0.43 * y[6];
+        f[5] = -280.0 * y[5] * y[7] + 0.69 * y[3] + 1.71 * y[4] - 0.43 * y[5] + 0.69 * y[6];
+        f[6] = 280.0 * y[5] * y[7] - 1.81 * y[6];
+        f[7] = -f[6];
+    }
+    fn jacobian(&self, _t: f64, y: &[f64], _m: &[Mode], jac: &mut Vec<Entry>) -> bool {
+        jac.extend([
+            (0, 0, -1.71),
+            (0, 1, 0.43),
+            (0, 2, 8.32),
+            (1, 0, 1.71),
+            (1, 1, -8.75),
+            (2, 2, -10.03),
+            (2, 3, 0.43),
+            (2, 4, 0.035),
+            (3, 1, 8.32),
+            (3, 2, 1.71),
+            (3, 3, -1.12),
+            (4, 4, -1.745),
+            (4, 5, 0.43),
+            (4, 6, 0.43),
+            (5, 3, 0.69),
+            (5, 4, 1.71),
+            (5, 5, -280.0 * y[7] - 0.43),
+            (5, 6, 0.69),
+            (5, 7, -280.0 * y[5]),
+            (6, 5, 280.0 * y[7]),
+            (6, 6, -1.81),
+            (6, 7, 280.0 * y[5]),
+            (7, 5, -280.0 * y[7]),
+            (7, 6, 1.81),
+            (7, 7, -280.0 * y[5]),
+        ]);
+        true
+    }
+}
+
+/// OREGO (orego.f's FEVAL): `y1' = s·(y2 + y1·(1 − q·y1 − y2))`, `y2' = (y3 − (1 + y1)·y2)/s`,
+/// `y3' = w·(y1 − y3)`, s = 77.27, q = 8.375e-6, w = 0.161.
+pub struct Orego;
+
+/// OREGO's constants s, q and w.
+const OREGO_S: f64 = 77.27;
+const OREGO_Q: f64 = 8.375e-6;
+const OREGO_W: f64 = 0.161;
+
+impl OdeProblem for Orego {
+    fn dim(&self) -> usize {
+        3
+    }
+    fn rhs(&self, _t: f64, y: &[f64], _m: &[Mode], f: &mut [f64]) {
+        f[0] = OREGO_S * (y[1] + y[0] * (1.0 - OREGO_Q * y[0] - y[1]));
+        f[1] = (y[2] - (1.0 + y[0]) * y[1]) / OREGO_S;
+        f[2] = OREGO_W * (y[0] - y[2]);
+    }
+    fn jacobian(&self, _t: f64, y: &[f64], _m: &[Mode], jac: &mut Vec<Entry>) -> bool {
+        jac.extend([
+            (0, 0, OREGO_S * (1.0 - 2.0 * OREGO_Q * y[0] - y[1])),
+            (0, 1, OREGO_S * (1.0 - y[0])),
+            (1, 0, -y[1] / OREGO_S),
+            (1, 1, -(1.0 + y[0]) / OREGO_S),
+            (1, 2, 1.0 / OREGO_S),
+            (2, 0, OREGO_W),
+            (2, 2, -OREGO_W),
+        ]);
+        true
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_analytic_jacobian_agrees_with_differences() {
+        // At a point off the initial values (so that every entry is exercised), each column
+        // against a central difference of f, exact for these right-hand sides (at most
+        // quadratic in each unknown) but for rounding, which the tolerance allows: 1e-14 of
+        // the largest |f| over the step.
+        for p in &TESTSET {
+            let n = p.problem.dim();
+            let y: Vec<f64> = (0..n).map(|i| 0.3 + 0.1 * i as f64).collect();
+            let mut jac = Vec::new();
+            assert!(p.problem.jacobian(0.0, &y, &[], &mut jac));
+            let mut f = vec![0.0; n];
+            p.problem.rhs(0.0, &y, &[], &mut f);
+            let f_max = f.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            let mut dense = vec![0.0; n * n];
+            for (i, j, v) in jac {
+                dense[i * n + j] += v;
+            }
+            for j in 0..n {
+                let h = 1e-2;
+                let (mut up, mut down) = (y.clone(), y.clone());
+                up[j] += h;
+                down[j] -= h;
+                let (mut fu, mut fd) = (vec![0.0; n], vec![0.0; n]);
+                p.problem.rhs(0.0, &up, &[], &mut fu);
+                p.problem.rhs(0.0, &down, &[], &mut fd);
+                for i in 0..n {
+                    let fd = (fu[i] - fd[i]) / (2.0 * h);
+                    let tol = 1e-9 * (1.0 + fd.abs()) + 1e-14 * f_max / h;
+                    assert!(
+                        (dense[i * n + j] - fd).abs() < tol,
+                        "{} J[{i}][{j}] = {} against {fd}",
+                        p.name,
+                        dense[i * n + j]
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_problems_are_found_by_name_and_scd_counts_digits() {
+        let p = named("hires").unwrap();
+        assert_eq!(p.problem.dim(), p.y0.len());
+        assert_eq!(p.reference.len(), p.y0.len());
+        // A relative error of 1e-7 in the worst component is 7 digits.
+        let y: Vec<f64> = p.reference.iter().map(|r| r * (1.0 + 1e-7)).collect();
+        assert!((p.scd(&y) - 7.0).abs() < 1e-6);
+        assert_eq!(
+            named("e5").err().unwrap(),
+            "unknown test problem `e5`; known problems: van-der-pol, robertson, hires, orego"
+        );
+    }
+}
