@@ -11,7 +11,7 @@ use crate::trajectory::{Trajectory, TrajectoryAs};
 use friction_models::{FrictionParams, Variant};
 use friction_systems::{mode_name, BodyState, ContactEvent, EnergyBalance};
 use integrators::stability::Instability;
-use integrators::{SolverError, Stats, StepControl};
+use integrators::{MethodSwitch, SolverError, Stats, StepControl};
 pub use scenarios::run::RIG_BODY;
 use scenarios::verdict::{Status, Verdict};
 use scenarios::SwitchingKind;
@@ -135,6 +135,9 @@ pub struct Integrated {
     pub loop_area: Option<f64>,
     /// Where Hairer's stiffness test (Dormand–Prince) first judged the problem stiff, s.
     pub stiffness_detected_at: Option<f64>,
+    /// `auto`'s switches of method: time (s), the method switched to, and the estimate h·ρ̂
+    /// that decided it (empty for the other solvers).
+    pub method_switches: Vec<MethodSwitch>,
     /// The decaying mode at the start that an explicit method's fixed step amplifies
     /// (`lambda_re`, `lambda_im` in 1/s, `h` in s, `amplification` |R(hλ)|), if any: the run
     /// is then at least `inaccurate`.

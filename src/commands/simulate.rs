@@ -328,6 +328,7 @@ fn rig_record(outcome: &Outcome, setup: RunSetup, has_state: bool) -> RunRecord 
         friction_work: outcome.friction_work,
         loop_area: outcome.loop_area,
         stiffness_detected_at: outcome.stiffness_detected_at,
+        method_switches: outcome.method_switches.clone(),
         instability: outcome.instability,
     };
     RunRecord {

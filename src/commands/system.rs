@@ -451,6 +451,7 @@ pub fn make(args: &SimulateArgs, trajectory_as: TrajectoryAs) -> Result<Made, Ap
         friction_work: None,
         loop_area: None,
         stiffness_detected_at: run.solution.stiffness_detected_at,
+        method_switches: run.solution.method_switches.clone(),
         instability: run.instability(&scheme, step),
     };
     let record = RunRecord {

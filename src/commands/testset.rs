@@ -9,7 +9,7 @@ use crate::options::LimitArgs;
 use crate::ranges;
 use clap::Args;
 use integrators::testset::{self, TestProblem};
-use integrators::{Mode, Options, Output, Solution, Solver, StepControl};
+use integrators::{MethodSwitch, Mode, Options, Output, Solution, Solver, StepControl};
 use serde::Serialize;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -89,6 +89,8 @@ struct Summary<'a> {
     /// The end time when reached; null for a run that recorded nothing.
     t_reached: Option<f64>,
     stats: Counts,
+    /// `auto`'s switches of method (empty for the other solvers).
+    method_switches: &'a [MethodSwitch],
     wall_time_s: f64,
 }
 
@@ -175,7 +177,7 @@ fn summary<'a>(
     args: &TestsetArgs,
     problem: &'a TestProblem,
     solver: Solver,
-    solution: &Solution,
+    solution: &'a Solution,
     failure: &Option<integrators::SolverError>,
     scd: Option<f64>,
     wall_time_s: f64,
@@ -204,6 +206,7 @@ fn summary<'a>(
             newton_iterations: s.newton_iterations,
             scd,
         },
+        method_switches: &solution.method_switches,
         wall_time_s,
     }
 }

@@ -77,9 +77,9 @@ pub const BLUE: RGBColor = RGBColor(30, 80, 200);
 /// Third series colour.
 pub const GREEN: RGBColor = RGBColor(20, 140, 60);
 
-/// Colours for figures with several series, in order: one for each of a study's eleven
-/// methods at most (the nine solvers, and a system's regularised BDF and time-stepping).
-pub const PALETTE: [RGBColor; 11] = [
+/// Colours for figures with several series, in order: one for each of a study's twelve
+/// methods at most (the ten solvers, and a system's regularised BDF and time-stepping).
+pub const PALETTE: [RGBColor; 12] = [
     RED,
     BLUE,
     GREEN,
@@ -91,6 +91,7 @@ pub const PALETTE: [RGBColor; 11] = [
     RGBColor(220, 60, 150),
     RGBColor(150, 160, 0),
     RGBColor(40, 40, 120),
+    RGBColor(120, 200, 230),
 ];
 
 static FONT: Once = Once::new();

@@ -170,7 +170,7 @@ mod tests {
 
     #[test]
     fn every_solver_of_a_system_study_has_a_colour_of_its_own() {
-        // The nine solvers and a system's two peers: with eight colours, time-stepping took
+        // The ten solvers and a system's two peers: with eight colours, time-stepping took
         // RK4's red, and the chain's default work-precision plot drew them alike.
         let names = [
             "rk4",
@@ -182,6 +182,7 @@ mod tests {
             "tsit45",
             "radau5",
             "rodas",
+            "auto",
             "bdf (regularized)",
             "moreau-jean (timestepping)",
         ];

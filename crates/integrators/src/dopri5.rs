@@ -71,8 +71,10 @@ const HINIT_ORDER: f64 = 5.0;
 // suspicious; h·λ beyond 3.25 is "stiff"; 15 stiff verdicts in a row mean stiffness, and 6
 // non-stiff ones clear the suspicion.
 const NSTIFF: usize = 1000;
-const STIFF_HLAMB: f64 = 3.25;
-const STIFF_COUNT: usize = 15;
+/// h·λ beyond which a step is "stiff" (DOPCOR: `IF (HLAMB.GT.3.25D0)`).
+pub const STIFF_HLAMB: f64 = 3.25;
+/// Stiff verdicts in a row that mean stiffness (DOPCOR: `IASTI.EQ.15`).
+pub const STIFF_COUNT: usize = 15;
 const NONSTIFF_COUNT: usize = 6;
 
 /// `Σ_j a_j·k_j[i]`, summed left to right as `dopri5.f` writes its stage sums.
@@ -156,6 +158,10 @@ pub struct Dopri5 {
     iasti: usize,
     nonsti: usize,
     stiff_at: Option<f64>,
+    /// Accepted steps between stiffness tests until one is suspicious (NSTIFF).
+    nstiff: usize,
+    /// The last stiffness test's h·ρ̂ (HLAMB).
+    hlamb: f64,
     stats: Stats,
 }
 
@@ -181,8 +187,28 @@ impl Dopri5 {
             iasti: 0,
             nonsti: 0,
             stiff_at: None,
+            nstiff: NSTIFF,
+            hlamb: 0.0,
             stats: Stats::default(),
         }
+    }
+
+    /// The stiffness test taken every `n` accepted steps until one is suspicious (dopri5.f's
+    /// NSTIFF, IWORK(4), 1000 by default).
+    pub fn with_stiffness_test_every(mut self, n: usize) -> Self {
+        self.nstiff = n.max(1);
+        self
+    }
+
+    /// Stiff verdicts in a row since the last non-stiff ones (IASTI): [`STIFF_COUNT`] means
+    /// the problem is stiff.
+    pub fn stiffness_verdicts(&self) -> usize {
+        self.iasti
+    }
+
+    /// The last stiffness test's h·ρ̂ (HLAMB; 0 before the first).
+    pub fn stiffness_estimate(&self) -> f64 {
+        self.hlamb
     }
 
     /// HINIT of dopri5.f: an explicit Euler step of size 0.01·‖y0‖/‖f0‖ estimates the second
@@ -257,7 +283,7 @@ impl Dopri5 {
     /// h·λ ≈ h·‖k7 − k6‖/‖y1 − ysti‖.
     fn stiffness_test(&mut self, h: f64) {
         let accepted = self.stats.steps + 1;
-        if !accepted.is_multiple_of(NSTIFF) && self.iasti == 0 {
+        if !accepted.is_multiple_of(self.nstiff) && self.iasti == 0 {
             return;
         }
         let num: f64 = self.k[6]
@@ -276,6 +302,7 @@ impl Dopri5 {
         } else {
             0.0
         };
+        self.hlamb = hlamb;
         if hlamb > STIFF_HLAMB {
             self.nonsti = 0;
             self.iasti += 1;

@@ -340,6 +340,7 @@ impl<'a> Integrator<'a> {
         }
         s.stats.cut_at_event = self.cut_at_event;
         s.stiffness_detected_at = self.stepper.stiffness_detected_at();
+        s.method_switches = self.stepper.method_switches().to_vec();
         s
     }
 

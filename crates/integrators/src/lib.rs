@@ -9,6 +9,7 @@
 //! - diffsol's BDF, TR-BDF2, ESDIRK34 and Tsit45 behind the same [`Stepper`] interface;
 //! - [`Radau5`]: Radau IIA of order 5 as in Hairer's `radau5.f`;
 //! - [`Rodas`]: the Rosenbrock method RODAS as in Hairer's `rodas.f`;
+//! - `auto`: Dormand–Prince and Radau IIA switched by stiffness within a run;
 //! - [`testset`]: the standard stiff test problems with their published references;
 //! - event location on each method's dense output, simultaneous events handled in one call,
 //!   one mode per component of the discrete state.
@@ -18,6 +19,7 @@
 //! A method written elsewhere implements [`Stepper`] and [`OneStepMethod`] and runs as
 //! [`Solver::own`] wherever a built-in solver runs.
 
+pub mod auto;
 pub mod counting;
 pub mod decsol;
 pub mod diffsol_backend;
@@ -56,7 +58,7 @@ pub use problem::{Control, Crossing, Entry, EventSpec, Mode, OdeProblem};
 pub use radau5::Radau5;
 pub use rk4::Rk4;
 pub use rodas::Rodas;
-pub use solution::{EventRecord, Failure, ModeSwitch, Solution};
+pub use solution::{EventRecord, Failure, MethodSwitch, ModeSwitch, Solution};
 pub use solver::Solver;
 pub use stats::{Stats, WorkWeights};
 pub use stepper::{Ode, Stepper, StepperState};

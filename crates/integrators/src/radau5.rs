@@ -303,6 +303,21 @@ impl Radau5 {
         })
     }
 
+    /// The step size the next start takes (RADCOR's H on entry).
+    pub fn set_next_step(&mut self, h: f64) {
+        self.state.h = h;
+    }
+
+    /// ‖J‖∞, the largest absolute row sum of the Jacobian held (0 before the first): an upper
+    /// bound of its spectral radius.
+    pub fn jacobian_norm(&self) -> f64 {
+        let mut rows = vec![0.0f64; self.state.y.len()];
+        for &(i, _, v) in &self.jac {
+            rows[i] += v.abs();
+        }
+        rows.into_iter().fold(0.0, f64::max)
+    }
+
     /// SCAL(I) = ATOL + RTOL·|Y(I)|.
     fn scale(&mut self) {
         for (s, y) in self.scal.iter_mut().zip(&self.state.y) {

@@ -51,8 +51,23 @@ pub struct Solution {
     pub events: Vec<EventRecord>,
     /// Work done.
     pub stats: Stats,
-    /// Where Hairer's stiffness test first judged the problem stiff (Dormand–Prince only).
+    /// Where Hairer's stiffness test first judged the problem stiff (Dormand–Prince, and
+    /// `auto`'s first switch to Radau IIA).
     pub stiffness_detected_at: Option<f64>,
+    /// Every switch of method within the run (`auto`), in order.
+    pub method_switches: Vec<MethodSwitch>,
+}
+
+/// A switch of method within a run (`auto`): where, to which method, and the stiffness
+/// estimate `h·ρ̂` that decided it.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct MethodSwitch {
+    /// Time of the switch, s.
+    pub t: f64,
+    /// The method that takes the steps from there.
+    pub to: &'static str,
+    /// `h·ρ̂`: the step times the estimated spectral radius of the Jacobian.
+    pub estimate: f64,
 }
 
 impl Solution {
@@ -68,6 +83,7 @@ impl Solution {
             events: Vec::new(),
             stats: Stats::default(),
             stiffness_detected_at: None,
+            method_switches: Vec::new(),
         }
     }
 

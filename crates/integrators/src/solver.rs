@@ -2,6 +2,7 @@
 //! [`OneStepMethod`], the built-in ones listed in [`Solver::ALL`] and a user's own through
 //! [`Solver::own`].
 
+use crate::auto::AutoMethod;
 use crate::diffsol_backend::DiffsolMethod;
 use crate::dopri5::Dopri5Method;
 use crate::implicit_euler::ImplicitEulerMethod;
@@ -61,9 +62,11 @@ impl Solver {
     pub const RADAU5: Solver = Solver::built_in(&Radau5Method);
     /// The Rosenbrock method RODAS, Hairer's RODAS.
     pub const RODAS: Solver = Solver::built_in(&RodasMethod);
+    /// Dormand–Prince and Radau IIA(5), switched by stiffness within a run.
+    pub const AUTO: Solver = Solver::built_in(&AutoMethod);
 
     /// Every built-in solver, in listing order: the ones the command line names.
-    pub const ALL: [Solver; 9] = [
+    pub const ALL: [Solver; 10] = [
         Solver::RK4,
         Solver::DOPRI5,
         Solver::IMPLICIT_EULER,
@@ -73,6 +76,7 @@ impl Solver {
         Solver::TSIT45,
         Solver::RADAU5,
         Solver::RODAS,
+        Solver::AUTO,
     ];
 
     const fn built_in(method: &'static dyn OneStepMethod) -> Solver {

@@ -2,7 +2,7 @@
 
 use crate::error::SolverError;
 use crate::problem::{Mode, OdeProblem};
-use crate::solution::EventRecord;
+use crate::solution::{EventRecord, MethodSwitch};
 use crate::stats::Stats;
 
 /// The problem in fixed modes, as the methods see it.
@@ -94,6 +94,11 @@ pub trait Stepper {
     /// Where a stiffness test (Hairer's, in Dormand–Prince) first found the problem stiff.
     fn stiffness_detected_at(&self) -> Option<f64> {
         None
+    }
+
+    /// The switches of method within the run so far (`auto`; none for a single method).
+    fn method_switches(&self) -> &[MethodSwitch] {
+        &[]
     }
 
     /// Whether the driver locates the problem's events on the method's dense output and

@@ -31,7 +31,7 @@ fn every_solver_is_found_by_name_and_integrates_the_oscillator() {
     }
     assert_eq!(
         Solver::from_name("euler").unwrap_err(),
-        "unknown solver `euler`; known solvers: rk4, dopri5, implicit-euler, bdf, tr-bdf2, esdirk34, tsit45, radau5, rodas"
+        "unknown solver `euler`; known solvers: rk4, dopri5, implicit-euler, bdf, tr-bdf2, esdirk34, tsit45, radau5, rodas, auto"
     );
 }
 

@@ -344,6 +344,8 @@ pub struct Outcome {
     pub wall_time_s: f64,
     /// Where Hairer's stiffness test (Dormand–Prince) first judged the problem stiff.
     pub stiffness_detected_at: Option<f64>,
+    /// `auto`'s switches of method, in order.
+    pub method_switches: Vec<integrators::MethodSwitch>,
     /// The body's shortest natural period `2π·√(m/k)` (body scenarios held by a spring;
     /// `None` otherwise): the scale a fixed step is judged against.
     pub time_scale: Option<f64>,
@@ -506,6 +508,7 @@ fn run_body(
         loop_area: None,
         wall_time_s: run.wall_time_s,
         stiffness_detected_at: run.solution.stiffness_detected_at,
+        method_switches: run.solution.method_switches.clone(),
         time_scale: run.problem.time_scale(),
         instability,
     })
@@ -577,6 +580,7 @@ pub fn run_motion(
         loop_area: last.map(|l| l.1),
         wall_time_s,
         stiffness_detected_at: s.stiffness_detected_at,
+        method_switches: s.method_switches.clone(),
         time_scale: None,
         instability: None,
     }
@@ -597,6 +601,7 @@ fn run_sweep(spec: &RunSpec, model: &dyn FrictionModel, observe: &mut dyn FnMut(
         loop_area: None,
         wall_time_s: 0.0,
         stiffness_detected_at: None,
+        method_switches: Vec::new(),
         time_scale: None,
         instability: None,
     };
@@ -616,6 +621,8 @@ fn run_sweep(spec: &RunSpec, model: &dyn FrictionModel, observe: &mut dyn FnMut(
         out.stats += o.stats;
         out.wall_time_s += o.wall_time_s;
         out.stiffness_detected_at = out.stiffness_detected_at.or(o.stiffness_detected_at);
+        out.method_switches
+            .extend(o.method_switches.iter().copied());
         if let Some(row) = o.last() {
             out.rows.push(*row);
         }
