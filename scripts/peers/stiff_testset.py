@@ -1,0 +1,201 @@
+#!/usr/bin/env python3
+"""The standard stiff test set run by friction-lab's solvers and by scipy's, side by side:
+significant correct digits (scd) against wall time, the IVP test set's plot.
+
+Not part of the test suite (scipy and matplotlib are peers, not dependencies). Run after a
+release build, with an interpreter that has numpy, scipy and matplotlib:
+
+    python3 -m venv /tmp/peers && /tmp/peers/bin/pip install scipy numpy matplotlib
+    cargo build --release
+    /tmp/peers/bin/python scripts/peers/stiff_testset.py --out /tmp/stiff-peers
+
+For every problem (van-der-pol, robertson, hires, orego: integrators::testset, whose
+references the Test Set for IVP Solvers 2.4 publishes) and every tolerance, each solver runs
+`--repeats` times: friction-lab's through `friction-lab testset` (its summary.json's
+`wall_time_s`, the solve alone, and `scd`), scipy's `solve_ivp` (Radau, BDF, LSODA, with the
+analytic Jacobian) timed around the call. rtol = atol = tol, but Robertson's atol = 1e-14·tol
+(its second species is of order 1e-13 at t = 1e11). Writes `stiff-testset.csv` (problem,
+solver, tol, scd, median, min and max wall time, evaluations of f) and `stiff-testset.png`
+(scd against median wall time, one panel a problem), and prints a Markdown table.
+"""
+
+import argparse
+import csv
+import json
+import math
+import os
+import statistics
+import subprocess
+import time
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+
+def vdp(t, y):
+    return [y[1], ((1 - y[0] ** 2) * y[1] - y[0]) / 1e-6]
+
+
+def vdp_jac(t, y):
+    return [[0.0, 1.0], [(-2 * y[0] * y[1] - 1) / 1e-6, (1 - y[0] ** 2) / 1e-6]]
+
+
+def rober(t, y):
+    f1 = -0.04 * y[0] + 1e4 * y[1] * y[2]
+    f3 = 3e7 * y[1] ** 2
+    return [f1, -f1 - f3, f3]
+
+
+def rober_jac(t, y):
+    p1, p2, p3 = 1e4 * y[1], 1e4 * y[2], 6e7 * y[1]
+    return [[-0.04, p2, p1], [0.04, -p2 - p3, -p1], [0.0, p3, 0.0]]
+
+
+def hires(t, y):
+    return [
+        -1.71 * y[0] + 0.43 * y[1] + 8.32 * y[2] + 0.0007,
+        1.71 * y[0] - 8.75 * y[1],
+        -10.03 * y[2] + 0.43 * y[3] + 0.035 * y[4],
+        8.32 * y[1] + 1.71 * y[2] - 1.12 * y[3],
+        -1.745 * y[4] + 0.43 * y[5] + 0.43 * y[6],
+        -280 * y[5] * y[7] + 0.69 * y[3] + 1.71 * y[4] - 0.43 * y[5] + 0.69 * y[6],
+        280 * y[5] * y[7] - 1.81 * y[6],
+        -280 * y[5] * y[7] + 1.81 * y[6],
+    ]
+
+
+def hires_jac(t, y):
+    j = np.zeros((8, 8))
+    j[0, :3] = [-1.71, 0.43, 8.32]
+    j[1, :2] = [1.71, -8.75]
+    j[2, 2:5] = [-10.03, 0.43, 0.035]
+    j[3, 1:4] = [8.32, 1.71, -1.12]
+    j[4, 4:7] = [-1.745, 0.43, 0.43]
+    j[5, 3:8] = [0.69, 1.71, -280 * y[7] - 0.43, 0.69, -280 * y[5]]
+    j[6, 5:8] = [280 * y[7], -1.81, 280 * y[5]]
+    j[7, 5:8] = [-280 * y[7], 1.81, -280 * y[5]]
+    return j
+
+
+S, Q, W = 77.27, 8.375e-6, 0.161
+
+
+def orego(t, y):
+    return [
+        S * (y[1] + y[0] * (1 - Q * y[0] - y[1])),
+        (y[2] - (1 + y[0]) * y[1]) / S,
+        W * (y[0] - y[2]),
+    ]
+
+
+def orego_jac(t, y):
+    return [
+        [S * (1 - 2 * Q * y[0] - y[1]), S * (1 - y[0]), 0.0],
+        [-y[1] / S, -(1 + y[0]) / S, 1 / S],
+        [W, 0.0, -W],
+    ]
+
+
+# name: (f, jac, y0, t_end, reference), as integrators::testset declares them.
+PROBLEMS = {
+    "van-der-pol": (vdp, vdp_jac, [2.0, 0.0], 2.0, [1.706167732170469, -0.8928097010248125]),
+    "robertson": (rober, rober_jac, [1.0, 0.0, 0.0], 1e11,
+                  [0.2083340149701255e-7, 0.8333360770334713e-13, 0.9999999791665050]),
+    "hires": (hires, hires_jac, [1, 0, 0, 0, 0, 0, 0, 0.0057], 321.8122,
+              [0.7371312573325668e-3, 0.1442485726316185e-3, 0.5888729740967575e-4,
+               0.1175651343283149e-2, 0.2386356198831331e-2, 0.6238968252742796e-2,
+               0.2849998395185769e-2, 0.2850001604814231e-2]),
+    "orego": (orego, orego_jac, [1.0, 2.0, 3.0], 360.0,
+              [0.1000814870318523e1, 0.1228178521549917e4, 0.1320554942846706e3]),
+}
+
+
+def scd(y, reference):
+    return -math.log10(max(abs((a - r) / r) for a, r in zip(y, reference)))
+
+
+def run_friction_lab(binary, problem, solver, rtol, atol, out):
+    subprocess.run([binary, "testset", problem, "--solver", solver, "--rtol", str(rtol),
+                    "--atol", str(atol), "--out", out], check=True, capture_output=True)
+    with open(os.path.join(out, "summary.json")) as f:
+        s = json.load(f)
+    return s["stats"]["scd"], s["wall_time_s"], s["stats"]["rhs_evals"]
+
+
+def run_scipy(problem, method, rtol, atol):
+    f, jac, y0, t_end, reference = PROBLEMS[problem]
+    start = time.perf_counter()
+    sol = solve_ivp(f, (0.0, t_end), y0, method=method, rtol=rtol, atol=atol, jac=jac)
+    elapsed = time.perf_counter() - start
+    if not sol.success:
+        return None, elapsed, sol.nfev
+    return scd(sol.y[:, -1], reference), elapsed, sol.nfev
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--friction-lab", default="./target/release/friction-lab")
+    parser.add_argument("--repeats", type=int, default=5)
+    parser.add_argument("--tols", default="1e-4,1e-6,1e-8,1e-10")
+    parser.add_argument("--out", required=True)
+    args = parser.parse_args()
+    os.makedirs(args.out, exist_ok=True)
+    ours = ["radau5", "rodas", "auto", "bdf", "esdirk34"]
+    theirs = ["Radau", "BDF", "LSODA"]
+    rows = []
+    for problem in PROBLEMS:
+        for tol in map(float, args.tols.split(",")):
+            atol = tol * 1e-14 if problem == "robertson" else tol
+            for solver in ours + theirs:
+                times, digits, evals = [], None, None
+                for k in range(args.repeats):
+                    if solver in ours:
+                        out = os.path.join(args.out, "runs", f"{problem}-{solver}-{tol:g}")
+                        digits, t, evals = run_friction_lab(args.friction_lab, problem, solver,
+                                                            tol, atol, out)
+                    else:
+                        digits, t, evals = run_scipy(problem, solver, tol, atol)
+                    times.append(t)
+                name = solver if solver in ours else f"scipy {solver}"
+                rows.append(dict(problem=problem, solver=name, tol=tol, scd=digits,
+                                 median_s=statistics.median(times), min_s=min(times),
+                                 max_s=max(times), rhs_evals=evals))
+                print(f"{problem:12} {name:12} {tol:7.0e} scd {digits if digits is None else round(digits, 2)!s:6} "
+                      f"{statistics.median(times) * 1e3:9.3f} ms", flush=True)
+    with open(os.path.join(args.out, "stiff-testset.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(2, 2, figsize=(10, 8))
+    for ax, problem in zip(axes.flat, PROBLEMS):
+        for name in dict.fromkeys(r["solver"] for r in rows):
+            pts = [(r["median_s"], r["scd"]) for r in rows
+                   if r["problem"] == problem and r["solver"] == name and r["scd"] is not None]
+            if pts:
+                ax.plot([p[0] for p in pts], [p[1] for p in pts], marker="o", label=name)
+        ax.set_xscale("log")
+        ax.set_title(problem)
+        ax.set_xlabel("median wall time of the solve (s)")
+        ax.set_ylabel("significant correct digits")
+    axes.flat[0].legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(args.out, "stiff-testset.png"), dpi=120)
+    print("\n| problem | tol | " + " | ".join(dict.fromkeys(r["solver"] for r in rows)) + " |")
+    names = list(dict.fromkeys(r["solver"] for r in rows))
+    print("|---|---|" + "---|" * len(names))
+    for problem in PROBLEMS:
+        for tol in map(float, args.tols.split(",")):
+            cells = []
+            for name in names:
+                r = next(r for r in rows
+                         if r["problem"] == problem and r["tol"] == tol and r["solver"] == name)
+                digits = "failed" if r["scd"] is None else f"{r['scd']:.1f}"
+                cells.append(f"{digits} / {r['median_s'] * 1e3:.2f}")
+            print(f"| {problem} | {tol:.0e} | " + " | ".join(cells) + " |")
+
+
+if __name__ == "__main__":
+    main()
