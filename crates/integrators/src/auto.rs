@@ -19,8 +19,8 @@
 
 use crate::dopri5::{Dopri5, STIFF_COUNT, STIFF_HLAMB};
 use crate::error::SolverError;
-use crate::method::OneStepMethod;
-use crate::options::{Options, StepControl};
+use crate::method::{adaptive_only, OneStepMethod};
+use crate::options::Options;
 use crate::radau5::Radau5;
 use crate::solution::MethodSwitch;
 use crate::stats::Stats;
@@ -49,12 +49,7 @@ impl OneStepMethod for AutoMethod {
     }
 
     fn stepper(&self, options: &Options, dim: usize) -> Result<Box<dyn Stepper>, SolverError> {
-        let StepControl::Adaptive { rtol, atol, h0 } = options.step else {
-            return Err(SolverError::Unsupported {
-                solver: "auto",
-                why: "it takes adaptive steps only: give tolerances, not a fixed step".into(),
-            });
-        };
+        let (rtol, atol, h0) = adaptive_only("auto", options.step)?;
         let (h_max, max_steps) = (options.h_max(), options.max_steps);
         Ok(Box::new(Auto {
             explicit: Dopri5::new(options.step, h_max, max_steps, dim).with_stiffness_test_every(1),

@@ -5,7 +5,7 @@
 
 use crate::error::SolverError;
 use crate::integrator::Integrator;
-use crate::options::Options;
+use crate::options::{Options, StepControl};
 use crate::problem::{Mode, OdeProblem};
 use crate::solution::{Failure, Solution};
 use crate::stepper::Stepper;
@@ -77,5 +77,20 @@ pub trait OneStepMethod: std::fmt::Debug + Send + Sync {
                 error: f.error,
                 solution: Box::new(named(*f.solution)),
             })
+    }
+}
+
+/// The tolerances `(rtol, atol, h0)` of `step` for a method that takes adaptive steps only,
+/// or why a fixed step does not suit `solver`.
+pub fn adaptive_only(
+    solver: &'static str,
+    step: StepControl,
+) -> Result<(f64, f64, Option<f64>), SolverError> {
+    match step {
+        StepControl::Adaptive { rtol, atol, h0 } => Ok((rtol, atol, h0)),
+        StepControl::Fixed { .. } => Err(SolverError::Unsupported {
+            solver,
+            why: "it takes adaptive steps only: give tolerances, not a fixed step".into(),
+        }),
     }
 }

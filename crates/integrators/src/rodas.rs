@@ -20,9 +20,9 @@
 
 use crate::error::SolverError;
 use crate::iteration_matrix::RealSystem;
-use crate::method::OneStepMethod;
+use crate::method::{adaptive_only, OneStepMethod};
 use crate::newton;
-use crate::options::{Options, StepControl};
+use crate::options::Options;
 use crate::problem::Entry;
 use crate::stats::Stats;
 use crate::stepper::{check_finite, Ode, Stepper, StepperState};
@@ -108,20 +108,9 @@ impl OneStepMethod for RodasMethod {
     }
 
     fn stepper(&self, options: &Options, dim: usize) -> Result<Box<dyn Stepper>, SolverError> {
-        match options.step {
-            StepControl::Adaptive { rtol, atol, h0 } => Ok(Box::new(Rodas::new(
-                rtol,
-                atol,
-                h0,
-                options.h_max(),
-                options.max_steps,
-                dim,
-            )?)),
-            StepControl::Fixed { .. } => Err(SolverError::Unsupported {
-                solver: "rodas",
-                why: "it takes adaptive steps only: give tolerances, not a fixed step".into(),
-            }),
-        }
+        let (rtol, atol, h0) = adaptive_only("rodas", options.step)?;
+        let (h_max, max_steps) = (options.h_max(), options.max_steps);
+        Ok(Box::new(Rodas::new(rtol, atol, h0, h_max, max_steps, dim)?))
     }
 }
 

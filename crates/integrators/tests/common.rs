@@ -1,6 +1,7 @@
 //! Test problems shared by the integrator tests.
 #![allow(dead_code)]
 
+use integrators::testset::Robertson;
 use integrators::{Control, Crossing, Entry, EventSpec, Mode, OdeProblem};
 
 /// The Arenstorf orbit (Hairer, Nørsett, Wanner, *Solving ODEs I*, sec. II.0, eq. (0.1)).
@@ -164,57 +165,6 @@ impl OdeProblem for BlowUp {
     }
     fn rhs(&self, _t: f64, y: &[f64], _m: &[Mode], f: &mut [f64]) {
         f[0] = y[0] * y[0];
-    }
-}
-
-/// Van der Pol's equation in Hairer's scaling, `y1' = y2`, `y2' = ((1 − y1²)·y2 − y1)/ε`.
-pub struct VanDerPol {
-    /// ε, the small parameter.
-    pub eps: f64,
-}
-
-impl OdeProblem for VanDerPol {
-    fn dim(&self) -> usize {
-        2
-    }
-    fn rhs(&self, _t: f64, y: &[f64], _m: &[Mode], f: &mut [f64]) {
-        f[0] = y[1];
-        f[1] = ((1.0 - y[0].powi(2)) * y[1] - y[0]) / self.eps;
-    }
-    fn jacobian(&self, _t: f64, y: &[f64], _m: &[Mode], jac: &mut Vec<Entry>) -> bool {
-        jac.extend([
-            (0, 1, 1.0),
-            (1, 0, (-2.0 * y[0] * y[1] - 1.0) / self.eps),
-            (1, 1, (1.0 - y[0].powi(2)) / self.eps),
-        ]);
-        true
-    }
-}
-
-/// Robertson's chemical reactions (Hairer & Wanner, *Solving ODEs II*, sec. IV.1).
-pub struct Robertson;
-
-impl OdeProblem for Robertson {
-    fn dim(&self) -> usize {
-        3
-    }
-    fn rhs(&self, _t: f64, y: &[f64], _m: &[Mode], f: &mut [f64]) {
-        f[0] = -0.04 * y[0] + 1e4 * y[1] * y[2];
-        f[2] = 3e7 * y[1] * y[1];
-        f[1] = -f[0] - f[2];
-    }
-    fn jacobian(&self, _t: f64, y: &[f64], _m: &[Mode], jac: &mut Vec<Entry>) -> bool {
-        let (prod1, prod2, prod3) = (1e4 * y[1], 1e4 * y[2], 6e7 * y[1]);
-        jac.extend([
-            (0, 0, -0.04),
-            (0, 1, prod2),
-            (0, 2, prod1),
-            (1, 0, 0.04),
-            (1, 1, -prod2 - prod3),
-            (1, 2, -prod1),
-            (2, 1, prod3),
-        ]);
-        true
     }
 }
 

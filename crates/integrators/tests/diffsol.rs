@@ -2,39 +2,8 @@
 //! (The switched stick–slip cycle and the index-1 friction DAE are in friction-systems.)
 
 use integrators::diffsol_backend::{self, DiffsolMethod};
-use integrators::{Dopri5, ImplicitEuler, Integrator, Mode, NewtonKind, OdeProblem, Options};
-
-/// Robertson's chemical kinetics (Hairer & Wanner, *Solving ODEs II*, sec. IV.1).
-struct Robertson;
-
-impl OdeProblem for Robertson {
-    fn dim(&self) -> usize {
-        3
-    }
-    fn rhs(&self, _t: f64, y: &[f64], _m: &[Mode], f: &mut [f64]) {
-        f[0] = -0.04 * y[0] + 1e4 * y[1] * y[2];
-        f[2] = 3e7 * y[1] * y[1];
-        f[1] = -f[0] - f[2];
-    }
-    fn jacobian(
-        &self,
-        _t: f64,
-        y: &[f64],
-        _m: &[Mode],
-        jac: &mut Vec<(usize, usize, f64)>,
-    ) -> bool {
-        jac.extend([
-            (0, 0, -0.04),
-            (0, 1, 1e4 * y[2]),
-            (0, 2, 1e4 * y[1]),
-            (2, 1, 6e7 * y[1]),
-            (1, 0, 0.04),
-            (1, 1, -1e4 * y[2] - 6e7 * y[1]),
-            (1, 2, -1e4 * y[1]),
-        ]);
-        true
-    }
-}
+use integrators::testset::Robertson;
+use integrators::{Dopri5, ImplicitEuler, Integrator, Mode, NewtonKind, Options};
 
 /// y(40) of Robertson's problem, as tabulated in the IVP test set of Mazzia et al.
 /// (Bari), problem "HIRES/ROBER" reference at t = 40: 0.7158270687, 9.185534764e-6,

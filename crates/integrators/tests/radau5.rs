@@ -7,23 +7,16 @@
 //! evaluation of f and none of a finite-difference Jacobian, as `rhs_evals` does; its NSTEP
 //! counts every attempt (accepted, rejected by the error test, rejected by Newton's
 //! iteration); its NREJCT leaves out rejections before the first accepted step. The values
-//! agree to 1e-14 relative, the sixteen digits printed.
-//!
-//! Beyond parity: events located on the dense output, an index-1 DAE through a singular mass
-//! matrix, quadratures, the error against the tolerance on a stiff problem with a closed
-//! form, and the refusal of a fixed step.
+//! agree to 1e-14 relative, the sixteen digits printed. What Radau IIA shares with RODAS
+//! beyond parity is tested in `stiff.rs`.
 
 // The references as radau5.f printed them, trailing zeros included.
 #![allow(clippy::excessive_precision)]
 
-mod common;
-
 use approx::assert_relative_eq;
-use common::{Heat, Oscillator, ProtheroRobinson, Robertson, RobertsonDae, VanDerPol};
 use integrators::radau5::Radau5Method;
-use integrators::{
-    Control, Crossing, Mode, OdeProblem, OneStepMethod, Options, Output, Solution, StepControl,
-};
+use integrators::testset::{Robertson, VanDerPol};
+use integrators::{Mode, OneStepMethod, Options, Output, StepControl};
 
 fn options(t_end: f64, rtol: f64, atol: f64, output: Output) -> Options {
     let mut o = Options::adaptive(0.0, t_end, rtol, atol);
@@ -55,13 +48,7 @@ fn radau5_matches_hairers_van_der_pol_driver() {
     let grid = printed.iter().map(|p| p.0).collect();
     let o = options(2.0, 1e-4, 1e-4, Output::GridOnly(grid));
     let s = Radau5Method
-        .solve_observed(
-            &VanDerPol { eps: 1e-6 },
-            &[2.0, -0.66],
-            &[Mode(0)],
-            o,
-            &mut |_| {},
-        )
+        .solve_observed(&VanDerPol, &[2.0, -0.66], &[Mode(0)], o, &mut |_| {})
         .unwrap();
     for (i, (t, y1, y2)) in printed.into_iter().enumerate() {
         assert_eq!(s.t[i], t);
@@ -182,121 +169,4 @@ fn radau5_matches_hairers_robertson_driver() {
     assert_eq!(st.steps, 15);
     assert_eq!(st.rejected_error, 1);
     assert_eq!(st.steps + st.rejected_error + st.rejected_newton, 17);
-}
-
-fn solve(problem: &dyn OdeProblem, y0: &[f64], o: Options) -> Solution {
-    Radau5Method
-        .solve_observed(problem, y0, &[Mode(0)], o, &mut |_| {})
-        .unwrap()
-}
-
-#[test]
-fn events_are_located_on_the_collocation_polynomial() {
-    // x = cos t crosses zero falling at π/2; the collocation polynomial is of order 3 in the
-    // step, located to 1e-10 at tolerance 1e-12.
-    let p = Oscillator::watching(Crossing::Falling, Control::Stop);
-    let s = solve(&p, &[1.0, 0.0], Options::adaptive(0.0, 3.0, 1e-12, 1e-12));
-    assert_eq!(s.events.len(), 1);
-    let t = s.events[0].t;
-    assert!((t - std::f64::consts::FRAC_PI_2).abs() < 1e-10, "{t}");
-    assert_eq!(s.last().unwrap().0, t, "Stop ends the run at the event");
-}
-
-#[test]
-fn an_index_one_dae_is_integrated_through_its_singular_mass_matrix() {
-    let o = |t_end| Options::adaptive(0.0, t_end, 1e-8, 1e-12);
-    let (dae, ode) = (
-        solve(&RobertsonDae, &[1.0, 0.0, 0.0], o(40.0)),
-        solve(&Robertson, &[1.0, 0.0, 0.0], o(40.0)),
-    );
-    let (y, z) = (dae.last().unwrap().1, ode.last().unwrap().1);
-    // The algebraic equation holds at every step, and the DAE follows the ODE.
-    for i in 0..dae.len() {
-        let sum: f64 = dae.y_at(i).iter().sum();
-        assert!((sum - 1.0).abs() < 1e-13, "step {i}: {sum}");
-    }
-    for (a, b) in y.iter().zip(z) {
-        assert_relative_eq!(*a, *b, max_relative = 1e-6);
-    }
-    // Robertson at t = 40 (Hairer & Wanner, sec. IV.10): y1 = 0.7158270687.
-    assert_relative_eq!(y[0], 0.7158270687, max_relative = 1e-7);
-}
-
-#[test]
-fn the_error_follows_the_tolerance_on_a_stiff_problem() {
-    // The stiff component is slaved to sin t: Radau IIA is stiffly accurate, so its end value
-    // keeps full accuracy at every tolerance (no order reduction at the step's end: Hairer &
-    // Wanner, sec. IV.15). The quadrature is the smooth part the error control must follow:
-    // its error at t = 10 stays within the tolerance and falls with it. Reference values:
-    // sin 10 and 1 − cos 10.
-    let mut previous = f64::INFINITY;
-    for tol in [1e-4, 1e-6, 1e-8, 1e-10] {
-        let s = solve(
-            &ProtheroRobinson,
-            &[0.0, 0.0],
-            Options::adaptive(0.0, 10.0, tol, tol),
-        );
-        let y = s.last().unwrap().1;
-        let stiff = (y[0] - 10f64.sin()).abs();
-        assert!(
-            stiff < 1e-9,
-            "tol {tol}: error of the stiff component {stiff:e}"
-        );
-        let smooth = (y[1] - (1.0 - 10f64.cos())).abs();
-        assert!(
-            smooth < tol,
-            "tol {tol}: error of the quadrature {smooth:e}"
-        );
-        assert!(
-            smooth < previous / 10.0,
-            "tol {tol}: {smooth:e} against {previous:e}"
-        );
-        previous = smooth;
-    }
-}
-
-#[test]
-fn a_fixed_step_is_refused_with_the_reason() {
-    let f = Radau5Method
-        .solve_observed(
-            &Robertson,
-            &[1.0, 0.0, 0.0],
-            &[Mode(0)],
-            Options::fixed(0.0, 1.0, 1e-3),
-            &mut |_| {},
-        )
-        .unwrap_err();
-    assert_eq!(
-        f.error.to_string(),
-        "radau5 cannot integrate this problem: it takes adaptive steps only: give tolerances, \
-         not a fixed step"
-    );
-}
-
-#[test]
-fn a_sparse_stiff_system_goes_through_the_sparse_lu() {
-    // 400 unknowns, 1198 Jacobian entries: faer's sparse LU (real, and the complex system as
-    // a real one of order 800). The first sine mode decays as exp(λ₁t),
-    // λ₁ = −4k·sin²(π/(2(n+1))); the stiffest mode's h·λ reaches −4k·h ≈ −1e4.
-    let (n, k) = (400, 1e4);
-    let u0: Vec<f64> = (1..=n)
-        .map(|i| (std::f64::consts::PI * i as f64 / (n + 1) as f64).sin())
-        .collect();
-    let s = solve(
-        &Heat { n, k },
-        &u0,
-        Options::adaptive(0.0, 1.0, 1e-8, 1e-10),
-    );
-    let lambda = -4.0 * k * (std::f64::consts::PI / (2 * (n + 1)) as f64).sin().powi(2);
-    let decay = lambda.exp();
-    let u = s.last().unwrap().1;
-    for (got, start) in u.iter().zip(&u0) {
-        assert!(
-            (got - start * decay).abs() < 1e-8,
-            "{got} vs {}",
-            start * decay
-        );
-    }
-    assert_eq!(s.stats.matrix_order, n);
-    assert!(s.stats.steps < 100, "{:?}", s.stats);
 }

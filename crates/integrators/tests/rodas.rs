@@ -1,5 +1,5 @@
 //! RODAS: parity with Hairer's rodas.f on its driver (Van der Pol), count for count and value
-//! for value; events, an index-1 DAE, a stiff problem with a closed form, a sparse system.
+//! for value. What RODAS shares with Radau IIA beyond parity is tested in `stiff.rs`.
 //!
 //! The reference is the output of Hairer's dr_rodas.f with rodas.f, decsol.f and dc_decsol.f
 //! (gfortran 12, `-O0`, its format widened to 17 digits): the analytic Jacobian, IFCN = 0,
@@ -10,14 +10,10 @@
 // The reference as rodas.f printed it.
 #![allow(clippy::excessive_precision)]
 
-mod common;
-
 use approx::assert_relative_eq;
-use common::{Heat, Oscillator, ProtheroRobinson, Robertson, RobertsonDae, VanDerPol};
 use integrators::rodas::RodasMethod;
-use integrators::{
-    Control, Crossing, Mode, OdeProblem, OneStepMethod, Options, Output, Solution, StepControl,
-};
+use integrators::testset::VanDerPol;
+use integrators::{Mode, OdeProblem, OneStepMethod, Options, Output, Solution, StepControl};
 
 fn solve(problem: &dyn OdeProblem, y0: &[f64], o: Options) -> Solution {
     RodasMethod
@@ -48,7 +44,7 @@ fn rodas_matches_hairers_van_der_pol_driver() {
         h0: Some(1e-6),
     };
     o.output = Output::GridOnly(printed.iter().map(|p| p.0).collect());
-    let s = solve(&VanDerPol { eps: 1e-6 }, &[2.0, -0.66], o);
+    let s = solve(&VanDerPol, &[2.0, -0.66], o);
     for (i, (t, y1, y2)) in printed.into_iter().enumerate() {
         assert_eq!(s.t[i], t);
         assert_relative_eq!(s.y_at(i)[0], y1, max_relative = 1e-14);
@@ -63,81 +59,4 @@ fn rodas_matches_hairers_van_der_pol_driver() {
     assert_eq!(st.lu_factorizations, 339);
     assert_eq!(st.linear_solves, 2034);
     assert_eq!(st.newton_iterations, 0);
-}
-
-#[test]
-fn events_are_located_on_the_dense_output() {
-    let p = Oscillator::watching(Crossing::Falling, Control::Stop);
-    let s = solve(&p, &[1.0, 0.0], Options::adaptive(0.0, 3.0, 1e-12, 1e-12));
-    assert_eq!(s.events.len(), 1);
-    let t = s.events[0].t;
-    assert!((t - std::f64::consts::FRAC_PI_2).abs() < 1e-10, "{t}");
-}
-
-#[test]
-fn an_index_one_dae_is_integrated_through_its_singular_mass_matrix() {
-    let o = || Options::adaptive(0.0, 40.0, 1e-8, 1e-12);
-    let (dae, ode) = (
-        solve(&RobertsonDae, &[1.0, 0.0, 0.0], o()),
-        solve(&Robertson, &[1.0, 0.0, 0.0], o()),
-    );
-    for i in 0..dae.len() {
-        let sum: f64 = dae.y_at(i).iter().sum();
-        assert!((sum - 1.0).abs() < 1e-13, "step {i}: {sum}");
-    }
-    let (y, z) = (dae.last().unwrap().1, ode.last().unwrap().1);
-    for (a, b) in y.iter().zip(z) {
-        assert_relative_eq!(*a, *b, max_relative = 1e-6);
-    }
-    assert_relative_eq!(y[0], 0.7158270687, max_relative = 1e-7);
-}
-
-#[test]
-fn the_error_follows_the_tolerance_on_a_stiff_non_autonomous_problem() {
-    // Prothero–Robinson depends on t: ∂f/∂t enters every stage. The stiff component keeps
-    // its accuracy at every tolerance; the quadrature's error stays within the tolerance and
-    // falls with it.
-    let mut previous = f64::INFINITY;
-    for tol in [1e-4, 1e-6, 1e-8, 1e-10] {
-        let s = solve(
-            &ProtheroRobinson,
-            &[0.0, 0.0],
-            Options::adaptive(0.0, 10.0, tol, tol),
-        );
-        let y = s.last().unwrap().1;
-        let stiff = (y[0] - 10f64.sin()).abs();
-        assert!(
-            stiff < 1e-8,
-            "tol {tol}: error of the stiff component {stiff:e}"
-        );
-        let smooth = (y[1] - (1.0 - 10f64.cos())).abs();
-        assert!(
-            smooth < tol,
-            "tol {tol}: error of the quadrature {smooth:e}"
-        );
-        assert!(
-            smooth < previous / 10.0,
-            "tol {tol}: {smooth:e} against {previous:e}"
-        );
-        previous = smooth;
-    }
-}
-
-#[test]
-fn a_sparse_stiff_system_goes_through_the_sparse_lu() {
-    let (n, k) = (400, 1e4);
-    let u0: Vec<f64> = (1..=n)
-        .map(|i| (std::f64::consts::PI * i as f64 / (n + 1) as f64).sin())
-        .collect();
-    let s = solve(
-        &Heat { n, k },
-        &u0,
-        Options::adaptive(0.0, 1.0, 1e-8, 1e-10),
-    );
-    let lambda = -4.0 * k * (std::f64::consts::PI / (2 * (n + 1)) as f64).sin().powi(2);
-    let u = s.last().unwrap().1;
-    for (got, start) in u.iter().zip(&u0) {
-        assert!((got - start * lambda.exp()).abs() < 1e-8, "{got}");
-    }
-    assert_eq!(s.stats.matrix_order, n);
 }

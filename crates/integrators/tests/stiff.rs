@@ -1,0 +1,160 @@
+//! What Radau IIA(5) and RODAS must both do beyond their parity runs: locate events on their
+//! dense output, integrate an index-1 DAE through a singular mass matrix, keep a stiff
+//! component's accuracy and follow the tolerance on a smooth one (quadratures included), go
+//! through the sparse LU on a large sparse system, and refuse a fixed step.
+
+mod common;
+
+use approx::assert_relative_eq;
+use common::{Heat, Oscillator, ProtheroRobinson, RobertsonDae};
+use integrators::radau5::Radau5Method;
+use integrators::rodas::RodasMethod;
+use integrators::testset::Robertson;
+use integrators::{Control, Crossing, Mode, OdeProblem, OneStepMethod, Options, Solution};
+
+/// The two methods, each with the accuracy its stiff component keeps on Prothero–Robinson.
+const METHODS: [(&dyn OneStepMethod, f64); 2] = [(&Radau5Method, 1e-9), (&RodasMethod, 1e-8)];
+
+fn solve(method: &dyn OneStepMethod, problem: &dyn OdeProblem, y0: &[f64], o: Options) -> Solution {
+    method
+        .solve_observed(problem, y0, &[Mode(0)], o, &mut |_| {})
+        .unwrap()
+}
+
+#[test]
+fn events_are_located_on_the_dense_output() {
+    // x = cos t crosses zero falling at π/2: located to 1e-10 at tolerance 1e-12, and Stop
+    // ends the run there.
+    let p = Oscillator::watching(Crossing::Falling, Control::Stop);
+    for (method, _) in METHODS {
+        let s = solve(
+            method,
+            &p,
+            &[1.0, 0.0],
+            Options::adaptive(0.0, 3.0, 1e-12, 1e-12),
+        );
+        assert_eq!(s.events.len(), 1, "{}", method.name());
+        let t = s.events[0].t;
+        assert!(
+            (t - std::f64::consts::FRAC_PI_2).abs() < 1e-10,
+            "{}: {t}",
+            method.name()
+        );
+        assert_eq!(s.last().unwrap().0, t, "{}", method.name());
+    }
+}
+
+#[test]
+fn an_index_one_dae_is_integrated_through_its_singular_mass_matrix() {
+    // Robertson with its conservation law as the third equation: the algebraic equation
+    // holds at every step, the DAE follows the ODE, and y1(40) = 0.7158270687 (Hairer &
+    // Wanner, sec. IV.10).
+    let o = || Options::adaptive(0.0, 40.0, 1e-8, 1e-12);
+    for (method, _) in METHODS {
+        let dae = solve(method, &RobertsonDae, &[1.0, 0.0, 0.0], o());
+        let ode = solve(method, &Robertson, &[1.0, 0.0, 0.0], o());
+        for i in 0..dae.len() {
+            let sum: f64 = dae.y_at(i).iter().sum();
+            assert!(
+                (sum - 1.0).abs() < 1e-13,
+                "{} step {i}: {sum}",
+                method.name()
+            );
+        }
+        let (y, z) = (dae.last().unwrap().1, ode.last().unwrap().1);
+        for (a, b) in y.iter().zip(z) {
+            assert_relative_eq!(*a, *b, max_relative = 1e-6);
+        }
+        assert_relative_eq!(y[0], 0.7158270687, max_relative = 1e-7);
+    }
+}
+
+#[test]
+fn the_error_follows_the_tolerance_on_a_stiff_problem() {
+    // Prothero–Robinson depends on t. Its stiff component is slaved to sin t: both methods are
+    // stiffly accurate, so its end value keeps its accuracy at every tolerance (no order
+    // reduction at the step's end: Hairer & Wanner, sec. IV.15). The quadrature is the
+    // smooth part the error control must follow: its error at t = 10 stays within the
+    // tolerance and falls with it. References: sin 10 and 1 − cos 10.
+    for (method, stiff_accuracy) in METHODS {
+        let mut previous = f64::INFINITY;
+        for tol in [1e-4, 1e-6, 1e-8, 1e-10] {
+            let o = Options::adaptive(0.0, 10.0, tol, tol);
+            let y = solve(method, &ProtheroRobinson, &[0.0, 0.0], o)
+                .last()
+                .unwrap()
+                .1
+                .to_vec();
+            let stiff = (y[0] - 10f64.sin()).abs();
+            assert!(
+                stiff < stiff_accuracy,
+                "{} tol {tol}: stiff {stiff:e}",
+                method.name()
+            );
+            let smooth = (y[1] - (1.0 - 10f64.cos())).abs();
+            assert!(
+                smooth < tol,
+                "{} tol {tol}: quadrature {smooth:e}",
+                method.name()
+            );
+            assert!(
+                smooth < previous / 10.0,
+                "{} tol {tol}: {smooth:e}",
+                method.name()
+            );
+            previous = smooth;
+        }
+    }
+}
+
+#[test]
+fn a_sparse_stiff_system_goes_through_the_sparse_lu() {
+    // 400 unknowns, 1198 Jacobian entries: faer's sparse LU (Radau's complex system as a real
+    // one of order 800). The first sine mode decays as exp(λ₁t), λ₁ = −4k·sin²(π/(2(n+1)));
+    // the stiffest mode's h·λ reaches −4k·h ≈ −1e4.
+    let (n, k) = (400, 1e4);
+    let u0: Vec<f64> = (1..=n)
+        .map(|i| (std::f64::consts::PI * i as f64 / (n + 1) as f64).sin())
+        .collect();
+    let lambda = -4.0 * k * (std::f64::consts::PI / (2 * (n + 1)) as f64).sin().powi(2);
+    for (method, _) in METHODS {
+        let s = solve(
+            method,
+            &Heat { n, k },
+            &u0,
+            Options::adaptive(0.0, 1.0, 1e-8, 1e-10),
+        );
+        for (got, start) in s.last().unwrap().1.iter().zip(&u0) {
+            let want = start * lambda.exp();
+            assert!(
+                (got - want).abs() < 1e-8,
+                "{}: {got} vs {want}",
+                method.name()
+            );
+        }
+        assert_eq!(s.stats.matrix_order, n);
+    }
+}
+
+#[test]
+fn a_fixed_step_is_refused_with_the_reason() {
+    for (method, _) in METHODS {
+        let f = method
+            .solve_observed(
+                &Robertson,
+                &[1.0, 0.0, 0.0],
+                &[Mode(0)],
+                Options::fixed(0.0, 1.0, 1e-3),
+                &mut |_| {},
+            )
+            .unwrap_err();
+        assert_eq!(
+            f.error.to_string(),
+            format!(
+                "{} cannot integrate this problem: it takes adaptive steps only: give \
+                 tolerances, not a fixed step",
+                method.name()
+            )
+        );
+    }
+}
