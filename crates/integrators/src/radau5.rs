@@ -613,6 +613,8 @@ impl Radau5 {
         self.erracc = err.max(1e-2);
         self.accept(h)?;
         if self.last {
+            // The end exactly, whatever the rounding of t + (t_stop − t).
+            self.state.t = t_stop;
             // RADCOR returns with H = HOPT; f at the end is evaluated only if stepping on.
             self.state.h = self.hopt;
             self.f0_known = false;
