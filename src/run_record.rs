@@ -138,10 +138,50 @@ pub struct Integrated {
     /// `auto`'s switches of method: time (s), the method switched to, and the estimate h·ρ̂
     /// that decided it (empty for the other solvers).
     pub method_switches: Vec<MethodSwitch>,
+    /// The stiffness along the run, summarised (rigs; `None` where it is not computed).
+    pub stiffness: Option<StiffnessSummary>,
     /// The decaying mode at the start that an explicit method's fixed step amplifies
     /// (`lambda_re`, `lambda_im` in 1/s, `h` in s, `amplification` |R(hλ)|), if any: the run
     /// is then at least `inaccurate`.
     pub instability: Option<Instability>,
+}
+
+/// The stiffness along a run, `h·ρ` at its recorded points (the step that reached each
+/// point times the spectral radius of the Jacobian there), summarised for `summary.json`.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct StiffnessSummary {
+    /// The points measured.
+    pub points: usize,
+    /// The largest `h·ρ`, and where.
+    pub max_h_rho: f64,
+    /// Time of the largest `h·ρ`, s.
+    pub t_at_max: f64,
+    /// The median `h·ρ`.
+    pub median_h_rho: f64,
+    /// The largest spectral radius ρ, 1/s.
+    pub max_rho: f64,
+}
+
+impl StiffnessSummary {
+    /// The summary of `points`; `None` for none.
+    pub fn of(points: &[friction_systems::StiffnessPoint]) -> Option<StiffnessSummary> {
+        let top = points.iter().max_by(|a, b| a.h_rho.total_cmp(&b.h_rho))?;
+        let mut values: Vec<f64> = points.iter().map(|p| p.h_rho).collect();
+        values.sort_by(f64::total_cmp);
+        let mid = values.len() / 2;
+        let median = if values.len() % 2 == 1 {
+            values[mid]
+        } else {
+            0.5 * (values[mid - 1] + values[mid])
+        };
+        Some(StiffnessSummary {
+            points: points.len(),
+            max_h_rho: top.h_rho,
+            t_at_max: top.t,
+            median_h_rho: median,
+            max_rho: points.iter().map(|p| p.rho).fold(0.0, f64::max),
+        })
+    }
 }
 
 /// The parameters of the scheme that `summary.json` reports: the regularisation width

@@ -3798,3 +3798,44 @@ fn testset_writes_the_end_state_and_the_digits_against_the_reference() {
         assert!(!bad.exists(), "{args:?}");
     }
 }
+
+/// The stiffness along a rig's run: `h·ρ` at its recorded points in `stiffness.csv`, drawn,
+/// and summarised in `summary.json`. On LuGre at σ0 = 1e5, Dormand–Prince's steps stay near its
+/// stability boundary (h·ρ ≈ 3.3: it is stability-limited), while Radau IIA's go far beyond it.
+#[test]
+fn simulate_measures_the_stiffness_along_a_rig_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut max = BTreeMap::new();
+    for solver in ["dopri5", "radau5"] {
+        let out = dir.path().join(solver);
+        let o = friction_lab(&[
+            "simulate",
+            "belt",
+            "--model",
+            "lugre",
+            "--set",
+            "sigma0=1e5",
+            "--solver",
+            solver,
+            "--t-end",
+            "5",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        let csv = std::fs::read_to_string(out.join("stiffness.csv")).unwrap();
+        assert!(csv.starts_with("t,h,rho,h_rho\n"), "{csv}");
+        assert!(out.join("stiffness.png").exists() && out.join("stiffness.svg").exists());
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
+                .unwrap();
+        let s = &json["stiffness"];
+        assert_eq!(
+            s["points"].as_u64().unwrap() as usize,
+            csv.lines().count() - 1
+        );
+        max.insert(solver, s["max_h_rho"].as_f64().unwrap());
+    }
+    assert!(max["dopri5"] > 2.0 && max["dopri5"] < 6.0, "{max:?}");
+    assert!(max["radau5"] > 10.0, "{max:?}");
+}

@@ -6,11 +6,13 @@ use crate::artifacts::{Artifacts, Made};
 use crate::error::AppError;
 use crate::laws::ModelChoice;
 use crate::options::{LimitArgs, ModelOptions, SchemeArgs, SchemeName};
-use crate::plot::{Corner, Marker, Plot, Series, BLUE};
+use crate::output::{Cell, Table};
+use crate::plot::{Corner, Marker, Plot, Series, BLUE, RED};
 use crate::progress::Progress;
 use crate::ranges;
 use crate::run_record::{
-    event_counts, scheme_parameters, Integrated, RunRecord, RunSetup, RunSummary, RIG_BODY,
+    event_counts, scheme_parameters, Integrated, RunRecord, RunSetup, RunSummary, StiffnessSummary,
+    RIG_BODY,
 };
 use crate::trajectory::{Trajectory, TrajectoryAs};
 use crate::warnings::{coarse_step_warning, failure_warnings, stiffness_warning, unread_warnings};
@@ -329,6 +331,7 @@ fn rig_record(outcome: &Outcome, setup: RunSetup, has_state: bool) -> RunRecord 
         loop_area: outcome.loop_area,
         stiffness_detected_at: outcome.stiffness_detected_at,
         method_switches: outcome.method_switches.clone(),
+        stiffness: StiffnessSummary::of(&outcome.stiffness),
         instability: outcome.instability,
     };
     RunRecord {
@@ -433,6 +436,48 @@ fn figures(o: &Outcome, name: &str) -> Vec<(&'static str, Plot)> {
         .collect()
 }
 
+/// `log10(h·ρ)` against t, with Dormand–Prince's stability boundary on the negative real axis
+/// (h·ρ ≈ 3.3) as a line: above it an explicit step of that size is unstable on the stiffest
+/// mode.
+fn stiffness_plot(o: &Outcome, name: &str) -> Plot {
+    let points: Vec<(f64, f64)> = (o.stiffness.iter())
+        .filter(|p| p.h_rho > 0.0)
+        .map(|p| (p.t, p.h_rho.log10()))
+        .collect();
+    let (t0, t1) = (
+        points.first().map_or(0.0, |p| p.0),
+        points.last().map_or(0.0, |p| p.0),
+    );
+    let boundary = DOPRI5_BOUNDARY.log10();
+    Plot {
+        title: format!("{name}: stiffness along the run"),
+        x_label: "time t (s)".into(),
+        y_label: "log10(h·ρ), h the step, ρ the spectral radius of ∂f/∂y".into(),
+        series: vec![
+            Series {
+                label: Some("h·ρ at the recorded points".into()),
+                points,
+                color: BLUE,
+                width: 2,
+                marker: Marker::None,
+            },
+            Series {
+                label: Some("dopri5's stability boundary, 3.3".into()),
+                points: vec![(t0, boundary), (t1, boundary)],
+                color: RED,
+                width: 1,
+                marker: Marker::None,
+            },
+        ],
+        legend: Corner::default(),
+        log: false,
+    }
+}
+
+/// Dormand–Prince's stability boundary on the negative real axis (Hairer & Wanner, *Solving
+/// ODEs I*, Fig. IV.2.1): about 3.3.
+const DOPRI5_BOUNDARY: f64 = 3.3;
+
 /// Runs `simulate` on a rig: its files in memory, its trajectory as the file or as columns
 /// (a chain or a system file is [`crate::commands::system::make`]).
 pub fn make_rig(
@@ -448,7 +493,7 @@ pub fn make_rig(
     let method = spec.switching.method(spec.solver);
     let what = format!("{} {model} {method}", spec.scenario);
     let bar = Progress::time(t_end, &what);
-    let outcome = scenarios::run(&spec, &mut |t| {
+    let outcome = scenarios::run_measuring_stiffness(&spec, &mut |t| {
         if t_end > 0.0 {
             bar.at(t);
         }
@@ -465,6 +510,20 @@ pub fn make_rig(
     let mut files = Artifacts::default();
     for (stem, p) in figures(&outcome, &name) {
         files.add_plot(&args.out.join(stem), &p)?;
+    }
+    if !outcome.stiffness.is_empty() {
+        let path = args.out.join("stiffness.csv");
+        let mut table = Table::new(&["t", "h", "rho", "h_rho"]);
+        for p in &outcome.stiffness {
+            table
+                .rows
+                .push([p.t, p.h, p.rho, p.h_rho].map(Cell::Num).to_vec());
+        }
+        files.add(path.clone(), table.to_csv(&path)?);
+        files.add_plot(
+            &args.out.join("stiffness"),
+            &stiffness_plot(&outcome, &name),
+        )?;
     }
     let mut parameters = model.parameters_read(&spec.friction);
     for &p in spec.scenario.parameters() {

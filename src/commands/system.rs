@@ -452,6 +452,7 @@ pub fn make(args: &SimulateArgs, trajectory_as: TrajectoryAs) -> Result<Made, Ap
         loop_area: None,
         stiffness_detected_at: run.solution.stiffness_detected_at,
         method_switches: run.solution.method_switches.clone(),
+        stiffness: None,
         instability: run.instability(&scheme, step),
     };
     let record = RunRecord {

@@ -40,7 +40,7 @@ pub use energy::EnergyBalance;
 pub use hybrid::FrictionSystem;
 pub use layout::Layout;
 pub use moreau_jean::MoreauJean;
-pub use run::{simulate, BodyState, ContactEvent, Run};
+pub use run::{simulate, BodyState, ContactEvent, Run, StiffnessPoint};
 pub use scheme::Scheme;
 pub use switching::{mode_name, Switching, SLIP_NEGATIVE, SLIP_POSITIVE, STICK};
 pub use system::{Anchor, Body, Contact, End, Force, Profile, Spring, System, SystemError};

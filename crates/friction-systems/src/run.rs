@@ -62,6 +62,20 @@ pub struct Run<'a> {
     pub wall_time_s: f64,
 }
 
+/// The stiffness at one recorded point of a run ([`Run::stiffness`]).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct StiffnessPoint {
+    /// Time, s.
+    pub t: f64,
+    /// The step that reached it, s.
+    pub h: f64,
+    /// The spectral radius of the Jacobian there, 1/s.
+    pub rho: f64,
+    /// `h·ρ`: beyond about 3.3 an explicit Runge–Kutta step of that size would be unstable on
+    /// the stiffest mode (Dormand–Prince's boundary on the negative real axis).
+    pub h_rho: f64,
+}
+
 /// Integrates `system` by `scheme` with `options` from the bodies' initial states; `observe`
 /// is told the time after every step.
 pub fn simulate<'a>(
@@ -221,6 +235,44 @@ impl Run<'_> {
         (0..states)
             .filter_map(at)
             .max_by(|a, b| a.amplification.total_cmp(&b.amplification))
+    }
+
+    /// The stiffness along the run: at each recorded point (at most [`CHECK_BUDGET`]/n³ of
+    /// them, evenly spread), the step size h of the step that reached it, the spectral radius
+    /// ρ of the Jacobian there ([`spectral_radius`]) and `h·ρ`. `step_ends` are the times the
+    /// driver reached after each step, in order (what `simulate`'s observer is told). Empty
+    /// above the size whose eigenvalues are computed, or for a differential–algebraic problem.
+    ///
+    /// [`CHECK_BUDGET`]: integrators::stability::CHECK_BUDGET
+    /// [`spectral_radius`]: integrators::stability::spectral_radius
+    pub fn stiffness(&self, step_ends: &[f64]) -> Vec<StiffnessPoint> {
+        use integrators::stability::{spectral_radius, CHECK_BUDGET};
+        let s = &self.solution;
+        let n = integrators::OdeProblem::dim(&self.problem).max(1);
+        if s.is_empty() || step_ends.is_empty() {
+            return Vec::new();
+        }
+        let points = (CHECK_BUDGET / n.pow(3)).clamp(1, s.len());
+        let mut out = Vec::with_capacity(points);
+        for k in 0..points {
+            let i = k * (s.len() - 1) / (points - 1).max(1);
+            let t = s.t[i];
+            // The step (step_ends[j − 1], step_ends[j]] that reached t; the first from t0.
+            let j = step_ends
+                .partition_point(|&e| e < t)
+                .min(step_ends.len() - 1);
+            let start = if j == 0 { self.t0 } else { step_ends[j - 1] };
+            let h = step_ends[j] - start;
+            if let Some(rho) = spectral_radius(&self.problem, t, s.y_at(i), s.modes_at(i)) {
+                out.push(StiffnessPoint {
+                    t,
+                    h,
+                    rho,
+                    h_rho: h * rho,
+                });
+            }
+        }
+        out
     }
 
     /// The energy balance from the start to the last recorded point.

@@ -120,6 +120,30 @@ fn jacobian(problem: &dyn OdeProblem, t: f64, y: &[f64], modes: &[Mode]) -> Opti
     Some(j)
 }
 
+/// The spectral radius `ρ = max |λ|` of the Jacobian of `problem` at (t, y) in `modes` (over
+/// its unknowns other than the quadratures, the mass matrix divided out), from its eigenvalues
+/// (Schur): `h·ρ` against a method's stability boundary says how stiff a step of size h is
+/// (Hairer & Wanner, *Solving ODEs II*, sec. IV.2). `None` for a differential–algebraic
+/// problem, a non-finite Jacobian, an iteration that does not converge, and above
+/// [`MAX_CHECKED_DIM`] unknowns.
+pub fn spectral_radius(problem: &dyn OdeProblem, t: f64, y: &[f64], modes: &[Mode]) -> Option<f64> {
+    if problem.dim() > MAX_CHECKED_DIM {
+        return None;
+    }
+    let j = jacobian(problem, t, y, modes)?;
+    if !j.iter().all(|v| v.is_finite()) {
+        return None;
+    }
+    let schur = nalgebra::linalg::Schur::try_new(j, f64::EPSILON, SCHUR_ITERATIONS)?;
+    Some(
+        schur
+            .complex_eigenvalues()
+            .iter()
+            .map(|l| l.re.hypot(l.im))
+            .fold(0.0, f64::max),
+    )
+}
+
 /// The decaying mode of `problem` at (t, y) in `modes` that the fixed step `h` of the explicit
 /// method with stability polynomial `coefficients` amplifies most, if any: over the
 /// eigenvalues λ of the Jacobian with Re λ ≤ 0, the largest `|R(hλ)|` above 1 — a mode the

@@ -158,3 +158,15 @@ fn a_fixed_step_is_refused_with_the_reason() {
         );
     }
 }
+
+#[test]
+fn the_spectral_radius_is_the_largest_eigenvalue_modulus() {
+    // The heat equation on 3 points, k = 1: eigenvalues −4·sin²(jπ/8), j = 1..3; the largest
+    // modulus is 4·sin²(3π/8) = 2 + √2.
+    let rho = integrators::stability::spectral_radius(&Heat { n: 3, k: 1.0 }, 0.0, &[0.0; 3], &[])
+        .unwrap();
+    assert!((rho - (2.0 + 2f64.sqrt())).abs() < 1e-12, "{rho}");
+    // An index-1 DAE has no ODE Jacobian to measure.
+    let dae = integrators::stability::spectral_radius(&RobertsonDae, 0.0, &[1.0, 0.0, 0.0], &[]);
+    assert_eq!(dae, None);
+}

@@ -31,5 +31,7 @@ pub mod study_run;
 pub mod verdict;
 
 pub use params::ScenarioParams;
-pub use run::{run, Law, Limits, Outcome, Row, RunSpec, ScenarioError, SwitchingKind};
+pub use run::{
+    run, run_measuring_stiffness, Law, Limits, Outcome, Row, RunSpec, ScenarioError, SwitchingKind,
+};
 pub use scenario::Scenario;

@@ -346,6 +346,9 @@ pub struct Outcome {
     pub stiffness_detected_at: Option<f64>,
     /// `auto`'s switches of method, in order.
     pub method_switches: Vec<integrators::MethodSwitch>,
+    /// The stiffness along the run, `h·ρ` at the recorded points (body scenarios run by
+    /// [`run_measuring_stiffness`]; empty otherwise): [`friction_systems::Run::stiffness`].
+    pub stiffness: Vec<friction_systems::StiffnessPoint>,
     /// The body's shortest natural period `2π·√(m/k)` (body scenarios held by a spring;
     /// `None` otherwise): the scale a fixed step is judged against.
     pub time_scale: Option<f64>,
@@ -463,11 +466,19 @@ fn run_body(
     spec: &RunSpec,
     model: Arc<dyn FrictionModel>,
     t_end: f64,
+    measure_stiffness: bool,
     observe: &mut dyn FnMut(f64),
 ) -> Result<Outcome, ScenarioError> {
     let system = body_system(spec, model);
     let scheme = spec.switching.scheme(spec.solver, &spec.friction);
-    let run = friction_systems::simulate(&system, scheme, options(spec, t_end), observe)?;
+    let mut step_ends = Vec::new();
+    let run = friction_systems::simulate(&system, scheme, options(spec, t_end), &mut |t| {
+        if measure_stiffness {
+            step_ends.push(t);
+        }
+        observe(t)
+    })?;
+    let stiffness = run.stiffness(&step_ends);
     let instability = run.instability(&scheme, spec.step);
     let row = |b: friction_systems::BodyState| Row {
         t: b.t,
@@ -509,6 +520,7 @@ fn run_body(
         wall_time_s: run.wall_time_s,
         stiffness_detected_at: run.solution.stiffness_detected_at,
         method_switches: run.solution.method_switches.clone(),
+        stiffness,
         time_scale: run.problem.time_scale(),
         instability,
     })
@@ -581,6 +593,7 @@ pub fn run_motion(
         wall_time_s,
         stiffness_detected_at: s.stiffness_detected_at,
         method_switches: s.method_switches.clone(),
+        stiffness: Vec::new(),
         time_scale: None,
         instability: None,
     }
@@ -602,6 +615,7 @@ fn run_sweep(spec: &RunSpec, model: &dyn FrictionModel, observe: &mut dyn FnMut(
         wall_time_s: 0.0,
         stiffness_detected_at: None,
         method_switches: Vec::new(),
+        stiffness: Vec::new(),
         time_scale: None,
         instability: None,
     };
@@ -642,6 +656,24 @@ pub fn settling_time(model: &dyn FrictionModel, v: f64) -> f64 {
 
 /// Runs the simulation `spec` describes; `observe` is told the time after each step.
 pub fn run(spec: &RunSpec, observe: &mut dyn FnMut(f64)) -> Result<Outcome, ScenarioError> {
+    run_as(spec, false, observe)
+}
+
+/// As [`run`], measuring besides the stiffness along the run ([`Outcome::stiffness`]: h·ρ at
+/// every recorded point of a body scenario, an eigenvalue problem a point), as `simulate`
+/// reports it; the studies and sweeps, which run many times, do not pay for it.
+pub fn run_measuring_stiffness(
+    spec: &RunSpec,
+    observe: &mut dyn FnMut(f64),
+) -> Result<Outcome, ScenarioError> {
+    run_as(spec, true, observe)
+}
+
+fn run_as(
+    spec: &RunSpec,
+    stiffness: bool,
+    observe: &mut dyn FnMut(f64),
+) -> Result<Outcome, ScenarioError> {
     validate(spec)?;
     let model = spec.law.build(&spec.friction)?;
     let t_end = spec
@@ -678,6 +710,6 @@ pub fn run(spec: &RunSpec, observe: &mut dyn FnMut(f64)) -> Result<Outcome, Scen
             t_end,
             observe,
         ),
-        _ => run_body(spec, model, t_end, observe)?,
+        _ => run_body(spec, model, t_end, stiffness, observe)?,
     })
 }
