@@ -615,9 +615,11 @@ impl Radau5 {
         if self.last {
             // The end exactly, whatever the rounding of t + (t_stop − t).
             self.state.t = t_stop;
-            // RADCOR returns with H = HOPT; f at the end is evaluated only if stepping on.
+            // RADCOR returns with H = HOPT; f at the end is evaluated only if stepping on
+            // (an end moved later), and then with a new Jacobian and factorisations for it.
             self.state.h = self.hopt;
             self.f0_known = false;
+            self.next = Next::Jacobian;
             return Ok(Attempt::Accepted);
         }
         ode.rhs(self.state.t, &self.state.y, &mut self.f0, &mut self.stats);
