@@ -16,7 +16,9 @@ references the Test Set for IVP Solvers 2.4 publishes) and every tolerance, each
 analytic Jacobian) timed around the call. rtol = atol = tol, but Robertson's atol = 1e-14·tol
 (its second species is of order 1e-13 at t = 1e11). Writes `stiff-testset.csv` (problem,
 solver, tol, scd, median, min and max wall time, evaluations of f) and `stiff-testset.png`
-(scd against median wall time, one panel a problem), and prints a Markdown table.
+(scd against median wall time, one panel a problem), and prints two Markdown tables: scd and
+median ms at each tolerance, and the median ms to reach 5 and 7 digits, interpolated in log time
+between the two runs that bracket them (— where no two do).
 """
 
 import argparse
@@ -110,6 +112,17 @@ PROBLEMS = {
 }
 
 
+def time_to_reach(rows, problem, solver, target):
+    """Median wall time to reach `target` digits, log-interpolated between bracketing runs."""
+    pts = sorted((r["scd"], r["median_s"]) for r in rows
+                 if r["problem"] == problem and r["solver"] == solver and r["scd"] is not None)
+    for (s1, t1), (s2, t2) in zip(pts, pts[1:]):
+        if s1 <= target <= s2 and s2 > s1:
+            w = (target - s1) / (s2 - s1)
+            return math.exp(math.log(t1) + w * (math.log(t2) - math.log(t1)))
+    return None
+
+
 def scd(y, reference):
     return -math.log10(max(abs((a - r) / r) for a, r in zip(y, reference)))
 
@@ -195,6 +208,15 @@ def main():
                 digits = "failed" if r["scd"] is None else f"{r['scd']:.1f}"
                 cells.append(f"{digits} / {r['median_s'] * 1e3:.2f}")
             print(f"| {problem} | {tol:.0e} | " + " | ".join(cells) + " |")
+    print("\n| problem | scd | " + " | ".join(names) + " |")
+    print("|---|---|" + "---|" * len(names))
+    for problem in PROBLEMS:
+        for target in (5.0, 7.0):
+            cells = []
+            for name in names:
+                t = time_to_reach(rows, problem, name, target)
+                cells.append("—" if t is None else f"{t * 1e3:.2f}")
+            print(f"| {problem} | {target:.0f} | " + " | ".join(cells) + " |")
 
 
 if __name__ == "__main__":

@@ -91,6 +91,9 @@ struct Coefficients {
     u1: f64,
     alph: f64,
     beta: f64,
+    /// The Radau IIA(5) matrix A (Hairer & Wanner, *Solving ODEs II*, Table IV.5.6), for the
+    /// quadratures' stages.
+    a: [[f64; 3]; 3],
 }
 
 impl Coefficients {
@@ -114,26 +117,21 @@ impl Coefficients {
             u1: 1.0 / u1,
             alph: alph / cno,
             beta: beta / cno,
+            a: [
+                [
+                    (88.0 - 7.0 * sq6) / 360.0,
+                    (296.0 - 169.0 * sq6) / 1800.0,
+                    (-2.0 + 3.0 * sq6) / 225.0,
+                ],
+                [
+                    (296.0 + 169.0 * sq6) / 1800.0,
+                    (88.0 + 7.0 * sq6) / 360.0,
+                    (-2.0 - 3.0 * sq6) / 225.0,
+                ],
+                [(16.0 - sq6) / 36.0, (16.0 + sq6) / 36.0, 1.0 / 9.0],
+            ],
         }
     }
-}
-
-/// The Radau IIA(5) matrix A (Hairer & Wanner, *Solving ODEs II*, Table IV.5.6).
-fn radau_matrix() -> [[f64; 3]; 3] {
-    let sq6 = 6f64.sqrt();
-    [
-        [
-            (88.0 - 7.0 * sq6) / 360.0,
-            (296.0 - 169.0 * sq6) / 1800.0,
-            (-2.0 + 3.0 * sq6) / 225.0,
-        ],
-        [
-            (296.0 + 169.0 * sq6) / 1800.0,
-            (88.0 + 7.0 * sq6) / 360.0,
-            (-2.0 - 3.0 * sq6) / 225.0,
-        ],
-        [(16.0 - sq6) / 36.0, (16.0 + sq6) / 36.0, 1.0 / 9.0],
-    ]
 }
 
 /// Radau IIA of order 5 as a method (`radau5`): implicit, adaptive.
@@ -175,6 +173,13 @@ enum Next {
     Step,
 }
 
+/// Where [`Radau5::stage_rhs`] writes.
+#[derive(Clone, Copy)]
+enum Stages {
+    Z,
+    W,
+}
+
 /// What an attempt at a step ended in.
 enum Attempt {
     Accepted,
@@ -207,6 +212,9 @@ pub struct Radau5 {
     est: Vec<f64>,
     scal: Vec<f64>,
     jac: Vec<Entry>,
+    /// ‖J‖∞ of `jac`, and the row sums it is taken from (scratch).
+    jac_norm: f64,
+    row_sums: Vec<f64>,
     /// E1 and E2, factorised.
     systems: RadauSystems,
     next: Next,
@@ -274,6 +282,8 @@ impl Radau5 {
             est: v(),
             scal: v(),
             jac: Vec::new(),
+            jac_norm: 0.0,
+            row_sums: Vec::new(),
             systems: RadauSystems::for_size(dim, dim * dim),
             next: Next::Jacobian,
             first: true,
@@ -300,13 +310,9 @@ impl Radau5 {
     }
 
     /// ‖J‖∞, the largest absolute row sum of the Jacobian held (0 before the first): an upper
-    /// bound of its spectral radius.
+    /// bound of its spectral radius, taken once per Jacobian.
     pub fn jacobian_norm(&self) -> f64 {
-        let mut rows = vec![0.0f64; self.state.y.len()];
-        for &(i, _, v) in &self.jac {
-            rows[i] += v.abs();
-        }
-        rows.into_iter().fold(0.0, f64::max)
+        self.jac_norm
     }
 
     /// SCAL(I) = ATOL + RTOL·|Y(I)|.
@@ -377,19 +383,35 @@ impl Radau5 {
         }
     }
 
+    /// f at the three stages, `f(t + c_i·h, y + Z_i)`, into Z itself (the Newton iteration,
+    /// as RADCOR overwrites Z1..Z3) or into F1..F3.
+    fn stage_rhs(&mut self, ode: &Ode, into: Stages) {
+        let (t, h, k) = (self.state.t, self.state.h, self.k);
+        for (stage, c) in [k.c1, k.c2, 1.0].into_iter().enumerate() {
+            for (a, (y, z)) in self
+                .arg
+                .iter_mut()
+                .zip(self.state.y.iter().zip(&self.z[stage]))
+            {
+                *a = y + z;
+            }
+            // The third node is the step's end, x + h as RADCOR writes it (XPH).
+            let tc = if stage == 2 { t + h } else { t + c * h };
+            let out = match into {
+                Stages::Z => &mut self.z[stage],
+                Stages::W => &mut self.w[stage],
+            };
+            ode.rhs(tc, &self.arg, out, &mut self.stats);
+        }
+    }
+
     /// One simplified Newton iteration (label 40 to the convergence test): the three stage
     /// values of f, transformed by T⁻¹, the real and complex solves (SLVRAD), and the
     /// increments' norm DYNO.
     fn newton_iteration(&mut self, ode: &Ode) -> f64 {
-        let (t, h, n) = (self.state.t, self.state.h, self.state.y.len());
+        let (h, n) = (self.state.h, self.state.y.len());
         let k = self.k;
-        for (stage, c) in [k.c1, k.c2, 1.0].into_iter().enumerate() {
-            for i in 0..n {
-                self.arg[i] = self.state.y[i] + self.z[stage][i];
-            }
-            let tc = if stage == 2 { t + h } else { t + c * h };
-            ode.rhs(tc, &self.arg, &mut self.z[stage], &mut self.stats);
-        }
+        self.stage_rhs(ode, Stages::Z);
         let [z1, z2, z3] = &mut self.z;
         let [f1, f2, f3] = &self.w;
         let (fac1, alphn, betan) = (k.u1 / h, k.alph / h, k.beta / h);
@@ -437,19 +459,12 @@ impl Radau5 {
     /// The quadratures' stage increments from the converged stages, `M_q·Z_q = h·A·f_q(Y)`,
     /// with A the Radau IIA(5) matrix (Hairer & Wanner, *Solving ODEs II*, Table IV.5.6).
     fn quadrature_stages(&mut self, ode: &Ode) {
-        let (t, h, n) = (self.state.t, self.state.h, self.state.y.len());
+        let (h, n) = (self.state.h, self.state.y.len());
         let q = n - ode.problem.quadratures();
-        let k = self.k;
         // f at the three stages, into F1..F3 (spent once Newton has converged).
-        for (stage, c) in [k.c1, k.c2, 1.0].into_iter().enumerate() {
-            for i in 0..n {
-                self.arg[i] = self.state.y[i] + self.z[stage][i];
-            }
-            let tc = if stage == 2 { t + h } else { t + c * h };
-            ode.rhs(tc, &self.arg, &mut self.w[stage], &mut self.stats);
-        }
+        self.stage_rhs(ode, Stages::W);
         let mass = ode.problem.mass();
-        let a = radau_matrix();
+        let a = &self.k.a;
         for i in q..n {
             let m = mass.map_or(1.0, |m| m[i]);
             for (row, z) in a.iter().zip(&mut self.z) {
@@ -734,6 +749,12 @@ impl Stepper for Radau5 {
                 Next::Jacobian => {
                     let (t, y) = (self.state.t, &self.state.y);
                     newton::jacobian(ode, t, y, &self.f0, &mut self.jac, &mut self.stats);
+                    self.row_sums.clear();
+                    self.row_sums.resize(y.len(), 0.0);
+                    for &(i, _, v) in &self.jac {
+                        self.row_sums[i] += v.abs();
+                    }
+                    self.jac_norm = self.row_sums.iter().fold(0.0, |m, r| r.max(m));
                     self.caljac = true;
                     self.next = Next::Factorize;
                 }

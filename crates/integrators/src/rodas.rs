@@ -136,6 +136,9 @@ pub struct Rodas {
     /// CONT of the last accepted step: y at its start, at its end, and the two corrections.
     cont: [Vec<f64>; 4],
     jac: Vec<Entry>,
+    /// Whether the problem has quadratures and the Jacobian left their rows out (then each
+    /// stage completes them: `complete_quadratures`), decided once per Jacobian.
+    quadrature_rows_missing: bool,
     system: RealSystem,
     /// HOUT: the size of the last accepted step, which CONTRO divides by.
     hout: f64,
@@ -186,6 +189,7 @@ impl Rodas {
             ak: [v(), v(), v(), v(), v(), v()],
             cont: [v(), v(), v(), v()],
             jac: Vec::new(),
+            quadrature_rows_missing: false,
             system: RealSystem::for_size(dim, dim * dim),
             hout: 0.0,
             fresh: true,
@@ -205,6 +209,8 @@ impl Rodas {
         let (t, y) = (self.state.t, &self.state.y);
         ode.rhs(t, y, &mut self.dy1, &mut self.stats);
         newton::jacobian(ode, t, y, &self.dy1, &mut self.jac, &mut self.stats);
+        let q = y.len() - ode.problem.quadratures();
+        self.quadrature_rows_missing = q < y.len() && self.jac.iter().all(|&(i, _, _)| i < q);
         if !self.system.suits(y.len(), self.jac.len()) {
             self.system = RealSystem::for_size(y.len(), self.jac.len());
         }
@@ -244,7 +250,7 @@ impl Rodas {
     fn complete_quadratures(&mut self, ode: &Ode, s: usize) {
         let n = self.state.y.len();
         let q = n - ode.problem.quadratures();
-        if q == n || self.jac.iter().any(|&(i, _, _)| i >= q) {
+        if !self.quadrature_rows_missing {
             return;
         }
         let ak = &self.ak[s];
