@@ -3799,6 +3799,120 @@ fn testset_writes_the_end_state_and_the_digits_against_the_reference() {
     }
 }
 
+/// `work-precision --testset`: the test set's problems as a study's case, each run measured by
+/// its significant correct digits against the published reference, with the same counts as the
+/// `testset` command's single run.
+#[test]
+fn work_precision_takes_a_problem_of_the_stiff_test_set() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("wp");
+    let o = friction_lab(&[
+        "work-precision",
+        "--testset",
+        "van-der-pol",
+        "--solvers",
+        "radau5,rodas",
+        "--tol-list",
+        "1e-4,1e-7",
+        "--repeats",
+        "2",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    for file in [
+        "work-precision.csv",
+        "work-precision-timing.csv",
+        "work-precision.json",
+        "work-precision.png",
+        "work-precision.svg",
+        "work-precision-timing.png",
+        "work-precision-timing.svg",
+    ] {
+        assert!(out.join(file).exists(), "{file}");
+    }
+    let csv = std::fs::read_to_string(out.join("work-precision.csv")).unwrap();
+    let rows: Vec<Vec<&str>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').collect())
+        .collect();
+    assert!(
+        csv.starts_with("solver,tol,rtol,atol,status,scd,work,steps,"),
+        "{csv}"
+    );
+    assert_eq!(rows.len(), 4, "{csv}");
+    for pair in rows.chunks(2) {
+        let scd = |r: &[&str]| r[5].parse::<f64>().unwrap();
+        assert_eq!((pair[0][4], pair[1][4]), ("ok", "ok"), "{csv}");
+        // Three decades of tolerance give at least two more correct digits.
+        assert!(scd(&pair[1]) > scd(&pair[0]) + 2.0, "{csv}");
+    }
+    let timing = std::fs::read_to_string(out.join("work-precision-timing.csv")).unwrap();
+    assert!(
+        timing
+            .lines()
+            .skip(1)
+            .all(|l| l.split(',').nth(2) == Some("2")),
+        "{timing}"
+    );
+    // The single run of `testset` at 1e-7 gives the study's counts and digits.
+    let single = dir.path().join("single");
+    let o = friction_lab(&[
+        "testset",
+        "van-der-pol",
+        "--solver",
+        "rodas",
+        "--rtol",
+        "1e-7",
+        "--atol",
+        "1e-7",
+        "--out",
+        single.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(single.join("summary.json")).unwrap())
+            .unwrap();
+    let study: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("work-precision.json")).unwrap())
+            .unwrap();
+    let run = &study["runs"][3];
+    assert_eq!(run["solver"], "rodas");
+    assert_eq!(run["scd"], json["stats"]["scd"]);
+    assert_eq!(run["stats"]["rhs_evals"], json["stats"]["rhs_evals"]);
+    assert_eq!(study["problem"], "van-der-pol");
+    // Bad input: exit 2, nothing written, the option named.
+    for (args, message) in [
+        (
+            vec!["work-precision", "--testset", "e5"],
+            "unknown test problem `e5`",
+        ),
+        (
+            vec!["work-precision", "--testset", "hires", "--solvers", "rk4"],
+            "option `--solvers` names `rk4`, which takes a fixed step",
+        ),
+        (
+            vec!["work-precision", "--testset", "hires", "--model", "CS"],
+            "cannot be used with",
+        ),
+        (
+            vec![
+                "work-precision",
+                "--testset",
+                "hires",
+                "--tol-list",
+                "1e-3,1e-2",
+            ],
+            "option `tol-list`",
+        ),
+        (vec!["work-precision"], "the study needs a problem"),
+    ] {
+        let text = rejected(&args);
+        assert!(text.contains(message), "{args:?}: {text}");
+    }
+}
+
 /// The stiffness along a rig's run: `h·ρ` at its recorded points in `stiffness.csv`, drawn,
 /// and summarised in `summary.json`. On LuGre at σ0 = 1e5, Dormand–Prince's steps stay near its
 /// stability boundary (h·ρ ≈ 3.3: it is stability-limited), while Radau IIA's go far beyond it.

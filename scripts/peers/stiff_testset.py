@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""The standard stiff test set run by friction-lab's solvers and by scipy's, side by side:
-significant correct digits (scd) against wall time, the IVP test set's plot.
+"""The standard stiff test set and two stiff friction cases run by friction-lab's solvers and by
+scipy's, side by side: significant correct digits (scd) against wall time, the IVP test set's
+plot.
 
 Not part of the test suite (scipy and matplotlib are peers, not dependencies). Run after a
 release build, with an interpreter that has numpy, scipy and matplotlib:
@@ -14,7 +15,14 @@ references the Test Set for IVP Solvers 2.4 publishes) and every tolerance, each
 `--repeats` times: friction-lab's through `friction-lab testset` (its summary.json's
 `wall_time_s`, the solve alone, and `scd`), scipy's `solve_ivp` (Radau, BDF, LSODA, with the
 analytic Jacobian) timed around the call. rtol = atol = tol, but Robertson's atol = 1e-14·tol
-(its second species is of order 1e-13 at t = 1e11). Writes `stiff-testset.csv` (problem,
+(its second species is of order 1e-13 at t = 1e11).
+
+The friction cases (friction_cases.py: the belt with LuGre at σ0 = 1e5, and with CS regularised
+at ε = 1e-4) run through `friction-lab simulate` (its final.csv and summary.json) and through
+scipy on the same equations written in Python. Their reference is friction-lab's radau5 at
+rtol = atol = 1e-12, checked against scipy's Radau at 1e-12 (the script stops if the two agree
+to fewer than 8 digits: the equations would differ); their scd is that of x and v at the end.
+Writes `stiff-testset.csv` (problem,
 solver, tol, scd, median, min and max wall time, evaluations of f) and `stiff-testset.png`
 (scd against median wall time, one panel a problem), and prints two Markdown tables: scd and
 median ms at each tolerance, and the median ms to reach 5 and 7 digits, interpolated in log time
@@ -32,6 +40,8 @@ import time
 
 import numpy as np
 from scipy.integrate import solve_ivp
+
+import friction_cases
 
 
 def vdp(t, y):
@@ -124,10 +134,26 @@ def time_to_reach(rows, problem, solver, target):
 
 
 def scd(y, reference):
-    return -math.log10(max(abs((a - r) / r) for a, r in zip(y, reference)))
+    worst = max(abs((a - r) / r) for a, r in zip(y, reference))
+    return math.inf if worst == 0 else -math.log10(worst)
+
+
+def simulate(binary, problem, solver, rtol, atol, out):
+    """A friction case by `friction-lab simulate`: (x, v) at the end, wall time, evaluations."""
+    subprocess.run([binary, "simulate", *friction_cases.CASES[problem][4], "--solver", solver,
+                    "--rtol", str(rtol), "--atol", str(atol), "--points", "2", "--out", out],
+                   check=True, capture_output=True)
+    with open(os.path.join(out, "summary.json")) as f:
+        s = json.load(f)
+    with open(os.path.join(out, "final.csv")) as f:
+        body = next(csv.DictReader(f))
+    return [float(body["x"]), float(body["v"])], s["wall_time_s"], s["stats"]["rhs_evals"]
 
 
 def run_friction_lab(binary, problem, solver, rtol, atol, out):
+    if problem in friction_cases.CASES:
+        end, t, evals = simulate(binary, problem, solver, rtol, atol, out)
+        return scd(end, PROBLEMS[problem][4]), t, evals
     subprocess.run([binary, "testset", problem, "--solver", solver, "--rtol", str(rtol),
                     "--atol", str(atol), "--out", out], check=True, capture_output=True)
     with open(os.path.join(out, "summary.json")) as f:
@@ -135,14 +161,39 @@ def run_friction_lab(binary, problem, solver, rtol, atol, out):
     return s["stats"]["scd"], s["wall_time_s"], s["stats"]["rhs_evals"]
 
 
-def run_scipy(problem, method, rtol, atol):
-    f, jac, y0, t_end, reference = PROBLEMS[problem]
+def solve_scipy(problem, method, rtol, atol):
+    """scipy's run: the state at the end it compares (x, v for a friction case), or None."""
+    f, jac, y0, t_end, _ = PROBLEMS[problem]
     start = time.perf_counter()
     sol = solve_ivp(f, (0.0, t_end), y0, method=method, rtol=rtol, atol=atol, jac=jac)
     elapsed = time.perf_counter() - start
-    if not sol.success:
-        return None, elapsed, sol.nfev
-    return scd(sol.y[:, -1], reference), elapsed, sol.nfev
+    end = list(sol.y[:, -1]) if sol.success else None
+    if end is not None and problem in friction_cases.CASES:
+        end = end[:2]
+    return end, elapsed, sol.nfev
+
+
+def run_scipy(problem, method, rtol, atol):
+    end, elapsed, nfev = solve_scipy(problem, method, rtol, atol)
+    if end is None:
+        return None, elapsed, nfev
+    return scd(end, PROBLEMS[problem][4]), elapsed, nfev
+
+
+def friction_references(binary, out):
+    """Each friction case's (x, v) at the end by friction-lab's radau5 at 1e-12, checked against
+    scipy's Radau at 1e-12; added to PROBLEMS."""
+    for name, (f, jac, y0, t_end, _) in friction_cases.CASES.items():
+        ours, _, _ = simulate(binary, name, "radau5", 1e-12, 1e-12,
+                              os.path.join(out, "runs", f"{name}-reference"))
+        PROBLEMS[name] = (f, jac, y0, t_end, ours)
+        theirs, _, _ = solve_scipy(name, "Radau", 1e-12, 1e-12)
+        agree = scd(theirs, ours)
+        print(f"{name}: reference (x, v)(t_end) = {ours}; scipy Radau at 1e-12 agrees to "
+              f"{agree:.1f} digits", flush=True)
+        if agree < 8:
+            raise SystemExit(f"{name}: friction-lab and scipy disagree ({agree:.1f} digits): "
+                             "the equations of friction_cases.py differ from friction-lab's")
 
 
 def main():
@@ -153,6 +204,7 @@ def main():
     parser.add_argument("--out", required=True)
     args = parser.parse_args()
     os.makedirs(args.out, exist_ok=True)
+    friction_references(args.friction_lab, args.out)
     ours = ["radau5", "rodas", "auto", "bdf", "esdirk34"]
     theirs = ["Radau", "BDF", "LSODA"]
     rows = []
@@ -182,7 +234,7 @@ def main():
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(2, 2, figsize=(10, 8))
+    fig, axes = plt.subplots(2, 3, figsize=(15, 8))
     for ax, problem in zip(axes.flat, PROBLEMS):
         for name in dict.fromkeys(r["solver"] for r in rows):
             pts = [(r["median_s"], r["scd"]) for r in rows

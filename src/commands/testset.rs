@@ -9,10 +9,10 @@ use crate::options::LimitArgs;
 use crate::ranges;
 use clap::Args;
 use integrators::testset::{self, TestProblem};
-use integrators::{MethodSwitch, Mode, Options, Output, Solution, Solver, StepControl};
+use integrators::{MethodSwitch, Solution, Solver};
+use scenarios::studies::{self, TestRun};
 use serde::Serialize;
 use std::path::PathBuf;
-use std::time::Instant;
 
 /// Options of `testset`.
 #[derive(Args, Debug)]
@@ -113,26 +113,15 @@ pub fn make(args: &TestsetArgs) -> Result<Made, AppError> {
         None => problem.t_end,
     };
     let limits = args.limits.limits()?;
-    let mut options = Options::adaptive(0.0, t_end, rtol, atol);
-    options.step = StepControl::Adaptive { rtol, atol, h0 };
-    options.max_steps = limits.max_steps;
-    options.time_limit = limits.time_limit;
-    options.time_limit_since = limits.time_limit_since;
-    options.output = Output::GridOnly(vec![t_end]);
-    let clock = Instant::now();
-    let result = solver.solve(problem.problem, problem.y0, &[Mode(0)], options);
-    let wall_time_s = clock.elapsed().as_secs_f64();
-    let (solution, failure) = match result {
-        Ok(s) => (s, None),
-        Err(f) => (*f.solution, Some(f.error)),
-    };
+    let run = studies::solve_test_problem(problem, solver, (rtol, atol, h0), t_end, &limits);
+    let scd = run.scd(problem);
+    let TestRun {
+        solution,
+        failure,
+        wall_time_s,
+    } = run;
     let mut files = Artifacts::default();
     files.add(args.out.join("final.csv"), final_csv(&solution));
-    let reached = solution.last().map(|(t, y)| (t, y.to_vec()));
-    let scd = match (&failure, &reached) {
-        (None, Some((t, y))) if *t == problem.t_end => Some(problem.scd(y)),
-        _ => None,
-    };
     files.add_json(
         args.out.join("summary.json"),
         &summary(args, problem, solver, &solution, &failure, scd, wall_time_s),

@@ -2,7 +2,8 @@
 //! at the top, and the guides of fitted orders.
 
 use crate::plot::{Marker, Series, PALETTE};
-use scenarios::studies::{OrderTable, StepKind, StudyRun};
+use scenarios::studies::{OrderTable, StepKind, StudyRun, TestSetRun};
+use scenarios::verdict::Status;
 
 /// The height of the `row`-th row of crosses above the data of a log plot, whose largest value
 /// is `largest`: three times it, then 1.5 times higher for each row, one row per solver with
@@ -11,26 +12,63 @@ pub fn row_at_top(largest: f64, row: i32) -> f64 {
     largest * 3.0 * 1.5f64.powi(row)
 }
 
+/// A run as the per-solver figures draw it: a friction study's [`StudyRun`], a test-set
+/// run ([`TestSetRun`]).
+pub trait DrawnRun {
+    /// The method's label: one series each.
+    fn method(&self) -> &str;
+    /// Whether it failed (it has no error to draw).
+    fn failed(&self) -> bool;
+    /// Whether its result is judged `ok` (drawn as a dot) rather than inaccurate (a cross).
+    fn judged_ok(&self) -> bool;
+}
+
+impl DrawnRun for StudyRun {
+    fn method(&self) -> &str {
+        &self.solver
+    }
+    fn failed(&self) -> bool {
+        self.failure.is_some()
+    }
+    fn judged_ok(&self) -> bool {
+        self.verdict.is_ok()
+    }
+}
+
+/// A test-set run is judged by [`TestSetRun::status`].
+impl DrawnRun for TestSetRun {
+    fn method(&self) -> &str {
+        self.solver
+    }
+    fn failed(&self) -> bool {
+        self.failure.is_some()
+    }
+    fn judged_ok(&self) -> bool {
+        self.status == Status::Ok
+    }
+}
+
 /// One series per solver of the runs `keep` selects, with a dot on every run judged `ok`, a
-/// cross where a run judged inaccurate lies, and, per solver with failed runs, a series of crosses drawn at the top of the plot at their
-/// x, named with their count (a failed run has no error to plot, but it is not left out), each
-/// such solver in a row of its own ([`row_at_top`]).
-pub fn per_solver_series(
-    runs: &[StudyRun],
-    keep: impl Fn(&StudyRun) -> bool,
-    x: impl Fn(&StudyRun) -> f64,
-    y: impl Fn(&StudyRun) -> f64,
+/// cross where a run judged inaccurate lies, and, per solver with failed runs, a series of
+/// crosses drawn at the top of the plot at their x, named with their count (a failed run has
+/// no error to plot, but it is not left out), each such solver in a row of its own
+/// ([`row_at_top`]).
+pub fn per_solver_series<R: DrawnRun>(
+    runs: &[R],
+    keep: impl Fn(&R) -> bool,
+    x: impl Fn(&R) -> f64,
+    y: impl Fn(&R) -> f64,
 ) -> Vec<Series> {
-    let runs: Vec<&StudyRun> = runs.iter().filter(|r| keep(r)).collect();
+    let runs: Vec<&R> = runs.iter().filter(|r| keep(r)).collect();
     let mut names: Vec<&str> = Vec::new();
     for r in &runs {
-        if !names.contains(&r.solver.as_str()) {
-            names.push(&r.solver);
+        if !names.contains(&r.method()) {
+            names.push(r.method());
         }
     }
-    let drawable = |r: &&&StudyRun| r.failure.is_none() && y(r) > 0.0 && y(r).is_finite();
-    let plotted = |r: &&&StudyRun| drawable(r) && r.verdict.is_ok();
-    let inaccurate = |r: &&&StudyRun| drawable(r) && !r.verdict.is_ok();
+    let drawable = |r: &&&R| !r.failed() && y(r) > 0.0 && y(r).is_finite();
+    let plotted = |r: &&&R| drawable(r) && r.judged_ok();
+    let inaccurate = |r: &&&R| drawable(r) && !r.judged_ok();
     let largest = runs
         .iter()
         .filter(drawable)
@@ -40,7 +78,7 @@ pub fn per_solver_series(
     let mut series = Vec::new();
     let mut rows = 0;
     for (name, &color) in names.iter().zip(PALETTE.iter().cycle()) {
-        let mine = || runs.iter().filter(|r| r.solver == *name);
+        let mine = || runs.iter().filter(|r| r.method() == *name);
         let points: Vec<(f64, f64)> = mine().filter(plotted).map(|r| (x(r), y(r))).collect();
         if !points.is_empty() {
             series.push(Series {
@@ -66,10 +104,7 @@ pub fn per_solver_series(
             });
         }
         let top = row_at_top(largest, rows);
-        let failed: Vec<(f64, f64)> = mine()
-            .filter(|r| r.failure.is_some())
-            .map(|r| (x(r), top))
-            .collect();
+        let failed: Vec<(f64, f64)> = mine().filter(|r| r.failed()).map(|r| (x(r), top)).collect();
         if !failed.is_empty() {
             rows += 1;
             series.push(Series {

@@ -14,6 +14,7 @@ mod stick_slip;
 mod stiffness;
 mod table2;
 mod tables;
+mod testset;
 mod work_precision;
 
 pub use convergence::ConvergenceStudy;
@@ -22,6 +23,7 @@ pub use scaling::ScalingStudy;
 pub use stick_slip::{Bifurcation, BifurcationStudy, StickSlipMap, StickSlipMapStudy};
 pub use stiffness::StiffnessStudy;
 pub use table2::{check_decided, undecided, Table2Study};
+pub use testset::TestSetStudy;
 pub use work_precision::WorkPrecisionStudy;
 
 use crate::artifacts::Artifacts;

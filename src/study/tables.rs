@@ -2,7 +2,7 @@
 
 use crate::error::AppError;
 use crate::output::{Cell, Table};
-use scenarios::studies::{ErrorMeasure, StepKind, StudyRun};
+use scenarios::studies::{ErrorMeasure, StepKind, StudyRun, WallTimes};
 use std::path::Path;
 
 /// The columns `h` and `tol` of a run with `resolution` of kind `step` (a step size or a
@@ -63,4 +63,32 @@ pub fn runs_table(runs: &[StudyRun], path: &Path) -> Result<Vec<u8>, AppError> {
         t.rows.push(row);
     }
     t.to_csv(path)
+}
+
+/// The wall times of a study's runs over their repeats, one row per run: its cells under
+/// `keys` (the method and its resolution), then how many timings were taken and their
+/// median, extremes and quartiles, s (they vary between runs: kept apart from the study's
+/// other files).
+pub fn timing_table(
+    keys: &[&str],
+    rows: impl IntoIterator<Item = (Vec<Cell>, WallTimes)>,
+) -> Table {
+    let header: Vec<&str> = keys
+        .iter()
+        .copied()
+        .chain([
+            "repeats",
+            "wall_time_median_s",
+            "wall_time_min_s",
+            "wall_time_q1_s",
+            "wall_time_q3_s",
+            "wall_time_max_s",
+        ])
+        .collect();
+    let mut table = Table::new(&header);
+    for (mut row, t) in rows {
+        row.extend([t.repeats as f64, t.median, t.min, t.q1, t.q3, t.max].map(Cell::Num));
+        table.rows.push(row);
+    }
+    table
 }

@@ -2,10 +2,10 @@
 //! ([`scenarios::studies::work_precision`]).
 
 use super::draw::per_solver_series;
-use super::tables::{resolution_cells, runs_table};
+use super::tables::{resolution_cells, runs_table, timing_table};
 use super::{check_lists, methods_with_peers, runs_with_peers, study_file, Study, StudyFiles};
 use crate::error::AppError;
-use crate::output::{Cell, Table};
+use crate::output::Cell;
 use crate::plot::{Corner, Plot};
 use integrators::Solver;
 use scenarios::studies::{self, ErrorMeasure, StudyCase, WorkPrecision};
@@ -67,32 +67,13 @@ impl Study for WorkPrecisionStudy<'_> {
         let case = self.case;
         let csv = out.path(".csv");
         out.files.add(csv.clone(), runs_table(&w.runs, &csv)?);
-        let mut timing = Table::new(&[
-            "solver",
-            "h",
-            "tol",
-            "repeats",
-            "wall_time_median_s",
-            "wall_time_min_s",
-            "wall_time_q1_s",
-            "wall_time_q3_s",
-            "wall_time_max_s",
-        ]);
-        for r in &w.runs {
-            let [h, tol] = resolution_cells(Some(r.step), Some(r.resolution));
-            let t = r.wall_time;
-            timing.rows.push(vec![
-                Cell::Text(r.solver.clone()),
-                h,
-                tol,
-                Cell::Num(t.repeats as f64),
-                Cell::Num(t.median),
-                Cell::Num(t.min),
-                Cell::Num(t.q1),
-                Cell::Num(t.q3),
-                Cell::Num(t.max),
-            ]);
-        }
+        let timing = timing_table(
+            &["solver", "h", "tol"],
+            w.runs.iter().map(|r| {
+                let [h, tol] = resolution_cells(Some(r.step), Some(r.resolution));
+                (vec![Cell::Text(r.solver.clone()), h, tol], r.wall_time)
+            }),
+        );
         let timing_csv = out.path("-timing.csv");
         out.files
             .add(timing_csv.clone(), timing.to_csv(&timing_csv)?);

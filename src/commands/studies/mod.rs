@@ -34,12 +34,9 @@ pub use work_precision::{work_precision, WorkPrecisionArgs};
 #[derive(Args, Debug, Clone)]
 pub struct CaseArgs {
     /// A scenario (paper-block, belt, free-vibration, …), or chain (the Burridge–Knopoff
-    /// chain of systems.md, its parameters by --set); omit it with --system.
-    #[arg(
-        value_name = "SCENARIO",
-        required_unless_present = "system",
-        conflicts_with = "system"
-    )]
+    /// chain of systems.md, its parameters by --set); omit it with --system (or, for
+    /// work-precision, --testset).
+    #[arg(value_name = "SCENARIO", conflicts_with = "system")]
     pub scenario: Option<Problem>,
     /// A system file (TOML, shared/spec/systems.md) to study instead of a scenario.
     #[arg(long, value_name = "FILE.toml")]
@@ -78,6 +75,13 @@ pub struct CaseArgs {
 impl CaseArgs {
     /// The study case: a rig, the chain, or a system file.
     pub fn case(&self) -> Result<Box<dyn StudyCase>, AppError> {
+        if self.scenario.is_none() && self.system.is_none() {
+            return Err(AppError::Usage(
+                "the study needs a problem: a SCENARIO, or --system FILE.toml (work-precision \
+                 also takes --testset PROBLEM)"
+                    .into(),
+            ));
+        }
         let check_t_end = |t_end: f64| ranges::T_END.check(t_end);
         let scenario = match self.scenario {
             Some(Problem::Rig(s)) => s,

@@ -1,10 +1,10 @@
 //! `work-precision`: error against work and wall time for every solver and peer.
 
 use super::{failures, CaseArgs};
-use crate::artifacts::Made;
+use crate::artifacts::{Artifacts, Made};
 use crate::error::AppError;
 use crate::ranges;
-use crate::study::{conduct, WorkPrecisionStudy};
+use crate::study::{conduct, Target, TestSetStudy, WorkPrecisionStudy};
 use clap::Args;
 use integrators::Solver;
 
@@ -14,13 +14,27 @@ pub struct WorkPrecisionArgs {
     /// The problem.
     #[command(flatten)]
     pub case: CaseArgs,
+    /// A problem of the stiff test set (van-der-pol, robertson, hires, orego), studied instead
+    /// of a scenario: the largest relative error at its end time against the published
+    /// reference (10^−scd) against work and wall time, rtol = atol = each tolerance
+    /// (Robertson: atol = 1e-14·tol).
+    #[arg(
+        long,
+        value_name = "PROBLEM",
+        conflicts_with_all = [
+            "scenario", "system", "model", "bodies", "t_end", "dt_list", "set", "params",
+            "param_set", "switching"
+        ]
+    )]
+    pub testset: Option<String>,
     /// Solvers, comma-separated (its help lists the built-in solvers).
     #[arg(
         long,
         value_delimiter = ',',
         help = crate::options::solver_help(
             "Solvers, comma-separated, of",
-            "[default: rk4,dopri5,implicit-euler,bdf,tr-bdf2,esdirk34,tsit45; refused under --scheme time-stepping, whose one method \
+            "[default: all ten; with --testset radau5,rodas,auto,bdf,tr-bdf2,esdirk34, \
+             the adaptive ones taken; refused under --scheme time-stepping, whose one method \
              is Moreau–Jean's scheme]"
         )
     )]
@@ -33,13 +47,9 @@ pub struct WorkPrecisionArgs {
         default_value = "0.01,0.00464,0.00215,0.001,0.000464,0.000215"
     )]
     pub dt_list: Vec<f64>,
-    /// Tolerances of the adaptive solvers, loose to tight.
-    #[arg(
-        long,
-        value_delimiter = ',',
-        allow_hyphen_values = true,
-        default_value = "0.001,0.000464,0.000215,0.0001,4.64e-5,2.15e-5,1e-5,4.64e-6,2.15e-6,1e-6,4.64e-7,2.15e-7,1e-7,4.64e-8,2.15e-8,1e-8"
-    )]
+    /// Tolerances of the adaptive solvers, loose to tight [default: 1e-3 to 1e-8, three a
+    /// decade; with --testset 1e-4 to 1e-10, two a decade].
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     pub tol_list: Vec<f64>,
     /// Timings of each run: the median wall time, its extremes and quartiles (five at least
     /// for a spread worth quoting).
@@ -52,14 +62,45 @@ pub struct WorkPrecisionArgs {
     pub repeats: i64,
 }
 
+/// The tolerances of a study of a rig or a system: 1e-3 to 1e-8, three a decade.
+const TOLERANCES: [f64; 16] = [
+    1e-3, 4.64e-4, 2.15e-4, 1e-4, 4.64e-5, 2.15e-5, 1e-5, 4.64e-6, 2.15e-6, 1e-6, 4.64e-7, 2.15e-7,
+    1e-7, 4.64e-8, 2.15e-8, 1e-8,
+];
+
+/// The tolerances of a study of the test set: 1e-4 to 1e-10, two a decade.
+const TESTSET_TOLERANCES: [f64; 13] = [
+    1e-4, 3.16e-5, 1e-5, 3.16e-6, 1e-6, 3.16e-7, 1e-7, 3.16e-8, 1e-8, 3.16e-9, 1e-9, 3.16e-10,
+    1e-10,
+];
+
+/// The solvers of a study of the test set: the implicit ones that take tolerances, and
+/// `auto` (an explicit method would take millions of steps on its stiff problems).
+const TESTSET_SOLVERS: [Solver; 6] = [
+    Solver::RADAU5,
+    Solver::RODAS,
+    Solver::AUTO,
+    Solver::BDF,
+    Solver::TR_BDF2,
+    Solver::ESDIRK34,
+];
+
+/// `given`, or `defaults` when none are given.
+fn or_default<T: Copy>(given: &[T], defaults: &[T]) -> Vec<T> {
+    if given.is_empty() { defaults } else { given }.to_vec()
+}
+
 /// Runs `work-precision`; its files in memory.
 pub fn work_precision(a: &WorkPrecisionArgs) -> Result<Made, AppError> {
+    if let Some(name) = &a.testset {
+        return testset(a, name);
+    }
     a.case.make(|t, case| {
         let study = WorkPrecisionStudy {
             case,
             solvers: &a.case.solvers("solvers", &a.solvers, &Solver::ALL)?,
             steps: &a.dt_list,
-            tols: &a.tol_list,
+            tols: &or_default(&a.tol_list, &TOLERANCES),
             repeats: ranges::REPEATS.count(a.repeats)?,
         };
         let w = conduct(&study, t, "work-precision")?;
@@ -67,5 +108,36 @@ pub fn work_precision(a: &WorkPrecisionArgs) -> Result<Made, AppError> {
             .into_iter()
             .chain(w.reference_limit)
             .collect())
+    })
+}
+
+/// `work-precision --testset PROBLEM`: the test set's work–precision of one problem.
+fn testset(a: &WorkPrecisionArgs, name: &str) -> Result<Made, AppError> {
+    let problem = integrators::testset::named(name).map_err(AppError::Usage)?;
+    let study = TestSetStudy {
+        problem,
+        solvers: &or_default(&a.solvers, &TESTSET_SOLVERS),
+        tols: &or_default(&a.tol_list, &TESTSET_TOLERANCES),
+        repeats: ranges::REPEATS.count(a.repeats)?,
+        limits: a.case.limits.limits()?,
+    };
+    let mut files = Artifacts::default();
+    let mut target = Target {
+        files: &mut files,
+        dir: &a.case.out,
+        threads: ranges::threads(a.case.threads)?,
+        failure: None,
+    };
+    let w = conduct(&study, &mut target, "work-precision")?;
+    let failure = target.failure;
+    let notes = (w.runs.iter())
+        .filter_map(|r| Some((r, r.failure.as_ref()?)))
+        .map(|(r, e)| format!("{:10} at tol = {:e} failed: {e}", r.solver, r.tol))
+        .collect();
+    Ok(Made {
+        files,
+        notes,
+        failure,
+        ..Made::default()
     })
 }

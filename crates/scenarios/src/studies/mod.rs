@@ -9,6 +9,7 @@ mod independence;
 mod orders;
 mod scaling;
 mod stiffness;
+mod testset;
 mod work_precision;
 
 use crate::batch;
@@ -29,6 +30,9 @@ pub use orders::{
 pub use scaling::{scaling, Scaling, ScalingRun};
 pub use stiffness::{
     crossover, reached, stiffness, winner, Cost, Reached, Stiffness, StiffnessPoint, Sweep, Winner,
+};
+pub use testset::{
+    solve as solve_test_problem, testset_work_precision, TestRun, TestSetRun, TestSetWorkPrecision,
 };
 pub use work_precision::{work_precision, WorkPrecision};
 
