@@ -981,6 +981,47 @@ fn simulate_chain_writes_the_system_files() {
     }
 }
 
+/// The stiffness along a chain too large for its eigenvalues (120 unknowns): power iteration's
+/// spectral radius at 21 points at least, within the bound of Gershgorin's theorem. With the
+/// static model a sliding body adds no slope, so J's eigenvalues are ±i·√λ(K)/√m with λ(K) ≤
+/// k_driver + 4·k_chain = 410: ρ ≤ √410, and a sliding run of four bodies or more comes within
+/// 10 % of it.
+#[test]
+fn simulate_measures_the_stiffness_of_a_large_chain() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("chain");
+    let o = friction_lab(&[
+        "simulate",
+        "chain",
+        "--model",
+        "static",
+        "--set",
+        "n_bodies=60",
+        "--set",
+        "F_c=5",
+        "--t-end",
+        "20",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(out.join("stiffness.csv")).unwrap();
+    assert!(csv.starts_with("t,h,rho,h_rho\n"), "{csv}");
+    let rows = csv.lines().count() - 1;
+    assert!(rows >= 21, "{rows} points");
+    assert!(out.join("stiffness.png").exists() && out.join("stiffness.svg").exists());
+    let summary: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
+    let stiffness = &summary["stiffness"];
+    assert_eq!(stiffness["points"].as_u64().unwrap() as usize, rows);
+    let bound = 410f64.sqrt();
+    let max_rho = stiffness["max_rho"].as_f64().unwrap();
+    assert!(
+        max_rho <= bound * 1.001 && max_rho > 0.9 * bound,
+        "{stiffness}"
+    );
+}
+
 /// A rig, the chain, a system file and a prescribed motion write one `summary.json` schema:
 /// the same fields in the same order (docs/files.md), and the same four data files.
 #[test]

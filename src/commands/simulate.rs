@@ -18,11 +18,11 @@ use crate::trajectory::{Trajectory, TrajectoryAs};
 use crate::warnings::{coarse_step_warning, failure_warnings, stiffness_warning, unread_warnings};
 use clap::Args;
 use friction_models::Parameters;
-use friction_systems::{BodyState, ContactEvent};
+use friction_systems::{BodyState, ContactEvent, StiffnessPoint};
 use integrators::{Solver, StepControl};
 use scenarios::run::Outcome;
 use scenarios::{Limits, RunSpec, Scenario, SwitchingKind};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Options that choose and tune the solver, shared by every command that integrates.
 #[derive(Args, Clone, Debug)]
@@ -439,8 +439,8 @@ fn figures(o: &Outcome, name: &str) -> Vec<(&'static str, Plot)> {
 /// `log10(h·ρ)` against t, with Dormand–Prince's stability boundary on the negative real axis
 /// (h·ρ ≈ 3.3) as a line: above it an explicit step of that size is unstable on the stiffest
 /// mode.
-fn stiffness_plot(o: &Outcome, name: &str) -> Plot {
-    let points: Vec<(f64, f64)> = (o.stiffness.iter())
+fn stiffness_plot(stiffness: &[StiffnessPoint], name: &str) -> Plot {
+    let points: Vec<(f64, f64)> = (stiffness.iter())
         .filter(|p| p.h_rho > 0.0)
         .map(|p| (p.t, p.h_rho.log10()))
         .collect();
@@ -472,6 +472,28 @@ fn stiffness_plot(o: &Outcome, name: &str) -> Plot {
         legend: Corner::default(),
         log: false,
     }
+}
+
+/// `stiffness.csv` (t, h, ρ and h·ρ at each point of `stiffness`) and its figure
+/// `stiffness.png`/`.svg`, for the run `name` (none for a run without points).
+pub fn add_stiffness(
+    files: &mut Artifacts,
+    out: &Path,
+    stiffness: &[StiffnessPoint],
+    name: &str,
+) -> Result<(), AppError> {
+    if stiffness.is_empty() {
+        return Ok(());
+    }
+    let path = out.join("stiffness.csv");
+    let mut table = Table::new(&["t", "h", "rho", "h_rho"]);
+    for p in stiffness {
+        table
+            .rows
+            .push([p.t, p.h, p.rho, p.h_rho].map(Cell::Num).to_vec());
+    }
+    files.add(path.clone(), table.to_csv(&path)?);
+    files.add_plot(&out.join("stiffness"), &stiffness_plot(stiffness, name))
 }
 
 /// Dormand–Prince's stability boundary on the negative real axis (Hairer & Wanner, *Solving
@@ -511,20 +533,7 @@ pub fn make_rig(
     for (stem, p) in figures(&outcome, &name) {
         files.add_plot(&args.out.join(stem), &p)?;
     }
-    if !outcome.stiffness.is_empty() {
-        let path = args.out.join("stiffness.csv");
-        let mut table = Table::new(&["t", "h", "rho", "h_rho"]);
-        for p in &outcome.stiffness {
-            table
-                .rows
-                .push([p.t, p.h, p.rho, p.h_rho].map(Cell::Num).to_vec());
-        }
-        files.add(path.clone(), table.to_csv(&path)?);
-        files.add_plot(
-            &args.out.join("stiffness"),
-            &stiffness_plot(&outcome, &name),
-        )?;
-    }
+    add_stiffness(&mut files, &args.out, &outcome.stiffness, &name)?;
     let mut parameters = model.parameters_read(&spec.friction);
     for &p in spec.scenario.parameters() {
         let value = spec.params.value(p).expect("scenario parameters exist");

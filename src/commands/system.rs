@@ -4,7 +4,7 @@
 //! the contact modes; velocities of chosen bodies).
 
 use crate::artifacts::{Artifacts, Made};
-use crate::commands::simulate::SimulateArgs;
+use crate::commands::simulate::{add_stiffness, SimulateArgs};
 use crate::error::AppError;
 use crate::laws::ModelChoice;
 use crate::options::{ModelOptions, SchemeName};
@@ -13,7 +13,7 @@ use crate::plot::{self, Corner, Marker, Plot, Raster, Series, PALETTE};
 use crate::progress::Progress;
 use crate::ranges;
 use crate::run_record::{
-    event_counts, scheme_parameters, Integrated, RunRecord, RunSetup, RunSummary,
+    event_counts, scheme_parameters, Integrated, RunRecord, RunSetup, RunSummary, StiffnessSummary,
 };
 use crate::trajectory::{Trajectory, TrajectoryAs};
 use friction_models::FrictionParams;
@@ -382,11 +382,20 @@ pub fn make(args: &SimulateArgs, trajectory_as: TrajectoryAs) -> Result<Made, Ap
     let step = options.step;
     let method = scheme.method_name();
     let bar = Progress::time(t_end, &format!("{name} {method}"));
-    let run = friction_systems::simulate(&system, scheme, options, &mut |t| bar.at(t))?;
+    // The times each step reached, for the step size at the points where the stiffness is
+    // measured.
+    let mut step_ends = Vec::new();
+    let run = friction_systems::simulate(&system, scheme, options, &mut |t| {
+        bar.at(t);
+        step_ends.push(t);
+    })?;
     bar.finish();
+    let stiffness = run.stiffness(&step_ends);
+    drop(step_ends);
 
     let title = format!("{name} ({method}, {} switching)", switching.name());
     let mut files = Artifacts::default();
+    add_stiffness(&mut files, &args.out, &stiffness, &title)?;
     if !run.solution.is_empty() {
         let (raster, data) = space_time(&run, &title, &args.out.join("space-time.csv"))?;
         files.add(args.out.join("space-time.csv"), data);
@@ -452,7 +461,7 @@ pub fn make(args: &SimulateArgs, trajectory_as: TrajectoryAs) -> Result<Made, Ap
         loop_area: None,
         stiffness_detected_at: run.solution.stiffness_detected_at,
         method_switches: run.solution.method_switches.clone(),
-        stiffness: None,
+        stiffness: StiffnessSummary::of(&stiffness),
         instability: run.instability(&scheme, step),
     };
     let record = RunRecord {

@@ -237,22 +237,29 @@ impl Run<'_> {
             .max_by(|a, b| a.amplification.total_cmp(&b.amplification))
     }
 
-    /// The stiffness along the run: at each recorded point (at most [`CHECK_BUDGET`]/n³ of
-    /// them, evenly spread), the step size h of the step that reached it, the spectral radius
-    /// ρ of the Jacobian there ([`spectral_radius`]) and `h·ρ`. `step_ends` are the times the
-    /// driver reached after each step, in order (what `simulate`'s observer is told). Empty
-    /// above the size whose eigenvalues are computed, or for a differential–algebraic problem.
+    /// The stiffness along the run: at recorded points evenly spread (as many as
+    /// [`CHECK_BUDGET`] over [`radius_cost`] allows, at least [`MIN_STIFFNESS_POINTS`], at most
+    /// all), the step size h of the step that reached it, the spectral radius ρ of the Jacobian
+    /// there ([`spectral_radius`]: exact on small systems, by power iteration on large ones) and
+    /// `h·ρ`. `step_ends` are the times the driver reached after each step, in order (what
+    /// `simulate`'s observer is told). Empty for a differential–algebraic problem.
     ///
     /// [`CHECK_BUDGET`]: integrators::stability::CHECK_BUDGET
+    /// [`radius_cost`]: integrators::stability::radius_cost
+    /// [`MIN_STIFFNESS_POINTS`]: integrators::stability::MIN_STIFFNESS_POINTS
     /// [`spectral_radius`]: integrators::stability::spectral_radius
     pub fn stiffness(&self, step_ends: &[f64]) -> Vec<StiffnessPoint> {
-        use integrators::stability::{spectral_radius, CHECK_BUDGET};
+        use integrators::stability::{
+            radius_cost, spectral_radius, CHECK_BUDGET, MIN_STIFFNESS_POINTS,
+        };
         let s = &self.solution;
         let n = integrators::OdeProblem::dim(&self.problem).max(1);
         if s.is_empty() || step_ends.is_empty() {
             return Vec::new();
         }
-        let points = (CHECK_BUDGET / n.pow(3)).clamp(1, s.len());
+        let points = (CHECK_BUDGET / radius_cost(n))
+            .max(MIN_STIFFNESS_POINTS)
+            .min(s.len());
         let mut out = Vec::with_capacity(points);
         for k in 0..points {
             let i = k * (s.len() - 1) / (points - 1).max(1);

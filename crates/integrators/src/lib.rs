@@ -11,6 +11,8 @@
 //! - [`Rodas`]: the Rosenbrock method RODAS as in Hairer's `rodas.f`;
 //! - `auto`: Dormand–Prince and Radau IIA switched by stiffness within a run;
 //! - [`testset`]: the standard stiff test problems with their published references;
+//! - [`stability`]: stability of a fixed step and the spectral radius of the Jacobian (by
+//!   [`power`] iteration on large systems);
 //! - event location on each method's dense output, simultaneous events handled in one call,
 //!   one mode per component of the discrete state.
 //!
@@ -34,6 +36,7 @@ pub mod linear;
 pub mod method;
 pub mod newton;
 pub mod options;
+pub mod power;
 pub mod problem;
 pub mod radau5;
 pub mod rk4;

@@ -120,16 +120,48 @@ fn jacobian(problem: &dyn OdeProblem, t: f64, y: &[f64], modes: &[Mode]) -> Opti
     Some(j)
 }
 
-/// The spectral radius `ρ = max |λ|` of the Jacobian of `problem` at (t, y) in `modes` (over
-/// its unknowns other than the quadratures, the mass matrix divided out), from its eigenvalues
-/// (Schur): `h·ρ` against a method's stability boundary says how stiff a step of size h is
-/// (Hairer & Wanner, *Solving ODEs II*, sec. IV.2). `None` for a differential–algebraic
-/// problem, a non-finite Jacobian, an iteration that does not converge, and above
-/// [`MAX_CHECKED_DIM`] unknowns.
-pub fn spectral_radius(problem: &dyn OdeProblem, t: f64, y: &[f64], modes: &[Mode]) -> Option<f64> {
-    if problem.dim() > MAX_CHECKED_DIM {
-        return None;
+/// The largest system whose spectral radius [`spectral_radius`] takes from all its
+/// eigenvalues (a dense Schur decomposition, about 10·n³ operations); above it, by
+/// [`crate::power`] iteration.
+pub const EXACT_RADIUS_DIM: usize = 100;
+
+/// The fewest points at which a run's stiffness is measured, whatever its size (all of them
+/// where it has fewer): [`radius_cost`] against [`CHECK_BUDGET`] may allow more.
+pub const MIN_STIFFNESS_POINTS: usize = 21;
+
+/// The operations [`spectral_radius`] spends on a system of `n` unknowns: about 10·n³ for the
+/// Schur decomposition, `14·POWER_ITERATIONS·n` for power iteration (a sparse Jacobian of a
+/// few entries a row).
+pub fn radius_cost(n: usize) -> usize {
+    if n <= EXACT_RADIUS_DIM {
+        10 * n.pow(3)
+    } else {
+        14 * crate::power::POWER_ITERATIONS * n
     }
+}
+
+/// The spectral radius `ρ = max |λ|` of the Jacobian of `problem` at (t, y) in `modes` (over
+/// its unknowns other than the quadratures, the mass matrix divided out): `h·ρ` against a
+/// method's stability boundary says how stiff a step of size h is (Hairer & Wanner, *Solving
+/// ODEs II*, sec. IV.2). Up to [`EXACT_RADIUS_DIM`] unknowns from its eigenvalues (Schur);
+/// above, [`crate::power::spectral_radius_estimate`], by power iteration. `None` for a
+/// differential–algebraic problem, a non-finite Jacobian and an iteration that does not
+/// converge.
+pub fn spectral_radius(problem: &dyn OdeProblem, t: f64, y: &[f64], modes: &[Mode]) -> Option<f64> {
+    if problem.dim() - problem.quadratures() > EXACT_RADIUS_DIM {
+        return crate::power::spectral_radius_estimate(problem, t, y, modes);
+    }
+    exact_spectral_radius(problem, t, y, modes)
+}
+
+/// [`spectral_radius`] from all the eigenvalues of the dense Jacobian (Schur), whatever the
+/// size: about 10·n³ operations.
+pub fn exact_spectral_radius(
+    problem: &dyn OdeProblem,
+    t: f64,
+    y: &[f64],
+    modes: &[Mode],
+) -> Option<f64> {
     let j = jacobian(problem, t, y, modes)?;
     if !j.iter().all(|v| v.is_finite()) {
         return None;

@@ -10,7 +10,7 @@ use common::{Heat, Oscillator, ProtheroRobinson, RobertsonDae};
 use integrators::radau5::Radau5Method;
 use integrators::rodas::RodasMethod;
 use integrators::testset::Robertson;
-use integrators::{Control, Crossing, Mode, OdeProblem, OneStepMethod, Options, Solution};
+use integrators::{Control, Crossing, Entry, Mode, OdeProblem, OneStepMethod, Options, Solution};
 
 /// The two methods, each with the accuracy its stiff component keeps on Prothero–Robinson.
 const METHODS: [(&dyn OneStepMethod, f64); 2] = [(&Radau5Method, 1e-9), (&RodasMethod, 1e-8)];
@@ -169,4 +169,91 @@ fn the_spectral_radius_is_the_largest_eigenvalue_modulus() {
     // An index-1 DAE has no ODE Jacobian to measure.
     let dae = integrators::stability::spectral_radius(&RobertsonDae, 0.0, &[1.0, 0.0, 0.0], &[]);
     assert_eq!(dae, None);
+}
+
+/// A chain of `n` unit masses between unit springs, fixed at both ends, with dampers `c`
+/// to the ground: x' = v, v' = −K·x − c·v, K the tridiagonal (−1, 2, −1). Each eigenvalue μ
+/// of K gives λ = (−c ± √(c² − 4μ))/2, so |λ| = √μ for c² < 4μ: ρ = √(4·sin²(nπ/(2(n + 1)))),
+/// the top of a clustered spectrum of complex pairs, where plain power iteration never
+/// settles. With `analytic` false it gives no Jacobian (the products are differences).
+struct SpringChain {
+    n: usize,
+    c: f64,
+    analytic: bool,
+}
+
+impl OdeProblem for SpringChain {
+    fn dim(&self) -> usize {
+        2 * self.n
+    }
+    fn rhs(&self, _t: f64, y: &[f64], _m: &[Mode], f: &mut [f64]) {
+        let (x, v) = y.split_at(self.n);
+        for i in 0..self.n {
+            let left = if i > 0 { x[i - 1] } else { 0.0 };
+            let right = if i + 1 < self.n { x[i + 1] } else { 0.0 };
+            f[i] = v[i];
+            f[self.n + i] = left - 2.0 * x[i] + right - self.c * v[i];
+        }
+    }
+    fn jacobian(&self, _t: f64, _y: &[f64], _m: &[Mode], jac: &mut Vec<Entry>) -> bool {
+        if !self.analytic {
+            return false;
+        }
+        let n = self.n;
+        for i in 0..n {
+            jac.push((i, n + i, 1.0));
+            jac.push((n + i, i, -2.0));
+            jac.push((n + i, n + i, -self.c));
+            if i > 0 {
+                jac.push((n + i, i - 1, 1.0));
+            }
+            if i + 1 < n {
+                jac.push((n + i, i + 1, 1.0));
+            }
+        }
+        true
+    }
+}
+
+#[test]
+fn the_power_estimate_of_a_large_spectral_radius() {
+    use integrators::power::spectral_radius_estimate;
+    use integrators::stability::{spectral_radius, EXACT_RADIUS_DIM};
+    // sin² of the top mode's angle, nπ/(2(n + 1)).
+    let top = |n: usize| {
+        (n as f64 * std::f64::consts::PI / (2.0 * (n + 1) as f64))
+            .sin()
+            .powi(2)
+    };
+    for n in [150, 1000, 10_000] {
+        let y = vec![0.0; 2 * n];
+        let chain = SpringChain {
+            n,
+            c: 0.1,
+            analytic: true,
+        };
+        let rho = (4.0 * top(n)).sqrt();
+        let estimate = spectral_radius_estimate(&chain, 0.0, &y, &[]).unwrap();
+        // On the clustered top of the spectrum.
+        assert!(
+            (estimate / rho - 1.0).abs() < 5e-3,
+            "n = {n}: {estimate} against {rho}"
+        );
+        // Above EXACT_RADIUS_DIM unknowns the spectral radius is the estimate.
+        assert!(2 * n > EXACT_RADIUS_DIM);
+        assert_eq!(spectral_radius(&chain, 0.0, &y, &[]), Some(estimate));
+        // Without a Jacobian, the products by differences give the same estimate.
+        let differences = SpringChain {
+            analytic: false,
+            ..chain
+        };
+        let by_differences = spectral_radius_estimate(&differences, 0.0, &y, &[]).unwrap();
+        assert_relative_eq!(by_differences, estimate, max_relative = 1e-6);
+        // A symmetric spectrum (the heat equation's, ρ = 4·sin²(…)): the same.
+        let heat = spectral_radius_estimate(&Heat { n, k: 1.0 }, 0.0, &vec![0.0; n], &[]).unwrap();
+        assert!(
+            (heat / (4.0 * top(n)) - 1.0).abs() < 5e-3,
+            "heat n = {n}: {heat}"
+        );
+    }
 }
