@@ -12,8 +12,8 @@ use crate::plot::{Corner, Marker, Plot, Series, PALETTE};
 use crate::provenance::Provenance;
 use crate::ranges;
 use crate::study::{
-    check_decided, conduct, undecided, ConvergenceStudy, IndependenceStudy, Refinement,
-    ScalingStudy, StiffnessStudy, Table2Study, Target, WorkPrecisionStudy,
+    check_decided, conduct, conduct_all, undecided, ConvergenceStudy, Entry, IndependenceStudy,
+    Refinement, ReportEntry, ScalingStudy, StiffnessStudy, Table2Study, Target, WorkPrecisionStudy,
 };
 use crate::threads::with_threads;
 use clap::Args;
@@ -27,8 +27,10 @@ use scenarios::figures::{
 };
 use scenarios::paper::{experiment, Asymptote, ExperimentFailure, ExperimentRow};
 use scenarios::phenomena::Protocol;
-use scenarios::studies::ErrorMeasure;
 use scenarios::studies::{Case, Method, StudyCase, SystemCase};
+use scenarios::studies::{
+    Convergence, ErrorMeasure, Independence, Scaling, Stiffness, WorkPrecision,
+};
 use scenarios::Limits;
 use scenarios::{Scenario, SwitchingKind};
 use serde::Serialize;
@@ -232,7 +234,7 @@ fn case(
     }
 }
 
-fn observed_orders(c: &scenarios::studies::Convergence, measure: ErrorMeasure) -> String {
+fn observed_orders(c: &Convergence, measure: ErrorMeasure) -> String {
     c.orders
         .iter()
         .filter(|t| t.measure == measure)
@@ -272,109 +274,7 @@ fn add_studies(
     let rk4 = [Solver::RK4];
     let native = [Solver::RK4, Solver::DOPRI5, Solver::IMPLICIT_EULER];
     let steps = [0.02, 0.01, 0.005, 0.0025];
-    let smooth = conduct(
-        &ConvergenceStudy {
-            case: &case(
-                Scenario::PaperBlock,
-                ModelId::Cvs,
-                SwitchingKind::Event,
-                friction,
-                5.0,
-            ),
-            solvers: &native,
-            steps: &steps,
-            tols: &[1e-6],
-        },
-        &mut t,
-        "converge-paper-block-CVS",
-    )?;
-    let naive = conduct(
-        &ConvergenceStudy {
-            case: &case(
-                Scenario::FreeVibration,
-                ModelId::Static,
-                SwitchingKind::Naive,
-                friction,
-                2.0,
-            ),
-            solvers: &rk4,
-            steps: &steps,
-            tols: &[1e-6],
-        },
-        &mut t,
-        "converge-free-vibration-naive",
-    )?;
-    let switched = conduct(
-        &ConvergenceStudy {
-            case: &case(
-                Scenario::FreeVibration,
-                ModelId::Static,
-                SwitchingKind::Event,
-                friction,
-                2.0,
-            ),
-            solvers: &rk4,
-            steps: &steps,
-            tols: &[1e-6],
-        },
-        &mut t,
-        "converge-free-vibration-event",
-    )?;
-    let av = conduct(
-        &IndependenceStudy {
-            case: &case(
-                Scenario::PaperBlock,
-                ModelId::Av,
-                SwitchingKind::Event,
-                friction,
-                5.0,
-            ),
-            solver: Solver::RK4,
-            refinement: from_paper_dt,
-        },
-        &mut t,
-        "independence-paper-block-AV",
-    )?;
-    let cs = conduct(
-        &IndependenceStudy {
-            case: &case(
-                Scenario::Belt,
-                ModelId::Cs,
-                SwitchingKind::Naive,
-                friction,
-                20.0,
-            ),
-            solver: Solver::RK4,
-            refinement: from_paper_dt,
-        },
-        &mut t,
-        "independence-belt-CS-naive",
-    )?;
-    // Every level of the report's independence studies must finish.
-    if let Some(failure) = t.failure.take() {
-        return Err(failure);
-    }
     let all = Solver::ALL;
-    conduct(
-        &WorkPrecisionStudy {
-            case: &case(
-                Scenario::Belt,
-                ModelId::Cs,
-                SwitchingKind::Event,
-                friction,
-                5.0,
-            ),
-            solvers: &all,
-            steps: &[0.01, 0.003, 0.001, 0.0003],
-            tols: &[
-                0.001, 0.000464, 0.000215, 0.0001, 4.64e-5, 2.15e-5, 1e-5, 4.64e-6, 2.15e-6, 1e-6,
-                4.64e-7, 2.15e-7, 1e-7, 4.64e-8, 2.15e-8, 1e-8,
-            ],
-            repeats: 5,
-        },
-        &mut t,
-        "work-precision-belt-CS",
-    )?;
     let explicit_implicit = [
         Solver::DOPRI5,
         Solver::TSIT45,
@@ -382,61 +282,170 @@ fn add_studies(
         Solver::BDF,
         Solver::ESDIRK34,
     ];
-    let sweep = scenarios::studies::Sweep {
-        parameter: "epsilon",
-        values: &[1.0, 1e-1, 1e-2, 1e-3, 1e-4],
-        target: 1e-3,
+    let block_cvs = case(
+        Scenario::PaperBlock,
+        ModelId::Cvs,
+        SwitchingKind::Event,
+        friction,
+        5.0,
+    );
+    let block_av = case(
+        Scenario::PaperBlock,
+        ModelId::Av,
+        SwitchingKind::Event,
+        friction,
+        5.0,
+    );
+    let vibration = |switching| {
+        case(
+            Scenario::FreeVibration,
+            ModelId::Static,
+            switching,
+            friction,
+            2.0,
+        )
     };
-    let stiff = conduct(
-        &StiffnessStudy {
-            case: &case(
-                Scenario::Belt,
-                ModelId::Cs,
-                SwitchingKind::Regularized,
-                friction,
-                2.0,
-            ),
-            sweep,
-            solvers: &explicit_implicit,
-            steps: &[0.01],
-            tols: &[
-                0.01, 0.00464, 0.00215, 0.001, 0.000464, 0.000215, 0.0001, 4.64e-05, 2.15e-05,
-                1e-05, 4.64e-06, 2.15e-06, 1e-06, 4.64e-07, 2.15e-07, 1e-07,
-            ],
-        },
-        &mut t,
-        "stiffness-belt-CS-epsilon",
-    )?;
-    let verdict = |i: &scenarios::studies::Independence| {
+    let (naive, switched) = (
+        vibration(SwitchingKind::Naive),
+        vibration(SwitchingKind::Event),
+    );
+    let belt = |switching, t_end| case(Scenario::Belt, ModelId::Cs, switching, friction, t_end);
+    let (belt_naive, belt_event) = (
+        belt(SwitchingKind::Naive, 20.0),
+        belt(SwitchingKind::Event, 5.0),
+    );
+    let belt_regularized = belt(SwitchingKind::Regularized, 2.0);
+    let independent = |i: &scenarios::studies::Independence| {
         if i.independent {
             "independent"
         } else {
             "**not** independent"
         }
     };
+    let convergence = |case| ConvergenceStudy {
+        case,
+        solvers: &rk4,
+        steps: &steps,
+        tols: &[1e-6],
+    };
+    let table: [&dyn ReportEntry; 7] = [
+        &Entry {
+            stem: "converge-paper-block-CVS",
+            study: ConvergenceStudy {
+                solvers: &native,
+                ..convergence(&block_cvs)
+            },
+            reads: |c: &Convergence| {
+                format!(
+                    "- [Convergence on the paper block (CVS)](studies/converge-paper-block-CVS.png): \
+                     observed orders of the relative grid error over each method's asymptotic \
+                     range {}.\n",
+                    observed_orders(c, ErrorMeasure::GridRelative)
+                )
+            },
+        },
+        &Entry {
+            stem: "converge-free-vibration-naive",
+            study: convergence(&naive),
+            reads: |c: &Convergence| {
+                format!(
+                    "- [Stepping blindly through v = 0](studies/converge-free-vibration-naive.png) \
+                     on Coulomb free vibration (closed-form reversals every pi/omega): RK4's \
+                     order is {}.\n",
+                    observed_orders(c, ErrorMeasure::GridRelative)
+                )
+            },
+        },
+        &Entry {
+            stem: "converge-free-vibration-event",
+            study: convergence(&switched),
+            reads: |c: &Convergence| {
+                format!(
+                    "- [The same with event-located switching](studies/converge-free-vibration-event.png): \
+                     RK4's order is {}.\n",
+                    observed_orders(c, ErrorMeasure::GridRelative)
+                )
+            },
+        },
+        &Entry {
+            stem: "independence-paper-block-AV",
+            study: IndependenceStudy {
+                case: &block_av,
+                solver: Solver::RK4,
+                refinement: from_paper_dt,
+            },
+            reads: |i: &Independence| {
+                format!(
+                    "- [The paper's step-size claim on AV](studies/independence-paper-block-AV.png) \
+                     (RK4 from dt = 1e-3, halved three times, relative tolerance 1e-6): {}.\n",
+                    independent(i)
+                )
+            },
+        },
+        &Entry {
+            stem: "independence-belt-CS-naive",
+            study: IndependenceStudy {
+                case: &belt_naive,
+                solver: Solver::RK4,
+                refinement: from_paper_dt,
+            },
+            reads: |i: &Independence| {
+                format!(
+                    "- [The same check on CS stick-slip stepped blindly](studies/independence-belt-CS-naive.png): {}.\n",
+                    independent(i)
+                )
+            },
+        },
+        &Entry {
+            stem: "work-precision-belt-CS",
+            study: WorkPrecisionStudy {
+                case: &belt_event,
+                solvers: &all,
+                steps: &[0.01, 0.003, 0.001, 0.0003],
+                tols: &[
+                    0.001, 0.000464, 0.000215, 0.0001, 4.64e-5, 2.15e-5, 1e-5, 4.64e-6, 2.15e-6,
+                    1e-6, 4.64e-7, 2.15e-7, 1e-7, 4.64e-8, 2.15e-8, 1e-8,
+                ],
+                repeats: 5,
+            },
+            reads: |_: &WorkPrecision| {
+                "- [Work against precision on the belt](studies/work-precision-belt-CS.png): \
+                 relative error against counted work (f evaluations, with Jacobians, LU \
+                 factorisations and back-solves weighted by their operation counts) for every \
+                 solver; wall times in studies/work-precision-belt-CS-timing.csv.\n"
+                    .into()
+            },
+        },
+        &Entry {
+            stem: "stiffness-belt-CS-epsilon",
+            study: StiffnessStudy {
+                case: &belt_regularized,
+                sweep: scenarios::studies::Sweep {
+                    parameter: "epsilon",
+                    values: &[1.0, 1e-1, 1e-2, 1e-3, 1e-4],
+                    target: 1e-3,
+                },
+                solvers: &explicit_implicit,
+                steps: &[0.01],
+                tols: &[
+                    0.01, 0.00464, 0.00215, 0.001, 0.000464, 0.000215, 0.0001, 4.64e-05, 2.15e-05,
+                    1e-05, 4.64e-06, 2.15e-06, 1e-06, 4.64e-07, 2.15e-07, 1e-07,
+                ],
+            },
+            reads: |s: &Stiffness| {
+                format!(
+                    "- [Cost to reach relative error 1e-3 against the regularisation width](studies/stiffness-belt-CS-epsilon.png): \
+                     {}.\n",
+                    s.verdict()
+                )
+            },
+        },
+    ];
+    let lines = conduct_all(&table, &mut t)?;
     let chain = add_chain_studies(&mut t, friction)?;
     Ok(format!(
         "\n## Solver studies\n\nThe files are in `studies/` (CSV per run, JSON summary, PNG and SVG); \
-         docs/studies.md explains each study and how to read its plot.\n\n\
-         - [Convergence on the paper block (CVS)](studies/converge-paper-block-CVS.png): observed orders \
-         of the relative grid error over each method's asymptotic range {}.\n\
-         - [Stepping blindly through v = 0](studies/converge-free-vibration-naive.png) against \
-         [event-located switching](studies/converge-free-vibration-event.png) on Coulomb free vibration \
-         (closed-form reversals every pi/omega): RK4's order is {} naive and {} switched.\n\
-         - [The paper's step-size claim on AV](studies/independence-paper-block-AV.png) (RK4 from \
-         dt = 1e-3, halved three times, relative tolerance 1e-6): {}.\n\
-         - [The same check on CS stick-slip stepped blindly](studies/independence-belt-CS-naive.png): {}.\n\
-         - [Work against precision on the belt](studies/work-precision-belt-CS.png): relative error against \
-         counted work (f evaluations, with Jacobians, LU factorisations and back-solves weighted by their operation counts) for every solver; wall times in \
-         studies/work-precision-belt-CS-timing.csv.\n\
-         - [Cost to reach relative error 1e-3 against the regularisation width](studies/stiffness-belt-CS-epsilon.png): \
-         {}.\n{chain}",
-        observed_orders(&smooth, ErrorMeasure::GridRelative),
-        observed_orders(&naive, ErrorMeasure::GridRelative),
-        observed_orders(&switched, ErrorMeasure::GridRelative),
-        verdict(&av),
-        verdict(&cs),
-        stiff.verdict(),
+         docs/studies.md explains each study and how to read its plot.\n\n{lines}{chain}"
     ))
 }
 
@@ -472,21 +481,7 @@ fn chain_case(n: usize, friction: &FrictionParams, t_end: f64) -> Result<SystemC
 /// Event-driving, regularisation and time-stepping on the chain: work–precision at N = 100
 /// and the cost per step against N up to 1000, with their report section.
 fn add_chain_studies(t: &mut Target, friction: &FrictionParams) -> Result<String, AppError> {
-    let bdf = Solver::BDF;
-    conduct(
-        &WorkPrecisionStudy {
-            case: &chain_case(100, friction, 5.0)?,
-            solvers: &[Solver::DOPRI5, bdf],
-            steps: &[0.01, 0.00464, 0.00215, 0.001, 0.000464],
-            tols: &[
-                1e-4, 4.64e-5, 2.15e-5, 1e-5, 4.64e-6, 2.15e-6, 1e-6, 4.64e-7, 2.15e-7, 1e-7,
-                4.64e-8, 2.15e-8, 1e-8,
-            ],
-            repeats: 5,
-        },
-        t,
-        "work-precision-chain-100",
-    )?;
+    let chain_100 = chain_case(100, friction, 5.0)?;
     let sizes = [10, 30, 100, 300, 1000];
     let cases = sizes
         .iter()
@@ -511,37 +506,58 @@ fn add_chain_studies(t: &mut Target, friction: &FrictionParams) -> Result<String
         };
         (m, step)
     }));
-    let scaling = conduct(
-        &ScalingStudy {
-            cases: &cases,
-            methods: &methods,
+    let epsilon = friction.epsilon;
+    let table: [&dyn ReportEntry; 2] = [
+        &Entry {
+            stem: "work-precision-chain-100",
+            study: WorkPrecisionStudy {
+                case: &chain_100,
+                solvers: &[Solver::DOPRI5, Solver::BDF],
+                steps: &[0.01, 0.00464, 0.00215, 0.001, 0.000464],
+                tols: &[
+                    1e-4, 4.64e-5, 2.15e-5, 1e-5, 4.64e-6, 2.15e-6, 1e-6, 4.64e-7, 2.15e-7, 1e-7,
+                    4.64e-8, 2.15e-8, 1e-8,
+                ],
+                repeats: 5,
+            },
+            reads: |_: &WorkPrecision| {
+                format!(
+                    "- [Work against precision at N = 100](studies/work-precision-chain-100.png) over 5 s: \
+                     event-driven Dormand–Prince and BDF (tolerances 1e-4 to 1e-8, three a decade; wall \
+                     times the median of 5 repeats), BDF on the regularised \
+                     system (width epsilon = {epsilon}, sparse Jacobian; its error stops at the regularisation's), \
+                     and Moreau–Jean time-stepping (theta = 1/2, h = 1e-2 to 4.64e-4; first order with \
+                     stiction).\n"
+                )
+            },
         },
-        t,
-        "cost-chain",
-    )?;
-    let exponents = scaling
-        .exponents
-        .iter()
-        .map(|(label, e)| format!("{label} {e:.2}"))
-        .collect::<Vec<_>>()
-        .join(", ");
+        &Entry {
+            stem: "cost-chain",
+            study: ScalingStudy {
+                cases: &cases,
+                methods: &methods,
+            },
+            reads: |scaling: &Scaling| {
+                let exponents = (scaling.exponents.iter())
+                    .map(|(label, e)| format!("{label} {e:.2}"))
+                    .collect::<Vec<_>>()
+                    .join(", ");
+                format!(
+                    "- [Wall time per step against the number of blocks](studies/cost-chain-timing.png) \
+                     (N = 10 to 1000 over 4 s; Dormand–Prince and \
+                     regularised BDF at tolerance 1e-6, time-stepping at h = 1e-3; studies/cost-chain.csv \
+                     has steps and work, studies/cost-chain-timing.csv the wall times). Fitted slopes of \
+                     counted work per step against N: {exponents}.\n"
+                )
+            },
+        },
+    ];
+    let lines = conduct_all(&table, t)?;
     Ok(format!(
         "\n## Many blocks: event-driving, regularisation and time-stepping\n\n\
          The chain of `systems.md` with stiction on every block (`static`), every block \
          started at x0 = -0.7 m (driver spring at 7 N, break-away at 7.5 N), one system \
-         integrated three ways (docs/timestepping.md, docs/systems.md):\n\n\
-         - [Work against precision at N = 100](studies/work-precision-chain-100.png) over 5 s: \
-         event-driven Dormand–Prince and BDF (tolerances 1e-4 to 1e-8, three a decade; wall \
-         times the median of 5 repeats), BDF on the regularised \
-         system (width epsilon = {}, sparse Jacobian; its error stops at the regularisation's), \
-         and Moreau–Jean time-stepping (theta = 1/2, h = 1e-2 to 4.64e-4; first order with \
-         stiction).\n\
-         - [Wall time per step against the number of blocks](studies/cost-chain-timing.png) \
-         (N = 10 to 1000 over 4 s; Dormand–Prince and \
-         regularised BDF at tolerance 1e-6, time-stepping at h = 1e-3; studies/cost-chain.csv \
-         has steps and work, studies/cost-chain-timing.csv the wall times). Fitted slopes of \
-         counted work per step against N: {exponents}.\n",
-        friction.epsilon
+         integrated three ways (docs/timestepping.md, docs/systems.md):\n\n{lines}"
     ))
 }
 

@@ -9,6 +9,7 @@
 mod convergence;
 mod draw;
 mod independence;
+mod report;
 mod scaling;
 mod stick_slip;
 mod stiffness;
@@ -19,6 +20,7 @@ mod work_precision;
 
 pub use convergence::ConvergenceStudy;
 pub use independence::{IndependenceStudy, Refinement};
+pub use report::{conduct_all, Entry, ReportEntry};
 pub use scaling::ScalingStudy;
 pub use stick_slip::{Bifurcation, BifurcationStudy, StickSlipMap, StickSlipMapStudy};
 pub use stiffness::StiffnessStudy;
