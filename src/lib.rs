@@ -90,9 +90,9 @@ pub enum Command {
     /// (stick phases per cycle, amplitude and period, friction, solver statistics).
     #[command(after_help = EXIT_CODES)]
     Sweep(commands::sweep::SweepArgs),
-    /// Run one problem of the standard stiff test set (van-der-pol, robertson, hires, orego):
-    /// the state at the end time and the significant correct digits against its published
-    /// reference.
+    /// Run one problem of the standard stiff test set (van-der-pol, robertson, hires, orego,
+    /// pollution): the state at the end time and the significant correct digits against its
+    /// published reference.
     #[command(after_help = EXIT_CODES)]
     Testset(commands::testset::TestsetArgs),
     /// Reproduce the paper into one folder: Figures 2-7 with notes, the experiment, Table 2,

@@ -3819,7 +3819,7 @@ fn testset_writes_the_end_state_and_the_digits_against_the_reference() {
     for (args, message) in [
         (
             vec!["testset", "e5"],
-            "unknown test problem `e5`; known problems: van-der-pol, robertson, hires, orego",
+            "unknown test problem `e5`; known problems: van-der-pol, robertson, hires, orego, pollution",
         ),
         (
             vec!["testset", "hires", "--solver", "rk4"],

@@ -17,7 +17,7 @@ use std::path::PathBuf;
 /// Options of `testset`.
 #[derive(Args, Debug)]
 pub struct TestsetArgs {
-    /// The problem: van-der-pol, robertson, hires or orego.
+    /// The problem: van-der-pol, robertson, hires, orego or pollution.
     #[arg(value_name = "PROBLEM")]
     pub problem: String,
     /// The solver (its help lists the built-in solvers).

@@ -52,7 +52,7 @@ impl TestProblem {
 }
 
 /// The test set, in listing order.
-pub const TESTSET: [TestProblem; 4] = [
+pub const TESTSET: [TestProblem; 5] = [
     TestProblem {
         name: "van-der-pol",
         title: "Van der Pol's oscillator, y1'' = ((1 − y1²)·y1' − y1)/ε with ε = 1e-6 (Hairer's \
@@ -116,6 +116,42 @@ pub const TESTSET: [TestProblem; 4] = [
             0.1320554942846706e3,
         ],
         problem: &Orego,
+        atol_per_rtol: 1.0,
+    },
+    TestProblem {
+        name: "pollution",
+        title: "the pollution problem: 20 species and 25 reactions of the air-pollution model \
+                of the Dutch National Institute of Public Health (Verwer 1994)",
+        source: "Mazzia & Iavernaro, Test Set for IVP Solvers 2.4, problem POLLU (pollu.f): \
+                 y(60), computed by RADAU5 at rtol = atol = 1.1e-18 in 19-digit arithmetic",
+        y0: &[
+            0.0, 0.2, 0.0, 0.04, 0.0, 0.0, 0.1, 0.3, 0.01, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+            0.007, 0.0, 0.0, 0.0,
+        ],
+        t_end: 60.0,
+        reference: &[
+            0.5646255480022769e-1,
+            0.1342484130422339,
+            0.4139734331099427e-8,
+            0.5523140207484359e-2,
+            0.2018977262302196e-6,
+            0.1464541863493966e-6,
+            0.7784249118997964e-1,
+            0.3245075353396018,
+            0.7494013383880406e-2,
+            0.1622293157301561e-7,
+            0.1135863833257075e-7,
+            0.2230505975721359e-2,
+            0.2087162882798630e-3,
+            0.1396921016840158e-4,
+            0.8964884856898295e-2,
+            0.4352846369330103e-17,
+            0.6899219696263405e-2,
+            0.1007803037365946e-3,
+            0.1772146513969984e-5,
+            0.5682943292316392e-4,
+        ],
+        problem: &Pollution,
         atol_per_rtol: 1.0,
     },
 ];
@@ -263,6 +299,80 @@ impl OdeProblem for Orego {
     }
 }
 
+/// One reaction of a mass-action scheme: rate `k·Π y[reactants]`, taking one of each reactant
+/// and giving one of each product (a species listed twice is taken or given twice).
+struct Reaction {
+    k: f64,
+    reactants: &'static [usize],
+    products: &'static [usize],
+}
+
+/// The 25 reactions of the pollution problem (Verwer 1994; Mazzia & Iavernaro's pollu.f,
+/// `feval`), species numbered from 0: y1 is index 0.
+#[rustfmt::skip]
+const POLLUTION_REACTIONS: [Reaction; 25] = [
+    Reaction { k: 0.35, reactants: &[0], products: &[1, 2] },
+    Reaction { k: 0.266e2, reactants: &[1, 3], products: &[0] },
+    Reaction { k: 0.123e5, reactants: &[4, 1], products: &[0, 5] },
+    Reaction { k: 0.86e-3, reactants: &[6], products: &[4, 4, 7] },
+    Reaction { k: 0.82e-3, reactants: &[6], products: &[7] },
+    Reaction { k: 0.15e5, reactants: &[6, 5], products: &[4, 7] },
+    Reaction { k: 0.13e-3, reactants: &[8], products: &[4, 7, 9] },
+    Reaction { k: 0.24e5, reactants: &[8, 5], products: &[10] },
+    Reaction { k: 0.165e5, reactants: &[10, 1], products: &[0, 9, 11] },
+    Reaction { k: 0.9e4, reactants: &[10, 0], products: &[12] },
+    Reaction { k: 0.22e-1, reactants: &[12], products: &[0, 10] },
+    Reaction { k: 0.12e5, reactants: &[9, 1], products: &[0, 13] },
+    Reaction { k: 0.188e1, reactants: &[13], products: &[4, 6] },
+    Reaction { k: 0.163e5, reactants: &[0, 5], products: &[14] },
+    Reaction { k: 0.48e7, reactants: &[2], products: &[3] },
+    Reaction { k: 0.35e-3, reactants: &[3], products: &[15] },
+    Reaction { k: 0.175e-1, reactants: &[3], products: &[2] },
+    Reaction { k: 0.1e9, reactants: &[15], products: &[5, 5] },
+    Reaction { k: 0.444e12, reactants: &[15], products: &[2] },
+    Reaction { k: 0.124e4, reactants: &[16, 5], products: &[4, 17] },
+    Reaction { k: 0.21e1, reactants: &[18], products: &[1] },
+    Reaction { k: 0.578e1, reactants: &[18], products: &[0, 2] },
+    Reaction { k: 0.474e-1, reactants: &[0, 3], products: &[18] },
+    Reaction { k: 0.178e4, reactants: &[18, 0], products: &[19] },
+    Reaction { k: 0.312e1, reactants: &[19], products: &[0, 18] },
+];
+
+/// The pollution problem: 20 species of the air-pollution model of the Dutch National
+/// Institute of Public Health (RIVM) under 25 mass-action reactions
+/// (the table `POLLUTION_REACTIONS`), `y' = Σ_r k_r·Π y[reactants]·(products − reactants)`.
+pub struct Pollution;
+
+impl OdeProblem for Pollution {
+    fn dim(&self) -> usize {
+        20
+    }
+
+    fn rhs(&self, _t: f64, y: &[f64], _m: &[Mode], f: &mut [f64]) {
+        f.fill(0.0);
+        for r in &POLLUTION_REACTIONS {
+            let rate = r.reactants.iter().fold(r.k, |p, &i| p * y[i]);
+            r.reactants.iter().for_each(|&i| f[i] -= rate);
+            r.products.iter().for_each(|&i| f[i] += rate);
+        }
+    }
+
+    /// ∂rate/∂y_j for each reactant j (the product of k and the other reactants), taken from
+    /// each reactant and given to each product; entries repeated are summed.
+    fn jacobian(&self, _t: f64, y: &[f64], _m: &[Mode], jac: &mut Vec<Entry>) -> bool {
+        for r in &POLLUTION_REACTIONS {
+            for (a, &j) in r.reactants.iter().enumerate() {
+                let d = (r.reactants.iter().enumerate())
+                    .filter(|&(b, _)| b != a)
+                    .fold(r.k, |p, (_, &i)| p * y[i]);
+                r.reactants.iter().for_each(|&i| jac.push((i, j, -d)));
+                r.products.iter().for_each(|&i| jac.push((i, j, d)));
+            }
+        }
+        true
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -317,7 +427,7 @@ mod tests {
         assert!((p.scd(&y) - 7.0).abs() < 1e-6);
         assert_eq!(
             named("e5").err().unwrap(),
-            "unknown test problem `e5`; known problems: van-der-pol, robertson, hires, orego"
+            "unknown test problem `e5`; known problems: van-der-pol, robertson, hires, orego, pollution"
         );
     }
 }

@@ -14,9 +14,9 @@ pub struct WorkPrecisionArgs {
     /// The problem.
     #[command(flatten)]
     pub case: CaseArgs,
-    /// A problem of the stiff test set (van-der-pol, robertson, hires, orego), studied instead
-    /// of a scenario: the largest relative error at its end time against the published
-    /// reference (10^−scd) against work and wall time, rtol = atol = each tolerance
+    /// A problem of the stiff test set (van-der-pol, robertson, hires, orego, pollution),
+    /// studied instead of a scenario: the largest relative error at its end time against the
+    /// published reference (10^−scd) against work and wall time, rtol = atol = each tolerance
     /// (Robertson: atol = 1e-14·tol).
     #[arg(
         long,
