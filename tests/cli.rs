@@ -3815,6 +3815,26 @@ fn testset_writes_the_end_state_and_the_digits_against_the_reference() {
             .unwrap();
     assert!(json["stats"]["scd"].is_null(), "{json}");
     assert_eq!(json["t_reached"], 100.0);
+    // Robertson at t = 40, where Hairer & Wanner publish its values.
+    let forty = dir.path().join("forty");
+    let o = friction_lab(&[
+        "testset",
+        "robertson",
+        "--t-end",
+        "40",
+        "--rtol",
+        "1e-8",
+        "--atol",
+        "1e-14",
+        "--out",
+        forty.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(forty.join("summary.json")).unwrap())
+            .unwrap();
+    let scd = json["stats"]["scd"].as_f64().unwrap();
+    assert!(scd > 7.0 && scd < 13.0, "{json}");
     // Bad input: exit 2, nothing written, the alternatives named.
     for (args, message) in [
         (

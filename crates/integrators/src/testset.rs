@@ -26,6 +26,8 @@ pub struct TestProblem {
     pub reference: &'static [f64],
     /// The equations.
     pub problem: &'static dyn OdeProblem,
+    /// Published values at other times than `t_end`: (t, y(t)), where the problem has any.
+    pub also: &'static [(f64, &'static [f64])],
     /// The absolute tolerance of a run at relative tolerance `tol`, as a multiple of it
     /// ([`TestProblem::tolerances`]): 1, but 1e-14 for Robertson, whose y2 is of order 1e-13
     /// at its end time and would keep no correct digit under atol = tol.
@@ -36,12 +38,22 @@ impl TestProblem {
     /// Significant correct digits of `y` at the end time: `−log10(max_i |y_i − ref_i|/|ref_i|)`
     /// (every reference component here is non-zero).
     pub fn scd(&self, y: &[f64]) -> f64 {
-        let worst = y
-            .iter()
-            .zip(self.reference)
-            .map(|(y, r)| ((y - r) / r).abs())
-            .fold(0.0f64, f64::max);
-        -worst.log10()
+        digits(y, self.reference)
+    }
+
+    /// The published values at `t`: the reference at `t_end`, or one of [`TestProblem::also`];
+    /// `None` at any other time.
+    pub fn reference_at(&self, t: f64) -> Option<&'static [f64]> {
+        if t == self.t_end {
+            return Some(self.reference);
+        }
+        self.also.iter().find(|(at, _)| *at == t).map(|(_, y)| *y)
+    }
+
+    /// Significant correct digits of `y` at time `t` ([`TestProblem::scd`] against
+    /// [`TestProblem::reference_at`]); `None` where no values are published.
+    pub fn scd_at(&self, t: f64, y: &[f64]) -> Option<f64> {
+        self.reference_at(t).map(|r| digits(y, r))
     }
 
     /// (rtol, atol) of a work–precision run at tolerance `tol`: rtol = `tol`, atol =
@@ -49,6 +61,16 @@ impl TestProblem {
     pub fn tolerances(&self, tol: f64) -> (f64, f64) {
         (tol, self.atol_per_rtol * tol)
     }
+}
+
+/// `−log10(max_i |y_i − r_i|/|r_i|)`.
+fn digits(y: &[f64], reference: &[f64]) -> f64 {
+    let worst = y
+        .iter()
+        .zip(reference)
+        .map(|(y, r)| ((y - r) / r).abs())
+        .fold(0.0f64, f64::max);
+    -worst.log10()
 }
 
 /// The test set, in listing order.
@@ -63,6 +85,7 @@ pub const TESTSET: [TestProblem; 5] = [
         t_end: 2.0,
         reference: &[0.1706167732170469e1, -0.8928097010248125],
         problem: &VanDerPol,
+        also: &[],
         atol_per_rtol: 1.0,
     },
     TestProblem {
@@ -70,7 +93,7 @@ pub const TESTSET: [TestProblem; 5] = [
         title: "Robertson's autocatalytic reactions (three species, rate constants 0.04, 1e4, \
                 3e7)",
         source: "Mazzia & Iavernaro, Test Set for IVP Solvers 2.4, problem ROBER (rober.f): \
-                 y(1e11)",
+                 y(1e11); y(40) as Hairer & Wanner, Solving ODEs II, give it",
         y0: &[1.0, 0.0, 0.0],
         t_end: 1e11,
         reference: &[
@@ -79,6 +102,10 @@ pub const TESTSET: [TestProblem; 5] = [
             0.9999999791665050,
         ],
         problem: &Robertson,
+        also: &[(
+            40.0,
+            &[0.7158270687193, 0.9185534764529e-5, 0.2841637457462],
+        )],
         atol_per_rtol: 1e-14,
     },
     TestProblem {
@@ -100,6 +127,7 @@ pub const TESTSET: [TestProblem; 5] = [
             0.2850001604814231e-2,
         ],
         problem: &Hires,
+        also: &[],
         atol_per_rtol: 1.0,
     },
     TestProblem {
@@ -116,6 +144,7 @@ pub const TESTSET: [TestProblem; 5] = [
             0.1320554942846706e3,
         ],
         problem: &Orego,
+        also: &[],
         atol_per_rtol: 1.0,
     },
     TestProblem {
@@ -152,6 +181,7 @@ pub const TESTSET: [TestProblem; 5] = [
             0.5682943292316392e-4,
         ],
         problem: &Pollution,
+        also: &[],
         atol_per_rtol: 1.0,
     },
 ];
@@ -425,6 +455,13 @@ mod tests {
         // A relative error of 1e-7 in the worst component is 7 digits.
         let y: Vec<f64> = p.reference.iter().map(|r| r * (1.0 + 1e-7)).collect();
         assert!((p.scd(&y) - 7.0).abs() < 1e-6);
+        assert_eq!(p.scd_at(p.t_end, &y), Some(p.scd(&y)));
+        assert_eq!(p.scd_at(100.0, &y), None);
+        // Robertson's values at 40 as well as at its end time.
+        let r = named("robertson").unwrap();
+        let at_40: Vec<f64> = r.also[0].1.iter().map(|v| v * (1.0 - 1e-5)).collect();
+        assert!((r.scd_at(40.0, &at_40).unwrap() - 5.0).abs() < 1e-6);
+        assert_eq!(r.scd_at(41.0, &at_40), None);
         assert_eq!(
             named("e5").err().unwrap(),
             "unknown test problem `e5`; known problems: van-der-pol, robertson, hires, orego, pollution"

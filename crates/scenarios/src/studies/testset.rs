@@ -25,11 +25,12 @@ pub struct TestRun {
 }
 
 impl TestRun {
-    /// Significant correct digits at the problem's end time ([`TestProblem::scd`]); `None` for
-    /// a run that failed or ended elsewhere (its state has no reference).
+    /// Significant correct digits where the run ended ([`TestProblem::scd_at`]: the problem's
+    /// end time, or another time with published values); `None` for a run that failed or
+    /// ended where no values are published.
     pub fn scd(&self, problem: &TestProblem) -> Option<f64> {
         match (&self.failure, self.solution.last()) {
-            (None, Some((t, y))) if t == problem.t_end => Some(problem.scd(y)),
+            (None, Some((t, y))) => problem.scd_at(t, y),
             _ => None,
         }
     }
