@@ -3550,7 +3550,52 @@ fn the_time_limit_bounds_a_command_of_many_runs_as_a_whole() {
         assert_eq!(cells[1], "0", "{row}");
         assert!(cells[2..10].iter().all(|c| c.is_empty()), "{row}");
         assert_eq!(cells[10], "false", "{row}");
+        // A failed run has no regime: an empty cell, not a transient.
+        assert_eq!(cells[11], "", "{row}");
     }
+}
+
+/// `sweep` classifies every point as the stick–slip map does, and draws the sweep: the
+/// settled amplitude over one axis, the regimes over the plane of two, nothing over three.
+/// On the belt with CVS (c = 0, k = 100) the body sticks and slips at 0.1 m/s and slides
+/// steadily at 0.8 m/s, above the speed where the Stribeck slope stops feeding it energy.
+#[test]
+fn sweep_writes_each_points_regime_and_a_figure() {
+    let dir = tempfile::tempdir().unwrap();
+    let sweep = |name: &str, grid: &[&str]| {
+        let out = dir.path().join(name);
+        let mut args = vec!["sweep", "belt", "--model", "CVS"];
+        for g in grid {
+            args.extend(["--grid", g]);
+        }
+        args.extend(["--out", out.to_str().unwrap()]);
+        let o = friction_lab(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        out
+    };
+    let one = sweep("one", &["v_belt=0.1,0.8"]);
+    let csv = std::fs::read_to_string(one.join("sweep.csv")).unwrap();
+    let rows: Vec<Vec<&str>> = csv.lines().map(|l| l.split(',').collect()).collect();
+    let col = rows[0].iter().position(|c| *c == "regime").unwrap();
+    assert_eq!(rows[0][col - 1], "settled");
+    assert_eq!(
+        (rows[1][col], rows[2][col]),
+        ("StickSlip", "SteadySliding"),
+        "{csv}"
+    );
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(one.join("sweep.json")).unwrap()).unwrap();
+    assert_eq!(json["points"][0]["regime"], "StickSlip");
+    for out in [&one, &sweep("two", &["v_belt=0.1,0.8", "k=50,100"])] {
+        assert!(out.join("sweep.png").is_file() && out.join("sweep.svg").is_file());
+    }
+    let svg = std::fs::read_to_string(one.join("sweep.svg")).unwrap();
+    assert!(
+        svg.contains("v_belt (m/s)") && svg.contains("stick-slip"),
+        "{svg}"
+    );
+    let three = sweep("three", &["v_belt=0.1", "k=100", "c=0"]);
+    assert!(!three.join("sweep.png").exists());
 }
 
 /// Writes a chain of `n` bodies as the system file `chain.toml` in `dir` (inline tables, a

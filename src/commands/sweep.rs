@@ -11,14 +11,17 @@ use crate::commands::system::{
 use crate::error::AppError;
 use crate::laws::ModelChoice;
 use crate::output::{counted, Cell, Table};
+use crate::plot::{Corner, Marker, Plot, Series, PALETTE};
 use crate::progress::Progress;
 use crate::ranges;
+use crate::study::regime_series;
 use crate::threads::with_threads;
 use clap::Args;
 use friction_systems::{simulate, STICK};
 use integrators::Stats;
 use rayon::prelude::*;
 use scenarios::settled::{spanned, until_settled, Settled, Trace};
+use scenarios::stick_slip::Regime;
 use serde::Serialize;
 
 /// Most values on one axis.
@@ -218,6 +221,9 @@ pub struct PointResult {
     pub values: Vec<f64>,
     /// Its settled-state measures.
     pub settled: Settled,
+    /// Its regime (`Regime::of`, the stick–slip map's classification, against the velocity of
+    /// the surface under the measured body); `None` for a run that failed.
+    pub regime: Option<Regime>,
     /// Solver statistics.
     pub stats: Stats,
     /// The solver's error, if the run failed (the measures are of what it computed).
@@ -306,13 +312,19 @@ fn run_spanned(
     settle: f64,
     factor: u32,
 ) -> Result<PointResult, AppError> {
-    let (trace, stats, error) = match prepared {
+    let (trace, stats, error, surface_velocity) = match prepared {
         Prepared::Rig(spec) => {
             let o = scenarios::run(&spanned(spec, factor), &mut |_| {})?;
+            // The belt under the body, where the rig has one; the floor otherwise.
+            let surface = match spec.scenario.parameters().contains(&"v_belt") {
+                true => spec.params.v_belt,
+                false => 0.0,
+            };
             (
                 Trace::of_outcome(&o),
                 o.stats,
                 o.error.map(|e| e.to_string()),
+                surface,
             )
         }
         Prepared::System { described, body } => {
@@ -343,19 +355,112 @@ fn run_spanned(
                 .filter(|e| e.body == body && e.to == STICK && e.from != STICK)
                 .map(|e| e.t)
                 .collect();
-            (trace, run.solution.stats, run.error.map(|e| e.to_string()))
+            let surface = (described.system.contacts.iter())
+                .find(|c| c.body == body)
+                .map_or(0.0, |c| c.surface_velocity);
+            (
+                trace,
+                run.solution.stats,
+                run.error.map(|e| e.to_string()),
+                surface,
+            )
         }
     };
     let mut settled = Settled::of(&trace, settle);
     // A run that failed stopped short of its span: whatever its window shows, it is no
-    // settled state.
+    // settled state, and it has no regime.
     settled.settled &= error.is_none();
+    let regime = error
+        .is_none()
+        .then(|| Regime::of(&settled, surface_velocity));
     Ok(PointResult {
         values: Vec::new(),
         settled,
+        regime,
         stats,
         error,
     })
+}
+
+/// The labels of the regimes in a sweep's figure.
+const REGIMES: [(Regime, &str); 5] = [
+    (Regime::StickSlip, "stick-slip"),
+    (Regime::Oscillation, "oscillation without stick"),
+    (Regime::SteadySliding, "steady sliding"),
+    (Regime::Stuck, "carried by the surface all along"),
+    (Regime::Unsettled, "not settled (a transient)"),
+];
+
+/// Whether `values` are drawn on a log axis: all positive and spanning a decade or more.
+fn log_axis(values: &[f64]) -> bool {
+    let (lo, hi) = values.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), &v| {
+        (lo.min(v), hi.max(v))
+    });
+    values.iter().all(|&v| v > 0.0) && hi >= 10.0 * lo
+}
+
+/// The figure of a sweep of one or two axes (none for more): over one axis the settled
+/// amplitude of x − v̄·t at every point, over two the plane of the axes, each point in the
+/// colour and marker of its regime; a failed point is a cross of its own (on the axis, for
+/// one axis).
+fn figure(axes: &[Axis], results: &[PointResult], title: &str) -> Option<Plot> {
+    let failed = |at: &dyn Fn(&PointResult) -> (f64, f64)| Series {
+        label: Some("failed (sweep.csv says why)".into()),
+        points: results
+            .iter()
+            .filter(|r| r.regime.is_none())
+            .map(at)
+            .collect(),
+        color: PALETTE[5],
+        width: 0,
+        marker: Marker::Cross,
+    };
+    let by_regime = |at: &dyn Fn(&PointResult) -> (f64, f64)| {
+        let mut series: Vec<Series> = (REGIMES.iter())
+            .map(|&(regime, label)| {
+                let mine = results.iter().filter(|r| r.regime == Some(regime));
+                regime_series(regime, label, mine.map(at).collect())
+            })
+            .chain([failed(at)])
+            .collect();
+        series.retain(|s| !s.points.is_empty());
+        series
+    };
+    let label = |a: &Axis| {
+        use friction_models::{FrictionParams, Parameters};
+        let unit = (FrictionParams::spec(&a.name).map(|s| s.unit))
+            .or_else(|| scenarios::ScenarioParams::spec(&a.name).map(|s| s.unit))
+            .or_else(|| {
+                // The chain's: its unit follows its range, as in "(0, inf) kg".
+                let (_, allowed) = (friction_systems::chain::CHAIN_PARAMETERS.iter())
+                    .find(|(n, _)| *n == a.name)?;
+                let (_, after) = allowed.split_once([')', ']'])?;
+                Some(after.trim()).filter(|u| u.chars().all(|c| c.is_alphanumeric() || c == '/'))
+            });
+        match unit {
+            Some(u) if !u.is_empty() && u != "1" => format!("{} ({u})", a.name),
+            _ => a.name.clone(),
+        }
+    };
+    match axes {
+        [x] => Some(Plot {
+            title: format!("{title}: settled amplitude"),
+            x_label: label(x),
+            y_label: "half the range of x − v̄·t over the settled window (m)".into(),
+            series: by_regime(&|r| (r.values[0], r.settled.x_amplitude.max(0.0))),
+            legend: Corner::UpperRight,
+            log: false,
+        }),
+        [x, y] => Some(Plot {
+            title: format!("{title}: settled regime"),
+            x_label: label(x),
+            y_label: label(y),
+            series: by_regime(&|r| (r.values[0], r.values[1])),
+            legend: Corner::UpperRight,
+            log: log_axis(&x.values) && log_axis(&y.values),
+        }),
+        _ => None,
+    }
 }
 
 /// Runs `sweep`; its files in memory.
@@ -423,6 +528,7 @@ pub fn make(args: &SweepArgs) -> Result<Made, AppError> {
         "friction_mean",
         "friction_peak",
         "settled",
+        "regime",
         "drift",
         "t_end",
         "steps",
@@ -447,6 +553,7 @@ pub fn make(args: &SweepArgs) -> Result<Made, AppError> {
             num(s.friction_mean),
             num(s.friction_peak),
             Cell::Text(s.settled.to_string()),
+            Cell::Text(r.regime.map(|g| format!("{g:?}")).unwrap_or_default()),
             num(s.drift),
             Cell::Num(s.to),
             Cell::Num(r.stats.steps as f64),
@@ -459,14 +566,22 @@ pub fn make(args: &SweepArgs) -> Result<Made, AppError> {
     let mut files = Artifacts::default();
     let csv = args.run.out.join("sweep.csv");
     files.add(csv.clone(), table.to_csv(&csv)?);
+    let target = match (args.run.scenario, &args.run.system) {
+        (Some(Target::Rig(s)), _) => s.name().to_string(),
+        (_, Some(file)) => file.display().to_string(),
+        _ => "chain".into(),
+    };
+    let title = match &args.run.model {
+        Some(m) => format!("{target} with {}", m.name()),
+        None => target.clone(),
+    };
+    if let Some(plot) = figure(&axes, &results, &title) {
+        files.add_plot(&args.run.out.join("sweep"), &plot)?;
+    }
     files.add_json(
         args.run.out.join("sweep.json"),
         &SweepFile {
-            target: match (args.run.scenario, &args.run.system) {
-                (Some(Target::Rig(s)), _) => s.name().to_string(),
-                (_, Some(file)) => file.display().to_string(),
-                _ => "chain".into(),
-            },
+            target,
             model: args.run.model.as_ref().map(|m| m.name().to_string()),
             settle: args.settle,
             axes: &axes,

@@ -22,7 +22,9 @@ pub use convergence::ConvergenceStudy;
 pub use independence::{IndependenceStudy, Refinement};
 pub use report::{conduct_all, Entry, ReportEntry};
 pub use scaling::ScalingStudy;
-pub use stick_slip::{Bifurcation, BifurcationStudy, StickSlipMap, StickSlipMapStudy};
+pub use stick_slip::{
+    regime_series, Bifurcation, BifurcationStudy, StickSlipMap, StickSlipMapStudy,
+};
 pub use stiffness::StiffnessStudy;
 pub use table2::{check_decided, undecided, Table2Study};
 pub use testset::TestSetStudy;

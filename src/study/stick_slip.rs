@@ -24,6 +24,25 @@ fn boundary(base: &RunSpec) -> Result<Vec<f64>, ScenarioError> {
     Ok(stability_boundary(model.as_ref(), base.params.c, lo, hi, n))
 }
 
+/// The points of one regime as the figures draw them, each regime in its colour and marker
+/// (a dot for a sustained oscillation, a cross for the others), named `label`.
+pub fn regime_series(regime: Regime, label: &str, points: Vec<(f64, f64)>) -> Series {
+    let (color, marker) = match regime {
+        Regime::StickSlip => (PALETTE[0], Marker::Dot),
+        Regime::Oscillation => (PALETTE[2], Marker::Dot),
+        Regime::SteadySliding => (BLUE, Marker::Cross),
+        Regime::Stuck => (PALETTE[3], Marker::Cross),
+        Regime::Unsettled => (PALETTE[4], Marker::Cross),
+    };
+    Series {
+        label: Some(label.into()),
+        points,
+        color,
+        width: 0,
+        marker,
+    }
+}
+
 /// The settled regime of the belt `base` from rest at every belt speed × stiffness.
 pub struct StickSlipMapStudy<'a> {
     /// The belt run (its law, parameters, solver and duration).
@@ -103,40 +122,26 @@ impl Study for StickSlipMapStudy<'_> {
         }
         let csv = out.path(".csv");
         out.files.add(csv.clone(), table.to_csv(&csv)?);
-        let regime_series = |regime: Regime, label: &str, color, marker| Series {
-            label: Some(label.into()),
-            points: points
-                .iter()
+        let at = |regime: Regime| {
+            (points.iter())
                 .filter(|p| p.regime == regime)
                 .map(|p| (p.v_belt, p.k))
-                .collect(),
-            color,
-            width: 0,
-            marker,
+                .collect()
         };
-        let mut series = vec![
-            regime_series(Regime::StickSlip, "stick-slip", PALETTE[0], Marker::Dot),
-            regime_series(
-                Regime::Oscillation,
-                "oscillation without stick",
-                PALETTE[2],
-                Marker::Dot,
-            ),
-            regime_series(Regime::SteadySliding, "steady sliding", BLUE, Marker::Cross),
-            regime_series(
-                Regime::Stuck,
-                "carried by the belt all along",
-                PALETTE[3],
-                Marker::Cross,
-            ),
-            regime_series(
+        let mut series: Vec<Series> = [
+            (Regime::StickSlip, "stick-slip"),
+            (Regime::Oscillation, "oscillation without stick"),
+            (Regime::SteadySliding, "steady sliding"),
+            (Regime::Stuck, "carried by the belt all along"),
+            (
                 Regime::Unsettled,
                 "not settled within 8 spans (a transient)",
-                PALETTE[4],
-                Marker::Cross,
             ),
-        ];
-        series.retain(|s| !s.points.is_empty());
+        ]
+        .into_iter()
+        .map(|(regime, label)| regime_series(regime, label, at(regime)))
+        .filter(|s| !s.points.is_empty())
+        .collect();
         let inside: Vec<f64> = boundary
             .iter()
             .copied()
