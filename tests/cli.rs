@@ -3598,6 +3598,91 @@ fn sweep_writes_each_points_regime_and_a_figure() {
     assert!(!three.join("sweep.png").exists());
 }
 
+/// `sweep --start sliding`: the belt's body started at the equilibrium of steady sliding,
+/// the other half of a bifurcation diagram. On the belt with CVS at k = 100 steady sliding is
+/// stable at 0.5 m/s, where a start from rest still ends in stick–slip (the two coexist), and
+/// unstable at 0.1 m/s, where both starts end in stick–slip. Any other target is refused.
+#[test]
+fn sweep_starts_from_rest_or_from_steady_sliding() {
+    let dir = tempfile::tempdir().unwrap();
+    let regimes = |start: &str| {
+        let out = dir.path().join(start);
+        let o = friction_lab(&[
+            "sweep",
+            "belt",
+            "--model",
+            "CVS",
+            "--grid",
+            "v_belt=0.1,0.5",
+            "--start",
+            start,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let csv = std::fs::read_to_string(out.join("sweep.csv")).unwrap();
+        let rows: Vec<Vec<String>> = (csv.lines())
+            .map(|l| l.split(',').map(String::from).collect())
+            .collect();
+        let col = rows[0].iter().position(|c| c == "regime").unwrap();
+        let json: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(out.join("sweep.json")).unwrap()).unwrap();
+        assert_eq!(json["start"], start);
+        (rows[1][col].clone(), rows[2][col].clone())
+    };
+    assert_eq!(regimes("rest"), ("StickSlip".into(), "StickSlip".into()));
+    assert_eq!(
+        regimes("sliding"),
+        ("StickSlip".into(), "SteadySliding".into())
+    );
+    for (args, message) in [
+        (
+            vec!["sweep", "chain", "--model", "CS", "--grid", "k_chain=10,20"],
+            "applies to the belt rig only",
+        ),
+        (
+            vec![
+                "sweep",
+                "paper-block",
+                "--model",
+                "CS",
+                "--grid",
+                "F_ex=10,20",
+            ],
+            "applies to the belt rig only",
+        ),
+        (
+            vec!["sweep", "belt", "--model", "CS", "--grid", "x0=0,0.1"],
+            "sets x0 itself",
+        ),
+        (
+            vec![
+                "sweep",
+                "belt",
+                "--model",
+                "CS",
+                "--grid",
+                "v_belt=0.1",
+                "--set",
+                "k=0",
+            ],
+            "needs a spring",
+        ),
+    ] {
+        let mut all = args.clone();
+        all.extend(["--start", "sliding"]);
+        let e = rejected(&all);
+        assert!(e.contains(message), "{args:?}: {e}");
+    }
+    let e = rejected(&[
+        "sweep", "belt", "--model", "CS", "--grid", "k=10", "--start", "moving",
+    ]);
+    assert!(
+        e.contains("unknown start `moving`; known: rest, sliding"),
+        "{e}"
+    );
+}
+
 /// Writes a chain of `n` bodies as the system file `chain.toml` in `dir` (inline tables, a
 /// Coulomb contact on the first body only) and returns its path.
 fn chain_file(dir: &Path, n: usize) -> PathBuf {

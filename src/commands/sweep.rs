@@ -21,7 +21,8 @@ use friction_systems::{simulate, STICK};
 use integrators::Stats;
 use rayon::prelude::*;
 use scenarios::settled::{spanned, until_settled, Settled, Trace};
-use scenarios::stick_slip::Regime;
+use scenarios::stick_slip::{sliding_start, Regime};
+use scenarios::Scenario;
 use serde::Serialize;
 
 /// Most values on one axis.
@@ -53,11 +54,38 @@ pub struct SweepArgs {
     /// Worker threads (default: all cores); the results do not depend on it.
     #[arg(long, value_name = "N", allow_hyphen_values = true)]
     pub threads: Option<i64>,
+    /// Where every run starts: `rest` (the rig's x0, v0) or `sliding` (the belt only: the
+    /// body at rest at the equilibrium of steady sliding, x0 = −F(−v_belt)/k, the other half of
+    /// a bifurcation diagram).
+    #[arg(long, value_name = "rest|sliding", default_value = "rest")]
+    pub start: Start,
     /// Run only the grid points START <= i < END (0-based, in grid order): one part of the
     /// sweep, for spreading it over machines or Dask tasks; its rows equal those of the whole
     /// sweep. Every point of the grid is still checked first.
     #[arg(long, value_name = "START:END")]
     pub point_range: Option<String>,
+}
+
+/// Where a sweep's runs start.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Start {
+    /// From the rig's own initial state.
+    Rest,
+    /// From the equilibrium of steady sliding on the belt
+    /// ([`scenarios::stick_slip::sliding_start`]).
+    Sliding,
+}
+
+impl std::str::FromStr for Start {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "rest" => Ok(Start::Rest),
+            "sliding" => Ok(Start::Sliding),
+            _ => Err(format!("unknown start `{s}`; known: rest, sliding")),
+        }
+    }
 }
 
 /// The points `START:END` of a grid of `n` points.
@@ -235,6 +263,7 @@ pub struct PointResult {
 struct SweepFile<'a> {
     target: String,
     model: Option<String>,
+    start: Start,
     settle: f64,
     axes: &'a [Axis],
     /// The number of points in the whole grid.
@@ -270,9 +299,35 @@ enum Prepared {
     },
 }
 
-fn prepare(args: &SimulateArgs) -> Result<Prepared, AppError> {
-    match args.scenario {
-        Some(Target::Rig(scenario)) => Ok(Prepared::Rig(spec(args, scenario)?)),
+/// Checks a point's run and sets it up, started from rest or from steady sliding (the belt
+/// only: another rig or a system has no such start, refused with exit 2).
+fn prepare(args: &SimulateArgs, start: Start) -> Result<Prepared, AppError> {
+    let refuse = |why: &str| {
+        Err(AppError::Usage(format!(
+            "option `--start sliding` {why}: it starts the belt's body at the equilibrium of \
+             steady sliding; use --start rest"
+        )))
+    };
+    match (args.scenario, start) {
+        (Some(Target::Rig(Scenario::Belt)), Start::Sliding) => {
+            let mut spec = spec(args, Scenario::Belt)?;
+            if spec.params.k <= 0.0 {
+                return refuse(
+                    "needs a spring, k > 0 (steady sliding has no equilibrium without one)",
+                );
+            }
+            if (args.model_options.params.set.iter())
+                .any(|a| crate::options::parse_assignment(a).is_ok_and(|(n, _)| n == "x0"))
+            {
+                return refuse("sets x0 itself: drop x0 from --set and --grid");
+            }
+            let model = spec.law.build(&spec.friction)?;
+            spec.params.x0 = sliding_start(model.as_ref(), spec.params.v_belt, spec.params.k);
+            spec.params.v0 = 0.0;
+            Ok(Prepared::Rig(spec))
+        }
+        (_, Start::Sliding) => refuse("applies to the belt rig only"),
+        (Some(Target::Rig(scenario)), Start::Rest) => Ok(Prepared::Rig(spec(args, scenario)?)),
         _ => {
             let described = system_of(
                 args.system.as_deref(),
@@ -497,7 +552,7 @@ pub fn make(args: &SweepArgs) -> Result<Made, AppError> {
         })
         .collect();
     for a in &runs {
-        prepare(a)?;
+        prepare(a, args.start)?;
     }
     let range = point_range(args.point_range.as_deref(), grid.len())?;
     let b = Progress::runs(range.len(), "sweep");
@@ -506,7 +561,7 @@ pub fn make(args: &SweepArgs) -> Result<Made, AppError> {
             .par_iter()
             .zip(&grid[range.clone()])
             .map(|(a, point)| {
-                let r = run_point(a, prepare(a)?, args.settle);
+                let r = run_point(a, prepare(a, args.start)?, args.settle);
                 b.inc();
                 r.map(|r| PointResult {
                     values: point.iter().map(|(_, v)| *v).collect(),
@@ -583,6 +638,7 @@ pub fn make(args: &SweepArgs) -> Result<Made, AppError> {
         &SweepFile {
             target,
             model: args.run.model.as_ref().map(|m| m.name().to_string()),
+            start: args.start,
             settle: args.settle,
             axes: &axes,
             grid_points: grid.len(),

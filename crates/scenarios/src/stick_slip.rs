@@ -146,6 +146,15 @@ pub struct MapPoint {
     pub linearly_unstable: bool,
 }
 
+/// Where the belt's body starts to follow steady sliding (at rest, v0 = 0, the belt under it
+/// at `v_belt`): the equilibrium of the spring `k` against the steady friction force at
+/// v_rel = −v_belt, x_s = −F(−v_belt)/k, moved by 1e-6 of itself so that an unstable
+/// equilibrium is left rather than kept by exact arithmetic.
+pub fn sliding_start(model: &dyn FrictionModel, v_belt: f64, k: f64) -> f64 {
+    let force = steady::force(model, -v_belt, SignLaw::Frozen(Direction::Negative));
+    -force / k * (1.0 + 1e-6)
+}
+
 fn belt_spec(base: &RunSpec, v_belt: f64, k: f64, x0: f64) -> RunSpec {
     let mut spec = base.clone();
     spec.scenario = Scenario::Belt;
@@ -235,15 +244,13 @@ pub fn bifurcation(
     v_belts
         .par_iter()
         .map(|&v_belt| {
-            let v = -v_belt;
-            let force = steady::force(model.as_ref(), v, SignLaw::Frozen(Direction::Negative));
-            let x_s = -force / k;
+            let x_s = sliding_start(model.as_ref(), v_belt, k);
             let from = |x0: f64| {
                 let s = settled(&belt_spec(base, v_belt, k, x0), settle);
                 progress();
                 s
             };
-            let (from_rest, from_sliding) = rayon::join(|| from(0.0), || from(x_s * (1.0 + 1e-6)));
+            let (from_rest, from_sliding) = rayon::join(|| from(0.0), || from(x_s));
             Ok(Branches {
                 v_belt,
                 from_rest: from_rest?,
