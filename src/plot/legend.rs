@@ -169,19 +169,26 @@ pub(super) enum LegendTarget<'b, DB: DrawingBackend> {
     Strip(&'b DrawingArea<DB, Shift>),
 }
 
-/// A legend's key: a line sample and a cross, in pixels from the key's left end.
-type Key = (PathElement<(i32, i32)>, Cross<(i32, i32), i32>);
+/// A legend's key: a line sample, a cross and a dot, in pixels from the key's left end, the
+/// ones a series does not draw made transparent.
+type Key = (
+    PathElement<(i32, i32)>,
+    Cross<(i32, i32), i32>,
+    Circle<(i32, i32), i32>,
+);
 
-/// The key of a series in a legend, relative to its left end: a line for a computed series, a
-/// cross for failed runs.
-pub(super) fn key(color: RGBColor, marker: Marker) -> Key {
-    let (cross, line) = match marker {
-        Marker::Cross => (1.0, 0.0),
-        _ => (0.0, 1.0),
-    };
+/// The key of a series in a legend, relative to its left end, showing what the series draws:
+/// a line where it draws one (a curve, or a line through its points), and its marker, a dot
+/// or a cross.
+pub(super) fn key(color: RGBColor, marker: Marker, width: u32) -> Key {
+    let shown = |on: bool| if on { 1.0 } else { 0.0 };
+    let line = shown(width > 0 || marker == Marker::None);
+    let cross = shown(marker == Marker::Cross);
+    let dot = shown(marker == Marker::Dot);
     (
         PathElement::new([(0, 0), (20, 0)], color.mix(line).stroke_width(3)),
         Cross::new((10, 0), 5, color.mix(cross).stroke_width(2)),
+        Circle::new((10, 0), 4, color.mix(dot).filled()),
     )
 }
 
@@ -206,8 +213,8 @@ pub(super) fn draw_legend_beside<DB: DrawingBackend>(
     let text = TextStyle::from(LEGEND_FONT.into_font()).pos(Pos::new(HPos::Left, VPos::Center));
     for (k, s) in labelled.iter().enumerate() {
         let y = b.height / 2.0 + b.per_entry * (k as f64 + 0.5);
-        let (line, cross) = key(s.color, s.marker);
-        area.draw(&(EmptyElement::at(corner(x0 + 10.0, y)) + line + cross))
+        let (line, cross, dot) = key(s.color, s.marker, s.width);
+        area.draw(&(EmptyElement::at(corner(x0 + 10.0, y)) + line + cross + dot))
             .map_err(err)?;
         let label = s.label.as_deref().unwrap_or_default();
         area.draw(&Text::new(label, corner(x0 + 40.0, y), &text))

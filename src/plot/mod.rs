@@ -234,8 +234,7 @@ where
     }
     for s in &plot.series {
         let points: Vec<(f64, f64)> = drawn(plot, s).collect();
-        let color = s.color;
-        let marker = s.marker;
+        let (color, marker, width) = (s.color, s.marker, s.width);
         let drawn = if s.width > 0 {
             let style = ShapeStyle::from(&s.color).stroke_width(s.width);
             chart
@@ -248,8 +247,8 @@ where
         };
         if let Some(label) = &s.label {
             drawn.label(label.as_str()).legend(move |p| {
-                let (line, cross) = key(color, marker);
-                EmptyElement::at(p) + line + cross
+                let (line, cross, dot) = key(color, marker, width);
+                EmptyElement::at(p) + line + cross + dot
             });
         }
         match marker {
@@ -390,6 +389,52 @@ mod tests {
             caption_size("Work-precision: belt with CS", SIZE.0),
             CAPTION_SIZES.0
         );
+    }
+
+    /// The visible circles of an SVG: plotters writes a transparent one as `opacity="0"`.
+    fn visible_circles(svg: &str) -> usize {
+        svg.split("<circle")
+            .skip(1)
+            .filter(|c| !c.split('>').next().unwrap_or("").contains("opacity=\"0\""))
+            .count()
+    }
+
+    #[test]
+    fn a_legend_shows_the_marker_its_series_draws() {
+        // Three dots and no line: the legend's key is a dot too (it was a line), in a legend
+        // inside the axes and in one beside them (a long label does not fit inside).
+        for label in [
+            "dots",
+            &"a label too long for any corner of the plot ".repeat(4),
+        ] {
+            let plot = Plot {
+                title: "markers".into(),
+                x_label: "x".into(),
+                y_label: "y".into(),
+                series: vec![Series {
+                    label: Some(label.to_string()),
+                    points: vec![(1.0, 1.0), (2.0, 2.0), (3.0, 1.5)],
+                    color: RED,
+                    width: 0,
+                    marker: Marker::Dot,
+                }],
+                legend: Corner::UpperRight,
+                log: false,
+            };
+            let text = svg(&plot, Path::new("markers.svg")).unwrap();
+            assert_eq!(visible_circles(&text), 3 + 1, "{label}");
+            // A curve's key is no dot.
+            let curve = Plot {
+                series: vec![Series {
+                    marker: Marker::None,
+                    width: 2,
+                    ..plot.series[0].clone()
+                }],
+                ..plot
+            };
+            let text = svg(&curve, Path::new("curve.svg")).unwrap();
+            assert_eq!(visible_circles(&text), 0, "{label}");
+        }
     }
 
     #[test]
