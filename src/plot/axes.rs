@@ -130,8 +130,32 @@ pub(super) fn sample_ticks(plot: &Plot, a: f64, b: f64) -> Option<Vec<f64>> {
     ((2..=MAX_SAMPLE_TICKS).contains(&xs.len()) && apart).then_some(xs)
 }
 
-/// A tick label of a log axis: three significant digits, exponent form outside [1e-3, 1e4).
-pub(super) fn tick_label(v: f64) -> String {
+/// How a log axis writes its tick labels, one form for the whole axis: decimals where every
+/// tick lies in [1e-3, 1e4) (or is 0), else exponent form (so that "0.001" and "1e-4", or
+/// "1000" and "1e4", never share an axis).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum TickForm {
+    /// 0.02, 1000.
+    Decimal,
+    /// 1e-4, 2.5e7.
+    Exponent,
+}
+
+impl TickForm {
+    /// The form of an axis with `ticks`.
+    pub(super) fn of(ticks: &[f64]) -> TickForm {
+        match ticks
+            .iter()
+            .all(|&v| v == 0.0 || (1e-3..1e4).contains(&v.abs()))
+        {
+            true => TickForm::Decimal,
+            false => TickForm::Exponent,
+        }
+    }
+}
+
+/// A tick label of a log axis in `form`: three significant digits, trailing zeros left out.
+pub(super) fn tick_label(v: f64, form: TickForm) -> String {
     let trim = |m: String| {
         if m.contains('.') {
             m.trim_end_matches('0').trim_end_matches('.').to_string()
@@ -139,7 +163,7 @@ pub(super) fn tick_label(v: f64) -> String {
             m
         }
     };
-    if v == 0.0 || (1e-3..1e4).contains(&v.abs()) {
+    if v == 0.0 || form == TickForm::Decimal {
         trim(format!("{v:.4}"))
     } else {
         let text = format!("{v:.2e}");
@@ -208,10 +232,19 @@ mod tests {
     }
 
     #[test]
-    fn log_tick_labels_are_short() {
-        assert_eq!(tick_label(9.999999999999999e-6), "1e-5");
-        assert_eq!(tick_label(0.02), "0.02");
-        assert_eq!(tick_label(2.5e7), "2.5e7");
-        assert_eq!(tick_label(1000.0), "1000");
+    fn log_tick_labels_are_short_and_of_one_form_per_axis() {
+        let labels = |ticks: &[f64]| {
+            let form = TickForm::of(ticks);
+            ticks
+                .iter()
+                .map(|&v| tick_label(v, form))
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(labels(&[0.02, 1000.0]), ["0.02", "1000"]);
+        assert_eq!(labels(&[9.999999999999999e-6, 2.5e7]), ["1e-5", "2.5e7"]);
+        // An axis reaching past [1e-3, 1e4) writes all its ticks in exponent form: it
+        // mixed "0.001" with "1e-4", and "1000" with "1e4".
+        assert_eq!(labels(&[1e-4, 1e-3, 1e-2]), ["1e-4", "1e-3", "1e-2"]);
+        assert_eq!(labels(&[100.0, 1000.0, 1e4]), ["1e2", "1e3", "1e4"]);
     }
 }

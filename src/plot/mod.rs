@@ -9,7 +9,7 @@ mod legend;
 mod raster;
 
 use crate::error::AppError;
-use axes::{log_ticks, sample_ticks, tick_label};
+use axes::{log_ticks, sample_ticks, tick_label, TickForm};
 pub use legend::Corner;
 use legend::{
     draw_legend_beside, key, layout, legend_pixels, LegendPlace, LegendTarget, LEGEND_BOX,
@@ -147,13 +147,15 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, plots: &[Plot]) -> Res
                     .with_light_points(ticks)
             };
             let x_ticks = sample_ticks(plot, x0, x1).unwrap_or_else(|| log_ticks(x0, x1));
+            let y_ticks = log_ticks(y0, y1);
+            let forms = (TickForm::of(&x_ticks), TickForm::of(&y_ticks));
             let chart = builder
-                .build_cartesian_2d(axis(x0, x1, x_ticks), axis(y0, y1, log_ticks(y0, y1)))
+                .build_cartesian_2d(axis(x0, x1, x_ticks), axis(y0, y1, y_ticks))
                 .map_err(err)?;
-            draw_on(chart, plot, target)?;
+            draw_on(chart, plot, target, Some(forms))?;
         } else {
             let chart = builder.build_cartesian_2d(x0..x1, y0..y1).map_err(err)?;
-            draw_on(chart, plot, target)?;
+            draw_on(chart, plot, target, None)?;
         }
     }
     root.present().map_err(err)
@@ -179,11 +181,13 @@ fn caption_size(title: &str, width: u32) -> u32 {
         .unwrap_or(smallest)
 }
 
-/// The mesh, the series with their markers, and the legend, on linear or log axes.
+/// The mesh, the series with their markers, and the legend, on linear or log axes (each log
+/// axis labelled in its `log_forms` form).
 fn draw_on<'a, DB, X, Y>(
     mut chart: ChartContext<'a, DB, Cartesian2d<X, Y>>,
     plot: &Plot,
     legend: LegendTarget<'_, DB>,
+    log_forms: Option<(TickForm, TickForm)>,
 ) -> Result<(), String>
 where
     DB: DrawingBackend + 'a,
@@ -191,7 +195,9 @@ where
     Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
 {
     let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
-    let tick = |v: &f64| tick_label(*v);
+    let (x_form, y_form) = log_forms.unwrap_or((TickForm::Decimal, TickForm::Decimal));
+    let x_log_tick = |v: &f64| tick_label(*v, x_form);
+    let y_log_tick = |v: &f64| tick_label(*v, y_form);
     // A linear axis's tick at zero computed as a sum of steps can be a rounding below it, which
     // plotters labels "-0.0": such a tick is labelled as zero.
     let (xr, yr) = (chart.x_range(), chart.y_range());
@@ -211,7 +217,8 @@ where
         .label_style(("sans-serif", 15))
         .axis_desc_style(("sans-serif", 17));
     if plot.log {
-        mesh.x_label_formatter(&tick).y_label_formatter(&tick);
+        mesh.x_label_formatter(&x_log_tick)
+            .y_label_formatter(&y_log_tick);
     } else {
         mesh.x_label_formatter(&x_tick).y_label_formatter(&y_tick);
     }
