@@ -70,6 +70,10 @@ pub struct Plot {
     pub log: bool,
 }
 
+/// The labels plotters' mesh puts on each axis by default (`MeshStyle`'s `n_x_labels`,
+/// `n_y_labels`).
+const MESH_LABELS: usize = 10;
+
 /// The colours of the figures: the paper's red for the model, blue and green beside it.
 pub const RED: RGBColor = RGBColor(200, 30, 30);
 /// Second series colour.
@@ -208,8 +212,20 @@ where
             v
         }
     };
-    let x_tick = |v: &f64| X::format(&zero(*v, &xr));
-    let y_tick = |v: &f64| Y::format(&zero(*v, &yr));
+    // An axis whose labelled ticks are all whole numbers (plotters' ten a mesh labels) is
+    // labelled without decimals; plotters writes at least one ("8.0").
+    let whole = |keys: Vec<f64>| keys.iter().all(|v| v.fract() == 0.0 && v.abs() < 1e15);
+    let spec = chart.as_coord_spec();
+    let (x_whole, y_whole) = (
+        whole(spec.x_spec().key_points(MESH_LABELS)),
+        whole(spec.y_spec().key_points(MESH_LABELS)),
+    );
+    let linear = |v: f64, whole: bool, format: fn(&f64) -> String| match whole {
+        true => format!("{}", v as i64),
+        false => format(&v),
+    };
+    let x_tick = |v: &f64| linear(zero(*v, &xr), x_whole, X::format);
+    let y_tick = |v: &f64| linear(zero(*v, &yr), y_whole, Y::format);
     let mut mesh = chart.configure_mesh();
     mesh.light_line_style(WHITE)
         .x_desc(plot.x_label.as_str())
@@ -442,6 +458,33 @@ mod tests {
             let text = svg(&curve, Path::new("curve.svg")).unwrap();
             assert_eq!(visible_circles(&text), 0, "{label}");
         }
+    }
+
+    #[test]
+    fn a_linear_axis_of_whole_numbers_is_labelled_without_decimals() {
+        // Body indices 1 to 10 against time 0 to 0.6 s: the y labels read "8", not "8.0";
+        // the x labels keep their decimals.
+        let plot = Plot {
+            title: "indices".into(),
+            x_label: "t".into(),
+            y_label: "body".into(),
+            series: vec![Series {
+                label: None,
+                points: (1..=10).map(|i| (0.06 * i as f64, i as f64)).collect(),
+                color: RED,
+                width: 1,
+                marker: Marker::None,
+            }],
+            legend: Corner::default(),
+            log: false,
+        };
+        let text = svg(&plot, Path::new("indices.svg")).unwrap();
+        // The texts of the SVG, each written as <text …>\nTEXT\n</text>.
+        let texts: Vec<&str> = (text.split("<text").skip(1))
+            .filter_map(|t| Some(t.split_once('>')?.1.split("</text>").next()?.trim()))
+            .collect();
+        assert!(texts.contains(&"8") && !texts.contains(&"8.0"), "{texts:?}");
+        assert!(texts.contains(&"0.5"), "{texts:?}");
     }
 
     #[test]
