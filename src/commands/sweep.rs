@@ -486,11 +486,8 @@ fn figure(axes: &[Axis], results: &[PointResult], title: &str) -> Option<Plot> {
         let unit = (FrictionParams::spec(&a.name).map(|s| s.unit))
             .or_else(|| scenarios::ScenarioParams::spec(&a.name).map(|s| s.unit))
             .or_else(|| {
-                // The chain's: its unit follows its range, as in "(0, inf) kg".
-                let (_, allowed) = (friction_systems::chain::CHAIN_PARAMETERS.iter())
-                    .find(|(n, _)| *n == a.name)?;
-                let (_, after) = allowed.split_once([')', ']'])?;
-                Some(after.trim()).filter(|u| u.chars().all(|c| c.is_alphanumeric() || c == '/'))
+                let chain = friction_systems::chain::CHAIN_PARAMETERS;
+                chain.iter().find(|p| p.0 == a.name).map(|p| p.2)
             });
         match unit {
             Some(u) if !u.is_empty() && u != "1" => format!("{} ({u})", a.name),

@@ -171,7 +171,7 @@ pub fn system_of(
         AppError::Usage("option `--model` is required for the chain: e.g. --model coulomb".into())
     })?;
     let mut chain = ChainParams::default();
-    let names = CHAIN_PARAMETERS.map(|(name, _)| name);
+    let names = CHAIN_PARAMETERS.map(|(name, _, _)| name);
     let friction = options
         .params
         .resolve_with(&names, |name, value| Ok(chain.set(name, value)?))?;
@@ -182,7 +182,7 @@ pub fn system_of(
     };
     let system = source.build()?;
     let mut reported = model.parameters_read(&friction);
-    for (name, _) in CHAIN_PARAMETERS {
+    for (name, _, _) in CHAIN_PARAMETERS {
         let value = match name {
             "n_bodies" => chain.n_bodies as f64,
             "m" => chain.m,

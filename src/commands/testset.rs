@@ -10,7 +10,7 @@ use crate::ranges;
 use clap::Args;
 use integrators::testset::{self, TestProblem};
 use integrators::{MethodSwitch, Solution, Solver};
-use scenarios::studies::{self, TestRun};
+use scenarios::studies::{self, TestRun, TestSetCounts};
 use serde::Serialize;
 use std::path::PathBuf;
 
@@ -61,15 +61,9 @@ pub struct TestsetArgs {
 /// The counts of `summary.json`, in the test set's terms.
 #[derive(Serialize)]
 struct Counts {
-    /// Attempted steps: accepted and rejected.
-    steps: usize,
-    accepted: usize,
-    rejected: usize,
-    rhs_evals: usize,
-    jacobian_evals: usize,
-    lu_factorizations: usize,
-    linear_solves: usize,
-    newton_iterations: usize,
+    /// The test set's counts.
+    #[serde(flatten)]
+    counts: TestSetCounts,
     /// Significant correct digits where the run ended, against the published values there;
     /// null at a time without them, or on failure.
     scd: Option<f64>,
@@ -172,7 +166,6 @@ fn summary<'a>(
     scd: Option<f64>,
     wall_time_s: f64,
 ) -> Summary<'a> {
-    let s = solution.stats;
     Summary {
         problem: problem.name,
         title: problem.title,
@@ -186,14 +179,7 @@ fn summary<'a>(
         error: failure.as_ref().map(|e| e.to_string()),
         t_reached: solution.last().map(|(t, _)| t),
         stats: Counts {
-            steps: s.steps + s.rejected(),
-            accepted: s.steps,
-            rejected: s.rejected(),
-            rhs_evals: s.rhs_evals,
-            jacobian_evals: s.jacobian_evals,
-            lu_factorizations: s.lu_factorizations,
-            linear_solves: s.linear_solves,
-            newton_iterations: s.newton_iterations,
+            counts: TestSetCounts::of(&solution.stats),
             scd,
         },
         method_switches: &solution.method_switches,

@@ -12,7 +12,7 @@ use crate::ranges;
 use integrators::testset::TestProblem;
 use integrators::Solver;
 use scenarios::run::Limits;
-use scenarios::studies::{self, TestSetRun, TestSetWorkPrecision};
+use scenarios::studies::{self, TestSetCounts, TestSetRun, TestSetWorkPrecision};
 use scenarios::ScenarioError;
 
 /// Every solver of `solvers` on a test problem at every tolerance of `tols` (rtol = tol, atol
@@ -134,50 +134,31 @@ impl Study for TestSetStudy<'_> {
 
 /// One row per run: solver, tolerances, status ([`TestSetRun::status`]), scd, the test set's counts and the work.
 fn runs_table(runs: &[TestSetRun]) -> Table {
-    let mut t = Table::new(&[
-        "solver",
-        "tol",
-        "rtol",
-        "atol",
-        "status",
-        "scd",
-        "work",
-        "steps",
-        "accepted",
-        "rejected",
-        "rhs_evals",
-        "jacobian_evals",
-        "lu_factorizations",
-        "linear_solves",
-        "newton_iterations",
-        "reason",
-    ]);
+    let header: Vec<&str> = ["solver", "tol", "rtol", "atol", "status", "scd", "work"]
+        .into_iter()
+        .chain(TestSetCounts::NAMES)
+        .chain(["reason"])
+        .collect();
+    let mut t = Table::new(&header);
     for r in runs {
-        let s = r.stats;
-        let count = |n: usize| Cell::Num(n as f64);
-        t.rows.push(vec![
+        let mut row = vec![
             Cell::Text(r.solver.into()),
             Cell::Num(r.tol),
             Cell::Num(r.rtol),
             Cell::Num(r.atol),
             Cell::Text(r.status.name().into()),
             r.scd.map_or_else(Cell::empty, Cell::Num),
-            count(r.work),
-            count(s.steps + s.rejected()),
-            count(s.steps),
-            count(s.rejected()),
-            count(s.rhs_evals),
-            count(s.jacobian_evals),
-            count(s.lu_factorizations),
-            count(s.linear_solves),
-            count(s.newton_iterations),
-            Cell::Text(
-                r.failure
-                    .as_ref()
-                    .map(|e| e.to_string())
-                    .unwrap_or_default(),
-            ),
-        ]);
+            Cell::Num(r.work as f64),
+        ];
+        let counts = TestSetCounts::of(&r.stats).values();
+        row.extend(counts.map(|n| Cell::Num(n as f64)));
+        row.push(Cell::Text(
+            r.failure
+                .as_ref()
+                .map(|e| e.to_string())
+                .unwrap_or_default(),
+        ));
+        t.rows.push(row);
     }
     t
 }

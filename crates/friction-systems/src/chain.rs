@@ -43,21 +43,22 @@ impl Default for ChainParams {
     }
 }
 
-/// The chain's parameters by name, with their allowed ranges and units (for `--set`).
-pub const CHAIN_PARAMETERS: [(&str, &str); 6] = [
-    ("n_bodies", "[1, 1000000], a whole number"),
-    ("m", "(0, inf) kg"),
-    ("k_chain", "[0, inf) N/m"),
-    ("k_driver", "[0, inf) N/m"),
-    ("v_driver", "(-inf, inf) m/s"),
-    ("spread", "[0, 1)"),
+/// The chain's parameters by name, with their allowed ranges and units as messages give them
+/// (for `--set`), and their SI units ("" for a count or a ratio).
+pub const CHAIN_PARAMETERS: [(&str, &str, &str); 6] = [
+    ("n_bodies", "[1, 1000000], a whole number", ""),
+    ("m", "(0, inf) kg", "kg"),
+    ("k_chain", "[0, inf) N/m", "N/m"),
+    ("k_driver", "[0, inf) N/m", "N/m"),
+    ("v_driver", "(-inf, inf) m/s", "m/s"),
+    ("spread", "[0, 1)", ""),
 ];
 
 impl ChainParams {
     /// Sets the parameter `name` to `value`, checking its range; `Ok(false)` if `name` is
     /// not a chain parameter.
     pub fn set(&mut self, name: &str, value: f64) -> Result<bool, SystemError> {
-        let Some(&(key, allowed)) = CHAIN_PARAMETERS.iter().find(|p| p.0 == name) else {
+        let Some(&(key, allowed, _)) = CHAIN_PARAMETERS.iter().find(|p| p.0 == name) else {
             return Ok(false);
         };
         let ok = value.is_finite()

@@ -5,11 +5,10 @@
 //! vector's other components have died out, ‖J^k·x‖ grows as ρ^k times a bounded factor, so the
 //! mean converges to ρ whatever the dominant eigenvalues are: one real, a complex pair (a
 //! spring's ±iω, on which the ratio ‖J·x‖/‖x‖ of one step oscillates for ever), or a cluster of
-//! nearly equal moduli (a chain's top modes). Projections did worse on friction systems, whose
-//! stuck bodies make the Jacobian far from normal: Arnoldi's Ritz values with 40 vectors and a
-//! Rayleigh–Ritz block of 6 strayed up to four times beyond the spectrum, and a two-term
-//! recurrence fitted to one vector was off by up to 35 %, where this mean stayed within 1.4 %
-//! (tests `the_power_estimate_of_a_large_spectral_radius` in integrators,
+//! nearly equal moduli (a chain's top modes). Projections (Arnoldi's Ritz values, a
+//! Rayleigh–Ritz block) strayed beyond the spectrum of friction systems' Jacobians, which stuck
+//! bodies make far from normal; this mean stays within a few per cent of it (tests
+//! `the_power_estimate_of_a_large_spectral_radius` in integrators,
 //! `the_stiffness_of_a_large_chain_is_its_spectral_radius` in friction-systems).
 
 use crate::problem::{Entry, Mode, OdeProblem};
@@ -26,13 +25,15 @@ pub const MEASURED: usize = 200;
 enum Product<'a> {
     /// From the problem's sparse Jacobian.
     Sparse(Vec<Entry>),
-    /// By forward differences of f from `f0 = f(t, y)`.
+    /// By forward differences of f from `f0 = f(t, y)`, a step δ·v of `delta` = √ε·(1 + ‖y‖)
+    /// relative to ‖v‖.
     Differences {
         problem: &'a dyn OdeProblem,
         t: f64,
         y: &'a [f64],
         modes: &'a [Mode],
         f0: Vec<f64>,
+        delta: f64,
     },
 }
 
@@ -55,11 +56,9 @@ impl Product<'_> {
                 y,
                 modes,
                 f0,
+                delta,
             } => {
-                // A step δ·v of √ε relative to the state.
-                let scale = dot(y, y).sqrt();
-                let delta =
-                    f64::EPSILON.sqrt() * (1.0 + scale) / dot(v, v).sqrt().max(f64::MIN_POSITIVE);
+                let delta = delta / dot(v, v).sqrt().max(f64::MIN_POSITIVE);
                 let mut yd = y.to_vec();
                 for (yi, vi) in yd.iter_mut().zip(v) {
                     *yi += delta * vi;
@@ -127,6 +126,7 @@ pub fn spectral_radius_estimate(
             y,
             modes,
             f0,
+            delta: f64::EPSILON.sqrt() * (1.0 + dot(y, y).sqrt()),
         }
     };
     // The product's argument: the vector, with the quadratures (which no f reads) held.

@@ -163,7 +163,7 @@ impl CaseArgs {
                 given.iter().map(|s| s.name()).collect::<Vec<_>>().join(",")
             )));
         }
-        Ok(if given.is_empty() { defaults } else { given }.to_vec())
+        Ok(or_default(given, defaults))
     }
 
     /// The treatment of v = 0 that `--scheme` and `--switching` ask for (time-stepping at
@@ -211,6 +211,11 @@ impl CaseArgs {
             trajectory: None,
         })
     }
+}
+
+/// `given` (a list option), or `defaults` when none are given.
+pub fn or_default<T: Copy>(given: &[T], defaults: &[T]) -> Vec<T> {
+    if given.is_empty() { defaults } else { given }.to_vec()
 }
 
 /// One line for each method with failed runs of a study (an unstable step, a limit): how many,

@@ -1,6 +1,6 @@
 //! `work-precision`: error against work and wall time for every solver and peer.
 
-use super::{failures, CaseArgs};
+use super::{failures, or_default, CaseArgs};
 use crate::artifacts::{Artifacts, Made};
 use crate::error::AppError;
 use crate::ranges;
@@ -84,11 +84,6 @@ const TESTSET_SOLVERS: [Solver; 6] = [
     Solver::TR_BDF2,
     Solver::ESDIRK34,
 ];
-
-/// `given`, or `defaults` when none are given.
-fn or_default<T: Copy>(given: &[T], defaults: &[T]) -> Vec<T> {
-    if given.is_empty() { defaults } else { given }.to_vec()
-}
 
 /// Runs `work-precision`; its files in memory.
 pub fn work_precision(a: &WorkPrecisionArgs) -> Result<Made, AppError> {

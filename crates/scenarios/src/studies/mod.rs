@@ -32,7 +32,8 @@ pub use stiffness::{
     crossover, reached, stiffness, winner, Cost, Reached, Stiffness, StiffnessPoint, Sweep, Winner,
 };
 pub use testset::{
-    solve as solve_test_problem, testset_work_precision, TestRun, TestSetRun, TestSetWorkPrecision,
+    solve as solve_test_problem, testset_work_precision, TestRun, TestSetCounts, TestSetRun,
+    TestSetWorkPrecision,
 };
 pub use work_precision::{work_precision, WorkPrecision};
 

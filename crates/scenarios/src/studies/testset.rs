@@ -67,6 +67,70 @@ pub fn solve(
     }
 }
 
+/// A run's counts in the test set's terms: attempted steps, then accepted and rejected ones,
+/// and the evaluations and linear algebra.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct TestSetCounts {
+    /// Attempted steps: accepted and rejected.
+    pub steps: usize,
+    /// Accepted steps.
+    pub accepted: usize,
+    /// Rejected steps, whatever the cause.
+    pub rejected: usize,
+    /// Evaluations of f.
+    pub rhs_evals: usize,
+    /// Evaluations of the Jacobian.
+    pub jacobian_evals: usize,
+    /// Real LU factorisations.
+    pub lu_factorizations: usize,
+    /// Real back-solves.
+    pub linear_solves: usize,
+    /// Newton iterations.
+    pub newton_iterations: usize,
+}
+
+impl TestSetCounts {
+    /// The names of the counts, in the order of [`TestSetCounts::values`].
+    pub const NAMES: [&'static str; 8] = [
+        "steps",
+        "accepted",
+        "rejected",
+        "rhs_evals",
+        "jacobian_evals",
+        "lu_factorizations",
+        "linear_solves",
+        "newton_iterations",
+    ];
+
+    /// The counts of a run with statistics `s`.
+    pub fn of(s: &Stats) -> TestSetCounts {
+        TestSetCounts {
+            steps: s.steps + s.rejected(),
+            accepted: s.steps,
+            rejected: s.rejected(),
+            rhs_evals: s.rhs_evals,
+            jacobian_evals: s.jacobian_evals,
+            lu_factorizations: s.lu_factorizations,
+            linear_solves: s.linear_solves,
+            newton_iterations: s.newton_iterations,
+        }
+    }
+
+    /// The counts in the order of [`TestSetCounts::NAMES`].
+    pub fn values(&self) -> [usize; 8] {
+        [
+            self.steps,
+            self.accepted,
+            self.rejected,
+            self.rhs_evals,
+            self.jacobian_evals,
+            self.lu_factorizations,
+            self.linear_solves,
+            self.newton_iterations,
+        ]
+    }
+}
+
 /// One (solver, tolerance) of a test-set work–precision study.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct TestSetRun {
@@ -198,13 +262,14 @@ pub fn testset_work_precision(
             .filter_map(|(_, r)| r.as_ref().map(|r| r.wall_time_s))
             .collect();
         let (rtol, atol) = problem.tolerances(tols[k]);
+        let scd = first.scd(problem);
         runs.push(TestSetRun {
             solver: solvers[s].name(),
             tol: tols[k],
             rtol,
             atol,
-            scd: first.scd(problem),
-            status: TestSetRun::status(first.scd(problem)),
+            scd,
+            status: TestSetRun::status(scd),
             stats: first.solution.stats,
             work: first.solution.stats.work(dim),
             failure: first.failure.clone(),
