@@ -8,21 +8,22 @@
 //! against the closed form tells whether the tolerance is met.
 //!
 //! It implements the public `Study` trait: its runs, its typed result, its table, JSON and
-//! figure. `study::conduct` checks it, runs it on a pool of threads with a progress bar and
-//! adds its files, as it does for `converge` or `work-precision`; `Artifacts::write` puts them
-//! in a folder, all or nothing.
+//! figure. It joins a report as `reproduce`'s studies do: one [`Entry`] (the study, the stem of
+//! its files, the line its result reads as) in a [`Section`] of a [`Report`], which checks it,
+//! runs it on a pool of threads with a progress bar, and adds its files and `report.md`;
+//! `Artifacts::write` puts them in a folder, all or nothing.
 //!
 //! Run: `cargo run --release --example own_study -- OUT_DIR`.
 
-use friction_lab::artifacts::Artifacts;
 use friction_lab::error::AppError;
 use friction_lab::friction_models::{FrictionParams, ModelId};
 use friction_lab::integrators::{Solver, StepControl};
 use friction_lab::output::{Cell, Table};
 use friction_lab::plot::{Corner, Marker, Plot, Series, PALETTE};
+use friction_lab::reproduce::{Report, Section};
 use friction_lab::scenarios::studies::{slope, Case, StudyCase};
 use friction_lab::scenarios::{Limits, Scenario, ScenarioError, SwitchingKind};
-use friction_lab::study::{conduct, Study, StudyFiles, Target};
+use friction_lab::study::{Entry, Study, StudyFiles};
 use serde::Serialize;
 use std::path::Path;
 
@@ -180,17 +181,29 @@ impl Study for StepCountStudy<'_> {
     }
 }
 
-/// What the example computed, for the test that runs it.
+/// What the example wrote, for the test that runs it.
 pub struct Outcome {
-    /// The study's result.
-    pub counts: StepCounts,
     /// The files written, relative to the folder.
     pub files: Vec<String>,
+    /// The report.
+    pub report: String,
+}
+
+/// The study's line in the report: each solver's fitted order.
+fn reads(counts: &StepCounts) -> String {
+    let orders: Vec<String> = (counts.orders.iter())
+        .map(|(name, _, q)| format!("{name} {q:.2}"))
+        .collect();
+    format!(
+        "- [Steps against the tolerance](step-counts.png): the order of each error estimate, \
+         from the slope of its step counts: {}.\n",
+        orders.join(", ")
+    )
 }
 
 /// The paper's block pushed from rest against viscous friction (x, v in closed form), studied
 /// with Dormand–Prince from tol 1e-7 to 1e-12 (looser, it takes a dozen steps, too few for the
-/// asymptotic law) and implicit Euler from 1e-3 to 1e-7, written into `dir`.
+/// asymptotic law) and implicit Euler from 1e-3 to 1e-7, written into `dir` with a report.
 pub fn run(dir: &Path) -> Result<Outcome, AppError> {
     let case = Case {
         scenario: Scenario::PaperBlock,
@@ -208,22 +221,38 @@ pub fn run(dir: &Path) -> Result<Outcome, AppError> {
             (Solver::IMPLICIT_EULER, &[1e-3, 1e-4, 1e-5, 1e-6, 1e-7]),
         ],
     };
-    let mut files = Artifacts::default();
-    let mut target = Target {
-        files: &mut files,
-        dir,
-        threads: None,
-        failure: None,
+    let entry = Entry {
+        stem: "step-counts",
+        study,
+        reads,
     };
-    let counts = conduct(&study, &mut target, "step-counts")?;
-    let written = files.write(dir)?;
+    let section = Section {
+        heading: "Step counts against the tolerance".into(),
+        folder: "",
+        intro: format!("{}, adaptive solvers, rtol = atol.\n\n", case.describe()),
+        entries: vec![&entry],
+    };
+    let report = Report {
+        title: "# Step counts of adaptive solvers".into(),
+        preface: String::new(),
+        parts: vec![&section],
+    };
+    let made = report.conduct(dir, None)?;
+    if let Some(failure) = made.failure {
+        return Err(failure);
+    }
+    let written = made.files.write(dir)?;
     let mut files: Vec<String> = written
         .files
         .iter()
         .map(|p| p.strip_prefix(dir).unwrap_or(p).display().to_string())
         .collect();
     files.sort();
-    Ok(Outcome { counts, files })
+    let report = std::fs::read_to_string(dir.join("report.md")).map_err(|source| AppError::Io {
+        path: dir.join("report.md"),
+        source,
+    })?;
+    Ok(Outcome { files, report })
 }
 
 fn main() {
@@ -232,9 +261,7 @@ fn main() {
         .unwrap_or_else(|| "step-counts".into());
     match run(Path::new(&dir)) {
         Ok(o) => {
-            for (name, s, q) in &o.counts.orders {
-                println!("{name:15} slope {s:.3}, order of the error estimate {q:.2}");
-            }
+            print!("{}", o.report);
             println!("wrote {} into {dir}", o.files.join(", "));
         }
         Err(e) => {

@@ -2,8 +2,9 @@
 
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Marker, Plot, Series, BLUE, GREEN, RED};
-use friction_models::{CurveAxis, ModelId, Variant};
+use friction_models::{CurveAxis, ModelId, StickInterval, Variant};
 use scenarios::curves::{Curve, Sample};
+use serde::Serialize;
 
 /// One curve of a figure, with the reading of the equations it was computed from.
 #[derive(Clone, Debug, PartialEq)]
@@ -132,5 +133,40 @@ pub fn plot(title: String, model: ModelId, curves: &[Drawn]) -> Plot {
         series,
         legend: Corner::default(),
         log: false,
+    }
+}
+
+/// Key values of a curve, as written to its JSON summary.
+#[derive(Serialize)]
+pub struct KeyValues {
+    /// Force just left of zero (limit v → 0−), N.
+    pub left_of_zero: f64,
+    /// Force just right of zero (limit v → 0+), N.
+    pub right_of_zero: f64,
+    /// Forces admissible at rest, N.
+    pub at_rest: StickInterval,
+    /// Abscissa (v in m/s or X in m) at the positive end.
+    pub end_abscissa: f64,
+    /// Force at the positive end, N.
+    pub end_force: f64,
+    /// Force at the negative end, N.
+    pub end_force_negative: f64,
+}
+
+impl KeyValues {
+    /// The key values of `curve`.
+    pub fn of(curve: &Curve) -> Self {
+        let end = curve.positive[curve.positive.len() - 1];
+        KeyValues {
+            left_of_zero: curve.left_of_zero,
+            right_of_zero: curve.right_of_zero,
+            at_rest: curve.at_rest,
+            end_abscissa: match curve.axis {
+                CurveAxis::Velocity => end.v,
+                CurveAxis::Displacement => end.x,
+            },
+            end_force: end.force,
+            end_force_negative: curve.negative[curve.negative.len() - 1].force,
+        }
     }
 }

@@ -23,6 +23,7 @@ pub mod plot;
 pub mod progress;
 pub mod provenance;
 pub mod ranges;
+pub mod reproduce;
 pub mod run_record;
 pub mod study;
 pub mod threads;

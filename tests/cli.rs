@@ -2602,7 +2602,7 @@ fn the_chain_takes_its_parameters_from_a_file_and_names_them_when_one_is_unknown
 fn reproduce_keeps_everything_when_the_experiment_fails_for_some_models() {
     // σ = 1e300 N/m: the Dahl models DV, SD and SV fail at the experiment's first step. The
     // report is still written whole, the experiment's table says which failed and why, and
-    // the command exits 1 (it exited 1 having written nothing).
+    // the command exits 1 (it exited 1 having written nothing); the other parts run.
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out");
     let o = friction_lab(&[
@@ -2627,6 +2627,19 @@ fn reproduce_keeps_everything_when_the_experiment_fails_for_some_models() {
     for file in ["report.md", "table2.md", "reproduction.md", "studies"] {
         assert!(out.join(file).exists(), "{file} is missing");
     }
+    // The report's section on the experiment says it did not complete, and why.
+    let report = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(
+        report.contains(
+            "## The paper's experiment (section 3)\n\nNot completed: the paper's experiment \
+             failed for DV, SD, SV (paper-experiment.md keeps the other models"
+        ),
+        "{report}"
+    );
+    assert!(
+        report.contains("## Table 2, decided by simulation\n\n[table2.md]"),
+        "{report}"
+    );
 }
 
 #[test]
@@ -2892,7 +2905,8 @@ fn ctrl_c_during_reproduce_writes_what_it_computed_and_names_what_it_did_not_run
     let report = std::fs::read_to_string(out.join("report.md")).unwrap();
     assert!(
         report.contains(
-            "## Stick-slip on the belt\n\nNot run: the command was stopped by a signal before it."
+            "## Stick-slip on the belt: the map and the bifurcation diagram\n\nNot run: the \
+             command was stopped by a signal before it."
         ),
         "{report}"
     );

@@ -92,32 +92,62 @@ fn an_own_study_is_conducted_and_writes_its_files_and_figure() {
     assert_eq!(
         o.files,
         [
+            "report.md",
             "step-counts.csv",
             "step-counts.json",
             "step-counts.png",
             "step-counts.svg"
         ]
     );
+    // The study's result as its JSON keeps it.
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("step-counts.json")).unwrap()).unwrap();
     // The order of each error estimate from its step counts: Dormand–Prince's embedded
     // solution is of order 4 (its slope approaches 1/5 from below as the tolerance falls: a
     // fixed cost of the start weighs less; 4.5 from 1e-7 to 1e-12), implicit Euler's
     // step-doubling estimate of order 1.
     let order = |name: &str| {
-        let (_, _, q) = o.counts.orders.iter().find(|o| o.0 == name).unwrap();
-        *q
+        let orders = json["orders"].as_array().unwrap();
+        let o = orders.iter().find(|o| o[0] == name).unwrap();
+        o[2].as_f64().unwrap()
     };
     let dopri5 = order("dopri5");
     assert!((3.8..5.0).contains(&dopri5), "{dopri5}");
     let implicit_euler = order("implicit-euler");
     assert!((implicit_euler - 1.0).abs() < 0.2, "{implicit_euler}");
+    // The report is the study's section, its line reading the result.
+    assert!(
+        o.report.contains(
+            " threads.\n\n## Step counts against the tolerance\n\npaper-block with viscous \
+             (event switching), adaptive solvers, rtol = atol.\n\n- [Steps against the \
+             tolerance](step-counts.png)"
+        ),
+        "{}",
+        o.report
+    );
+    assert!(
+        o.report.contains(&format!(
+            "from the slope of its step counts: dopri5 {dopri5:.2}, implicit-euler \
+             {implicit_euler:.2}.\n"
+        )),
+        "{}",
+        o.report
+    );
     // Dormand–Prince meets its tolerance within a small factor (tolerance proportionality);
     // implicit Euler, controlled per step, only its square root (docs/solvers.md).
-    let runs = |name: &'static str| o.counts.runs.iter().filter(move |r| r.solver == name);
-    for r in runs("dopri5") {
-        assert!(r.error < 10.0 * r.tol, "{r:?}");
+    let runs = |name: &'static str| {
+        json["runs"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(move |r| r["solver"] == name)
+            .map(|r| (r["tol"].as_f64().unwrap(), r["error"].as_f64().unwrap()))
+    };
+    for (tol, error) in runs("dopri5") {
+        assert!(error < 10.0 * tol, "{tol}: {error}");
     }
     let logs: Vec<(f64, f64)> = runs("implicit-euler")
-        .map(|r| (r.tol.ln(), r.error.ln()))
+        .map(|(tol, error)| (tol.ln(), error.ln()))
         .collect();
     let slope = friction_lab::scenarios::studies::slope(&logs);
     assert!((slope - 0.5).abs() < 0.1, "error ~ tol^{slope}");

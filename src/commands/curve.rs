@@ -3,13 +3,13 @@
 
 use crate::artifacts::{Artifacts, Made};
 use crate::error::AppError;
-use crate::figure::Drawn;
+use crate::figure::{Drawn, KeyValues};
 use crate::laws::used_parameters;
 use crate::options::ModelOptions;
 use crate::ranges;
 use clap::Args;
-use friction_models::{CurveAxis, ModelId, StickInterval, Variant};
-use scenarios::curves::{self, Curve};
+use friction_models::{CurveAxis, ModelId, Variant};
+use scenarios::curves;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -41,41 +41,6 @@ pub struct CurveArgs {
     /// The model's parameters and reading.
     #[command(flatten)]
     pub model_options: ModelOptions,
-}
-
-/// Key values of a curve, as written to its JSON summary.
-#[derive(Serialize)]
-pub struct KeyValues {
-    /// Force just left of zero (limit v → 0−), N.
-    pub left_of_zero: f64,
-    /// Force just right of zero (limit v → 0+), N.
-    pub right_of_zero: f64,
-    /// Forces admissible at rest, N.
-    pub at_rest: StickInterval,
-    /// Abscissa (v in m/s or X in m) at the positive end.
-    pub end_abscissa: f64,
-    /// Force at the positive end, N.
-    pub end_force: f64,
-    /// Force at the negative end, N.
-    pub end_force_negative: f64,
-}
-
-impl KeyValues {
-    /// The key values of `curve`.
-    pub fn of(curve: &Curve) -> Self {
-        let end = curve.positive[curve.positive.len() - 1];
-        KeyValues {
-            left_of_zero: curve.left_of_zero,
-            right_of_zero: curve.right_of_zero,
-            at_rest: curve.at_rest,
-            end_abscissa: match curve.axis {
-                CurveAxis::Velocity => end.v,
-                CurveAxis::Displacement => end.x,
-            },
-            end_force: end.force,
-            end_force_negative: curve.negative[curve.negative.len() - 1].force,
-        }
-    }
 }
 
 #[derive(Serialize)]

@@ -5,7 +5,6 @@ pub mod models;
 pub mod phenomena;
 pub mod reproduce;
 pub mod simulate;
-pub mod stick_slip;
 pub mod studies;
 pub mod sweep;
 pub mod system;

@@ -36,6 +36,12 @@ impl Study for Table2Study<'_> {
         table(self.laws, self.protocol, parameters, true, progress)
     }
 
+    /// Cells left undecided, their protocol runs failed ([`check_decided`]): the files mark
+    /// them, and the command exits 1.
+    fn failure(&self, rows: &Self::Result) -> Option<AppError> {
+        check_decided(rows).err()
+    }
+
     /// `{stem}.md` (the table beside the paper's, with the protocols and their verdicts over
     /// their grids) and `{stem}.json` (every cell with its evidence).
     fn write(&self, rows: &Self::Result, out: &mut StudyFiles) -> Result<(), AppError> {
