@@ -86,7 +86,7 @@ impl Study for StepCountStudy<'_> {
         self.solvers.iter().map(|(_, tols)| tols.len()).sum()
     }
 
-    fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<StepCounts, ScenarioError> {
+    fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<StepCounts, AppError> {
         let (_, exact) = self.case.closed_form().expect("checked");
         let mut runs = Vec::new();
         for &(solver, tols) in self.solvers {
@@ -101,7 +101,8 @@ impl Study for StepCountStudy<'_> {
                     return Err(ScenarioError::Solver {
                         what: format!("{} at tol {tol:e}", solver.name()),
                         error,
-                    });
+                    }
+                    .into());
                 }
                 let error = m
                     .measures

@@ -26,6 +26,7 @@ pub mod ranges;
 pub mod reproduce;
 pub mod run_record;
 pub mod study;
+pub mod sweep;
 pub mod threads;
 pub mod trajectory;
 pub mod warnings;

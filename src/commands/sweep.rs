@@ -1,34 +1,21 @@
-//! `friction-lab sweep SCENARIO|chain|--system FILE --grid NAME=VALUES ... --out DIR`: one run per
-//! point of a grid of parameters (the product of the `--grid` axes), in parallel, each reduced
-//! to its settled-state measures (`scenarios::settled`): `sweep.csv` (one row per point) and
-//! `sweep.json` (the grid, the options, the rows). The rows do not depend on `--threads`.
+//! `friction-lab sweep SCENARIO|chain|--system FILE --grid NAME=VALUES ... --out DIR`: the
+//! sweep of [`crate::sweep`] over the run `simulate` would make, each point's values set as
+//! `--set` would set them.
 
-use crate::artifacts::{Artifacts, Made};
+use crate::artifacts::Made;
 use crate::commands::simulate::{spec, SimulateArgs, Target};
-use crate::commands::system::{
-    chosen_bodies, default_t_end, grid_options, system_of, system_points, RECORD_LIMIT,
-};
+use crate::commands::system::{chosen_bodies, default_t_end, system_of, system_points};
 use crate::error::AppError;
 use crate::laws::ModelChoice;
-use crate::output::{counted, Cell, Table};
-use crate::plot::{Corner, Marker, Plot, Series, PALETTE};
-use crate::progress::Progress;
+use crate::output::counted;
 use crate::ranges;
-use crate::study::regime_series;
-use crate::threads::with_threads;
+use crate::study::{conduct, Target as StudyTarget};
+use crate::sweep::{points, Axis, Grid, PointRun, Start, SweepStudy};
 use clap::Args;
-use friction_systems::{simulate, STICK};
-use integrators::Stats;
-use rayon::prelude::*;
-use scenarios::settled::{spanned, until_settled, Settled, Trace};
-use scenarios::stick_slip::{sliding_start, Regime};
+use friction_systems::Layout;
+use scenarios::stick_slip::sliding_start;
 use scenarios::Scenario;
-use serde::Serialize;
-
-/// Most values on one axis.
-const MAX_AXIS: usize = 1000;
-/// Most points in a grid.
-const MAX_POINTS: usize = 100_000;
+use std::time::Instant;
 
 /// Options of `sweep`.
 #[derive(Args, Debug)]
@@ -66,28 +53,6 @@ pub struct SweepArgs {
     pub point_range: Option<String>,
 }
 
-/// Where a sweep's runs start.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Start {
-    /// From the rig's own initial state.
-    Rest,
-    /// From the equilibrium of steady sliding on the belt
-    /// ([`scenarios::stick_slip::sliding_start`]).
-    Sliding,
-}
-
-impl std::str::FromStr for Start {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        match s {
-            "rest" => Ok(Start::Rest),
-            "sliding" => Ok(Start::Sliding),
-            _ => Err(format!("unknown start `{s}`; known: rest, sliding")),
-        }
-    }
-}
-
 /// The points `START:END` of a grid of `n` points.
 fn point_range(text: Option<&str>, n: usize) -> Result<std::ops::Range<usize>, AppError> {
     let Some(text) = text else {
@@ -106,88 +71,6 @@ fn point_range(text: Option<&str>, n: usize) -> Result<std::ops::Range<usize>, A
         return Err(bad());
     }
     Ok(start..end)
-}
-
-/// One axis of the grid.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct Axis {
-    /// The parameter.
-    pub name: String,
-    /// Its values, in order.
-    pub values: Vec<f64>,
-}
-
-impl Axis {
-    /// Parses `NAME=V1,V2`, `NAME=START:STOP:COUNT` or `NAME=log:START:STOP:COUNT`.
-    pub fn parse(text: &str) -> Result<Axis, AppError> {
-        let bad = |why: String| AppError::Usage(format!("option `grid` = `{text}`: {why}"));
-        let (name, values) = text
-            .split_once('=')
-            .ok_or_else(|| bad("expected NAME=VALUES".into()))?;
-        let number = |s: &str| -> Result<f64, AppError> {
-            s.trim()
-                .parse::<f64>()
-                .ok()
-                .filter(|v| v.is_finite())
-                .ok_or_else(|| bad(format!("`{s}` is not a finite number")))
-        };
-        let (log, range) = match values.strip_prefix("log:") {
-            Some(rest) => (true, Some(rest)),
-            None => (false, values.contains(':').then_some(values)),
-        };
-        let values: Vec<f64> = match range {
-            Some(r) => {
-                let parts: Vec<&str> = r.split(':').collect();
-                let [start, stop, count] = parts[..] else {
-                    return Err(bad("a range is START:STOP:COUNT".into()));
-                };
-                let (start, stop) = (number(start)?, number(stop)?);
-                let count = count
-                    .trim()
-                    .parse::<usize>()
-                    .ok()
-                    .filter(|c| (1..=MAX_AXIS).contains(c))
-                    .ok_or_else(|| {
-                        bad(format!(
-                            "COUNT `{count}` is out of range: allowed [1, {MAX_AXIS}]"
-                        ))
-                    })?;
-                if log && !(start > 0.0 && stop > 0.0) {
-                    return Err(bad("a log range needs START > 0 and STOP > 0".into()));
-                }
-                let at = |i: usize| {
-                    let s = if count == 1 {
-                        0.0
-                    } else {
-                        i as f64 / (count - 1) as f64
-                    };
-                    // The ends exactly as given; the points between evenly spaced, to 15
-                    // significant digits (0.1:1:10 gives 0.7, not 0.7000000000000001).
-                    if i == 0 {
-                        start
-                    } else if i + 1 == count {
-                        stop
-                    } else if log {
-                        significant((start.ln() + s * (stop.ln() - start.ln())).exp())
-                    } else {
-                        significant(start + s * (stop - start))
-                    }
-                };
-                (0..count).map(at).collect()
-            }
-            None => values.split(',').map(number).collect::<Result<_, _>>()?,
-        };
-        if values.is_empty() || values.len() > MAX_AXIS {
-            return Err(bad(format!(
-                "{} values: allowed 1 to {MAX_AXIS}",
-                values.len()
-            )));
-        }
-        Ok(Axis {
-            name: name.trim().to_string(),
-            values,
-        })
-    }
 }
 
 /// Refuses an axis that names a parameter a second time (only the last would be used) or a
@@ -233,46 +116,6 @@ fn check_axes(axes: &[Axis], run: &SimulateArgs) -> Result<(), AppError> {
     })
 }
 
-/// The grid's points in order (the first axis varying slowest), as `NAME=VALUE` assignments.
-fn points(axes: &[Axis]) -> Vec<Vec<(String, f64)>> {
-    let axes: Vec<(String, &[f64])> = axes
-        .iter()
-        .map(|a| (a.name.clone(), a.values.as_slice()))
-        .collect();
-    scenarios::grid::product(&axes)
-}
-
-/// One point's result.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct PointResult {
-    /// The point: the value of every axis, in axis order.
-    pub values: Vec<f64>,
-    /// Its settled-state measures.
-    pub settled: Settled,
-    /// Its regime (`Regime::of`, the stick–slip map's classification, against the velocity of
-    /// the surface under the measured body); `None` for a run that failed.
-    pub regime: Option<Regime>,
-    /// Solver statistics.
-    pub stats: Stats,
-    /// The solver's error, if the run failed (the measures are of what it computed).
-    pub error: Option<String>,
-}
-
-/// What `sweep.json` holds.
-#[derive(Serialize)]
-struct SweepFile<'a> {
-    target: String,
-    model: Option<String>,
-    start: Start,
-    settle: f64,
-    axes: &'a [Axis],
-    /// The number of points in the whole grid.
-    grid_points: usize,
-    /// The points run, `[start, end)` in grid order.
-    point_range: [usize; 2],
-    points: &'a [PointResult],
-}
-
 /// `args` with the point's assignments added after its own `--set`s.
 fn at_point(args: &SimulateArgs, point: &[(String, f64)]) -> SimulateArgs {
     let mut a = args.clone();
@@ -283,25 +126,9 @@ fn at_point(args: &SimulateArgs, point: &[(String, f64)]) -> SimulateArgs {
     a
 }
 
-/// `x` to 15 significant digits: the value a reader would write for a point of a range
-/// (the rounding of its arithmetic, a few units in the 16th digit, left out).
-fn significant(x: f64) -> f64 {
-    format!("{x:.14e}").parse().unwrap_or(x)
-}
-
-/// A prepared run of one point: checked before any point runs.
-enum Prepared {
-    Rig(scenarios::RunSpec),
-    /// The chain or a system file, and the body measured.
-    System {
-        described: crate::commands::system::Described,
-        body: usize,
-    },
-}
-
 /// Checks a point's run and sets it up, started from rest or from steady sliding (the belt
 /// only: another rig or a system has no such start, refused with exit 2).
-fn prepare(args: &SimulateArgs, start: Start) -> Result<Prepared, AppError> {
+fn prepare(args: &SimulateArgs, start: Start) -> Result<PointRun, AppError> {
     let refuse = |why: &str| {
         Err(AppError::Usage(format!(
             "option `--start sliding` {why}: it starts the belt's body at the equilibrium of \
@@ -324,10 +151,10 @@ fn prepare(args: &SimulateArgs, start: Start) -> Result<Prepared, AppError> {
             let model = spec.law.build(&spec.friction)?;
             spec.params.x0 = sliding_start(model.as_ref(), spec.params.v_belt, spec.params.k);
             spec.params.v0 = 0.0;
-            Ok(Prepared::Rig(spec))
+            Ok(PointRun::Rig(spec))
         }
         (_, Start::Sliding) => refuse("applies to the belt rig only"),
-        (Some(Target::Rig(scenario)), Start::Rest) => Ok(Prepared::Rig(spec(args, scenario)?)),
+        (Some(Target::Rig(scenario)), Start::Rest) => Ok(PointRun::Rig(spec(args, scenario)?)),
         _ => {
             let described = system_of(
                 args.system.as_deref(),
@@ -339,310 +166,81 @@ fn prepare(args: &SimulateArgs, start: Start) -> Result<Prepared, AppError> {
                 .first()
                 .copied()
                 .unwrap_or(0);
-            args.solver.checked_step()?;
-            Ok(Prepared::System { described, body })
+            let step = args.solver.checked_step()?;
+            let t_end = args
+                .checked_t_end()?
+                .unwrap_or_else(|| default_t_end(args.system.as_deref()));
+            let points = system_points(args, Layout::of(&described.system).dim())?;
+            let scheme =
+                (args.solver.switching()).scheme(args.solver.solver(), &described.friction);
+            Ok(PointRun::System {
+                system: described.system,
+                scheme,
+                step,
+                limits: args.solver.checked_limits()?,
+                t_end,
+                points,
+                body,
+            })
         }
     }
 }
 
-/// Runs one prepared point and measures its settled state: its span doubled (the output
-/// spacing kept) while the run ends without an error and has not settled
-/// ([`Settled::settled`]; [`until_settled`]).
-fn run_point(
-    args: &SimulateArgs,
-    prepared: Prepared,
-    settle: f64,
-) -> Result<PointResult, AppError> {
-    until_settled(
-        |factor| run_spanned(args, &prepared, settle, factor),
-        |point| point.settled.settled || point.error.is_some(),
-    )
+/// The command line's sweep: `simulate`'s options, each point's values added after its own
+/// `--set`s, every run's time limit counted from `since` (the command's start).
+struct CommandGrid<'a> {
+    run: &'a SimulateArgs,
+    start: Start,
+    since: Instant,
 }
 
-/// Runs one prepared point over `factor` times its span, with `factor` times its output
-/// intervals, and measures its settled state.
-fn run_spanned(
-    args: &SimulateArgs,
-    prepared: &Prepared,
-    settle: f64,
-    factor: u32,
-) -> Result<PointResult, AppError> {
-    let (trace, stats, error, surface_velocity) = match prepared {
-        Prepared::Rig(spec) => {
-            let o = scenarios::run(&spanned(spec, factor), &mut |_| {})?;
-            // The belt under the body, where the rig has one; the floor otherwise.
-            let surface = match spec.scenario.parameters().contains(&"v_belt") {
-                true => spec.params.v_belt,
-                false => 0.0,
-            };
-            (
-                Trace::of_outcome(&o),
-                o.stats,
-                o.error.map(|e| e.to_string()),
-                surface,
-            )
-        }
-        Prepared::System { described, body } => {
-            let body = *body;
-            let t_end = args
-                .checked_t_end()?
-                .unwrap_or_else(|| default_t_end(args.system.as_deref()));
-            let dim = friction_systems::Layout::of(&described.system).dim();
-            // The output spacing kept, within the numbers a run may record.
-            let points = ((system_points(args, dim)? - 1) * factor as usize + 1)
-                .min(RECORD_LIMIT / dim.max(1));
-            let options = grid_options(args, t_end * f64::from(factor), points)?;
-            let scheme = args
-                .solver
-                .switching()
-                .scheme(args.solver.solver(), &described.friction);
-            let run = simulate(&described.system, scheme, options, &mut |_| {})?;
-            let mut trace = Trace::default();
-            for b in run.body(body) {
-                trace.t.push(b.t);
-                trace.x.push(b.x);
-                trace.v.push(b.v);
-                trace.friction.push(b.friction);
-            }
-            trace.stick_entries = run
-                .contact_events()
-                .iter()
-                .filter(|e| e.body == body && e.to == STICK && e.from != STICK)
-                .map(|e| e.t)
-                .collect();
-            let surface = (described.system.contacts.iter())
-                .find(|c| c.body == body)
-                .map_or(0.0, |c| c.surface_velocity);
-            (
-                trace,
-                run.solution.stats,
-                run.error.map(|e| e.to_string()),
-                surface,
-            )
-        }
-    };
-    let mut settled = Settled::of(&trace, settle);
-    // A run that failed stopped short of its span: whatever its window shows, it is no
-    // settled state, and it has no regime.
-    settled.settled &= error.is_none();
-    let regime = error
-        .is_none()
-        .then(|| Regime::of(&settled, surface_velocity));
-    Ok(PointResult {
-        values: Vec::new(),
-        settled,
-        regime,
-        stats,
-        error,
-    })
-}
-
-/// The labels of the regimes in a sweep's figure.
-const REGIMES: [(Regime, &str); 5] = [
-    (Regime::StickSlip, "stick-slip"),
-    (Regime::Oscillation, "oscillation without stick"),
-    (Regime::SteadySliding, "steady sliding"),
-    (Regime::Stuck, "carried by the surface all along"),
-    (Regime::Unsettled, "not settled (a transient)"),
-];
-
-/// Whether `values` are drawn on a log axis: all positive and spanning a decade or more.
-fn log_axis(values: &[f64]) -> bool {
-    let (lo, hi) = values.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), &v| {
-        (lo.min(v), hi.max(v))
-    });
-    values.iter().all(|&v| v > 0.0) && hi >= 10.0 * lo
-}
-
-/// The figure of a sweep of one or two axes (none for more): over one axis the settled
-/// amplitude of x − v̄·t at every point, over two the plane of the axes, each point in the
-/// colour and marker of its regime; a failed point is a cross of its own (on the axis, for
-/// one axis).
-fn figure(axes: &[Axis], results: &[PointResult], title: &str) -> Option<Plot> {
-    let failed = |at: &dyn Fn(&PointResult) -> (f64, f64)| Series {
-        label: Some("failed (sweep.csv says why)".into()),
-        points: results
-            .iter()
-            .filter(|r| r.regime.is_none())
-            .map(at)
-            .collect(),
-        color: PALETTE[5],
-        width: 0,
-        marker: Marker::Cross,
-    };
-    let by_regime = |at: &dyn Fn(&PointResult) -> (f64, f64)| {
-        let mut series: Vec<Series> = (REGIMES.iter())
-            .map(|&(regime, label)| {
-                let mine = results.iter().filter(|r| r.regime == Some(regime));
-                regime_series(regime, label, mine.map(at).collect())
-            })
-            .chain([failed(at)])
-            .collect();
-        series.retain(|s| !s.points.is_empty());
-        series
-    };
-    let label = |a: &Axis| {
-        use friction_models::{FrictionParams, Parameters};
-        let unit = (FrictionParams::spec(&a.name).map(|s| s.unit))
-            .or_else(|| scenarios::ScenarioParams::spec(&a.name).map(|s| s.unit))
-            .or_else(|| {
-                let chain = friction_systems::chain::CHAIN_PARAMETERS;
-                chain.iter().find(|p| p.0 == a.name).map(|p| p.2)
-            });
-        match unit {
-            Some(u) if !u.is_empty() && u != "1" => format!("{} ({u})", a.name),
-            _ => a.name.clone(),
-        }
-    };
-    match axes {
-        [x] => Some(Plot {
-            title: format!("{title}: settled amplitude"),
-            x_label: label(x),
-            y_label: "half the range of x − v̄·t over the settled window (m)".into(),
-            series: by_regime(&|r| (r.values[0], r.settled.x_amplitude.max(0.0))),
-            legend: Corner::UpperRight,
-            log: false,
-        }),
-        [x, y] => Some(Plot {
-            title: format!("{title}: settled regime"),
-            x_label: label(x),
-            y_label: label(y),
-            series: by_regime(&|r| (r.values[0], r.values[1])),
-            legend: Corner::UpperRight,
-            log: log_axis(&x.values) && log_axis(&y.values),
-        }),
-        _ => None,
+impl Grid for CommandGrid<'_> {
+    fn run_at(&self, point: &[(String, f64)]) -> Result<PointRun, AppError> {
+        let mut args = at_point(self.run, point);
+        args.solver.limits.since = Some(self.since);
+        prepare(&args, self.start)
     }
 }
 
 /// Runs `sweep`; its files in memory.
 pub fn make(args: &SweepArgs) -> Result<Made, AppError> {
     let threads = ranges::threads(args.threads)?;
-    if !(args.settle > 0.0 && args.settle <= 1.0) {
-        return Err(AppError::Usage(format!(
-            "option `settle` = {} is out of range: allowed (0, 1]",
-            ranges::show(args.settle)
-        )));
-    }
     let axes: Vec<Axis> = args
         .grid
         .iter()
         .map(|g| Axis::parse(g))
         .collect::<Result<_, _>>()?;
     check_axes(&axes, &args.run)?;
-    let grid = points(&axes);
-    if grid.len() > MAX_POINTS {
-        return Err(AppError::Usage(format!(
-            "option `grid` makes {} points: allowed at most {MAX_POINTS}",
-            grid.len()
-        )));
-    }
-    // Every point is checked (names, ranges, combinations) before any runs.
-    // `--time-limit` bounds the whole sweep: every point counts from here.
-    let since = std::time::Instant::now();
-    let runs: Vec<SimulateArgs> = grid
-        .iter()
-        .map(|p| {
-            let mut a = at_point(&args.run, p);
-            a.solver.limits.since = Some(since);
-            a
-        })
-        .collect();
-    for a in &runs {
-        prepare(a, args.start)?;
-    }
-    let range = point_range(args.point_range.as_deref(), grid.len())?;
-    let b = Progress::runs(range.len(), "sweep");
-    let results: Vec<PointResult> = with_threads(threads, || {
-        runs[range.clone()]
-            .par_iter()
-            .zip(&grid[range.clone()])
-            .map(|(a, point)| {
-                let r = run_point(a, prepare(a, args.start)?, args.settle);
-                b.inc();
-                r.map(|r| PointResult {
-                    values: point.iter().map(|(_, v)| *v).collect(),
-                    ..r
-                })
-            })
-            .collect::<Result<Vec<_>, AppError>>()
-    })??;
-    b.finish();
-    let mut header: Vec<&str> = axes.iter().map(|a| a.name.as_str()).collect();
-    header.extend([
-        "stick_phases",
-        "stick_per_cycle",
-        "period",
-        "x_amplitude",
-        "v_amplitude",
-        "v_amplitude_ratio",
-        "v_mean",
-        "friction_mean",
-        "friction_peak",
-        "settled",
-        "regime",
-        "drift",
-        "t_end",
-        "steps",
-        "rhs_evals",
-        "events",
-        "status",
-    ]);
-    let mut table = Table::new(&header);
-    // An undefined measure (no oscillation) is an empty cell, never NaN.
-    let num = Cell::num;
-    for r in &results {
-        let s = &r.settled;
-        let mut row: Vec<Cell> = r.values.iter().map(|&v| Cell::Num(v)).collect();
-        row.extend([
-            Cell::Num(s.stick_phases as f64),
-            num(s.stick_per_cycle),
-            num(s.period),
-            num(s.x_amplitude),
-            num(s.v_amplitude),
-            num(s.v_amplitude_ratio),
-            num(s.v_mean),
-            num(s.friction_mean),
-            num(s.friction_peak),
-            Cell::Text(s.settled.to_string()),
-            Cell::Text(r.regime.map(|g| format!("{g:?}")).unwrap_or_default()),
-            num(s.drift),
-            Cell::Num(s.to),
-            Cell::Num(r.stats.steps as f64),
-            Cell::Num(r.stats.rhs_evals as f64),
-            Cell::Num(r.stats.events as f64),
-            Cell::Text(r.error.clone().unwrap_or_else(|| "ok".into())),
-        ]);
-        table.rows.push(row);
-    }
-    let mut files = Artifacts::default();
-    let csv = args.run.out.join("sweep.csv");
-    files.add(csv.clone(), table.to_csv(&csv)?);
+    let range = point_range(args.point_range.as_deref(), points(&axes).len())?;
     let target = match (args.run.scenario, &args.run.system) {
         (Some(Target::Rig(s)), _) => s.name().to_string(),
         (_, Some(file)) => file.display().to_string(),
         _ => "chain".into(),
     };
-    let title = match &args.run.model {
-        Some(m) => format!("{target} with {}", m.name()),
-        None => target.clone(),
+    // `--time-limit` bounds the whole sweep: every point counts from here.
+    let grid = CommandGrid {
+        run: &args.run,
+        start: args.start,
+        since: Instant::now(),
     };
-    if let Some(plot) = figure(&axes, &results, &title) {
-        files.add_plot(&args.run.out.join("sweep"), &plot)?;
-    }
-    files.add_json(
-        args.run.out.join("sweep.json"),
-        &SweepFile {
-            target,
-            model: args.run.model.as_ref().map(|m| m.name().to_string()),
-            start: args.start,
-            settle: args.settle,
-            axes: &axes,
-            grid_points: grid.len(),
-            point_range: [range.start, range.end],
-            points: &results,
-        },
-    )?;
+    let study = SweepStudy {
+        grid: &grid,
+        axes: &axes,
+        settle: args.settle,
+        range,
+        target,
+        model: args.run.model.as_ref().map(|m| m.name().to_string()),
+        start: args.start,
+    };
+    let mut files = crate::artifacts::Artifacts::default();
+    let mut target = StudyTarget {
+        files: &mut files,
+        dir: &args.run.out,
+        threads,
+        failure: None,
+    };
+    let results = conduct(&study, &mut target, "sweep")?;
+    let failure = target.failure;
     let failed = results.iter().filter(|r| r.error.is_some()).count();
     Ok(Made {
         files,
@@ -658,12 +256,7 @@ pub fn make(args: &SweepArgs) -> Result<Made, AppError> {
         .into_iter()
         .chain(args.run.solver.scheme.spelling_notes())
         .collect(),
-        failure: (failed > 0).then(|| {
-            AppError::StudyRun(format!(
-                "{failed} of {} runs failed; sweep.csv says which and why",
-                results.len()
-            ))
-        }),
+        failure,
         trajectory: None,
     })
 }

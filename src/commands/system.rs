@@ -15,11 +15,12 @@ use crate::ranges;
 use crate::run_record::{
     event_counts, scheme_parameters, Integrated, RunRecord, RunSetup, RunSummary, StiffnessSummary,
 };
+use crate::sweep::RECORD_LIMIT;
 use crate::trajectory::{Trajectory, TrajectoryAs};
 use friction_models::FrictionParams;
 use friction_systems::chain::{ChainParams, CHAIN_PARAMETERS};
 use friction_systems::{mode_name, Run, System, SLIP_NEGATIVE, SLIP_POSITIVE};
-use integrators::{Options, Output};
+use integrators::Options;
 use scenarios::chain::ChainSource;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -58,10 +59,6 @@ pub fn study_t_end(file: Option<&Path>) -> f64 {
 }
 /// Most columns and rows of the space–time picture.
 const RASTER: (usize, usize) = (300, 200);
-
-/// The most numbers (points × unknowns) a system's run may record when `--points` asks for
-/// them: 2.5e8, about 2 GB; more would exhaust the memory of a workstation.
-pub const RECORD_LIMIT: usize = 250_000_000;
 
 /// The default number of output points for a system of `dim` unknowns: 2001, fewer for a
 /// large system so that the recorded states stay within [`RECORD_BUDGET`] numbers.
@@ -342,17 +339,15 @@ fn common_model(system: &System) -> Option<String> {
 }
 
 /// The options of a system run from the command line: its step control and limits, checked,
-/// and `points` evenly spaced output times on [0, t_end] (a system records its grid only).
+/// and `points` evenly spaced output times on [0, t_end] ([`crate::sweep::grid_options`]).
 pub fn grid_options(args: &SimulateArgs, t_end: f64, points: usize) -> Result<Options, AppError> {
     let limits = args.solver.checked_limits()?;
-    Ok(Options {
-        step: args.solver.checked_step()?,
-        max_steps: limits.max_steps,
-        time_limit: limits.time_limit,
-        time_limit_since: limits.time_limit_since,
-        output: Output::GridOnly(integrators::even_grid(0.0, t_end, points)),
-        ..Options::adaptive(0.0, t_end, 1e-8, 1e-10)
-    })
+    Ok(crate::sweep::grid_options(
+        args.solver.checked_step()?,
+        &limits,
+        t_end,
+        points,
+    ))
 }
 
 /// Runs `simulate` on a system: its files in memory, its trajectory as the file or as columns.

@@ -9,7 +9,7 @@ use crate::plot::{Corner, Marker, Plot, Series, PALETTE};
 use crate::study::{conduct, Study, StudyFiles, Target};
 use friction_models::FrictionParams;
 use scenarios::paper::{experiment, Asymptote, ExperimentFailure, ExperimentRow};
-use scenarios::{Scenario, ScenarioError};
+use scenarios::Scenario;
 
 /// The experiment at `friction`, on the `paper-block` rig's defaults.
 pub struct ExperimentStudy {
@@ -32,7 +32,7 @@ impl Study for ExperimentStudy {
         friction_models::ModelId::PAPER.len()
     }
 
-    fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<ExperimentRows, ScenarioError> {
+    fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<ExperimentRows, AppError> {
         let rows = experiment(&self.friction, &Scenario::PaperBlock.defaults())?;
         rows.iter().for_each(|_| progress());
         Ok(rows)

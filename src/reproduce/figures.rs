@@ -10,7 +10,6 @@ use crate::study::{conduct, Study, StudyFiles, Target};
 use friction_models::{CurveAxis, FrictionParams, ModelId, Variant};
 use scenarios::curves::{self, Curve};
 use scenarios::figures::{assess, Finding, PaperFigure, PAPER_FIGURES};
-use scenarios::ScenarioError;
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -51,23 +50,18 @@ pub struct Reproduced {
 }
 
 /// The curve of one model under one reading, on the paper's range.
-fn paper_curve(
-    model: ModelId,
-    variant: Variant,
-    p: &FrictionParams,
-) -> Result<Curve, ScenarioError> {
+fn paper_curve(model: ModelId, variant: Variant, p: &FrictionParams) -> Result<Curve, AppError> {
     let m = model.build(variant, p)?;
-    curves::curve(
+    Ok(curves::curve(
         m.as_ref(),
         curves::default_extent(model.curve_axis()),
         POINTS,
-    )
-    .map_err(|e| ScenarioError::Invalid(e.to_string()))
+    )?)
 }
 
 impl PaperFiguresStudy {
     /// Figure `fig` reproduced.
-    fn figure(&self, fig: &'static PaperFigure) -> Result<Figure, ScenarioError> {
+    fn figure(&self, fig: &'static PaperFigure) -> Result<Figure, AppError> {
         let p = &self.friction;
         let odd = paper_curve(fig.model, Variant::Odd, p)?;
         let printed = fig
@@ -117,13 +111,13 @@ impl Study for PaperFiguresStudy {
         PAPER_FIGURES.len()
     }
 
-    fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<Vec<Figure>, ScenarioError> {
+    fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<Vec<Figure>, AppError> {
         PAPER_FIGURES
             .iter()
             .map(|fig| {
-                let figure = self.figure(fig);
+                let figure = self.figure(fig)?;
                 progress();
-                figure
+                Ok(figure)
             })
             .collect()
     }

@@ -9,7 +9,6 @@ use crate::error::AppError;
 use crate::plot::{Corner, Plot};
 use integrators::Solver;
 use scenarios::studies::{self, Convergence, ErrorMeasure, OrderTable, StepKind, StudyCase};
-use scenarios::ScenarioError;
 
 /// Every solver of `solvers` on `case` at the fixed step sizes `steps` (those that take fixed
 /// steps) or at the tolerances `tols` (rtol = atol), against one reference.
@@ -42,8 +41,9 @@ impl Study for ConvergenceStudy<'_> {
             .sum()
     }
 
-    fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<Convergence, ScenarioError> {
+    fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<Convergence, AppError> {
         studies::convergence(self.case, self.solvers, self.steps, self.tols, progress)
+            .map_err(AppError::from)
     }
 
     /// Every run failed: nothing to show ([`super::nothing_measured`]).

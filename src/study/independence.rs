@@ -9,7 +9,6 @@ use crate::plot::{Corner, Marker, Plot, Series, PALETTE};
 use crate::ranges;
 use integrators::Solver;
 use scenarios::studies::{self, Independence, StudyCase};
-use scenarios::ScenarioError;
 
 /// The levels of an independence study.
 #[derive(Clone, Copy, Debug)]
@@ -94,7 +93,7 @@ impl Study for IndependenceStudy<'_> {
         self.refinement.levels as usize
     }
 
-    fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<Independence, ScenarioError> {
+    fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<Independence, AppError> {
         let r = self.refinement;
         studies::independence(
             self.case,
@@ -105,6 +104,7 @@ impl Study for IndependenceStudy<'_> {
             r.tol,
             progress,
         )
+        .map_err(AppError::from)
     }
 
     /// The levels that failed, named: the files keep the levels that ran.

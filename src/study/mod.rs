@@ -37,7 +37,7 @@ use crate::provenance::Provenance;
 use crate::threads::with_threads;
 use integrators::Solver;
 use scenarios::studies::{Method, StepKind, StudyCase, StudyRun};
-use scenarios::{ScenarioError, SwitchingKind};
+use scenarios::SwitchingKind;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 
@@ -60,7 +60,7 @@ pub trait Study: Sync {
 
     /// Makes its runs (on the current thread pool) and their result; `progress` is called
     /// after each run.
-    fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<Self::Result, ScenarioError>;
+    fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<Self::Result, AppError>;
 
     /// A failure that the files record and the command exits with once they are written (a
     /// level of an independence study that failed); none by default.

@@ -8,7 +8,6 @@ use crate::output::{Cell, Table};
 use crate::plot::{Corner, Marker, Plot, Series, PALETTE};
 use integrators::StepControl;
 use scenarios::studies::{self, Method, StudyCase};
-use scenarios::ScenarioError;
 use serde::Serialize;
 
 /// A cost-against-size study's JSON: the case at each size, beside the study's own fields.
@@ -49,8 +48,8 @@ impl Study for ScalingStudy<'_> {
         2 * self.cases.len() * self.methods.len()
     }
 
-    fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<studies::Scaling, ScenarioError> {
-        studies::scaling(self.cases, self.methods, progress)
+    fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<studies::Scaling, AppError> {
+        studies::scaling(self.cases, self.methods, progress).map_err(AppError::from)
     }
 
     /// Every run failed: no cost was measured.

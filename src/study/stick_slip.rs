@@ -83,7 +83,7 @@ impl Study for StickSlipMapStudy<'_> {
         self.v_belt_count * self.ks.len()
     }
 
-    fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<StickSlipMap, ScenarioError> {
+    fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<StickSlipMap, AppError> {
         Ok(StickSlipMap {
             points: map(self.base, &self.v_belts(), self.ks, self.settle, progress)?,
             boundary: boundary(self.base)?,
@@ -201,7 +201,7 @@ impl Study for BifurcationStudy<'_> {
         2 * self.v_belts.len()
     }
 
-    fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<Bifurcation, ScenarioError> {
+    fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<Bifurcation, AppError> {
         Ok(Bifurcation {
             branches: bifurcation(self.base, self.v_belts, self.settle, progress)?,
             boundary: boundary(self.base)?,

@@ -11,7 +11,6 @@ use crate::output::{Cell, Table};
 use crate::plot::{Corner, Marker, Plot, Series, PALETTE};
 use integrators::Solver;
 use scenarios::studies::{self, Reached, Stiffness, StudyCase, Sweep};
-use scenarios::ScenarioError;
 
 /// The most values a sweep takes.
 const MAX_VALUES: usize = 50;
@@ -72,7 +71,7 @@ impl Study for StiffnessStudy<'_> {
         )))
     }
 
-    fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<Stiffness, ScenarioError> {
+    fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<Stiffness, AppError> {
         let methods = methods_with_peers(self.case, self.solvers);
         studies::stiffness(
             self.case,
@@ -82,6 +81,7 @@ impl Study for StiffnessStudy<'_> {
             self.tols,
             progress,
         )
+        .map_err(AppError::from)
     }
 
     /// `{stem}.csv` (a row per value and method), `{stem}.json` and `{stem}.png`/`.svg`.

@@ -6,7 +6,7 @@ use super::{Study, StudyFiles};
 use crate::error::AppError;
 use friction_models::{FrictionParams, ModelId};
 use scenarios::phenomena::{table, thresholds, Cell, Phenomenon, Protocol, Row};
-use scenarios::{Law, ScenarioError};
+use scenarios::Law;
 use serde_json::{json, Map, Value};
 
 /// Table 2 for `laws` under `protocol`, each at its own parameter set or all at `parameters`
@@ -31,9 +31,9 @@ impl Study for Table2Study<'_> {
         self.laws.len() * Phenomenon::ALL.len()
     }
 
-    fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<Self::Result, ScenarioError> {
+    fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<Self::Result, AppError> {
         let parameters = self.parameters.as_ref().map(|p| &p.0);
-        table(self.laws, self.protocol, parameters, true, progress)
+        table(self.laws, self.protocol, parameters, true, progress).map_err(AppError::from)
     }
 
     /// Cells left undecided, their protocol runs failed ([`check_decided`]): the files mark

@@ -13,7 +13,6 @@ use integrators::testset::TestProblem;
 use integrators::Solver;
 use scenarios::run::Limits;
 use scenarios::studies::{self, TestSetCounts, TestSetRun, TestSetWorkPrecision};
-use scenarios::ScenarioError;
 
 /// Every solver of `solvers` on a test problem at every tolerance of `tols` (rtol = tol, atol
 /// by [`TestProblem::tolerances`]), each run `repeats` times for its median wall time.
@@ -64,7 +63,7 @@ impl Study for TestSetStudy<'_> {
         self.solvers.len() * self.tols.len() * self.repeats
     }
 
-    fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<TestSetWorkPrecision, ScenarioError> {
+    fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<TestSetWorkPrecision, AppError> {
         studies::testset_work_precision(
             self.problem,
             self.solvers,
@@ -73,6 +72,7 @@ impl Study for TestSetStudy<'_> {
             &self.limits,
             progress,
         )
+        .map_err(AppError::from)
     }
 
     /// Every run failed: nothing was measured (exit 1, after the files that say why).

@@ -9,7 +9,6 @@ use crate::output::Cell;
 use crate::plot::{Corner, Plot};
 use integrators::Solver;
 use scenarios::studies::{self, ErrorMeasure, StudyCase, WorkPrecision};
-use scenarios::ScenarioError;
 
 /// Every solver of `solvers` on `case`, and the case's peers (methods under another treatment
 /// of v = 0), at the step sizes `steps` (fixed-step methods) or the tolerances `tols`, each run
@@ -42,7 +41,7 @@ impl Study for WorkPrecisionStudy<'_> {
         runs_with_peers(self.case, self.solvers, self.steps, self.tols) * self.repeats
     }
 
-    fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<WorkPrecision, ScenarioError> {
+    fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<WorkPrecision, AppError> {
         let methods = methods_with_peers(self.case, self.solvers);
         studies::work_precision(
             self.case,
@@ -52,6 +51,7 @@ impl Study for WorkPrecisionStudy<'_> {
             self.repeats,
             progress,
         )
+        .map_err(AppError::from)
     }
 
     /// Every run failed: nothing to show ([`super::nothing_measured`]).

@@ -1,0 +1,151 @@
+//! One point of a sweep: its run, set up and checked, run until it settles, and reduced to its
+//! settled-state measures ([`scenarios::settled`]) and regime.
+
+use crate::error::AppError;
+use friction_systems::{simulate, Layout, Scheme, System, STICK};
+use integrators::{even_grid, Options, Output, Stats, StepControl};
+use scenarios::settled::{spanned, until_settled, Settled, Trace};
+use scenarios::stick_slip::Regime;
+use scenarios::{Limits, RunSpec};
+use serde::Serialize;
+
+/// The most numbers (points × unknowns) a system's run may record: 2.5e8, about 2 GB; more
+/// would exhaust the memory of a workstation.
+pub const RECORD_LIMIT: usize = 250_000_000;
+
+/// The run at one point of a sweep.
+pub enum PointRun {
+    /// A rig.
+    Rig(RunSpec),
+    /// The chain or a system file.
+    System {
+        /// The system.
+        system: System,
+        /// How it is integrated.
+        scheme: Scheme,
+        /// The step control.
+        step: StepControl,
+        /// The bounds of the run.
+        limits: Limits,
+        /// The end time, s.
+        t_end: f64,
+        /// Evenly spaced output points on [0, t_end].
+        points: usize,
+        /// The body measured (0-based).
+        body: usize,
+    },
+}
+
+/// The options of a system's run over [0, `t_end`] with `points` evenly spaced output times
+/// (a system records its grid only), its step control and bounds.
+pub fn grid_options(step: StepControl, limits: &Limits, t_end: f64, points: usize) -> Options {
+    Options {
+        step,
+        max_steps: limits.max_steps,
+        time_limit: limits.time_limit,
+        time_limit_since: limits.time_limit_since,
+        output: Output::GridOnly(even_grid(0.0, t_end, points)),
+        ..Options::adaptive(0.0, t_end, 1e-8, 1e-10)
+    }
+}
+
+/// One point's result.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PointResult {
+    /// The point: the value of every axis, in axis order.
+    pub values: Vec<f64>,
+    /// Its settled-state measures.
+    pub settled: Settled,
+    /// Its regime (`Regime::of`, the stick–slip map's classification, against the velocity of
+    /// the surface under the measured body); `None` for a run that failed.
+    pub regime: Option<Regime>,
+    /// Solver statistics.
+    pub stats: Stats,
+    /// The solver's error, if the run failed (the measures are of what it computed).
+    pub error: Option<String>,
+}
+
+impl PointRun {
+    /// Runs the point and measures its settled state over its last fraction `settle`: its span
+    /// doubled (the output spacing kept) while the run ends without an error and has not
+    /// settled ([`Settled::settled`]; [`until_settled`]).
+    pub fn run(&self, settle: f64) -> Result<PointResult, AppError> {
+        until_settled(
+            |factor| self.spanned(settle, factor),
+            |point| point.settled.settled || point.error.is_some(),
+        )
+    }
+
+    /// Runs the point over `factor` times its span, with `factor` times its output intervals,
+    /// and measures its settled state.
+    fn spanned(&self, settle: f64, factor: u32) -> Result<PointResult, AppError> {
+        let (trace, stats, error, surface_velocity) = match self {
+            PointRun::Rig(spec) => {
+                let o = scenarios::run(&spanned(spec, factor), &mut |_| {})?;
+                // The belt under the body, where the rig has one; the floor otherwise.
+                let surface = match spec.scenario.parameters().contains(&"v_belt") {
+                    true => spec.params.v_belt,
+                    false => 0.0,
+                };
+                (
+                    Trace::of_outcome(&o),
+                    o.stats,
+                    o.error.map(|e| e.to_string()),
+                    surface,
+                )
+            }
+            PointRun::System {
+                system,
+                scheme,
+                step,
+                limits,
+                t_end,
+                points,
+                body,
+            } => {
+                let body = *body;
+                let dim = Layout::of(system).dim();
+                // The output spacing kept, within the numbers a run may record.
+                let points = ((points - 1) * factor as usize + 1).min(RECORD_LIMIT / dim.max(1));
+                let options = grid_options(*step, limits, t_end * f64::from(factor), points);
+                let run = simulate(system, *scheme, options, &mut |_| {})?;
+                let mut trace = Trace::default();
+                for b in run.body(body) {
+                    trace.t.push(b.t);
+                    trace.x.push(b.x);
+                    trace.v.push(b.v);
+                    trace.friction.push(b.friction);
+                }
+                trace.stick_entries = run
+                    .contact_events()
+                    .iter()
+                    .filter(|e| e.body == body && e.to == STICK && e.from != STICK)
+                    .map(|e| e.t)
+                    .collect();
+                let surface = (system.contacts.iter())
+                    .find(|c| c.body == body)
+                    .map_or(0.0, |c| c.surface_velocity);
+                (
+                    trace,
+                    run.solution.stats,
+                    run.error.map(|e| e.to_string()),
+                    surface,
+                )
+            }
+        };
+        let mut settled = Settled::of(&trace, settle);
+        // A run that failed stopped short of its span: whatever its window shows, it is no
+        // settled state, and it has no regime.
+        settled.settled &= error.is_none();
+        let regime = error
+            .is_none()
+            .then(|| Regime::of(&settled, surface_velocity));
+        Ok(PointResult {
+            values: Vec::new(),
+            settled,
+            regime,
+            stats,
+            error,
+        })
+    }
+}
