@@ -1,0 +1,284 @@
+//! A rig's run: its files (trajectory, summary, events) and figures (time histories, phase
+//! portrait, friction against velocity and against displacement, stiffness along the run).
+
+use super::stiffness::add_stiffness;
+use crate::artifacts::{Artifacts, Made};
+use crate::error::AppError;
+use crate::laws::ModelChoice;
+use crate::options::SchemeName;
+use crate::plot::{Corner, Marker, Plot, Series, BLUE};
+use crate::progress::Progress;
+use crate::run_record::{
+    event_counts, scheme_parameters, Integrated, RunRecord, RunSetup, RunSummary, StiffnessSummary,
+    RIG_BODY,
+};
+use crate::trajectory::{Trajectory, TrajectoryAs};
+use crate::warnings::{coarse_step_warning, failure_warnings, stiffness_warning};
+use friction_models::Parameters;
+use friction_systems::{BodyState, ContactEvent};
+use scenarios::run::Outcome;
+use scenarios::{Law, RunSpec};
+use std::path::Path;
+
+/// The one run record of a rig's `outcome` (a system of one body, named `body`, and one
+/// contact), described by `setup`.
+fn rig_record(outcome: &Outcome, setup: RunSetup, has_state: bool) -> RunRecord {
+    let state = |r: &scenarios::Row| BodyState {
+        t: r.t,
+        x: r.x,
+        v: r.v,
+        friction: r.friction,
+        mode: Some(r.mode),
+        z: r.z,
+    };
+    let events: Vec<ContactEvent> = outcome
+        .events
+        .iter()
+        .map(|e| ContactEvent {
+            t: e.t,
+            contact: 0,
+            body: 0,
+            from: e.from,
+            to: e.to,
+        })
+        .collect();
+    let integrated = Integrated {
+        error: outcome.error.clone(),
+        t_reached: outcome.last().map(|r| r.t),
+        event_counts: event_counts(&events),
+        stats: outcome.stats.into(),
+        wall_time_s: outcome.wall_time_s,
+        energy_residual: outcome.energy.map(|e| e.residual),
+        energy: outcome.energy,
+        friction_work: outcome.friction_work,
+        loop_area: outcome.loop_area,
+        stiffness_detected_at: outcome.stiffness_detected_at,
+        method_switches: outcome.method_switches.clone(),
+        stiffness: StiffnessSummary::of(&outcome.stiffness),
+        instability: outcome.instability,
+    };
+    RunRecord {
+        summary: RunSummary::new(setup, integrated),
+        bodies: vec![RIG_BODY.to_string()],
+        trajectory: Trajectory::of_outcome(outcome, has_state),
+        finals: outcome.last().map(state).into_iter().collect(),
+        events,
+    }
+}
+
+/// The rows a figure draws: the trajectory's, with the body just before each switch put
+/// before the row at the switch, so that a jump of the friction is drawn where it happens (at
+/// the switch's x, v and t) and not as a line from the last point before the switch.
+fn drawn_rows(o: &Outcome) -> Vec<&scenarios::Row> {
+    let mut before = o.before_switches.iter().peekable();
+    let mut out = Vec::with_capacity(o.rows.len() + o.before_switches.len());
+    for r in &o.rows {
+        while let Some(b) = before.next_if(|b| b.t <= r.t) {
+            out.push(b);
+        }
+        out.push(r);
+    }
+    out
+}
+
+/// The figures of a simulation: (file stem, title, x label, y label, points).
+fn figures(o: &Outcome, name: &str) -> Vec<(&'static str, Plot)> {
+    type Pick = fn(&scenarios::Row) -> f64;
+    let specs: [(&str, &str, &str, &str, Pick, Pick); 6] = [
+        (
+            "history-x",
+            "displacement",
+            "time t (s)",
+            "displacement x (m)",
+            |r| r.t,
+            |r| r.x,
+        ),
+        (
+            "history-v",
+            "velocity",
+            "time t (s)",
+            "velocity v (m/s)",
+            |r| r.t,
+            |r| r.v,
+        ),
+        (
+            "history-friction",
+            "friction force",
+            "time t (s)",
+            "friction force F (N)",
+            |r| r.t,
+            |r| r.friction,
+        ),
+        (
+            "phase-portrait",
+            "phase portrait",
+            "displacement x (m)",
+            "velocity v (m/s)",
+            |r| r.x,
+            |r| r.v,
+        ),
+        (
+            "friction-velocity",
+            "friction against velocity",
+            "velocity v (m/s)",
+            "friction force F (N)",
+            |r| r.v,
+            |r| r.friction,
+        ),
+        (
+            "friction-displacement",
+            "friction against displacement",
+            "displacement x (m)",
+            "friction force F (N)",
+            |r| r.x,
+            |r| r.friction,
+        ),
+    ];
+    let rows = drawn_rows(o);
+    specs
+        .into_iter()
+        .map(|(stem, what, xl, yl, fx, fy)| {
+            (
+                stem,
+                Plot {
+                    title: format!("{name}: {what}"),
+                    x_label: xl.into(),
+                    y_label: yl.into(),
+                    series: vec![Series {
+                        label: None,
+                        points: rows.iter().map(|r| (fx(r), fy(r))).collect(),
+                        color: BLUE,
+                        width: 2,
+                        marker: Marker::None,
+                    }],
+                    legend: Corner::default(),
+                    log: false,
+                },
+            )
+        })
+        .collect()
+}
+
+/// Simulates the rig of `spec` with `model` (the law of `spec`, named) and its files into
+/// `out`, in memory: `trajectory.csv` (or its columns), `summary.json`, `events.csv`, the
+/// time histories, phase portrait and friction curves, and the stiffness along the run. The
+/// warnings are the run's: its stiffness, a step too coarse for its time scale, why it failed.
+pub fn simulate_rig(
+    spec: &RunSpec,
+    model: &ModelChoice,
+    out: &Path,
+    trajectory_as: TrajectoryAs,
+) -> Result<Made, AppError> {
+    let t_end = spec
+        .t_end
+        .unwrap_or_else(|| spec.scenario.default_t_end(&spec.params, &spec.friction));
+    let method = spec.switching.method(spec.solver);
+    let what = format!("{} {model} {method}", spec.scenario);
+    let bar = Progress::time(t_end, &what);
+    let outcome = scenarios::run_measuring_stiffness(spec, &mut |t| {
+        if t_end > 0.0 {
+            bar.at(t);
+        }
+    })
+    .map_err(AppError::from)?;
+    bar.finish();
+
+    let has_state = spec.law.build(&spec.friction)?.n_states() > 0;
+    let name = format!(
+        "{} with {model} ({method}, {} switching)",
+        spec.scenario,
+        spec.switching.name()
+    );
+    let mut files = Artifacts::default();
+    for (stem, p) in figures(&outcome, &name) {
+        files.add_plot(&out.join(stem), &p)?;
+    }
+    add_stiffness(&mut files, out, &outcome.stiffness, &name)?;
+    let mut parameters = model.parameters_read(&spec.friction);
+    for &p in spec.scenario.parameters() {
+        let value = spec.params.value(p).expect("scenario parameters exist");
+        parameters.insert(p.to_string(), value);
+    }
+    parameters.extend(scheme_parameters(spec.switching, &spec.friction));
+    let setup = RunSetup {
+        system: spec.scenario.name().to_string(),
+        model: Some(model.name().to_string()),
+        variant: match spec.law {
+            Law::Catalog { variant, .. } => Some(variant),
+            Law::Own(_) => None,
+        },
+        n_bodies: 1,
+        n_contacts: 1,
+        scheme: SchemeName::of(spec.switching).name(),
+        solver: method,
+        switching: spec.switching.name(),
+        step: spec.step,
+        t_end,
+        parameters,
+    };
+    let record = rig_record(&outcome, setup, has_state);
+    let (failure, caution) = (record.summary.failure(), record.summary.caution());
+    let columns = record.add_files(&mut files, out, trajectory_as)?;
+    Ok(Made {
+        files,
+        trajectory: columns,
+        notes: Vec::new(),
+        warnings: outcome
+            .stiffness_detected_at
+            .map(|t| stiffness_warning(spec.solver.name(), t))
+            .into_iter()
+            .chain(coarse_step_warning(spec.step, outcome.time_scale))
+            .chain(failure_warnings(
+                spec.solver,
+                spec.switching,
+                spec.step,
+                t_end,
+                outcome.time_scale,
+                outcome.error.as_ref(),
+            ))
+            .chain(caution)
+            .collect(),
+        failure,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use friction_models::{FrictionParams, ModelId};
+    use scenarios::RunSpec;
+
+    #[test]
+    fn a_figure_draws_each_switch_as_a_jump_at_the_switch() {
+        // The belt's stick–slip with the paper's CVS, output every 10 ms: at a re-stick the
+        // friction jumps from about −7.5 N to the holding force. Drawn from the trajectory
+        // alone, the line ran from the last point of the slip phase to the point at the switch,
+        // through states that never were.
+        let spec = RunSpec {
+            t_end: Some(20.0),
+            output_points: 2001,
+            ..scenarios::stick_slip::belt_run(ModelId::Cvs, &FrictionParams::paper())
+        };
+        let o = scenarios::run(&spec, &mut |_| {}).unwrap();
+        let drawn = drawn_rows(&o);
+        let switches = o.rows.windows(2).filter(|w| w[0].mode != w[1].mode).count();
+        assert!(switches >= 30, "{switches} switches");
+        assert_eq!(o.before_switches.len(), switches);
+        assert_eq!(drawn.len(), o.rows.len() + switches);
+        // Every change of mode between two drawn points is at one instant and one state.
+        for w in drawn.windows(2) {
+            if w[0].mode != w[1].mode {
+                assert_eq!((w[0].t, w[0].x, w[0].v), (w[1].t, w[1].x, w[1].v));
+            }
+        }
+        // The friction before a re-stick is CVS's at v_rel = 0⁻: −(F_c + C2) = −7.5 N.
+        let p = FrictionParams::paper();
+        for b in o
+            .before_switches
+            .iter()
+            .filter(|b| b.mode != friction_systems::STICK)
+        {
+            assert!((b.friction + p.f_c + p.c2).abs() < 1e-9, "{b:?}");
+        }
+    }
+}

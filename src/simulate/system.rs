@@ -1,0 +1,330 @@
+//! A system's run (the chain, a system file, a system built in code): its files (trajectory
+//! of the bodies chosen, summary, events) and figures (velocities, the space–time picture of
+//! the contact modes, stiffness along the run).
+
+use super::stiffness::add_stiffness;
+use crate::artifacts::{Artifacts, Made};
+use crate::error::AppError;
+use crate::options::SchemeName;
+use crate::output::{counted, Cell, Table};
+use crate::plot::{self, Corner, Marker, Plot, Raster, Series, PALETTE};
+use crate::progress::Progress;
+use crate::ranges;
+use crate::run_record::{
+    event_counts, scheme_parameters, Integrated, RunRecord, RunSetup, RunSummary, StiffnessSummary,
+};
+use crate::trajectory::{Trajectory, TrajectoryAs};
+use friction_models::{FrictionParams, Variant};
+use friction_systems::{mode_name, Run, System, SLIP_NEGATIVE, SLIP_POSITIVE};
+use integrators::{Options, Solver};
+use scenarios::chain::ChainSource;
+use scenarios::SwitchingKind;
+use std::collections::BTreeMap;
+use std::path::Path;
+
+/// Most bodies drawn in `velocity.png`, one colour each.
+pub const DRAWN_BODIES: usize = 10;
+
+/// Most columns and rows of the space–time picture.
+const RASTER: (usize, usize) = (300, 200);
+
+/// What the arguments describe: the system, its name, the parameters the summary reports, and
+/// the friction parameters (whose `epsilon` the regularised treatment reads).
+pub struct Described {
+    /// The system.
+    pub system: System,
+    /// Its name, for titles.
+    pub name: String,
+    /// The parameters the summary reports.
+    pub parameters: BTreeMap<String, f64>,
+    /// The friction parameters of the command line.
+    pub friction: FrictionParams,
+    /// What the chain was built from (`None` for a system file).
+    pub source: Option<ChainSource>,
+}
+
+/// How often [`load`] looks for a signal, s.
+const LOAD_POLL_S: f64 = 0.05;
+
+/// Reads the system file at `path` with a heartbeat, on a thread of its own: a signal stops the
+/// command at once ([`AppError::Stopped`]; the parse cannot be stopped inside, so it is left to
+/// end with the process), where a file of 10⁶ bodies takes seconds to parse.
+pub fn load(path: &Path) -> Result<friction_systems::System, AppError> {
+    let progress = Progress::elapsed(&format!("loading {}", path.display()));
+    let (send, receive) = std::sync::mpsc::channel();
+    let owned = path.to_path_buf();
+    std::thread::spawn(move || {
+        let _ = send.send(friction_systems::file::read(&owned));
+    });
+    let poll = std::time::Duration::from_secs_f64(LOAD_POLL_S);
+    loop {
+        if integrators::interrupt::requested() {
+            return Err(AppError::Stopped(format!("loading {}", path.display())));
+        }
+        match receive.recv_timeout(poll) {
+            Ok(read) => {
+                progress.finish();
+                return Ok(read?);
+            }
+            Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {}
+            Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => {
+                return Err(AppError::StudyRun(format!(
+                    "loading {} ended without a result",
+                    path.display()
+                )))
+            }
+        }
+    }
+}
+
+/// The space–time picture: body index against time, coloured by contact mode, sampled on at
+/// most [`RASTER`] columns and rows; with its data as a CSV table. The solution must hold a
+/// point (a run that failed before its first one has no picture).
+fn space_time(run: &Run, title: &str, path: &Path) -> Result<(Raster, Vec<u8>), AppError> {
+    let s = &run.solution;
+    let n = run.problem.system.bodies.len();
+    let (t0, t1) = (
+        s.t.first().copied().unwrap_or(0.0),
+        s.t.last().copied().unwrap_or(1.0),
+    );
+    let columns = RASTER.0.min(s.len().saturating_sub(1)).max(1);
+    let rows = n.min(RASTER.1);
+    let x_edges: Vec<f64> = (0..=columns)
+        .map(|c| t0 + (t1 - t0) * c as f64 / columns as f64)
+        .collect();
+    let body_of_row = |r: usize| r * n / rows;
+    let mut cells = Vec::with_capacity(columns * rows);
+    let mut table = Table::new(&["t_start", "t_end", "body", "mode"]);
+    let mut k = 0;
+    for c in 0..columns {
+        while k + 1 < s.len() && s.t[k] < x_edges[c] {
+            k += 1;
+        }
+        let modes = s.modes_at(k);
+        for r in 0..rows {
+            let i = body_of_row(r);
+            let mode = run.problem.layout.contact[i]
+                .map(|j| run.problem.reported_mode(j, s.y_at(k), modes));
+            cells.push(match mode {
+                None => 3,
+                Some(SLIP_POSITIVE) => 0,
+                Some(SLIP_NEGATIVE) => 1,
+                Some(_) => 2,
+            });
+            table.rows.push(vec![
+                Cell::Num(x_edges[c]),
+                Cell::Num(x_edges[c + 1]),
+                Cell::Text(run.problem.system.bodies[i].name.clone()),
+                Cell::Text(mode.map_or("none", mode_name).into()),
+            ]);
+        }
+    }
+    let raster = Raster {
+        title: format!("{title}: contact modes"),
+        x_label: "time t (s)".into(),
+        y_label: if rows < n {
+            format!("body index ({rows} of {n} bodies)")
+        } else {
+            "body index".into()
+        },
+        x_edges,
+        rows,
+        cells,
+        legend: vec![
+            (plot::RED, "slip+".into()),
+            (plot::BLUE, "slip-".into()),
+            (plotters::style::RGBColor(170, 170, 170), "stick".into()),
+            (plotters::style::WHITE, "no contact".into()),
+        ],
+    };
+    Ok((raster, table.to_csv(path)?))
+}
+
+/// The advice for a chain of a law of the user's own with a `spread` above 0: the spread
+/// scales the force levels of a law of the catalog, and an own law is the same on every block.
+fn unspread_warning(source: &ChainSource) -> Option<String> {
+    let spread = source.chain.spread;
+    (source.law.catalog().is_none() && spread > 0.0).then(|| {
+        format!(
+            "the chain's `spread` = {} scales the force levels of the catalog's laws; law `{}` \
+             is your own and acts the same on every block (set spread=0 to say so)",
+            ranges::show(spread),
+            source.law
+        )
+    })
+}
+
+/// The friction law of every contact of `system`, by name; `None` when they differ.
+fn common_model(system: &System) -> Option<String> {
+    let mut names = system.contacts.iter().map(|c| c.model.name());
+    let first = names.next()?;
+    names.all(|n| n == first).then(|| first.to_string())
+}
+
+/// A system's run as its front end describes it.
+pub struct SystemRun<'a> {
+    /// The system, its name and parameters.
+    pub described: &'a Described,
+    /// The treatment of v = 0, or time-stepping.
+    pub switching: SwitchingKind,
+    /// The solver of event-driven integration.
+    pub solver: Solver,
+    /// The step control, bounds and output grid; its `t_end` is the run's.
+    pub options: Options,
+    /// The bodies written to `trajectory.csv` (0-based), the first [`DRAWN_BODIES`] drawn.
+    pub bodies: &'a [usize],
+    /// The reading of a catalog model named for every contact (the chain's), if one was.
+    pub variant: Option<Variant>,
+}
+
+/// Simulates `run` and its files into `out`, in memory: `trajectory.csv` (or its columns) of
+/// the bodies chosen, `summary.json`, `events.csv`, their velocities, the space–time picture of
+/// the contact modes, and the stiffness along the run. The warnings are the run's: its
+/// stiffness, a step too coarse for its time scale, why it failed, a chain's spread that a law
+/// of one's own does not read.
+pub fn simulate_system(
+    run: SystemRun,
+    out: &Path,
+    trajectory_as: TrajectoryAs,
+) -> Result<Made, AppError> {
+    let SystemRun {
+        described,
+        switching,
+        solver,
+        options,
+        bodies,
+        variant,
+    } = run;
+    let Described {
+        system,
+        name,
+        parameters,
+        friction,
+        source,
+    } = described;
+    let mut parameters = parameters.clone();
+    parameters.extend(scheme_parameters(switching, friction));
+    system.validate()?;
+    let scheme = switching.scheme(solver, friction);
+    let t_end = options.t_end;
+    let step = options.step;
+    let method = scheme.method_name();
+    let bar = Progress::time(t_end, &format!("{name} {method}"));
+    // The times each step reached, for the step size at the points where the stiffness is
+    // measured.
+    let mut step_ends = Vec::new();
+    let run = friction_systems::simulate(system, scheme, options, &mut |t| {
+        bar.at(t);
+        step_ends.push(t);
+    })?;
+    bar.finish();
+    let stiffness = run.stiffness(&step_ends);
+    drop(step_ends);
+
+    let title = format!("{name} ({method}, {} switching)", switching.name());
+    let mut files = Artifacts::default();
+    add_stiffness(&mut files, out, &stiffness, &title)?;
+    if !run.solution.is_empty() {
+        let (raster, data) = space_time(&run, &title, &out.join("space-time.csv"))?;
+        files.add(out.join("space-time.csv"), data);
+        files.add_raster(&out.join("space-time"), &raster)?;
+    }
+    // One colour each: the first bodies written, at most ten.
+    let drawn = bodies.len().min(DRAWN_BODIES);
+    let velocity = Plot {
+        title: if drawn < bodies.len() {
+            format!(
+                "{title}: velocities of the first {drawn} of {} bodies written",
+                bodies.len()
+            )
+        } else {
+            format!("{title}: velocities")
+        },
+        x_label: "time t (s)".into(),
+        y_label: "velocity v (m/s)".into(),
+        series: bodies
+            .iter()
+            .take(drawn)
+            .enumerate()
+            .map(|(c, &i)| Series {
+                label: Some(system.bodies[i].name.clone()),
+                points: run.body(i).iter().map(|b| (b.t, b.v)).collect(),
+                color: PALETTE[c],
+                width: 2,
+                marker: Marker::None,
+            })
+            .collect(),
+        legend: Corner::UpperRight,
+        log: false,
+    };
+    files.add_plot(&out.join("velocity"), &velocity)?;
+    let setup = RunSetup {
+        system: name.clone(),
+        model: common_model(system),
+        variant,
+        n_bodies: system.bodies.len(),
+        n_contacts: system.contacts.len(),
+        scheme: SchemeName::of(switching).name(),
+        solver: method,
+        switching: switching.name(),
+        step,
+        t_end,
+        parameters,
+    };
+    let events = run.contact_events();
+    let energy = run.energy();
+    let integrated = Integrated {
+        error: run.error.clone(),
+        t_reached: run.solution.t.last().copied(),
+        event_counts: event_counts(&events),
+        stats: run.solution.stats.into(),
+        wall_time_s: run.wall_time_s,
+        energy_residual: energy.map(|e| e.residual),
+        energy,
+        friction_work: None,
+        loop_area: None,
+        stiffness_detected_at: run.solution.stiffness_detected_at,
+        method_switches: run.solution.method_switches.clone(),
+        stiffness: StiffnessSummary::of(&stiffness),
+        instability: run.instability(&scheme, step),
+    };
+    let record = RunRecord {
+        summary: RunSummary::new(setup, integrated),
+        bodies: system.bodies.iter().map(|b| b.name.clone()).collect(),
+        trajectory: Trajectory::of_run(&run, bodies),
+        finals: run.final_states(),
+        events,
+    };
+    let (failure, caution) = (record.summary.failure(), record.summary.caution());
+    let columns = record.add_files(&mut files, out, trajectory_as)?;
+    let period = integrators::OdeProblem::time_scale(&run.problem);
+    Ok(Made {
+        files,
+        trajectory: columns,
+        notes: vec![format!(
+            "{}, {}, {}, {:.3} s",
+            counted(system.bodies.len(), "body", "bodies"),
+            counted(run.solution.stats.steps, "step", "steps"),
+            counted(run.solution.stats.events, "event", "events"),
+            run.wall_time_s
+        )],
+        warnings: run
+            .solution
+            .stiffness_detected_at
+            .map(|t| crate::warnings::stiffness_warning(method, t))
+            .into_iter()
+            .chain(crate::warnings::coarse_step_warning(step, period))
+            .chain(crate::warnings::failure_warnings(
+                solver,
+                switching,
+                step,
+                t_end,
+                period,
+                run.error.as_ref(),
+            ))
+            .chain(source.as_ref().and_then(unspread_warning))
+            .chain(caution)
+            .collect(),
+        failure,
+    })
+}
