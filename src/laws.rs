@@ -2,8 +2,9 @@
 //! program runs (the Python package registers a law written in Python here, so that every
 //! check, default and output of a run is the one the catalog's laws get).
 
+use crate::error::AppError;
 use friction_models::{FrictionModel, FrictionParams, ModelId, Parameters, Variant};
-use scenarios::Law;
+use scenarios::{Law, SwitchingKind};
 use std::collections::BTreeMap;
 use std::sync::{Arc, RwLock};
 
@@ -132,6 +133,34 @@ impl std::str::FromStr for ModelChoice {
                 })
             })
     }
+}
+
+/// Refuses `name`, swept by `option` (a sweep's axis, a stiffness study's parameter), when it
+/// is a friction parameter the run does not read, so that every value would give the same
+/// run: one `model` does not list, or `epsilon` outside `--switching regularized`.
+pub fn check_read(
+    option: &str,
+    name: &str,
+    model: Option<ModelId>,
+    switching: SwitchingKind,
+) -> Result<(), AppError> {
+    if FrictionParams::spec(name).is_none() {
+        return Ok(());
+    }
+    if name == "epsilon" {
+        if switching != SwitchingKind::Regularized {
+            return Err(AppError::Usage(format!(
+                "option `{option}`: parameter `epsilon` is read only under --switching \
+                 regularized, not {}: every value would give the same run",
+                switching.name()
+            )));
+        }
+    } else if let Some(why) = model.and_then(|m| m.unread(name)) {
+        return Err(AppError::Usage(format!(
+            "option `{option}`: {why}: every value would give the same run"
+        )));
+    }
+    Ok(())
 }
 
 #[cfg(test)]

@@ -25,6 +25,7 @@ pub mod provenance;
 pub mod ranges;
 pub mod reproduce;
 pub mod run_record;
+pub mod scheme;
 pub mod simulate;
 pub mod study;
 pub mod sweep;

@@ -2,9 +2,10 @@
 //! `--set` and `--variant`, resolved into validated parameters.
 
 use crate::error::AppError;
-use crate::ranges;
+use crate::ranges::{self, first_repeat};
+use crate::scheme::SchemeName;
 use clap::Args;
-use friction_models::{FrictionParams, ModelId, ParamError, Parameters, Variant};
+use friction_models::{FrictionParams, ParamError, Parameters, Variant};
 use scenarios::{Limits, Scenario, ScenarioParams, SwitchingKind};
 use std::io::Read;
 use std::path::{Path, PathBuf};
@@ -279,34 +280,6 @@ pub fn parse_params(text: &str) -> Result<Vec<(String, f64)>, String> {
         .collect()
 }
 
-/// Refuses `name`, swept by `option` (a sweep's axis, a stiffness study's parameter), when it
-/// is a friction parameter the run does not read, so that every value would give the same
-/// run: one `model` does not list, or `epsilon` outside `--switching regularized`.
-pub fn check_read(
-    option: &str,
-    name: &str,
-    model: Option<ModelId>,
-    switching: SwitchingKind,
-) -> Result<(), AppError> {
-    if FrictionParams::spec(name).is_none() {
-        return Ok(());
-    }
-    if name == "epsilon" {
-        if switching != SwitchingKind::Regularized {
-            return Err(AppError::Usage(format!(
-                "option `{option}`: parameter `epsilon` is read only under --switching \
-                 regularized, not {}: every value would give the same run",
-                switching.name()
-            )));
-        }
-    } else if let Some(why) = model.and_then(|m| m.unread(name)) {
-        return Err(AppError::Usage(format!(
-            "option `{option}`: {why}: every value would give the same run"
-        )));
-    }
-    Ok(())
-}
-
 /// `--scheme` and `--switching`: how a run or a study is integrated, and how v = 0 is treated
 /// under the event-driven scheme.
 #[derive(Args, Clone, Debug)]
@@ -325,46 +298,6 @@ pub struct SchemeArgs {
     /// former spelling of --scheme time-stepping, is still taken, with a note.)
     #[arg(long, value_name = "event|regularized|naive")]
     pub switching: Option<SwitchingKind>,
-}
-
-/// `--scheme`: how a run is integrated, as Siconos's `Simulation` chooses it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum SchemeName {
-    /// A solver steps between located events; v = 0 is treated by `--switching`.
-    EventDriven,
-    /// Moreau–Jean time-stepping: fixed steps of `--dt`, no event located, no ODE solver.
-    TimeStepping,
-}
-
-impl SchemeName {
-    /// Every scheme, as `--scheme` takes it.
-    pub const ALL: [SchemeName; 2] = [SchemeName::EventDriven, SchemeName::TimeStepping];
-
-    /// The scheme that integrates under `switching`: time-stepping or event-driven.
-    pub fn of(switching: SwitchingKind) -> SchemeName {
-        match switching.is_time_stepping() {
-            true => SchemeName::TimeStepping,
-            false => SchemeName::EventDriven,
-        }
-    }
-
-    /// The name `--scheme` takes.
-    pub fn name(self) -> &'static str {
-        match self {
-            SchemeName::EventDriven => "event-driven",
-            SchemeName::TimeStepping => "time-stepping",
-        }
-    }
-}
-
-impl std::str::FromStr for SchemeName {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        SchemeName::ALL
-            .into_iter()
-            .find(|k| k.name() == s)
-            .ok_or_else(|| format!("unknown scheme `{s}`; known: event-driven, time-stepping"))
-    }
 }
 
 /// The note given for `--switching timestepping`, the former spelling of `--scheme
@@ -400,13 +333,4 @@ impl SchemeArgs {
             (SchemeName::EventDriven, s) => Ok(s.unwrap_or(SwitchingKind::Event)),
         }
     }
-}
-
-/// The first item of `items` equal to an earlier one: `(earlier, later)` indices. A list option
-/// that names a thing twice (an axis, a body, a solver) would repeat its runs or rows.
-pub fn first_repeat<T: PartialEq>(items: &[T]) -> Option<(usize, usize)> {
-    items
-        .iter()
-        .enumerate()
-        .find_map(|(k, x)| items[..k].iter().position(|o| o == x).map(|j| (j, k)))
 }

@@ -173,3 +173,12 @@ pub fn threads(asked: Option<i64>) -> Result<Option<usize>, AppError> {
     let cores = std::thread::available_parallelism().map_or(1, |c| c.get());
     Ok(Some(n.min(cores)))
 }
+
+/// The first item of `items` equal to an earlier one: `(earlier, later)` indices. A list option
+/// that names a thing twice (an axis, a body, a solver) would repeat its runs or rows.
+pub fn first_repeat<T: PartialEq>(items: &[T]) -> Option<(usize, usize)> {
+    items
+        .iter()
+        .enumerate()
+        .find_map(|(k, x)| items[..k].iter().position(|o| o == x).map(|j| (j, k)))
+}

@@ -2,7 +2,7 @@
 //! steps and what would avoid it, a step too coarse for the problem's natural period, a
 //! parameter given that the run does not read.
 
-use crate::options::check_read;
+use crate::laws::check_read;
 use crate::ranges;
 use friction_models::ModelId;
 use integrators::{Solver, SolverError, StepControl};

@@ -4,8 +4,8 @@
 
 use crate::artifacts::{Artifacts, Made};
 use crate::error::AppError;
-use crate::laws::ModelChoice;
-use crate::options::{check_read, LimitArgs, ParamOptions};
+use crate::laws::{check_read, ModelChoice};
+use crate::options::{LimitArgs, ParamOptions};
 use crate::ranges;
 use crate::study::{conduct, Table2Study, Target};
 use crate::threads::with_threads;

@@ -74,10 +74,10 @@ fn point_range(text: Option<&str>, n: usize) -> Result<std::ops::Range<usize>, A
 }
 
 /// Refuses an axis that names a parameter a second time (only the last would be used) or a
-/// friction parameter that the run does not read ([`crate::options::check_read`]).
+/// friction parameter that the run does not read ([`crate::laws::check_read`]).
 fn check_axes(axes: &[Axis], run: &SimulateArgs) -> Result<(), AppError> {
     let names: Vec<&str> = axes.iter().map(|a| a.name.as_str()).collect();
-    if let Some((_, k)) = crate::options::first_repeat(&names) {
+    if let Some((_, k)) = crate::ranges::first_repeat(&names) {
         return Err(AppError::Usage(format!(
             "option `grid`: parameter `{}` has two axes; give all its values in one",
             names[k]
@@ -107,7 +107,7 @@ fn check_axes(axes: &[Axis], run: &SimulateArgs) -> Result<(), AppError> {
         }
     }
     names.iter().try_for_each(|name| {
-        crate::options::check_read(
+        crate::laws::check_read(
             "grid",
             name,
             run.model.as_ref().and_then(ModelChoice::catalog),

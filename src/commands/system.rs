@@ -163,7 +163,7 @@ pub fn chosen_bodies(system: &System, chosen: &[String]) -> Result<Vec<usize>, A
         })
         .collect::<Result<_, _>>()?;
     // A body chosen twice would repeat its rows in the tidy trajectory.csv.
-    if let Some((j, k)) = crate::options::first_repeat(&indices) {
+    if let Some((j, k)) = crate::ranges::first_repeat(&indices) {
         return Err(AppError::Usage(format!(
             "option `--bodies`: `{}` and `{}` are the same body, {}: choose each body once",
             chosen[j], chosen[k], system.bodies[indices[k]].name

@@ -5,13 +5,13 @@ use super::stiffness::add_stiffness;
 use crate::artifacts::{Artifacts, Made};
 use crate::error::AppError;
 use crate::laws::ModelChoice;
-use crate::options::SchemeName;
 use crate::plot::{Corner, Marker, Plot, Series, BLUE};
 use crate::progress::Progress;
 use crate::run_record::{
     event_counts, scheme_parameters, Integrated, RunRecord, RunSetup, RunSummary, StiffnessSummary,
     RIG_BODY,
 };
+use crate::scheme::SchemeName;
 use crate::trajectory::{Trajectory, TrajectoryAs};
 use crate::warnings::{coarse_step_warning, failure_warnings, stiffness_warning};
 use friction_models::Parameters;

@@ -5,7 +5,6 @@
 use super::stiffness::add_stiffness;
 use crate::artifacts::{Artifacts, Made};
 use crate::error::AppError;
-use crate::options::SchemeName;
 use crate::output::{counted, Cell, Table};
 use crate::plot::{self, Corner, Marker, Plot, Raster, Series, PALETTE};
 use crate::progress::Progress;
@@ -13,6 +12,7 @@ use crate::ranges;
 use crate::run_record::{
     event_counts, scheme_parameters, Integrated, RunRecord, RunSetup, RunSummary, StiffnessSummary,
 };
+use crate::scheme::SchemeName;
 use crate::trajectory::{Trajectory, TrajectoryAs};
 use friction_models::{FrictionParams, Variant};
 use friction_systems::{mode_name, Run, System, SLIP_NEGATIVE, SLIP_POSITIVE};

@@ -211,7 +211,7 @@ pub fn study_file<'a, T: Serialize>(case: &dyn StudyCase, study: &'a T) -> Study
 
 /// `--solvers` with each solver once (a study names its runs by solver).
 pub fn distinct(solvers: &[Solver]) -> Result<(), AppError> {
-    match crate::options::first_repeat(solvers) {
+    match crate::ranges::first_repeat(solvers) {
         Some((_, k)) => Err(AppError::Usage(format!(
             "option `solvers` names `{}` twice: allowed each solver once",
             solvers[k].name()

@@ -6,7 +6,7 @@ use crate::artifacts::Made;
 use crate::commands::simulate::Target as Problem;
 use crate::error::AppError;
 use crate::laws::ModelChoice;
-use crate::options::SchemeName;
+use crate::scheme::SchemeName;
 use crate::study::{conduct, StiffnessStudy};
 use clap::Args;
 use integrators::Solver;
@@ -97,7 +97,7 @@ pub fn stiffness(a: &StiffnessArgs) -> Result<Made, AppError> {
     // parameter itself (`StudyCase::with_parameter`): epsilon, which under event switching
     // its regularised peer reads, and on the chain the chain's parameters and its law's.
     if let Some(Problem::Rig(_)) = case.scenario {
-        crate::options::check_read(
+        crate::laws::check_read(
             "parameter",
             &a.parameter,
             case.model.as_ref().and_then(ModelChoice::catalog),
