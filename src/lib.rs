@@ -1,41 +1,13 @@
-//! friction-lab: the command-line program over the workspace, and a facade over its crates.
-//!
-//! - [`friction_models`]: the paper's six models, the classical terms, Dahl, Karnopp, LuGre;
-//! - [`integrators`]: the solvers (RK4, Dormand–Prince, implicit Euler, diffsol);
-//! - [`friction_systems`]: bodies, springs and contacts as hybrid problems, one mode per
-//!   contact;
-//! - [`scenarios`]: the rigs, the paper's experiments and the solver studies.
+//! The `friction-lab` command line: its options (clap) and one call into the library
+//! [`friction_lab`] per command, whose files it writes and whose messages it prints.
 
-pub use friction_models;
-pub use friction_systems;
-pub use integrators;
-pub use scenarios;
-
-pub mod artifacts;
 pub mod commands;
-pub mod destination;
-pub mod error;
-pub mod figure;
-pub mod laws;
 pub mod options;
-pub mod output;
-pub mod plot;
-pub mod progress;
-pub mod provenance;
-pub mod ranges;
-pub mod reproduce;
-pub mod run_record;
-pub mod scheme;
-pub mod simulate;
-pub mod study;
-pub mod sweep;
-pub mod threads;
-pub mod trajectory;
-pub mod warnings;
 
 use clap::{Parser, Subcommand};
-use error::AppError;
-use trajectory::TrajectoryAs;
+use friction_lab::error::AppError;
+use friction_lab::trajectory::TrajectoryAs;
+use friction_lab::{artifacts, destination, ranges};
 
 /// The exit codes, as `--help` lists them.
 pub const EXIT_CODES: &str = "Exit codes:

@@ -29,7 +29,7 @@ fn stop_on_signal() {
 }
 
 fn main() {
-    let cli = match friction_lab::Cli::try_parse() {
+    let cli = match friction_lab_cli::Cli::try_parse() {
         Ok(cli) => cli,
         // --help and --version print as they are; a usage error with what was typed shortened
         // (error::bounded).
@@ -40,7 +40,7 @@ fn main() {
         }
     };
     stop_on_signal();
-    let result = friction_lab::run(cli);
+    let result = friction_lab_cli::run(cli);
     if let Err(e) = &result {
         eprintln!("error: {}", bounded(&e.to_string()));
     }

@@ -1,10 +1,10 @@
 //! The options shared by every command that runs a model: `--param-set`, `--params`,
 //! `--set` and `--variant`, resolved into validated parameters.
 
-use crate::error::AppError;
-use crate::ranges::{self, first_repeat};
-use crate::scheme::SchemeName;
 use clap::Args;
+use friction_lab::error::AppError;
+use friction_lab::ranges::{self, first_repeat};
+use friction_lab::scheme::SchemeName;
 use friction_models::{FrictionParams, ParamError, Parameters, Variant};
 use scenarios::{Limits, Scenario, ScenarioParams, SwitchingKind};
 use std::io::Read;

@@ -4,11 +4,11 @@
 //! fixed number of cases so that the suite stays within seconds.
 
 use clap::Parser;
-use friction_lab::commands::simulate::spec;
 use friction_lab::friction_models::{FrictionParams, ModelId, Parameters};
 use friction_lab::ranges::{self, OptionRange};
 use friction_lab::scenarios::{Scenario, ScenarioParams};
-use friction_lab::{Cli, Command};
+use friction_lab_cli::commands::simulate::spec;
+use friction_lab_cli::{Cli, Command};
 use proptest::prelude::*;
 
 /// Numbers of every kind: ordinary, tiny, huge, negative, zero, NaN and infinities.
@@ -109,11 +109,11 @@ proptest! {
         let friction = FrictionParams::specs();
         let rig = ScenarioParams::specs();
         let spec = if k < friction.len() { &friction[k] } else { &rig[k % rig.len()] };
-        let options = friction_lab::options::ParamOptions {
+        let options = friction_lab_cli::options::ParamOptions {
             set: vec![format!("{}={x}", spec.name)],
             ..Default::default()
         };
-        let options = friction_lab::options::ParamOptions { param_set: "paper".into(), ..options };
+        let options = friction_lab_cli::options::ParamOptions { param_set: "paper".into(), ..options };
         // Scenario parameters are checked for a scenario that reads them.
         let scenario = Scenario::ALL
             .into_iter()
@@ -225,7 +225,7 @@ fn the_fuzz_seeds_and_corpus_go_through_both_parsers() {
             systems.push(name.clone());
         }
         if name == "params.toml" {
-            let pairs = friction_lab::options::parse_params(&text).unwrap();
+            let pairs = friction_lab_cli::options::parse_params(&text).unwrap();
             assert_eq!(pairs.len(), 5);
         }
     }
@@ -248,7 +248,7 @@ fn the_fuzz_seeds_and_corpus_go_through_both_parsers() {
         if let Ok(system) = parse(text) {
             assert!(system.validate().is_ok());
         }
-        if let Ok(pairs) = friction_lab::options::parse_params(text) {
+        if let Ok(pairs) = friction_lab_cli::options::parse_params(text) {
             let mut p = FrictionParams::paper();
             for (name, value) in pairs {
                 let _ = p.set(&name, value);

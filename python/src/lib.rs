@@ -107,9 +107,9 @@ fn run(py: Python<'_>, argv: Vec<String>, stop: Option<Bound<'_, PyAny>>) -> PyR
     let words = std::iter::once("friction-lab".to_string())
         .chain(argv)
         .chain(["--out".to_string(), IN_MEMORY.to_string()]);
-    let cli = friction_lab::Cli::try_parse_from(words).map_err(|e| usage(&e))?;
+    let cli = friction_lab_cli::Cli::try_parse_from(words).map_err(|e| usage(&e))?;
     let made = interruptible(py, stop.as_ref(), || {
-        friction_lab::make_in_memory(&cli.command)
+        friction_lab_cli::make_in_memory(&cli.command)
     })?;
     // A law written in Python that raised stopped the run: its exception is the answer.
     if let Some(e) = law::take_error() {
@@ -155,7 +155,7 @@ fn failure_message(e: &AppError) -> String {
 /// whether it takes a value: the keyword arguments of the Python function that runs it.
 #[pyfunction]
 fn options(name: &str) -> PyResult<Vec<(String, bool)>> {
-    let cli = friction_lab::Cli::command();
+    let cli = friction_lab_cli::Cli::command();
     let command = cli
         .find_subcommand(name)
         .ok_or_else(|| PyValueError::new_err(format!("unknown command `{name}`")))?;
@@ -171,7 +171,7 @@ fn options(name: &str) -> PyResult<Vec<(String, bool)>> {
 /// The listing of `friction-lab models --json`.
 #[pyfunction]
 fn models_json() -> String {
-    friction_lab::commands::models::json()
+    friction_lab_cli::commands::models::json()
 }
 
 /// A command-line parse error as `ValueError`: clap's message without its `error: ` prefix

@@ -1,13 +1,13 @@
 //! `friction-lab curve MODEL --out DIR`: one friction curve as CSV, PNG, SVG and a JSON
 //! summary of its key values.
 
-use crate::artifacts::{Artifacts, Made};
-use crate::error::AppError;
-use crate::figure::{Drawn, KeyValues};
-use crate::laws::used_parameters;
 use crate::options::ModelOptions;
-use crate::ranges;
 use clap::Args;
+use friction_lab::artifacts::{Artifacts, Made};
+use friction_lab::error::AppError;
+use friction_lab::figure::{Drawn, KeyValues};
+use friction_lab::laws::used_parameters;
+use friction_lab::ranges;
 use friction_models::{CurveAxis, ModelId, Variant};
 use scenarios::curves;
 use serde::Serialize;

@@ -1,7 +1,7 @@
 //! `friction-lab models [--json]`: every model with its equation and parameters, and the
 //! parameters with units, defaults, ranges and named sets.
 
-use crate::error::AppError;
+use friction_lab::error::AppError;
 use friction_models::{
     CurveAxis, FrictionParams, ModelId, ParamSpec, Parameters, Variant, PARAM_SETS,
 };

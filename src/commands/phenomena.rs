@@ -2,14 +2,14 @@
 //! models and the reference models, beside the paper's claims, with the numbers that
 //! decided each cell.
 
-use crate::artifacts::{Artifacts, Made};
-use crate::error::AppError;
-use crate::laws::{check_read, ModelChoice};
 use crate::options::{LimitArgs, ParamOptions};
-use crate::ranges;
-use crate::study::{conduct, Table2Study, Target};
-use crate::threads::with_threads;
 use clap::Args;
+use friction_lab::artifacts::{Artifacts, Made};
+use friction_lab::error::AppError;
+use friction_lab::laws::{check_read, ModelChoice};
+use friction_lab::ranges;
+use friction_lab::study::{conduct, Table2Study, Target};
+use friction_lab::threads::with_threads;
 use friction_models::{ModelId, Variant};
 use integrators::{Solver, StepControl};
 use scenarios::phenomena::{catalog_laws, Protocol, PROTOCOL_PARAMETERS};
@@ -205,7 +205,7 @@ fn unread_by_all(set: &[String], laws: &[Law]) -> Vec<String> {
 
 #[cfg(test)]
 mod tests {
-    use crate::study::check_decided;
+    use friction_lab::study::check_decided;
     use friction_models::ModelId;
     use scenarios::phenomena::{Cell, Phenomenon};
 

@@ -1,13 +1,13 @@
 //! `friction-lab reproduce --out DIR`: the paper reproduced into one folder
-//! ([`crate::reproduce`]): Figures 2–7 with notes, the experiment, Table 2, the solver
+//! ([`friction_lab::reproduce`]): Figures 2–7 with notes, the experiment, Table 2, the solver
 //! studies, the chain's and the belt's stick–slip map, and a report that links them.
 
-use crate::error::AppError;
 use crate::options::ParamOptions;
-use crate::ranges;
-use crate::reproduce::Paper;
-use crate::threads::with_threads;
 use clap::Args;
+use friction_lab::error::AppError;
+use friction_lab::ranges;
+use friction_lab::reproduce::Paper;
+use friction_lab::threads::with_threads;
 use friction_models::Parameters;
 use std::path::PathBuf;
 use std::time::Instant;

@@ -2,15 +2,15 @@
 //! written as `trajectory.csv`, `summary.json` and figures (time histories of x, v and
 //! friction; phase portrait; friction against velocity and against displacement).
 
-use crate::artifacts::Made;
-use crate::error::AppError;
-use crate::laws::ModelChoice;
 use crate::options::{LimitArgs, ModelOptions, SchemeArgs};
-use crate::ranges;
-use crate::simulate::simulate_rig;
-use crate::trajectory::TrajectoryAs;
-use crate::warnings::unread_warnings;
 use clap::Args;
+use friction_lab::artifacts::Made;
+use friction_lab::error::AppError;
+use friction_lab::laws::ModelChoice;
+use friction_lab::ranges;
+use friction_lab::simulate::simulate_rig;
+use friction_lab::trajectory::TrajectoryAs;
+use friction_lab::warnings::unread_warnings;
 use integrators::{Solver, StepControl};
 use scenarios::{Limits, RunSpec, Scenario, SwitchingKind};
 use std::path::PathBuf;

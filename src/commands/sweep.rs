@@ -1,17 +1,17 @@
 //! `friction-lab sweep SCENARIO|chain|--system FILE --grid NAME=VALUES ... --out DIR`: the
-//! sweep of [`crate::sweep`] over the run `simulate` would make, each point's values set as
+//! sweep of [`friction_lab::sweep`] over the run `simulate` would make, each point's values set as
 //! `--set` would set them.
 
-use crate::artifacts::Made;
 use crate::commands::simulate::{spec, SimulateArgs, Target};
 use crate::commands::system::{chosen_bodies, default_t_end, system_of, system_points};
-use crate::error::AppError;
-use crate::laws::ModelChoice;
-use crate::output::counted;
-use crate::ranges;
-use crate::study::{conduct, Target as StudyTarget};
-use crate::sweep::{points, Axis, Grid, PointRun, Start, SweepStudy};
 use clap::Args;
+use friction_lab::artifacts::Made;
+use friction_lab::error::AppError;
+use friction_lab::laws::ModelChoice;
+use friction_lab::output::counted;
+use friction_lab::ranges;
+use friction_lab::study::{conduct, Target as StudyTarget};
+use friction_lab::sweep::{points, Axis, Grid, PointRun, Start, SweepStudy};
 use friction_systems::Layout;
 use scenarios::stick_slip::sliding_start;
 use scenarios::Scenario;
@@ -74,10 +74,10 @@ fn point_range(text: Option<&str>, n: usize) -> Result<std::ops::Range<usize>, A
 }
 
 /// Refuses an axis that names a parameter a second time (only the last would be used) or a
-/// friction parameter that the run does not read ([`crate::laws::check_read`]).
+/// friction parameter that the run does not read ([`friction_lab::laws::check_read`]).
 fn check_axes(axes: &[Axis], run: &SimulateArgs) -> Result<(), AppError> {
     let names: Vec<&str> = axes.iter().map(|a| a.name.as_str()).collect();
-    if let Some((_, k)) = crate::ranges::first_repeat(&names) {
+    if let Some((_, k)) = friction_lab::ranges::first_repeat(&names) {
         return Err(AppError::Usage(format!(
             "option `grid`: parameter `{}` has two axes; give all its values in one",
             names[k]
@@ -107,7 +107,7 @@ fn check_axes(axes: &[Axis], run: &SimulateArgs) -> Result<(), AppError> {
         }
     }
     names.iter().try_for_each(|name| {
-        crate::laws::check_read(
+        friction_lab::laws::check_read(
             "grid",
             name,
             run.model.as_ref().and_then(ModelChoice::catalog),
@@ -232,7 +232,7 @@ pub fn make(args: &SweepArgs) -> Result<Made, AppError> {
         model: args.run.model.as_ref().map(|m| m.name().to_string()),
         start: args.start,
     };
-    let mut files = crate::artifacts::Artifacts::default();
+    let mut files = friction_lab::artifacts::Artifacts::default();
     let mut target = StudyTarget {
         files: &mut files,
         dir: &args.run.out,
@@ -248,7 +248,7 @@ pub fn make(args: &SweepArgs) -> Result<Made, AppError> {
             "{}, {failed} failed",
             counted(results.len(), "point", "points")
         )],
-        warnings: crate::warnings::unread_warnings(
+        warnings: friction_lab::warnings::unread_warnings(
             &args.run.model_options.params.set,
             args.run.model.as_ref().and_then(ModelChoice::catalog),
             args.run.solver.switching(),

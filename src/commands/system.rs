@@ -3,15 +3,15 @@
 //! `trajectory.csv` of chosen bodies, `summary.json` and two figures (space–time picture of
 //! the contact modes; velocities of chosen bodies).
 
-use crate::artifacts::Made;
 use crate::commands::simulate::SimulateArgs;
-use crate::error::AppError;
-use crate::laws::ModelChoice;
 use crate::options::ModelOptions;
-use crate::ranges;
-use crate::simulate::{load, simulate_system, Described, SystemRun};
-use crate::sweep::RECORD_LIMIT;
-use crate::trajectory::TrajectoryAs;
+use friction_lab::artifacts::Made;
+use friction_lab::error::AppError;
+use friction_lab::laws::ModelChoice;
+use friction_lab::ranges;
+use friction_lab::simulate::{load, simulate_system, Described, SystemRun};
+use friction_lab::sweep::RECORD_LIMIT;
+use friction_lab::trajectory::TrajectoryAs;
 use friction_systems::chain::{ChainParams, CHAIN_PARAMETERS};
 use friction_systems::System;
 use integrators::Options;
@@ -163,7 +163,7 @@ pub fn chosen_bodies(system: &System, chosen: &[String]) -> Result<Vec<usize>, A
         })
         .collect::<Result<_, _>>()?;
     // A body chosen twice would repeat its rows in the tidy trajectory.csv.
-    if let Some((j, k)) = crate::ranges::first_repeat(&indices) {
+    if let Some((j, k)) = friction_lab::ranges::first_repeat(&indices) {
         return Err(AppError::Usage(format!(
             "option `--bodies`: `{}` and `{}` are the same body, {}: choose each body once",
             chosen[j], chosen[k], system.bodies[indices[k]].name
@@ -195,10 +195,10 @@ fn no_body(system: &System, token: &str) -> AppError {
 }
 
 /// The options of a system run from the command line: its step control and limits, checked,
-/// and `points` evenly spaced output times on [0, t_end] ([`crate::sweep::grid_options`]).
+/// and `points` evenly spaced output times on [0, t_end] ([`friction_lab::sweep::grid_options`]).
 pub fn grid_options(args: &SimulateArgs, t_end: f64, points: usize) -> Result<Options, AppError> {
     let limits = args.solver.checked_limits()?;
-    Ok(crate::sweep::grid_options(
+    Ok(friction_lab::sweep::grid_options(
         args.solver.checked_step()?,
         &limits,
         t_end,
@@ -234,7 +234,7 @@ pub fn make(args: &SimulateArgs, trajectory_as: TrajectoryAs) -> Result<Made, Ap
     };
     let mut made = simulate_system(run, &args.out, trajectory_as)?;
     made.warnings.extend(
-        crate::warnings::unread_warnings(
+        friction_lab::warnings::unread_warnings(
             &args.model_options.params.set,
             args.model.as_ref().and_then(ModelChoice::catalog),
             switching,

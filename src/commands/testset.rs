@@ -3,11 +3,11 @@
 //! state at the end time) and `summary.json` (the counts and the significant correct digits
 //! against the published reference).
 
-use crate::artifacts::{Artifacts, Made};
-use crate::error::AppError;
 use crate::options::LimitArgs;
-use crate::ranges;
 use clap::Args;
+use friction_lab::artifacts::{Artifacts, Made};
+use friction_lab::error::AppError;
+use friction_lab::ranges;
 use integrators::testset::{self, TestProblem};
 use integrators::{MethodSwitch, Solution, Solver};
 use scenarios::studies::{self, TestRun, TestSetCounts};

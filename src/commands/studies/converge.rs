@@ -1,10 +1,10 @@
 //! `converge`: observed orders of every solver against a reference.
 
 use super::{failures, CaseArgs};
-use crate::artifacts::Made;
-use crate::error::AppError;
-use crate::study::{conduct, ConvergenceStudy};
 use clap::Args;
+use friction_lab::artifacts::Made;
+use friction_lab::error::AppError;
+use friction_lab::study::{conduct, ConvergenceStudy};
 use integrators::Solver;
 
 /// The solvers `converge` compares by default.

@@ -2,11 +2,11 @@
 //! error left and a verdict.
 
 use super::CaseArgs;
-use crate::artifacts::Made;
-use crate::error::AppError;
-use crate::study::{conduct, IndependenceStudy, Refinement};
-use crate::warnings::diverged_line;
 use clap::Args;
+use friction_lab::artifacts::Made;
+use friction_lab::error::AppError;
+use friction_lab::study::{conduct, IndependenceStudy, Refinement};
+use friction_lab::warnings::diverged_line;
 use integrators::Solver;
 
 /// Options of `independence`.

@@ -3,16 +3,16 @@
 //! collected in order, so the files do not depend on the thread count (wall times, which
 //! cannot be reproduced, go to a separate `*-timing.csv`).
 
-use crate::artifacts::{Artifacts, Made};
 use crate::commands::simulate::{derived_t_end, Target as Problem};
 use crate::commands::system::{chosen_bodies, study_t_end, system_of};
-use crate::error::AppError;
-use crate::laws::ModelChoice;
 use crate::options::{LimitArgs, ModelOptions, SchemeArgs};
-use crate::ranges;
-use crate::study::Target;
-use crate::warnings::{diverged_line, unread_warnings};
 use clap::Args;
+use friction_lab::artifacts::{Artifacts, Made};
+use friction_lab::error::AppError;
+use friction_lab::laws::ModelChoice;
+use friction_lab::ranges;
+use friction_lab::study::Target;
+use friction_lab::warnings::{diverged_line, unread_warnings};
 use friction_models::params::show;
 use integrators::Solver;
 use scenarios::run::DEFAULT_THETA;

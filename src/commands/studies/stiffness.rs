@@ -2,13 +2,13 @@
 //! the implicit solvers overtake the explicit ones.
 
 use super::CaseArgs;
-use crate::artifacts::Made;
 use crate::commands::simulate::Target as Problem;
-use crate::error::AppError;
-use crate::laws::ModelChoice;
-use crate::scheme::SchemeName;
-use crate::study::{conduct, StiffnessStudy};
 use clap::Args;
+use friction_lab::artifacts::Made;
+use friction_lab::error::AppError;
+use friction_lab::laws::ModelChoice;
+use friction_lab::scheme::SchemeName;
+use friction_lab::study::{conduct, StiffnessStudy};
 use integrators::Solver;
 use scenarios::studies;
 use scenarios::SwitchingKind;
@@ -97,7 +97,7 @@ pub fn stiffness(a: &StiffnessArgs) -> Result<Made, AppError> {
     // parameter itself (`StudyCase::with_parameter`): epsilon, which under event switching
     // its regularised peer reads, and on the chain the chain's parameters and its law's.
     if let Some(Problem::Rig(_)) = case.scenario {
-        crate::laws::check_read(
+        friction_lab::laws::check_read(
             "parameter",
             &a.parameter,
             case.model.as_ref().and_then(ModelChoice::catalog),

@@ -1,11 +1,11 @@
 //! `work-precision`: error against work and wall time for every solver and peer.
 
 use super::{failures, or_default, CaseArgs};
-use crate::artifacts::{Artifacts, Made};
-use crate::error::AppError;
-use crate::ranges;
-use crate::study::{conduct, Target, TestSetStudy, WorkPrecisionStudy};
 use clap::Args;
+use friction_lab::artifacts::{Artifacts, Made};
+use friction_lab::error::AppError;
+use friction_lab::ranges;
+use friction_lab::study::{conduct, Target, TestSetStudy, WorkPrecisionStudy};
 use integrators::Solver;
 
 /// Options of `work-precision`.
