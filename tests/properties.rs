@@ -118,7 +118,7 @@ proptest! {
         let scenario = Scenario::ALL
             .into_iter()
             .find(|s| s.parameters().contains(&spec.name));
-        match options.resolve_for(scenario) {
+        match options.source().resolve_for(scenario) {
             Ok(_) => prop_assert!(spec.range.contains(x), "{} = {x} accepted", spec.name),
             Err(e) => {
                 prop_assert_eq!(e.exit_code(), 2);
@@ -225,7 +225,7 @@ fn the_fuzz_seeds_and_corpus_go_through_both_parsers() {
             systems.push(name.clone());
         }
         if name == "params.toml" {
-            let pairs = friction_lab_cli::options::parse_params(&text).unwrap();
+            let pairs = friction_lab::params::parse_params(&text).unwrap();
             assert_eq!(pairs.len(), 5);
         }
     }
@@ -248,7 +248,7 @@ fn the_fuzz_seeds_and_corpus_go_through_both_parsers() {
         if let Ok(system) = parse(text) {
             assert!(system.validate().is_ok());
         }
-        if let Ok(pairs) = friction_lab_cli::options::parse_params(text) {
+        if let Ok(pairs) = friction_lab::params::parse_params(text) {
             let mut p = FrictionParams::paper();
             for (name, value) in pairs {
                 let _ = p.set(&name, value);

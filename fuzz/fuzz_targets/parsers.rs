@@ -16,7 +16,7 @@ fuzz_target!(|data: &[u8]| {
         // A file that parses declares a valid system.
         assert!(system.validate().is_ok());
     }
-    if let Ok(pairs) = friction_lab::options::parse_params(text) {
+    if let Ok(pairs) = friction_lab::params::parse_params(text) {
         let mut p = FrictionParams::paper();
         for (name, value) in pairs {
             let _ = p.set(&name, value);

@@ -171,7 +171,7 @@ fn options(name: &str) -> PyResult<Vec<(String, bool)>> {
 /// The listing of `friction-lab models --json`.
 #[pyfunction]
 fn models_json() -> String {
-    friction_lab_cli::commands::models::json()
+    friction_lab::listing::json()
 }
 
 /// A command-line parse error as `ValueError`: clap's message without its `error: ` prefix

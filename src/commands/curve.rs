@@ -84,7 +84,7 @@ fn extent(args: &CurveArgs) -> Result<f64, AppError> {
 
 /// Runs `curve`; its files in memory.
 pub fn make(args: &CurveArgs) -> Result<Made, AppError> {
-    let params = args.model_options.params.resolve()?;
+    let params = args.model_options.params.source().resolve()?;
     let variant = args.model_options.variant;
     let extent = extent(args)?;
     let points = ranges::POINTS.count(args.points)?;

@@ -38,7 +38,7 @@ pub fn run(args: &ReproduceArgs) -> Result<(), AppError> {
                 .iter()
                 .any(|p| p.0 == name)
     };
-    let params = args.params.resolve_with(&[], |name, _| {
+    let params = args.params.source().resolve_with(&[], |name, _| {
         if !rig_or_chain(name) {
             return Ok(false);
         }

@@ -269,7 +269,11 @@ pub fn spec(args: &SimulateArgs, scenario: Scenario) -> Result<RunSpec, AppError
             "option `--bodies` applies to systems (chain, --system), not to a rig".into(),
         ));
     }
-    let (friction, params) = args.model_options.params.resolve_for(Some(scenario))?;
+    let (friction, params) = args
+        .model_options
+        .params
+        .source()
+        .resolve_for(Some(scenario))?;
     if args.checked_t_end()?.is_none() {
         derived_t_end(scenario, &params, &friction)?;
     }

@@ -88,7 +88,7 @@ fn check_axes(axes: &[Axis], run: &SimulateArgs) -> Result<(), AppError> {
     let set = &run.model_options.params.set;
     if let Some((name, given)) = names.iter().find_map(|&n| {
         set.iter()
-            .find(|a| crate::options::parse_assignment(a).is_ok_and(|(s, _)| s == n))
+            .find(|a| friction_lab::params::parse_assignment(a).is_ok_and(|(s, _)| s == n))
             .map(|a| (n, a))
     }) {
         return Err(AppError::Usage(format!(
@@ -144,7 +144,7 @@ fn prepare(args: &SimulateArgs, start: Start) -> Result<PointRun, AppError> {
                 );
             }
             if (args.model_options.params.set.iter())
-                .any(|a| crate::options::parse_assignment(a).is_ok_and(|(n, _)| n == "x0"))
+                .any(|a| friction_lab::params::parse_assignment(a).is_ok_and(|(n, _)| n == "x0"))
             {
                 return refuse("sets x0 itself: drop x0 from --set and --grid");
             }

@@ -88,7 +88,7 @@ pub fn system_of(
                     .into(),
             ));
         }
-        options.params.check_for_system_file()?;
+        options.params.source().check_for_system_file()?;
         if options.variant != friction_models::Variant::Odd {
             return Err(AppError::Usage(
                 "option `--variant` does not apply to --system: each [[contact]] of the file \
@@ -100,7 +100,7 @@ pub fn system_of(
             system: load(path)?,
             name: path.display().to_string(),
             parameters: BTreeMap::new(),
-            friction: options.params.resolve()?,
+            friction: options.params.source().resolve()?,
             source: None,
         });
     }
@@ -111,6 +111,7 @@ pub fn system_of(
     let names = CHAIN_PARAMETERS.map(|(name, _, _)| name);
     let friction = options
         .params
+        .source()
         .resolve_with(&names, |name, value| Ok(chain.set(name, value)?))?;
     let source = ChainSource {
         chain,

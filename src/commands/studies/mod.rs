@@ -128,7 +128,11 @@ impl CaseArgs {
                 "option `--model` is required for scenario {scenario}: e.g. --model CS"
             ))
         })?;
-        let (friction, params) = self.model_options.params.resolve_for(Some(scenario))?;
+        let (friction, params) = self
+            .model_options
+            .params
+            .source()
+            .resolve_for(Some(scenario))?;
         let t_end = match self.t_end {
             Some(t) => check_t_end(t)?,
             None => check_t_end(derived_t_end(scenario, &params, &friction)?)?,

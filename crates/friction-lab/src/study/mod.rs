@@ -26,7 +26,7 @@ pub use stick_slip::{
     regime_series, Bifurcation, BifurcationStudy, StickSlipMap, StickSlipMapStudy,
 };
 pub use stiffness::StiffnessStudy;
-pub use table2::{check_decided, undecided, Table2Study};
+pub use table2::{check_decided, reachable, undecided, unread_by_all, Table2Study};
 pub use testset::TestSetStudy;
 pub use work_precision::WorkPrecisionStudy;
 

@@ -1,0 +1,139 @@
+//! One problem of the standard stiff test set (`integrators::testset`) solved by one solver,
+//! as `testset` writes it: `final.csv` (the state at the end time) and `summary.json` (the
+//! counts and the significant correct digits against the published reference).
+
+use crate::artifacts::{Artifacts, Made};
+use crate::error::AppError;
+use integrators::testset::TestProblem;
+use integrators::{MethodSwitch, Solution, Solver};
+use scenarios::studies::{self, TestRun, TestSetCounts};
+use scenarios::Limits;
+use serde::Serialize;
+use std::path::Path;
+
+/// A run of a test problem: the problem, the solver (adaptive), its tolerances, its initial
+/// step (the solver's choice when `None`), the end time and the bounds.
+pub struct TestSetRun<'a> {
+    /// The problem.
+    pub problem: &'a TestProblem,
+    /// The solver.
+    pub solver: Solver,
+    /// Relative tolerance.
+    pub rtol: f64,
+    /// Absolute tolerance.
+    pub atol: f64,
+    /// Initial step, s.
+    pub h0: Option<f64>,
+    /// End time.
+    pub t_end: f64,
+    /// The step cap and wall-clock limit.
+    pub limits: Limits,
+}
+
+/// The counts of `summary.json`, in the test set's terms.
+#[derive(Serialize)]
+struct Counts {
+    /// The test set's counts.
+    #[serde(flatten)]
+    counts: TestSetCounts,
+    /// Significant correct digits where the run ended, against the published values there;
+    /// null at a time without them, or on failure.
+    scd: Option<f64>,
+}
+
+#[derive(Serialize)]
+struct Summary<'a> {
+    problem: &'a str,
+    title: &'a str,
+    reference: &'a str,
+    solver: &'a str,
+    rtol: f64,
+    atol: f64,
+    h0: Option<f64>,
+    t_end: f64,
+    status: &'a str,
+    error: Option<String>,
+    /// The end time when reached; null for a run that recorded nothing.
+    t_reached: Option<f64>,
+    stats: Counts,
+    /// `auto`'s switches of method (empty for the other solvers).
+    method_switches: &'a [MethodSwitch],
+    wall_time_s: f64,
+}
+
+/// Solves `run` and its files into `out`, in memory: `final.csv` and `summary.json`, a note
+/// of the significant correct digits where the reference gives them, and the solver's failure.
+pub fn solve_test_problem(run: &TestSetRun, out: &Path) -> Result<Made, AppError> {
+    let (problem, solver) = (run.problem, run.solver);
+    let solved = studies::solve_test_problem(
+        problem,
+        solver,
+        (run.rtol, run.atol, run.h0),
+        run.t_end,
+        &run.limits,
+    );
+    let scd = solved.scd(problem);
+    let TestRun {
+        solution,
+        failure,
+        wall_time_s,
+    } = solved;
+    let mut files = Artifacts::default();
+    files.add(out.join("final.csv"), final_csv(&solution));
+    files.add_json(
+        out.join("summary.json"),
+        &Summary {
+            problem: problem.name,
+            title: problem.title,
+            reference: problem.source,
+            solver: solver.name(),
+            rtol: run.rtol,
+            atol: run.atol,
+            h0: run.h0,
+            t_end: run.t_end,
+            status: if failure.is_some() { "failed" } else { "ok" },
+            error: failure.as_ref().map(|e| e.to_string()),
+            t_reached: solution.last().map(|(t, _)| t),
+            stats: Counts {
+                counts: TestSetCounts::of(&solution.stats),
+                scd,
+            },
+            method_switches: &solution.method_switches,
+            wall_time_s,
+        },
+    )?;
+    let mut notes = Vec::new();
+    if let Some(scd) = scd {
+        notes.push(format!(
+            "{} by {}: {scd:.2} significant correct digits, {} steps, {} evaluations of f",
+            problem.name,
+            solver.name(),
+            solution.stats.steps,
+            solution.stats.rhs_evals
+        ));
+    }
+    Ok(Made {
+        files,
+        notes,
+        failure: failure.map(AppError::Solver),
+        ..Made::default()
+    })
+}
+
+/// `t,y1,…,yn` and one row at the end time (none where the run did not reach it).
+fn final_csv(solution: &Solution) -> Vec<u8> {
+    let n = solution.dim;
+    let mut text = String::from("t");
+    for i in 1..=n {
+        text += &format!(",y{i}");
+    }
+    text.push('\n');
+    if let Some((t, y)) = solution.last() {
+        text += &format!("{t:e}");
+        for v in y {
+            text += &format!(",{v:e}");
+        }
+        text.push('\n');
+    }
+    text.into_bytes()
+}
