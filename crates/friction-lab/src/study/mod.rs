@@ -26,7 +26,9 @@ pub use stick_slip::{
     regime_series, Bifurcation, BifurcationStudy, StickSlipMap, StickSlipMapStudy,
 };
 pub use stiffness::StiffnessStudy;
-pub use table2::{check_decided, reachable, undecided, unread_by_all, Table2Study};
+pub use table2::{
+    check_decided, reachable, undecided, unread_by_all, Table2Study, MAX_STEPS_PER_SECOND,
+};
 pub use testset::TestSetStudy;
 pub use work_precision::WorkPrecisionStudy;
 
