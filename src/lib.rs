@@ -30,7 +30,7 @@ pub struct Cli {
     pub command: Command,
 }
 
-/// The commands of `shared/spec/cli.md`.
+/// The commands of `friction-lab` (README.md describes each).
 #[derive(Subcommand, Debug)]
 pub enum Command {
     /// List every friction model with its equation, its parameters and the named sets.

@@ -1,4 +1,4 @@
-//! The `friction-lab` command line; see `shared/spec/cli.md` and `friction-lab --help`.
+//! The `friction-lab` command line; README.md and `friction-lab --help` describe its commands.
 
 use clap::Parser;
 use friction_lab::error::bounded;

@@ -1,4 +1,5 @@
-//! The notes and tables committed in docs/ are what `reproduce` writes today.
+//! The docs: the notes and tables committed in docs/ are what `reproduce` writes today, and
+//! the docs and the help stand alone.
 
 use std::process::Command;
 
@@ -20,5 +21,79 @@ fn docs_copies_of_the_reproduction_are_up_to_date() {
              cp results/reproduction.md results/table2.md results/paper-experiment.md docs/ && \
              cp results/figures/*.png docs/figures/`"
         );
+    }
+}
+
+/// The text files of the repository a user reads: README.md, docs/, the sources (whose doc
+/// comments become `--help` and the API docs), the Python package and the scripts.
+fn readable_files() -> Vec<std::path::PathBuf> {
+    fn walk(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                walk(&path, out);
+            } else if path
+                .extension()
+                .is_some_and(|e| ["rs", "md", "py", "toml"].contains(&e.to_str().unwrap()))
+            {
+                out.push(path);
+            }
+        }
+    }
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = vec![root.join("README.md"), root.join("Cargo.toml")];
+    for dir in [
+        "docs",
+        "src",
+        "crates",
+        "python/src",
+        "python/friction_lab",
+        "scripts",
+    ] {
+        walk(&root.join(dir), &mut files);
+    }
+    files
+}
+
+#[test]
+fn the_docs_and_the_help_name_no_file_outside_the_repository() {
+    // A clone has no `shared/` folder beside it: the docs say everything themselves.
+    let outside = |text: &str| text.contains("shared/spec") || text.contains("shared/paper");
+    let files = readable_files();
+    assert!(files.len() > 100, "{} files read", files.len());
+    let named: Vec<String> = files
+        .iter()
+        .filter(|p| outside(&std::fs::read_to_string(p).unwrap()))
+        .map(|p| p.display().to_string())
+        .collect();
+    assert!(named.is_empty(), "{named:?}");
+    use clap::CommandFactory;
+    let commands: Vec<String> = friction_lab_cli::Cli::command()
+        .get_subcommands()
+        .map(|c| c.get_name().to_string())
+        .collect();
+    assert!(
+        commands.iter().any(|c| c == "simulate") && commands.iter().any(|c| c == "reproduce"),
+        "{commands:?}"
+    );
+    for command in commands {
+        let o = Command::new(env!("CARGO_BIN_EXE_friction-lab"))
+            .args([command.as_str(), "--help"])
+            .output()
+            .unwrap();
+        let help = String::from_utf8(o.stdout).unwrap();
+        assert!(help.contains("Usage:"), "{command}: {help}");
+        assert!(!outside(&help), "{command} --help: {help}");
+    }
+}
+
+#[test]
+fn docs_scenarios_gives_every_rig_with_its_equation() {
+    use friction_lab::scenarios::Scenario;
+    let text = std::fs::read_to_string(format!("{}/docs/scenarios.md", env!("CARGO_MANIFEST_DIR")))
+        .unwrap();
+    for s in Scenario::ALL {
+        let row = format!("| `{}` | {} |", s.name(), s.equation());
+        assert!(text.contains(&row), "docs/scenarios.md lacks {row}");
     }
 }

@@ -51,7 +51,7 @@ def curve(model: str, params: Optional[Dict[str, float]] = None, **options: Any)
 def simulate(scenario: Optional[str] = None, *, system: Any = None,
              params: Optional[Dict[str, float]] = None, **options: Any) -> Result:
     """One run of a rig (``"belt"``, ``"paper-block"``, ...), of the chain (``"chain"``), or
-    of a system (``system=`` a TOML or JSON file, or a dict with the keys of systems.md).
+    of a system (``system=`` a TOML or JSON file, or a dict with the keys of docs/systems.md).
     Options: ``model``, ``scheme``, ``solver``, ``switching``, ``theta``, ``t_end``, ``rtol``, ``atol``,
     ``dt``, ``fixed_step``, ``points``, ``bodies``, ``variant``, ``param_set``,
     ``max_steps``, ``time_limit`` (``friction-lab simulate --help``)."""

@@ -236,7 +236,7 @@ def run(argv: List[str], stop: Optional[Callable[[], bool]] = None) -> Made:
 
 
 class SystemFile:
-    """A system given as a path, or as a dict with the keys of ``systems.md`` (written as a
+    """A system given as a path, or as a dict with the keys of ``docs/systems.md`` (written as a
     temporary JSON file for the duration of the call), or none (``path`` is ``None``)."""
 
     def __init__(self, system: Any):

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The Burridge-Knopoff chain of shared/spec/systems.md under Siconos 4.4's Moreau-Jean
+"""The Burridge-Knopoff chain of docs/systems.md under Siconos 4.4's Moreau-Jean
 time-stepping, for a side-by-side check of friction-lab's `--switching timestepping`.
 
 Not part of the test suite: Siconos is a Debian package for the system python3
@@ -8,7 +8,7 @@ Not part of the test suite: Siconos is a Debian package for the system python3
     /usr/bin/python3 scripts/peers/siconos_chain.py --n 10 --h 1e-3 --theta 0.5 \
         --t-end 10 --every 100 --out siconos-chain-10.csv
 
-The chain (systems.md, `coulomb` at the paper's F_c = 6 N): N blocks of mass m = 1 kg, each
+The chain (docs/systems.md, `coulomb` at the paper's F_c = 6 N): N blocks of mass m = 1 kg, each
 pulled by a spring k_driver = 10 N/m from one anchor moving at v_driver = 0.1 m/s, neighbours
 joined by springs k_chain = 100 N/m, block i on a fixed floor with Coulomb friction of level
 F_c,i = 6·(1 + 0.1·sin i) N, all at rest at x = 0. As a first-order linear system with a relay

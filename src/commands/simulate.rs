@@ -162,9 +162,9 @@ impl SolverOptions {
 /// What `simulate` integrates: a single-body rig, or the built-in chain of blocks.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Target {
-    /// A rig of `scenarios.md`.
+    /// A rig of `docs/scenarios.md`.
     Rig(Scenario),
-    /// The Burridge–Knopoff chain of `systems.md`.
+    /// The Burridge–Knopoff chain of `docs/systems.md`.
     Chain,
 }
 
@@ -185,14 +185,14 @@ impl std::str::FromStr for Target {
 pub struct SimulateArgs {
     /// paper-block, prescribed-motion, velocity-sweep, belt, free-vibration, oscillation,
     /// velocity-oscillation, force-ramp, presliding (one body), or chain (the Burridge–Knopoff chain of
-    /// systems.md, parameters n_bodies, m, k_chain, k_driver, v_driver, spread by --set).
+    /// docs/systems.md, parameters n_bodies, m, k_chain, k_driver, v_driver, spread by --set).
     #[arg(
         value_name = "SCENARIO",
         required_unless_present = "system",
         conflicts_with = "system"
     )]
     pub scenario: Option<Target>,
-    /// A system file (TOML, shared/spec/systems.md) to integrate instead of a scenario.
+    /// A system file (TOML or JSON, docs/systems.md) to integrate instead of a scenario.
     #[arg(long, value_name = "FILE.toml")]
     pub system: Option<PathBuf>,
     /// The friction model, as `friction-lab models` lists it, or a law registered by name

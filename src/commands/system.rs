@@ -1,5 +1,5 @@
 //! `friction-lab simulate chain` and `friction-lab simulate --system FILE.toml`: one system of
-//! many bodies (`shared/spec/systems.md`), written as `final.csv`, `events.csv`, the tidy
+//! many bodies (`docs/systems.md`), written as `final.csv`, `events.csv`, the tidy
 //! `trajectory.csv` of chosen bodies, `summary.json` and two figures (space–time picture of
 //! the contact modes; velocities of chosen bodies).
 

@@ -172,7 +172,7 @@ pub fn text() -> String {
             p.scenarios.join(", ")
         );
     }
-    out += "(free-vibration starts from x0 = 0.5 m, as scenarios.md sets it)\n";
+    out += "(free-vibration starts from x0 = 0.5 m, as docs/scenarios.md sets it)\n";
     out += &format!(
         "\nNamed parameter sets: {}\nVariants: odd (default), printed\n",
         l.parameter_sets.join(", ")

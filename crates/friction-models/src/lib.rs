@@ -1,5 +1,5 @@
 //! Dry-friction models: the six composite models of "Combinations of Different Friction
-//! Models: Visualisation of the Curves" (AV, CS, CVS, DV, SD, SV) as `shared/spec/models.md`
+//! Models: Visualisation of the Curves" (AV, CS, CVS, DV, SD, SV) as `docs/models.md`
 //! reads them, the classical terms they are built from, and the reference models of the
 //! literature (Dahl, Karnopp, LuGre and its variants, the generalized Maxwell-slip model).
 //!

@@ -41,7 +41,7 @@ pub struct StatePartials {
     pub rate_dz: f64,
 }
 
-/// The admissible friction forces at v = 0 (the stick law of `models.md`):
+/// The admissible friction forces at v = 0 (the stick law of `docs/models.md`):
 /// `[F_smooth + L−, F_smooth + L+]`, with L± the one-sided limits of the discontinuous part.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct StickInterval {

@@ -287,7 +287,7 @@ parameters! {
 pub const PARAM_SETS: &[&str] = &["paper", "lugre-1995"];
 
 impl FrictionParams {
-    /// Table 1 of the paper, read as `models.md` fixes it (F_c = 6 N, F_s = 0.75·10 N,
+    /// Table 1 of the paper, read as `docs/models.md` fixes it (F_c = 6 N, F_s = 0.75·10 N,
     /// C1 = C2 = F_s − F_c), with the LuGre values of Canudas de Wit et al. (1995).
     pub fn paper() -> Self {
         FrictionParams {

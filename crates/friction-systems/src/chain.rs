@@ -1,4 +1,4 @@
-//! The built-in Burridge–Knopoff chain of `systems.md`: `n_bodies` blocks of mass `m`,
+//! The built-in Burridge–Knopoff chain of `docs/systems.md`: `n_bodies` blocks of mass `m`,
 //! neighbours joined by springs `k_chain`, each block pulled by its own spring `k_driver`
 //! from one driver anchor moving at `v_driver`, each on the floor with its own friction.
 //! So that the blocks do not move in lock step, every force level of block i (F_c, F_s, C1,
@@ -30,7 +30,7 @@ pub struct ChainParams {
 pub const MAX_BODIES: usize = 1_000_000;
 
 impl Default for ChainParams {
-    /// `systems.md`: N = 10, m = 1, k_chain = 100, k_driver = 10, v_driver = 0.1, spread = 0.1.
+    /// `docs/systems.md`: N = 10, m = 1, k_chain = 100, k_driver = 10, v_driver = 0.1, spread = 0.1.
     fn default() -> Self {
         ChainParams {
             n_bodies: 10,

@@ -1,4 +1,4 @@
-//! The system file of `systems.md`: a TOML file (or the same keys as JSON, `.json`) of `[[body]]`, `[[anchor]]`, `[[spring]]`,
+//! The system file of `docs/systems.md`: a TOML file (or the same keys as JSON, `.json`) of `[[body]]`, `[[anchor]]`, `[[spring]]`,
 //! `[[contact]]` and `[[force]]` tables, with an optional `param_set` that every contact
 //! starts from. Every error names the file, the table, the key and the allowed range.
 

@@ -1,5 +1,5 @@
 //! Friction systems: many bodies on one line, joined by springs and dampers, driven by
-//! anchors and external forces, each on its own friction contact (`shared/spec/systems.md`).
+//! anchors and external forces, each on its own friction contact (`docs/systems.md`).
 //!
 //! The layers, as in Siconos, keep the declaration apart from the scheme that integrates it:
 //!

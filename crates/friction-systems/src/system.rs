@@ -1,4 +1,4 @@
-//! A friction system as `shared/spec/systems.md` declares it, apart from any scheme that
+//! A friction system as `docs/systems.md` declares it, apart from any scheme that
 //! integrates it: bodies on one line, anchors, linear springs with parallel dampers, at most
 //! one friction contact per body, and external forces.
 //!

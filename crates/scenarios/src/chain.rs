@@ -1,4 +1,4 @@
-//! The Burridge–Knopoff chain of `systems.md` kept with what it is built from, so that a study
+//! The Burridge–Knopoff chain of `docs/systems.md` kept with what it is built from, so that a study
 //! can build it again with one parameter changed (a stiffness study over `k_chain`, `m` or a
 //! parameter of its law).
 

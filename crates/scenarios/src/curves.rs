@@ -190,8 +190,8 @@ pub fn curve(model: &dyn FrictionModel, extent: f64, points: usize) -> Result<Cu
     }
 }
 
-/// The default extent of a model's curve: |v| ≤ 1 m/s (`scenarios.md`) or t ∈ [0, 2] s
-/// (`models.md`: the paper's "zero to two seconds").
+/// The default extent of a model's curve: |v| ≤ 1 m/s (`docs/scenarios.md`) or t ∈ [0, 2] s
+/// (`docs/models.md`: the paper's "zero to two seconds").
 pub fn default_extent(axis: CurveAxis) -> f64 {
     match axis {
         CurveAxis::Velocity => 1.0,

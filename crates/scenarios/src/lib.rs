@@ -1,4 +1,4 @@
-//! The rigs on which friction models and solvers are run (`shared/spec/scenarios.md`), and
+//! The rigs on which friction models and solvers are run (`docs/scenarios.md`), and
 //! the paper's own experiments.
 //!
 //! The curve rigs of Figures 2–7 ([`curves`]) and the catalogue of those figures

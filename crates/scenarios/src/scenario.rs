@@ -1,4 +1,4 @@
-//! The rigs of `shared/spec/scenarios.md`: what each one is, its parameters and defaults.
+//! The rigs of `docs/scenarios.md`: what each one is, its parameters and defaults.
 
 use crate::params::ScenarioParams;
 use friction_models::FrictionParams;
@@ -114,7 +114,7 @@ impl Scenario {
         )
     }
 
-    /// The rig's default parameters (`scenarios.md`).
+    /// The rig's default parameters (`docs/scenarios.md`).
     pub fn defaults(self) -> ScenarioParams {
         let base = ScenarioParams::default();
         match self {

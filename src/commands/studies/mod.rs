@@ -34,11 +34,11 @@ pub use work_precision::{work_precision, WorkPrecisionArgs};
 #[derive(Args, Debug, Clone)]
 pub struct CaseArgs {
     /// A scenario (paper-block, belt, free-vibration, …), or chain (the Burridge–Knopoff
-    /// chain of systems.md, its parameters by --set); omit it with --system (or, for
+    /// chain of docs/systems.md, its parameters by --set); omit it with --system (or, for
     /// work-precision, --testset).
     #[arg(value_name = "SCENARIO", conflicts_with = "system")]
     pub scenario: Option<Problem>,
-    /// A system file (TOML, shared/spec/systems.md) to study instead of a scenario.
+    /// A system file (TOML or JSON, docs/systems.md) to study instead of a scenario.
     #[arg(long, value_name = "FILE.toml")]
     pub system: Option<PathBuf>,
     /// The friction model (scenarios and chain), as `friction-lab models` lists it, or a law

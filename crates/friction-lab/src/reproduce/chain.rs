@@ -1,4 +1,4 @@
-//! Many blocks: the chain of `systems.md` with stiction on every block, integrated
+//! Many blocks: the chain of `docs/systems.md` with stiction on every block, integrated
 //! event-driven, regularised and time-stepped: work against precision at N = 100 and the cost
 //! per step against N (`studies/`).
 
@@ -14,7 +14,7 @@ use std::sync::Arc;
 /// The initial displacement of every block of the chain studies, m.
 const PRELOAD_X0: f64 = -0.7;
 
-/// The chain of `systems.md` (`static` friction: stiction on every block) with `n` blocks,
+/// The chain of `docs/systems.md` (`static` friction: stiction on every block) with `n` blocks,
 /// every block started at x0 = −0.7 m (its driver spring loaded to 7 N, just below the
 /// break-away level 7.5 N, so that the blocks break away within the first second), as a study
 /// case over `t_end` seconds, event-driven.
@@ -147,7 +147,7 @@ impl Part for ChainStudies {
             },
         ];
         Ok(format!(
-            "The chain of `systems.md` with stiction on every block (`static`), every block \
+            "The chain of `docs/systems.md` with stiction on every block (`static`), every block \
              started at x0 = -0.7 m (driver spring at 7 N, break-away at 7.5 N), one system \
              integrated three ways (docs/timestepping.md, docs/systems.md):\n\n{}",
             conduct_all(&table, target)?
