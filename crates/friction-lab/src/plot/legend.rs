@@ -88,6 +88,11 @@ pub(super) fn legend_pixels(plot: &Plot) -> (f64, f64) {
         .iter()
         .filter_map(|s| s.label.as_deref())
         .collect();
+    box_pixels(&labels)
+}
+
+/// A legend box of `labels` with its gap and margin, pixels (zero without labels).
+pub(super) fn box_pixels(labels: &[&str]) -> (f64, f64) {
     if labels.is_empty() {
         return (0.0, 0.0);
     }
@@ -199,10 +204,27 @@ pub(super) fn draw_legend_beside<DB: DrawingBackend>(
     plot: &Plot,
     top: i32,
 ) -> Result<(), String> {
+    let labelled: Vec<&Series> = plot.series.iter().filter(|s| s.label.is_some()).collect();
+    let labels: Vec<&str> = labelled.iter().filter_map(|s| s.label.as_deref()).collect();
+    draw_box(area, &labels, top, |k, at| {
+        let s = labelled[k];
+        let (line, cross, dot) = key(s.color, s.marker, s.width);
+        area.draw(&(EmptyElement::at(at) + line + cross + dot))
+    })
+}
+
+/// A legend box of `labels` drawn in `area`, its top at `top` pixels of the area: the box of
+/// plotters' own legend, each label's key drawn by `key(k, left end of the key)`, then its
+/// text.
+pub(super) fn draw_box<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    labels: &[&str],
+    top: i32,
+    key: impl Fn(usize, (i32, i32)) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>>,
+) -> Result<(), String> {
     let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
     let b = &LEGEND_BOX;
-    let labelled: Vec<&Series> = plot.series.iter().filter(|s| s.label.is_some()).collect();
-    let (w, h) = legend_pixels(plot);
+    let (w, h) = box_pixels(labels);
     let corner = |x: f64, y: f64| (x as i32, top + y as i32);
     let (x0, x1) = (0.0, w - b.gap - b.margin);
     let height = h - b.gap - b.margin;
@@ -211,13 +233,10 @@ pub(super) fn draw_legend_beside<DB: DrawingBackend>(
         .map_err(err)?;
     area.draw(&Rectangle::new(frame, BLACK)).map_err(err)?;
     let text = TextStyle::from(LEGEND_FONT.into_font()).pos(Pos::new(HPos::Left, VPos::Center));
-    for (k, s) in labelled.iter().enumerate() {
+    for (k, label) in labels.iter().enumerate() {
         let y = b.height / 2.0 + b.per_entry * (k as f64 + 0.5);
-        let (line, cross, dot) = key(s.color, s.marker, s.width);
-        area.draw(&(EmptyElement::at(corner(x0 + 10.0, y)) + line + cross + dot))
-            .map_err(err)?;
-        let label = s.label.as_deref().unwrap_or_default();
-        area.draw(&Text::new(label, corner(x0 + 40.0, y), &text))
+        key(k, corner(x0 + 10.0, y)).map_err(err)?;
+        area.draw(&Text::new(*label, corner(x0 + 40.0, y), &text))
             .map_err(err)?;
     }
     Ok(())

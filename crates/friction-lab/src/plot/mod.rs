@@ -165,6 +165,17 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, plots: &[Plot]) -> Res
     root.present().map_err(err)
 }
 
+/// Whether the labelled ticks `keys` of an axis are all whole numbers, which are then labelled
+/// without decimals ("8", where plotters writes "8.0").
+fn whole_numbers(keys: &[f64]) -> bool {
+    keys.iter().all(|v| v.fract() == 0.0 && v.abs() < 1e15)
+}
+
+/// A whole number's tick label.
+fn whole_label(v: &f64) -> String {
+    format!("{}", *v as i64)
+}
+
 /// The largest and smallest font sizes of a plot's title, pixels.
 const CAPTION_SIZES: (u32, u32) = (22, 12);
 
@@ -214,14 +225,14 @@ where
     };
     // An axis whose labelled ticks are all whole numbers (plotters' ten a mesh labels) is
     // labelled without decimals; plotters writes at least one ("8.0").
-    let whole = |keys: Vec<f64>| keys.iter().all(|v| v.fract() == 0.0 && v.abs() < 1e15);
+    let whole = |keys: Vec<f64>| whole_numbers(&keys);
     let spec = chart.as_coord_spec();
     let (x_whole, y_whole) = (
         whole(spec.x_spec().key_points(MESH_LABELS)),
         whole(spec.y_spec().key_points(MESH_LABELS)),
     );
     let linear = |v: f64, whole: bool, format: fn(&f64) -> String| match whole {
-        true => format!("{}", v as i64),
+        true => whole_label(&v),
         false => format(&v),
     };
     let x_tick = |v: &f64| linear(zero(*v, &xr), x_whole, X::format);

@@ -25,6 +25,10 @@ use std::path::Path;
 /// Most bodies drawn in `velocity.png`, one colour each.
 pub const DRAWN_BODIES: usize = 10;
 
+/// The colour of a body without a contact in the space–time picture: sand, seen on the white
+/// page (white left such a body invisible).
+const NO_CONTACT: plotters::style::RGBColor = plotters::style::RGBColor(230, 195, 110);
+
 /// Most columns and rows of the space–time picture.
 const RASTER: (usize, usize) = (300, 200);
 
@@ -129,12 +133,13 @@ fn space_time(run: &Run, title: &str, path: &Path) -> Result<(Raster, Vec<u8>), 
         },
         x_edges,
         rows,
+        row_index: (0..rows).map(|r| body_of_row(r) + 1).collect(),
         cells,
         legend: vec![
             (plot::RED, "slip+".into()),
             (plot::BLUE, "slip-".into()),
             (plotters::style::RGBColor(170, 170, 170), "stick".into()),
-            (plotters::style::WHITE, "no contact".into()),
+            (NO_CONTACT, "no contact".into()),
         ],
     };
     Ok((raster, table.to_csv(path)?))
