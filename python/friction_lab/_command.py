@@ -20,7 +20,7 @@ import os
 import tempfile
 import warnings
 from dataclasses import dataclass, field
-from typing import Any, Callable, Dict, List, Mapping, Optional, Union
+from typing import Any, Callable, Dict, List, Mapping, Optional, Tuple, Union
 
 import numpy as np
 import pandas as pd
@@ -180,31 +180,57 @@ EXACT_FLOATS = {"float_precision": "round_trip"} if int(pd.__version__.split("."
 
 
 def table(data: Union[bytes, str, os.PathLike]) -> pd.DataFrame:
-    """A CSV file of the command line (its bytes, or a path) as a DataFrame: numbers read
+    """A CSV file the command line wrote (its bytes, or a path) as a DataFrame: numbers read
     back exactly (the files hold each double in its shortest round-trip form), empty cells
-    as NaN."""
+    as NaN. The package's own results never pass through this: see :func:`frame`."""
     source = io.BytesIO(data) if isinstance(data, bytes) else data
     return pd.read_csv(source, keep_default_na=False, na_values=[""], **EXACT_FLOATS)
 
 
+def frame(columns: List[Tuple[str, str, Any]]) -> pd.DataFrame:
+    """A table of the library as a DataFrame, from its typed columns (``_native.run``): the
+    numbers from the bytes of the library's doubles and integers, booleans and text as
+    lists, an empty cell as NaN; typed as :func:`table` types the same CSV file."""
+    data = {}
+    for name, kind, values in columns:
+        if kind in ("<f8", "<i8"):
+            data[name] = np.frombuffer(values, dtype=kind).copy()
+        elif kind == "bool":
+            data[name] = np.array(values, dtype=bool)
+        else:
+            data[name] = np.array([np.nan if v is None else v for v in values], dtype=object)
+    return pd.DataFrame(data, columns=[name for name, _, _ in columns])
+
+
 @dataclass
 class Made:
-    """What one command made: its data files by name, the lines it would print, the message
-    of a run that failed part-way (the files keep what was computed), and ``simulate``'s
-    trajectory as numbers (``trajectory.csv``'s columns, see :func:`columns`)."""
+    """What one command made: its data files by name, each as ``(kind, content)`` (a table's
+    typed columns, a JSON document's value, or a text file's bytes), the lines it would
+    print, the message of a run that failed part-way (the files keep what was computed),
+    and ``simulate``'s trajectory as numbers (see :class:`Result`)."""
 
-    files: Dict[str, bytes]
+    files: Dict[str, Tuple[str, Any]]
     notes: List[str] = field(default_factory=list)
     failure: Optional[str] = None
     trajectory: Optional[Dict[str, Any]] = None
 
     def table(self, name: str) -> pd.DataFrame:
-        """The CSV file ``name`` as a DataFrame."""
-        return table(self.files[name])
+        """The table ``name`` (a CSV file of the command line) as a DataFrame."""
+        return frame(self._content(name, "table"))
 
     def json(self, name: str) -> Any:
-        """The JSON file ``name``, parsed."""
-        return json.loads(self.files[name])
+        """The document ``name`` (a JSON file of the command line) as Python values."""
+        return self._content(name, "json")
+
+    def text(self, name: str) -> str:
+        """The text file ``name`` (a Markdown report)."""
+        return self._content(name, "bytes").decode()
+
+    def _content(self, name: str, kind: str) -> Any:
+        made_as, content = self.files[name]
+        if made_as != kind:
+            raise TypeError(f"{name} is made as {made_as}, not {kind} (a bug: please report it)")
+        return content
 
 
 class SolverError(RuntimeError):

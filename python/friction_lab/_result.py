@@ -95,7 +95,7 @@ class Table2:
 
     def __init__(self, made: Made):
         self.json: Dict[str, Any] = made.json("table2.json")
-        self.markdown: str = made.files["table2.md"].decode()
+        self.markdown: str = made.text("table2.md")
         rows = [{"law": law, "phenomenon": phenomenon, "measured": cell["measured"],
                  "paper": cell["paper"], "failed": cell["failed"]}
                 for law, cells in self.json["models"].items()

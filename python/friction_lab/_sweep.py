@@ -21,7 +21,7 @@ from typing import Any, Callable, Dict, List, Optional, Sequence, Union
 import pandas as pd
 
 from . import _native
-from ._command import Made, SolverError, run, table, words
+from ._command import Made, SolverError, run, words
 
 
 def sweep(scenario: str, *, grid: Dict[str, Union[Sequence[float], str]],
@@ -76,15 +76,15 @@ def _stopped(name: str) -> Callable[[], bool]:
     return stopped
 
 
-def _chunk(argv: List[str], start: int, end: int, laws: List[Any], stop: str) -> bytes:
-    """One Dask task: the points START <= i < END of the sweep, as ``sweep.csv`` bytes; a
+def _chunk(argv: List[str], start: int, end: int, laws: List[Any], stop: str) -> pd.DataFrame:
+    """One Dask task: the points START <= i < END of the sweep, as ``sweep.csv``'s rows; a
     friction law written in Python (``laws``) is registered in the worker's process first.
     The run stops at its next step once the sweep's Event ``stop`` is set. The stop reaches
     every run of the worker's process, as Ctrl-C would (docs/python.md)."""
     for law in laws:
         _native.register_law(law)
     made: Made = run(argv + ["--point-range", f"{start}:{end}"], stop=_stopped(stop))
-    return made.files["sweep.csv"]
+    return made.table("sweep.csv")
 
 
 def _on_dask(client: Any, argv: List[str], chunk_size: Optional[int],
@@ -114,7 +114,7 @@ def _on_dask(client: Any, argv: List[str], chunk_size: Optional[int],
         distributed.Event(stop, client=client).set()
         client.cancel(futures, force=True)
         raise
-    parts = [table(data) for data in results]
+    parts = list(results)
     if not parts:
         return head.table("sweep.csv")
     return pd.concat(parts, ignore_index=True)

@@ -12,6 +12,8 @@
 mod law;
 
 use clap::{CommandFactory, Parser};
+use friction_lab::artifacts::Data;
+use friction_lab::columns::Column;
 use friction_lab::error::{bounded, AppError};
 use friction_lab::friction_systems::mode_name;
 use friction_lab::trajectory::Trajectory;
@@ -19,7 +21,7 @@ use integrators::{Mode, SolverError as RunError};
 use pyo3::create_exception;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyBytes, PyDict};
+use pyo3::types::{PyBytes, PyDict, PyList};
 use std::path::Path;
 use std::sync::{mpsc, Mutex};
 use std::time::Duration;
@@ -47,12 +49,13 @@ const IN_MEMORY: &str = ".";
 
 /// What a command made, for the Python layer: `(files, notes, warnings, failure,
 /// trajectory)`, where `files` maps each data file's name (relative to the output folder, e.g.
-/// `summary.json`) to its bytes, `notes` and `warnings` are the lines the command line prints
+/// `summary.json`) to its content ([`data`]: a table's columns, a JSON document as Python
+/// values, or a text file's bytes), `notes` and `warnings` are the lines the command line prints
 /// on stdout and stderr, `failure` is the message of a run that failed after computing part of
 /// its result (the files keep that part), or `None`, and `trajectory` is `simulate`'s
 /// trajectory as numbers ([`trajectory`]), or `None`.
 type Made = (
-    Vec<(String, Py<PyBytes>)>,
+    Vec<(String, Py<PyAny>)>,
     Vec<String>,
     Vec<String>,
     Option<String>,
@@ -95,6 +98,68 @@ fn trajectory<'py>(py: Python<'py>, t: &Trajectory) -> PyResult<Bound<'py, PyDic
     Ok(d)
 }
 
+/// A data file's content for the Python layer, from the values it was made of (no text in
+/// between): a table as `("table", [(column, kind, values)])`, `kind` one of `"<f8"` and
+/// `"<i8"` (`values` the bytes of little-endian numbers, NaN for an empty cell), `"bool"`
+/// and `"text"` (a list; `None` for an empty cell); a JSON document as `("json", value)`; any
+/// other file as `("bytes", bytes)`.
+fn data<'py>(py: Python<'py>, content: Data<'_>) -> PyResult<Bound<'py, PyAny>> {
+    match content {
+        Data::Table(table) => {
+            let columns: Vec<(&str, &str, Bound<'py, PyAny>)> = (table.columns().into_iter())
+                .map(|(name, column)| {
+                    Ok(match column {
+                        Column::Numbers(v) => (name, "<f8", doubles(py, &v).into_any()),
+                        Column::Integers(v) => {
+                            let bytes: Vec<u8> = v.iter().flat_map(|i| i.to_le_bytes()).collect();
+                            (name, "<i8", PyBytes::new(py, &bytes).into_any())
+                        }
+                        Column::Booleans(v) => (name, "bool", v.into_pyobject(py)?.into_any()),
+                        Column::Texts(v) => (name, "text", v.into_pyobject(py)?.into_any()),
+                    })
+                })
+                .collect::<PyResult<_>>()?;
+            ("table", columns).into_pyobject(py).map(Bound::into_any)
+        }
+        Data::Json(value) => ("json", json_value(py, value)?)
+            .into_pyobject(py)
+            .map(Bound::into_any),
+        Data::Bytes(bytes) => ("bytes", PyBytes::new(py, bytes))
+            .into_pyobject(py)
+            .map(Bound::into_any),
+    }
+}
+
+/// A JSON document as Python values: objects as dicts (in the document's order), arrays as
+/// lists, integers as `int`, other numbers as `float`.
+fn json_value<'py>(py: Python<'py>, value: &serde_json::Value) -> PyResult<Bound<'py, PyAny>> {
+    use serde_json::Value;
+    Ok(match value {
+        Value::Null => py.None().into_bound(py),
+        Value::Bool(b) => b.into_pyobject(py)?.to_owned().into_any(),
+        Value::Number(n) => match (n.as_i64(), n.as_u64()) {
+            (Some(i), _) => i.into_pyobject(py)?.into_any(),
+            (None, Some(u)) => u.into_pyobject(py)?.into_any(),
+            _ => n.as_f64().unwrap_or(f64::NAN).into_pyobject(py)?.into_any(),
+        },
+        Value::String(s) => s.into_pyobject(py)?.into_any(),
+        Value::Array(items) => {
+            let list = PyList::empty(py);
+            for item in items {
+                list.append(json_value(py, item)?)?;
+            }
+            list.into_any()
+        }
+        Value::Object(fields) => {
+            let dict = PyDict::new(py);
+            for (key, item) in fields {
+                dict.set_item(key, json_value(py, item)?)?;
+            }
+            dict.into_any()
+        }
+    })
+}
+
 /// Runs `friction-lab ARGV...` (the program name not included) in memory. Bad input raises
 /// `ValueError` with the command line's message; a failure without a result raises
 /// `SolverError`; Ctrl-C stops the solvers and raises `KeyboardInterrupt`. `stop`, if given,
@@ -121,8 +186,8 @@ fn run(py: Python<'_>, argv: Vec<String>, stop: Option<Bound<'_, PyAny>>) -> PyR
         .files
         .data(Path::new(IN_MEMORY))
         .into_iter()
-        .map(|(name, bytes)| (name.display().to_string(), PyBytes::new(py, bytes).unbind()))
-        .collect();
+        .map(|(name, content)| Ok((name.display().to_string(), data(py, content)?.unbind())))
+        .collect::<PyResult<_>>()?;
     let columns = made
         .trajectory
         .as_ref()

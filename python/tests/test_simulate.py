@@ -1,5 +1,6 @@
 """simulate(): rigs and systems, equal to the command line's files and to closed forms."""
 
+import json
 import os
 import numpy as np
 import pandas as pd
@@ -58,6 +59,14 @@ def test_a_rig_equals_the_command_lines_trajectory(cli, tmp_path):
     assert done.returncode == 0, done.stderr
     pd.testing.assert_frame_equal(r.to_pandas(), read(tmp_path / "belt" / "trajectory.csv"),
                                   check_exact=True)
+    for name in ("events", "final"):
+        pd.testing.assert_frame_equal(getattr(r, name), read(tmp_path / "belt" / f"{name}.csv"),
+                                      check_exact=True)
+    written = json.loads((tmp_path / "belt" / "summary.json").read_text())
+    assert r.summary.keys() == written.keys()
+    for kept in (written, r.summary):
+        kept.pop("wall_time_s")
+    assert r.summary == written
     assert r.t.shape == r.x.shape == r.v.shape == r.friction.shape == r.mode.shape
     assert r.summary["status"] == "ok" and r.stats["events"] == len(r.events) > 10
     assert list(r.events.columns) == ["t", "body", "from", "to"]

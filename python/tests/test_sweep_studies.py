@@ -1,5 +1,6 @@
 """sweep() in process and on Dask, the studies, the GIL and Ctrl-C."""
 
+import json
 import os
 import signal
 import threading
@@ -70,6 +71,25 @@ def test_a_convergence_study_measures_rk4s_fourth_order():
     bdf = [o for o in s.summary["orders"] if o["solver"] == "bdf"]
     assert bdf and all("order" not in o and "tolerance_exponent" in o for o in bdf), bdf
     assert any(n.startswith("rk4") and " order 4." in n for n in s.notes), s.notes
+
+
+def test_a_studys_tables_and_document_are_the_command_lines_files(cli, tmp_path):
+    # Crossed as the library's values (typed columns, a JSON document), not as text: the
+    # same numbers and the same column types as the files read back.
+    options = dict(model="viscous", solvers=["rk4", "bdf"], dt_list=[0.02, 0.01],
+                   tol_list=[1e-4], t_end=1.0)
+    s = fl.converge("free-vibration", **options)
+    done = cli("converge", "free-vibration", "--model", "viscous", "--solvers", "rk4,bdf",
+               "--dt-list", "0.02,0.01", "--tol-list", "1e-4", "--t-end", "1",
+               "--out", tmp_path / "c")
+    assert done.returncode == 0, done.stderr
+    pd.testing.assert_frame_equal(s.runs, read(tmp_path / "c" / "converge.csv"),
+                                  check_exact=True)
+    assert s.runs["steps"].dtype == np.int64 and s.runs["tol"].dtype == np.float64
+    written = json.loads((tmp_path / "c" / "converge.json").read_text())
+    for document in (written, s.summary):
+        document.pop("provenance")
+    assert s.summary == written
 
 
 def test_a_stiffness_study_of_the_chain_sweeps_its_coupling():

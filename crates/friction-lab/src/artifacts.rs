@@ -18,7 +18,7 @@
 use crate::destination::{MARKER, NAME_MAX, TEMPORARY_PREFIX};
 use crate::error::AppError;
 use crate::figure::{self, Drawn};
-use crate::output::{share_folder, to_json, write_file};
+use crate::output::{share_folder, to_json, write_file, Table};
 use crate::plot::{self, Plot};
 use crate::progress::Progress;
 use friction_models::ModelId;
@@ -30,6 +30,8 @@ use std::path::{Path, PathBuf};
 #[derive(Debug)]
 enum Content {
     Bytes(Vec<u8>),
+    Table(Table, Vec<u8>),
+    Json(serde_json::Value, Vec<u8>),
     Png(Vec<Plot>),
     Svg(Vec<Plot>),
     RasterPng(Box<plot::Raster>),
@@ -40,13 +42,24 @@ impl Content {
     /// The file's bytes, drawing the figure if it is one.
     fn render(self, path: &Path) -> Result<Vec<u8>, AppError> {
         match self {
-            Content::Bytes(b) => Ok(b),
+            Content::Bytes(b) | Content::Table(_, b) | Content::Json(_, b) => Ok(b),
             Content::Png(plots) => plot::png_panels(&plots, path),
             Content::Svg(plots) => plot::svg_panels(&plots, path).map(String::into_bytes),
             Content::RasterPng(r) => plot::raster_png(&r, path),
             Content::RasterSvg(r) => plot::raster_svg(&r, path).map(String::into_bytes),
         }
     }
+}
+
+/// A data file as the value it was made from ([`Artifacts::data`]).
+#[derive(Clone, Copy, Debug)]
+pub enum Data<'a> {
+    /// A CSV file's table: its columns are [`Table::columns`].
+    Table(&'a Table),
+    /// A JSON file's document.
+    Json(&'a serde_json::Value),
+    /// Any other file's bytes (a Markdown report, a table written as text).
+    Bytes(&'a [u8]),
 }
 
 /// Files to write: each path with its content.
@@ -61,14 +74,26 @@ impl Artifacts {
         self.files.push((path, Content::Bytes(bytes)));
     }
 
+    /// Adds `table` as a CSV file (checked now: a non-finite number fails here, naming its
+    /// row and column).
+    pub fn add_table(&mut self, path: PathBuf, table: Table) -> Result<(), AppError> {
+        let bytes = table.to_csv(&path)?;
+        self.files.push((path, Content::Table(table, bytes)));
+        Ok(())
+    }
+
     /// Adds `value` as a JSON file.
     pub fn add_json<T: serde::Serialize>(
         &mut self,
         path: PathBuf,
         value: &T,
     ) -> Result<(), AppError> {
-        let bytes = to_json(value, &path)?;
-        self.add(path, bytes);
+        let value = serde_json::to_value(value).map_err(|e| AppError::Io {
+            path: path.clone(),
+            source: std::io::Error::other(e),
+        })?;
+        let bytes = to_json(&value, &path)?;
+        self.files.push((path, Content::Json(value, bytes)));
         Ok(())
     }
 
@@ -81,9 +106,7 @@ impl Artifacts {
         model: ModelId,
         curves: &[Drawn],
     ) -> Result<(), AppError> {
-        let csv = dir.join(format!("{stem}.csv"));
-        let bytes = figure::table(curves).to_csv(&csv)?;
-        self.add(csv, bytes);
+        self.add_table(dir.join(format!("{stem}.csv")), figure::table(curves))?;
         self.add_plot(&dir.join(stem), &figure::plot(title, model, curves))
     }
 
@@ -111,17 +134,20 @@ impl Artifacts {
         Ok(())
     }
 
-    /// The data files (CSV, JSON), each by its path relative to `root`, in the order they were
-    /// added; figures are left undrawn. This is what the Python package reads, in memory.
-    pub fn data(&self, root: &Path) -> Vec<(PathBuf, &[u8])> {
+    /// The data files (tables, JSON documents, text), each by its path relative to `root`, in
+    /// the order they were added, as the values they were made from; figures are left
+    /// undrawn. This is what the Python package reads, in memory.
+    pub fn data(&self, root: &Path) -> Vec<(PathBuf, Data<'_>)> {
         self.files
             .iter()
-            .filter_map(|(path, content)| match content {
-                Content::Bytes(bytes) => Some((
-                    path.strip_prefix(root).unwrap_or(path).to_path_buf(),
-                    bytes.as_slice(),
-                )),
-                _ => None,
+            .filter_map(|(path, content)| {
+                let data = match content {
+                    Content::Bytes(bytes) => Data::Bytes(bytes),
+                    Content::Table(table, _) => Data::Table(table),
+                    Content::Json(value, _) => Data::Json(value),
+                    _ => return None,
+                };
+                Some((path.strip_prefix(root).unwrap_or(path).to_path_buf(), data))
             })
             .collect()
     }

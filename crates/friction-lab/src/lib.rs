@@ -19,6 +19,7 @@ pub use integrators;
 pub use scenarios;
 
 pub mod artifacts;
+pub mod columns;
 pub mod destination;
 pub mod error;
 pub mod figure;

@@ -249,7 +249,7 @@ impl RunRecord {
     }
 
     /// `final.csv`: `body, x, v, friction, mode[, z]`, one row per body.
-    fn final_table(&self, path: &Path) -> Result<Vec<u8>, AppError> {
+    fn final_table(&self) -> Table {
         let states = self.has_states();
         let columns = ["body", "x", "v", "friction", "mode", "z"];
         let mut t = Table::new(&columns[..columns.len() - usize::from(!states)]);
@@ -266,11 +266,11 @@ impl RunRecord {
             }
             t.rows.push(row);
         }
-        t.to_csv(path)
+        t
     }
 
     /// `events.csv`: `t, body, from, to`, one row per switch of a contact.
-    fn events_table(&self, path: &Path) -> Result<Vec<u8>, AppError> {
+    fn events_table(&self) -> Table {
         let mut t = Table::new(&["t", "body", "from", "to"]);
         for e in &self.events {
             t.rows.push(vec![
@@ -280,7 +280,7 @@ impl RunRecord {
                 Cell::Text(mode_name(e.to).into()),
             ]);
         }
-        t.to_csv(path)
+        t
     }
 
     /// Adds the run's files in `out` to `files`: `trajectory.csv` (or, as `trajectory_as`
@@ -292,10 +292,8 @@ impl RunRecord {
         out: &Path,
         trajectory_as: TrajectoryAs,
     ) -> Result<Option<Trajectory>, AppError> {
-        let path = out.join("final.csv");
-        files.add(path.clone(), self.final_table(&path)?);
-        let path = out.join("events.csv");
-        files.add(path.clone(), self.events_table(&path)?);
+        files.add_table(out.join("final.csv"), self.final_table())?;
+        files.add_table(out.join("events.csv"), self.events_table())?;
         files.add_json(out.join("summary.json"), &self.summary)?;
         Ok(match trajectory_as {
             TrajectoryAs::File => {

@@ -78,7 +78,7 @@ impl Study for ExperimentStudy {
             });
         }
         let csv = stem.with_extension("csv");
-        out.files.add(csv.clone(), table.to_csv(&csv)?);
+        out.files.add_table(csv.clone(), table)?;
         let p = Plot {
             title: "The paper's experiment: 1 kg pushed by 15 N from rest".into(),
             x_label: "time t (s)".into(),

@@ -64,7 +64,7 @@ pub fn add_stiffness(
             .rows
             .push([p.t, p.h, p.rho, p.h_rho].map(Cell::Num).to_vec());
     }
-    files.add(path.clone(), table.to_csv(&path)?);
+    files.add_table(path.clone(), table)?;
     files.add_plot(&out.join("stiffness"), &stiffness_plot(stiffness, name))
 }
 

@@ -84,7 +84,7 @@ pub fn load(path: &Path) -> Result<friction_systems::System, AppError> {
 /// The space–time picture: body index against time, coloured by contact mode, sampled on at
 /// most [`RASTER`] columns and rows; with its data as a CSV table. The solution must hold a
 /// point (a run that failed before its first one has no picture).
-fn space_time(run: &Run, title: &str, path: &Path) -> Result<(Raster, Vec<u8>), AppError> {
+fn space_time(run: &Run, title: &str) -> (Raster, Table) {
     let s = &run.solution;
     let n = run.problem.system.bodies.len();
     let (t0, t1) = (
@@ -142,7 +142,7 @@ fn space_time(run: &Run, title: &str, path: &Path) -> Result<(Raster, Vec<u8>), 
             (NO_CONTACT, "no contact".into()),
         ],
     };
-    Ok((raster, table.to_csv(path)?))
+    (raster, table)
 }
 
 /// The advice for a chain of a law of the user's own with a `spread` above 0: the spread
@@ -230,8 +230,8 @@ pub fn simulate_system(
     let mut files = Artifacts::default();
     add_stiffness(&mut files, out, &stiffness, &title)?;
     if !run.solution.is_empty() {
-        let (raster, data) = space_time(&run, &title, &out.join("space-time.csv"))?;
-        files.add(out.join("space-time.csv"), data);
+        let (raster, table) = space_time(&run, &title);
+        files.add_table(out.join("space-time.csv"), table)?;
         files.add_raster(&out.join("space-time"), &raster)?;
     }
     // One colour each: the first bodies written, at most ten.

@@ -55,7 +55,7 @@ impl Study for ConvergenceStudy<'_> {
     fn write(&self, c: &Convergence, out: &mut StudyFiles) -> Result<(), AppError> {
         let case = self.case;
         let csv = out.path(".csv");
-        out.files.add(csv.clone(), runs_table(&c.runs, &csv)?);
+        out.files.add_table(csv.clone(), runs_table(&c.runs))?;
         out.add_json(&study_file(case, c))?;
         // Step sizes and tolerances are different things: one panel each, each fitted slope
         // drawn through the asymptotic range it rests on.

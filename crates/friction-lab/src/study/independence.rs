@@ -161,7 +161,7 @@ impl Study for IndependenceStudy<'_> {
             }
         }
         let csv = out.path(".csv");
-        out.files.add(csv.clone(), table.to_csv(&csv)?);
+        out.files.add_table(csv.clone(), table)?;
         out.add_json(&study_file(case, s))?;
         let series = s
             .trajectories

@@ -113,10 +113,9 @@ impl Study for ScalingStudy<'_> {
             ]);
         }
         let csv = out.path(".csv");
-        out.files.add(csv.clone(), table.to_csv(&csv)?);
+        out.files.add_table(csv.clone(), table)?;
         let timing_csv = out.path("-timing.csv");
-        out.files
-            .add(timing_csv.clone(), timing.to_csv(&timing_csv)?);
+        out.files.add_table(timing_csv.clone(), timing)?;
         let file = ScalingFile {
             cases: self
                 .cases

@@ -121,7 +121,7 @@ impl Study for StickSlipMapStudy<'_> {
             ]);
         }
         let csv = out.path(".csv");
-        out.files.add(csv.clone(), table.to_csv(&csv)?);
+        out.files.add_table(csv.clone(), table)?;
         let at = |regime: Regime| {
             (points.iter())
                 .filter(|p| p.regime == regime)
@@ -234,7 +234,7 @@ impl Study for BifurcationStudy<'_> {
             ]);
         }
         let csv = out.path(".csv");
-        out.files.add(csv.clone(), table.to_csv(&csv)?);
+        out.files.add_table(csv.clone(), table)?;
         // A branch's settled amplitudes joined by a line; a run that did not settle is no
         // amplitude of the branch: a cross of its own, apart.
         let branch = |label: &str,

@@ -136,7 +136,7 @@ impl Study for StiffnessStudy<'_> {
             }
         }
         let csv = out.path(".csv");
-        out.files.add(csv.clone(), table.to_csv(&csv)?);
+        out.files.add_table(csv.clone(), table)?;
         out.add_json(&study_file(case, s))?;
         // A solver that met the target at a value: a dot at its interpolated cost and a bar
         // over the bracket its resolutions leave; one that did not: a cross at the top of the

@@ -1,9 +1,7 @@
 //! The tables the studies share: one row per run, and the columns of a resolution.
 
-use crate::error::AppError;
 use crate::output::{Cell, Table};
 use scenarios::studies::{ErrorMeasure, StepKind, StudyRun, WallTimes};
-use std::path::Path;
 
 /// The columns `h` and `tol` of a run with `resolution` of kind `step` (a step size or a
 /// tolerance): the one that applies, the other empty, so that each column holds one quantity.
@@ -16,7 +14,7 @@ pub fn resolution_cells(step: Option<StepKind>, resolution: Option<f64>) -> [Cel
 }
 
 /// One CSV row per run: solver, step size or tolerance, the errors, the work.
-pub fn runs_table(runs: &[StudyRun], path: &Path) -> Result<Vec<u8>, AppError> {
+pub fn runs_table(runs: &[StudyRun]) -> Table {
     let errors = ErrorMeasure::ALL.map(|m| format!("error_{}", m.name()));
     let header: Vec<&str> = ["solver", "step", "h", "tol", "work"]
         .into_iter()
@@ -62,7 +60,7 @@ pub fn runs_table(runs: &[StudyRun], path: &Path) -> Result<Vec<u8>, AppError> {
         ]);
         t.rows.push(row);
     }
-    t.to_csv(path)
+    t
 }
 
 /// The wall times of a study's runs over their repeats, one row per run: its cells under

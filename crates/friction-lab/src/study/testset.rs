@@ -94,8 +94,7 @@ impl Study for TestSetStudy<'_> {
     /// work) and `{stem}-timing.png`/`.svg` (error against the median wall time).
     fn write(&self, w: &TestSetWorkPrecision, out: &mut StudyFiles) -> Result<(), AppError> {
         let csv = out.path(".csv");
-        out.files
-            .add(csv.clone(), runs_table(&w.runs).to_csv(&csv)?);
+        out.files.add_table(csv.clone(), runs_table(&w.runs))?;
         let timing = timing_table(
             &["solver", "tol"],
             (w.runs.iter()).map(|r| {
@@ -106,8 +105,7 @@ impl Study for TestSetStudy<'_> {
             }),
         );
         let timing_csv = out.path("-timing.csv");
-        out.files
-            .add(timing_csv.clone(), timing.to_csv(&timing_csv)?);
+        out.files.add_table(timing_csv.clone(), timing)?;
         out.add_json(w)?;
         let title = format!("Work-precision: {} to t = {}", w.problem, w.t_end);
         let error = |r: &TestSetRun| r.relative_error();

@@ -66,7 +66,7 @@ impl Study for WorkPrecisionStudy<'_> {
     fn write(&self, w: &WorkPrecision, out: &mut StudyFiles) -> Result<(), AppError> {
         let case = self.case;
         let csv = out.path(".csv");
-        out.files.add(csv.clone(), runs_table(&w.runs, &csv)?);
+        out.files.add_table(csv.clone(), runs_table(&w.runs))?;
         let timing = timing_table(
             &["solver", "h", "tol"],
             w.runs.iter().map(|r| {
@@ -75,8 +75,7 @@ impl Study for WorkPrecisionStudy<'_> {
             }),
         );
         let timing_csv = out.path("-timing.csv");
-        out.files
-            .add(timing_csv.clone(), timing.to_csv(&timing_csv)?);
+        out.files.add_table(timing_csv.clone(), timing)?;
         out.add_json(&study_file(case, w))?;
         let error = ErrorMeasure::GridRelative.label();
         let plot = Plot {

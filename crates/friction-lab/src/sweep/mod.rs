@@ -198,7 +198,7 @@ impl Study for SweepStudy<'_> {
             table.rows.push(row);
         }
         let csv = out.path(".csv");
-        out.files.add(csv.clone(), table.to_csv(&csv)?);
+        out.files.add_table(csv.clone(), table)?;
         let title = match &self.model {
             Some(m) => format!("{} with {m}", self.target),
             None => self.target.clone(),
