@@ -139,12 +139,7 @@ pub fn make_in_memory(command: &Command) -> Result<artifacts::Made, AppError> {
 fn make_as(command: &Command, trajectory: TrajectoryAs) -> Result<artifacts::Made, AppError> {
     match command {
         Command::Curve(args) => commands::curve::make(args),
-        Command::Simulate(args) => match args.scenario {
-            Some(commands::simulate::Target::Rig(scenario)) => {
-                commands::simulate::make_rig(args, scenario, trajectory)
-            }
-            _ => commands::system::make(args, trajectory),
-        },
+        Command::Simulate(args) => args.simulation().run(&args.out, trajectory),
         Command::Converge(args) => commands::studies::converge(args),
         Command::Independence(args) => commands::studies::independence(args),
         Command::WorkPrecision(args) => commands::studies::work_precision(args),

@@ -3,9 +3,9 @@
 
 use clap::Args;
 use friction_lab::error::AppError;
-use friction_lab::params::ParamSource;
-use friction_lab::ranges;
+use friction_lab::params::{ParamSource, DEFAULT_PARAM_SET};
 use friction_lab::scheme::SchemeName;
+use friction_lab::settings::{ModelSettings, RunLimits, SchemeChoice, DEFAULT_MAX_STEPS};
 use friction_models::Variant;
 use scenarios::{Limits, SwitchingKind};
 use std::path::PathBuf;
@@ -14,7 +14,7 @@ use std::path::PathBuf;
 #[derive(Args, Clone, Debug, Default)]
 pub struct ParamOptions {
     /// Start from a named parameter set: `paper` (Table 1) or `lugre-1995`.
-    #[arg(long = "param-set", value_name = "NAME", default_value = "paper")]
+    #[arg(long = "param-set", value_name = "NAME", default_value = DEFAULT_PARAM_SET)]
     pub param_set: String,
     /// A TOML file of `NAME = VALUE` lines, applied over the parameter set.
     #[arg(long = "params", value_name = "FILE.toml")]
@@ -41,7 +41,7 @@ pub struct LimitArgs {
         long,
         value_name = "N",
         allow_hyphen_values = true,
-        default_value_t = 10_000_000
+        default_value_t = DEFAULT_MAX_STEPS
     )]
     pub max_steps: i64,
     /// Wall-clock limit of the command, s, counted from its start: a run in progress when it
@@ -57,16 +57,18 @@ pub struct LimitArgs {
 }
 
 impl LimitArgs {
+    /// The bounds as the library takes them.
+    pub fn settings(&self) -> RunLimits {
+        RunLimits {
+            max_steps: self.max_steps,
+            time_limit: self.time_limit,
+            since: self.since,
+        }
+    }
+
     /// The bounds, checked against their ranges.
     pub fn limits(&self) -> Result<Limits, AppError> {
-        Ok(Limits {
-            max_steps: ranges::MAX_STEPS.count(self.max_steps)?,
-            time_limit: self
-                .time_limit
-                .map(|t| ranges::TIME_LIMIT.check(t))
-                .transpose()?,
-            time_limit_since: Some(self.since.unwrap_or_else(std::time::Instant::now)),
-        })
+        self.settings().limits()
     }
 }
 
@@ -79,6 +81,16 @@ pub struct ModelOptions {
     /// `odd`: the static term carries sign(v) (default); `printed`: the equations as printed.
     #[arg(long, value_name = "odd|printed", default_value = "odd")]
     pub variant: Variant,
+}
+
+impl ModelOptions {
+    /// The parameters' source and the variant as the library takes them.
+    pub fn settings(&self) -> ModelSettings {
+        ModelSettings {
+            params: self.params.source(),
+            variant: self.variant,
+        }
+    }
 }
 
 impl ParamOptions {
@@ -112,37 +124,12 @@ pub struct SchemeArgs {
     pub switching: Option<SwitchingKind>,
 }
 
-/// The note given for `--switching timestepping`, the former spelling of `--scheme
-/// time-stepping`, which is still taken.
-pub const TIMESTEPPING_SPELLING: &str = "`--switching timestepping` is now spelt `--scheme \
-     time-stepping` (time-stepping is a scheme, not a treatment of v = 0); the old spelling is \
-     taken for now and will be refused in a later release";
-
 impl SchemeArgs {
-    /// The notes on their spelling: [`TIMESTEPPING_SPELLING`] for `--switching timestepping`.
-    pub fn spelling_notes(&self) -> Vec<String> {
-        let old = matches!(self.switching, Some(SwitchingKind::TimeStepping { .. }));
-        old.then(|| TIMESTEPPING_SPELLING.to_string())
-            .into_iter()
-            .collect()
-    }
-
-    /// The treatment of v = 0 they ask for: time-stepping at `theta` (also from the former
-    /// spelling `--switching timestepping`), or `--switching` under event-driven integration
-    /// (event by default). `--switching regularized` or `naive` with `--scheme time-stepping` is
-    /// refused: time-stepping treats v = 0 by the set-valued law.
-    pub fn treatment(&self, theta: f64) -> Result<SwitchingKind, AppError> {
-        match (self.scheme, self.switching) {
-            (_, Some(SwitchingKind::TimeStepping { .. }))
-            | (SchemeName::TimeStepping, None | Some(SwitchingKind::Event)) => {
-                Ok(SwitchingKind::TimeStepping { theta })
-            }
-            (SchemeName::TimeStepping, Some(s)) => Err(AppError::Usage(format!(
-                "option `--switching {}` applies to --scheme event-driven: time-stepping locates \
-                 no event and treats v = 0 by the set-valued law at the end of each step",
-                s.name()
-            ))),
-            (SchemeName::EventDriven, s) => Ok(s.unwrap_or(SwitchingKind::Event)),
+    /// The scheme and the switching as the library takes them.
+    pub fn choice(&self) -> SchemeChoice {
+        SchemeChoice {
+            scheme: self.scheme,
+            switching: self.switching,
         }
     }
 }

@@ -7,7 +7,6 @@ use clap::Parser;
 use friction_lab::friction_models::{FrictionParams, ModelId, Parameters};
 use friction_lab::ranges::{self, OptionRange};
 use friction_lab::scenarios::{Scenario, ScenarioParams};
-use friction_lab_cli::commands::simulate::spec;
 use friction_lab_cli::{Cli, Command};
 use proptest::prelude::*;
 
@@ -67,7 +66,7 @@ fn checked(option: &OptionRange, value: f64) {
     let Command::Simulate(args) = cli.command else {
         unreachable!()
     };
-    match spec(&args, Scenario::Belt) {
+    match args.simulation().rig_spec(Scenario::Belt) {
         Ok(_) => assert!(
             option.range.contains(value),
             "--{} {value} was accepted outside {}",

@@ -17,7 +17,7 @@ from typing import Any, Dict, List, Optional
 import numpy as np
 
 from . import _native
-from ._command import SolverError, SystemFile, run, words
+from ._command import SolverError, SystemFile, _name, call, run, values, words
 from ._result import Result, Study, Table2
 from ._sweep import sweep
 
@@ -55,8 +55,10 @@ def simulate(scenario: Optional[str] = None, *, system: Any = None,
     Options: ``model``, ``scheme``, ``solver``, ``switching``, ``theta``, ``t_end``, ``rtol``, ``atol``,
     ``dt``, ``fixed_step``, ``points``, ``bodies``, ``variant``, ``param_set``,
     ``max_steps``, ``time_limit`` (``friction-lab simulate --help``)."""
+    _name("simulate", scenario)
+    given = values("simulate", params=params, **options)
     with SystemFile(system) as f:
-        made = run(words("simulate", scenario, system=f.path, params=params, **options))
+        made = call("simulate", scenario, f.path, given)
     result = Result(made)
     if made.failure is not None:
         raise SolverError(made.failure, result)

@@ -85,11 +85,21 @@ def _mapping(name: str, value: Any, example: str) -> Mapping:
                      f"e.g. {example}, not {type(value).__name__} {value!r}")
 
 
+#: The functions that bind the library's typed settings directly (``_native.simulate``,
+#: ``_native.sweep``); the others run a command of the command line in memory.
+BOUND = frozenset({"simulate", "sweep"})
+
+
 @functools.lru_cache(maxsize=None)
 def keywords(command: str) -> Dict[str, str]:
     """The keyword arguments of ``command``'s function, each with the command line's option
-    it stands for: the options' names with ``_`` for ``-``, ``params`` for ``--set`` (``out``
-    has no keyword: nothing is written)."""
+    it stands for (how the library's messages name it): the options' names with ``_`` for
+    ``-``, ``params`` for ``--set`` (``out`` has no keyword: nothing is written)."""
+    if command in BOUND:
+        names = {k: k.replace("_", "-") for k in _native.keywords(command)}
+        names["system"] = "system"
+        names["params"] = "set"
+        return names
     names = {long.replace("-", "_"): long for long, _ in _native.options(command)}
     names.pop("out", None)
     names["params"] = names.pop("set", "set")
@@ -121,6 +131,14 @@ def spelled(message: str, command: str) -> str:
     return text
 
 
+def _name(command: str, argument: Any) -> None:
+    """Refuses a positional ``argument`` that is neither ``None`` nor a string: passed on, it
+    would fail as the native call's TypeError, naming no argument."""
+    if argument is not None and not isinstance(argument, str):
+        raise ValueError(f"`{command}`: argument {argument!r} is not a name: a string is "
+                         f"expected, as `friction-lab {command} --help` lists them")
+
+
 def words(command: str, *positional: Optional[str], **options: Any) -> List[str]:
     """The words of ``friction-lab COMMAND [POSITIONAL] --option value ...``.
 
@@ -132,10 +150,7 @@ def words(command: str, *positional: Optional[str], **options: Any) -> List[str]
     or one-dimensional numpy array is written comma-separated.
     """
     for p in positional:
-        if p is not None and not isinstance(p, str):
-            # Passed on, it would fail as the native call's TypeError, naming no argument.
-            raise ValueError(f"`{command}`: argument {p!r} is not a name: a string is expected, "
-                             f"as `friction-lab {command} --help` lists them")
+        _name(command, p)
     check_keywords(command, options)
     argv = [command] + [p for p in positional if p is not None]
     for name, value in options.items():
@@ -172,6 +187,45 @@ def words(command: str, *positional: Optional[str], **options: Any) -> List[str]
         else:
             argv += [_flag(name), _word(name, value)]
     return argv
+
+
+def values(command: str, params: Any = None, grid: Any = None,
+           **options: Any) -> Dict[str, Any]:
+    """The keyword arguments of a function bound to the library (:data:`BOUND`), checked and
+    made plain for it: an unknown keyword is a ``TypeError`` (:func:`check_keywords`); a numpy
+    value of no dimension is its value, a one-dimensional array a list, a larger one
+    refused; ``params`` a dict (from a mapping, a pandas Series or pairs), ``grid`` a dict of
+    lists or range texts; ``None`` and ``False`` leave a keyword out. The values are then taken
+    by the native binding as the library's types (``python/src/bind.rs``)."""
+    check_keywords(command, options)
+    out: Dict[str, Any] = {}
+    for name, value in options.items():
+        if value is None or value is False:
+            continue
+        if isinstance(value, np.ndarray) and value.ndim == 0:
+            value = value.item()
+        listed = None if name == "model" else _listed(f"option `{name}`", value)
+        out[name] = value if listed is None else listed
+    if params is not None:
+        out["params"] = {key: v.item() if isinstance(v, np.ndarray) and v.ndim == 0 else v
+                         for key, v in _mapping("params", params, "{'v_belt': 0.1}").items()}
+    if grid is not None:
+        axes = {}
+        for key, axis in _mapping("grid", grid, "{'v_belt': [0.1, 0.2]}").items():
+            listed = axis if isinstance(axis, str) else _listed(f"option `grid`, axis `{key}`", axis)
+            if listed is None:
+                listed = [axis]
+            elif not listed:
+                raise ValueError(f"option `grid`, axis `{key}`: no values")
+            axes[key] = listed
+        out["grid"] = axes
+    return out
+
+
+def call(command: str, *arguments: Any, stop: Optional[Callable[[], bool]] = None) -> "Made":
+    """Calls the native binding of ``command`` (:data:`BOUND`) with ``arguments`` (GIL
+    released, Ctrl-C honoured); errors and ``stop`` as :func:`run`."""
+    return _made(command, lambda: getattr(_native, command)(*arguments, stop))
 
 
 #: pandas before 3 parses floats fast but not always exactly unless asked; from 3 on exact
@@ -248,9 +302,13 @@ def run(argv: List[str], stop: Optional[Callable[[], bool]] = None) -> Made:
     ``ValueError``; a failure with no result raises ``SolverError``. ``stop``, if given, is
     asked every 50 ms while the run goes on: once it returns true the run stops as on Ctrl-C
     and ``_native.Cancelled`` is raised."""
-    command = argv[0]
+    return _made(argv[0], lambda: _native.run(argv, stop))
+
+
+def _made(command: str, native: Callable[[], Any]) -> Made:
+    """What the native call ``native`` made, its messages in Python's words."""
     try:
-        files, notes, advice, failure, trajectory = _native.run(argv, stop)
+        files, notes, advice, failure, trajectory = native()
     except _native.SolverError as e:
         raise SolverError(spelled(str(e), command)) from None
     except ValueError as e:

@@ -1,7 +1,7 @@
 """``sweep``: one run per point of a grid, in Rust's threads or as Dask tasks.
 
 On a Dask cluster the grid's points are cut into chunks of consecutive points; each task runs
-``friction-lab sweep ... --point-range START:END`` (the same Rust code, one thread), and the
+the library's sweep of its points START <= i < END (the same Rust code, one thread), and the
 chunks' tables are joined in grid order. Every point is computed by the same code from the
 same inputs whatever the split, so the two ways give the same DataFrame, bit for bit.
 
@@ -13,15 +13,14 @@ stop at their next step (as on Ctrl-C in process) and the workers are free for t
 from __future__ import annotations
 
 import math
-import os
 import time
 import uuid
-from typing import Any, Callable, Dict, List, Optional, Sequence, Union
+from typing import Any, Callable, Dict, Optional, Sequence, Tuple, Union
 
 import pandas as pd
 
 from . import _native
-from ._command import Made, SolverError, run, words
+from ._command import Made, SolverError, SystemFile, _name, call, values
 
 
 def sweep(scenario: str, *, grid: Dict[str, Union[Sequence[float], str]],
@@ -39,17 +38,21 @@ def sweep(scenario: str, *, grid: Dict[str, Union[Sequence[float], str]],
     failed raise :class:`SolverError` with the whole table as ``result`` (``status`` says
     which and why).
     """
-    argv = words("sweep", scenario, params=params, grid=grid, **options)
-    if client is None:
-        made = run(argv)
-        frame = made.table("sweep.csv")
-        failure = made.failure
-    else:
-        model = options.get("model")
-        laws = [] if model is None or isinstance(model, (str, os.PathLike)) else [model]
-        frame = _on_dask(client, argv, chunk_size, laws)
-        failed = int((frame["status"] != "ok").sum())
-        failure = f"{failed} of {len(frame)} runs failed; sweep.csv says which and why" if failed else None
+    _name("sweep", scenario)
+    system = options.pop("system", None)
+    given = values("sweep", params=params, grid=grid, **options)
+    axes = given.pop("grid")
+    with SystemFile(system) as f:
+        arguments = (scenario, f.path, axes, given)
+        if client is None:
+            made = call("sweep", *arguments)
+            frame = made.table("sweep.csv")
+            failure = made.failure
+        else:
+            frame = _on_dask(client, arguments, chunk_size)
+            failed = int((frame["status"] != "ok").sum())
+            failure = (f"{failed} of {len(frame)} runs failed; sweep.csv says which and why"
+                       if failed else None)
     if failure is not None:
         raise SolverError(failure, frame)
     return frame
@@ -76,34 +79,34 @@ def _stopped(name: str) -> Callable[[], bool]:
     return stopped
 
 
-def _chunk(argv: List[str], start: int, end: int, laws: List[Any], stop: str) -> pd.DataFrame:
-    """One Dask task: the points START <= i < END of the sweep, as ``sweep.csv``'s rows; a
-    friction law written in Python (``laws``) is registered in the worker's process first.
-    The run stops at its next step once the sweep's Event ``stop`` is set. The stop reaches
-    every run of the worker's process, as Ctrl-C would (docs/python.md)."""
-    for law in laws:
-        _native.register_law(law)
-    made: Made = run(argv + ["--point-range", f"{start}:{end}"], stop=_stopped(stop))
+def _chunk(arguments: Tuple[Any, ...], start: int, end: int, stop: str) -> pd.DataFrame:
+    """One Dask task: the points START <= i < END of the sweep ``arguments`` (those of
+    ``_native.sweep``), as ``sweep.csv``'s rows. A friction law written in Python, the
+    ``model`` of the options, is registered in the worker's process by the binding. The run
+    stops at its next step once the sweep's Event ``stop`` is set. The stop reaches every run
+    of the worker's process, as Ctrl-C would (docs/python.md)."""
+    scenario, system, axes, given = arguments
+    part = dict(given, point_range=(start, end))
+    made: Made = call("sweep", scenario, system, axes, part, stop=_stopped(stop))
     return made.table("sweep.csv")
 
 
-def _on_dask(client: Any, argv: List[str], chunk_size: Optional[int],
-             laws: List[Any]) -> pd.DataFrame:
+def _on_dask(client: Any, arguments: Tuple[Any, ...], chunk_size: Optional[int]) -> pd.DataFrame:
+    scenario, system, axes, given = arguments
     # Every point is checked here, before any task is sent (bad input raises ValueError).
-    head = run(argv + ["--point-range", "0:0"])
+    head = call("sweep", scenario, system, axes, dict(given, point_range=(0, 0)))
     n = head.json("sweep.json")["grid_points"]
     if chunk_size is None:
         workers = max(1, len(client.scheduler_info().get("workers", {})))
         chunk_size = max(1, math.ceil(n / (4 * workers)))
     if not (isinstance(chunk_size, int) and chunk_size >= 1):
         raise ValueError(f"option `chunk_size` = {chunk_size!r} is out of range: allowed [1, inf)")
-    if "--threads" not in argv:
-        # One Rust thread per task: Dask's workers are the parallelism.
-        argv = argv + ["--threads", "1"]
+    # One Rust thread per task unless told otherwise: Dask's workers are the parallelism.
+    given = dict(given, threads=given.get("threads", 1))
     bounds = [(s, min(s + chunk_size, n)) for s in range(0, n, chunk_size)]
     stop = f"friction-lab-sweep-{uuid.uuid4().hex}"
-    futures = client.map(_chunk, [argv] * len(bounds), [b[0] for b in bounds],
-                         [b[1] for b in bounds], [laws] * len(bounds), [stop] * len(bounds),
+    futures = client.map(_chunk, [(scenario, system, axes, given)] * len(bounds),
+                         [b[0] for b in bounds], [b[1] for b in bounds], [stop] * len(bounds),
                          pure=False)
     try:
         results = client.gather(futures)
@@ -114,7 +117,6 @@ def _on_dask(client: Any, argv: List[str], chunk_size: Optional[int],
         distributed.Event(stop, client=client).set()
         client.cancel(futures, force=True)
         raise
-    parts = list(results)
-    if not parts:
+    if not results:
         return head.table("sweep.csv")
-    return pd.concat(parts, ignore_index=True)
+    return pd.concat(results, ignore_index=True)

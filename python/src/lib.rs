@@ -9,6 +9,7 @@
 //! calling thread watches for Ctrl-C and stops the solvers through
 //! [`integrators::interrupt`].
 
+mod bind;
 mod law;
 
 use clap::{CommandFactory, Parser};
@@ -16,7 +17,7 @@ use friction_lab::artifacts::Data;
 use friction_lab::columns::Column;
 use friction_lab::error::{bounded, AppError};
 use friction_lab::friction_systems::mode_name;
-use friction_lab::trajectory::Trajectory;
+use friction_lab::trajectory::{Trajectory, TrajectoryAs};
 use integrators::{Mode, SolverError as RunError};
 use pyo3::create_exception;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
@@ -173,9 +174,68 @@ fn run(py: Python<'_>, argv: Vec<String>, stop: Option<Bound<'_, PyAny>>) -> PyR
         .chain(argv)
         .chain(["--out".to_string(), IN_MEMORY.to_string()]);
     let cli = friction_lab_cli::Cli::try_parse_from(words).map_err(|e| usage(&e))?;
-    let made = interruptible(py, stop.as_ref(), || {
+    deliver(py, stop.as_ref(), || {
         friction_lab_cli::make_in_memory(&cli.command)
-    })?;
+    })
+}
+
+/// Runs `simulate`: the library's [`friction_lab::simulate::Simulation`] of `scenario` (a
+/// rig's name or `chain`) or of the system file `system`, with the keyword arguments
+/// `options` ([`bind::simulation`]); the trajectory as columns. Errors and `stop` as [`run`].
+#[pyfunction]
+#[pyo3(signature = (scenario, system, options, stop=None))]
+fn simulate(
+    py: Python<'_>,
+    scenario: Option<String>,
+    system: Option<std::path::PathBuf>,
+    options: Bound<'_, PyDict>,
+    stop: Option<Bound<'_, PyAny>>,
+) -> PyResult<Made> {
+    let run = bind::simulation(scenario.as_deref(), system, &options, "simulate", &[])?;
+    deliver(py, stop.as_ref(), || {
+        run.run(Path::new(IN_MEMORY), TrajectoryAs::Columns)
+    })
+}
+
+/// Runs `sweep`: the library's [`friction_lab::sweep::Sweep`] over `grid` (names to lists
+/// of values or range texts) of the run `simulate` would make ([`bind::sweep`]). Errors and
+/// `stop` as [`run`].
+#[pyfunction]
+#[pyo3(signature = (scenario, system, grid, options, stop=None))]
+fn sweep(
+    py: Python<'_>,
+    scenario: Option<String>,
+    system: Option<std::path::PathBuf>,
+    grid: Bound<'_, PyDict>,
+    options: Bound<'_, PyDict>,
+    stop: Option<Bound<'_, PyAny>>,
+) -> PyResult<Made> {
+    let sweep = bind::sweep(scenario.as_deref(), system, &grid, &options)?;
+    deliver(py, stop.as_ref(), || sweep.run(Path::new(IN_MEMORY)))
+}
+
+/// The keyword arguments of the function `name` that binds the library directly
+/// (`simulate`, `sweep`), besides its scenario and `system`.
+#[pyfunction]
+fn keywords(name: &str) -> PyResult<Vec<&'static str>> {
+    match name {
+        "simulate" => Ok(bind::SIMULATE.to_vec()),
+        "sweep" => Ok([bind::SIMULATE, bind::SWEEP, &["grid"]].concat()),
+        _ => Err(PyValueError::new_err(format!(
+            "`{name}` is no function bound to the library"
+        ))),
+    }
+}
+
+/// Runs `work` ([`interruptible`]) and hands its result to Python: the exception of a law
+/// written in Python that raised, else the files as values ([`data`]), the notes, the
+/// warnings, the failure and the trajectory.
+fn deliver(
+    py: Python<'_>,
+    stop: Option<&Bound<'_, PyAny>>,
+    work: impl FnOnce() -> Result<friction_lab::artifacts::Made, AppError> + Send,
+) -> PyResult<Made> {
+    let made = interruptible(py, stop, work)?;
     // A law written in Python that raised stopped the run: its exception is the answer.
     if let Some(e) = law::take_error() {
         integrators::interrupt::clear();
@@ -327,6 +387,9 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     // once, so that a law written in Python takes the GIL on a living thread state.
     friction_lab::threads::set_worker_wrapper(|work| Python::attach(|py| py.detach(work)));
     m.add_function(wrap_pyfunction!(run, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(keywords, m)?)?;
     m.add_function(wrap_pyfunction!(models_json, m)?)?;
     m.add_function(wrap_pyfunction!(options, m)?)?;
     m.add_function(wrap_pyfunction!(law::register_law, m)?)?;

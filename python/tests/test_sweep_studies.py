@@ -170,3 +170,29 @@ def test_ctrl_c_stops_a_sweep_on_dask_and_the_next_call_starts_at_once(processes
         assert (df["status"] == "ok").all()
         assert stopped < 5.0, stopped
         assert again < 10.0, again
+
+
+def test_simulate_and_sweep_bind_the_library_not_the_command_line(monkeypatch):
+    from friction_lab import _native
+
+    def command_line(*args, **kwargs):
+        raise AssertionError("the command line was driven")
+
+    monkeypatch.setattr(_native, "run", command_line)
+    r = fl.simulate("belt", model="CVS", t_end=2.0, params={"v_belt": 0.2})
+    assert r.summary["parameters"]["v_belt"] == 0.2 and r.summary["t_end"] == 2.0
+    whole = fl.sweep("belt", model="CVS", grid={"v_belt": [0.05, 0.1], "k": "10:100:2"})
+    assert len(whole) == 4 and whole["k"].tolist() == [10, 100, 10, 100]
+    # A part of the grid by a pair of indices or by its text: the whole's rows.
+    for part in ((1, 3), "1:3"):
+        rows = fl.sweep("belt", model="CVS", grid={"v_belt": [0.05, 0.1], "k": "10:100:2"},
+                        point_range=part)
+        pd.testing.assert_frame_equal(rows, whole.iloc[1:3].reset_index(drop=True),
+                                      check_exact=True)
+    # Each value is taken as its field's type, or refused naming the keyword.
+    with pytest.raises(ValueError, match=r"^`points` = 2\.5: a whole number is expected$"):
+        fl.simulate("belt", model="CVS", points=2.5)
+    with pytest.raises(ValueError, match=r"^`rtol` = '1e-6': a number is expected$"):
+        fl.simulate("belt", model="CVS", rtol="1e-6")
+    with pytest.raises(ValueError, match=r"^`point_range` = \[1, 2, 3\]: a pair"):
+        fl.sweep("belt", model="CVS", grid={"k": [1.0]}, point_range=(1, 2, 3))

@@ -7,5 +7,4 @@ pub mod reproduce;
 pub mod simulate;
 pub mod studies;
 pub mod sweep;
-pub mod system;
 pub mod testset;

@@ -34,6 +34,7 @@ pub mod ranges;
 pub mod reproduce;
 pub mod run_record;
 pub mod scheme;
+pub mod settings;
 pub mod simulate;
 pub mod study;
 pub mod sweep;

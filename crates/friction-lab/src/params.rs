@@ -9,8 +9,11 @@ use scenarios::{Scenario, ScenarioParams};
 use std::io::Read;
 use std::path::{Path, PathBuf};
 
+/// The parameter set a run starts from unless told otherwise: Table 1 of the paper.
+pub const DEFAULT_PARAM_SET: &str = "paper";
+
 /// Where the parameters come from (`--param-set`, `--params` and `--set` on the command line).
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 pub struct ParamSource {
     /// The named parameter set started from: `paper` (Table 1) or `lugre-1995`.
     pub param_set: String,
@@ -18,6 +21,17 @@ pub struct ParamSource {
     pub params: Option<PathBuf>,
     /// Assignments `NAME=VALUE`, applied last, in order.
     pub set: Vec<String>,
+}
+
+/// [`DEFAULT_PARAM_SET`], no file, no assignment.
+impl Default for ParamSource {
+    fn default() -> Self {
+        ParamSource {
+            param_set: DEFAULT_PARAM_SET.into(),
+            params: None,
+            set: Vec::new(),
+        }
+    }
 }
 
 impl ParamSource {

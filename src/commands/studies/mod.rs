@@ -3,14 +3,15 @@
 //! collected in order, so the files do not depend on the thread count (wall times, which
 //! cannot be reproduced, go to a separate `*-timing.csv`).
 
-use crate::commands::simulate::{derived_t_end, Target as Problem};
-use crate::commands::system::{chosen_bodies, study_t_end, system_of};
+use crate::commands::simulate::Target as Problem;
 use crate::options::{LimitArgs, ModelOptions, SchemeArgs};
 use clap::Args;
 use friction_lab::artifacts::{Artifacts, Made};
 use friction_lab::error::AppError;
 use friction_lab::laws::ModelChoice;
 use friction_lab::ranges;
+use friction_lab::simulate::chosen_bodies;
+use friction_lab::simulate::request::{derived_t_end, study_t_end, system_of};
 use friction_lab::study::Target;
 use friction_lab::warnings::{diverged_line, unread_warnings};
 use friction_models::params::show;
@@ -89,7 +90,7 @@ impl CaseArgs {
                 let described = system_of(
                     self.system.as_deref(),
                     self.model.as_ref(),
-                    &self.model_options,
+                    &self.model_options.settings(),
                 )?;
                 described.system.validate()?;
                 let bodies = if self.bodies.is_empty() {
@@ -173,7 +174,7 @@ impl CaseArgs {
     /// The treatment of v = 0 that `--scheme` and `--switching` ask for (time-stepping at
     /// θ = 1/2).
     pub fn treatment(&self) -> Result<SwitchingKind, AppError> {
-        self.scheme.treatment(DEFAULT_THETA)
+        self.scheme.choice().treatment(DEFAULT_THETA)
     }
 
     /// Sets up the case, runs `study` (which returns its lines for the terminal), and keeps
@@ -209,7 +210,7 @@ impl CaseArgs {
                 switching,
             )
             .into_iter()
-            .chain(self.scheme.spelling_notes())
+            .chain(self.scheme.choice().spelling_notes())
             .collect(),
             failure,
             trajectory: None,

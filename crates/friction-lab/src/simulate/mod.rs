@@ -1,11 +1,16 @@
 //! One run simulated and written: a rig ([`simulate_rig`]) or a system of many bodies
 //! ([`simulate_system`]), its files and figures in memory ([`Made`](crate::artifacts::Made)),
-//! for the command line, Python and a Rust user alike.
+//! for the command line, Python and a Rust user alike; [`Simulation`] is the run as a front
+//! end asks for it, checked.
 
+mod bodies;
+pub mod request;
 mod rig;
 mod stiffness;
 mod system;
 
+pub use bodies::chosen_bodies;
+pub use request::{Simulation, Target};
 pub use rig::simulate_rig;
 pub use stiffness::add_stiffness;
 pub use system::{load, simulate_system, Described, SystemRun, DRAWN_BODIES};

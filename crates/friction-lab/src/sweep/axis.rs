@@ -78,14 +78,22 @@ impl Axis {
             }
             None => values.split(',').map(number).collect::<Result<_, _>>()?,
         };
+        Axis::new(name.trim(), values).map_err(|e| bad(e.to_string()))
+    }
+
+    /// The axis of parameter `name` over `values`: between 1 and [`MAX_AXIS`] finite numbers.
+    pub fn new(name: &str, values: Vec<f64>) -> Result<Axis, AppError> {
         if values.is_empty() || values.len() > MAX_AXIS {
-            return Err(bad(format!(
+            return Err(AppError::Usage(format!(
                 "{} values: allowed 1 to {MAX_AXIS}",
                 values.len()
             )));
         }
+        if let Some(v) = values.iter().find(|v| !v.is_finite()) {
+            return Err(AppError::Usage(format!("`{v}` is not a finite number")));
+        }
         Ok(Axis {
-            name: name.trim().to_string(),
+            name: name.to_string(),
             values,
         })
     }

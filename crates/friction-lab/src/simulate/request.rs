@@ -1,0 +1,346 @@
+//! One run as a front end asks for it ([`Simulation`]): a rig, the chain or a system file,
+//! its model, solver settings, end time, output points and recorded bodies; checked and run
+//! here for the command line, Python and a Rust user alike.
+
+use crate::artifacts::Made;
+use crate::error::AppError;
+use crate::laws::ModelChoice;
+use crate::ranges;
+use crate::settings::{ModelSettings, SolverSettings};
+use crate::simulate::{chosen_bodies, load, simulate_rig, simulate_system, Described, SystemRun};
+use crate::sweep::RECORD_LIMIT;
+use crate::trajectory::TrajectoryAs;
+use crate::warnings::unread_warnings;
+use friction_systems::chain::{ChainParams, CHAIN_PARAMETERS};
+use integrators::Options;
+use scenarios::chain::ChainSource;
+use scenarios::{RunSpec, Scenario};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// Bodies written to the trajectory when none are chosen: all of a chain this long or shorter,
+/// otherwise this many evenly spaced.
+pub const DEFAULT_TRAJECTORY_BODIES: usize = 20;
+/// The largest number of recorded numbers (points × unknowns) by default: about 80 MB.
+pub const RECORD_BUDGET: usize = 10_000_000;
+/// Default end time of the chain, s.
+pub const CHAIN_T_END: f64 = 50.0;
+/// Default end time of a system file, s.
+pub const FILE_T_END: f64 = 20.0;
+/// Default output points of a rig.
+pub const RIG_POINTS: usize = 2001;
+
+/// Default end time of a solver study of the chain, s: within its horizon of predictability.
+/// Over [`CHAIN_T_END`] a perturbation of the size of a step's error grows to the size of the
+/// motion (the chain of 10 blocks with CS, CVS or Karnopp's law: fixed-step errors near a
+/// saturated level, fitted "orders" of RK4 from −0.07 to 1.2), and a convergence study
+/// measures that growth, not the solvers; over 10 s RK4 shows 3.7–4.3 and Dormand–Prince
+/// 4.2–5.4 on every measure (docs/studies.md).
+pub const CHAIN_STUDY_T_END: f64 = 10.0;
+
+/// What a run integrates.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Target {
+    /// A rig of docs/scenarios.md.
+    Rig(Scenario),
+    /// The Burridge–Knopoff chain of docs/systems.md.
+    Chain,
+    /// A system file (TOML or JSON, docs/systems.md).
+    System(PathBuf),
+}
+
+impl Target {
+    /// The system file, if the target is one.
+    pub fn file(&self) -> Option<&Path> {
+        match self {
+            Target::System(path) => Some(path),
+            _ => None,
+        }
+    }
+
+    /// The target's name: the rig's, `chain`, or the file's path.
+    pub fn name(&self) -> String {
+        match self {
+            Target::Rig(s) => s.name().to_string(),
+            Target::Chain => "chain".into(),
+            Target::System(path) => path.display().to_string(),
+        }
+    }
+}
+
+/// One run: what is integrated, with which model and settings, how long, and what is
+/// recorded. [`Simulation::run`] checks it and makes its files.
+#[derive(Clone, Debug)]
+pub struct Simulation {
+    /// The rig, the chain or a system file.
+    pub target: Target,
+    /// The friction model (rigs and the chain; a system file's contacts name their own).
+    pub model: Option<ModelChoice>,
+    /// Where the parameters come from, and the reading of the equations.
+    pub model_settings: ModelSettings,
+    /// The scheme, solver, step control and bounds.
+    pub solver: SolverSettings,
+    /// End time, s; `None`: the rig's own, [`CHAIN_T_END`], or [`FILE_T_END`].
+    pub t_end: Option<f64>,
+    /// Evenly spaced output points; `None`: [`RIG_POINTS`], or [`default_points`].
+    pub points: Option<i64>,
+    /// The bodies of a system written and drawn, as names or 1-based indices; empty: the
+    /// default choice ([`chosen_bodies`]).
+    pub bodies: Vec<String>,
+}
+
+impl Simulation {
+    /// A run of `target` with `model` and every setting at its default.
+    pub fn new(target: Target, model: Option<ModelChoice>) -> Simulation {
+        Simulation {
+            target,
+            model,
+            model_settings: ModelSettings::default(),
+            solver: SolverSettings::default(),
+            t_end: None,
+            points: None,
+            bodies: Vec::new(),
+        }
+    }
+
+    /// `t_end`, checked.
+    pub fn checked_t_end(&self) -> Result<Option<f64>, AppError> {
+        self.t_end.map(|t| ranges::T_END.check(t)).transpose()
+    }
+
+    /// `points`, checked.
+    pub fn checked_points(&self) -> Result<Option<usize>, AppError> {
+        self.points.map(|n| ranges::POINTS.count(n)).transpose()
+    }
+
+    /// The model, which a rig requires.
+    fn rig_model(&self, scenario: Scenario) -> Result<&ModelChoice, AppError> {
+        self.model.as_ref().ok_or_else(|| {
+            AppError::Usage(format!(
+                "option `--model` is required for scenario {scenario}: e.g. --model CS"
+            ))
+        })
+    }
+
+    /// The spec of a run of rig `scenario`, every setting checked.
+    pub fn rig_spec(&self, scenario: Scenario) -> Result<RunSpec, AppError> {
+        let model = self.rig_model(scenario)?;
+        if !self.bodies.is_empty() {
+            return Err(AppError::Usage(
+                "option `--bodies` applies to systems (chain, --system), not to a rig".into(),
+            ));
+        }
+        let (friction, params) = self.model_settings.params.resolve_for(Some(scenario))?;
+        if self.checked_t_end()?.is_none() {
+            derived_t_end(scenario, &params, &friction)?;
+        }
+        let step = self.solver.checked_step()?;
+        Ok(RunSpec {
+            scenario,
+            law: model.law(self.model_settings.variant),
+            friction,
+            params,
+            solver: self.solver.solver(),
+            switching: self.solver.switching(),
+            step,
+            t_end: self.t_end,
+            output_points: self.checked_points()?.unwrap_or(RIG_POINTS),
+            limits: self.solver.checked_limits()?,
+        })
+    }
+
+    /// The system of the chain or the system file, described.
+    pub fn described(&self) -> Result<Described, AppError> {
+        system_of(
+            self.target.file(),
+            self.model.as_ref(),
+            &self.model_settings,
+        )
+    }
+
+    /// The end time of a system: `t_end`, or the default of its kind.
+    pub fn system_t_end(&self) -> Result<f64, AppError> {
+        Ok(self
+            .checked_t_end()?
+            .unwrap_or_else(|| default_t_end(self.target.file())))
+    }
+
+    /// The output points of a system of `dim` unknowns: `points`, checked against its range
+    /// and against [`RECORD_LIMIT`] numbers in all, or [`default_points`].
+    pub fn system_points(&self, dim: usize) -> Result<usize, AppError> {
+        let Some(points) = self.checked_points()? else {
+            return Ok(default_points(dim));
+        };
+        if points.saturating_mul(dim) > RECORD_LIMIT {
+            return Err(AppError::Usage(format!(
+                "option `points` = {points} would record {} numbers for the system's {dim} \
+                 unknowns: allowed at most {} numbers, so at most {} points",
+                ranges::show((points as f64) * (dim as f64)),
+                ranges::show(RECORD_LIMIT as f64),
+                RECORD_LIMIT / dim.max(1)
+            )));
+        }
+        Ok(points)
+    }
+
+    /// The integrator's options of a system run: the step control and bounds, checked, and
+    /// `points` evenly spaced output times on [0, t_end].
+    pub fn grid_options(&self, t_end: f64, points: usize) -> Result<Options, AppError> {
+        let limits = self.solver.checked_limits()?;
+        Ok(crate::sweep::grid_options(
+            self.solver.checked_step()?,
+            &limits,
+            t_end,
+            points,
+        ))
+    }
+
+    /// The advice on settings the run does not read, and on former spellings.
+    pub fn warnings(&self) -> Vec<String> {
+        unread_warnings(
+            &self.model_settings.params.set,
+            self.model.as_ref().and_then(ModelChoice::catalog),
+            self.solver.switching(),
+        )
+        .into_iter()
+        .chain(self.solver.scheme.spelling_notes())
+        .collect()
+    }
+
+    /// Checks the run, runs it and makes its files in `out` (in memory), the trajectory as a
+    /// file or as columns.
+    pub fn run(&self, out: &Path, trajectory_as: TrajectoryAs) -> Result<Made, AppError> {
+        let mut made = match &self.target {
+            Target::Rig(scenario) => {
+                let spec = self.rig_spec(*scenario)?;
+                simulate_rig(&spec, self.rig_model(*scenario)?, out, trajectory_as)?
+            }
+            _ => self.run_system(out, trajectory_as)?,
+        };
+        made.warnings.extend(self.warnings());
+        Ok(made)
+    }
+
+    /// [`Simulation::run`] of the chain or a system file.
+    fn run_system(&self, out: &Path, trajectory_as: TrajectoryAs) -> Result<Made, AppError> {
+        let described = self.described()?;
+        self.solver.checked_step()?;
+        described.system.validate()?;
+        let bodies = chosen_bodies(&described.system, &self.bodies)?;
+        let t_end = self.system_t_end()?;
+        let points = self.system_points(friction_systems::Layout::of(&described.system).dim())?;
+        let run = SystemRun {
+            described: &described,
+            switching: self.solver.switching(),
+            solver: self.solver.solver(),
+            options: self.grid_options(t_end, points)?,
+            bodies: &bodies,
+            variant: (self.model.as_ref())
+                .and_then(ModelChoice::catalog)
+                .map(|_| self.model_settings.variant),
+        };
+        simulate_system(run, out, trajectory_as)
+    }
+}
+
+/// The end time `scenario` derives from its parameters where none is given, checked against
+/// the range of `t_end`; out of it, the message blames the parameters it is derived from (the
+/// user set those, not `t_end`).
+pub fn derived_t_end(
+    scenario: Scenario,
+    params: &scenarios::ScenarioParams,
+    friction: &friction_models::FrictionParams,
+) -> Result<f64, AppError> {
+    let t_end = scenario.default_t_end(params, friction);
+    match scenario.t_end_rule(params, friction) {
+        Some(rule) if ranges::T_END.check(t_end).is_err() => Err(AppError::Usage(format!(
+            "the end time of scenario {scenario}, {rule}, is {t_end:.3e} s: allowed {} s; \
+             choose these parameters so that it falls within, or give --t-end",
+            ranges::T_END.range
+        ))),
+        _ => Ok(t_end),
+    }
+}
+
+/// The default end time of a system: [`FILE_T_END`] for a system `file`, else (the chain)
+/// [`CHAIN_T_END`].
+pub fn default_t_end(file: Option<&Path>) -> f64 {
+    file.map_or(CHAIN_T_END, |_| FILE_T_END)
+}
+
+/// The default end time of a solver study of a system: [`FILE_T_END`] for a system `file`,
+/// else (the chain) [`CHAIN_STUDY_T_END`].
+pub fn study_t_end(file: Option<&Path>) -> f64 {
+    file.map_or(CHAIN_STUDY_T_END, |_| FILE_T_END)
+}
+
+/// The default number of output points for a system of `dim` unknowns: 2001, fewer for a
+/// large system so that the recorded states stay within [`RECORD_BUDGET`] numbers.
+pub fn default_points(dim: usize) -> usize {
+    (RECORD_BUDGET / dim.max(1)).clamp(101, 2001)
+}
+
+/// The system of a system `file` or, without one, the chain with `model` and the parameters
+/// of `settings` (chain parameters among them).
+pub fn system_of(
+    file: Option<&Path>,
+    model: Option<&ModelChoice>,
+    settings: &ModelSettings,
+) -> Result<Described, AppError> {
+    if let Some(path) = file {
+        if model.is_some() {
+            return Err(AppError::Usage(
+                "option `--model` does not apply to --system: each [[contact]] of the file \
+                 names its model"
+                    .into(),
+            ));
+        }
+        settings.params.check_for_system_file()?;
+        if settings.variant != friction_models::Variant::Odd {
+            return Err(AppError::Usage(
+                "option `--variant` does not apply to --system: each [[contact]] of the file \
+                 names its variant"
+                    .into(),
+            ));
+        }
+        return Ok(Described {
+            system: load(path)?,
+            name: path.display().to_string(),
+            parameters: BTreeMap::new(),
+            friction: settings.params.resolve()?,
+            source: None,
+        });
+    }
+    let model = model.ok_or_else(|| {
+        AppError::Usage("option `--model` is required for the chain: e.g. --model coulomb".into())
+    })?;
+    let mut chain = ChainParams::default();
+    let names = CHAIN_PARAMETERS.map(|(name, _, _)| name);
+    let friction =
+        (settings.params).resolve_with(&names, |name, value| Ok(chain.set(name, value)?))?;
+    let source = ChainSource {
+        chain,
+        law: model.law(settings.variant),
+        friction,
+    };
+    let system = source.build()?;
+    let mut reported = model.parameters_read(&friction);
+    for (name, _, _) in CHAIN_PARAMETERS {
+        let value = match name {
+            "n_bodies" => chain.n_bodies as f64,
+            "m" => chain.m,
+            "k_chain" => chain.k_chain,
+            "k_driver" => chain.k_driver,
+            "v_driver" => chain.v_driver,
+            _ => chain.spread,
+        };
+        reported.insert(name.to_string(), value);
+    }
+    Ok(Described {
+        system,
+        name: source.name(),
+        parameters: reported,
+        friction,
+        source: Some(source),
+    })
+}

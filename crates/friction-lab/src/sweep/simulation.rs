@@ -1,0 +1,232 @@
+//! The sweep of a [`Simulation`]: the run `simulate` would make, each point's values assigned
+//! after the run's own parameters ([`Sweep`]); its checks, its grid and its files.
+
+use super::{points, Axis, Grid, PointRun, Start, SweepStudy};
+use crate::artifacts::{Artifacts, Made};
+use crate::error::AppError;
+use crate::laws::ModelChoice;
+use crate::output::counted;
+use crate::params::parse_assignment;
+use crate::ranges::{self, first_repeat};
+use crate::simulate::{chosen_bodies, Simulation, Target};
+use crate::study::{conduct, Target as StudyTarget};
+use friction_systems::Layout;
+use scenarios::stick_slip::sliding_start;
+use scenarios::Scenario;
+use std::ops::Range;
+use std::path::Path;
+use std::time::Instant;
+
+/// The measured part of each run of a sweep unless told otherwise: its last half.
+pub const DEFAULT_SETTLE: f64 = 0.5;
+
+/// A sweep of a run over a grid of its parameters.
+#[derive(Clone, Debug)]
+pub struct Sweep {
+    /// The run at every point, before the point's values are assigned.
+    pub simulation: Simulation,
+    /// The axes of the grid, the first varying slowest.
+    pub axes: Vec<Axis>,
+    /// The measured, settled part of each run: its last fraction (0, 1] of the time span.
+    pub settle: f64,
+    /// Where every run starts.
+    pub start: Start,
+    /// The points run, in grid order; `None`: all. Every point is checked all the same.
+    pub range: Option<Range<usize>>,
+    /// Worker threads; `None`: all cores. The rows do not depend on it.
+    pub threads: Option<i64>,
+}
+
+impl Sweep {
+    /// Checks the sweep, runs its points and makes its files in `out` (in memory): a failed
+    /// point is a row that says why, and the sweep's failure.
+    pub fn run(&self, out: &Path) -> Result<Made, AppError> {
+        let threads = ranges::threads(self.threads)?;
+        check_axes(&self.axes, &self.simulation)?;
+        let n = points(&self.axes).len();
+        let range = match &self.range {
+            Some(r) => check_point_range(r.clone(), n)?,
+            None => 0..n,
+        };
+        // The time limit bounds the whole sweep: every point counts from here.
+        let grid = SimulationGrid {
+            simulation: &self.simulation,
+            start: self.start,
+            since: Instant::now(),
+        };
+        let study = SweepStudy {
+            grid: &grid,
+            axes: &self.axes,
+            settle: self.settle,
+            range,
+            target: self.simulation.target.name(),
+            model: (self.simulation.model.as_ref()).map(|m| m.name().to_string()),
+            start: self.start,
+        };
+        let mut files = Artifacts::default();
+        let mut target = StudyTarget {
+            files: &mut files,
+            dir: out,
+            threads,
+            failure: None,
+        };
+        let results = conduct(&study, &mut target, "sweep")?;
+        let failure = target.failure;
+        let failed = results.iter().filter(|r| r.error.is_some()).count();
+        Ok(Made {
+            files,
+            notes: vec![format!(
+                "{}, {failed} failed",
+                counted(results.len(), "point", "points")
+            )],
+            warnings: self.simulation.warnings(),
+            failure,
+            trajectory: None,
+        })
+    }
+}
+
+/// The error of a point range `text` outside a grid of `n` points.
+fn point_range_error(text: &str, n: usize) -> AppError {
+    AppError::Usage(format!(
+        "option `point-range` = `{text}` is out of range: allowed START:END with \
+         0 <= START <= END <= {n} (the grid's points)"
+    ))
+}
+
+/// `range`, if it lies within a grid of `n` points (START <= END <= n).
+pub fn check_point_range(range: Range<usize>, n: usize) -> Result<Range<usize>, AppError> {
+    if range.start > range.end || range.end > n {
+        return Err(point_range_error(
+            &format!("{}:{}", range.start, range.end),
+            n,
+        ));
+    }
+    Ok(range)
+}
+
+/// The points `START:END` of a grid of `n` points, from the text `START:END`.
+pub fn parse_point_range(text: &str, n: usize) -> Result<Range<usize>, AppError> {
+    let (start, end) = text
+        .split_once(':')
+        .ok_or_else(|| point_range_error(text, n))?;
+    let parse = |s: &str| {
+        s.trim()
+            .parse::<usize>()
+            .map_err(|_| point_range_error(text, n))
+    };
+    check_point_range(parse(start)?..parse(end)?, n).map_err(|_| point_range_error(text, n))
+}
+
+/// Refuses an axis that names a parameter a second time (only the last would be used), a
+/// parameter the run also assigns (every point would override it), a parameter of a system
+/// file other than `epsilon`, or a friction parameter that the run does not read
+/// ([`crate::laws::check_read`]).
+fn check_axes(axes: &[Axis], run: &Simulation) -> Result<(), AppError> {
+    let names: Vec<&str> = axes.iter().map(|a| a.name.as_str()).collect();
+    if let Some((_, k)) = first_repeat(&names) {
+        return Err(AppError::Usage(format!(
+            "option `grid`: parameter `{}` has two axes; give all its values in one",
+            names[k]
+        )));
+    }
+    let set = &run.model_settings.params.set;
+    if let Some((name, given)) = names.iter().find_map(|&n| {
+        set.iter()
+            .find(|a| parse_assignment(a).is_ok_and(|(s, _)| s == n))
+            .map(|a| (n, a))
+    }) {
+        return Err(AppError::Usage(format!(
+            "option `grid`: parameter `{name}` is also given by --set {given}: every point \
+             would override it; give its values in the axis only"
+        )));
+    }
+    if run.target.file().is_some() {
+        // A system file's contacts carry their own parameters: only the regularisation width
+        // is shared.
+        if let Some(name) = names.iter().find(|&&n| n != "epsilon") {
+            return Err(AppError::Usage(format!(
+                "option `grid`: parameter `{name}` cannot be swept on a system file (each \
+                 contact has its own parameters): allowed epsilon, under --switching regularized"
+            )));
+        }
+    }
+    names.iter().try_for_each(|name| {
+        crate::laws::check_read(
+            "grid",
+            name,
+            run.model.as_ref().and_then(ModelChoice::catalog),
+            run.solver.switching(),
+        )
+    })
+}
+
+/// A [`Simulation`] swept: each point's values assigned after the run's own, every run's time
+/// limit counted from `since` (the sweep's start).
+struct SimulationGrid<'a> {
+    simulation: &'a Simulation,
+    start: Start,
+    since: Instant,
+}
+
+impl Grid for SimulationGrid<'_> {
+    fn run_at(&self, point: &[(String, f64)]) -> Result<PointRun, AppError> {
+        let mut run = self.simulation.clone();
+        (run.model_settings.params.set).extend(point.iter().map(|(n, v)| format!("{n}={v}")));
+        run.solver.limits.since = Some(self.since);
+        prepare(&run, self.start)
+    }
+}
+
+/// Checks a point's run and sets it up, started from rest or from steady sliding (the belt
+/// only: another rig or a system has no such start, refused with exit 2).
+fn prepare(run: &Simulation, start: Start) -> Result<PointRun, AppError> {
+    let refuse = |why: &str| {
+        Err(AppError::Usage(format!(
+            "option `--start sliding` {why}: it starts the belt's body at the equilibrium of \
+             steady sliding; use --start rest"
+        )))
+    };
+    match (&run.target, start) {
+        (Target::Rig(Scenario::Belt), Start::Sliding) => {
+            let mut spec = run.rig_spec(Scenario::Belt)?;
+            if spec.params.k <= 0.0 {
+                return refuse(
+                    "needs a spring, k > 0 (steady sliding has no equilibrium without one)",
+                );
+            }
+            if (run.model_settings.params.set.iter())
+                .any(|a| parse_assignment(a).is_ok_and(|(n, _)| n == "x0"))
+            {
+                return refuse("sets x0 itself: drop x0 from --set and --grid");
+            }
+            let model = spec.law.build(&spec.friction)?;
+            spec.params.x0 = sliding_start(model.as_ref(), spec.params.v_belt, spec.params.k);
+            spec.params.v0 = 0.0;
+            Ok(PointRun::Rig(spec))
+        }
+        (_, Start::Sliding) => refuse("applies to the belt rig only"),
+        (Target::Rig(scenario), Start::Rest) => Ok(PointRun::Rig(run.rig_spec(*scenario)?)),
+        _ => {
+            let described = run.described()?;
+            described.system.validate()?;
+            let body = chosen_bodies(&described.system, &run.bodies)?
+                .first()
+                .copied()
+                .unwrap_or(0);
+            let step = run.solver.checked_step()?;
+            let t_end = run.system_t_end()?;
+            let points = run.system_points(Layout::of(&described.system).dim())?;
+            let scheme = (run.solver.switching()).scheme(run.solver.solver(), &described.friction);
+            Ok(PointRun::System {
+                system: described.system,
+                scheme,
+                step,
+                limits: run.solver.checked_limits()?,
+                t_end,
+                points,
+                body,
+            })
+        }
+    }
+}
