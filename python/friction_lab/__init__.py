@@ -67,7 +67,11 @@ def simulate(scenario: Optional[str] = None, *, system: Any = None,
 
 def _study(command: str, scenario: str, params: Optional[Dict[str, float]],
            options: Dict[str, Any]) -> Study:
-    made = run(words(command, scenario, params=params, **options))
+    _name(command, scenario)
+    system = options.pop("system", None)
+    given = values(command, params=params, **options)
+    with SystemFile(system) as f:
+        made = call(command, scenario, f.path, given)
     study = Study(made, command)
     if made.failure is not None:
         # Written and failed (an independence level): the study keeps what finished.

@@ -87,7 +87,8 @@ def _mapping(name: str, value: Any, example: str) -> Mapping:
 
 #: The functions that bind the library's typed settings directly (``_native.simulate``,
 #: ``_native.sweep``); the others run a command of the command line in memory.
-BOUND = frozenset({"simulate", "sweep"})
+BOUND = frozenset({"simulate", "sweep", "converge", "independence", "work-precision",
+                   "stiffness"})
 
 
 @functools.lru_cache(maxsize=None)
@@ -96,7 +97,7 @@ def keywords(command: str) -> Dict[str, str]:
     it stands for (how the library's messages name it): the options' names with ``_`` for
     ``-``, ``params`` for ``--set`` (``out`` has no keyword: nothing is written)."""
     if command in BOUND:
-        names = {k: k.replace("_", "-") for k in _native.keywords(command)}
+        names = {k: k.replace("_", "-") for k in _native.keywords(command.replace("-", "_"))}
         names["system"] = "system"
         names["params"] = "set"
         return names
@@ -224,8 +225,13 @@ def values(command: str, params: Any = None, grid: Any = None,
 
 def call(command: str, *arguments: Any, stop: Optional[Callable[[], bool]] = None) -> "Made":
     """Calls the native binding of ``command`` (:data:`BOUND`) with ``arguments`` (GIL
-    released, Ctrl-C honoured); errors and ``stop`` as :func:`run`."""
-    return _made(command, lambda: getattr(_native, command)(*arguments, stop))
+    released, Ctrl-C honoured): ``_native.simulate``, ``_native.sweep``, or for a solver study
+    ``_native.study(name, ...)``; errors and ``stop`` as :func:`run`."""
+    if command in ("simulate", "sweep"):
+        native = getattr(_native, command)
+    else:
+        native = functools.partial(_native.study, command.replace("-", "_"))
+    return _made(command, lambda: native(*arguments, stop))
 
 
 #: pandas before 3 parses floats fast but not always exactly unless asked; from 3 on exact

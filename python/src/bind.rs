@@ -1,42 +1,99 @@
 //! Python's keyword arguments as the library's typed settings: `simulate`'s as a
-//! [`Simulation`], `sweep`'s as a [`Sweep`]. Each keyword is one field; its value is taken as
+//! [`Simulation`], `sweep`'s as a [`Sweep`], a solver study's as a [`Problem`] and the study
+//! ([`Converge`], [`Independence`], [`WorkPrecision`], [`Stiffness`]). Each keyword is one field; its value is taken as
 //! the field's type (a number, a whole number, a name, a list) or refused with a `ValueError`
 //! naming the keyword; an unknown keyword is a `TypeError` naming it and its close match. The
 //! ranges and the checks between settings are the library's ([`Simulation::run`],
 //! [`Sweep::run`]), the command line's too.
 
-use friction_lab::settings::SolverSettings;
+use friction_lab::artifacts::Made;
+use friction_lab::error::AppError;
+use friction_lab::laws::ModelChoice;
+use friction_lab::settings::{ModelSettings, RunLimits, SchemeChoice, SolverSettings};
 use friction_lab::simulate::{Simulation, Target};
+use friction_lab::study::{Converge, Independence, Problem, Stiffness, WorkPrecision};
 use friction_lab::sweep::{parse_point_range, points, Axis, Start, Sweep, DEFAULT_SETTLE};
+use integrators::Solver;
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyList, PyString, PyTuple};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
-/// The keyword arguments of `simulate` besides the scenario and `system`.
-pub const SIMULATE: &[&str] = &[
+/// Keyword arguments by name.
+type Keywords<'py> = Vec<(String, Bound<'py, PyAny>)>;
+
+/// A study set up, to be run into a folder (in memory).
+pub type Conduct = Box<dyn FnOnce(&Path) -> Result<Made, AppError> + Send>;
+
+/// The keyword arguments every run and study takes ([`Shared`]).
+const SHARED: &[&str] = &[
     "model",
     "params",
     "param_set",
     "variant",
     "scheme",
     "switching",
+    "max_steps",
+    "time_limit",
+    "t_end",
+    "bodies",
+];
+
+/// The keyword arguments of `simulate` besides the scenario, `system` and [`SHARED`].
+const SIMULATE_OWN: &[&str] = &[
     "solver",
     "theta",
     "dt",
     "fixed_step",
     "rtol",
     "atol",
-    "max_steps",
-    "time_limit",
-    "t_end",
     "points",
-    "bodies",
 ];
 
-/// The keyword arguments of `sweep` besides those of [`SIMULATE`] and `grid`.
-pub const SWEEP: &[&str] = &["settle", "start", "threads", "point_range"];
+/// The keyword arguments of `sweep` besides those of `simulate` and `grid`.
+const SWEEP_OWN: &[&str] = &["settle", "start", "threads", "point_range"];
+
+/// The keyword arguments of a study besides [`SHARED`] and its own.
+const PROBLEM_OWN: &[&str] = &["threads"];
+
+/// The keyword arguments of each study of its own.
+const STUDY_OWN: [(&str, &[&str]); 4] = [
+    ("converge", &["solvers", "dt_list", "tol_list"]),
+    (
+        "independence",
+        &["solver", "start", "ratio", "levels", "tol"],
+    ),
+    (
+        "work_precision",
+        &["testset", "solvers", "dt_list", "tol_list", "repeats"],
+    ),
+    (
+        "stiffness",
+        &[
+            "parameter",
+            "values",
+            "solvers",
+            "target",
+            "dt_list",
+            "tol_list",
+        ],
+    ),
+];
+
+/// The keyword arguments of the function `function` bound to the library, besides its
+/// scenario and `system`; `None` for a function that is not.
+pub fn keywords(function: &str) -> Option<Vec<&'static str>> {
+    let own: &[&[&str]] = match function {
+        "simulate" => &[SIMULATE_OWN],
+        "sweep" => &[SIMULATE_OWN, SWEEP_OWN, &["grid"]],
+        _ => {
+            let (_, study) = STUDY_OWN.iter().find(|(name, _)| *name == function)?;
+            &[PROBLEM_OWN, study]
+        }
+    };
+    Some([&[SHARED], own].concat().concat())
+}
 
 /// A `ValueError` for keyword `key` = `value`: `what` is expected.
 fn expected(key: &str, value: &Bound<'_, PyAny>, what: &str) -> PyErr {
@@ -100,8 +157,8 @@ fn items<'py>(value: &Bound<'py, PyAny>) -> PyResult<Vec<Bound<'py, PyAny>>> {
 
 /// The `TypeError` of a keyword `function` does not take (the Python layer names the close
 /// match before it calls: `friction_lab._command.check_keywords`).
-fn unknown(function: &str, key: &str, known: &[&str]) -> PyErr {
-    let mut all = known.to_vec();
+fn unknown(function: &str, key: &str) -> PyErr {
+    let mut all = keywords(function).unwrap_or_default();
     all.sort_unstable();
     PyTypeError::new_err(format!(
         "{function}() got an unexpected keyword argument '{key}'; it takes: {}",
@@ -110,7 +167,7 @@ fn unknown(function: &str, key: &str, known: &[&str]) -> PyErr {
 }
 
 /// The keyword arguments given, by name; those given as `None` left out.
-fn given<'py>(options: &Bound<'py, PyDict>) -> PyResult<Vec<(String, Bound<'py, PyAny>)>> {
+fn given<'py>(options: &Bound<'py, PyDict>) -> PyResult<Keywords<'py>> {
     let mut pairs = Vec::new();
     for (key, value) in options.iter() {
         if !value.is_none() {
@@ -120,15 +177,10 @@ fn given<'py>(options: &Bound<'py, PyDict>) -> PyResult<Vec<(String, Bound<'py, 
     Ok(pairs)
 }
 
-/// The run `simulate(scenario, system=..., **options)` asks for.
-pub fn simulation(
-    scenario: Option<&str>,
-    system: Option<PathBuf>,
-    options: &Bound<'_, PyDict>,
-    function: &str,
-    also: &[&str],
-) -> PyResult<Simulation> {
-    let target = match (scenario, system) {
+/// What a run integrates: the rig or `chain` named `scenario`, or the system file `system`;
+/// `None` when neither is given.
+fn target(scenario: Option<&str>, system: Option<PathBuf>) -> PyResult<Option<Target>> {
+    Ok(Some(match (scenario, system) {
         (Some(_), Some(_)) => {
             return Err(PyValueError::new_err(
                 "give a scenario or a `system`, not both",
@@ -140,29 +192,36 @@ pub fn simulation(
             friction_lab::scenarios::Scenario::from_name(s)
                 .map_err(|e| PyValueError::new_err(format!("{e}, chain")))?,
         ),
-        (None, None) => {
-            return Err(PyValueError::new_err(
-                "a scenario (a rig's name or \"chain\") or a `system` is required",
-            ))
-        }
-    };
-    let mut run = Simulation::new(target, None);
-    let solver: &mut SolverSettings = &mut run.solver;
-    for (key, value) in given(options)? {
-        let k = key.as_str();
+        (None, None) => return Ok(None),
+    }))
+}
+
+/// The settings every run and study shares, each set by its keyword in [`SHARED`].
+struct Shared<'a> {
+    model: &'a mut Option<ModelChoice>,
+    settings: &'a mut ModelSettings,
+    scheme: &'a mut SchemeChoice,
+    limits: &'a mut RunLimits,
+    t_end: &'a mut Option<f64>,
+    bodies: &'a mut Vec<String>,
+}
+
+impl Shared<'_> {
+    /// Sets the setting of keyword `k` to `value`; false if `k` is none of [`SHARED`].
+    fn set(&mut self, k: &str, value: &Bound<'_, PyAny>) -> PyResult<bool> {
         match k {
             "model" => {
                 let law = if value.is_instance_of::<PyString>() {
-                    name(k, &value)?
+                    name(k, value)?
                 } else {
-                    crate::law::register_law(&value)?
+                    crate::law::register_law(value)?
                 };
-                run.model = Some(parsed(k, &PyString::new(value.py(), &law).into_any())?);
+                *self.model = Some(parsed(k, &PyString::new(value.py(), &law).into_any())?);
             }
             "params" => {
                 let params = value
                     .cast::<PyDict>()
-                    .map_err(|_| expected(k, &value, "a mapping of parameter names to values"))?;
+                    .map_err(|_| expected(k, value, "a mapping of parameter names to values"))?;
                 for (p, v) in params.iter() {
                     let p = name(k, &p)?;
                     // A number as its shortest round-trip text; anything else as its text,
@@ -171,13 +230,69 @@ pub fn simulation(
                         Ok(x) => format!("{x:?}"),
                         Err(_) => v.str()?.to_string(),
                     };
-                    run.model_settings.params.set.push(format!("{p}={v}"));
+                    self.settings.params.set.push(format!("{p}={v}"));
                 }
             }
-            "param_set" => run.model_settings.params.param_set = name(k, &value)?,
-            "variant" => run.model_settings.variant = parsed(k, &value)?,
-            "scheme" => solver.scheme.scheme = parsed(k, &value)?,
-            "switching" => solver.scheme.switching = Some(parsed(k, &value)?),
+            "param_set" => self.settings.params.param_set = name(k, value)?,
+            "variant" => self.settings.variant = parsed(k, value)?,
+            "scheme" => self.scheme.scheme = parsed(k, value)?,
+            "switching" => self.scheme.switching = Some(parsed(k, value)?),
+            "max_steps" => self.limits.max_steps = whole(k, value)?,
+            "time_limit" => self.limits.time_limit = Some(number(k, value)?),
+            "t_end" => *self.t_end = Some(number(k, value)?),
+            "bodies" => {
+                *self.bodies = items(value)?
+                    .iter()
+                    .map(|b| match whole(k, b) {
+                        Ok(i) => Ok(i.to_string()),
+                        Err(_) => name(k, b),
+                    })
+                    .collect::<PyResult<_>>()?
+            }
+            _ => return Ok(false),
+        }
+        Ok(true)
+    }
+}
+
+/// A list of numbers.
+fn numbers(key: &str, value: &Bound<'_, PyAny>) -> PyResult<Vec<f64>> {
+    items(value)?.iter().map(|v| number(key, v)).collect()
+}
+
+/// A list of solvers by name.
+fn solvers(key: &str, value: &Bound<'_, PyAny>) -> PyResult<Vec<Solver>> {
+    items(value)?.iter().map(|v| parsed(key, v)).collect()
+}
+
+/// The run `simulate(scenario, system=..., **options)` asks for; the keywords of `also` (a
+/// sweep's own) are left to the caller.
+pub fn simulation(
+    scenario: Option<&str>,
+    system: Option<PathBuf>,
+    options: &Bound<'_, PyDict>,
+    function: &str,
+    also: &[&str],
+) -> PyResult<Simulation> {
+    let target = target(scenario, system)?.ok_or_else(|| {
+        PyValueError::new_err("a scenario (a rig's name or \"chain\") or a `system` is required")
+    })?;
+    let mut run = Simulation::new(target, None);
+    for (key, value) in given(options)? {
+        let k = key.as_str();
+        let solver: &mut SolverSettings = &mut run.solver;
+        let mut shared = Shared {
+            model: &mut run.model,
+            settings: &mut run.model_settings,
+            scheme: &mut solver.scheme,
+            limits: &mut solver.limits,
+            t_end: &mut run.t_end,
+            bodies: &mut run.bodies,
+        };
+        if shared.set(k, &value)? {
+            continue;
+        }
+        match k {
             "solver" => solver.solver = Some(parsed(k, &value)?),
             "theta" => solver.theta = Some(number(k, &value)?),
             "dt" => solver.dt = Some(number(k, &value)?),
@@ -188,27 +303,120 @@ pub fn simulation(
             }
             "rtol" => solver.rtol = number(k, &value)?,
             "atol" => solver.atol = number(k, &value)?,
-            "max_steps" => solver.limits.max_steps = whole(k, &value)?,
-            "time_limit" => solver.limits.time_limit = Some(number(k, &value)?),
-            "t_end" => run.t_end = Some(number(k, &value)?),
             "points" => run.points = Some(whole(k, &value)?),
-            "bodies" => {
-                run.bodies = items(&value)?
-                    .iter()
-                    .map(|b| match whole(k, b) {
-                        Ok(i) => Ok(i.to_string()),
-                        Err(_) => name(k, b),
-                    })
-                    .collect::<PyResult<_>>()?
-            }
             _ if also.contains(&k) => {}
-            _ => {
-                let known: Vec<&str> = SIMULATE.iter().chain(also).copied().collect();
-                return Err(unknown(function, k, &known));
-            }
+            _ => return Err(unknown(function, k)),
         }
     }
     Ok(run)
+}
+
+/// The problem of a study `function(scenario, system=..., **options)`, with the keywords
+/// that are the study's own (`own`) returned for the caller to set.
+fn problem<'py>(
+    scenario: Option<&str>,
+    system: Option<PathBuf>,
+    options: &Bound<'py, PyDict>,
+    function: &str,
+    own: &[&str],
+) -> PyResult<(Problem, Keywords<'py>)> {
+    let mut problem = Problem {
+        target: target(scenario, system)?,
+        ..Problem::default()
+    };
+    let mut left = Vec::new();
+    for (key, value) in given(options)? {
+        let k = key.as_str();
+        let mut shared = Shared {
+            model: &mut problem.model,
+            settings: &mut problem.model_settings,
+            scheme: &mut problem.scheme,
+            limits: &mut problem.limits,
+            t_end: &mut problem.t_end,
+            bodies: &mut problem.bodies,
+        };
+        if shared.set(k, &value)? {
+            continue;
+        }
+        match k {
+            "threads" => problem.threads = Some(whole(k, &value)?),
+            _ if own.contains(&k) => left.push((key, value)),
+            _ => return Err(unknown(function, k)),
+        }
+    }
+    Ok((problem, left))
+}
+
+/// The solver study `function` (`converge`, `independence`, `work_precision`, `stiffness`)
+/// of `scenario` or `system` with the keyword arguments `options`, run into `out`.
+pub fn study(
+    function: &str,
+    scenario: Option<&str>,
+    system: Option<PathBuf>,
+    options: &Bound<'_, PyDict>,
+) -> PyResult<Conduct> {
+    let own = (STUDY_OWN.iter())
+        .find(|(name, _)| *name == function)
+        .map(|(_, own)| *own)
+        .ok_or_else(|| PyValueError::new_err(format!("`{function}` is no solver study")))?;
+    let (problem, left) = problem(scenario, system, options, function, own)?;
+    Ok(match function {
+        "converge" => {
+            let mut s = Converge::new(problem);
+            for (key, v) in left {
+                let k = key.as_str();
+                match k {
+                    "solvers" => s.solvers = solvers(k, &v)?,
+                    "dt_list" => s.dt_list = numbers(k, &v)?,
+                    _ => s.tol_list = numbers(k, &v)?,
+                }
+            }
+            Box::new(move |out| s.run(out))
+        }
+        "independence" => {
+            let mut s = Independence::new(problem);
+            for (key, v) in left {
+                let k = key.as_str();
+                match k {
+                    "solver" => s.solver = Some(parsed(k, &v)?),
+                    "start" => s.refinement.start = number(k, &v)?,
+                    "ratio" => s.refinement.ratio = number(k, &v)?,
+                    "levels" => s.refinement.levels = whole(k, &v)?,
+                    _ => s.refinement.tol = number(k, &v)?,
+                }
+            }
+            Box::new(move |out| s.run(out))
+        }
+        "work_precision" => {
+            let mut s = WorkPrecision::new(problem);
+            for (key, v) in left {
+                let k = key.as_str();
+                match k {
+                    "testset" => s.testset = Some(name(k, &v)?),
+                    "solvers" => s.solvers = solvers(k, &v)?,
+                    "dt_list" => s.dt_list = numbers(k, &v)?,
+                    "tol_list" => s.tol_list = numbers(k, &v)?,
+                    _ => s.repeats = whole(k, &v)?,
+                }
+            }
+            Box::new(move |out| s.run(out))
+        }
+        _ => {
+            let mut s = Stiffness::new(problem);
+            for (key, v) in left {
+                let k = key.as_str();
+                match k {
+                    "parameter" => s.parameter = name(k, &v)?,
+                    "values" => s.values = numbers(k, &v)?,
+                    "solvers" => s.solvers = solvers(k, &v)?,
+                    "target" => s.target = number(k, &v)?,
+                    "dt_list" => s.dt_list = numbers(k, &v)?,
+                    _ => s.tol_list = numbers(k, &v)?,
+                }
+            }
+            Box::new(move |out| s.run(out))
+        }
+    })
 }
 
 /// The sweep `sweep(scenario, grid=..., **options)` asks for: `grid` maps names to lists of
@@ -219,7 +427,7 @@ pub fn sweep(
     grid: &Bound<'_, PyDict>,
     options: &Bound<'_, PyDict>,
 ) -> PyResult<Sweep> {
-    let simulation = simulation(scenario, system, options, "sweep", SWEEP)?;
+    let simulation = simulation(scenario, system, options, "sweep", SWEEP_OWN)?;
     let axes = grid
         .iter()
         .map(|(key, values)| {

@@ -214,17 +214,30 @@ fn sweep(
     deliver(py, stop.as_ref(), || sweep.run(Path::new(IN_MEMORY)))
 }
 
+/// Runs the solver study `function` (`converge`, `independence`, `work_precision`,
+/// `stiffness`): the library's study of `scenario` or `system` with the keyword arguments
+/// `options` ([`bind::study`]). Errors and `stop` as [`run`].
+#[pyfunction]
+#[pyo3(signature = (function, scenario, system, options, stop=None))]
+fn study(
+    py: Python<'_>,
+    function: &str,
+    scenario: Option<String>,
+    system: Option<std::path::PathBuf>,
+    options: Bound<'_, PyDict>,
+    stop: Option<Bound<'_, PyAny>>,
+) -> PyResult<Made> {
+    let study = bind::study(function, scenario.as_deref(), system, &options)?;
+    deliver(py, stop.as_ref(), move || study(Path::new(IN_MEMORY)))
+}
+
 /// The keyword arguments of the function `name` that binds the library directly
-/// (`simulate`, `sweep`), besides its scenario and `system`.
+/// (`simulate`, `sweep`, the solver studies), besides its scenario and `system`.
 #[pyfunction]
 fn keywords(name: &str) -> PyResult<Vec<&'static str>> {
-    match name {
-        "simulate" => Ok(bind::SIMULATE.to_vec()),
-        "sweep" => Ok([bind::SIMULATE, bind::SWEEP, &["grid"]].concat()),
-        _ => Err(PyValueError::new_err(format!(
-            "`{name}` is no function bound to the library"
-        ))),
-    }
+    bind::keywords(name).ok_or_else(|| {
+        PyValueError::new_err(format!("`{name}` is no function bound to the library"))
+    })
 }
 
 /// Runs `work` ([`interruptible`]) and hands its result to Python: the exception of a law
@@ -389,6 +402,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(study, m)?)?;
     m.add_function(wrap_pyfunction!(keywords, m)?)?;
     m.add_function(wrap_pyfunction!(models_json, m)?)?;
     m.add_function(wrap_pyfunction!(options, m)?)?;

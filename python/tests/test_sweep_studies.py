@@ -172,7 +172,7 @@ def test_ctrl_c_stops_a_sweep_on_dask_and_the_next_call_starts_at_once(processes
         assert again < 10.0, again
 
 
-def test_simulate_and_sweep_bind_the_library_not_the_command_line(monkeypatch):
+def test_simulate_sweep_and_the_studies_bind_the_library_not_the_command_line(monkeypatch):
     from friction_lab import _native
 
     def command_line(*args, **kwargs):
@@ -183,6 +183,11 @@ def test_simulate_and_sweep_bind_the_library_not_the_command_line(monkeypatch):
     assert r.summary["parameters"]["v_belt"] == 0.2 and r.summary["t_end"] == 2.0
     whole = fl.sweep("belt", model="CVS", grid={"v_belt": [0.05, 0.1], "k": "10:100:2"})
     assert len(whole) == 4 and whole["k"].tolist() == [10, 100, 10, 100]
+    study = fl.converge("free-vibration", model="viscous", solvers=["rk4"], dt_list=[0.02, 0.01],
+                        t_end=1.0)
+    assert study.runs["h"].tolist() == [0.02, 0.01]
+    with pytest.raises(ValueError, match=r"^`dt_list` = 'a': a number is expected$"):
+        fl.converge("free-vibration", model="viscous", dt_list=[0.02, "a"])
     # A part of the grid by a pair of indices or by its text: the whole's rows.
     for part in ((1, 3), "1:3"):
         rows = fl.sweep("belt", model="CVS", grid={"v_belt": [0.05, 0.1], "k": "10:100:2"},

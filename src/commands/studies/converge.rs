@@ -1,14 +1,9 @@
 //! `converge`: observed orders of every solver against a reference.
 
-use super::{failures, CaseArgs};
+use super::CaseArgs;
 use clap::Args;
-use friction_lab::artifacts::Made;
-use friction_lab::error::AppError;
-use friction_lab::study::{conduct, ConvergenceStudy};
+use friction_lab::study::Converge;
 use integrators::Solver;
-
-/// The solvers `converge` compares by default.
-const CONVERGE_SOLVERS: [Solver; 3] = [Solver::RK4, Solver::DOPRI5, Solver::IMPLICIT_EULER];
 
 /// Options of `converge`.
 #[derive(Args, Debug)]
@@ -45,24 +40,14 @@ pub struct ConvergeArgs {
     pub tol_list: Vec<f64>,
 }
 
-/// Runs `converge`; its files in memory.
-pub fn converge(a: &ConvergeArgs) -> Result<Made, AppError> {
-    a.case.make(|t, case| {
-        let study = ConvergenceStudy {
-            case,
-            solvers: &a.case.solvers("solvers", &a.solvers, &CONVERGE_SOLVERS)?,
-            steps: &a.dt_list,
-            tols: &a.tol_list,
-        };
-        let c = conduct(&study, t, "converge")?;
-        // The order over the asymptotic range, or why there is none (docs/studies.md,
-        // "Observed orders").
-        let orders =
-            (c.orders.iter()).map(|o| format!("{:15} {:16} {}", o.solver, o.measure, o.verdict()));
-        let limit = c.reference_limit.clone();
-        Ok(orders
-            .chain(failures(&c.runs, "converge.csv"))
-            .chain(limit)
-            .collect())
-    })
+impl ConvergeArgs {
+    /// The study as the library takes it.
+    pub fn study(&self) -> Converge {
+        Converge {
+            problem: self.case.problem(),
+            solvers: self.solvers.clone(),
+            dt_list: self.dt_list.clone(),
+            tol_list: self.tol_list.clone(),
+        }
+    }
 }

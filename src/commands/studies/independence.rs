@@ -3,10 +3,7 @@
 
 use super::CaseArgs;
 use clap::Args;
-use friction_lab::artifacts::Made;
-use friction_lab::error::AppError;
-use friction_lab::study::{conduct, IndependenceStudy, Refinement};
-use friction_lab::warnings::diverged_line;
+use friction_lab::study::{Independence, Refinement};
 use integrators::Solver;
 
 /// Options of `independence`.
@@ -60,53 +57,18 @@ pub struct IndependenceArgs {
     pub tol: f64,
 }
 
-/// Runs `independence`; its files in memory.
-pub fn independence(a: &IndependenceArgs) -> Result<Made, AppError> {
-    a.case.make(|t, case| {
-        let r = Refinement {
-            start: a.start,
-            ratio: a.ratio,
-            levels: a.levels,
-            tol: a.tol,
-        };
-        let study = IndependenceStudy {
-            case,
-            solver: a
-                .case
-                .solvers("solver", a.solver.as_slice(), &[Solver::RK4])?[0],
-            refinement: r,
-        };
-        let s = conduct(&study, t, "independence")?;
-        let mut notes: Vec<String> = s
-            .outputs
-            .iter()
-            .map(|o| {
-                let verdict = if o.independent {
-                    "independent"
-                } else {
-                    "NOT independent"
-                };
-                format!(
-                    "{:24} remaining error {:.3e} {verdict}",
-                    o.name, o.remaining_error
-                )
-            })
-            .collect();
-        let verdict = if s.independent {
-            "independent of"
-        } else {
-            "not independent of"
-        };
-        notes.extend(s.failed.iter().map(|f| {
-            format!(
-                "level {} ({:e}) failed, not judged: {}",
-                f.level, f.resolution, f.failure
-            )
-        }));
-        if s.failed.iter().any(|f| f.diverged) {
-            notes.push(diverged_line("--start"));
+impl IndependenceArgs {
+    /// The study as the library takes it.
+    pub fn study(&self) -> Independence {
+        Independence {
+            problem: self.case.problem(),
+            solver: self.solver,
+            refinement: Refinement {
+                start: self.start,
+                ratio: self.ratio,
+                levels: self.levels,
+                tol: self.tol,
+            },
         }
-        notes.push(format!("verdict: {verdict} the step size"));
-        Ok(notes)
-    })
+    }
 }

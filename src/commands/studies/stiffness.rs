@@ -2,25 +2,9 @@
 //! the implicit solvers overtake the explicit ones.
 
 use super::CaseArgs;
-use crate::commands::simulate::Target as Problem;
 use clap::Args;
-use friction_lab::artifacts::Made;
-use friction_lab::error::AppError;
-use friction_lab::laws::ModelChoice;
-use friction_lab::scheme::SchemeName;
-use friction_lab::study::{conduct, StiffnessStudy};
+use friction_lab::study::Stiffness;
 use integrators::Solver;
-use scenarios::studies;
-use scenarios::SwitchingKind;
-
-/// The solvers `stiffness` compares by default: two explicit, three implicit.
-const STIFFNESS_SOLVERS: [Solver; 5] = [
-    Solver::DOPRI5,
-    Solver::TSIT45,
-    Solver::IMPLICIT_EULER,
-    Solver::BDF,
-    Solver::ESDIRK34,
-];
 
 /// Options of `stiffness`.
 #[derive(Args, Debug)]
@@ -80,52 +64,17 @@ pub struct StiffnessArgs {
     pub tol_list: Vec<f64>,
 }
 
-/// Runs `stiffness`; its files in memory. Without `--switching`, a rig swept over `epsilon`
-/// is regularized: the width changes nothing else (under event switching every value would
-/// give the same runs), while a system keeps event switching, whose regularised BDF peer is
-/// the method that depends on it.
-pub fn stiffness(a: &StiffnessArgs) -> Result<Made, AppError> {
-    let mut case = a.case.clone();
-    if case.scheme.switching.is_none()
-        && case.scheme.scheme == SchemeName::EventDriven
-        && a.parameter == "epsilon"
-        && matches!(case.scenario, Some(Problem::Rig(_)))
-    {
-        case.scheme.switching = Some(SwitchingKind::Regularized);
+impl StiffnessArgs {
+    /// The study as the library takes it.
+    pub fn study(&self) -> Stiffness {
+        Stiffness {
+            problem: self.case.problem(),
+            parameter: self.parameter.clone(),
+            values: self.values.clone(),
+            solvers: self.solvers.clone(),
+            target: self.target,
+            dt_list: self.dt_list.clone(),
+            tol_list: self.tol_list.clone(),
+        }
     }
-    // A rig's run reads only what its model and switching read. A system's case checks its
-    // parameter itself (`StudyCase::with_parameter`): epsilon, which under event switching
-    // its regularised peer reads, and on the chain the chain's parameters and its law's.
-    if let Some(Problem::Rig(_)) = case.scenario {
-        friction_lab::laws::check_read(
-            "parameter",
-            &a.parameter,
-            case.model.as_ref().and_then(ModelChoice::catalog),
-            case.treatment()?,
-        )?;
-    }
-    case.make(|t, case| {
-        let sweep = studies::Sweep {
-            parameter: &a.parameter,
-            values: &a.values,
-            target: a.target,
-        };
-        let study = StiffnessStudy {
-            case,
-            sweep,
-            solvers: &a.case.solvers("solvers", &a.solvers, &STIFFNESS_SOLVERS)?,
-            steps: &a.dt_list,
-            tols: &a.tol_list,
-        };
-        let s = conduct(&study, t, "stiffness")?;
-        let limits = (s.points.iter()).filter_map(|p| {
-            Some(format!(
-                "at {} = {}: {}",
-                s.parameter,
-                p.value,
-                p.reference_limit.as_ref()?
-            ))
-        });
-        Ok(std::iter::once(s.verdict()).chain(limits).collect())
-    })
 }

@@ -1,11 +1,8 @@
 //! `work-precision`: error against work and wall time for every solver and peer.
 
-use super::{failures, or_default, CaseArgs};
+use super::CaseArgs;
 use clap::Args;
-use friction_lab::artifacts::{Artifacts, Made};
-use friction_lab::error::AppError;
-use friction_lab::ranges;
-use friction_lab::study::{conduct, Target, TestSetStudy, WorkPrecisionStudy};
+use friction_lab::study::WorkPrecision;
 use integrators::Solver;
 
 /// Options of `work-precision`.
@@ -62,77 +59,16 @@ pub struct WorkPrecisionArgs {
     pub repeats: i64,
 }
 
-/// The tolerances of a study of a rig or a system: 1e-3 to 1e-8, three a decade.
-const TOLERANCES: [f64; 16] = [
-    1e-3, 4.64e-4, 2.15e-4, 1e-4, 4.64e-5, 2.15e-5, 1e-5, 4.64e-6, 2.15e-6, 1e-6, 4.64e-7, 2.15e-7,
-    1e-7, 4.64e-8, 2.15e-8, 1e-8,
-];
-
-/// The tolerances of a study of the test set: 1e-4 to 1e-10, two a decade.
-const TESTSET_TOLERANCES: [f64; 13] = [
-    1e-4, 3.16e-5, 1e-5, 3.16e-6, 1e-6, 3.16e-7, 1e-7, 3.16e-8, 1e-8, 3.16e-9, 1e-9, 3.16e-10,
-    1e-10,
-];
-
-/// The solvers of a study of the test set: the implicit ones that take tolerances, and
-/// `auto` (an explicit method would take millions of steps on its stiff problems).
-const TESTSET_SOLVERS: [Solver; 6] = [
-    Solver::RADAU5,
-    Solver::RODAS,
-    Solver::AUTO,
-    Solver::BDF,
-    Solver::TR_BDF2,
-    Solver::ESDIRK34,
-];
-
-/// Runs `work-precision`; its files in memory.
-pub fn work_precision(a: &WorkPrecisionArgs) -> Result<Made, AppError> {
-    if let Some(name) = &a.testset {
-        return testset(a, name);
+impl WorkPrecisionArgs {
+    /// The study as the library takes it.
+    pub fn study(&self) -> WorkPrecision {
+        WorkPrecision {
+            problem: self.case.problem(),
+            testset: self.testset.clone(),
+            solvers: self.solvers.clone(),
+            dt_list: self.dt_list.clone(),
+            tol_list: self.tol_list.clone(),
+            repeats: self.repeats,
+        }
     }
-    a.case.make(|t, case| {
-        let study = WorkPrecisionStudy {
-            case,
-            solvers: &a.case.solvers("solvers", &a.solvers, &Solver::ALL)?,
-            steps: &a.dt_list,
-            tols: &or_default(&a.tol_list, &TOLERANCES),
-            repeats: ranges::REPEATS.count(a.repeats)?,
-        };
-        let w = conduct(&study, t, "work-precision")?;
-        Ok(failures(&w.runs, "work-precision.csv")
-            .into_iter()
-            .chain(w.reference_limit)
-            .collect())
-    })
-}
-
-/// `work-precision --testset PROBLEM`: the test set's work–precision of one problem.
-fn testset(a: &WorkPrecisionArgs, name: &str) -> Result<Made, AppError> {
-    let problem = integrators::testset::named(name).map_err(AppError::Usage)?;
-    let study = TestSetStudy {
-        problem,
-        solvers: &or_default(&a.solvers, &TESTSET_SOLVERS),
-        tols: &or_default(&a.tol_list, &TESTSET_TOLERANCES),
-        repeats: ranges::REPEATS.count(a.repeats)?,
-        limits: a.case.limits.limits()?,
-    };
-    let mut files = Artifacts::default();
-    let mut target = Target {
-        files: &mut files,
-        dir: &a.case.out,
-        threads: ranges::threads(a.case.threads)?,
-        failure: None,
-    };
-    let w = conduct(&study, &mut target, "work-precision")?;
-    let failure = target.failure;
-    let notes = (w.runs.iter())
-        .filter_map(|r| Some((r, r.failure.as_ref()?)))
-        .map(|(r, e)| format!("{:10} at tol = {:e} failed: {e}", r.solver, r.tol))
-        .collect();
-    Ok(Made {
-        files,
-        notes,
-        failure,
-        ..Made::default()
-    })
 }

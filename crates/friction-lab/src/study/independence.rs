@@ -23,6 +23,18 @@ pub struct Refinement {
     pub tol: f64,
 }
 
+/// Four levels from 1e-3, halved each time, judged at a relative tolerance of 1e-6.
+impl Default for Refinement {
+    fn default() -> Self {
+        Refinement {
+            start: 1e-3,
+            ratio: 2.0,
+            levels: 4,
+            tol: 1e-6,
+        }
+    }
+}
+
 /// `solver` on `case` at the levels of `refinement`: `start`, `start/ratio`, … (step sizes
 /// for a fixed-step solver or time-stepping, else tolerances).
 pub struct IndependenceStudy<'a> {

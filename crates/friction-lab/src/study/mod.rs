@@ -11,6 +11,7 @@ mod draw;
 mod independence;
 mod report;
 mod scaling;
+pub mod solver_studies;
 mod stick_slip;
 mod stiffness;
 mod table2;
@@ -22,6 +23,7 @@ pub use convergence::ConvergenceStudy;
 pub use independence::{IndependenceStudy, Refinement};
 pub use report::{conduct_all, Entry, ReportEntry};
 pub use scaling::ScalingStudy;
+pub use solver_studies::{Converge, Independence, Problem, Stiffness, WorkPrecision};
 pub use stick_slip::{
     regime_series, Bifurcation, BifurcationStudy, StickSlipMap, StickSlipMapStudy,
 };

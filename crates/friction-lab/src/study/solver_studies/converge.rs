@@ -1,0 +1,63 @@
+//! `converge`: observed orders of every solver against a reference.
+
+use super::{failures, Problem};
+use crate::artifacts::Made;
+use crate::error::AppError;
+use crate::study::{conduct, ConvergenceStudy};
+use integrators::Solver;
+use std::path::Path;
+
+/// The solvers `converge` compares by default.
+pub const CONVERGE_SOLVERS: [Solver; 3] = [Solver::RK4, Solver::DOPRI5, Solver::IMPLICIT_EULER];
+/// The step sizes of the fixed-step solvers by default, coarse to fine.
+pub const CONVERGE_STEPS: [f64; 4] = [0.02, 0.01, 0.005, 0.0025];
+/// The tolerances of the adaptive solvers by default, loose to tight.
+pub const CONVERGE_TOLERANCES: [f64; 3] = [1e-4, 1e-6, 1e-8];
+
+/// Observed orders of each solver on a problem against a reference.
+#[derive(Clone, Debug)]
+pub struct Converge {
+    /// The problem.
+    pub problem: Problem,
+    /// The solvers; empty: [`CONVERGE_SOLVERS`].
+    pub solvers: Vec<Solver>,
+    /// Step sizes of the fixed-step solvers, coarse to fine.
+    pub dt_list: Vec<f64>,
+    /// Tolerances of the adaptive solvers, loose to tight.
+    pub tol_list: Vec<f64>,
+}
+
+impl Converge {
+    /// The study of `problem` with every other setting at its default.
+    pub fn new(problem: Problem) -> Converge {
+        Converge {
+            problem,
+            solvers: Vec::new(),
+            dt_list: CONVERGE_STEPS.to_vec(),
+            tol_list: CONVERGE_TOLERANCES.to_vec(),
+        }
+    }
+
+    /// Checks and runs the study: its files in `out` (in memory), and one line per solver
+    /// and measure with its observed order, or why there is none.
+    pub fn run(&self, out: &Path) -> Result<Made, AppError> {
+        self.problem.make(out, |t, case| {
+            let study = ConvergenceStudy {
+                case,
+                solvers: &(self.problem).solvers("solvers", &self.solvers, &CONVERGE_SOLVERS)?,
+                steps: &self.dt_list,
+                tols: &self.tol_list,
+            };
+            let c = conduct(&study, t, "converge")?;
+            // The order over the asymptotic range, or why there is none (docs/studies.md,
+            // "Observed orders").
+            let orders = (c.orders.iter())
+                .map(|o| format!("{:15} {:16} {}", o.solver, o.measure, o.verdict()));
+            let limit = c.reference_limit.clone();
+            Ok(orders
+                .chain(failures(&c.runs, "converge.csv"))
+                .chain(limit)
+                .collect())
+        })
+    }
+}

@@ -1,0 +1,76 @@
+//! `independence`: one solver at a ladder of resolutions, with a Richardson estimate of the
+//! error left and a verdict.
+
+use super::Problem;
+use crate::artifacts::Made;
+use crate::error::AppError;
+use crate::study::{conduct, IndependenceStudy, Refinement};
+use crate::warnings::diverged_line;
+use integrators::Solver;
+use std::path::Path;
+
+/// Step-size independence of one solver on a problem.
+#[derive(Clone, Debug)]
+pub struct Independence {
+    /// The problem.
+    pub problem: Problem,
+    /// The solver; `None`: RK4.
+    pub solver: Option<Solver>,
+    /// The ladder of resolutions and the verdict's tolerance.
+    pub refinement: Refinement,
+}
+
+impl Independence {
+    /// The study of `problem` with every other setting at its default
+    /// ([`Refinement::default`]).
+    pub fn new(problem: Problem) -> Independence {
+        Independence {
+            problem,
+            solver: None,
+            refinement: Refinement::default(),
+        }
+    }
+
+    /// Checks and runs the study: its files in `out` (in memory), and one line per output
+    /// with its remaining error, the failed levels, and the verdict.
+    pub fn run(&self, out: &Path) -> Result<Made, AppError> {
+        self.problem.make(out, |t, case| {
+            let study = IndependenceStudy {
+                case,
+                solver: (self.problem).solvers("solver", self.solver.as_slice(), &[Solver::RK4])?
+                    [0],
+                refinement: self.refinement,
+            };
+            let s = conduct(&study, t, "independence")?;
+            let mut notes: Vec<String> = (s.outputs.iter())
+                .map(|o| {
+                    let verdict = if o.independent {
+                        "independent"
+                    } else {
+                        "NOT independent"
+                    };
+                    format!(
+                        "{:24} remaining error {:.3e} {verdict}",
+                        o.name, o.remaining_error
+                    )
+                })
+                .collect();
+            let verdict = if s.independent {
+                "independent of"
+            } else {
+                "not independent of"
+            };
+            notes.extend(s.failed.iter().map(|f| {
+                format!(
+                    "level {} ({:e}) failed, not judged: {}",
+                    f.level, f.resolution, f.failure
+                )
+            }));
+            if s.failed.iter().any(|f| f.diverged) {
+                notes.push(diverged_line("--start"));
+            }
+            notes.push(format!("verdict: {verdict} the step size"));
+            Ok(notes)
+        })
+    }
+}

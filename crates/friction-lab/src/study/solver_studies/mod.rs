@@ -1,0 +1,235 @@
+//! The four solver studies as a front end asks for them: a [`Problem`] (a rig, the chain or a
+//! system file, with its model, scheme, end time and bounds) and each study's own settings
+//! ([`Converge`], [`Independence`], [`WorkPrecision`], [`Stiffness`]), checked here and run
+//! into their files and the lines a front end prints. Every run of a study is independent;
+//! they run on a pool of threads and are collected in order, so the files do not depend on the
+//! thread count (wall times, which cannot be reproduced, go to a separate `*-timing.csv`).
+
+mod converge;
+mod independence;
+mod stiffness;
+mod work_precision;
+
+pub use converge::{Converge, CONVERGE_SOLVERS, CONVERGE_STEPS, CONVERGE_TOLERANCES};
+pub use independence::Independence;
+pub use stiffness::{Stiffness, STIFFNESS_SOLVERS, STIFFNESS_STEPS, STIFFNESS_TOLERANCES};
+pub use work_precision::{
+    WorkPrecision, TESTSET_SOLVERS, TESTSET_TOLERANCES, WORK_PRECISION_STEPS, WP_TOLERANCES,
+};
+
+use crate::artifacts::{Artifacts, Made};
+use crate::error::AppError;
+use crate::laws::ModelChoice;
+use crate::ranges;
+use crate::settings::{ModelSettings, RunLimits, SchemeChoice};
+use crate::simulate;
+use crate::simulate::chosen_bodies;
+use crate::simulate::request::{derived_t_end, study_t_end, system_of};
+use crate::study::Target;
+use crate::warnings::{diverged_line, unread_warnings};
+use friction_models::params::show;
+use integrators::Solver;
+use scenarios::run::DEFAULT_THETA;
+use scenarios::studies::{Case, StepKind, StudyCase, StudyRun, SystemCase};
+use scenarios::{Scenario, SwitchingKind};
+use std::path::Path;
+
+/// The problem a solver study runs, with the settings every study shares.
+#[derive(Clone, Debug, Default)]
+pub struct Problem {
+    /// A rig, the chain or a system file; `None` is refused (work–precision also takes a
+    /// problem of the stiff test set instead).
+    pub target: Option<simulate::Target>,
+    /// The friction model (rigs and the chain).
+    pub model: Option<ModelChoice>,
+    /// Systems: the bodies whose trajectories, event times and stick phases are measured
+    /// (names or 1-based indices); empty: the first body. The final state is measured on
+    /// every body.
+    pub bodies: Vec<String>,
+    /// The scheme, and the treatment of v = 0 under the event-driven one.
+    pub scheme: SchemeChoice,
+    /// End time, s; `None`: the rig's own, [`crate::simulate::request::CHAIN_STUDY_T_END`]
+    /// for the chain, [`crate::simulate::request::FILE_T_END`] for a system file.
+    pub t_end: Option<f64>,
+    /// The bounds of each run (a run past them fails, and the study says which).
+    pub limits: RunLimits,
+    /// Worker threads; `None`: all cores. The results do not depend on it.
+    pub threads: Option<i64>,
+    /// Where the parameters come from, and the reading of the equations.
+    pub model_settings: ModelSettings,
+}
+
+impl Problem {
+    /// The study case: a rig, the chain, or a system file.
+    pub fn case(&self) -> Result<Box<dyn StudyCase>, AppError> {
+        let Some(target) = &self.target else {
+            return Err(AppError::Usage(
+                "the study needs a problem: a SCENARIO, or --system FILE.toml (work-precision \
+                 also takes --testset PROBLEM)"
+                    .into(),
+            ));
+        };
+        let check_t_end = |t_end: f64| ranges::T_END.check(t_end);
+        let scenario = match target {
+            simulate::Target::Rig(s) => *s,
+            _ => {
+                let described =
+                    system_of(target.file(), self.model.as_ref(), &self.model_settings)?;
+                described.system.validate()?;
+                let bodies = if self.bodies.is_empty() {
+                    vec![0]
+                } else {
+                    chosen_bodies(&described.system, &self.bodies)?
+                };
+                return Ok(Box::new(SystemCase {
+                    name: described.name,
+                    system: described.system,
+                    switching: self.treatment()?,
+                    epsilon: described.friction.epsilon,
+                    t_end: check_t_end(self.t_end.unwrap_or_else(|| study_t_end(target.file())))?,
+                    bodies,
+                    limits: self.limits.limits()?,
+                    chain: described.source,
+                }));
+            }
+        };
+        if scenario == Scenario::VelocitySweep {
+            return Err(AppError::Usage(
+                "the studies integrate trajectories: velocity-sweep has none; use another scenario"
+                    .into(),
+            ));
+        }
+        if !self.bodies.is_empty() {
+            return Err(AppError::Usage(
+                "option `--bodies` applies to systems (chain, --system), not to a rig".into(),
+            ));
+        }
+        let model = self.model.as_ref().ok_or_else(|| {
+            AppError::Usage(format!(
+                "option `--model` is required for scenario {scenario}: e.g. --model CS"
+            ))
+        })?;
+        let (friction, params) = self.model_settings.params.resolve_for(Some(scenario))?;
+        let t_end = match self.t_end {
+            Some(t) => check_t_end(t)?,
+            None => check_t_end(derived_t_end(scenario, &params, &friction)?)?,
+        };
+        Ok(Box::new(Case {
+            scenario,
+            law: model.law(self.model_settings.variant),
+            friction,
+            params,
+            switching: self.treatment()?,
+            t_end,
+            limits: self.limits.limits()?,
+        }))
+    }
+
+    /// The solvers a study compares: those `given` by `option`, or `defaults` when none are.
+    /// Under time-stepping the study's one method is Moreau–Jean's scheme, which takes no
+    /// solver: naming one is refused rather than ignored.
+    pub fn solvers(
+        &self,
+        option: &str,
+        given: &[Solver],
+        defaults: &[Solver],
+    ) -> Result<Vec<Solver>, AppError> {
+        if !given.is_empty() && self.treatment()?.is_time_stepping() {
+            return Err(AppError::Usage(format!(
+                "option `--{option} {}` does not apply to --scheme time-stepping: the study's one \
+                 method is Moreau–Jean's scheme over the study's step sizes, which takes no ODE \
+                 solver; drop the solvers, or choose --scheme event-driven",
+                given.iter().map(|s| s.name()).collect::<Vec<_>>().join(",")
+            )));
+        }
+        Ok(or_default(given, defaults))
+    }
+
+    /// The treatment of v = 0 that the scheme and the switching ask for (time-stepping at
+    /// θ = 1/2).
+    pub fn treatment(&self) -> Result<SwitchingKind, AppError> {
+        self.scheme.treatment(DEFAULT_THETA)
+    }
+
+    /// Sets up the case, runs `study` (which returns its lines for the terminal), and keeps
+    /// its files, in `out`, in memory.
+    fn make(
+        &self,
+        out: &Path,
+        study: impl FnOnce(&mut Target, &dyn StudyCase) -> Result<Vec<String>, AppError>,
+    ) -> Result<Made, AppError> {
+        let case = self.case()?;
+        let case = case.as_ref();
+        let mut files = Artifacts::default();
+        let mut target = Target {
+            files: &mut files,
+            dir: out,
+            threads: ranges::threads(self.threads)?,
+            failure: None,
+        };
+        let notes = study(&mut target, case)?;
+        let failure = target.failure;
+        // A study of a system under event switching also runs its regularised peer (BDF on
+        // the regularised system), which reads epsilon.
+        let switching = match (&self.target, self.treatment()?) {
+            (Some(simulate::Target::Rig(_)), s) => s,
+            (_, SwitchingKind::Event) => SwitchingKind::Regularized,
+            (_, s) => s,
+        };
+        Ok(Made {
+            files,
+            notes,
+            warnings: unread_warnings(
+                &self.model_settings.params.set,
+                self.model.as_ref().and_then(ModelChoice::catalog),
+                switching,
+            )
+            .into_iter()
+            .chain(self.scheme.spelling_notes())
+            .collect(),
+            failure,
+            trajectory: None,
+        })
+    }
+}
+
+/// `given` (a list setting), or `defaults` when none are given.
+pub fn or_default<T: Copy>(given: &[T], defaults: &[T]) -> Vec<T> {
+    if given.is_empty() { defaults } else { given }.to_vec()
+}
+
+/// One line for each method with failed runs of a study (an unstable step, a limit): how many,
+/// and the first's resolution and error (their status in the study's `csv`). Their errors are
+/// missing, which `converge`'s order lines count with round-off; this says why. A last line
+/// says why, when a run of an explicit method diverged with its fixed step.
+fn failures(runs: &[StudyRun], csv: &str) -> Vec<String> {
+    let diverged = runs
+        .iter()
+        .any(|r| r.diverged)
+        .then(|| diverged_line("step in --dt-list"));
+    // A study's runs come method by method (`Method::jobs`), each method once.
+    runs.chunk_by(|a, b| a.solver == b.solver)
+        .filter_map(|mine| {
+            let failed: Vec<&StudyRun> = mine.iter().filter(|r| r.failure.is_some()).collect();
+            let first = failed.first()?;
+            let at = if first.step == StepKind::Fixed {
+                "h"
+            } else {
+                "tol"
+            };
+            Some(format!(
+                "{:15} {} of {} runs failed (status in {csv}); the first, at {at} = {}: {}",
+                first.solver,
+                failed.len(),
+                mine.len(),
+                show(first.resolution),
+                first
+                    .failure
+                    .as_ref()
+                    .map(|e| e.to_string())
+                    .unwrap_or_default()
+            ))
+        })
+        .chain(diverged)
+        .collect()
+}
