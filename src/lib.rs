@@ -127,26 +127,16 @@ impl Command {
 /// instead of writing them (figures undrawn): the command line writes them. `models` and
 /// `reproduce` are refused here.
 pub fn make(command: &Command) -> Result<artifacts::Made, AppError> {
-    make_as(command, TrajectoryAs::File)
-}
-
-/// As [`make`], for a front end that takes numbers (Python): `simulate`'s trajectory is
-/// [`artifacts::Made::trajectory`]'s columns instead of `trajectory.csv`.
-pub fn make_in_memory(command: &Command) -> Result<artifacts::Made, AppError> {
-    make_as(command, TrajectoryAs::Columns)
-}
-
-fn make_as(command: &Command, trajectory: TrajectoryAs) -> Result<artifacts::Made, AppError> {
     match command {
-        Command::Curve(args) => commands::curve::make(args),
-        Command::Simulate(args) => args.simulation().run(&args.out, trajectory),
+        Command::Curve(args) => args.curve().run(&args.out),
+        Command::Simulate(args) => args.simulation().run(&args.out, TrajectoryAs::File),
         Command::Converge(args) => args.study().run(&args.case.out),
         Command::Independence(args) => args.study().run(&args.case.out),
         Command::WorkPrecision(args) => args.study().run(&args.case.out),
         Command::Stiffness(args) => args.study().run(&args.case.out),
         Command::Sweep(args) => commands::sweep::make(args),
         Command::Testset(args) => commands::testset::make(args),
-        Command::Phenomena(args) => commands::phenomena::make(args),
+        Command::Phenomena(args) => args.study().run(&args.out),
         Command::Models { .. } | Command::Reproduce(_) => Err(AppError::Usage(
             "models and reproduce write no in-memory result".into(),
         )),

@@ -1,10 +1,11 @@
 """friction_lab: dry-friction models and the solvers that integrate them, in a notebook.
 
-The same models, rigs, systems and solvers as the ``friction-lab`` command line, called in
-memory: keyword arguments are the command line's options (``rtol=1e-8`` is ``--rtol 1e-8``,
-``params={"v_belt": 0.1}`` is ``--set v_belt=0.1``), results are numpy arrays and pandas
-DataFrames with the columns of the files the command line writes (docs/files.md). Bad input
-raises ``ValueError`` with the command line's message; a solver failure raises
+The same models, rigs, systems and solvers as the ``friction-lab`` command line, the library
+called in memory: keyword arguments are the library's settings, named as the command line's
+options (``rtol=1e-8`` is ``--rtol 1e-8``, ``params={"v_belt": 0.1}`` is ``--set
+v_belt=0.1``), results are numpy arrays and pandas DataFrames with the columns of the files
+the command line writes (docs/files.md). Bad input raises ``ValueError`` naming the keyword
+argument; a solver failure raises
 :class:`SolverError`, whose ``result`` keeps what was computed. Long runs release the GIL,
 and Ctrl-C stops them. See docs/python.md.
 """
@@ -17,7 +18,7 @@ from typing import Any, Dict, List, Optional
 import numpy as np
 
 from . import _native
-from ._command import SolverError, SystemFile, _name, call, run, values, words
+from ._command import SolverError, SystemFile, _name, call, values
 from ._result import Result, Study, Table2
 from ._sweep import sweep
 
@@ -42,7 +43,8 @@ def curve(model: str, params: Optional[Dict[str, float]] = None, **options: Any)
     columns (``v`` or ``x``, ``F``, and the admissible band at rest where there is one).
     Options: ``points``, ``v_max``, ``variant``, ``param_set``, ... (``friction-lab curve
     --help``)."""
-    made = run(words("curve", model, params=params, **options))
+    _name("curve", model)
+    made = call("curve", model, values("curve", params=params, **options))
     name = next(n for n in made.files if n.endswith(".csv"))
     frame = made.table(name)
     return {c: frame[c].to_numpy() for c in frame.columns}
@@ -104,7 +106,7 @@ def phenomena(models: Any = None, *, params: Optional[Dict[str, float]] = None,
     """Table 2 decided by simulation (``friction-lab phenomena --help``): every phenomenon's
     verdict for each law of ``models`` (names of the catalog, or laws written in Python;
     default: every model of the catalog), beside the paper's claim, with its evidence."""
-    made = run(words("phenomena", params=params, model=models, **options))
+    made = call("phenomena", values("phenomena", params=params, model=models, **options))
     table = Table2(made)
     if made.failure is not None:
         # Undecided cells: the table keeps the decided ones.

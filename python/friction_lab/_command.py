@@ -1,18 +1,17 @@
-"""Keyword arguments to command-line words, and a command's files back as tables.
+"""Keyword arguments to the library's typed settings, and what a run made back as tables.
 
-Every function of the package runs a command of the ``friction-lab`` program in memory
-(``_native.run``): its keyword arguments become that command's options, so each default and
-range check is the command line's own (docs/python.md lists them). What Python is told is in
-Python's words: an unknown keyword argument is a ``TypeError`` naming it and its close match,
-and the messages name the keyword arguments (``t_end``, ``params``), not the options
-(``--t-end``, ``--set``).
+Every function of the package calls the library in memory (``_native``): its keyword
+arguments become the fields of the library's settings (``python/src/bind.rs``), so each
+default and range check is the library's, the command line's too (docs/python.md lists them).
+What Python is told is in Python's words: an unknown keyword argument is a ``TypeError``
+naming it and its close match, and the messages name the keyword arguments (``t_end``,
+``params``), not the command line's options (``--t-end``, ``--set``).
 """
 
 from __future__ import annotations
 
 import difflib
 import functools
-import io
 import json
 import math
 import numbers
@@ -20,37 +19,12 @@ import os
 import tempfile
 import warnings
 from dataclasses import dataclass, field
-from typing import Any, Callable, Dict, List, Mapping, Optional, Tuple, Union
+from typing import Any, Callable, Dict, List, Mapping, Optional, Tuple
 
 import numpy as np
 import pandas as pd
 
 from . import _native
-
-
-def _word(name: str, value: Any) -> str:
-    """One option value as the command line spells it; floats in their shortest round-trip
-    form, so the Rust side reads back the very same double (a numpy array of no dimension
-    is its one value)."""
-    if isinstance(value, np.ndarray) and value.ndim == 0:
-        value = value.item()
-    if isinstance(value, bool):
-        raise ValueError(f"option `{name}` = {value!r}: a number or a word is expected")
-    if isinstance(value, numbers.Integral):
-        return str(int(value))
-    if isinstance(value, numbers.Real):
-        return repr(float(value))
-    if isinstance(value, (str, os.PathLike)):
-        return os.fspath(value)
-    raise ValueError(f"option `{name}` = {value!r}: a number or a word is expected")
-
-
-def _flag(name: str) -> str:
-    return "--" + name.replace("_", "-")
-
-
-#: The options of the command line that take no value (``True`` writes them bare).
-FLAGS = frozenset({"fixed_step"})
 
 
 def _listed(what: str, value: Any) -> Optional[list]:
@@ -85,25 +59,14 @@ def _mapping(name: str, value: Any, example: str) -> Mapping:
                      f"e.g. {example}, not {type(value).__name__} {value!r}")
 
 
-#: The functions that bind the library's typed settings directly (``_native.simulate``,
-#: ``_native.sweep``); the others run a command of the command line in memory.
-BOUND = frozenset({"simulate", "sweep", "converge", "independence", "work-precision",
-                   "stiffness"})
-
-
 @functools.lru_cache(maxsize=None)
 def keywords(command: str) -> Dict[str, str]:
-    """The keyword arguments of ``command``'s function, each with the command line's option
-    it stands for (how the library's messages name it): the options' names with ``_`` for
-    ``-``, ``params`` for ``--set`` (``out`` has no keyword: nothing is written)."""
-    if command in BOUND:
-        names = {k: k.replace("_", "-") for k in _native.keywords(command.replace("-", "_"))}
-        names["system"] = "system"
-        names["params"] = "set"
-        return names
-    names = {long.replace("-", "_"): long for long, _ in _native.options(command)}
-    names.pop("out", None)
-    names["params"] = names.pop("set", "set")
+    """The keyword arguments of ``command``'s function (``_native.keywords``), each with the
+    command-line option it is (how the library's messages name it): the name with ``-`` for
+    ``_``, ``params`` for ``--set``."""
+    names = {k: k.replace("_", "-") for k in _native.keywords(command.replace("-", "_"))}
+    names["system"] = "system"
+    names["params"] = "set"
     return names
 
 
@@ -140,60 +103,10 @@ def _name(command: str, argument: Any) -> None:
                          f"expected, as `friction-lab {command} --help` lists them")
 
 
-def words(command: str, *positional: Optional[str], **options: Any) -> List[str]:
-    """The words of ``friction-lab COMMAND [POSITIONAL] --option value ...``.
-
-    ``model`` may be a friction law written in Python (docs/python.md), registered under its
-    name for the call. ``params`` (a mapping of parameter names to values) becomes ``--set NAME=VALUE`` for each
-    item and ``grid`` (a mapping of names to lists, or to range strings such as
-    ``"log:0.01:1:9"``) becomes ``--grid NAME=...``; ``True`` is a bare flag (of
-    :data:`FLAGS` only), ``False`` and ``None`` leave the option out, and a list, tuple, range
-    or one-dimensional numpy array is written comma-separated.
-    """
-    for p in positional:
-        _name(command, p)
-    check_keywords(command, options)
-    argv = [command] + [p for p in positional if p is not None]
-    for name, value in options.items():
-        if value is None or value is False:
-            continue
-        if name == "model":
-            # A name, or a friction law written in Python, registered under its name, which
-            # --model then takes as it takes a model of the catalog; several (phenomena's
-            # repeatable option) are written one --model each.
-            for law in (value if isinstance(value, (list, tuple)) else [value]):
-                argv += ["--model", law if isinstance(law, (str, os.PathLike))
-                         else _native.register_law(law)]
-        elif name == "params":
-            for key, v in _mapping(name, value, "{'v_belt': 0.1}").items():
-                argv += ["--set", f"{key}={_word(key, v)}"]
-        elif name == "grid":
-            for key, values in _mapping(name, value, "{'v_belt': [0.1, 0.2]}").items():
-                if isinstance(values, str):
-                    argv += ["--grid", f"{key}={values}"]
-                    continue
-                listed = _listed(f"option `grid`, axis `{key}`", values)
-                if listed is None:
-                    listed = [values]
-                elif not listed:
-                    raise ValueError(f"option `grid`, axis `{key}`: no values")
-                argv += ["--grid", f"{key}=" + ",".join(_word(key, v) for v in listed)]
-        elif value is True:
-            if name not in FLAGS:
-                # Written bare, the next option would be read as its value.
-                raise ValueError(f"option `{name}` = True: a number or a word is expected")
-            argv.append(_flag(name))
-        elif (listed := _listed(f"option `{name}`", value)) is not None:
-            argv += [_flag(name), ",".join(_word(name, v) for v in listed)]
-        else:
-            argv += [_flag(name), _word(name, value)]
-    return argv
-
-
 def values(command: str, params: Any = None, grid: Any = None,
            **options: Any) -> Dict[str, Any]:
-    """The keyword arguments of a function bound to the library (:data:`BOUND`), checked and
-    made plain for it: an unknown keyword is a ``TypeError`` (:func:`check_keywords`); a numpy
+    """The keyword arguments of ``command``'s function, checked and made plain for the native
+    binding: an unknown keyword is a ``TypeError`` (:func:`check_keywords`); a numpy
     value of no dimension is its value, a one-dimensional array a list, a larger one
     refused; ``params`` a dict (from a mapping, a pandas Series or pairs), ``grid`` a dict of
     lists or range texts; ``None`` and ``False`` leave a keyword out. The values are then taken
@@ -224,33 +137,25 @@ def values(command: str, params: Any = None, grid: Any = None,
 
 
 def call(command: str, *arguments: Any, stop: Optional[Callable[[], bool]] = None) -> "Made":
-    """Calls the native binding of ``command`` (:data:`BOUND`) with ``arguments`` (GIL
-    released, Ctrl-C honoured): ``_native.simulate``, ``_native.sweep``, or for a solver study
-    ``_native.study(name, ...)``; errors and ``stop`` as :func:`run`."""
-    if command in ("simulate", "sweep"):
+    """Calls the library's ``command`` with ``arguments`` (GIL released, Ctrl-C honoured):
+    ``_native.simulate``, ``_native.sweep``, ``_native.curve``, ``_native.phenomena``, or for a
+    solver study ``_native.study(name, ...)``. Bad input raises ``ValueError``; a failure with
+    no result raises ``SolverError``. ``stop``, if given, is asked every 50 ms while the run
+    goes on: once it returns true the run stops as on Ctrl-C and ``_native.Cancelled`` is
+    raised."""
+    if command == "curve":
+        return _made(command, lambda: _native.curve(*arguments))
+    if command in ("simulate", "sweep", "phenomena"):
         native = getattr(_native, command)
     else:
         native = functools.partial(_native.study, command.replace("-", "_"))
     return _made(command, lambda: native(*arguments, stop))
 
 
-#: pandas before 3 parses floats fast but not always exactly unless asked; from 3 on exact
-#: parsing is the default and the option is deprecated.
-EXACT_FLOATS = {"float_precision": "round_trip"} if int(pd.__version__.split(".")[0]) < 3 else {}
-
-
-def table(data: Union[bytes, str, os.PathLike]) -> pd.DataFrame:
-    """A CSV file the command line wrote (its bytes, or a path) as a DataFrame: numbers read
-    back exactly (the files hold each double in its shortest round-trip form), empty cells
-    as NaN. The package's own results never pass through this: see :func:`frame`."""
-    source = io.BytesIO(data) if isinstance(data, bytes) else data
-    return pd.read_csv(source, keep_default_na=False, na_values=[""], **EXACT_FLOATS)
-
-
 def frame(columns: List[Tuple[str, str, Any]]) -> pd.DataFrame:
-    """A table of the library as a DataFrame, from its typed columns (``_native.run``): the
+    """A table of the library as a DataFrame, from its typed columns (``Made.files``): the
     numbers from the bytes of the library's doubles and integers, booleans and text as
-    lists, an empty cell as NaN; typed as :func:`table` types the same CSV file."""
+    lists, an empty cell as NaN; typed as pandas' ``read_csv`` types the same CSV file."""
     data = {}
     for name, kind, values in columns:
         if kind in ("<f8", "<i8"):
@@ -301,14 +206,6 @@ class SolverError(RuntimeError):
     def __init__(self, message: str, result: Any = None):
         super().__init__(message)
         self.result = result
-
-
-def run(argv: List[str], stop: Optional[Callable[[], bool]] = None) -> Made:
-    """Runs ``friction-lab ARGV`` in memory (GIL released, Ctrl-C honoured). Bad input raises
-    ``ValueError``; a failure with no result raises ``SolverError``. ``stop``, if given, is
-    asked every 50 ms while the run goes on: once it returns true the run stops as on Ctrl-C
-    and ``_native.Cancelled`` is raised."""
-    return _made(argv[0], lambda: _native.run(argv, stop))
 
 
 def _made(command: str, native: Callable[[], Any]) -> Made:

@@ -7,11 +7,12 @@
 //! [`Sweep::run`]), the command line's too.
 
 use friction_lab::artifacts::Made;
+use friction_lab::curve::FrictionCurve;
 use friction_lab::error::AppError;
 use friction_lab::laws::ModelChoice;
 use friction_lab::settings::{ModelSettings, RunLimits, SchemeChoice, SolverSettings};
 use friction_lab::simulate::{Simulation, Target};
-use friction_lab::study::{Converge, Independence, Problem, Stiffness, WorkPrecision};
+use friction_lab::study::{Converge, Independence, Phenomena, Problem, Stiffness, WorkPrecision};
 use friction_lab::sweep::{parse_point_range, points, Axis, Start, Sweep, DEFAULT_SETTLE};
 use integrators::Solver;
 use pyo3::exceptions::{PyTypeError, PyValueError};
@@ -54,6 +55,22 @@ const SIMULATE_OWN: &[&str] = &[
 /// The keyword arguments of `sweep` besides those of `simulate` and `grid`.
 const SWEEP_OWN: &[&str] = &["settle", "start", "threads", "point_range"];
 
+/// The keyword arguments of `curve` besides the model.
+const CURVE: &[&str] = &["params", "param_set", "variant", "v_max", "t_end", "points"];
+
+/// The keyword arguments of `phenomena`.
+const PHENOMENA: &[&str] = &[
+    "model",
+    "params",
+    "param_set",
+    "solver",
+    "rtol",
+    "atol",
+    "threads",
+    "max_steps",
+    "time_limit",
+];
+
 /// The keyword arguments of a study besides [`SHARED`] and its own.
 const PROBLEM_OWN: &[&str] = &["threads"];
 
@@ -85,6 +102,8 @@ const STUDY_OWN: [(&str, &[&str]); 4] = [
 /// scenario and `system`; `None` for a function that is not.
 pub fn keywords(function: &str) -> Option<Vec<&'static str>> {
     let own: &[&[&str]] = match function {
+        "curve" => return Some(CURVE.to_vec()),
+        "phenomena" => return Some(PHENOMENA.to_vec()),
         "simulate" => &[SIMULATE_OWN],
         "sweep" => &[SIMULATE_OWN, SWEEP_OWN, &["grid"]],
         _ => {
@@ -210,31 +229,8 @@ impl Shared<'_> {
     /// Sets the setting of keyword `k` to `value`; false if `k` is none of [`SHARED`].
     fn set(&mut self, k: &str, value: &Bound<'_, PyAny>) -> PyResult<bool> {
         match k {
-            "model" => {
-                let law = if value.is_instance_of::<PyString>() {
-                    name(k, value)?
-                } else {
-                    crate::law::register_law(value)?
-                };
-                *self.model = Some(parsed(k, &PyString::new(value.py(), &law).into_any())?);
-            }
-            "params" => {
-                let params = value
-                    .cast::<PyDict>()
-                    .map_err(|_| expected(k, value, "a mapping of parameter names to values"))?;
-                for (p, v) in params.iter() {
-                    let p = name(k, &p)?;
-                    // A number as its shortest round-trip text; anything else as its text,
-                    // refused by the library as the command line refuses `--set p=text`.
-                    let v = match number(&p, &v) {
-                        Ok(x) => format!("{x:?}"),
-                        Err(_) => v.str()?.to_string(),
-                    };
-                    self.settings.params.set.push(format!("{p}={v}"));
-                }
-            }
-            "param_set" => self.settings.params.param_set = name(k, value)?,
-            "variant" => self.settings.variant = parsed(k, value)?,
+            "model" => *self.model = Some(model_choice(k, value)?),
+            _ if model_setting(k, value, self.settings)? => {}
             "scheme" => self.scheme.scheme = parsed(k, value)?,
             "switching" => self.scheme.switching = Some(parsed(k, value)?),
             "max_steps" => self.limits.max_steps = whole(k, value)?,
@@ -253,6 +249,94 @@ impl Shared<'_> {
         }
         Ok(true)
     }
+}
+
+/// A friction model: a name of the catalog or of a registered law, or a law written in
+/// Python (registered under its name).
+fn model_choice(k: &str, value: &Bound<'_, PyAny>) -> PyResult<ModelChoice> {
+    let law = if value.is_instance_of::<PyString>() {
+        name(k, value)?
+    } else {
+        crate::law::register_law(value)?
+    };
+    parsed(k, &PyString::new(value.py(), &law).into_any())
+}
+
+/// Sets the model setting of keyword `k` (`params`, `param_set`, `variant`) to `value`;
+/// false if `k` is none of them.
+fn model_setting(
+    k: &str,
+    value: &Bound<'_, PyAny>,
+    settings: &mut ModelSettings,
+) -> PyResult<bool> {
+    match k {
+        "params" => {
+            let params = value
+                .cast::<PyDict>()
+                .map_err(|_| expected(k, value, "a mapping of parameter names to values"))?;
+            for (p, v) in params.iter() {
+                let p = name(k, &p)?;
+                // A number as its shortest round-trip text; anything else as its text,
+                // refused by the library as the command line refuses `--set p=text`.
+                let v = match number(&p, &v) {
+                    Ok(x) => format!("{x:?}"),
+                    Err(_) => v.str()?.to_string(),
+                };
+                settings.params.set.push(format!("{p}={v}"));
+            }
+        }
+        "param_set" => settings.params.param_set = name(k, value)?,
+        "variant" => settings.variant = parsed(k, value)?,
+        _ => return Ok(false),
+    }
+    Ok(true)
+}
+
+/// The curve `curve(model, **options)` asks for.
+pub fn curve(model: &str, options: &Bound<'_, PyDict>) -> PyResult<FrictionCurve> {
+    let model = parsed("model", &PyString::new(options.py(), model).into_any())?;
+    let mut curve = FrictionCurve::new(model);
+    for (key, value) in given(options)? {
+        let k = key.as_str();
+        if model_setting(k, &value, &mut curve.model_settings)? {
+            continue;
+        }
+        match k {
+            "v_max" => curve.v_max = Some(number(k, &value)?),
+            "t_end" => curve.t_end = Some(number(k, &value)?),
+            "points" => curve.points = whole(k, &value)?,
+            _ => return Err(unknown("curve", k)),
+        }
+    }
+    Ok(curve)
+}
+
+/// Table 2 as `phenomena(models, **options)` asks for it.
+pub fn phenomena(options: &Bound<'_, PyDict>) -> PyResult<Phenomena> {
+    let mut table = Phenomena::default();
+    let mut settings = ModelSettings::default();
+    for (key, value) in given(options)? {
+        let k = key.as_str();
+        if k != "variant" && model_setting(k, &value, &mut settings)? {
+            continue;
+        }
+        match k {
+            "model" => {
+                table.models = (items(&value)?.iter())
+                    .map(|m| model_choice(k, m))
+                    .collect::<PyResult<_>>()?
+            }
+            "solver" => table.solver = parsed(k, &value)?,
+            "rtol" => table.rtol = number(k, &value)?,
+            "atol" => table.atol = number(k, &value)?,
+            "threads" => table.threads = Some(whole(k, &value)?),
+            "max_steps" => table.limits.max_steps = whole(k, &value)?,
+            "time_limit" => table.limits.time_limit = Some(number(k, &value)?),
+            _ => return Err(unknown("phenomena", k)),
+        }
+    }
+    table.params = settings.params;
+    Ok(table)
 }
 
 /// A list of numbers.

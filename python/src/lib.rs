@@ -1,18 +1,17 @@
 //! `friction_lab._native`: the friction-lab library called from Python, in memory.
 //!
-//! One entry point runs a command of the command line: its options arrive as the words of a
-//! command line (the Python layer turns keyword arguments into them), are parsed and checked
-//! by the same `clap` definitions and the same range checks, and the command's data files
-//! (CSV and JSON, the bytes the command line would write) come back in memory, with no figure
-//! drawn. So every default, every check and every message is the command line's, and no law,
-//! rig or solver exists twice. The run happens on a worker thread with the GIL released; the
-//! calling thread watches for Ctrl-C and stops the solvers through
-//! [`integrators::interrupt`].
+//! One function per front-end call of the library: `simulate`, `sweep`, `study` (the four
+//! solver studies), `curve` and `phenomena`. Their keyword arguments become the library's
+//! typed settings (`bind.rs`), checked by the library as for the command line, and what the
+//! run made comes back as values, not text: tables as typed columns, documents as Python
+//! values, the trajectory as the bytes of its doubles; no figure is drawn. So every default,
+//! every check and every message is the library's, and no law, rig or solver exists twice.
+//! The run happens on a worker thread with the GIL released; the calling thread watches for
+//! Ctrl-C and stops the solvers through [`integrators::interrupt`].
 
 mod bind;
 mod law;
 
-use clap::{CommandFactory, Parser};
 use friction_lab::artifacts::Data;
 use friction_lab::columns::Column;
 use friction_lab::error::{bounded, AppError};
@@ -44,8 +43,8 @@ create_exception!(
 /// How often the calling thread looks for Ctrl-C while a run goes on.
 const SIGNAL_POLL: Duration = Duration::from_millis(50);
 
-/// The folder the commands are told to write into: only a prefix stripped from the names of
-/// the files returned; nothing is written.
+/// The folder the runs are told to write into: only a prefix stripped from the names of the
+/// files returned; nothing is written.
 const IN_MEMORY: &str = ".";
 
 /// What a command made, for the Python layer: `(files, notes, warnings, failure,
@@ -161,27 +160,9 @@ fn json_value<'py>(py: Python<'py>, value: &serde_json::Value) -> PyResult<Bound
     })
 }
 
-/// Runs `friction-lab ARGV...` (the program name not included) in memory. Bad input raises
-/// `ValueError` with the command line's message; a failure without a result raises
-/// `SolverError`; Ctrl-C stops the solvers and raises `KeyboardInterrupt`. `stop`, if given,
-/// is called every [`SIGNAL_POLL`] while the run goes on; once it returns true the solvers
-/// stop as for Ctrl-C and `Cancelled` is raised (how a Dask task learns that its sweep was
-/// cancelled).
-#[pyfunction]
-#[pyo3(signature = (argv, stop=None))]
-fn run(py: Python<'_>, argv: Vec<String>, stop: Option<Bound<'_, PyAny>>) -> PyResult<Made> {
-    let words = std::iter::once("friction-lab".to_string())
-        .chain(argv)
-        .chain(["--out".to_string(), IN_MEMORY.to_string()]);
-    let cli = friction_lab_cli::Cli::try_parse_from(words).map_err(|e| usage(&e))?;
-    deliver(py, stop.as_ref(), || {
-        friction_lab_cli::make_in_memory(&cli.command)
-    })
-}
-
 /// Runs `simulate`: the library's [`friction_lab::simulate::Simulation`] of `scenario` (a
 /// rig's name or `chain`) or of the system file `system`, with the keyword arguments
-/// `options` ([`bind::simulation`]); the trajectory as columns. Errors and `stop` as [`run`].
+/// `options` ([`bind::simulation`]); the trajectory as columns. Errors and `stop` as [`deliver`].
 #[pyfunction]
 #[pyo3(signature = (scenario, system, options, stop=None))]
 fn simulate(
@@ -199,7 +180,7 @@ fn simulate(
 
 /// Runs `sweep`: the library's [`friction_lab::sweep::Sweep`] over `grid` (names to lists
 /// of values or range texts) of the run `simulate` would make ([`bind::sweep`]). Errors and
-/// `stop` as [`run`].
+/// `stop` as [`deliver`].
 #[pyfunction]
 #[pyo3(signature = (scenario, system, grid, options, stop=None))]
 fn sweep(
@@ -216,7 +197,7 @@ fn sweep(
 
 /// Runs the solver study `function` (`converge`, `independence`, `work_precision`,
 /// `stiffness`): the library's study of `scenario` or `system` with the keyword arguments
-/// `options` ([`bind::study`]). Errors and `stop` as [`run`].
+/// `options` ([`bind::study`]). Errors and `stop` as [`deliver`].
 #[pyfunction]
 #[pyo3(signature = (function, scenario, system, options, stop=None))]
 fn study(
@@ -231,6 +212,25 @@ fn study(
     deliver(py, stop.as_ref(), move || study(Path::new(IN_MEMORY)))
 }
 
+/// Draws the curve of `model` ([`bind::curve`]). Errors as [`deliver`].
+#[pyfunction]
+fn curve(py: Python<'_>, model: &str, options: Bound<'_, PyDict>) -> PyResult<Made> {
+    let curve = bind::curve(model, &options)?;
+    deliver(py, None, move || curve.run(Path::new(IN_MEMORY)))
+}
+
+/// Decides Table 2 ([`bind::phenomena`]). Errors and `stop` as [`deliver`].
+#[pyfunction]
+#[pyo3(signature = (options, stop=None))]
+fn phenomena(
+    py: Python<'_>,
+    options: Bound<'_, PyDict>,
+    stop: Option<Bound<'_, PyAny>>,
+) -> PyResult<Made> {
+    let table = bind::phenomena(&options)?;
+    deliver(py, stop.as_ref(), move || table.run(Path::new(IN_MEMORY)))
+}
+
 /// The keyword arguments of the function `name` that binds the library directly
 /// (`simulate`, `sweep`, the solver studies), besides its scenario and `system`.
 #[pyfunction]
@@ -242,7 +242,11 @@ fn keywords(name: &str) -> PyResult<Vec<&'static str>> {
 
 /// Runs `work` ([`interruptible`]) and hands its result to Python: the exception of a law
 /// written in Python that raised, else the files as values ([`data`]), the notes, the
-/// warnings, the failure and the trajectory.
+/// warnings, the failure and the trajectory. Bad input raises `ValueError`; a failure
+/// without a result raises `SolverError`; Ctrl-C stops the solvers and raises
+/// `KeyboardInterrupt`. `stop`, if given, is called every [`SIGNAL_POLL`] while the run goes
+/// on; once it returns true the solvers stop as for Ctrl-C and `Cancelled` is raised (how a
+/// Dask task learns that its sweep was cancelled).
 fn deliver(
     py: Python<'_>,
     stop: Option<&Bound<'_, PyAny>>,
@@ -289,40 +293,10 @@ fn failure_message(e: &AppError) -> String {
     }
 }
 
-/// The long options of command `name` as the command line spells them (`t-end`), each with
-/// whether it takes a value: the keyword arguments of the Python function that runs it.
-#[pyfunction]
-fn options(name: &str) -> PyResult<Vec<(String, bool)>> {
-    let cli = friction_lab_cli::Cli::command();
-    let command = cli
-        .find_subcommand(name)
-        .ok_or_else(|| PyValueError::new_err(format!("unknown command `{name}`")))?;
-    Ok(command
-        .get_arguments()
-        .filter_map(|a| {
-            let long = a.get_long()?;
-            Some((long.to_string(), a.get_action().takes_values()))
-        })
-        .collect())
-}
-
 /// The listing of `friction-lab models --json`.
 #[pyfunction]
 fn models_json() -> String {
     friction_lab::listing::json()
-}
-
-/// A command-line parse error as `ValueError`: clap's message without its `error: ` prefix
-/// and the closing hint about `--help`.
-fn usage(e: &clap::Error) -> PyErr {
-    let text = e.to_string();
-    let message: Vec<&str> = text
-        .lines()
-        .filter(|l| !l.starts_with("For more information"))
-        .collect();
-    let message = message.join("\n");
-    let message = message.trim().trim_start_matches("error: ");
-    PyValueError::new_err(bounded(message))
 }
 
 /// A failed command: bad input (exit code 2) as `ValueError`, anything else as `SolverError`;
@@ -399,13 +373,13 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     // The pools' workers, as the run's worker in `interruptible`: attached once, detached at
     // once, so that a law written in Python takes the GIL on a living thread state.
     friction_lab::threads::set_worker_wrapper(|work| Python::attach(|py| py.detach(work)));
-    m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
     m.add_function(wrap_pyfunction!(study, m)?)?;
+    m.add_function(wrap_pyfunction!(curve, m)?)?;
+    m.add_function(wrap_pyfunction!(phenomena, m)?)?;
     m.add_function(wrap_pyfunction!(keywords, m)?)?;
     m.add_function(wrap_pyfunction!(models_json, m)?)?;
-    m.add_function(wrap_pyfunction!(options, m)?)?;
     m.add_function(wrap_pyfunction!(law::register_law, m)?)?;
     m.add("SolverError", m.py().get_type::<SolverError>())?;
     m.add("Cancelled", m.py().get_type::<Cancelled>())?;

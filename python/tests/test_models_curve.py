@@ -7,7 +7,7 @@ import pandas as pd
 import pytest
 
 import friction_lab as fl
-from friction_lab._command import table as read
+from csvfiles import read
 
 
 def test_models_lists_the_papers_six_with_units_defaults_and_ranges(cli):
@@ -56,24 +56,27 @@ def test_bad_input_raises_value_error_with_the_command_lines_message(cli, tmp_pa
     with pytest.raises(TypeError, match="curve\\(\\) got an unexpected keyword argument "
                                         "'no_such_option'"):
         fl.curve("CVS", no_such_option=1)
-    # True is a bare flag only for an option that takes no value; written bare, `--points`
-    # took the next option as its value and the message named neither.
-    with pytest.raises(ValueError, match=r"option `points` = True: a number or a word"):
+    # A value is taken as its setting's type: True is no number of samples.
+    with pytest.raises(ValueError, match=r"`points` = True: a whole number is expected"):
         fl.curve("CVS", points=True)
 
 
-def test_the_bare_flags_are_the_command_lines_options_without_a_value(cli):
-    # FLAGS must follow the command line: every option that takes no value, in every command
-    # the package runs (`--help` and `--json` of `models` aside: the package never writes them).
-    from friction_lab._command import FLAGS
-    bare = set()
+def test_each_function_takes_the_command_lines_options_as_keywords(cli):
+    # The keyword arguments the library's binding takes are the options of the command of
+    # the same name: none missing, none extra (`--out` and `--help` aside, `params` for
+    # `--set`; `--params FILE` is `params` too on the command line only, and `system` is an
+    # argument of its own).
+    from friction_lab._command import keywords
     for command in ["curve", "simulate", "converge", "independence", "work-precision",
-                    "stiffness", "sweep"]:
+                    "stiffness", "sweep", "phenomena"]:
         text = cli(command, "--help").stdout
+        options = set()
         for line in text.splitlines():
             words = line.split()
-            option = next((w for w in words[:2] if w.startswith("--")), None)
-            if option and (len(words) == words.index(option) + 1
-                           or not words[words.index(option) + 1].startswith("<")):
-                bare.add(option[2:].replace("-", "_"))
-    assert bare - {"help"} == set(FLAGS)
+            option = next((w.rstrip(",") for w in words[:2] if w.startswith("--")), None)
+            if option:
+                options.add(option[2:].replace("-", "_"))
+        options -= {"out", "help", "params", "system"}
+        options = {"params" if o == "set" else o for o in options}
+        taken = set(keywords(command)) - {"system"}
+        assert taken == options, (command, taken ^ options)

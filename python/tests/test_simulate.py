@@ -7,7 +7,7 @@ import pandas as pd
 import pytest
 
 import friction_lab as fl
-from friction_lab._command import table as read
+from csvfiles import read
 
 CHAIN_TOML = """
 [[body]]
@@ -199,18 +199,21 @@ def test_bad_options_raise_value_error_naming_the_field(cli, tmp_path):
 
 
 def test_numpy_arrays_are_lists_and_their_scalars_values():
-    from friction_lab._command import words
-    # A one-dimensional array is written as a list, a value of no dimension as that value; the
-    # doubles cross exactly.
-    argv = words("stiffness", "belt", values=np.array([0.1, 1e-2 / 3]), t_end=np.array(2.0))
-    assert argv == ["stiffness", "belt", "--values", "0.1,0.0033333333333333335",
-                    "--t-end", "2.0"]
-    argv = words("sweep", "belt", grid={"k": np.arange(1, 3), "v_belt": 0.5})
-    assert argv == ["sweep", "belt", "--grid", "k=1,2", "--grid", "v_belt=0.5"]
+    from friction_lab._command import values
+    # A one-dimensional array is a list, a value of no dimension that value; the doubles
+    # cross exactly.
+    given = values("stiffness", values=np.array([0.1, 1e-2 / 3]), t_end=np.array(2.0))
+    assert given == {"values": [0.1, 1e-2 / 3], "t_end": 2.0}
+    assert type(given["t_end"]) is float
+    given = values("sweep", grid={"k": np.arange(1, 3), "v_belt": 0.5})
+    assert given == {"grid": {"k": [1, 2], "v_belt": [0.5]}}
     with pytest.raises(ValueError, match=r"option `values`: an array of shape \(2, 1\)"):
-        words("stiffness", "belt", values=np.zeros((2, 1)))
+        values("stiffness", values=np.zeros((2, 1)))
     with pytest.raises(ValueError, match="option `grid`, axis `k`: no values"):
-        words("sweep", "belt", grid={"k": np.array([])})
+        values("sweep", grid={"k": np.array([])})
+    study = fl.stiffness("belt", model="CS", values=np.array([0.1, 0.01]), t_end=np.array(1.0),
+                         solvers=["dopri5"])
+    assert study.summary["parameter"] == "epsilon" and len(study.summary["points"]) == 2
     # Bodies chosen by an array of indices: the same run as by a list.
     by_array = fl.simulate("chain", model="CS", t_end=1.0, bodies=np.array([1, 3]))
     by_list = fl.simulate("chain", model="CS", t_end=1.0, bodies=[1, 3])

@@ -1,17 +1,10 @@
 //! `friction-lab curve MODEL --out DIR`: one friction curve as CSV, PNG, SVG and a JSON
-//! summary of its key values.
+//! summary of its key values ([`FrictionCurve`]).
 
 use crate::options::ModelOptions;
 use clap::Args;
-use friction_lab::artifacts::{Artifacts, Made};
-use friction_lab::error::AppError;
-use friction_lab::figure::{Drawn, KeyValues};
-use friction_lab::laws::used_parameters;
-use friction_lab::ranges;
-use friction_models::{CurveAxis, ModelId, Variant};
-use scenarios::curves;
-use serde::Serialize;
-use std::collections::BTreeMap;
+use friction_lab::curve::{FrictionCurve, CURVE_POINTS};
+use friction_models::ModelId;
 use std::path::PathBuf;
 
 /// Options of `curve`.
@@ -34,7 +27,7 @@ pub struct CurveArgs {
     #[arg(
         long,
         value_name = "N",
-        default_value_t = 2000,
+        default_value_t = CURVE_POINTS,
         allow_hyphen_values = true
     )]
     pub points: i64,
@@ -43,91 +36,15 @@ pub struct CurveArgs {
     pub model_options: ModelOptions,
 }
 
-#[derive(Serialize)]
-struct Summary<'a> {
-    model: &'a str,
-    variant: Variant,
-    equation: &'a str,
-    axis: CurveAxis,
-    extent: f64,
-    points: usize,
-    parameters: BTreeMap<&'a str, f64>,
-    key_values: KeyValues,
-}
-
-/// The extent of the curve: the option that belongs to the model's axis, or its default;
-/// the other option is an error.
-fn extent(args: &CurveArgs) -> Result<f64, AppError> {
-    let axis = args.model.curve_axis();
-    let (own, other, other_flag) = match axis {
-        CurveAxis::Velocity => (args.v_max, args.t_end, "--t-end"),
-        CurveAxis::Displacement => (args.t_end, args.v_max, "--v-max"),
-    };
-    if other.is_some() {
-        let (drawn, use_flag) = match axis {
-            CurveAxis::Velocity => ("velocity", "--v-max"),
-            CurveAxis::Displacement => ("displacement under the prescribed motion", "--t-end"),
-        };
-        return Err(AppError::Usage(format!(
-            "{other_flag} does not apply to {}: it is drawn against {drawn}; use {use_flag}",
-            args.model
-        )));
+impl CurveArgs {
+    /// The curve as the library takes it.
+    pub fn curve(&self) -> FrictionCurve {
+        FrictionCurve {
+            model: self.model,
+            v_max: self.v_max,
+            t_end: self.t_end,
+            points: self.points,
+            model_settings: self.model_options.settings(),
+        }
     }
-    let range = match axis {
-        CurveAxis::Velocity => ranges::V_MAX,
-        CurveAxis::Displacement => ranges::T_END,
-    };
-    own.map(|v| range.check(v))
-        .transpose()
-        .map(|v| v.unwrap_or_else(|| curves::default_extent(axis)))
-}
-
-/// Runs `curve`; its files in memory.
-pub fn make(args: &CurveArgs) -> Result<Made, AppError> {
-    let params = args.model_options.params.source().resolve()?;
-    let variant = args.model_options.variant;
-    let extent = extent(args)?;
-    let points = ranges::POINTS.count(args.points)?;
-    let model = args.model.build(variant, &params)?;
-    let curve = curves::curve(model.as_ref(), extent, points)?;
-
-    let suffix = match variant {
-        Variant::Odd => String::new(),
-        Variant::Printed => "-printed".into(),
-    };
-    let stem = format!("curve-{}{suffix}", args.model);
-    let title = format!(
-        "{}: {} ({})",
-        args.model,
-        args.model.title(),
-        args.model.source()
-    );
-    let mut files = Artifacts::default();
-    files.add_figure(
-        &args.out,
-        &stem,
-        title,
-        args.model,
-        &[Drawn {
-            variant,
-            curve: &curve,
-        }],
-    )?;
-    files.add_json(
-        args.out.join(format!("{stem}.json")),
-        &Summary {
-            model: args.model.name(),
-            variant,
-            equation: args.model.equation(variant),
-            axis: curve.axis,
-            extent,
-            points,
-            parameters: used_parameters(args.model, &params),
-            key_values: KeyValues::of(&curve),
-        },
-    )?;
-    Ok(Made {
-        files,
-        ..Made::default()
-    })
 }

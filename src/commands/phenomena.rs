@@ -4,16 +4,12 @@
 
 use crate::options::{LimitArgs, ParamOptions};
 use clap::Args;
-use friction_lab::artifacts::{Artifacts, Made};
 use friction_lab::error::AppError;
 use friction_lab::laws::ModelChoice;
 use friction_lab::ranges;
-use friction_lab::study::{conduct, reachable, unread_by_all, Table2Study, Target};
+use friction_lab::study::Phenomena;
 use friction_lab::threads::with_threads;
-use friction_models::Variant;
-use integrators::{Solver, StepControl};
-use scenarios::phenomena::{catalog_laws, Protocol};
-use scenarios::Law;
+use integrators::Solver;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -74,7 +70,7 @@ pub struct PhenomenaArgs {
 pub fn run(args: &PhenomenaArgs) -> Result<(), AppError> {
     let start = Instant::now();
     let threads = ranges::threads(args.threads)?;
-    let made = make(args)?;
+    let made = args.study().run(&args.out)?;
     let files = made.files;
     let written = with_threads(threads, || files.write(&args.out))??;
     println!(
@@ -88,64 +84,37 @@ pub fn run(args: &PhenomenaArgs) -> Result<(), AppError> {
     made.failure.map_or(Ok(()), Err)
 }
 
-/// Decides Table 2 as `phenomena` asks, its files in memory: `table2.md` and `table2.json`,
-/// the advice about parameters no judged law reads, and the failure of undecided cells.
-pub fn make(args: &PhenomenaArgs) -> Result<Made, AppError> {
-    let step = StepControl::Adaptive {
-        rtol: ranges::RTOL.check(args.rtol)?,
-        atol: ranges::ATOL.check(args.atol)?,
-        h0: None,
-    };
-    reachable(args.solver, args.rtol)?;
-    let threads = ranges::threads(args.threads)?;
-    if args.solver.is_fixed_step() {
-        return Err(AppError::Usage(format!(
-            "solver `{}` needs a fixed step; the protocols need an adaptive solver",
-            args.solver.name()
-        )));
+impl PhenomenaArgs {
+    /// Table 2 as the library takes it.
+    pub fn study(&self) -> Phenomena {
+        Phenomena {
+            solver: self.solver,
+            rtol: self.rtol,
+            atol: self.atol,
+            threads: self.threads,
+            models: self.models.clone(),
+            params: self.params.source(),
+            limits: self.limits.settings(),
+        }
     }
-    let p = &args.params;
-    let given = p.param_set != "paper" || p.params.is_some() || !p.set.is_empty();
-    let parameters = if given {
-        let mut described = format!("parameter set `{}`", p.param_set);
-        if let Some(file) = &p.params {
-            described += &format!(", file `{}`", file.display());
-        }
-        for s in &p.set {
-            described += &format!(", `{s}`");
-        }
-        Some((p.source().resolve()?, described + " for every model"))
-    } else {
-        None
-    };
-    let mut files = Artifacts::default();
-    let laws: Vec<Law> = if args.models.is_empty() {
-        catalog_laws()
-    } else {
-        args.models.iter().map(|m| m.law(Variant::Odd)).collect()
-    };
-    let study = Table2Study {
-        laws: &laws,
-        protocol: Protocol {
-            solver: args.solver,
-            step,
-            limits: args.limits.limits()?,
-        },
-        parameters,
-    };
-    let mut target = Target {
-        files: &mut files,
-        dir: &args.out,
-        threads,
-        failure: None,
-    };
-    conduct(&study, &mut target, "table2")?;
-    let failure = target.failure;
-    Ok(Made {
-        files,
-        notes: Vec::new(),
-        warnings: unread_by_all(&p.set, &laws),
-        failure,
-        trajectory: None,
-    })
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::{Cli, Command};
+    use clap::Parser;
+    use friction_lab::study::Phenomena;
+
+    #[test]
+    fn the_options_default_to_the_librarys_settings() {
+        let cli = Cli::try_parse_from(["fl", "phenomena", "--out", "x"]).unwrap();
+        let Command::Phenomena(args) = cli.command else {
+            unreachable!()
+        };
+        let (given, library) = (args.study(), Phenomena::default());
+        assert_eq!((given.rtol, given.atol), (library.rtol, library.atol));
+        assert_eq!(given.solver.name(), library.solver.name());
+        assert_eq!(given.params.param_set, library.params.param_set);
+        assert_eq!(given.limits.max_steps, library.limits.max_steps);
+    }
 }

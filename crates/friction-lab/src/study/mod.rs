@@ -9,6 +9,7 @@
 mod convergence;
 mod draw;
 mod independence;
+mod phenomena;
 mod report;
 mod scaling;
 pub mod solver_studies;
@@ -21,6 +22,7 @@ mod work_precision;
 
 pub use convergence::ConvergenceStudy;
 pub use independence::{IndependenceStudy, Refinement};
+pub use phenomena::{Phenomena, PHENOMENA_ATOL, PHENOMENA_RTOL};
 pub use report::{conduct_all, Entry, ReportEntry};
 pub use scaling::ScalingStudy;
 pub use solver_studies::{Converge, Independence, Problem, Stiffness, WorkPrecision};

@@ -1,0 +1,138 @@
+//! One friction curve as a front end asks for it ([`FrictionCurve`]): the force against
+//! velocity (or against displacement under a prescribed motion), its CSV, figure and a JSON
+//! summary of its key values.
+
+use crate::artifacts::{Artifacts, Made};
+use crate::error::AppError;
+use crate::figure::{Drawn, KeyValues};
+use crate::laws::used_parameters;
+use crate::ranges;
+use crate::settings::ModelSettings;
+use friction_models::{CurveAxis, ModelId, Variant};
+use scenarios::curves;
+use serde::Serialize;
+use std::collections::BTreeMap;
+use std::path::Path;
+
+/// The samples on each side of zero of a curve unless told otherwise.
+pub const CURVE_POINTS: i64 = 2000;
+
+/// One friction curve of a model of the catalog.
+#[derive(Clone, Debug)]
+pub struct FrictionCurve {
+    /// The model.
+    pub model: ModelId,
+    /// Largest |v| of a force–velocity curve, m/s; `None`: 1.
+    pub v_max: Option<f64>,
+    /// End time of the prescribed motion X(t) = t³/3 + t²/2 of a force–displacement curve, s;
+    /// `None`: 2.
+    pub t_end: Option<f64>,
+    /// Samples on each side of zero.
+    pub points: i64,
+    /// Where the parameters come from, and the reading of the equations.
+    pub model_settings: ModelSettings,
+}
+
+/// What `curve-MODEL.json` holds.
+#[derive(Serialize)]
+struct Summary<'a> {
+    model: &'a str,
+    variant: Variant,
+    equation: &'a str,
+    axis: CurveAxis,
+    extent: f64,
+    points: usize,
+    parameters: BTreeMap<&'a str, f64>,
+    key_values: KeyValues,
+}
+
+impl FrictionCurve {
+    /// The curve of `model` with every other setting at its default.
+    pub fn new(model: ModelId) -> FrictionCurve {
+        FrictionCurve {
+            model,
+            v_max: None,
+            t_end: None,
+            points: CURVE_POINTS,
+            model_settings: ModelSettings::default(),
+        }
+    }
+
+    /// The extent of the curve: the setting that belongs to the model's axis, or its
+    /// default; the other setting is an error.
+    fn extent(&self) -> Result<f64, AppError> {
+        let axis = self.model.curve_axis();
+        let (own, other, other_flag) = match axis {
+            CurveAxis::Velocity => (self.v_max, self.t_end, "--t-end"),
+            CurveAxis::Displacement => (self.t_end, self.v_max, "--v-max"),
+        };
+        if other.is_some() {
+            let (drawn, use_flag) = match axis {
+                CurveAxis::Velocity => ("velocity", "--v-max"),
+                CurveAxis::Displacement => ("displacement under the prescribed motion", "--t-end"),
+            };
+            return Err(AppError::Usage(format!(
+                "{other_flag} does not apply to {}: it is drawn against {drawn}; use {use_flag}",
+                self.model
+            )));
+        }
+        let range = match axis {
+            CurveAxis::Velocity => ranges::V_MAX,
+            CurveAxis::Displacement => ranges::T_END,
+        };
+        own.map(|v| range.check(v))
+            .transpose()
+            .map(|v| v.unwrap_or_else(|| curves::default_extent(axis)))
+    }
+
+    /// Checks and draws the curve: `curve-MODEL.csv`, its figure and `curve-MODEL.json` in
+    /// `out` (in memory).
+    pub fn run(&self, out: &Path) -> Result<Made, AppError> {
+        let params = self.model_settings.params.resolve()?;
+        let variant = self.model_settings.variant;
+        let extent = self.extent()?;
+        let points = ranges::POINTS.count(self.points)?;
+        let model = self.model.build(variant, &params)?;
+        let curve = curves::curve(model.as_ref(), extent, points)?;
+
+        let suffix = match variant {
+            Variant::Odd => String::new(),
+            Variant::Printed => "-printed".into(),
+        };
+        let stem = format!("curve-{}{suffix}", self.model);
+        let title = format!(
+            "{}: {} ({})",
+            self.model,
+            self.model.title(),
+            self.model.source()
+        );
+        let mut files = Artifacts::default();
+        files.add_figure(
+            out,
+            &stem,
+            title,
+            self.model,
+            &[Drawn {
+                variant,
+                curve: &curve,
+            }],
+        )?;
+        files.add_json(
+            out.join(format!("{stem}.json")),
+            &Summary {
+                model: self.model.name(),
+                variant,
+                equation: self.model.equation(variant),
+                axis: curve.axis,
+                extent,
+                points,
+                parameters: used_parameters(self.model, &params),
+                key_values: KeyValues::of(&curve),
+            },
+        )?;
+        Ok(Made {
+            files,
+            ..Made::default()
+        })
+    }
+}

@@ -1,0 +1,120 @@
+//! Table 2 decided by simulation as a front end asks for it ([`Phenomena`]): the laws
+//! judged, the solver and tolerances of every protocol, the parameters, the bounds.
+
+use crate::artifacts::{Artifacts, Made};
+use crate::error::AppError;
+use crate::laws::ModelChoice;
+use crate::params::{ParamSource, DEFAULT_PARAM_SET};
+use crate::ranges;
+use crate::settings::RunLimits;
+use crate::study::{conduct, reachable, unread_by_all, Table2Study, Target};
+use friction_models::Variant;
+use integrators::{Solver, StepControl};
+use scenarios::phenomena::{catalog_laws, Protocol};
+use scenarios::Law;
+use std::path::Path;
+
+/// The relative tolerance of every protocol run unless told otherwise.
+pub const PHENOMENA_RTOL: f64 = 1e-10;
+/// The absolute tolerance of every protocol run unless told otherwise.
+pub const PHENOMENA_ATOL: f64 = 1e-12;
+
+/// Table 2 for some laws.
+#[derive(Clone, Debug)]
+pub struct Phenomena {
+    /// The solver every protocol uses (an adaptive one); BDF by default: the bristle models'
+    /// stiff states make Dormand–Prince four times slower, with the same verdicts.
+    pub solver: Solver,
+    /// Relative tolerance.
+    pub rtol: f64,
+    /// Absolute tolerance.
+    pub atol: f64,
+    /// Worker threads; `None`: all cores. The table does not depend on it.
+    pub threads: Option<i64>,
+    /// The laws judged; empty: every model of the catalog.
+    pub models: Vec<ModelChoice>,
+    /// Parameters for every judged law (friction parameters only); the default source (the
+    /// set `paper`, no file, no assignment) leaves each model at its own set, `paper`, or
+    /// `lugre-1995` for the bristle models.
+    pub params: ParamSource,
+    /// The bounds of every protocol run: a run that reaches one leaves its cell undecided.
+    pub limits: RunLimits,
+}
+
+impl Default for Phenomena {
+    fn default() -> Self {
+        Phenomena {
+            solver: Solver::BDF,
+            rtol: PHENOMENA_RTOL,
+            atol: PHENOMENA_ATOL,
+            threads: None,
+            models: Vec::new(),
+            params: ParamSource::default(),
+            limits: RunLimits::default(),
+        }
+    }
+}
+
+impl Phenomena {
+    /// Decides Table 2, its files in `out` (in memory): `table2.md` and `table2.json`, the
+    /// advice about parameters no judged law reads, and the failure of undecided cells.
+    pub fn run(&self, out: &Path) -> Result<Made, AppError> {
+        let step = StepControl::Adaptive {
+            rtol: ranges::RTOL.check(self.rtol)?,
+            atol: ranges::ATOL.check(self.atol)?,
+            h0: None,
+        };
+        reachable(self.solver, self.rtol)?;
+        let threads = ranges::threads(self.threads)?;
+        if self.solver.is_fixed_step() {
+            return Err(AppError::Usage(format!(
+                "solver `{}` needs a fixed step; the protocols need an adaptive solver",
+                self.solver.name()
+            )));
+        }
+        let p = &self.params;
+        let given = p.param_set != DEFAULT_PARAM_SET || p.params.is_some() || !p.set.is_empty();
+        let parameters = if given {
+            let mut described = format!("parameter set `{}`", p.param_set);
+            if let Some(file) = &p.params {
+                described += &format!(", file `{}`", file.display());
+            }
+            for s in &p.set {
+                described += &format!(", `{s}`");
+            }
+            Some((p.resolve()?, described + " for every model"))
+        } else {
+            None
+        };
+        let mut files = Artifacts::default();
+        let laws: Vec<Law> = if self.models.is_empty() {
+            catalog_laws()
+        } else {
+            self.models.iter().map(|m| m.law(Variant::Odd)).collect()
+        };
+        let study = Table2Study {
+            laws: &laws,
+            protocol: Protocol {
+                solver: self.solver,
+                step,
+                limits: self.limits.limits()?,
+            },
+            parameters,
+        };
+        let mut target = Target {
+            files: &mut files,
+            dir: out,
+            threads,
+            failure: None,
+        };
+        conduct(&study, &mut target, "table2")?;
+        let failure = target.failure;
+        Ok(Made {
+            files,
+            notes: Vec::new(),
+            warnings: unread_by_all(&p.set, &laws),
+            failure,
+            trajectory: None,
+        })
+    }
+}
