@@ -4158,3 +4158,64 @@ fn simulate_measures_the_stiffness_along_a_rig_run() {
     assert!(max["dopri5"] > 2.0 && max["dopri5"] < 6.0, "{max:?}");
     assert!(max["radau5"] > 10.0, "{max:?}");
 }
+
+#[test]
+fn the_brake_example_is_swept_over_its_disc_speed_by_a_path_of_the_file() {
+    // examples/brake.toml: the pad sticks and slips on a slow disc (the Stribeck curve falls
+    // below v_s = 0.1 m/s) and slides steadily on a fast one, a sweep over a number of the
+    // file by its path.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("sweep");
+    let o = friction_lab(&[
+        "sweep",
+        "--system",
+        "examples/brake.toml",
+        "--bodies",
+        "pad",
+        "--grid",
+        "contact.pad.surface_velocity=0.05,1",
+        "--t-end",
+        "10",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(out.join("sweep.csv")).unwrap();
+    // Both rows ran ("ok" in the last column), so no cell holds a comma.
+    let rows: Vec<Vec<&str>> = text.lines().map(|l| l.split(',').collect()).collect();
+    let column = |name: &str| rows[0].iter().position(|h| *h == name).unwrap();
+    let regimes: Vec<&str> = rows[1..].iter().map(|r| r[column("regime")]).collect();
+    assert_eq!(regimes, ["StickSlip", "SteadySliding"], "{text}");
+    assert_eq!(rows[1][column("contact.pad.surface_velocity")], "0.05");
+    // A number set by its path is the run's: reported among its parameters, and it changes
+    // the run (a stiffer guide pin, another stick–slip).
+    let run = |extra: &[&str], name: &str| {
+        let out = dir.path().join(name);
+        let mut args = vec![
+            "simulate",
+            "--system",
+            "examples/brake.toml",
+            "--t-end",
+            "2",
+        ];
+        args.extend(extra);
+        args.extend(["--out", out.to_str().unwrap()]);
+        let o = friction_lab(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let summary: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
+        summary
+    };
+    let plain = run(&[], "plain");
+    let stiffer = run(&["--set", "spring.2.k=8e4"], "stiffer");
+    assert_eq!(stiffer["parameters"]["spring.2.k"], 8e4);
+    assert_ne!(plain["stats"]["steps"], stiffer["stats"]["steps"]);
+    // A path that names no number of the file is refused, naming it.
+    for (path, message) in [
+        ("body.rotor.m=1", "no [[body]] is named \"rotor\""),
+        ("contact.pad.sigma=1", "model `stribeck` does not read it"),
+    ] {
+        let e = rejected(&["simulate", "--system", "examples/brake.toml", "--set", path]);
+        assert!(e.contains(message), "{path}: {e}");
+    }
+}

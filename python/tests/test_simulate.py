@@ -219,3 +219,15 @@ def test_numpy_arrays_are_lists_and_their_scalars_values():
     by_list = fl.simulate("chain", model="CS", t_end=1.0, bodies=[1, 3])
     assert by_array.bodies == by_list.bodies
     assert np.array_equal(by_array.x, by_list.x)
+
+
+def test_a_system_files_numbers_are_set_by_their_paths():
+    from pathlib import Path
+    brake = Path(__file__).resolve().parents[2] / "examples" / "brake.toml"
+    plain = fl.simulate(system=brake, t_end=1.0)
+    stiffer = fl.simulate(system=brake, t_end=1.0, params={"spring.2.k": 8e4})
+    assert stiffer.summary["parameters"] == {"spring.2.k": 8e4}
+    assert plain.stats["steps"] != stiffer.stats["steps"]
+    rows = fl.sweep(None, system=str(brake), bodies=["pad"], t_end=10.0,
+                    grid={"contact.pad.surface_velocity": [0.05, 1.0]})
+    assert rows["regime"].tolist() == ["StickSlip", "SteadySliding"]

@@ -12,6 +12,12 @@ use std::path::{Path, PathBuf};
 /// The parameter set a run starts from unless told otherwise: Table 1 of the paper.
 pub const DEFAULT_PARAM_SET: &str = "paper";
 
+/// Whether `name` is the path of a number of a system file (`contact.pad.F_c`): a name with a
+/// dot, which no parameter has.
+pub fn is_file_path(name: &str) -> bool {
+    name.contains('.')
+}
+
 /// Where the parameters come from (`--param-set`, `--params` and `--set` on the command line).
 #[derive(Clone, Debug)]
 pub struct ParamSource {
@@ -72,13 +78,14 @@ impl ParamSource {
 
     /// Refuses what a system file does not read: a parameter set other than `paper`, and any
     /// parameter of `--params` or `--set` but `epsilon` (the regularisation width of the
-    /// run): each `[[contact]]` of the file names its own model and parameters (exit 2 where
-    /// they were ignored before).
+    /// run) and the paths of the file's own numbers ([`ParamSource::file_assignments`]): each
+    /// `[[contact]]` of the file names its own model and parameters.
     pub fn check_for_system_file(&self) -> Result<(), AppError> {
         const READ: &str = "each [[contact]] of the file names its own parameters (the file's \
-                            `param_set` and a contact's `params`); of the friction parameters a \
-                            system file run reads only `epsilon`, the regularisation width";
-        if self.param_set != "paper" {
+                            `param_set` and a contact's `params`); a system file run reads \
+                            `epsilon`, the regularisation width, and the file's own numbers by \
+                            their paths, e.g. --set contact.pad.F_c=2 (docs/systems.md)";
+        if self.param_set != DEFAULT_PARAM_SET {
             return Err(AppError::Usage(format!(
                 "option `--param-set` does not apply to --system: {READ}"
             )));
@@ -93,13 +100,39 @@ impl ParamSource {
         }
         for assignment in &self.set {
             let (name, _) = parse_assignment(assignment)?;
-            if name != "epsilon" {
+            if name != "epsilon" && !is_file_path(name) {
                 return Err(AppError::Usage(format!(
                     "option `--set`: parameter `{name}` does not apply to --system: {READ}"
                 )));
             }
         }
         Ok(())
+    }
+
+    /// The assignments of `--set` to the numbers of a system file, by their paths
+    /// `TABLE.WHICH.KEY`, in order.
+    pub fn file_assignments(&self) -> Result<Vec<(String, f64)>, AppError> {
+        let mut paths = Vec::new();
+        for assignment in &self.set {
+            let (name, value) = parse_assignment(assignment)?;
+            if is_file_path(name) {
+                paths.push((name.to_string(), value));
+            }
+        }
+        Ok(paths)
+    }
+
+    /// This source without the assignments to a system file's numbers: the friction
+    /// parameters alone.
+    pub fn without_file_paths(&self) -> ParamSource {
+        let set = (self.set.iter())
+            .filter(|a| !parse_assignment(a).is_ok_and(|(name, _)| is_file_path(name)))
+            .cloned()
+            .collect();
+        ParamSource {
+            set,
+            ..self.clone()
+        }
     }
 
     /// The friction parameters, with the names that are not friction parameters given to

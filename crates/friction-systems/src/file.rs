@@ -11,6 +11,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use thiserror::Error;
 
+mod assign;
 mod toml_parts;
 
 /// The largest system file read, TOML or JSON, bytes.
@@ -136,6 +137,12 @@ struct FileForce {
 /// Reads the system declared in the file at `path` (at most [`MAX_FILE_BYTES`]): JSON if its
 /// name ends `.json`, TOML otherwise.
 pub fn read(path: &Path) -> Result<System, SystemFileError> {
+    read_with(path, &[])
+}
+
+/// Reads the system of the file at `path` as [`read`] does, each number at a path of
+/// `assignments` (`TABLE.WHICH.KEY`, docs/systems.md) set to its value first.
+pub fn read_with(path: &Path, assignments: &[(String, f64)]) -> Result<System, SystemFileError> {
     let error = |message: String| SystemFileError {
         path: path.to_path_buf(),
         message,
@@ -155,15 +162,38 @@ pub fn read(path: &Path) -> Result<System, SystemFileError> {
         )));
     }
     if json {
-        parse_json(&text)
+        serde_json::from_str(&text)
+            .map_err(|e| e.to_string())
+            .and_then(|f| assigned(f, assignments))
+            .and_then(build)
     } else {
-        parse(&text)
+        parse_with(&text, assignments)
     }
     .map_err(error)
 }
 
+/// `file` with each number at a path of `assignments` set; a bad path or value is named.
+fn assigned(mut file: FileSystem, assignments: &[(String, f64)]) -> Result<FileSystem, String> {
+    for (path, value) in assignments {
+        file.assign(path, *value)
+            .map_err(|e| format!("`{path}` = {value}: {e}"))?;
+    }
+    Ok(file)
+}
+
 /// Parses the text of a system file.
 pub fn parse(text: &str) -> Result<System, String> {
+    parse_with(text, &[])
+}
+
+/// Parses the text of a system file, each number at a path of `assignments`
+/// (`TABLE.WHICH.KEY`) set to its value first.
+pub fn parse_with(text: &str, assignments: &[(String, f64)]) -> Result<System, String> {
+    build(assigned(parse_toml(text)?, assignments)?)
+}
+
+/// The tables of the text of a TOML system file, read in parts.
+fn parse_toml(text: &str) -> Result<FileSystem, String> {
     let mut file = FileSystem::default();
     for (offset, part) in toml_parts::parts(text) {
         if part.len() > MAX_TOML_PART_BYTES {
@@ -181,7 +211,7 @@ pub fn parse(text: &str) -> Result<System, String> {
             toml::from_str(part).map_err(|e| toml_parts::message(text, offset, &e))?;
         file.append(part);
     }
-    build(file)
+    Ok(file)
 }
 
 /// Parses a system written as JSON with the keys and tables of the TOML file (each

@@ -15,7 +15,6 @@ use friction_systems::chain::{ChainParams, CHAIN_PARAMETERS};
 use integrators::Options;
 use scenarios::chain::ChainSource;
 use scenarios::{RunSpec, Scenario};
-use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 /// Bodies written to the trajectory when none are chosen: all of a chain this long or shorter,
@@ -303,11 +302,13 @@ pub fn system_of(
                     .into(),
             ));
         }
+        let assignments = settings.params.file_assignments()?;
         return Ok(Described {
-            system: load(path)?,
+            system: load(path, &assignments)?,
             name: path.display().to_string(),
-            parameters: BTreeMap::new(),
-            friction: settings.params.resolve()?,
+            // The numbers of the file that were set, by their paths.
+            parameters: assignments.into_iter().collect(),
+            friction: settings.params.without_file_paths().resolve()?,
             source: None,
         });
     }

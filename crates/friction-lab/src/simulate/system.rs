@@ -50,15 +50,20 @@ pub struct Described {
 /// How often [`load`] looks for a signal, s.
 const LOAD_POLL_S: f64 = 0.05;
 
-/// Reads the system file at `path` with a heartbeat, on a thread of its own: a signal stops the
+/// Reads the system file at `path`, each number at a path of `assignments` (`TABLE.WHICH.KEY`,
+/// docs/systems.md) set first, with a heartbeat, on a thread of its own: a signal stops the
 /// command at once ([`AppError::Stopped`]; the parse cannot be stopped inside, so it is left to
 /// end with the process), where a file of 10⁶ bodies takes seconds to parse.
-pub fn load(path: &Path) -> Result<friction_systems::System, AppError> {
+pub fn load(
+    path: &Path,
+    assignments: &[(String, f64)],
+) -> Result<friction_systems::System, AppError> {
     let progress = Progress::elapsed(&format!("loading {}", path.display()));
     let (send, receive) = std::sync::mpsc::channel();
     let owned = path.to_path_buf();
+    let assignments = assignments.to_vec();
     std::thread::spawn(move || {
-        let _ = send.send(friction_systems::file::read(&owned));
+        let _ = send.send(friction_systems::file::read_with(&owned, &assignments));
     });
     let poll = std::time::Duration::from_secs_f64(LOAD_POLL_S);
     loop {

@@ -6,7 +6,7 @@ use crate::artifacts::{Artifacts, Made};
 use crate::error::AppError;
 use crate::laws::ModelChoice;
 use crate::output::counted;
-use crate::params::parse_assignment;
+use crate::params::{is_file_path, parse_assignment};
 use crate::ranges::{self, first_repeat};
 use crate::simulate::{chosen_bodies, Simulation, Target};
 use crate::study::{conduct, Target as StudyTarget};
@@ -142,12 +142,14 @@ fn check_axes(axes: &[Axis], run: &Simulation) -> Result<(), AppError> {
         )));
     }
     if run.target.file().is_some() {
-        // A system file's contacts carry their own parameters: only the regularisation width
-        // is shared.
-        if let Some(name) = names.iter().find(|&&n| n != "epsilon") {
+        // A system file's contacts carry their own parameters: the regularisation width is
+        // shared, any other number is swept by its path in the file.
+        if let Some(name) = names.iter().find(|&&n| n != "epsilon" && !is_file_path(n)) {
             return Err(AppError::Usage(format!(
                 "option `grid`: parameter `{name}` cannot be swept on a system file (each \
-                 contact has its own parameters): allowed epsilon, under --switching regularized"
+                 contact has its own parameters): allowed epsilon, under --switching \
+                 regularized, or a number of the file by its path TABLE.WHICH.KEY, e.g. \
+                 contact.pad.surface_velocity, spring.2.k, body.caliper.m (docs/systems.md)"
             )));
         }
     }
