@@ -4187,6 +4187,33 @@ fn the_brake_example_is_swept_over_its_disc_speed_by_a_path_of_the_file() {
     let regimes: Vec<&str> = rows[1..].iter().map(|r| r[column("regime")]).collect();
     assert_eq!(regimes, ["StickSlip", "SteadySliding"], "{text}");
     assert_eq!(rows[1][column("contact.pad.surface_velocity")], "0.05");
+    // The same run's spectrum puts the pad's motion at the stick–slip cycle's frequency, 1 /
+    // the period the sweep measured, within the spectrum's resolution.
+    let period: f64 = rows[1][column("period")].parse().unwrap();
+    let single = dir.path().join("single");
+    let o = friction_lab(&[
+        "simulate",
+        "--system",
+        "examples/brake.toml",
+        "--bodies",
+        "pad",
+        "--t-end",
+        "10",
+        "--out",
+        single.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let spectrum: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(single.join("spectrum.json")).unwrap()).unwrap();
+    let pad = &spectrum["bodies"][0];
+    let f = pad["dominant_frequency"].as_f64().unwrap();
+    let resolution = spectrum["resolution"].as_f64().unwrap();
+    assert_eq!(pad["body"], "pad");
+    assert!(
+        (f - 1.0 / period).abs() < resolution,
+        "{f} Hz against 1/{period} s"
+    );
+    assert!(String::from_utf8_lossy(&o.stdout).contains("pad: dominant frequency"));
     // A number set by its path is the run's: reported among its parameters, and it changes
     // the run (a stiffer guide pin, another stick–slip).
     let run = |extra: &[&str], name: &str| {

@@ -6,6 +6,7 @@
 mod bodies;
 pub mod request;
 mod rig;
+mod spectra;
 mod stiffness;
 mod system;
 

@@ -2,6 +2,7 @@
 //! of the bodies chosen, summary, events) and figures (velocities, the space–time picture of
 //! the contact modes, stiffness along the run).
 
+use super::spectra::add_spectra;
 use super::stiffness::add_stiffness;
 use crate::artifacts::{Artifacts, Made};
 use crate::error::AppError;
@@ -268,6 +269,7 @@ pub fn simulate_system(
         log: false,
     };
     files.add_plot(&out.join("velocity"), &velocity)?;
+    let spectra = add_spectra(&mut files, out, &run, system, &bodies[..drawn], &title)?;
     let setup = RunSetup {
         system: name.clone(),
         model: common_model(system),
@@ -311,13 +313,15 @@ pub fn simulate_system(
     Ok(Made {
         files,
         trajectory: columns,
-        notes: vec![format!(
+        notes: std::iter::once(format!(
             "{}, {}, {}, {:.3} s",
             counted(system.bodies.len(), "body", "bodies"),
             counted(run.solution.stats.steps, "step", "steps"),
             counted(run.solution.stats.events, "event", "events"),
             run.wall_time_s
-        )],
+        ))
+        .chain(spectra)
+        .collect(),
         warnings: run
             .solution
             .stiffness_detected_at
