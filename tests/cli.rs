@@ -976,6 +976,11 @@ fn simulate_chain_writes_the_system_files() {
         "space-time.svg",
         "velocity.png",
         "velocity.svg",
+        "phase-portrait.png",
+        "phase-portrait.svg",
+        "spectrum.csv",
+        "spectrum.json",
+        "spectrum.png",
     ] {
         assert!(out.join(f).exists(), "{f}");
     }

@@ -2,12 +2,13 @@
 //! of the bodies chosen, summary, events) and figures (velocities, the space–time picture of
 //! the contact modes, stiffness along the run).
 
+use super::motion::add_motion;
 use super::spectra::add_spectra;
 use super::stiffness::add_stiffness;
 use crate::artifacts::{Artifacts, Made};
 use crate::error::AppError;
 use crate::output::{counted, Cell, Table};
-use crate::plot::{self, Corner, Marker, Plot, Raster, Series, PALETTE};
+use crate::plot::{self, Raster};
 use crate::progress::Progress;
 use crate::ranges;
 use crate::run_record::{
@@ -242,33 +243,7 @@ pub fn simulate_system(
     }
     // One colour each: the first bodies written, at most ten.
     let drawn = bodies.len().min(DRAWN_BODIES);
-    let velocity = Plot {
-        title: if drawn < bodies.len() {
-            format!(
-                "{title}: velocities of the first {drawn} of {} bodies written",
-                bodies.len()
-            )
-        } else {
-            format!("{title}: velocities")
-        },
-        x_label: "time t (s)".into(),
-        y_label: "velocity v (m/s)".into(),
-        series: bodies
-            .iter()
-            .take(drawn)
-            .enumerate()
-            .map(|(c, &i)| Series {
-                label: Some(system.bodies[i].name.clone()),
-                points: run.body(i).iter().map(|b| (b.t, b.v)).collect(),
-                color: PALETTE[c],
-                width: 2,
-                marker: Marker::None,
-            })
-            .collect(),
-        legend: Corner::UpperRight,
-        log: false,
-    };
-    files.add_plot(&out.join("velocity"), &velocity)?;
+    add_motion(&mut files, out, &run, system, bodies, drawn, &title)?;
     let spectra = add_spectra(&mut files, out, &run, system, &bodies[..drawn], &title)?;
     let setup = RunSetup {
         system: name.clone(),
