@@ -4168,15 +4168,14 @@ fn simulate_measures_the_stiffness_along_a_rig_run() {
 fn the_brake_example_is_swept_over_its_disc_speed_by_a_path_of_the_file() {
     // examples/brake.toml: the pad sticks and slips on a slow disc (the Stribeck curve falls
     // below v_s = 0.1 m/s) and slides steadily on a fast one, a sweep over a number of the
-    // file by its path.
+    // file by its path. The pad is measured without being named: the first body with a
+    // contact (the caliper, the first body, has none).
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("sweep");
     let o = friction_lab(&[
         "sweep",
         "--system",
         "examples/brake.toml",
-        "--bodies",
-        "pad",
         "--grid",
         "contact.pad.surface_velocity=0.05,1",
         "--t-end",

@@ -228,6 +228,6 @@ def test_a_system_files_numbers_are_set_by_their_paths():
     stiffer = fl.simulate(system=brake, t_end=1.0, params={"spring.2.k": 8e4})
     assert stiffer.summary["parameters"] == {"spring.2.k": 8e4}
     assert plain.stats["steps"] != stiffer.stats["steps"]
-    rows = fl.sweep(None, system=str(brake), bodies=["pad"], t_end=10.0,
+    rows = fl.sweep(None, system=str(brake), t_end=10.0,
                     grid={"contact.pad.surface_velocity": [0.05, 1.0]})
     assert rows["regime"].tolist() == ["StickSlip", "SteadySliding"]

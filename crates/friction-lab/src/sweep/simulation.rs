@@ -212,10 +212,14 @@ fn prepare(run: &Simulation, start: Start) -> Result<PointRun, AppError> {
         _ => {
             let described = run.described()?;
             described.system.validate()?;
-            let body = chosen_bodies(&described.system, &run.bodies)?
-                .first()
-                .copied()
-                .unwrap_or(0);
+            // The first body chosen, else the first with a contact: a body without one has no
+            // surface to stick to, so its regime says nothing of friction.
+            let body = match run.bodies.is_empty() {
+                false => chosen_bodies(&described.system, &run.bodies)?[0],
+                true => (described.system.contacts.iter().map(|c| c.body))
+                    .min()
+                    .unwrap_or(0),
+            };
             let step = run.solver.checked_step()?;
             let t_end = run.system_t_end()?;
             let points = run.system_points(Layout::of(&described.system).dim())?;
