@@ -1,10 +1,12 @@
 //! Python's keyword arguments as the library's typed settings: `simulate`'s as a
 //! [`Simulation`], `sweep`'s as a [`Sweep`], a solver study's as a [`Problem`] and the study
-//! ([`Converge`], [`Independence`], [`WorkPrecision`], [`Stiffness`]). Each keyword is one field; its value is taken as
-//! the field's type (a number, a whole number, a name, a list) or refused with a `ValueError`
-//! naming the keyword; an unknown keyword is a `TypeError` naming it and its close match. The
-//! ranges and the checks between settings are the library's ([`Simulation::run`],
-//! [`Sweep::run`]), the command line's too.
+//! ([`Converge`], [`Independence`], [`WorkPrecision`], [`Stiffness`]), `curve`'s as a
+//! [`FrictionCurve`], `phenomena`'s as [`Phenomena`]. Each keyword is one field; its value is
+//! taken as the field's type (a number, a whole number, a name, a list) or refused with a
+//! `ValueError` naming the keyword; an unknown keyword is a `TypeError` naming it and those
+//! taken (the Python layer names the close match before it calls). The ranges and the checks
+//! between settings are the library's ([`Simulation::run`], [`Sweep::run`], …), the command
+//! line's too.
 
 use friction_lab::artifacts::Made;
 use friction_lab::curve::FrictionCurve;
@@ -206,11 +208,7 @@ fn target(scenario: Option<&str>, system: Option<PathBuf>) -> PyResult<Option<Ta
             ))
         }
         (None, Some(path)) => Target::System(path),
-        (Some("chain"), None) => Target::Chain,
-        (Some(s), None) => Target::Rig(
-            friction_lab::scenarios::Scenario::from_name(s)
-                .map_err(|e| PyValueError::new_err(format!("{e}, chain")))?,
-        ),
+        (Some(name), None) => Target::named(name).map_err(PyValueError::new_err)?,
         (None, None) => return Ok(None),
     }))
 }

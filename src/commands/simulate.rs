@@ -88,12 +88,10 @@ pub enum Target {
 impl std::str::FromStr for Target {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
-        if s == "chain" {
-            return Ok(Target::Chain);
-        }
-        Scenario::from_name(s)
-            .map(Target::Rig)
-            .map_err(|e| format!("{e}, chain"))
+        Ok(match Run::named(s)? {
+            Run::Rig(scenario) => Target::Rig(scenario),
+            _ => Target::Chain,
+        })
     }
 }
 

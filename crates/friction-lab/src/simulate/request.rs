@@ -49,6 +49,16 @@ pub enum Target {
 }
 
 impl Target {
+    /// The rig named `name`, or the chain (`chain`); the message of another name lists both.
+    pub fn named(name: &str) -> Result<Target, String> {
+        if name == "chain" {
+            return Ok(Target::Chain);
+        }
+        Scenario::from_name(name)
+            .map(Target::Rig)
+            .map_err(|e| format!("{e}, chain"))
+    }
+
     /// The system file, if the target is one.
     pub fn file(&self) -> Option<&Path> {
         match self {
