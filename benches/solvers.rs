@@ -47,7 +47,7 @@ fn solvers(c: &mut Criterion) {
     let cases = [
         (
             "paper-block AV",
-            Scenario::PaperBlock,
+            Scenario::PAPER_BLOCK,
             ModelId::Av,
             SwitchingKind::Event,
             paper,
@@ -55,7 +55,7 @@ fn solvers(c: &mut Criterion) {
         ),
         (
             "belt CS switched",
-            Scenario::Belt,
+            Scenario::BELT,
             ModelId::Cs,
             SwitchingKind::Event,
             paper,
@@ -63,7 +63,7 @@ fn solvers(c: &mut Criterion) {
         ),
         (
             "belt CS regularized eps=1e-3",
-            Scenario::Belt,
+            Scenario::BELT,
             ModelId::Cs,
             SwitchingKind::Regularized,
             regularized,
@@ -71,7 +71,7 @@ fn solvers(c: &mut Criterion) {
         ),
         (
             "paper-block LuGre (stiff)",
-            Scenario::PaperBlock,
+            Scenario::PAPER_BLOCK,
             ModelId::LuGre,
             SwitchingKind::Event,
             FrictionParams::lugre_1995(),
@@ -102,10 +102,10 @@ fn solvers(c: &mut Criterion) {
 
 fn study_threads(c: &mut Criterion) {
     let case = Case {
-        scenario: Scenario::Belt,
+        scenario: Scenario::BELT,
         law: ModelId::Cs.into(),
         friction: FrictionParams::paper(),
-        params: Scenario::Belt.defaults(),
+        params: Scenario::BELT.defaults(),
         switching: SwitchingKind::Event,
         t_end: 10.0,
         limits: Limits::default(),

@@ -118,10 +118,10 @@ fn rig_break_away() -> (f64, f64) {
     let params = ScenarioParams {
         v_belt: 0.05,
         v0: 0.05,
-        ..Scenario::Belt.defaults()
+        ..Scenario::BELT.defaults()
     };
     let spec = RunSpec {
-        scenario: Scenario::Belt,
+        scenario: Scenario::BELT,
         law: Law::Own(law()),
         friction: FrictionParams::paper(),
         params,

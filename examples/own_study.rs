@@ -207,10 +207,10 @@ fn reads(counts: &StepCounts) -> String {
 /// asymptotic law) and implicit Euler from 1e-3 to 1e-7, written into `dir` with a report.
 pub fn run(dir: &Path) -> Result<Outcome, AppError> {
     let case = Case {
-        scenario: Scenario::PaperBlock,
+        scenario: Scenario::PAPER_BLOCK,
         law: ModelId::Viscous.into(),
         friction: FrictionParams::paper(),
-        params: Scenario::PaperBlock.defaults(),
+        params: Scenario::PAPER_BLOCK.defaults(),
         switching: SwitchingKind::Event,
         t_end: 5.0,
         limits: Limits::default(),

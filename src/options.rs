@@ -32,6 +32,15 @@ pub fn solver_help(what: &str, then: &str) -> String {
     format!("{what}: {} {then}", names.join(", "))
 }
 
+/// The help of a target argument: the names of [`scenarios::Scenario::ALL`] (the rigs the
+/// argument takes, from the one registry of built-in rigs), then `then` (the other targets).
+pub fn scenario_help(what: &str, then: &str) -> String {
+    format!(
+        "{what}: {} (one contact each), {then}",
+        scenarios::Scenario::names().join(", ")
+    )
+}
+
 /// The bounds of a run: a step cap and a wall-clock limit.
 #[derive(Args, Clone, Debug)]
 pub struct LimitArgs {

@@ -97,3 +97,31 @@ fn docs_scenarios_gives_every_rig_with_its_equation() {
         assert!(text.contains(&row), "docs/scenarios.md lacks {row}");
     }
 }
+
+#[test]
+fn the_help_lists_the_registered_rigs_and_solvers() {
+    use friction_lab::scenarios::Scenario;
+    let help = |command: &str| {
+        let o = Command::new(env!("CARGO_BIN_EXE_friction-lab"))
+            .args([command, "--help"])
+            .output()
+            .unwrap();
+        String::from_utf8(o.stdout).unwrap()
+    };
+    let rigs = Scenario::names().join(", ");
+    let solvers: Vec<&str> = friction_lab::integrators::Solver::ALL
+        .iter()
+        .map(|s| s.name())
+        .collect();
+    for command in ["simulate", "sweep", "converge", "independence", "stiffness"] {
+        let text = help(command);
+        assert!(
+            text.contains(&rigs),
+            "{command} --help lacks `{rigs}`: {text}"
+        );
+        assert!(
+            text.contains(&solvers.join(", ")),
+            "{command} --help lacks the solvers {solvers:?}: {text}"
+        );
+    }
+}

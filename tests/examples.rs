@@ -13,6 +13,10 @@ mod own_solver;
 mod own_study;
 
 #[allow(dead_code)]
+#[path = "../examples/own_rig.rs"]
+mod own_rig;
+
+#[allow(dead_code)]
 #[path = "../examples/two_mass_system.rs"]
 mod two_mass_system;
 
@@ -153,4 +157,19 @@ fn an_own_study_is_conducted_and_writes_its_files_and_figure() {
     assert!((slope - 0.5).abs() < 0.1, "error ~ tol^{slope}");
     let csv = std::fs::read_to_string(out.join("step-counts.csv")).unwrap();
     assert_eq!(csv.lines().count(), 1 + 6 + 5);
+}
+
+#[test]
+fn an_own_rig_runs_and_is_studied_like_a_built_in_one() {
+    let r = own_rig::run();
+    // Coulomb friction: one half-period of sliding down to 2·(m·g·sin θ − F_c)/k, then stuck.
+    let ((x, t), (x_exact, t_exact)) = r.coulomb_stop;
+    assert!((x - x_exact).abs() < 1e-9 * x_exact, "x {x} vs {x_exact}");
+    assert!((t - t_exact).abs() < 1e-9, "t {t} vs {t_exact}");
+    assert_eq!(r.coulomb_final_mode, friction_lab::friction_systems::STICK);
+    // Stiction above the downhill force: the body never moves.
+    assert_eq!(r.static_largest_x, 0.0);
+    // Dormand–Prince is of order 5 on the stop position.
+    let order = r.dopri5_order.expect("an order is observed");
+    assert!((order - 5.0).abs() < 0.5, "Dormand–Prince order {order}");
 }

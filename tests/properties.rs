@@ -66,7 +66,7 @@ fn checked(option: &OptionRange, value: f64) {
     let Command::Simulate(args) = cli.command else {
         unreachable!()
     };
-    match args.simulation().rig_spec(Scenario::Belt) {
+    match args.simulation().rig_spec(Scenario::BELT) {
         Ok(_) => assert!(
             option.range.contains(value),
             "--{} {value} was accepted outside {}",
@@ -174,7 +174,7 @@ proptest! {
     ) {
         use friction_lab::integrators::{Solver, StepControl};
         use friction_lab::scenarios::{run, Limits, RunSpec, SwitchingKind};
-        let mut params = Scenario::Belt.defaults();
+        let mut params = Scenario::BELT.defaults();
         params.m = m;
         params.k = k;
         params.v_belt = v_belt;
@@ -185,7 +185,7 @@ proptest! {
             StepControl::Adaptive { rtol: 1e-6, atol: 1e-8, h0: None }
         };
         let spec = RunSpec {
-            scenario: Scenario::Belt,
+            scenario: Scenario::BELT,
             law: model.parse::<ModelId>().unwrap().into(),
             friction: FrictionParams::paper(),
             params,

@@ -98,10 +98,13 @@ impl std::str::FromStr for Target {
 /// Options of `simulate`.
 #[derive(Args, Clone, Debug)]
 pub struct SimulateArgs {
-    /// paper-block, prescribed-motion, velocity-sweep, belt, free-vibration, oscillation,
-    /// velocity-oscillation, force-ramp, presliding (one body), or chain (the Burridge–Knopoff chain of
-    /// docs/systems.md, parameters n_bodies, m, k_chain, k_driver, v_driver, spread by --set).
+    /// The rig (docs/scenarios.md) or the chain.
     #[arg(
+        help = crate::options::scenario_help(
+            "The rig",
+            "or chain (the Burridge–Knopoff chain of docs/systems.md, parameters n_bodies, m, \
+             k_chain, k_driver, v_driver, spread by --set)",
+        ),
         value_name = "SCENARIO",
         required_unless_present = "system",
         conflicts_with = "system"

@@ -10,8 +10,9 @@
 //! results are the same for any number of threads and any order.
 
 use crate::cases::{Measured, Measures, StudyCase};
+use crate::error::ScenarioError;
 use crate::method::{resolution, Method, StepKind};
-use crate::run::{ScenarioError, SwitchingKind};
+use crate::run::SwitchingKind;
 use crate::schedule;
 use crate::study_run::{Errors, Reference, StudyRun, WallTimes, REFERENCE_TOLERANCE};
 use crate::verdict::Verdict;

@@ -3,13 +3,12 @@
 //! ([`SystemCase`]), or a user's own problem through the public [`StudyCase`] trait.
 
 use crate::chain::ChainSource;
+use crate::error::ScenarioError;
 use crate::method::Method;
 use crate::motion::Kinematic;
 use crate::quantity::Quantity;
 use crate::run::Limits;
-use crate::run::{
-    body_system, run, Law, Outcome, Row, RunSpec, ScenarioError, SwitchingKind, DEFAULT_THETA,
-};
+use crate::run::{body_system, run, Law, Outcome, Row, RunSpec, SwitchingKind, DEFAULT_THETA};
 use crate::scenario::Scenario;
 use crate::ScenarioParams;
 use friction_models::{FrictionParams, ModelId, Parameters};
@@ -289,12 +288,12 @@ impl StudyCase for Case {
     /// energy accumulators); a prescribed motion's: those of its kinematic problem.
     fn dim(&self) -> Result<usize, ScenarioError> {
         let model = self.law.build(&self.friction)?;
-        if !self.scenario.has_body() {
-            return Ok(Kinematic::dim_of(model.as_ref()));
-        }
         // The solver and step do not change the system.
         let spec = self.spec(Solver::DOPRI5, StepControl::Fixed { h: self.t_end });
-        Ok(Layout::of(&body_system(&spec, model)).dim())
+        Ok(match body_system(&spec, model.clone()) {
+            Some(system) => Layout::of(&system).dim(),
+            None => Kinematic::dim_of(model.as_ref()),
+        })
     }
 
     fn with_switching(&self, switching: SwitchingKind) -> Box<dyn StudyCase> {
@@ -329,7 +328,8 @@ impl StudyCase for Case {
     /// The block pushed from rest against viscous friction (v = F/μ_v·(1 − e^(−μ_v t/m))) or
     /// against a constant Coulomb level (v = (F − F_c)·t/m once it slides).
     fn closed_form(&self) -> Option<(String, Measures)> {
-        if self.scenario != Scenario::PaperBlock || self.params.x0 != 0.0 || self.params.v0 != 0.0 {
+        if self.scenario != Scenario::PAPER_BLOCK || self.params.x0 != 0.0 || self.params.v0 != 0.0
+        {
             return None;
         }
         let (m, f, p) = (self.params.m, self.params.f_ex, &self.friction);

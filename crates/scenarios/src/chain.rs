@@ -2,7 +2,8 @@
 //! can build it again with one parameter changed (a stiffness study over `k_chain`, `m` or a
 //! parameter of its law).
 
-use crate::run::{Law, ScenarioError};
+use crate::error::ScenarioError;
+use crate::run::Law;
 use friction_models::{FrictionParams, Parameters};
 use friction_systems::chain::ChainParams;
 use friction_systems::System;

@@ -2,7 +2,7 @@
 //! the paper's own experiments.
 //!
 //! The curve rigs of Figures 2–7 ([`curves`]) and the catalogue of those figures
-//! ([`figures`]); the rigs ([`scenario`], [`mod@run`]); the paper's experiment ([`paper`]);
+//! ([`figures`]); the rigs (the [`Rig`] trait, the built-in ones in [`rigs`], their registry [`scenario`], [`mod@run`]); the paper's experiment ([`paper`]);
 //! Table 2 by simulation ([`phenomena`]); the solver studies ([`studies`], [`cases`], the chain
 //! they build again for each swept value: [`chain`]; their
 //! runs as one list: [`batch`]); the settled state a parameter sweep measures ([`settled`]);
@@ -12,6 +12,7 @@ pub mod batch;
 pub mod cases;
 pub mod chain;
 pub mod curves;
+pub mod error;
 pub mod errors;
 pub mod figures;
 pub mod grid;
@@ -21,6 +22,8 @@ pub mod paper;
 pub mod params;
 pub mod phenomena;
 pub mod quantity;
+pub mod rig;
+pub mod rigs;
 pub mod run;
 pub mod scenario;
 pub mod schedule;
@@ -30,8 +33,8 @@ pub mod studies;
 pub mod study_run;
 pub mod verdict;
 
+pub use error::ScenarioError;
 pub use params::ScenarioParams;
-pub use run::{
-    run, run_measuring_stiffness, Law, Limits, Outcome, Row, RunSpec, ScenarioError, SwitchingKind,
-};
+pub use rig::{Apparatus, EndTime, Rig};
+pub use run::{run, run_measuring_stiffness, Law, Limits, Outcome, Row, RunSpec, SwitchingKind};
 pub use scenario::Scenario;

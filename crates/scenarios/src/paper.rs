@@ -12,8 +12,9 @@
 //!   start (F_ex within the stick interval at rest), the block comes to or stays at rest
 //!   (outside the paper's premise v > 0, but reachable with `reproduce --set`).
 
+use crate::error::ScenarioError;
 use crate::run::Limits;
-use crate::run::{run, RunSpec, ScenarioError, SwitchingKind};
+use crate::run::{run, RunSpec, SwitchingKind};
 use crate::scenario::Scenario;
 use crate::ScenarioParams;
 use friction_models::{FrictionParams, ModelId, Variant};
@@ -90,7 +91,7 @@ fn spec(
     points: usize,
 ) -> RunSpec {
     RunSpec {
-        scenario: Scenario::PaperBlock,
+        scenario: Scenario::PAPER_BLOCK,
         law: model.into(),
         friction: *p,
         params: *s,

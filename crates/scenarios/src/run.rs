@@ -2,13 +2,13 @@
 //! with a treatment of v = 0, and turned into trajectory rows, events, statistics and the
 //! energy balance. A solver failure keeps what was computed before it.
 
+use crate::error::ScenarioError;
 use crate::motion::{Kinematic, Motion};
 use crate::params::ScenarioParams;
+use crate::rig::Apparatus;
 use crate::scenario::Scenario;
 use friction_models::{FrictionModel, FrictionParams, ModelId, ParamError, Parameters, Variant};
-use friction_systems::{
-    End, EnergyBalance, Profile, Scheme, Switching, System, SystemError, STICK,
-};
+use friction_systems::{EnergyBalance, Scheme, Switching, System, STICK};
 use integrators::stability::Instability;
 use integrators::{
     Failure, Mode, OdeProblem, Options, Output, Solution, Solver, SolverError, Stats, StepControl,
@@ -16,7 +16,6 @@ use integrators::{
 use serde::Serialize;
 use std::sync::Arc;
 use std::time::Instant;
-use thiserror::Error;
 
 /// How v = 0 is treated, by the name the command line takes.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -250,31 +249,6 @@ impl Default for Limits {
     }
 }
 
-/// A scenario that cannot be set up as asked.
-#[derive(Clone, Debug, Error, PartialEq)]
-pub enum ScenarioError {
-    /// A parameter was rejected.
-    #[error(transparent)]
-    Param(#[from] ParamError),
-    /// The rig's system was rejected.
-    #[error(transparent)]
-    System(#[from] SystemError),
-    /// A combination that makes no sense.
-    #[error("{0}")]
-    Invalid(String),
-    /// A run that a study depends on failed in the solver (not bad input).
-    #[error("{what} failed: {error}")]
-    Solver {
-        /// Which run.
-        what: String,
-        /// The solver's error.
-        error: SolverError,
-    },
-    /// A run of a study failed; the message names which and why.
-    #[error("{0}")]
-    RunFailed(String),
-}
-
 /// One row of `trajectory.csv`.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Row {
@@ -367,12 +341,7 @@ impl Outcome {
 /// Checks the scenario parameters and the combination.
 fn validate(spec: &RunSpec) -> Result<(), ScenarioError> {
     spec.params.validate()?;
-    if matches!(spec.scenario, Scenario::Belt | Scenario::FreeVibration) && spec.params.k <= 0.0 {
-        return Err(ScenarioError::Invalid(format!(
-            "parameter `k` = {} is out of range for {}: allowed (0, inf) N/m (the spring holds the body)",
-            spec.params.k, spec.scenario
-        )));
-    }
+    spec.scenario.rig().check(&spec.params)?;
     if !spec.scenario.has_body() && spec.switching.is_time_stepping() {
         return Err(ScenarioError::Invalid(format!(
             "scheme `time-stepping` cannot run {}: the motion is prescribed, there is no body \
@@ -415,44 +384,17 @@ pub fn options(spec: &RunSpec, t_end: f64) -> Options {
     }
 }
 
-/// The name of a rig's one body (and of its row in `final.csv` and `events.csv`).
-pub const RIG_BODY: &str = "body";
-
-/// The system of a body scenario: one body, its spring to a wall, its applied force, its
-/// contact.
-pub fn body_system(spec: &RunSpec, model: Arc<dyn FrictionModel>) -> System {
-    let p = &spec.params;
-    let mut s = System::default();
-    let start = match spec.scenario {
-        Scenario::PaperBlock | Scenario::Belt | Scenario::FreeVibration => (p.x0, p.v0),
-        _ => (0.0, 0.0),
-    };
-    let body = s.add_body(RIG_BODY, p.m, start.0, start.1);
-    let mut surface_velocity = 0.0;
-    match spec.scenario {
-        Scenario::PaperBlock => s.add_force(body, p.f_ex, Profile::None),
-        Scenario::Belt | Scenario::FreeVibration => {
-            let wall = s.add_anchor("wall", 0.0, 0.0);
-            s.add_spring(End::Body(body), End::Anchor(wall), p.k, p.c);
-            if spec.scenario == Scenario::Belt {
-                surface_velocity = p.v_belt;
-            }
-        }
-        Scenario::ForceRamp => s.add_force(body, 0.0, Profile::Ramp { rate: p.rate }),
-        Scenario::Presliding => s.add_force(
-            body,
-            0.0,
-            Profile::Trapezoid {
-                peak: p.fraction * spec.friction.f_s,
-                rise: 1.0,
-                hold: 1.0,
-                fall: 1.0,
-            },
-        ),
-        _ => unreachable!("only body scenarios have a body"),
+/// The system of a body scenario: one body, its spring to a wall or its applied force, its
+/// contact; `None` for a rig that imposes a motion.
+pub fn body_system(spec: &RunSpec, model: Arc<dyn FrictionModel>) -> Option<System> {
+    match spec
+        .scenario
+        .rig()
+        .apparatus(&spec.params, &spec.friction, model)
+    {
+        Apparatus::Body(system) => Some(system),
+        Apparatus::Motion(_) | Apparatus::SteadySweep(_) => None,
     }
-    s.add_contact(body, surface_velocity, model);
-    s
 }
 
 fn finish(solution: Result<Solution, Failure>) -> (Solution, Option<SolverError>) {
@@ -464,15 +406,14 @@ fn finish(solution: Result<Solution, Failure>) -> (Solution, Option<SolverError>
 
 fn run_body(
     spec: &RunSpec,
-    model: Arc<dyn FrictionModel>,
+    system: &System,
     t_end: f64,
     measure_stiffness: bool,
     observe: &mut dyn FnMut(f64),
 ) -> Result<Outcome, ScenarioError> {
-    let system = body_system(spec, model);
     let scheme = spec.switching.scheme(spec.solver, &spec.friction);
     let mut step_ends = Vec::new();
-    let run = friction_systems::simulate(&system, scheme, options(spec, t_end), &mut |t| {
+    let run = friction_systems::simulate(system, scheme, options(spec, t_end), &mut |t| {
         if measure_stiffness {
             step_ends.push(t);
         }
@@ -599,10 +540,15 @@ pub fn run_motion(
     }
 }
 
-/// Steady friction at each velocity of a sweep: each point a constant-velocity run from
-/// z = 0 long enough for the state to settle (20 time constants 1/|∂ż/∂z| at the steady
-/// state; stateless models need no settling).
-fn run_sweep(spec: &RunSpec, model: &dyn FrictionModel, observe: &mut dyn FnMut(f64)) -> Outcome {
+/// Steady friction at each of `velocities`: each point a constant-velocity run from z = 0
+/// long enough for the state to settle (20 time constants 1/|∂ż/∂z| at the steady state;
+/// stateless models need no settling).
+fn run_sweep(
+    spec: &RunSpec,
+    model: &dyn FrictionModel,
+    velocities: &[f64],
+    observe: &mut dyn FnMut(f64),
+) -> Outcome {
     let mut out = Outcome {
         rows: Vec::new(),
         before_switches: Vec::new(),
@@ -619,12 +565,7 @@ fn run_sweep(spec: &RunSpec, model: &dyn FrictionModel, observe: &mut dyn FnMut(
         time_scale: None,
         instability: None,
     };
-    let v_max = spec.params.v_max;
-    let velocities = (1..=20)
-        .rev()
-        .map(|k| -v_max * k as f64 / 20.0)
-        .chain((1..=20).map(|k| v_max * k as f64 / 20.0));
-    for v in velocities {
+    for &v in velocities {
         let settle = settling_time(model, v);
         let point = RunSpec {
             output_points: 2,
@@ -679,37 +620,10 @@ fn run_as(
     let t_end = spec
         .t_end
         .unwrap_or_else(|| spec.scenario.default_t_end(&spec.params, &spec.friction));
-    let p = &spec.params;
-    Ok(match spec.scenario {
-        Scenario::VelocitySweep => run_sweep(spec, model.as_ref(), observe),
-        Scenario::PrescribedMotion => run_motion(
-            spec,
-            model.as_ref(),
-            Motion::Paper { mirrored: false },
-            t_end,
-            observe,
-        ),
-        Scenario::Oscillation => run_motion(
-            spec,
-            model.as_ref(),
-            Motion::Sine {
-                amplitude: p.amplitude,
-                omega: p.omega,
-            },
-            t_end,
-            observe,
-        ),
-        Scenario::VelocityOscillation => run_motion(
-            spec,
-            model.as_ref(),
-            Motion::VelocityOscillation {
-                mean: p.v_mean,
-                amplitude: p.v_amplitude,
-                omega: p.omega,
-            },
-            t_end,
-            observe,
-        ),
-        _ => run_body(spec, model, t_end, stiffness, observe)?,
+    let apparatus = (spec.scenario.rig()).apparatus(&spec.params, &spec.friction, model.clone());
+    Ok(match apparatus {
+        Apparatus::SteadySweep(velocities) => run_sweep(spec, model.as_ref(), &velocities, observe),
+        Apparatus::Motion(motion) => run_motion(spec, model.as_ref(), motion, t_end, observe),
+        Apparatus::Body(system) => run_body(spec, &system, t_end, stiffness, observe)?,
     })
 }

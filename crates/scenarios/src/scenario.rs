@@ -1,162 +1,157 @@
-//! The rigs of `docs/scenarios.md`: what each one is, its parameters and defaults.
+//! The registry of rigs (`docs/scenarios.md`): a [`Scenario`] is a [`Rig`], the built-in
+//! ones listed in [`Scenario::ALL`] and a user's own through [`Scenario::own`].
 
 use crate::params::ScenarioParams;
+use crate::rig::{EndTime, Rig};
+use crate::rigs::{
+    Belt, ForceRamp, FreeVibration, Oscillation, PaperBlock, PrescribedMotion, Presliding,
+    VelocityOscillation, VelocitySweep,
+};
 use friction_models::FrictionParams;
-use serde::Serialize;
+use serde::{Serialize, Serializer};
 use std::fmt;
+use std::hash::{Hash, Hasher};
 
-/// A test rig.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
-pub enum Scenario {
-    /// m·v' = F_ex − F(v) from rest: the paper's experiment.
-    PaperBlock,
-    /// X(t) = t³/3 + t²/2 and its mirror image (Figures 5–7).
-    PrescribedMotion,
-    /// Steady friction on a grid of velocities (Figures 2–4).
-    VelocitySweep,
-    /// A spring-held body on a moving belt: m·ẍ + k·x = −F(ẋ − v_belt).
-    Belt,
-    /// m·ẍ + k·x = −F(ẋ), released from x0 at rest.
-    FreeVibration,
-    /// Prescribed x = amplitude·sin(omega·t).
-    Oscillation,
-    /// Prescribed v = v_mean + v_amplitude·cos(omega·t), x(0) = 0, internal states from zero.
-    VelocityOscillation,
-    /// m·v' = rate·t − F from rest.
-    ForceRamp,
-    /// A load of `fraction`·F_s applied (1 s ramp), held 1 s, released (1 s), then 1 s at rest.
-    Presliding,
+/// A test rig of friction-lab: a [`Rig`], built in or a user's own.
+#[derive(Clone, Copy)]
+pub struct Scenario {
+    rig: &'static dyn Rig,
+    /// Whether it is a user's own ([`Scenario::own`]).
+    own: bool,
 }
 
 impl Scenario {
-    /// Every scenario.
+    /// m·v' = F_ex − F(v) from rest: the paper's experiment.
+    pub const PAPER_BLOCK: Scenario = Scenario::built_in(&PaperBlock);
+    /// X(t) = t³/3 + t²/2 and its mirror image (Figures 5–7).
+    pub const PRESCRIBED_MOTION: Scenario = Scenario::built_in(&PrescribedMotion);
+    /// Steady friction on a grid of velocities (Figures 2–4).
+    pub const VELOCITY_SWEEP: Scenario = Scenario::built_in(&VelocitySweep);
+    /// A spring-held body on a moving belt: m·ẍ + c·ẋ + k·x = −F(ẋ − v_belt).
+    pub const BELT: Scenario = Scenario::built_in(&Belt);
+    /// m·ẍ + c·ẋ + k·x = −F(ẋ), released from x0 at v0.
+    pub const FREE_VIBRATION: Scenario = Scenario::built_in(&FreeVibration);
+    /// Prescribed x = amplitude·sin(omega·t).
+    pub const OSCILLATION: Scenario = Scenario::built_in(&Oscillation);
+    /// Prescribed v = v_mean + v_amplitude·cos(omega·t), x(0) = 0, internal states from zero.
+    pub const VELOCITY_OSCILLATION: Scenario = Scenario::built_in(&VelocityOscillation);
+    /// m·v' = rate·t − F from rest.
+    pub const FORCE_RAMP: Scenario = Scenario::built_in(&ForceRamp);
+    /// A load of `fraction`·F_s applied (1 s ramp), held 1 s, released (1 s), then 1 s at rest.
+    pub const PRESLIDING: Scenario = Scenario::built_in(&Presliding);
+
+    /// Every built-in rig, in listing order: the ones the command line names.
     pub const ALL: [Scenario; 9] = [
-        Scenario::PaperBlock,
-        Scenario::PrescribedMotion,
-        Scenario::VelocitySweep,
-        Scenario::Belt,
-        Scenario::FreeVibration,
-        Scenario::Oscillation,
-        Scenario::VelocityOscillation,
-        Scenario::ForceRamp,
-        Scenario::Presliding,
+        Scenario::PAPER_BLOCK,
+        Scenario::PRESCRIBED_MOTION,
+        Scenario::VELOCITY_SWEEP,
+        Scenario::BELT,
+        Scenario::FREE_VIBRATION,
+        Scenario::OSCILLATION,
+        Scenario::VELOCITY_OSCILLATION,
+        Scenario::FORCE_RAMP,
+        Scenario::PRESLIDING,
     ];
+
+    const fn built_in(rig: &'static dyn Rig) -> Scenario {
+        Scenario { rig, own: false }
+    }
+
+    /// A rig of the user's own, run wherever a built-in one runs.
+    pub const fn own(rig: &'static dyn Rig) -> Scenario {
+        Scenario { rig, own: true }
+    }
+
+    /// The rig.
+    pub fn rig(self) -> &'static dyn Rig {
+        self.rig
+    }
 
     /// The name the command line takes.
     pub fn name(self) -> &'static str {
-        match self {
-            Scenario::PaperBlock => "paper-block",
-            Scenario::PrescribedMotion => "prescribed-motion",
-            Scenario::VelocitySweep => "velocity-sweep",
-            Scenario::Belt => "belt",
-            Scenario::FreeVibration => "free-vibration",
-            Scenario::Oscillation => "oscillation",
-            Scenario::VelocityOscillation => "velocity-oscillation",
-            Scenario::ForceRamp => "force-ramp",
-            Scenario::Presliding => "presliding",
-        }
+        self.rig.name()
     }
 
-    /// The scenario called `name`.
+    /// The built-in rig called `name`.
     pub fn from_name(name: &str) -> Result<Scenario, String> {
         Scenario::ALL
             .into_iter()
             .find(|s| s.name() == name)
             .ok_or_else(|| {
-                let known: Vec<_> = Scenario::ALL.iter().map(|s| s.name()).collect();
                 format!(
                     "unknown scenario `{name}`; known scenarios: {}",
-                    known.join(", ")
+                    Scenario::names().join(", ")
                 )
             })
     }
 
+    /// The names of the built-in rigs, in listing order.
+    pub fn names() -> Vec<&'static str> {
+        Scenario::ALL.iter().map(|s| s.name()).collect()
+    }
+
     /// The equation of the rig, in words.
     pub fn equation(self) -> &'static str {
-        match self {
-            Scenario::PaperBlock => "m*v' = F_ex - F(v), from x0, v0 (rest)",
-            Scenario::PrescribedMotion => "X(t) = t^3/3 + t^2/2 and X -> -X; the model's state follows its law",
-            Scenario::VelocitySweep => "steady friction at constant v on +-v_max*k/20, k = 1..20",
-            Scenario::Belt => "m*x'' + c*x' + k*x = -F(x' - v_belt), from x0, v0",
-            Scenario::FreeVibration => "m*x'' + c*x' + k*x = -F(x'), released from x0 at v0",
-            Scenario::Oscillation => "x = amplitude*sin(omega*t) prescribed",
-            Scenario::VelocityOscillation => {
-                "v = v_mean + v_amplitude*cos(omega*t) prescribed, x(0) = 0, internal states from zero"
-            }
-            Scenario::ForceRamp => "m*v' = rate*t - F(v), from rest",
-            Scenario::Presliding => "m*v' = L(t) - F(v), L: 0 -> fraction*F_s in 1 s, held 1 s, back to 0 in 1 s, 1 s at 0",
-        }
+        self.rig.equation()
     }
 
     /// The scenario parameters the rig reads.
     pub fn parameters(self) -> &'static [&'static str] {
-        match self {
-            Scenario::PaperBlock => &["m", "F_ex", "x0", "v0"],
-            Scenario::PrescribedMotion => &[],
-            Scenario::VelocitySweep => &["v_max"],
-            Scenario::Belt => &["m", "k", "c", "v_belt", "x0", "v0"],
-            Scenario::FreeVibration => &["m", "k", "c", "x0", "v0"],
-            Scenario::Oscillation => &["amplitude", "omega"],
-            Scenario::VelocityOscillation => &["v_mean", "v_amplitude", "omega"],
-            Scenario::ForceRamp => &["m", "rate"],
-            Scenario::Presliding => &["m", "fraction"],
-        }
+        self.rig.parameters()
     }
 
     /// Whether a body is integrated (rather than a motion imposed).
     pub fn has_body(self) -> bool {
-        !matches!(
-            self,
-            Scenario::PrescribedMotion
-                | Scenario::VelocitySweep
-                | Scenario::Oscillation
-                | Scenario::VelocityOscillation
-        )
+        self.rig.has_body()
     }
 
     /// The rig's default parameters (`docs/scenarios.md`).
     pub fn defaults(self) -> ScenarioParams {
-        let base = ScenarioParams::default();
-        match self {
-            Scenario::FreeVibration => ScenarioParams { x0: 0.5, ..base },
-            _ => base,
-        }
+        self.rig.defaults()
     }
 
-    /// How [`Scenario::default_t_end`] derives the end time from the parameters, with their
-    /// values (`2·max(F_s, F_c)/rate with F_s = 7.5, F_c = 5, rate = 1`), for a rig whose end
-    /// time depends on them; `None` for a fixed one.
-    pub fn t_end_rule(self, p: &ScenarioParams, f: &FrictionParams) -> Option<String> {
-        use friction_models::params::show;
-        match self {
-            Scenario::Oscillation | Scenario::VelocityOscillation => Some(format!(
-                "three periods, 6π/omega with omega = {}",
-                show(p.omega)
-            )),
-            Scenario::ForceRamp => Some(format!(
-                "2·max(F_s, F_c)/rate with F_s = {}, F_c = {}, rate = {}",
-                show(f.f_s),
-                show(f.f_c),
-                show(p.rate)
-            )),
-            _ => None,
-        }
+    /// The end time of a run that asks for none, and how it follows from the parameters.
+    pub fn end_time(self, p: &ScenarioParams, f: &FrictionParams) -> EndTime {
+        self.rig.end_time(p, f)
     }
 
     /// The default end time, s.
     pub fn default_t_end(self, p: &ScenarioParams, f: &FrictionParams) -> f64 {
-        match self {
-            Scenario::PaperBlock => 5.0,
-            Scenario::PrescribedMotion => 2.0,
-            Scenario::VelocitySweep => 0.0,
-            Scenario::Belt => 20.0,
-            Scenario::FreeVibration => 10.0,
-            Scenario::Oscillation | Scenario::VelocityOscillation => {
-                3.0 * 2.0 * std::f64::consts::PI / p.omega
-            }
-            Scenario::ForceRamp => 2.0 * f.f_s.max(f.f_c) / p.rate,
-            Scenario::Presliding => 4.0,
+        self.end_time(p, f).value()
+    }
+}
+
+/// A built-in rig shows as its name, an own one as `own NAME`.
+impl fmt::Debug for Scenario {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.own {
+            f.write_str("own ")?;
         }
+        f.write_str(self.name())
+    }
+}
+
+/// Built-in rigs are equal when they have the same name, and so are own rigs; an own rig is
+/// never equal to a built-in one.
+impl PartialEq for Scenario {
+    fn eq(&self, other: &Scenario) -> bool {
+        self.own == other.own && self.name() == other.name()
+    }
+}
+
+impl Eq for Scenario {}
+
+impl Hash for Scenario {
+    fn hash<H: Hasher>(&self, state: &mut H) {
+        self.own.hash(state);
+        self.name().hash(state);
+    }
+}
+
+/// Written as its name.
+impl Serialize for Scenario {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_str(self.name())
     }
 }
 

@@ -9,7 +9,8 @@
 //! it (a subcritical Hopf bifurcation): the two initial states of the bifurcation diagram show
 //! where.
 
-use crate::run::{run, Limits, RunSpec, ScenarioError, SwitchingKind};
+use crate::error::ScenarioError;
+use crate::run::{run, Limits, RunSpec, SwitchingKind};
 use crate::scenario::Scenario;
 use crate::settled::{spanned, until_settled, Settled, Trace};
 use friction_models::{steady, Direction, FrictionModel, SignLaw};
@@ -22,10 +23,10 @@ use serde::Serialize;
 /// measured), event switching, Dormand–Prince at rtol 1e-8, 4001 output points.
 pub fn belt_run(model: ModelId, friction: &FrictionParams) -> RunSpec {
     RunSpec {
-        scenario: Scenario::Belt,
+        scenario: Scenario::BELT,
         law: model.into(),
         friction: *friction,
-        params: Scenario::Belt.defaults(),
+        params: Scenario::BELT.defaults(),
         solver: Solver::DOPRI5,
         switching: SwitchingKind::Event,
         step: StepControl::Adaptive {
@@ -157,7 +158,7 @@ pub fn sliding_start(model: &dyn FrictionModel, v_belt: f64, k: f64) -> f64 {
 
 fn belt_spec(base: &RunSpec, v_belt: f64, k: f64, x0: f64) -> RunSpec {
     let mut spec = base.clone();
-    spec.scenario = Scenario::Belt;
+    spec.scenario = Scenario::BELT;
     spec.params.v_belt = v_belt;
     spec.params.k = k;
     spec.params.x0 = x0;

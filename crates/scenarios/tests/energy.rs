@@ -6,10 +6,10 @@ use scenarios::{run, Limits, RunSpec, Scenario, SwitchingKind};
 
 fn belt(model: ModelId, switching: SwitchingKind, rtol: f64) -> friction_systems::EnergyBalance {
     let spec = RunSpec {
-        scenario: Scenario::Belt,
+        scenario: Scenario::BELT,
         law: model.into(),
         friction: FrictionParams::paper(),
-        params: Scenario::Belt.defaults(),
+        params: Scenario::BELT.defaults(),
         solver: Solver::DOPRI5,
         switching,
         step: StepControl::Adaptive {

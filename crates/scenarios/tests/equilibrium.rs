@@ -10,10 +10,10 @@ use integrators::{Solver, StepControl};
 use scenarios::{run, Limits, RunSpec, Scenario, SwitchingKind};
 
 fn end_displacement(solver: Solver, step: StepControl) -> f64 {
-    let mut params = Scenario::Presliding.defaults();
+    let mut params = Scenario::PRESLIDING.defaults();
     params.set("fraction", 0.75).unwrap();
     let spec = RunSpec {
-        scenario: Scenario::Presliding,
+        scenario: Scenario::PRESLIDING,
         law: ModelId::LuGre.into(),
         friction: FrictionParams::lugre_1995(),
         params,

@@ -7,7 +7,7 @@ use scenarios::{run, Limits, RunSpec, Scenario, ScenarioParams, SwitchingKind};
 
 /// The experiment's rows at `p`, every model's run finished.
 fn measured(p: &FrictionParams) -> Vec<ExperimentRow> {
-    experiment(p, &Scenario::PaperBlock.defaults())
+    experiment(p, &Scenario::PAPER_BLOCK.defaults())
         .unwrap()
         .into_iter()
         .map(|row| row.unwrap())
@@ -91,7 +91,7 @@ fn a_push_that_cannot_keep_the_block_sliding_leaves_it_at_rest() {
 
 fn paper_block(model: ModelId, p: FrictionParams) -> Vec<(f64, f64, f64)> {
     let spec = RunSpec {
-        scenario: Scenario::PaperBlock,
+        scenario: Scenario::PAPER_BLOCK,
         law: model.into(),
         friction: p,
         params: ScenarioParams::default(),
@@ -144,7 +144,7 @@ fn a_model_whose_run_fails_is_reported_and_the_others_are_measured() {
     // failed the whole experiment, and `reproduce` wrote nothing.)
     let mut p = FrictionParams::paper();
     p.set("sigma", 1e300).unwrap();
-    let rows = experiment(&p, &Scenario::PaperBlock.defaults()).unwrap();
+    let rows = experiment(&p, &Scenario::PAPER_BLOCK.defaults()).unwrap();
     assert_eq!(rows.len(), 6);
     for row in &rows[..3] {
         let row = row.as_ref().expect("AV, CS and CVS finish");

@@ -23,17 +23,17 @@ fn measured(phenomenon: Phenomenon, model: ModelId) -> bool {
 #[test]
 fn coulomb_with_stiction_sticks_and_slips_but_has_no_stribeck_effect() {
     // The `static` model: Coulomb friction F_c = 6 N with stiction F_s = 7.5 N.
-    assert!(measured(Phenomenon::Stiction, ModelId::Static));
-    assert!(measured(Phenomenon::StickSlip, ModelId::Static));
-    assert!(!measured(Phenomenon::Stribeck, ModelId::Static));
-    assert!(!measured(Phenomenon::Viscous, ModelId::Static));
-    assert!(!measured(Phenomenon::Hysteresis, ModelId::Static));
+    assert!(measured(Phenomenon::STICTION, ModelId::Static));
+    assert!(measured(Phenomenon::STICK_SLIP, ModelId::Static));
+    assert!(!measured(Phenomenon::STRIBECK, ModelId::Static));
+    assert!(!measured(Phenomenon::VISCOUS, ModelId::Static));
+    assert!(!measured(Phenomenon::HYSTERESIS, ModelId::Static));
 }
 
 #[test]
 fn viscous_friction_has_no_stiction() {
     let v = decide(
-        Phenomenon::Stiction,
+        Phenomenon::STICTION,
         &Law::from(ModelId::Viscous),
         &FrictionParams::paper(),
         Protocol::default(),
@@ -42,7 +42,7 @@ fn viscous_friction_has_no_stiction() {
     assert!(!v.measured);
     // Under a ramp the body moves from the first instant: no static level to break.
     assert!(!v.evidence.contains_key("breakaway_N"), "{:?}", v.evidence);
-    assert!(measured(Phenomenon::Viscous, ModelId::Viscous));
+    assert!(measured(Phenomenon::VISCOUS, ModelId::Viscous));
 }
 
 #[test]
@@ -51,7 +51,7 @@ fn stiction_is_a_static_level_above_the_kinetic_one() {
     // peak is read on the output grid: within one grid step of the ramp, rate·Δt = 6e-4 N).
     let p = FrictionParams::paper();
     let v = decide(
-        Phenomenon::Stiction,
+        Phenomenon::STICTION,
         &Law::from(ModelId::Static),
         &p,
         Protocol::default(),
@@ -66,7 +66,7 @@ fn stiction_is_a_static_level_above_the_kinetic_one() {
     // Plain Coulomb holds until F_c and then slides at F_c: no stiction, although a body
     // held by it stays put under half its level.
     let v = decide(
-        Phenomenon::Stiction,
+        Phenomenon::STICTION,
         &Law::from(ModelId::Coulomb),
         &p,
         Protocol::default(),
@@ -84,7 +84,7 @@ fn stiction_is_a_static_level_above_the_kinetic_one() {
         ..FrictionParams::paper()
     };
     let v = decide(
-        Phenomenon::Stiction,
+        Phenomenon::STICTION,
         &Law::from(ModelId::Dv),
         &stiff,
         Protocol::default(),
@@ -103,7 +103,7 @@ fn stribeck_is_a_falling_branch_anywhere_at_low_speed() {
         ..FrictionParams::paper()
     };
     let v = decide(
-        Phenomenon::Stribeck,
+        Phenomenon::STRIBECK,
         &Law::from(ModelId::Cvs),
         &p,
         Protocol::default(),
@@ -122,7 +122,7 @@ fn stribeck_is_a_falling_branch_anywhere_at_low_speed() {
     // Coulomb and viscous friction never fall.
     for model in [ModelId::Coulomb, ModelId::Viscous] {
         let v = decide(
-            Phenomenon::Stribeck,
+            Phenomenon::STRIBECK,
             &Law::from(model),
             &FrictionParams::paper(),
             Protocol::default(),
@@ -142,7 +142,7 @@ fn presliding_reports_the_models_own_scale() {
     // F_s the body moves micrometres and more than half of it springs back.
     let p = FrictionParams::lugre_1995();
     let v = decide(
-        Phenomenon::Presliding,
+        Phenomenon::PRESLIDING,
         &Law::from(ModelId::LuGre),
         &p,
         Protocol::default(),
@@ -154,7 +154,7 @@ fn presliding_reports_the_models_own_scale() {
     assert!(v.evidence["x_max_m"] < p.f_s / p.sigma0, "{:?}", v.evidence);
     // A static map is rigid below break-away: no displacement, no scale.
     let v = decide(
-        Phenomenon::Presliding,
+        Phenomenon::PRESLIDING,
         &Law::from(ModelId::Cs),
         &FrictionParams::paper(),
         Protocol::default(),
@@ -173,7 +173,7 @@ fn stick_slip_is_counted_from_the_switching_log_once_settled() {
     // period 0.9785 s (docs/sweep.md).
     let p = FrictionParams::paper();
     let v = decide(
-        Phenomenon::StickSlip,
+        Phenomenon::STICK_SLIP,
         &Law::from(ModelId::Static),
         &p,
         Protocol::default(),
@@ -192,7 +192,7 @@ fn stick_slip_is_counted_from_the_switching_log_once_settled() {
     );
     // Plain Coulomb (F_s = F_c): the slip only grazes the belt's speed; no stick phase.
     let v = decide(
-        Phenomenon::StickSlip,
+        Phenomenon::STICK_SLIP,
         &Law::from(ModelId::Coulomb),
         &p,
         Protocol::default(),
@@ -207,17 +207,17 @@ fn stick_slip_is_counted_from_the_switching_log_once_settled() {
 
 #[test]
 fn dahl_has_presliding_and_hysteresis() {
-    assert!(measured(Phenomenon::Presliding, ModelId::Dahl));
-    assert!(measured(Phenomenon::Hysteresis, ModelId::Dahl));
-    assert!(!measured(Phenomenon::Stribeck, ModelId::Dahl));
+    assert!(measured(Phenomenon::PRESLIDING, ModelId::Dahl));
+    assert!(measured(Phenomenon::HYSTERESIS, ModelId::Dahl));
+    assert!(!measured(Phenomenon::STRIBECK, ModelId::Dahl));
 }
 
 #[test]
 fn lugre_has_the_stribeck_effect_and_a_break_away_force_that_falls_with_the_rate() {
-    assert!(measured(Phenomenon::Stribeck, ModelId::LuGre));
+    assert!(measured(Phenomenon::STRIBECK, ModelId::LuGre));
     let p = FrictionParams::lugre_1995();
     let v = decide(
-        Phenomenon::RisingStaticFriction,
+        Phenomenon::RISING_STATIC_FRICTION,
         &Law::from(ModelId::LuGre),
         &p,
         Protocol::default(),
@@ -239,7 +239,7 @@ fn lugre_has_the_stribeck_effect_and_a_break_away_force_that_falls_with_the_rate
     // Rate-independent and static models: the same break-away at every rate.
     for model in [ModelId::Dahl, ModelId::Cs] {
         let v = decide(
-            Phenomenon::RisingStaticFriction,
+            Phenomenon::RISING_STATIC_FRICTION,
             &Law::from(model),
             &parameters_for(model),
             Protocol::default(),
@@ -257,7 +257,7 @@ fn lugre_has_the_stribeck_effect_and_a_break_away_force_that_falls_with_the_rate
 fn static_maps_have_no_hysteresis_loop() {
     for model in [ModelId::Av, ModelId::Cs, ModelId::Cvs, ModelId::Coulomb] {
         let v = decide(
-            Phenomenon::Hysteresis,
+            Phenomenon::HYSTERESIS,
             &Law::from(model),
             &FrictionParams::paper(),
             Protocol::default(),
@@ -274,7 +274,7 @@ fn static_maps_have_no_hysteresis_loop() {
 fn hysteresis_is_frictional_lag_or_a_lossy_presliding_loop_never_a_spring() {
     let hysteresis = |model: ModelId, p: &FrictionParams| {
         decide(
-            Phenomenon::Hysteresis,
+            Phenomenon::HYSTERESIS,
             &Law::from(model),
             p,
             Protocol::default(),
@@ -316,9 +316,18 @@ fn hysteresis_is_frictional_lag_or_a_lossy_presliding_loop_never_a_spring() {
 #[test]
 fn two_solvers_agree_on_every_cell() {
     let laws = catalog_laws();
-    let dopri5 = table(&laws, Protocol::default(), None, false, &|| {}).unwrap();
+    let dopri5 = table(
+        &laws,
+        &Phenomenon::ALL,
+        Protocol::default(),
+        None,
+        false,
+        &|| {},
+    )
+    .unwrap();
     let bdf = table(
         &laws,
+        &Phenomenon::ALL,
         Protocol {
             solver: Solver::from_name("bdf").unwrap(),
             step: StepControl::Adaptive {
@@ -351,7 +360,7 @@ fn two_solvers_agree_on_every_cell() {
 fn a_verdict_over_the_grid_says_where_it_flips() {
     let p = FrictionParams::paper();
     let r = region(
-        Phenomenon::StickSlip,
+        Phenomenon::STICK_SLIP,
         &Law::from(ModelId::Static),
         &p,
         Protocol::default(),
@@ -369,7 +378,7 @@ fn a_verdict_over_the_grid_says_where_it_flips() {
     assert!((r.fraction - (36 - r.flips.len()) as f64 / 36.0).abs() < 1e-12);
     // No rig parameter: a grid of one point, the default rig.
     let r = region(
-        Phenomenon::Stribeck,
+        Phenomenon::STRIBECK,
         &Law::from(ModelId::Cvs),
         &p,
         Protocol::default(),
@@ -423,7 +432,7 @@ fn gms_on_soft_bristles_is_decided_by_bdf_as_by_tr_bdf2() {
     };
     let hysteresis = |protocol: Protocol| {
         decide(
-            Phenomenon::Hysteresis,
+            Phenomenon::HYSTERESIS,
             &Law::from(ModelId::Gms),
             &p,
             protocol,
@@ -445,4 +454,57 @@ fn gms_on_soft_bristles_is_decided_by_bdf_as_by_tr_bdf2() {
             "{name}: bdf {a}, tr-bdf2 {b}"
         );
     }
+}
+
+/// A row of one's own: steady friction at 10·v_s is the Coulomb level F_c within 1 %.
+struct CoulombLevel;
+
+static COULOMB_LEVEL: CoulombLevel = CoulombLevel;
+
+impl scenarios::phenomena::Experiment for CoulombLevel {
+    fn name(&self) -> &'static str {
+        "coulomb_level"
+    }
+    fn label(&self) -> &'static str {
+        "Coulomb level"
+    }
+    fn decide(
+        &self,
+        bench: &scenarios::phenomena::Bench,
+    ) -> Result<scenarios::phenomena::Verdict, scenarios::ScenarioError> {
+        let p = bench.friction();
+        let f = bench.steady(10.0 * p.v_s)?;
+        let deviation = (f / p.f_c - 1.0).abs();
+        Ok(scenarios::phenomena::Verdict {
+            measured: deviation < 0.01,
+            evidence: BTreeMap::from([("F_N", f), ("relative_deviation", deviation)]),
+        })
+    }
+}
+
+#[test]
+fn a_row_of_ones_own_is_decided_beside_the_papers() {
+    let own = Phenomenon::own(&COULOMB_LEVEL);
+    let laws = [Law::from(ModelId::Coulomb), Law::from(ModelId::Viscous)];
+    let rows = table(
+        &laws,
+        &[Phenomenon::STICTION, own],
+        Protocol::default(),
+        None,
+        false,
+        &|| {},
+    )
+    .unwrap();
+    let cell = |law: usize, row: usize| &rows[law].1[row];
+    assert_eq!(cell(0, 1).0, own);
+    assert_ne!(own, Phenomenon::STICTION);
+    // Coulomb's law is F_c at every velocity and has no static level above it.
+    assert_eq!(cell(0, 0).1.measured, Ok(false));
+    assert_eq!(cell(0, 1).1.measured, Ok(true));
+    assert_eq!(cell(0, 1).1.evidence["F_N"], FrictionParams::paper().f_c);
+    // The viscous law is mu_v·v = 0.5 N at 1 m/s.
+    assert_eq!(cell(1, 1).1.measured, Ok(false));
+    assert!((cell(1, 1).1.evidence["F_N"] - 0.5).abs() < 1e-12);
+    // The paper has no such row: no claim.
+    assert_eq!(cell(0, 1).1.paper, None);
 }

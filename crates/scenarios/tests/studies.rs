@@ -11,10 +11,10 @@ use scenarios::{Limits, Scenario, SwitchingKind};
 /// The block pushed by 15 N against viscous friction: smooth, with a closed form.
 fn viscous_block() -> Case {
     Case {
-        scenario: Scenario::PaperBlock,
+        scenario: Scenario::PAPER_BLOCK,
         law: ModelId::Viscous.into(),
         friction: FrictionParams::paper(),
-        params: Scenario::PaperBlock.defaults(),
+        params: Scenario::PAPER_BLOCK.defaults(),
         switching: SwitchingKind::Event,
         t_end: 5.0,
         limits: Limits::default(),
@@ -72,10 +72,10 @@ fn the_study_recovers_the_orders_of_the_methods_on_a_smooth_problem() {
 /// periods the body sticks at x = 0.02 m.
 fn coulomb_vibration(switching: SwitchingKind) -> Case {
     Case {
-        scenario: Scenario::FreeVibration,
+        scenario: Scenario::FREE_VIBRATION,
         law: ModelId::Static.into(),
         friction: FrictionParams::paper(),
-        params: Scenario::FreeVibration.defaults(),
+        params: Scenario::FREE_VIBRATION.defaults(),
         switching,
         t_end: 2.0,
         limits: Limits::default(),
@@ -150,9 +150,9 @@ fn levels_outside_the_asymptotic_range_do_not_make_a_small_richardson_estimate()
     // estimate (1e-67 m) once called x independent. Taken at most at RK4's order 4, the
     // estimate must bound the true error of the finest level, here against BDF at 1e-11.
     let case = Case {
-        scenario: Scenario::FreeVibration,
+        scenario: Scenario::FREE_VIBRATION,
         law: ModelId::Gms.into(),
-        params: Scenario::FreeVibration.defaults(),
+        params: Scenario::FREE_VIBRATION.defaults(),
         t_end: 10.0,
         ..viscous_block()
     };
@@ -282,10 +282,10 @@ fn the_stiffness_verdict_names_a_crossover_only_inside_the_sweep() {
 /// The switched belt (CS, event switching), which has no closed form.
 fn switched_belt() -> Case {
     Case {
-        scenario: Scenario::Belt,
+        scenario: Scenario::BELT,
         law: ModelId::Cs.into(),
         friction: FrictionParams::paper(),
-        params: Scenario::Belt.defaults(),
+        params: Scenario::BELT.defaults(),
         switching: SwitchingKind::Event,
         t_end: 5.0,
         limits: Limits::default(),
@@ -915,9 +915,9 @@ fn a_time_stepped_study_without_a_closed_form_takes_the_event_driven_reference()
 #[test]
 fn a_law_with_an_internal_state_has_its_error_in_z() {
     let case = Case {
-        scenario: Scenario::Belt,
+        scenario: Scenario::BELT,
         law: ModelId::LuGre.into(),
-        params: Scenario::Belt.defaults(),
+        params: Scenario::BELT.defaults(),
         t_end: 2.0,
         ..viscous_block()
     };
@@ -950,10 +950,10 @@ fn a_stiff_case_has_an_implicit_reference_checked_by_an_explicit_one() {
         let mut friction = FrictionParams::paper();
         friction.epsilon = epsilon;
         Case {
-            scenario: Scenario::Belt,
+            scenario: Scenario::BELT,
             law: ModelId::Cs.into(),
             friction,
-            params: Scenario::Belt.defaults(),
+            params: Scenario::BELT.defaults(),
             switching,
             t_end: 2.0,
             ..viscous_block()

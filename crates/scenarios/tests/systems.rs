@@ -9,10 +9,10 @@ use scenarios::{run, Limits, RunSpec, Scenario, SwitchingKind};
 #[test]
 fn a_one_body_system_file_equals_the_belt_rig() {
     let spec = RunSpec {
-        scenario: Scenario::Belt,
+        scenario: Scenario::BELT,
         law: ModelId::Cvs.into(),
         friction: FrictionParams::paper(),
-        params: Scenario::Belt.defaults(),
+        params: Scenario::BELT.defaults(),
         solver: Solver::DOPRI5,
         switching: SwitchingKind::Event,
         step: StepControl::Adaptive {

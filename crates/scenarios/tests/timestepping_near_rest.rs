@@ -56,10 +56,10 @@ fn outcome_with(
 #[test]
 fn slow_sliding_with_an_internal_state_is_time_stepped_through_and_agrees_with_bdf() {
     for (scenario, model) in [
-        (Scenario::Presliding, ModelId::LuGre),
-        (Scenario::Presliding, ModelId::LuGreVd),
-        (Scenario::Presliding, ModelId::ElastoPlastic),
-        (Scenario::FreeVibration, ModelId::LuGreVd),
+        (Scenario::PRESLIDING, ModelId::LuGre),
+        (Scenario::PRESLIDING, ModelId::LuGreVd),
+        (Scenario::PRESLIDING, ModelId::ElastoPlastic),
+        (Scenario::FREE_VIBRATION, ModelId::LuGreVd),
     ] {
         let case = format!("{scenario:?}, {model:?}");
         let stepped = outcome(scenario, model, SwitchingKind::TimeStepping { theta: 0.5 });
@@ -82,10 +82,10 @@ fn fast_sliding_with_the_elasto_plastic_model_is_time_stepped_through_and_agrees
     // not converge"), and did for every v_belt from 0.6 to 1000 m/s.
     let params = ScenarioParams {
         v_belt: 1.0,
-        ..Scenario::Belt.defaults()
+        ..Scenario::BELT.defaults()
     };
     let model = ModelId::ElastoPlastic;
-    let reference = outcome_with(Scenario::Belt, params, model, SwitchingKind::Event, 0.0);
+    let reference = outcome_with(Scenario::BELT, params, model, SwitchingKind::Event, 0.0);
     assert!(reference.error.is_none(), "{:?}", reference.error);
     let b = reference.last().unwrap();
     let scale = reference.rows.iter().map(|r| r.x.abs()).fold(0.0, f64::max);
@@ -93,7 +93,7 @@ fn fast_sliding_with_the_elasto_plastic_model_is_time_stepped_through_and_agrees
     // stick-slip cycle's switches make the error uneven in h).
     for (h, bound) in [(1e-3, 1e-2), (2.5e-4, 1e-4)] {
         let theta = SwitchingKind::TimeStepping { theta: 0.5 };
-        let stepped = outcome_with(Scenario::Belt, params, model, theta, h);
+        let stepped = outcome_with(Scenario::BELT, params, model, theta, h);
         assert!(stepped.error.is_none(), "h = {h}: {:?}", stepped.error);
         let a = stepped.last().unwrap();
         assert_eq!((a.t, b.t), (T_END, T_END));

@@ -7,10 +7,10 @@ use std::f64::consts::PI;
 
 fn oscillate(model: ModelId) -> Outcome {
     let spec = RunSpec {
-        scenario: Scenario::VelocityOscillation,
+        scenario: Scenario::VELOCITY_OSCILLATION,
         law: model.into(),
         friction: FrictionParams::paper(),
-        params: Scenario::VelocityOscillation.defaults(),
+        params: Scenario::VELOCITY_OSCILLATION.defaults(),
         solver: Solver::DOPRI5,
         switching: SwitchingKind::Event,
         step: StepControl::Adaptive {
@@ -31,7 +31,7 @@ fn oscillate(model: ModelId) -> Outcome {
 fn viscous_friction_does_the_closed_form_work_and_draws_no_loop() {
     // F = mu_v·v: over three periods T = 3·2π/ω, W = ∫F·v dt = mu_v·T·(v̄² + a²/2), and a
     // single-valued F(v) encloses no area, ∮F dv = 0; x(T) = v̄·T.
-    let p = Scenario::VelocityOscillation.defaults();
+    let p = Scenario::VELOCITY_OSCILLATION.defaults();
     let mu_v = FrictionParams::paper().mu_v;
     let t = 3.0 * 2.0 * PI / p.omega;
     let o = oscillate(ModelId::Viscous);

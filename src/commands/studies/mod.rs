@@ -22,10 +22,17 @@ pub use work_precision::WorkPrecisionArgs;
 /// The problem a study runs.
 #[derive(Args, Debug, Clone)]
 pub struct CaseArgs {
-    /// A scenario (paper-block, belt, free-vibration, …), or chain (the Burridge–Knopoff
-    /// chain of docs/systems.md, its parameters by --set); omit it with --system (or, for
+    /// The rig (docs/scenarios.md) or the chain; omit it with --system (or, for
     /// work-precision, --testset).
-    #[arg(value_name = "SCENARIO", conflicts_with = "system")]
+    #[arg(
+        help = crate::options::scenario_help(
+            "The rig",
+            "or chain (the Burridge–Knopoff chain of docs/systems.md, its parameters by --set); \
+             omit it with --system (or, for work-precision, --testset)",
+        ),
+        value_name = "SCENARIO",
+        conflicts_with = "system"
+    )]
     pub scenario: Option<Run>,
     /// A system file (TOML or JSON, docs/systems.md) to study instead of a scenario.
     #[arg(long, value_name = "FILE.toml")]

@@ -33,7 +33,7 @@ impl Study for ExperimentStudy {
     }
 
     fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<ExperimentRows, AppError> {
-        let rows = experiment(&self.friction, &Scenario::PaperBlock.defaults())?;
+        let rows = experiment(&self.friction, &Scenario::PAPER_BLOCK.defaults())?;
         rows.iter().for_each(|_| progress());
         Ok(rows)
     }

@@ -85,14 +85,14 @@ impl Part for SolverStudies {
             Solver::ESDIRK34,
         ];
         let block_cvs = case(
-            Scenario::PaperBlock,
+            Scenario::PAPER_BLOCK,
             ModelId::Cvs,
             SwitchingKind::Event,
             friction,
             5.0,
         );
         let block_av = case(
-            Scenario::PaperBlock,
+            Scenario::PAPER_BLOCK,
             ModelId::Av,
             SwitchingKind::Event,
             friction,
@@ -100,7 +100,7 @@ impl Part for SolverStudies {
         );
         let vibration = |switching| {
             case(
-                Scenario::FreeVibration,
+                Scenario::FREE_VIBRATION,
                 ModelId::Static,
                 switching,
                 friction,
@@ -111,7 +111,7 @@ impl Part for SolverStudies {
             vibration(SwitchingKind::Naive),
             vibration(SwitchingKind::Event),
         );
-        let belt = |switching, t_end| case(Scenario::Belt, ModelId::Cs, switching, friction, t_end);
+        let belt = |switching, t_end| case(Scenario::BELT, ModelId::Cs, switching, friction, t_end);
         let (belt_naive, belt_event) = (
             belt(SwitchingKind::Naive, 20.0),
             belt(SwitchingKind::Event, 5.0),

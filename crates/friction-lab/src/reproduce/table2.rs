@@ -4,7 +4,7 @@
 use super::Part;
 use crate::error::AppError;
 use crate::study::{conduct, Table2Study, Target};
-use scenarios::phenomena::{catalog_laws, Protocol};
+use scenarios::phenomena::{catalog_laws, Phenomenon, Protocol};
 
 /// The report's section on Table 2: every model of the catalog at its own parameter set,
 /// under the default protocol.
@@ -18,6 +18,7 @@ impl Part for Table2 {
     fn conduct(&self, target: &mut Target) -> Result<String, AppError> {
         let laws = catalog_laws();
         let study = Table2Study {
+            phenomena: &Phenomenon::ALL,
             laws: &laws,
             protocol: Protocol::default(),
             parameters: None,

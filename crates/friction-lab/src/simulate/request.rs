@@ -260,8 +260,9 @@ pub fn derived_t_end(
     params: &scenarios::ScenarioParams,
     friction: &friction_models::FrictionParams,
 ) -> Result<f64, AppError> {
-    let t_end = scenario.default_t_end(params, friction);
-    match scenario.t_end_rule(params, friction) {
+    let end = scenario.end_time(params, friction);
+    let t_end = end.value();
+    match end.rule() {
         Some(rule) if ranges::T_END.check(t_end).is_err() => Err(AppError::Usage(format!(
             "the end time of scenario {scenario}, {rule}, is {t_end:.3e} s: allowed {} s; \
              choose these parameters so that it falls within, or give --t-end",

@@ -10,7 +10,7 @@ use crate::settings::RunLimits;
 use crate::study::{conduct, reachable, unread_by_all, Table2Study, Target};
 use friction_models::Variant;
 use integrators::{Solver, StepControl};
-use scenarios::phenomena::{catalog_laws, Protocol};
+use scenarios::phenomena::{catalog_laws, Phenomenon, Protocol};
 use scenarios::Law;
 use std::path::Path;
 
@@ -93,6 +93,7 @@ impl Phenomena {
             self.models.iter().map(|m| m.law(Variant::Odd)).collect()
         };
         let study = Table2Study {
+            phenomena: &Phenomenon::ALL,
             laws: &laws,
             protocol: Protocol {
                 solver: self.solver,

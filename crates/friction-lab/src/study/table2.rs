@@ -18,6 +18,9 @@ use serde_json::{json, Map, Value};
 pub struct Table2Study<'a> {
     /// The laws, in column order: models of the catalog, or laws of one's own.
     pub laws: &'a [Law],
+    /// The rows, in order: [`Phenomenon::ALL`] for the paper's table, rows of one's own
+    /// besides.
+    pub phenomena: &'a [Phenomenon],
     /// The solver, tolerances and bounds of every protocol run.
     pub protocol: Protocol,
     /// Parameters for every model, with their description; `None`: each model at its own set.
@@ -32,12 +35,20 @@ impl Study for Table2Study<'_> {
     }
 
     fn runs(&self) -> usize {
-        self.laws.len() * Phenomenon::ALL.len()
+        self.laws.len() * self.phenomena.len()
     }
 
     fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<Self::Result, AppError> {
         let parameters = self.parameters.as_ref().map(|p| &p.0);
-        table(self.laws, self.protocol, parameters, true, progress).map_err(AppError::from)
+        table(
+            self.laws,
+            self.phenomena,
+            self.protocol,
+            parameters,
+            true,
+            progress,
+        )
+        .map_err(AppError::from)
     }
 
     /// Cells left undecided, their protocol runs failed ([`check_decided`]): the files mark
@@ -122,7 +133,7 @@ fn regions_markdown(rows: &[(Law, Row)]) -> String {
          the rig's parameters, the default rig among them; a cell marked `depends: P %` holds on \
          P % of its grid (`table2.json` lists every point where it flips). The grids:\n\n",
     );
-    for phenomenon in Phenomenon::ALL {
+    for phenomenon in phenomena(rows) {
         let axes: Vec<String> = phenomenon
             .region()
             .iter()
@@ -186,6 +197,12 @@ fn regions_markdown(rows: &[(Law, Row)]) -> String {
     s + "\n"
 }
 
+/// The rows of the table, in order (every law has the same).
+fn phenomena(rows: &[(Law, Row)]) -> Vec<Phenomenon> {
+    rows.first()
+        .map_or_else(Vec::new, |(_, row)| row.iter().map(|(p, _)| *p).collect())
+}
+
 /// Table 2 as markdown: the measured table beside the paper's, then the evidence.
 pub fn markdown(rows: &[(Law, Row)], protocol: &Protocol, parameters: &str) -> String {
     let mut s = String::from("# Table 2, decided by simulation\n\n");
@@ -222,7 +239,7 @@ pub fn markdown(rows: &[(Law, Row)], protocol: &Protocol, parameters: &str) -> S
         }
     }
     s += "\n";
-    for (i, phenomenon) in Phenomenon::ALL.iter().enumerate() {
+    for (i, phenomenon) in phenomena(rows).iter().enumerate() {
         s += &format!("| {} |", phenomenon.label());
         for (_, row) in rows {
             let c = &row[i].1;
@@ -235,7 +252,11 @@ pub fn markdown(rows: &[(Law, Row)], protocol: &Protocol, parameters: &str) -> S
         .flat_map(|(_, r)| r.iter())
         .filter(|(_, c)| c.disagrees())
         .count();
-    s += &format!("\n{disagreements} of the paper's 42 claims disagree with the simulations.");
+    let claims = (rows.iter().flat_map(|(_, r)| r.iter()))
+        .filter(|(_, c)| c.paper.is_some())
+        .count();
+    s +=
+        &format!("\n{disagreements} of the paper's {claims} claims disagree with the simulations.");
     let failed = undecided(rows).len();
     if failed > 0 {
         s += &format!(
@@ -403,14 +424,14 @@ mod tests {
         let failed = || cell(Err("too many steps".into()));
         let decided = vec![(
             ModelId::Cs.into(),
-            vec![(Phenomenon::Stiction, cell(Ok(true)))],
+            vec![(Phenomenon::STICTION, cell(Ok(true)))],
         )];
         assert!(check_decided(&decided).is_ok());
         let one = vec![(
             ModelId::Cs.into(),
             vec![
-                (Phenomenon::Stiction, cell(Ok(true))),
-                (Phenomenon::Hysteresis, failed()),
+                (Phenomenon::STICTION, cell(Ok(true))),
+                (Phenomenon::HYSTERESIS, failed()),
             ],
         )];
         assert_eq!(
@@ -421,8 +442,8 @@ mod tests {
         let two = vec![(
             ModelId::Cs.into(),
             vec![
-                (Phenomenon::Stiction, failed()),
-                (Phenomenon::Hysteresis, failed()),
+                (Phenomenon::STICTION, failed()),
+                (Phenomenon::HYSTERESIS, failed()),
             ],
         )];
         let e = check_decided(&two).unwrap_err().to_string();

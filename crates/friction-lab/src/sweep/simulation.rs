@@ -190,8 +190,8 @@ fn prepare(run: &Simulation, start: Start) -> Result<PointRun, AppError> {
         )))
     };
     match (&run.target, start) {
-        (Target::Rig(Scenario::Belt), Start::Sliding) => {
-            let mut spec = run.rig_spec(Scenario::Belt)?;
+        (Target::Rig(scenario), Start::Sliding) if *scenario == Scenario::BELT => {
+            let mut spec = run.rig_spec(Scenario::BELT)?;
             if spec.params.k <= 0.0 {
                 return refuse(
                     "needs a spring, k > 0 (steady sliding has no equilibrium without one)",

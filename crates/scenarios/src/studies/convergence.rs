@@ -4,8 +4,8 @@
 use super::orders::{orders, Fit, PairOrder, MIN_PAIRS, ORDER_AGREEMENT};
 use super::{run_against_reference, ErrorMeasure, Method, Reference, StepKind};
 use super::{StudyCase, StudyRun};
+use crate::error::ScenarioError;
 use crate::errors::Scales;
-use crate::run::ScenarioError;
 use friction_models::params::show;
 use integrators::Solver;
 use serde::ser::SerializeStruct;

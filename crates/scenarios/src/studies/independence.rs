@@ -2,7 +2,7 @@
 //! Richardson estimate of the error left, and the verdict.
 
 use super::{batch, Measures, Method, StepKind, StudyCase};
-use crate::run::ScenarioError;
+use crate::error::ScenarioError;
 use integrators::Solver;
 use serde::Serialize;
 

@@ -15,9 +15,9 @@ mod work_precision;
 use crate::batch;
 pub use crate::batch::reference;
 pub use crate::cases::{Case, Measured, Measures, StudyCase, SystemCase, GRID_POINTS};
+use crate::error::ScenarioError;
 pub use crate::errors::{Quantity, Scales};
 pub use crate::method::{resolution, steps_for, Method, StepKind};
-use crate::run::ScenarioError;
 pub use crate::study_run::{
     ErrorMeasure, Errors, Reference, StudyRun, WallTimes, REFERENCE_TOLERANCE,
 };

@@ -1,7 +1,7 @@
 //! Cost against size: every method at one resolution on systems of growing size.
 
 use super::{resolution, slope, Method, StepKind, StudyCase};
-use crate::run::ScenarioError;
+use crate::error::ScenarioError;
 use crate::schedule;
 use integrators::{SolverError, Stats, StepControl};
 use serde::Serialize;

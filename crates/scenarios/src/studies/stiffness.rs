@@ -3,7 +3,7 @@
 //! implicit methods overtake the explicit ones (a tie where the brackets cannot tell).
 
 use super::{batch, Method, Reference, StepKind, StudyCase, StudyRun};
-use crate::run::ScenarioError;
+use crate::error::ScenarioError;
 use integrators::Stats;
 use serde::Serialize;
 

@@ -3,7 +3,8 @@
 //! significant correct digits at the end time against the published reference
 //! ([`TestProblem::scd`]), beside the work it took and its wall time.
 
-use crate::run::{Limits, ScenarioError};
+use crate::error::ScenarioError;
+use crate::run::Limits;
 use crate::schedule;
 use crate::study_run::{message, WallTimes};
 use crate::verdict::Status;

@@ -1,7 +1,7 @@
 //! The work–precision study: every method at every resolution, with the work it took.
 
 use super::{batch, Method, Reference, StudyCase, StudyRun};
-use crate::run::ScenarioError;
+use crate::error::ScenarioError;
 use serde::Serialize;
 
 /// A work–precision study: every solver at every resolution, with the work it took.

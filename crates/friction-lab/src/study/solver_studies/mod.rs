@@ -93,7 +93,7 @@ impl Problem {
                 }));
             }
         };
-        if scenario == Scenario::VelocitySweep {
+        if scenario == Scenario::VELOCITY_SWEEP {
             return Err(AppError::Usage(
                 "the studies integrate trajectories: velocity-sweep has none; use another scenario"
                     .into(),

@@ -1,0 +1,167 @@
+//! The rows of Table 2: a [`Phenomenon`] is an [`Experiment`] that decides it, the built-in
+//! ones listed in [`Phenomenon::ALL`] and a user's own through [`Phenomenon::own`].
+
+use super::bench::Bench;
+use super::experiments::{
+    Hysteresis, Presliding, RisingStaticFriction, StickSlip, Stiction, Stribeck, Viscous,
+};
+use super::Verdict;
+use crate::error::ScenarioError;
+use friction_models::ModelId;
+use serde::{Serialize, Serializer};
+use std::fmt;
+
+/// The grid of rig parameters a verdict is also decided over: each axis a scenario parameter
+/// with its values.
+pub type Axes = &'static [(&'static str, &'static [f64])];
+
+/// How a phenomenon is decided by simulation: the runs on a [`Bench`] and the measured
+/// numbers that decide the cell against a stated threshold (`docs/phenomena.md`).
+pub trait Experiment: Send + Sync {
+    /// The name used in `table2.json` (`stick_slip`).
+    fn name(&self) -> &'static str;
+
+    /// The row's label in the table (`Stick-slip`).
+    fn label(&self) -> &'static str;
+
+    /// The grid of rig parameters the verdict is also decided over (docs/phenomena.md), the
+    /// default rig among its points; empty for an experiment without rig parameters.
+    fn region(&self) -> Axes {
+        &[]
+    }
+
+    /// What the paper's Table 2 claims for its six models, in the order of
+    /// [`ModelId::PAPER`]; `None` for a row the paper does not have.
+    fn paper_row(&self) -> Option<[bool; 6]> {
+        None
+    }
+
+    /// Decides the cell for the law on `bench`: whether the phenomenon is observed, with the
+    /// numbers that decided it.
+    fn decide(&self, bench: &Bench) -> Result<Verdict, ScenarioError>;
+}
+
+/// A row of Table 2: an [`Experiment`], built in or a user's own.
+#[derive(Clone, Copy)]
+pub struct Phenomenon {
+    experiment: &'static dyn Experiment,
+    /// Whether it is a user's own ([`Phenomenon::own`]).
+    own: bool,
+}
+
+impl Phenomenon {
+    /// The body stays put under a force below break-away.
+    pub const STICTION: Phenomenon = Phenomenon::built_in(&Stiction);
+    /// A small, partly reversible displacement before sliding.
+    pub const PRESLIDING: Phenomenon = Phenomenon::built_in(&Presliding);
+    /// Steady friction falls with velocity at low speed.
+    pub const STRIBECK: Phenomenon = Phenomenon::built_in(&Stribeck);
+    /// Steady friction grows with velocity at high speed.
+    pub const VISCOUS: Phenomenon = Phenomenon::built_in(&Viscous);
+    /// Friction is a loop, not a single-valued function of velocity, under oscillation.
+    pub const HYSTERESIS: Phenomenon = Phenomenon::built_in(&Hysteresis);
+    /// A spring-held body on a slow belt alternates between sticking and slipping.
+    pub const STICK_SLIP: Phenomenon = Phenomenon::built_in(&StickSlip);
+    /// The break-away force depends on how fast the applied force rises.
+    pub const RISING_STATIC_FRICTION: Phenomenon = Phenomenon::built_in(&RisingStaticFriction);
+
+    /// Every built-in row, in the paper's order.
+    pub const ALL: [Phenomenon; 7] = [
+        Phenomenon::STICTION,
+        Phenomenon::PRESLIDING,
+        Phenomenon::STRIBECK,
+        Phenomenon::VISCOUS,
+        Phenomenon::HYSTERESIS,
+        Phenomenon::STICK_SLIP,
+        Phenomenon::RISING_STATIC_FRICTION,
+    ];
+
+    const fn built_in(experiment: &'static dyn Experiment) -> Phenomenon {
+        Phenomenon {
+            experiment,
+            own: false,
+        }
+    }
+
+    /// A row of the user's own, decided wherever a built-in one is.
+    pub const fn own(experiment: &'static dyn Experiment) -> Phenomenon {
+        Phenomenon {
+            experiment,
+            own: true,
+        }
+    }
+
+    /// The experiment that decides it.
+    pub fn experiment(self) -> &'static dyn Experiment {
+        self.experiment
+    }
+
+    /// The name used in `table2.json`.
+    pub fn name(self) -> &'static str {
+        self.experiment.name()
+    }
+
+    /// The built-in row called `name`.
+    pub fn from_name(name: &str) -> Result<Phenomenon, String> {
+        Phenomenon::ALL
+            .into_iter()
+            .find(|p| p.name() == name)
+            .ok_or_else(|| {
+                let known: Vec<_> = Phenomenon::ALL.iter().map(|p| p.name()).collect();
+                format!(
+                    "unknown phenomenon `{name}`; known phenomena: {}",
+                    known.join(", ")
+                )
+            })
+    }
+
+    /// The row's label in the table.
+    pub fn label(self) -> &'static str {
+        self.experiment.label()
+    }
+
+    /// The grid of rig parameters a verdict is also decided over ([`Experiment::region`]).
+    pub fn region(self) -> Axes {
+        self.experiment.region()
+    }
+
+    /// What Table 2 of the paper claims for `model`: `None` for a model or a row the paper
+    /// does not cover.
+    pub fn paper_claim(self, model: ModelId) -> Option<bool> {
+        let column = ModelId::PAPER.iter().position(|&m| m == model)?;
+        Some(self.experiment.paper_row()?[column])
+    }
+}
+
+/// A built-in row shows as its name, an own one as `own NAME`.
+impl fmt::Debug for Phenomenon {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.own {
+            f.write_str("own ")?;
+        }
+        f.write_str(self.name())
+    }
+}
+
+/// Built-in rows are equal when they have the same name, and so are own rows; an own row is
+/// never equal to a built-in one.
+impl PartialEq for Phenomenon {
+    fn eq(&self, other: &Phenomenon) -> bool {
+        self.own == other.own && self.name() == other.name()
+    }
+}
+
+impl Eq for Phenomenon {}
+
+/// Written as its name.
+impl Serialize for Phenomenon {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_str(self.name())
+    }
+}
+
+impl fmt::Display for Phenomenon {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
