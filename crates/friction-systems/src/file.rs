@@ -1,7 +1,8 @@
-//! The system file of `docs/systems.md`: a TOML file (or the same keys as JSON, `.json`) of `[[body]]`, `[[anchor]]`, `[[spring]]`,
-//! `[[contact]]` and `[[force]]` tables, with an optional `param_set` that every contact
-//! starts from. Every error names the file, the table, the key and the allowed range.
+//! The system file of `docs/systems.md`: a TOML file (or the same keys as JSON, `.json`) of
+//! `[[body]]`, `[[anchor]]`, `[[spring]]`, `[[contact]]`, `[[force]]` and `[[controller]]`
+//! tables, with an optional `param_set` that every contact and compensation starts from. Every error names the file, the table, the key and the allowed range.
 
+use crate::control::{CompensatedAt, Compensation, Controller, Reference};
 use crate::system::{End, Profile, System, SystemError};
 use friction_models::{FrictionModel, FrictionParams, ModelId, Parameters, Variant};
 use serde::Deserialize;
@@ -67,6 +68,8 @@ struct FileSystem {
     contact: Vec<FileContact>,
     #[serde(default)]
     force: Vec<FileForce>,
+    #[serde(default)]
+    controller: Vec<FileController>,
 }
 
 impl FileSystem {
@@ -79,6 +82,7 @@ impl FileSystem {
         self.spring.append(&mut part.spring);
         self.contact.append(&mut part.contact);
         self.force.append(&mut part.force);
+        self.controller.append(&mut part.controller);
     }
 }
 
@@ -132,6 +136,32 @@ struct FileForce {
     constant: f64,
     #[serde(default)]
     rate: f64,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileController {
+    body: String,
+    #[serde(default)]
+    kp: f64,
+    #[serde(default)]
+    ki: f64,
+    #[serde(default)]
+    kd: f64,
+    reference: Reference,
+    saturation: Option<f64>,
+    compensation: Option<FileCompensation>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileCompensation {
+    model: String,
+    variant: Option<String>,
+    #[serde(default)]
+    params: BTreeMap<String, f64>,
+    #[serde(default)]
+    velocity: CompensatedAt,
 }
 
 /// Reads the system declared in the file at `path` (at most [`MAX_FILE_BYTES`]): JSON if its
@@ -297,11 +327,39 @@ fn build(file: FileSystem) -> Result<System, String> {
     let mut contacts = Vec::new();
     for (i, c) in file.contact.iter().enumerate() {
         let b = body("contact", i, &c.body)?;
-        contacts.push((b, c.surface_velocity, contact_model(i, c, &base)?));
+        let model = law(
+            ("contact", i, ""),
+            (&c.model, c.variant.as_deref(), &c.params),
+            &base,
+        )?;
+        contacts.push((b, c.surface_velocity, model));
     }
     let mut forces = Vec::new();
     for (i, f) in file.force.iter().enumerate() {
         forces.push((body("force", i, &f.body)?, f.constant, f.rate));
+    }
+    let mut controllers = Vec::new();
+    for (i, c) in file.controller.iter().enumerate() {
+        let compensation = match &c.compensation {
+            Some(k) => Some(Compensation {
+                model: law(
+                    ("controller", i, "compensation."),
+                    (&k.model, k.variant.as_deref(), &k.params),
+                    &base,
+                )?,
+                at: k.velocity,
+            }),
+            None => None,
+        };
+        controllers.push(Controller {
+            body: body("controller", i, &c.body)?,
+            kp: c.kp,
+            ki: c.ki,
+            kd: c.kd,
+            reference: c.reference.clone(),
+            saturation: c.saturation,
+            compensation,
+        });
     }
     for (a, b, k, c) in springs {
         s.add_spring(a, b, k, c);
@@ -317,32 +375,38 @@ fn build(file: FileSystem) -> Result<System, String> {
         };
         s.add_force(b, constant, profile);
     }
+    for c in controllers {
+        s.add_controller(c);
+    }
     s.validate().map_err(|e: SystemError| e.to_string())?;
     Ok(s)
 }
 
-fn contact_model(
-    i: usize,
-    c: &FileContact,
+/// The law a table declares: `model` (of the catalog), its `variant` and its `params` over
+/// the file's parameter set `base`. `(table, i, prefix)` name the place in messages: the
+/// keys are `{prefix}model`, `{prefix}params.NAME`, … of the `i`-th `[[table]]`.
+fn law(
+    (table, i, prefix): (&str, usize, &str),
+    (model, variant, params): (&str, Option<&str>, &BTreeMap<String, f64>),
     base: &FrictionParams,
 ) -> Result<Arc<dyn FrictionModel>, String> {
-    let at = |key: &str, e: String| format!("[[contact]] {}: `{key}`: {e}", i + 1);
-    let id = ModelId::from_name(&c.model).map_err(|_| {
+    let at = |key: &str, e: String| format!("[[{table}]] {}: `{prefix}{key}`: {e}", i + 1);
+    let id = ModelId::from_name(model).map_err(|_| {
         at(
             "model",
             format!(
                 "unknown model `{}`; known models: {}",
-                echo(&c.model),
+                echo(model),
                 ModelId::ALL.map(ModelId::name).join(", ")
             ),
         )
     })?;
-    let variant = match &c.variant {
+    let variant = match variant {
         Some(v) => v.parse::<Variant>().map_err(|e| at("variant", e))?,
         None => Variant::Odd,
     };
     let mut p = *base;
-    for (name, &value) in &c.params {
+    for (name, &value) in params {
         p.set(name, value)
             .map_err(|e| at(&format!("params.{name}"), e.to_string()))?;
         // A known parameter the law does not read would change nothing: a slip of the pen.

@@ -4,8 +4,9 @@
 //! Per body i with contact j (surface velocity `v_s`, relative velocity `v_rel = v_i − v_s`):
 //!
 //! - the force on the body from everything but friction, `F_o,i(t, y) = F_ext,i(t) +
-//!   Σ_springs k·(x_other − x_i) + c·(v_other − v_i)`, is explicit in (t, y), because every
-//!   coupling is a spring or a damper;
+//!   Σ_springs k·(x_other − x_i) + c·(v_other − v_i) + u_i`, is explicit in (t, y), because
+//!   every coupling is a spring or a damper and a controller's force `u_i` reads the body's
+//!   state and the integral of its error, which is in y ([`crate::control`]);
 //! - `slip±`: `m_i·v̇_i = F_o,i − F(x_i, v_rel, z_i)` with the direction of sign(v_rel)
 //!   frozen; event g_{2j} = v_rel, watched falling (slip+) or rising (slip−);
 //! - `stick`: `ẋ_i = v_s`, `v̇_i = 0`, `ż_i = 0`, friction = `F_o,i` (the force that holds the
@@ -18,12 +19,15 @@
 //! body is put exactly on its surface velocity, then each contact's new mode is decided from
 //! forces that already see all of them.
 
+use crate::control::Actuation;
 use crate::layout::Layout;
 use crate::local;
 use crate::springs::{Sorted, Springs};
 use crate::switching::{mode_of_velocity, Switching, SLIP_NEGATIVE, SLIP_POSITIVE, STICK};
 use crate::system::{End, System};
-use friction_models::{Direction, FrictionModel, StatePartials, StickInterval, MAX_STATES};
+use friction_models::{
+    Direction, FrictionModel, SignLaw, StatePartials, StickInterval, MAX_STATES,
+};
 use integrators::{Control, Crossing, Entry, EventSpec, Mode, OdeProblem};
 use std::ops::Range;
 
@@ -75,6 +79,11 @@ pub struct FrictionSystem<'a> {
     anchored_x: Vec<usize>,
     /// The places in y of each spring's two bodies, in the order of `springs.pairs`.
     pairs_x: Vec<(usize, usize)>,
+    /// The controller of each body, by index.
+    controller_at: Vec<Option<usize>>,
+    /// The sign law a friction compensation reads: tanh(v/ε) where the contacts are
+    /// regularised, sign(0) = 0 otherwise.
+    compensation_law: SignLaw,
 }
 
 /// What the right-hand side reads of one body, gathered once instead of looked up through
@@ -136,6 +145,14 @@ impl<'a> FrictionSystem<'a> {
             .iter()
             .map(|s| (layout.x[s.a], layout.x[s.b]))
             .collect();
+        let mut controller_at = vec![None; system.bodies.len()];
+        for (k, c) in system.controllers.iter().enumerate() {
+            controller_at[c.body] = Some(k);
+        }
+        let compensation_law = match switching {
+            Switching::Regularized { epsilon } => SignLaw::Smooth { epsilon },
+            Switching::Event | Switching::Naive => SignLaw::Discontinuous,
+        };
         FrictionSystem {
             system,
             layout,
@@ -147,7 +164,35 @@ impl<'a> FrictionSystem<'a> {
             bodies_at,
             anchored_x,
             pairs_x,
+            controller_at,
+            compensation_law,
         }
+    }
+
+    /// The force of body `i`'s controller at (t, y) with its partials, and the controller's
+    /// index; `None` for a body without one. A compensation at the measured velocity reads
+    /// sign(v_rel) as the body's contact does in `modes` (the direction of its slip mode,
+    /// which holds at v_rel = 0 too); without modes, or sticking, sign(0) = 0.
+    pub fn actuation(
+        &self,
+        i: usize,
+        t: f64,
+        y: &[f64],
+        modes: Option<&[Mode]>,
+    ) -> Option<(usize, Actuation)> {
+        let k = self.controller_at[i]?;
+        let b = &self.bodies_at[i];
+        let law = match (modes, &b.contact) {
+            (Some(modes), Some(c)) if self.switching.has_modes() && modes[c.j] != STICK => {
+                self.switching.law(modes[c.j])
+            }
+            _ => self.compensation_law,
+        };
+        let v_s = b.contact.as_ref().map_or(0.0, |c| c.v_s);
+        let (x, v) = (y[b.x], y[b.x + 1]);
+        let integral = y[self.layout.integral[k]];
+        let c = &self.system.controllers[k];
+        Some((k, c.actuation(t, (x, v), integral, v - v_s, law)))
     }
 
     /// The force on body `i` from everything but friction, `F_o,i(t, y)`.
@@ -159,6 +204,9 @@ impl<'a> FrictionSystem<'a> {
                 g.constant + g.profile.at(t)
             })
             .sum();
+        if let Some((_, a)) = self.actuation(i, t, y, None) {
+            f += a.force;
+        }
         let state = |x: usize| (y[x], y[x + 1]);
         for &s in &self.springs_at[i] {
             f += match s {
@@ -181,17 +229,31 @@ impl<'a> FrictionSystem<'a> {
         f
     }
 
-    /// Every force but friction at (t, y), handed to `add(v, force)` term by term with `v` the
-    /// place in y of the body's velocity (the external forces, then each spring and damper on
-    /// each of its body ends); returns the power of those forces that is not stored in the
-    /// springs, `Σ F_ext,i·v_i + Σ anchor power − Σ c·Δv²`.
-    pub(crate) fn applied_forces(&self, t: f64, y: &[f64], mut add: impl FnMut(usize, f64)) -> f64 {
+    /// Every force but friction at (t, y) in `modes`, handed to `add(v, force)` term by term
+    /// with `v` the place in y of the body's velocity (the external forces, the controllers',
+    /// then each spring and damper on each of its body ends); returns the power of those forces
+    /// that is not stored in the springs, `Σ F_ext,i·v_i + Σ u_i·v_i + Σ anchor power −
+    /// Σ c·Δv²`.
+    pub(crate) fn applied_forces(
+        &self,
+        t: f64,
+        y: &[f64],
+        modes: &[Mode],
+        mut add: impl FnMut(usize, f64),
+    ) -> f64 {
         let mut external = 0.0;
         for f in &self.system.forces {
             let force = f.constant + f.profile.at(t);
             let v = self.bodies_at[f.body].x + 1;
             add(v, force);
             external += force * y[v];
+        }
+        for c in &self.system.controllers {
+            let (_, a) =
+                (self.actuation(c.body, t, y, Some(modes))).expect("a controller's body has it");
+            let v = self.bodies_at[c.body].x + 1;
+            add(v, a.force);
+            external += a.force * y[v];
         }
         // The springs to anchors, then the pairs (at a body whose springs to anchors are
         // declared before its pairs, as in the chain, in the declared order); an anchor's
@@ -342,14 +404,15 @@ impl OdeProblem for FrictionSystem<'_> {
     }
 
     /// `ẋ_i = v_i`, `m_i·v̇_i = F_o,i − F_f,i`, `ż_i = g_i`, and the accumulators
-    /// `Ẇ_ext = Σ F_ext,i·v_i + Σ anchor power − Σ c·Δv²`, `Ḋ = Σ F_f,j·v_rel,j`,
-    /// `Ẇ_belt = −Σ F_f,j·v_s,j`.
+    /// `İ_k = r_k(t) − x_i` for each controller, and the accumulators
+    /// `Ẇ_ext = Σ F_ext,i·v_i + Σ u_i·v_i + Σ anchor power − Σ c·Δv²`,
+    /// `Ḋ = Σ F_f,j·v_rel,j`, `Ẇ_belt = −Σ F_f,j·v_s,j`.
     fn rhs(&self, t: f64, y: &[f64], modes: &[Mode], dy: &mut [f64]) {
         for b in &self.bodies_at {
             dy[b.x] = y[b.x + 1];
             dy[b.x + 1] = 0.0;
         }
-        let external = self.applied_forces(t, y, |v, f| dy[v] += f);
+        let external = self.applied_forces(t, y, modes, |v, f| dy[v] += f);
         let (mut dissipated, mut belt) = (0.0, 0.0);
         for b in &self.bodies_at {
             let v = b.x + 1;
@@ -376,6 +439,9 @@ impl OdeProblem for FrictionSystem<'_> {
                 dy[v] = (other - force) / b.m;
             }
         }
+        for (c, &k) in self.system.controllers.iter().zip(&self.layout.integral) {
+            dy[k] = c.error(t, y[self.bodies_at[c.body].x]);
+        }
         let a = self.layout.accumulators;
         dy[a] = external;
         dy[a + 1] = dissipated;
@@ -392,7 +458,7 @@ impl OdeProblem for FrictionSystem<'_> {
     /// analyses the pattern once stays valid through every switch). The accumulators, which do
     /// not act back, are left out: they are the problem's quadratures
     /// ([`OdeProblem::quadratures`]).
-    fn jacobian(&self, _t: f64, y: &[f64], modes: &[Mode], jac: &mut Vec<Entry>) -> bool {
+    fn jacobian(&self, t: f64, y: &[f64], modes: &[Mode], jac: &mut Vec<Entry>) -> bool {
         let l = &self.layout;
         // 1 for a body that moves with the forces, 0 for one held by its contact.
         let moving = |i: usize| if self.stuck(i, modes) { 0.0 } else { 1.0 };
@@ -432,6 +498,19 @@ impl OdeProblem for FrictionSystem<'_> {
                 jac.push((z, v, d.rate_dv * state));
                 jac.push((z, z, d.rate_dz * state));
             }
+        }
+        // Each controller: u on its body's velocity row (zero where saturated), and the
+        // integral's row, İ = r(t) − x.
+        for c in &self.system.controllers {
+            let i = c.body;
+            let (k, a) =
+                (self.actuation(i, t, y, Some(modes))).expect("a controller's body has it");
+            let (du_dx, du_dv, du_di) = a.partials;
+            let (v, w, integral) = (l.v(i), live(i), l.integral[k]);
+            jac.push((v, l.x[i], du_dx * w));
+            jac.push((v, v, du_dv * w));
+            jac.push((v, integral, du_di * w));
+            jac.push((integral, l.x[i], -1.0));
         }
         true
     }

@@ -1,7 +1,7 @@
 //! Where each unknown of a system lives in the state vector `y`: per body `x_i`, `v_i` and,
 //! at a contact whose model has them, the internal states `z_i`, body after body (so that the
-//! Jacobian of a chain is banded); then the three energy accumulators (see
-//! [`crate::energy`]).
+//! Jacobian of a chain is banded); then the integral of the error of each controller (see
+//! [`crate::control`]); then the three energy accumulators (see [`crate::energy`]).
 
 use crate::system::System;
 use std::ops::Range;
@@ -15,6 +15,8 @@ pub struct Layout {
     pub z: Vec<Range<usize>>,
     /// The contact of each body, by index.
     pub contact: Vec<Option<usize>>,
+    /// Index of each controller's integral of the error, in the order of the controllers.
+    pub integral: Vec<usize>,
     /// Index of the first energy accumulator; the state has three more unknowns.
     pub accumulators: usize,
 }
@@ -35,10 +37,13 @@ impl Layout {
             z.push(next..next + states);
             next += states;
         }
+        let integral = (next..next + system.controllers.len()).collect();
+        next += system.controllers.len();
         Layout {
             x,
             z,
             contact,
+            integral,
             accumulators: next,
         }
     }

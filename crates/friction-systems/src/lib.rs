@@ -3,7 +3,8 @@
 //!
 //! The layers, as in Siconos, keep the declaration apart from the scheme that integrates it:
 //!
-//! - [`system`]: the declaration ([`System`]: bodies, anchors, springs, contacts, forces),
+//! - [`system`]: the declaration ([`System`]: bodies, anchors, springs, contacts, forces,
+//!   controllers ([`control`])),
 //!   built in code or read from a TOML file ([`mod@file`]), or generated ([`chain`]);
 //! - [`hybrid`]: the system as a hybrid ODE ([`FrictionSystem`], an
 //!   [`integrators::OdeProblem`]): the state layout ([`layout`]), one stick/slip mode per
@@ -22,6 +23,7 @@
 //! contact.
 
 pub mod chain;
+pub mod control;
 mod correction;
 pub mod energy;
 pub mod file;
@@ -36,6 +38,7 @@ pub mod switching;
 pub mod system;
 
 pub use chain::ChainParams;
+pub use control::{CompensatedAt, Compensation, Controller, Reference};
 pub use energy::EnergyBalance;
 pub use hybrid::FrictionSystem;
 pub use layout::Layout;

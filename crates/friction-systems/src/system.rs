@@ -1,11 +1,13 @@
 //! A friction system as `docs/systems.md` declares it, apart from any scheme that
 //! integrates it: bodies on one line, anchors, linear springs with parallel dampers, at most
-//! one friction contact per body, and external forces.
+//! one friction contact per body, external forces, and at most one PID controller per body
+//! ([`crate::control`]).
 //!
-//! Equations: `m_i·v̇_i = Σ_springs [k·(x_b − x_a) + c·(v_b − v_a)] + F_ext,i(t) − F_f,i`,
+//! Equations: `m_i·v̇_i = Σ_springs [k·(x_b − x_a) + c·(v_b − v_a)] + F_ext,i(t) + u_i − F_f,i`,
 //! with `F_f,i = F(x_i, v_i − v_surf,i, z_i)` and `ż_i = g(x_i, v_i − v_surf,i, z_i)` at a
 //! contact, and an anchor's position `x0 + v·t`.
 
+use crate::control::{Controller, Reference};
 use friction_models::{FrictionModel, MAX_STATES};
 use serde::Serialize;
 use std::sync::Arc;
@@ -146,7 +148,7 @@ pub struct Contact {
     pub model: Arc<dyn FrictionModel>,
 }
 
-/// Bodies, anchors, springs, contacts and external forces.
+/// Bodies, anchors, springs, contacts, external forces and controllers.
 #[derive(Clone, Debug, Default)]
 pub struct System {
     /// The bodies.
@@ -159,6 +161,8 @@ pub struct System {
     pub contacts: Vec<Contact>,
     /// The external forces.
     pub forces: Vec<Force>,
+    /// The controllers, at most one per body.
+    pub controllers: Vec<Controller>,
 }
 
 /// A system that cannot be integrated as declared.
@@ -257,6 +261,11 @@ impl System {
             constant,
             profile,
         });
+    }
+
+    /// Puts a controller on its body.
+    pub fn add_controller(&mut self, controller: Controller) {
+        self.controllers.push(controller);
     }
 
     /// Checks that the names of bodies and anchors are unique.
@@ -388,6 +397,62 @@ impl System {
                     check(what, "omega", omega, false)?;
                 }
                 Profile::None | Profile::Trapezoid { .. } => {}
+            }
+        }
+        self.validate_controllers()
+    }
+
+    /// Checks the controllers: bodies that exist, at most one a body, gains in [0, inf), a
+    /// positive saturation, finite reference values, a reference table of at least one point
+    /// whose times strictly increase.
+    fn validate_controllers(&self) -> Result<(), SystemError> {
+        let mut controlled = vec![false; self.bodies.len()];
+        for (i, c) in self.controllers.iter().enumerate() {
+            let what = || format!("[[controller]] {}", i + 1);
+            let invalid = |why: String| SystemError::Invalid { what: what(), why };
+            let Some(seen) = controlled.get_mut(c.body) else {
+                return Err(invalid(format!("body index {} does not exist", c.body)));
+            };
+            if *seen {
+                return Err(invalid(format!(
+                    "body \"{}\" has a controller already: a body has at most one controller",
+                    self.bodies[c.body].name
+                )));
+            }
+            *seen = true;
+            for (key, value) in [("kp", c.kp), ("ki", c.ki), ("kd", c.kd)] {
+                if !(value.is_finite() && value >= 0.0) {
+                    return Err(SystemError::OutOfRange {
+                        what: what(),
+                        key,
+                        value,
+                        allowed: "[0, inf)",
+                    });
+                }
+            }
+            if let Some(limit) = c.saturation {
+                check(what, "saturation", limit, true)?;
+            }
+            for (key, value) in c.reference.numbers() {
+                check(what, key, value, false)?;
+            }
+            if let Reference::Table { t, x } = &c.reference {
+                if t.is_empty() || t.len() != x.len() {
+                    return Err(invalid(format!(
+                        "`reference.t` has {} times and `reference.x` {} positions: allowed \
+                         one position a time, at least one",
+                        t.len(),
+                        x.len()
+                    )));
+                }
+                if let Some(k) = (1..t.len()).find(|&k| t[k] <= t[k - 1]) {
+                    return Err(invalid(format!(
+                        "`reference.t` does not increase: t = {} after t = {}; allowed \
+                         strictly increasing times",
+                        t[k],
+                        t[k - 1]
+                    )));
+                }
             }
         }
         Ok(())

@@ -2,18 +2,18 @@
 //! value of the file"): a sweep over the disc speed of a brake model, or a coupling stiffness,
 //! without a file per value.
 //!
-//! - `TABLE` is `body`, `anchor`, `spring`, `contact` or `force`;
+//! - `TABLE` is `body`, `anchor`, `spring`, `contact`, `force` or `controller`;
 //! - `WHICH` is the entry's 1-based index in its table, or a name: a body's or an anchor's
-//!   own, or for a contact and a force the name of the body it acts on (an index when several
-//!   act on that body); a spring has no name, only its index;
+//!   own, or for a contact, a force and a controller the name of the body it acts on (an index
+//!   when several act on that body); a spring has no name, only its index;
 //! - `KEY` is a number of the entry (`m`, `x0`, `v0`; `x0`, `v`; `k`, `c`;
-//!   `surface_velocity`; `constant`, `rate`), or for a contact a friction parameter its model
-//!   reads (`F_c`, `sigma`, …), set as in its `params`.
+//!   `surface_velocity`; `constant`, `rate`; `kp`, `ki`, `kd`, `saturation`), or for a contact
+//!   a friction parameter its model reads (`F_c`, `sigma`, …), set as in its `params`.
 
 use super::FileSystem;
 
 /// The tables of a system file and the numbers each holds.
-const KEYS: [(&str, &[&str]); 5] = [
+const KEYS: [(&str, &[&str]); 6] = [
     ("body", &["m", "x0", "v0"]),
     ("anchor", &["x0", "v"]),
     ("spring", &["k", "c"]),
@@ -22,6 +22,7 @@ const KEYS: [(&str, &[&str]); 5] = [
         &["surface_velocity", "a friction parameter of its model"],
     ),
     ("force", &["constant", "rate"]),
+    ("controller", &["kp", "ki", "kd", "saturation"]),
 ];
 
 /// The entry `which` names among `names` (an entry's name, or the body it acts on, `None` for
@@ -131,6 +132,20 @@ impl FileSystem {
                     "rate" => &mut f.rate,
                     _ => return Err(unknown()),
                 } = value;
+            }
+            "controller" => {
+                let names: Vec<_> = (self.controller.iter())
+                    .map(|c| Some(c.body.as_str()))
+                    .collect();
+                let i = entry(table, which, &names)?;
+                let c = &mut self.controller[i];
+                match key {
+                    "kp" => c.kp = value,
+                    "ki" => c.ki = value,
+                    "kd" => c.kd = value,
+                    "saturation" => c.saturation = Some(value),
+                    _ => return Err(unknown()),
+                }
             }
             _ => {
                 return Err(format!(

@@ -1,5 +1,6 @@
 //! A long TOML system file read in parts: the file is cut before every [`PART_TABLES`]-th
-//! `[[body]]`, `[[anchor]]`, `[[spring]]`, `[[contact]]` or `[[force]]` header, each part is
+//! `[[body]]`, `[[anchor]]`, `[[spring]]`, `[[contact]]`, `[[force]]` or `[[controller]]`
+//! header, each part is
 //! a TOML document of its own, and the parts' tables are appended in order. A whole-document
 //! parse holds about 50 bytes of memory a byte of text; a part holds a few hundred kilobytes,
 //! so a file of 10⁶ bodies reads in the memory of its system (docs/performance.md).
@@ -8,14 +9,14 @@ use toml_parser::lexer::TokenKind;
 use toml_parser::Source;
 
 /// The tables of a system file that are arrays of tables, the places where it may be cut.
-const ARRAY_TABLES: [&str; 5] = ["body", "anchor", "spring", "contact", "force"];
+const ARRAY_TABLES: [&str; 6] = ["body", "anchor", "spring", "contact", "force", "controller"];
 
 /// How many array-table headers one part holds.
 pub const PART_TABLES: usize = 1024;
 
 /// The byte offsets at which `text` may be cut into documents that parse alone: the start of
-/// each line that opens a `[[body]]`, `[[anchor]]`, `[[spring]]`, `[[contact]]` or
-/// `[[force]]` table. `None` where one of those names is also a root key or a standard table
+/// each line that opens a `[[body]]`, `[[anchor]]`, `[[spring]]`, `[[contact]]`, `[[force]]`
+/// or `[[controller]]` table. `None` where one of those names is also a root key or a standard table
 /// (`body = [...]`, `[body]`): such a file is read whole, so that TOML's rule against
 /// extending a static array or a table with `[[...]]` still applies.
 pub fn cut_points(text: &str) -> Option<Vec<usize>> {

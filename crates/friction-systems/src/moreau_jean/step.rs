@@ -46,6 +46,9 @@ pub(super) struct TimeStepper<'p, 'a> {
     pair_force: Vec<(f64, f64)>,
     /// Per spring to an anchor: its force on the body and `v_anchor − v`, likewise.
     anchored_force: Vec<(f64, f64)>,
+    /// Per controller: its force over the step, held at its value at the step's start (a
+    /// sampled controller with a zero-order hold, the step its sampling period).
+    control: Vec<f64>,
     /// The contacts whose model has an internal state.
     stateful: Vec<usize>,
     /// The contacts whose mode the last step switched.
@@ -223,6 +226,7 @@ impl<'p, 'a> TimeStepper<'p, 'a> {
             springs,
             anchored_start,
             rate: vec![0.0; y0.len()],
+            control: vec![0.0; p.system.controllers.len()],
             force_start,
             stateful: (0..l.z.len())
                 .filter(|&i| !l.z[i].is_empty())
@@ -302,12 +306,22 @@ impl<'p, 'a> TimeStepper<'p, 'a> {
             self.y_prev.copy_from_slice(&self.state.y);
             self.modes_prev.copy_from_slice(&self.modes);
         }
+        // Each controller's force, held over the step.
+        for (c, u) in p.system.controllers.iter().zip(&mut self.control) {
+            *u = (p.actuation(c.body, t0, &self.state.y, Some(&self.modes)))
+                .expect("a controller's body has it")
+                .1
+                .force;
+        }
         // The known part of b: m·v + h·(1−θ)·F_o(t_k) + h·θ·F_o(t_{k+1}) at zero end velocities.
         // Each body's `known` holds its springs' forces at t0 here (`finish_step` cleared it,
         // then `accumulate` added them at the end of the step before, or `TimeStepper::new`).
         let bodies = &mut self.problem.bodies;
         for f in &p.system.forces {
             bodies[self.at[f.body]].known += f.constant + f.profile.at(t0);
+        }
+        for (c, &u) in p.system.controllers.iter().zip(&self.control) {
+            bodies[self.at[c.body]].known += u;
         }
         let (springs, ht) = (&self.springs, h * theta);
         let anchored_at = self.anchored_start.windows(2).map(|w| w[0]..w[1]);
@@ -329,6 +343,9 @@ impl<'p, 'a> TimeStepper<'p, 'a> {
         }
         for f in &p.system.forces {
             bodies[self.at[f.body]].known += ht * (f.constant + f.profile.at(t1));
+        }
+        for (c, &u) in p.system.controllers.iter().zip(&self.control) {
+            bodies[self.at[c.body]].known += ht * u;
         }
         for s in &springs.pairs {
             let f = ht
@@ -408,6 +425,10 @@ impl<'p, 'a> TimeStepper<'p, 'a> {
             let b = &bodies[self.at[f.body]];
             external += i * (0.5 * (b.v_last + b.v));
         }
+        for (c, &u) in p.system.controllers.iter().zip(&self.control) {
+            let b = &bodies[self.at[c.body]];
+            external += h * u * (0.5 * (b.v_last + b.v));
+        }
         // Each spring's force at t1 is also the next step's start force: added to the
         // bodies' `known` (which `finish_step` cleared) and kept for the next accumulation.
         let damper = |c: f64, dv0: f64, dv1: f64| c * impulse(dv0, dv1) * 0.5 * (dv0 + dv1);
@@ -431,6 +452,10 @@ impl<'p, 'a> TimeStepper<'p, 'a> {
             if s.c != 0.0 {
                 external -= damper(s.c, dv0, dv1);
             }
+        }
+        // Each controller's integral of the error, to the step's end (backward Euler).
+        for (c, &k) in p.system.controllers.iter().zip(&p.layout.integral) {
+            self.state.y[k] += h * c.error(t1, bodies[self.at[c.body]].x);
         }
         let a = p.layout.accumulators;
         self.state.y[a] += external;
