@@ -12,6 +12,7 @@ use friction_models::{FrictionParams, Variant};
 use friction_systems::{mode_name, BodyState, ContactEvent, EnergyBalance};
 use integrators::stability::Instability;
 use integrators::{MethodSwitch, SolverError, Stats, StepControl};
+use scenarios::closed_loop::ClosedLoop;
 pub use scenarios::rig::RIG_BODY;
 use scenarios::verdict::{Status, Verdict};
 use scenarios::SwitchingKind;
@@ -144,6 +145,11 @@ pub struct Integrated {
     /// (`lambda_re`, `lambda_im` in 1/s, `h` in s, `amplification` |R(hλ)|), if any: the run
     /// is then at least `inaccurate`.
     pub instability: Option<Instability>,
+    /// What the closed loop did, for a run whose body a controller positions (the `servo`
+    /// rig): hunting or converged, the cycle, the tracking error ([`ClosedLoop`]); left out of
+    /// the summary of a run without a controller.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub closed_loop: Option<ClosedLoop>,
 }
 
 /// The stiffness along a run, `h·ρ` at its recorded points (the step that reached each

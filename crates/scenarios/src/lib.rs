@@ -11,6 +11,7 @@
 pub mod batch;
 pub mod cases;
 pub mod chain;
+pub mod closed_loop;
 pub mod curves;
 pub mod error;
 pub mod errors;

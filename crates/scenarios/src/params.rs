@@ -44,6 +44,16 @@ parameters! {
         fraction: "fraction", "1", FRACTION, "applied load of the presliding test as a fraction of F_s";
         /// Largest velocity of a velocity sweep.
         v_max: "v_max", "m/s", Range::POSITIVE, "largest |v| of the velocity sweep";
+        /// Proportional gain of the servo's PID.
+        kp: "kp", "N/m", Range::NON_NEGATIVE, "proportional gain of the servo's PID";
+        /// Integral gain of the servo's PID.
+        ki: "ki", "N/(m*s)", Range::NON_NEGATIVE, "integral gain of the servo's PID";
+        /// Derivative gain of the servo's PID.
+        kd: "kd", "N*s/m", Range::NON_NEGATIVE, "derivative gain of the servo's PID";
+        /// The servo's set point.
+        x_ref: "x_ref", "m", Range::FINITE, "the servo's set point (its reference at t = 0)";
+        /// The servo's reference velocity.
+        v_ref: "v_ref", "m/s", Range::FINITE, "the servo's reference velocity: r = x_ref + v_ref*t";
     }
 }
 
@@ -65,6 +75,11 @@ impl Default for ScenarioParams {
             v_amplitude: 0.05,
             fraction: 0.5,
             v_max: 1.0,
+            kp: 3.0,
+            ki: 4.0,
+            kd: 6.0,
+            x_ref: 1.0,
+            v_ref: 0.0,
         }
     }
 }

@@ -8,7 +8,7 @@ use crate::params::ScenarioParams;
 use crate::rig::Apparatus;
 use crate::scenario::Scenario;
 use friction_models::{FrictionModel, FrictionParams, ModelId, ParamError, Parameters, Variant};
-use friction_systems::{EnergyBalance, Scheme, Switching, System, STICK};
+use friction_systems::{EnergyBalance, Reference, Scheme, Switching, System, STICK};
 use integrators::stability::Instability;
 use integrators::{
     Failure, Mode, OdeProblem, Options, Output, Solution, Solver, SolverError, Stats, StepControl,
@@ -329,6 +329,9 @@ pub struct Outcome {
     /// The decaying mode at the start that an explicit method's fixed step amplifies, if any
     /// ([`friction_systems::Run::instability`]; body scenarios).
     pub instability: Option<Instability>,
+    /// The reference the body's controller tracks, for a rig whose body a controller
+    /// positions (`closed_loop::ClosedLoop::of` measures the loop); `None` otherwise.
+    pub reference: Option<Reference>,
 }
 
 impl Outcome {
@@ -464,6 +467,9 @@ fn run_body(
         stiffness,
         time_scale: run.problem.time_scale(),
         instability,
+        reference: (system.controllers.iter())
+            .find(|c| c.body == 0)
+            .map(|c| c.reference.clone()),
     })
 }
 
@@ -537,6 +543,7 @@ pub fn run_motion(
         stiffness: Vec::new(),
         time_scale: None,
         instability: None,
+        reference: None,
     }
 }
 
@@ -564,6 +571,7 @@ fn run_sweep(
         stiffness: Vec::new(),
         time_scale: None,
         instability: None,
+        reference: None,
     };
     for &v in velocities {
         let settle = settling_time(model, v);

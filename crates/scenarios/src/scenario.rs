@@ -4,7 +4,7 @@
 use crate::params::ScenarioParams;
 use crate::rig::{EndTime, Rig};
 use crate::rigs::{
-    Belt, ForceRamp, FreeVibration, Oscillation, PaperBlock, PrescribedMotion, Presliding,
+    Belt, ForceRamp, FreeVibration, Oscillation, PaperBlock, PrescribedMotion, Presliding, Servo,
     VelocityOscillation, VelocitySweep,
 };
 use friction_models::FrictionParams;
@@ -39,9 +39,11 @@ impl Scenario {
     pub const FORCE_RAMP: Scenario = Scenario::built_in(&ForceRamp);
     /// A load of `fraction`·F_s applied (1 s ramp), held 1 s, released (1 s), then 1 s at rest.
     pub const PRESLIDING: Scenario = Scenario::built_in(&Presliding);
+    /// A PID-controlled mass on the floor: the hunting example of the LuGre paper (1995).
+    pub const SERVO: Scenario = Scenario::built_in(&Servo);
 
     /// Every built-in rig, in listing order: the ones the command line names.
-    pub const ALL: [Scenario; 9] = [
+    pub const ALL: [Scenario; 10] = [
         Scenario::PAPER_BLOCK,
         Scenario::PRESCRIBED_MOTION,
         Scenario::VELOCITY_SWEEP,
@@ -51,6 +53,7 @@ impl Scenario {
         Scenario::VELOCITY_OSCILLATION,
         Scenario::FORCE_RAMP,
         Scenario::PRESLIDING,
+        Scenario::SERVO,
     ];
 
     const fn built_in(rig: &'static dyn Rig) -> Scenario {

@@ -16,6 +16,7 @@ use crate::trajectory::{Trajectory, TrajectoryAs};
 use crate::warnings::{coarse_step_warning, failure_warnings, stiffness_warning};
 use friction_models::Parameters;
 use friction_systems::{BodyState, ContactEvent};
+use scenarios::closed_loop::ClosedLoop;
 use scenarios::run::Outcome;
 use scenarios::{Law, RunSpec};
 use std::path::Path;
@@ -56,6 +57,7 @@ fn rig_record(outcome: &Outcome, setup: RunSetup, has_state: bool) -> RunRecord 
         method_switches: outcome.method_switches.clone(),
         stiffness: StiffnessSummary::of(&outcome.stiffness),
         instability: outcome.instability,
+        closed_loop: ClosedLoop::of_outcome(outcome),
     };
     RunRecord {
         summary: RunSummary::new(setup, integrated),
@@ -222,7 +224,9 @@ pub fn simulate_rig(
     Ok(Made {
         files,
         trajectory: columns,
-        notes: Vec::new(),
+        notes: (ClosedLoop::of_outcome(&outcome).iter())
+            .map(|c| c.to_string())
+            .collect(),
         warnings: outcome
             .stiffness_detected_at
             .map(|t| stiffness_warning(spec.solver.name(), t))

@@ -274,6 +274,7 @@ pub fn simulate_system(
         method_switches: run.solution.method_switches.clone(),
         stiffness: StiffnessSummary::of(&stiffness),
         instability: run.instability(&scheme, step),
+        closed_loop: None,
     };
     let record = RunRecord {
         summary: RunSummary::new(setup, integrated),
