@@ -9,9 +9,10 @@
 //! sign in each slip of a hunting cycle, so a slip shorter than the output spacing still
 //! counts. The loop has **settled** when the two halves of that part each hold at least
 //! [`MIN_CYCLES`] cycles whose periods and amplitudes agree within [`SETTLE_TOLERANCE`]
-//! (it **hunts**), or when e's half range there is at most [`REST_AMPLITUDE`] (it has
-//! **converged**). Otherwise the run ends in a transient: `hunting` is undefined (null),
-//! never false.
+//! (it **hunts**), or when e's half range there is at most [`REST_AMPLITUDE`] and, under
+//! integral action, e itself is (it has **converged**: a body stuck off the set point while
+//! the integral winds up will move again). Otherwise the run ends in a transient: `hunting`
+//! is undefined (null), never false.
 
 use crate::run::Outcome;
 use crate::settled::{MIN_CYCLES, SETTLE_TOLERANCE};
@@ -108,7 +109,10 @@ impl ClosedLoop {
             Part::of(&t, &e, second),
         );
         let relative = |x: f64, y: f64| (x - y).abs() / x.abs().max(y.abs()).max(f64::MIN_POSITIVE);
-        let at_rest = k.len() >= 2 && whole.amplitude <= REST_AMPLITUDE;
+        let last = e.last().copied().unwrap_or(f64::NAN);
+        let at_rest = k.len() >= 2
+            && whole.amplitude <= REST_AMPLITUDE
+            && (!outcome.integral_action || last.abs() <= REST_AMPLITUDE);
         let cycling = !at_rest
             && a.cycles >= MIN_CYCLES
             && b.cycles >= MIN_CYCLES

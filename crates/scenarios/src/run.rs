@@ -332,6 +332,9 @@ pub struct Outcome {
     /// The reference the body's controller tracks, for a rig whose body a controller
     /// positions (`closed_loop::ClosedLoop::of` measures the loop); `None` otherwise.
     pub reference: Option<Reference>,
+    /// Whether that controller integrates its error (ki > 0): then the loop is at rest only
+    /// where the error is zero, and a body stuck off the set point will move again.
+    pub integral_action: bool,
 }
 
 impl Outcome {
@@ -470,6 +473,7 @@ fn run_body(
         reference: (system.controllers.iter())
             .find(|c| c.body == 0)
             .map(|c| c.reference.clone()),
+        integral_action: (system.controllers.iter()).any(|c| c.body == 0 && c.ki > 0.0),
     })
 }
 
@@ -544,6 +548,7 @@ pub fn run_motion(
         time_scale: None,
         instability: None,
         reference: None,
+        integral_action: false,
     }
 }
 
@@ -572,6 +577,7 @@ fn run_sweep(
         time_scale: None,
         instability: None,
         reference: None,
+        integral_action: false,
     };
     for &v in velocities {
         let settle = settling_time(model, v);

@@ -7,11 +7,21 @@ use scenarios::closed_loop::ClosedLoop;
 use scenarios::{run, Limits, Outcome, RunSpec, Scenario, SwitchingKind};
 
 fn servo_at(model: ModelId, friction: FrictionParams, solver: Solver, points: usize) -> Outcome {
+    servo_with(model, friction, solver, points, Scenario::SERVO.defaults())
+}
+
+fn servo_with(
+    model: ModelId,
+    friction: FrictionParams,
+    solver: Solver,
+    points: usize,
+    params: scenarios::ScenarioParams,
+) -> Outcome {
     let spec = RunSpec {
         scenario: Scenario::SERVO,
         law: model.into(),
         friction,
-        params: Scenario::SERVO.defaults(),
+        params,
         solver,
         switching: SwitchingKind::Event,
         step: StepControl::Adaptive {
@@ -112,4 +122,37 @@ fn the_cycle_is_measured_alike_on_a_coarse_output_grid() {
         "{coarse:?} {fine:?}"
     );
     assert!((coarse.amplitude - fine.amplitude).abs() < 1e-3 * fine.amplitude);
+}
+
+#[test]
+fn a_body_stuck_off_the_set_point_has_converged_only_without_integral_action() {
+    // Coulomb friction, F_c = 6 N. Under PID the body sticks ever closer to the set point
+    // while the integral winds up, for ever longer: after 800 s it is stuck 1.7 mm short and
+    // will move again, a transient, not a rest state.
+    let pid = measures(&servo(
+        ModelId::Coulomb,
+        FrictionParams::paper(),
+        Solver::DOPRI5,
+    ));
+    assert_eq!((pid.settled, pid.hunting), (false, None), "{pid:?}");
+    assert!(pid.final_error.abs() > 1e-4, "{pid:?}");
+    // Under PD (ki = 0) the set point is 1 m away and kp·1 m = 3 N < F_c: the body never
+    // moves, and that is the loop's rest state (its dead zone is ±F_c/kp = ±2 m).
+    let pd = scenarios::ScenarioParams {
+        ki: 0.0,
+        ..Scenario::SERVO.defaults()
+    };
+    let o = servo_with(
+        ModelId::Coulomb,
+        FrictionParams::paper(),
+        Solver::DOPRI5,
+        2001,
+        pd,
+    );
+    let c = measures(&o);
+    assert_eq!(
+        (c.settled, c.hunting, c.final_error),
+        (true, Some(false), 1.0),
+        "{c:?}"
+    );
 }
