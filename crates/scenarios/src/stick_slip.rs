@@ -9,6 +9,7 @@
 //! it (a subcritical Hopf bifurcation): the two initial states of the bifurcation diagram show
 //! where.
 
+use crate::closed_loop::ClosedLoop;
 use crate::error::ScenarioError;
 use crate::run::{run, Limits, RunSpec, SwitchingKind};
 use crate::scenario::Scenario;
@@ -62,6 +63,10 @@ pub enum Regime {
     /// Not settled ([`Settled::settled`]): an oscillation still growing or dying out, or a
     /// first stick phase that fills half the window. A transient is no regime.
     Unsettled,
+    /// A closed loop's limit cycle around its reference ([`ClosedLoop::hunting`]).
+    Hunting,
+    /// A closed loop at rest: at its set point, or in a PD loop's dead zone.
+    Converged,
 }
 
 impl Regime {
@@ -80,6 +85,15 @@ impl Regime {
             Regime::StickSlip
         } else {
             Regime::Oscillation
+        }
+    }
+
+    /// The regime of a closed loop ([`ClosedLoop`]): hunting, converged, or not settled.
+    pub fn of_closed_loop(c: &ClosedLoop) -> Regime {
+        match c.hunting {
+            Some(true) => Regime::Hunting,
+            Some(false) => Regime::Converged,
+            None => Regime::Unsettled,
         }
     }
 

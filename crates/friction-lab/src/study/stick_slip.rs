@@ -33,6 +33,8 @@ pub fn regime_series(regime: Regime, label: &str, points: Vec<(f64, f64)>) -> Se
         Regime::SteadySliding => (BLUE, Marker::Cross),
         Regime::Stuck => (PALETTE[3], Marker::Cross),
         Regime::Unsettled => (PALETTE[4], Marker::Cross),
+        Regime::Hunting => (PALETTE[0], Marker::Dot),
+        Regime::Converged => (BLUE, Marker::Cross),
     };
     Series {
         label: Some(label.into()),

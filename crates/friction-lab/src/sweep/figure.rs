@@ -7,7 +7,9 @@ use crate::study::regime_series;
 use scenarios::stick_slip::Regime;
 
 /// The labels of the regimes in a sweep's figure.
-const REGIMES: [(Regime, &str); 5] = [
+const REGIMES: [(Regime, &str); 7] = [
+    (Regime::Hunting, "hunting (a limit cycle)"),
+    (Regime::Converged, "converged"),
     (Regime::StickSlip, "stick-slip"),
     (Regime::Oscillation, "oscillation without stick"),
     (Regime::SteadySliding, "steady sliding"),

@@ -17,6 +17,7 @@ use crate::error::AppError;
 use crate::output::{Cell, Table};
 use crate::study::{Study, StudyFiles};
 use rayon::prelude::*;
+use scenarios::closed_loop::ClosedLoop;
 use serde::Serialize;
 use std::ops::Range;
 
@@ -172,6 +173,16 @@ impl Study for SweepStudy<'_> {
             "events",
             "status",
         ]);
+        // A closed loop's own measures (docs/closed-loop.md), after the others.
+        let closed = results.iter().any(|r| r.closed_loop.is_some());
+        if closed {
+            header.extend([
+                "stick_time_per_cycle",
+                "final_error",
+                "rms_error",
+                "max_error",
+            ]);
+        }
         let mut table = Table::new(&header);
         // An undefined measure (no oscillation) is an empty cell, never NaN.
         let num = Cell::num;
@@ -197,6 +208,16 @@ impl Study for SweepStudy<'_> {
                 Cell::Num(r.stats.events as f64),
                 Cell::Text(r.error.clone().unwrap_or_else(|| "ok".into())),
             ]);
+            if closed {
+                let c = r.closed_loop.as_ref();
+                let of = |f: fn(&ClosedLoop) -> f64| num(c.map_or(f64::NAN, f));
+                row.extend([
+                    of(|c| c.stick_time_per_cycle),
+                    of(|c| c.final_error),
+                    of(|c| c.rms_error),
+                    of(|c| c.max_error),
+                ]);
+            }
             table.rows.push(row);
         }
         let csv = out.path(".csv");

@@ -4,6 +4,7 @@
 use crate::error::AppError;
 use friction_systems::{simulate, Layout, Scheme, System, STICK};
 use integrators::{even_grid, Options, Output, Stats, StepControl};
+use scenarios::closed_loop::ClosedLoop;
 use scenarios::settled::{spanned, until_settled, Settled, Trace};
 use scenarios::stick_slip::Regime;
 use scenarios::{Limits, RunSpec};
@@ -57,8 +58,12 @@ pub struct PointResult {
     /// Its settled-state measures.
     pub settled: Settled,
     /// Its regime (`Regime::of`, the stick–slip map's classification, against the velocity of
-    /// the surface under the measured body); `None` for a run that failed.
+    /// the surface under the measured body; for a rig whose body a controller positions,
+    /// `Regime::of_closed_loop`); `None` for a run that failed.
     pub regime: Option<Regime>,
+    /// What the closed loop did, for a rig whose body a controller positions (the `servo`):
+    /// its settled state is then the loop's, read off the position error.
+    pub closed_loop: Option<ClosedLoop>,
     /// Solver statistics.
     pub stats: Stats,
     /// The solver's error, if the run failed (the measures are of what it computed).
@@ -79,9 +84,10 @@ impl PointRun {
     /// Runs the point over `factor` times its span, with `factor` times its output intervals,
     /// and measures its settled state.
     fn spanned(&self, settle: f64, factor: u32) -> Result<PointResult, AppError> {
-        let (trace, stats, error, surface_velocity) = match self {
+        let (trace, stats, error, surface_velocity, closed_loop) = match self {
             PointRun::Rig(spec) => {
                 let o = scenarios::run(&spanned(spec, factor), &mut |_| {})?;
+                let closed_loop = ClosedLoop::of_outcome(&o);
                 // The belt under the body, where the rig has one; the floor otherwise.
                 let surface = match spec.scenario.parameters().contains(&"v_belt") {
                     true => spec.params.v_belt,
@@ -92,6 +98,7 @@ impl PointRun {
                     o.stats,
                     o.error.map(|e| e.to_string()),
                     surface,
+                    closed_loop,
                 )
             }
             PointRun::System {
@@ -130,20 +137,33 @@ impl PointRun {
                     run.solution.stats,
                     run.error.map(|e| e.to_string()),
                     surface,
+                    None,
                 )
             }
         };
         let mut settled = Settled::of(&trace, settle);
+        // A closed loop has settled when its position error has; its cycle is read off that
+        // error (`closed_loop`), not off the velocity's crossings, which a body creeping
+        // while it sticks (LuGre) crosses at random.
+        if let Some(c) = &closed_loop {
+            settled.settled = c.settled;
+            settled.period = c.period;
+            settled.x_amplitude = c.amplitude;
+            // The velocity's drift is not the loop's criterion.
+            settled.drift = f64::NAN;
+        }
         // A run that failed stopped short of its span: whatever its window shows, it is no
         // settled state, and it has no regime.
         settled.settled &= error.is_none();
-        let regime = error
-            .is_none()
-            .then(|| Regime::of(&settled, surface_velocity));
+        let regime = error.is_none().then(|| match &closed_loop {
+            Some(c) => Regime::of_closed_loop(c),
+            None => Regime::of(&settled, surface_velocity),
+        });
         Ok(PointResult {
             values: Vec::new(),
             settled,
             regime,
+            closed_loop,
             stats,
             error,
         })

@@ -1,0 +1,93 @@
+//! The closed loop from the command line: `simulate servo` reports the loop it ran, and
+//! `sweep servo` maps hunting over controller and friction parameters.
+
+use std::process::{Command, Output};
+
+fn friction_lab(args: &[&str]) -> Output {
+    let o = Command::new(env!("CARGO_BIN_EXE_friction-lab"))
+        .args(args)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    o
+}
+
+fn json(path: &std::path::Path) -> serde_json::Value {
+    serde_json::from_slice(&std::fs::read(path).unwrap()).unwrap()
+}
+
+#[test]
+fn simulate_servo_reports_the_hunting_cycle_and_sweep_maps_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("simulate");
+    let o = friction_lab(&[
+        "simulate",
+        "servo",
+        "--model",
+        "static",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let printed = String::from_utf8(o.stdout).unwrap();
+    assert!(
+        printed.contains("closed loop: hunting, period 38.24"),
+        "{printed}"
+    );
+    let summary = json(&out.join("summary.json"));
+    let c = &summary["closed_loop"];
+    assert_eq!(
+        (&c["settled"], &c["hunting"]),
+        (&true.into(), &true.into()),
+        "{c}"
+    );
+    let period = c["period"].as_f64().unwrap();
+    // A summary without a controller has no closed_loop at all.
+    let belt = dir.path().join("belt");
+    friction_lab(&[
+        "simulate",
+        "belt",
+        "--model",
+        "CS",
+        "--out",
+        belt.to_str().unwrap(),
+    ]);
+    assert!(json(&belt.join("summary.json"))
+        .get("closed_loop")
+        .is_none());
+
+    // The hunting map: no integral action converges in the dead zone (kp·1 m = 3 N < F_c),
+    // F_s = F_c (Coulomb alone) is a transient under PID, stiction hunts.
+    let map = dir.path().join("map");
+    let args = [
+        "sweep",
+        "servo",
+        "--model",
+        "static",
+        "--grid",
+        "ki=0,4",
+        "--grid",
+        "F_s=6,7.5",
+    ];
+    friction_lab(&[&args[..], &["--out", map.to_str().unwrap()]].concat());
+    let csv = std::fs::read_to_string(map.join("sweep.csv")).unwrap();
+    let rows: Vec<Vec<&str>> = csv.lines().map(|l| l.split(',').collect()).collect();
+    let col = |name: &str| rows[0].iter().position(|c| *c == name).unwrap();
+    let regimes: Vec<&str> = rows[1..].iter().map(|r| r[col("regime")]).collect();
+    assert_eq!(
+        regimes,
+        ["Converged", "Converged", "Unsettled", "Hunting"],
+        "{csv}"
+    );
+    assert_eq!(rows[1][col("final_error")], "1", "{csv}");
+    // The hunting point is the simulated run: the same period.
+    let swept: f64 = rows[4][col("period")].parse().unwrap();
+    assert!(
+        (swept - period).abs() < 1e-9 * period,
+        "{swept} against {period}"
+    );
+    let svg = std::fs::read_to_string(map.join("sweep.svg")).unwrap();
+    assert!(
+        svg.contains("hunting (a limit cycle)") && svg.contains("converged"),
+        "{svg}"
+    );
+}
