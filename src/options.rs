@@ -3,7 +3,7 @@
 
 use clap::Args;
 use friction_lab::error::AppError;
-use friction_lab::params::{ParamSource, DEFAULT_PARAM_SET};
+use friction_lab::params::ParamSource;
 use friction_lab::scheme::SchemeName;
 use friction_lab::settings::{ModelSettings, RunLimits, SchemeChoice, DEFAULT_MAX_STEPS};
 use friction_models::Variant;
@@ -13,9 +13,11 @@ use std::path::PathBuf;
 /// Where the parameters come from.
 #[derive(Args, Clone, Debug, Default)]
 pub struct ParamOptions {
-    /// Start from a named parameter set: `paper` (Table 1) or `lugre-1995`.
-    #[arg(long = "param-set", value_name = "NAME", default_value = DEFAULT_PARAM_SET)]
-    pub param_set: String,
+    /// Start from a named parameter set: `paper` (Table 1) or `lugre-1995` [default: paper;
+    /// for a rig run without --model, the set of its default law (servo: LuGre at
+    /// lugre-1995)].
+    #[arg(long = "param-set", value_name = "NAME")]
+    pub param_set: Option<String>,
     /// A TOML file of `NAME = VALUE` lines, applied over the parameter set.
     #[arg(long = "params", value_name = "FILE.toml")]
     pub params: Option<PathBuf>,

@@ -91,3 +91,46 @@ fn simulate_servo_reports_the_hunting_cycle_and_sweep_maps_it() {
         "{svg}"
     );
 }
+
+#[test]
+fn the_servo_runs_lugre_at_its_papers_parameters_unless_told_otherwise() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |name: &str, extra: &[&str]| {
+        let out = dir.path().join(name);
+        let args = [
+            &["simulate", "servo"][..],
+            extra,
+            &["--out", out.to_str().unwrap()],
+        ]
+        .concat();
+        friction_lab(&args);
+        json(&out.join("summary.json"))
+    };
+    let default = run("default", &[]);
+    assert_eq!(default["model"], "lugre");
+    assert_eq!(default["parameters"]["F_s"], 1.5);
+    assert_eq!(default["closed_loop"]["hunting"], true);
+    // A set named is the set read; a model named is read at the set named, or the paper's.
+    assert_eq!(
+        run("paper", &["--param-set", "paper"])["parameters"]["F_s"],
+        7.5
+    );
+    let cs = run("cs", &["--model", "CS"]);
+    assert_eq!(
+        (&cs["model"], &cs["parameters"]["F_s"]),
+        (&"CS".into(), &7.5.into())
+    );
+    // A rig without a law of its own still requires one.
+    let o = Command::new(env!("CARGO_BIN_EXE_friction-lab"))
+        .args([
+            "simulate",
+            "belt",
+            "--out",
+            dir.path().join("belt").to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr)
+        .contains("option `--model` is required for scenario belt"));
+}

@@ -112,7 +112,7 @@ proptest! {
             set: vec![format!("{}={x}", spec.name)],
             ..Default::default()
         };
-        let options = friction_lab_cli::options::ParamOptions { param_set: "paper".into(), ..options };
+        let options = friction_lab_cli::options::ParamOptions { param_set: Some("paper".into()), ..options };
         // Scenario parameters are checked for a scenario that reads them.
         let scenario = Scenario::ALL
             .into_iter()

@@ -283,7 +283,7 @@ fn model_setting(
                 settings.params.set.push(format!("{p}={v}"));
             }
         }
-        "param_set" => settings.params.param_set = name(k, value)?,
+        "param_set" => settings.params.param_set = Some(name(k, value)?),
         "variant" => settings.variant = parsed(k, value)?,
         _ => return Ok(false),
     }

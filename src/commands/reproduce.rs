@@ -53,7 +53,7 @@ pub fn run(args: &ReproduceArgs) -> Result<(), AppError> {
         friction: params,
         parameters: format!(
             "Parameter set `{}`{}",
-            args.params.param_set,
+            args.params.source().set_name(),
             if args.params.set.is_empty() && args.params.params.is_none() {
                 ""
             } else {

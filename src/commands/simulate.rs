@@ -177,6 +177,9 @@ mod tests {
         assert_eq!(given.scheme, library.scheme);
         let simulation = args.simulation();
         let params = simulation.model_settings.params;
-        assert_eq!(params.param_set, friction_lab::params::DEFAULT_PARAM_SET);
+        assert_eq!(
+            params.param_set,
+            friction_lab::params::ParamSource::default().param_set
+        );
     }
 }

@@ -21,19 +21,20 @@ pub fn is_file_path(name: &str) -> bool {
 /// Where the parameters come from (`--param-set`, `--params` and `--set` on the command line).
 #[derive(Clone, Debug)]
 pub struct ParamSource {
-    /// The named parameter set started from: `paper` (Table 1) or `lugre-1995`.
-    pub param_set: String,
+    /// The named parameter set started from: `paper` (Table 1) or `lugre-1995`; `None`: the
+    /// run's default, [`DEFAULT_PARAM_SET`] or the set of a rig's default law.
+    pub param_set: Option<String>,
     /// A TOML file of `NAME = VALUE` lines, applied over the set.
     pub params: Option<PathBuf>,
     /// Assignments `NAME=VALUE`, applied last, in order.
     pub set: Vec<String>,
 }
 
-/// [`DEFAULT_PARAM_SET`], no file, no assignment.
+/// The default set, no file, no assignment.
 impl Default for ParamSource {
     fn default() -> Self {
         ParamSource {
-            param_set: DEFAULT_PARAM_SET.into(),
+            param_set: None,
             params: None,
             set: Vec::new(),
         }
@@ -41,6 +42,11 @@ impl Default for ParamSource {
 }
 
 impl ParamSource {
+    /// The name of the set started from: the one given, else [`DEFAULT_PARAM_SET`].
+    pub fn set_name(&self) -> &str {
+        self.param_set.as_deref().unwrap_or(DEFAULT_PARAM_SET)
+    }
+
     /// The friction parameters: the named set, then the file, then each `--set`, every value
     /// checked. Only friction parameters are accepted.
     pub fn resolve(&self) -> Result<FrictionParams, AppError> {
@@ -85,7 +91,7 @@ impl ParamSource {
                             `param_set` and a contact's `params`); a system file run reads \
                             `epsilon`, the regularisation width, and the file's own numbers by \
                             their paths, e.g. --set contact.pad.F_c=2 (docs/systems.md)";
-        if self.param_set != DEFAULT_PARAM_SET {
+        if self.set_name() != DEFAULT_PARAM_SET {
             return Err(AppError::Usage(format!(
                 "option `--param-set` does not apply to --system: {READ}"
             )));
@@ -144,7 +150,7 @@ impl ParamSource {
         other_names: &[&str],
         mut other: impl FnMut(&str, f64) -> Result<bool, AppError>,
     ) -> Result<FrictionParams, AppError> {
-        let mut friction = FrictionParams::named(&self.param_set)?;
+        let mut friction = FrictionParams::named(self.set_name())?;
         let mut apply = |name: &str, value: f64| -> Result<(), AppError> {
             if FrictionParams::spec(name).is_some() {
                 return Ok(friction.set(name, value)?);

@@ -4,7 +4,7 @@
 use crate::error::ScenarioError;
 use crate::motion::Motion;
 use crate::params::ScenarioParams;
-use friction_models::{FrictionModel, FrictionParams};
+use friction_models::{FrictionModel, FrictionParams, ModelId};
 use friction_systems::System;
 use std::sync::Arc;
 
@@ -80,6 +80,12 @@ pub trait Rig: Send + Sync {
 
     /// The end time of a run that asks for none.
     fn end_time(&self, p: &ScenarioParams, f: &FrictionParams) -> EndTime;
+
+    /// The law the rig runs when a run names none: a model of the catalog with the
+    /// parameter set it is read at (`None`: a run must name its model).
+    fn default_law(&self) -> Option<(ModelId, &'static str)> {
+        None
+    }
 
     /// Checks what the parameters' ranges alone do not (a spring the rig needs); the
     /// parameters are already within their ranges.

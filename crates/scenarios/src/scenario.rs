@@ -118,6 +118,11 @@ impl Scenario {
         self.rig.end_time(p, f)
     }
 
+    /// The law the rig runs when a run names none ([`Rig::default_law`]).
+    pub fn default_law(self) -> Option<(friction_models::ModelId, &'static str)> {
+        self.rig.default_law()
+    }
+
     /// The default end time, s.
     pub fn default_t_end(self, p: &ScenarioParams, f: &FrictionParams) -> f64 {
         self.end_time(p, f).value()

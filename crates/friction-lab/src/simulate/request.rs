@@ -5,6 +5,7 @@
 use crate::artifacts::Made;
 use crate::error::AppError;
 use crate::laws::ModelChoice;
+use crate::params::ParamSource;
 use crate::ranges;
 use crate::settings::{ModelSettings, SolverSettings};
 use crate::simulate::{chosen_bodies, load, simulate_rig, simulate_system, Described, SystemRun};
@@ -122,24 +123,32 @@ impl Simulation {
         self.points.map(|n| ranges::POINTS.count(n)).transpose()
     }
 
-    /// The model, which a rig requires.
-    fn rig_model(&self, scenario: Scenario) -> Result<&ModelChoice, AppError> {
-        self.model.as_ref().ok_or_else(|| {
+    /// The model of a run of rig `scenario`, and where its parameters come from: the model
+    /// named, or the rig's default law with its parameter set unless one is named
+    /// ([`Scenario::default_law`]); a rig without one requires a model.
+    fn rig_law(&self, scenario: Scenario) -> Result<(ModelChoice, ParamSource), AppError> {
+        let mut params = self.model_settings.params.clone();
+        if let Some(model) = &self.model {
+            return Ok((model.clone(), params));
+        }
+        let (model, set) = scenario.default_law().ok_or_else(|| {
             AppError::Usage(format!(
                 "option `--model` is required for scenario {scenario}: e.g. --model CS"
             ))
-        })
+        })?;
+        params.param_set.get_or_insert_with(|| set.to_string());
+        Ok((ModelChoice::Catalog(model), params))
     }
 
     /// The spec of a run of rig `scenario`, every setting checked.
     pub fn rig_spec(&self, scenario: Scenario) -> Result<RunSpec, AppError> {
-        let model = self.rig_model(scenario)?;
+        let (model, params) = self.rig_law(scenario)?;
         if !self.bodies.is_empty() {
             return Err(AppError::Usage(
                 "option `--bodies` applies to systems (chain, --system), not to a rig".into(),
             ));
         }
-        let (friction, params) = self.model_settings.params.resolve_for(Some(scenario))?;
+        let (friction, params) = params.resolve_for(Some(scenario))?;
         if self.checked_t_end()?.is_none() {
             derived_t_end(scenario, &params, &friction)?;
         }
@@ -206,9 +215,14 @@ impl Simulation {
 
     /// The advice on settings the run does not read, and on former spellings.
     pub fn warnings(&self) -> Vec<String> {
+        // A rig's own default law where no model is named.
+        let model = match (&self.target, &self.model) {
+            (Target::Rig(scenario), None) => scenario.default_law().map(|(m, _)| m),
+            _ => self.model.as_ref().and_then(ModelChoice::catalog),
+        };
         unread_warnings(
             &self.model_settings.params.set,
-            self.model.as_ref().and_then(ModelChoice::catalog),
+            model,
             self.solver.switching(),
         )
         .into_iter()
@@ -222,7 +236,7 @@ impl Simulation {
         let mut made = match &self.target {
             Target::Rig(scenario) => {
                 let spec = self.rig_spec(*scenario)?;
-                simulate_rig(&spec, self.rig_model(*scenario)?, out, trajectory_as)?
+                simulate_rig(&spec, &self.rig_law(*scenario)?.0, out, trajectory_as)?
             }
             _ => self.run_system(out, trajectory_as)?,
         };

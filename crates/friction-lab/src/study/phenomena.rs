@@ -73,9 +73,9 @@ impl Phenomena {
             )));
         }
         let p = &self.params;
-        let given = p.param_set != DEFAULT_PARAM_SET || p.params.is_some() || !p.set.is_empty();
+        let given = p.set_name() != DEFAULT_PARAM_SET || p.params.is_some() || !p.set.is_empty();
         let parameters = if given {
-            let mut described = format!("parameter set `{}`", p.param_set);
+            let mut described = format!("parameter set `{}`", p.set_name());
             if let Some(file) = &p.params {
                 described += &format!(", file `{}`", file.display());
             }

@@ -3,14 +3,15 @@
 
 use crate::params::ScenarioParams;
 use crate::rig::{Apparatus, EndTime, Rig, RIG_BODY};
-use friction_models::{FrictionModel, FrictionParams};
+use friction_models::{FrictionModel, FrictionParams, ModelId};
 use friction_systems::{Controller, Reference, System};
 use std::sync::Arc;
 
 /// A mass m on the floor, no spring, positioned by a PID:
 /// `m·ẍ = u − F(ẋ)`, `u = kp·(r − x) + ki·∫(r − x) dt + kd·(ṙ − ẋ)`, `r = x_ref + v_ref·t`,
 /// from rest at x = 0. The defaults are the 1995 paper's: m = 1 kg, kp = 3 N/m, ki = 4
-/// N/(m·s), kd = 6 N·s/m, set point 1 m.
+/// N/(m·s), kd = 6 N·s/m, set point 1 m, and LuGre at that paper's parameters
+/// (`lugre-1995`) as the plant.
 pub struct Servo;
 
 impl Rig for Servo {
@@ -28,6 +29,9 @@ impl Rig for Servo {
     }
     fn end_time(&self, _: &ScenarioParams, _: &FrictionParams) -> EndTime {
         EndTime::Fixed(800.0)
+    }
+    fn default_law(&self) -> Option<(ModelId, &'static str)> {
+        Some((ModelId::LuGre, "lugre-1995"))
     }
     fn apparatus(
         &self,
