@@ -213,6 +213,22 @@ fn check(
     }
 }
 
+/// Refuses the first of `values` (key, value) of `what` that is not in [0, inf).
+fn non_negative(
+    what: impl Fn() -> String,
+    values: &[(&'static str, f64)],
+) -> Result<(), SystemError> {
+    match values.iter().find(|(_, v)| !(v.is_finite() && *v >= 0.0)) {
+        Some(&(key, value)) => Err(SystemError::OutOfRange {
+            what: what(),
+            key,
+            value,
+            allowed: "[0, inf)",
+        }),
+        None => Ok(()),
+    }
+}
+
 impl System {
     /// Adds a body and returns its index.
     pub fn add_body(&mut self, name: impl Into<String>, m: f64, x0: f64, v0: f64) -> usize {
@@ -312,16 +328,7 @@ impl System {
         }
         for (i, s) in self.springs.iter().enumerate() {
             let what = || format!("[[spring]] {}", i + 1);
-            for (key, value) in [("k", s.k), ("c", s.c)] {
-                if !(value.is_finite() && value >= 0.0) {
-                    return Err(SystemError::OutOfRange {
-                        what: what(),
-                        key,
-                        value,
-                        allowed: "[0, inf)",
-                    });
-                }
-            }
+            non_negative(what, &[("k", s.k), ("c", s.c)])?;
             for end in [s.a, s.b] {
                 let exists = match end {
                     End::Body(j) => j < self.bodies.len(),
@@ -420,16 +427,7 @@ impl System {
                 )));
             }
             *seen = true;
-            for (key, value) in [("kp", c.kp), ("ki", c.ki), ("kd", c.kd)] {
-                if !(value.is_finite() && value >= 0.0) {
-                    return Err(SystemError::OutOfRange {
-                        what: what(),
-                        key,
-                        value,
-                        allowed: "[0, inf)",
-                    });
-                }
-            }
+            non_negative(what, &[("kp", c.kp), ("ki", c.ki), ("kd", c.kd)])?;
             if let Some(limit) = c.saturation {
                 check(what, "saturation", limit, true)?;
             }
