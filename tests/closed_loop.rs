@@ -120,6 +120,20 @@ fn the_servo_runs_lugre_at_its_papers_parameters_unless_told_otherwise() {
         (&cs["model"], &cs["parameters"]["F_s"]),
         (&"CS".into(), &7.5.into())
     );
+    // A solver study of the servo runs its default plant too.
+    let study = dir.path().join("study");
+    let args = [
+        "independence",
+        "servo",
+        "--t-end",
+        "2",
+        "--solver",
+        "bdf",
+        "--out",
+    ];
+    friction_lab(&[&args[..], &[study.to_str().unwrap()]].concat());
+    let described = json(&study.join("independence.json"))["case"]["description"].clone();
+    assert_eq!(described, "servo with lugre (event switching)");
     // A rig without a law of its own still requires one.
     let o = Command::new(env!("CARGO_BIN_EXE_friction-lab"))
         .args([

@@ -123,21 +123,10 @@ impl Simulation {
         self.points.map(|n| ranges::POINTS.count(n)).transpose()
     }
 
-    /// The model of a run of rig `scenario`, and where its parameters come from: the model
-    /// named, or the rig's default law with its parameter set unless one is named
-    /// ([`Scenario::default_law`]); a rig without one requires a model.
+    /// The model of a run of rig `scenario`, and where its parameters come from
+    /// ([`rig_law`]).
     fn rig_law(&self, scenario: Scenario) -> Result<(ModelChoice, ParamSource), AppError> {
-        let mut params = self.model_settings.params.clone();
-        if let Some(model) = &self.model {
-            return Ok((model.clone(), params));
-        }
-        let (model, set) = scenario.default_law().ok_or_else(|| {
-            AppError::Usage(format!(
-                "option `--model` is required for scenario {scenario}: e.g. --model CS"
-            ))
-        })?;
-        params.param_set.get_or_insert_with(|| set.to_string());
-        Ok((ModelChoice::Catalog(model), params))
+        rig_law(scenario, self.model.as_ref(), &self.model_settings.params)
     }
 
     /// The spec of a run of rig `scenario`, every setting checked.
@@ -264,6 +253,28 @@ impl Simulation {
         };
         simulate_system(run, out, trajectory_as)
     }
+}
+
+/// The model of a run of rig `scenario` and where its parameters come from: `model` with
+/// `params`, or without a model the rig's default law, read at its parameter set unless
+/// `params` names one ([`Scenario::default_law`]); a rig without a default law requires a
+/// model.
+pub fn rig_law(
+    scenario: Scenario,
+    model: Option<&ModelChoice>,
+    params: &ParamSource,
+) -> Result<(ModelChoice, ParamSource), AppError> {
+    let mut params = params.clone();
+    if let Some(model) = model {
+        return Ok((model.clone(), params));
+    }
+    let (model, set) = scenario.default_law().ok_or_else(|| {
+        AppError::Usage(format!(
+            "option `--model` is required for scenario {scenario}: e.g. --model CS"
+        ))
+    })?;
+    params.param_set.get_or_insert_with(|| set.to_string());
+    Ok((ModelChoice::Catalog(model), params))
 }
 
 /// The end time `scenario` derives from its parameters where none is given, checked against

@@ -24,7 +24,7 @@ use crate::ranges;
 use crate::settings::{ModelSettings, RunLimits, SchemeChoice};
 use crate::simulate;
 use crate::simulate::chosen_bodies;
-use crate::simulate::request::{derived_t_end, study_t_end, system_of};
+use crate::simulate::request::{derived_t_end, rig_law, study_t_end, system_of};
 use crate::study::Target;
 use crate::warnings::{diverged_line, unread_warnings};
 use friction_models::params::show;
@@ -104,12 +104,8 @@ impl Problem {
                 "option `--bodies` applies to systems (chain, --system), not to a rig".into(),
             ));
         }
-        let model = self.model.as_ref().ok_or_else(|| {
-            AppError::Usage(format!(
-                "option `--model` is required for scenario {scenario}: e.g. --model CS"
-            ))
-        })?;
-        let (friction, params) = self.model_settings.params.resolve_for(Some(scenario))?;
+        let (model, params) = rig_law(scenario, self.model.as_ref(), &self.model_settings.params)?;
+        let (friction, params) = params.resolve_for(Some(scenario))?;
         let t_end = match self.t_end {
             Some(t) => check_t_end(t)?,
             None => check_t_end(derived_t_end(scenario, &params, &friction)?)?,
