@@ -15,7 +15,7 @@
 //! is undefined (null), never false.
 
 use crate::run::Outcome;
-use crate::settled::{MIN_CYCLES, SETTLE_TOLERANCE};
+use crate::settled::{crossings, half_range, MIN_CYCLES, SETTLE_TOLERANCE};
 use friction_systems::{Reference, STICK};
 use serde::Serialize;
 
@@ -58,23 +58,18 @@ struct Part {
 }
 
 impl Part {
-    /// The part of the samples `k` (indices into t and e).
-    fn of(t: &[f64], e: &[f64], k: &[usize]) -> Part {
-        let passes: Vec<f64> = (k.windows(2))
-            .filter(|w| e[w[0]] > 0.0 && e[w[1]] <= 0.0)
-            .map(|w| t[w[0]] + (t[w[1]] - t[w[0]]) * e[w[0]] / (e[w[0]] - e[w[1]]))
-            .collect();
+    /// The part of the samples `k` (indices into t and d, the position's excess over the
+    /// reference x − r): x passes the reference upwards where d crosses zero upwards.
+    fn of(t: &[f64], d: &[f64], k: &[usize]) -> Part {
+        let passes = crossings(t, d, k, 0.0);
         let cycles = passes.len().saturating_sub(1);
-        let (lo, hi) = (k.iter()).fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &i| {
-            (lo.min(e[i]), hi.max(e[i]))
-        });
         Part {
             cycles,
             period: match cycles {
                 0 => f64::NAN,
                 n => (passes[n] - passes[0]) / n as f64,
             },
-            amplitude: 0.5 * (hi - lo),
+            amplitude: half_range(k, &|i| d[i]),
         }
     }
 }
@@ -95,7 +90,8 @@ impl ClosedLoop {
             .filter(|r| !outcome.events.iter().any(|e| e.t == r.t))
             .collect();
         let t: Vec<f64> = rows.iter().map(|r| r.t).collect();
-        let e: Vec<f64> = rows.iter().map(|r| error(r)).collect();
+        // x − r, whose upward crossings of zero are the passes of the reference.
+        let d: Vec<f64> = rows.iter().map(|r| -error(r)).collect();
         let (t0, t1) = (
             t.first().copied().unwrap_or(0.0),
             t.last().copied().unwrap_or(0.0),
@@ -104,12 +100,12 @@ impl ClosedLoop {
         let k: Vec<usize> = (0..t.len()).filter(|&i| t[i] >= from).collect();
         let (first, second) = k.split_at(k.len() / 2);
         let (whole, a, b) = (
-            Part::of(&t, &e, &k),
-            Part::of(&t, &e, first),
-            Part::of(&t, &e, second),
+            Part::of(&t, &d, &k),
+            Part::of(&t, &d, first),
+            Part::of(&t, &d, second),
         );
         let relative = |x: f64, y: f64| (x - y).abs() / x.abs().max(y.abs()).max(f64::MIN_POSITIVE);
-        let last = e.last().copied().unwrap_or(f64::NAN);
+        let last = d.last().copied().unwrap_or(f64::NAN);
         let at_rest = k.len() >= 2
             && whole.amplitude <= REST_AMPLITUDE
             && (!outcome.integral_action || last.abs() <= REST_AMPLITUDE);

@@ -157,7 +157,7 @@ struct Half {
 }
 
 /// Half the range of `f` over the samples `k`.
-fn half_range(k: &[usize], f: &dyn Fn(usize) -> f64) -> f64 {
+pub(crate) fn half_range(k: &[usize], f: &dyn Fn(usize) -> f64) -> f64 {
     let (lo, hi) = k
         .iter()
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &i| {
@@ -168,7 +168,7 @@ fn half_range(k: &[usize], f: &dyn Fn(usize) -> f64) -> f64 {
 
 /// The upward crossings of `v` through `level` among the samples `k` of `t`, located
 /// linearly between samples.
-fn crossings(t: &[f64], v: &[f64], k: &[usize], level: f64) -> Vec<f64> {
+pub(crate) fn crossings(t: &[f64], v: &[f64], k: &[usize], level: f64) -> Vec<f64> {
     k.windows(2)
         .filter(|w| v[w[0]] < level && v[w[1]] >= level)
         .map(|w| {

@@ -22,8 +22,13 @@ use scenarios::{Law, RunSpec};
 use std::path::Path;
 
 /// The one run record of a rig's `outcome` (a system of one body, named `body`, and one
-/// contact), described by `setup`.
-fn rig_record(outcome: &Outcome, setup: RunSetup, has_state: bool) -> RunRecord {
+/// contact), described by `setup`, with what its closed loop did (a controlled rig).
+fn rig_record(
+    outcome: &Outcome,
+    setup: RunSetup,
+    has_state: bool,
+    closed_loop: Option<ClosedLoop>,
+) -> RunRecord {
     let state = |r: &scenarios::Row| BodyState {
         t: r.t,
         x: r.x,
@@ -57,7 +62,7 @@ fn rig_record(outcome: &Outcome, setup: RunSetup, has_state: bool) -> RunRecord 
         method_switches: outcome.method_switches.clone(),
         stiffness: StiffnessSummary::of(&outcome.stiffness),
         instability: outcome.instability,
-        closed_loop: ClosedLoop::of_outcome(outcome),
+        closed_loop,
     };
     RunRecord {
         summary: RunSummary::new(setup, integrated),
@@ -218,15 +223,14 @@ pub fn simulate_rig(
         t_end,
         parameters,
     };
-    let record = rig_record(&outcome, setup, has_state);
+    let closed_loop = ClosedLoop::of_outcome(&outcome);
+    let record = rig_record(&outcome, setup, has_state, closed_loop);
     let (failure, caution) = (record.summary.failure(), record.summary.caution());
     let columns = record.add_files(&mut files, out, trajectory_as)?;
     Ok(Made {
         files,
         trajectory: columns,
-        notes: (ClosedLoop::of_outcome(&outcome).iter())
-            .map(|c| c.to_string())
-            .collect(),
+        notes: closed_loop.iter().map(|c| c.to_string()).collect(),
         warnings: outcome
             .stiffness_detected_at
             .map(|t| stiffness_warning(spec.solver.name(), t))
