@@ -43,3 +43,35 @@ fn a_body_at_rest_under_no_force_stays_at_rest_with_every_model_and_solver() {
         }
     }
 }
+
+/// A body pushed by exactly its break-away force stays at rest: the force sits on a bound of
+/// the closed stick interval for the whole run. Event-driven, the break-away function starts
+/// at zero and stays there to the last bit; read as an arrival it once switched the body to
+/// sliding with zero acceleration, whose velocity stayed exactly zero and was read as an
+/// arrival back at rest, one switch per shortest step, until the chattering guard stopped the
+/// run (docs/solvers.md, "Re-trigger guard").
+#[test]
+fn a_body_pushed_by_exactly_its_break_away_force_stays_at_rest() {
+    let p = FrictionParams::paper();
+    for (model, level) in [(ModelId::Coulomb, p.f_c), (ModelId::Static, p.f_s)] {
+        let law = model.build(Variant::Odd, &p).expect("valid parameters");
+        let mut system = System::default();
+        let body = system.add_body("body", 1.0, 0.0, 0.0);
+        system.add_contact(body, 0.0, Arc::from(law));
+        system.add_force(body, level, friction_systems::Profile::None);
+        for solver in [Solver::DOPRI5, Solver::from_name("bdf").expect("a solver")] {
+            let scheme = Scheme::EventDriven {
+                solver,
+                switching: Switching::Event,
+            };
+            let options = Options::adaptive(0.0, 2.0, 1e-8, 1e-10);
+            let run = simulate(&system, scheme, options, &mut |_| {}).expect("a valid system");
+            let case = format!("{model:?} at {level} N, {solver:?}");
+            assert!(run.error.is_none(), "{case}: {:?}", run.error);
+            assert_eq!(run.solution.t.last(), Some(&2.0), "{case}");
+            assert!(run.contact_events().is_empty(), "{case}: switched");
+            let end = run.final_states()[0];
+            assert_eq!((end.x, end.v), (0.0, 0.0), "{case}");
+        }
+    }
+}

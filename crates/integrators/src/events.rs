@@ -10,7 +10,11 @@
 //! (so that an excursion and return within that step, a short bounce, is still caught). Any
 //! other event function that starts at zero is taken to be on the side *before* the crossing
 //! it watches, so that a state that immediately moves across it (an inconsistent mode switch)
-//! is caught at once.
+//! is caught at once; until it leaves zero it has not crossed (a step at whose end it is still
+//! exactly zero fires nothing). Else a grazing switch chatters: a stuck body whose force reaches
+//! a bound of its stick interval and stays there to the last bit breaks away with zero
+//! acceleration, its velocity stays exactly zero, and an exact zero read as an arrival sends
+//! it back to stick, once per shortest step.
 //!
 //! The watch keeps its buffers between steps: checking a step allocates nothing.
 
@@ -79,6 +83,8 @@ pub struct EventWatch {
     specs: Vec<Option<EventSpec>>,
     last: Vec<f64>,
     disarmed: Vec<bool>,
+    /// Started at zero, taken to be on the side before, and not yet left zero.
+    at_zero: Vec<bool>,
     now: Vec<f64>,
     candidates: Vec<Candidate>,
     y: Vec<f64>,
@@ -100,23 +106,26 @@ impl EventWatch {
         self.specs.clear();
         self.last.clear();
         self.disarmed.clear();
+        self.at_zero.clear();
         self.y.resize(y.len(), 0.0);
         for i in 0..n {
             let spec = problem.event_spec(i, modes);
-            let (g, disarmed) = match spec {
-                None => (0.0, false),
+            let (g, disarmed, at_zero) = match spec {
+                None => (0.0, false, false),
                 Some(spec) => {
                     let g = problem.event(i, t, y, modes);
                     if g.abs() <= ZERO {
-                        (spec.crossing.side_before() * ZERO, rearm.contains(&i))
+                        let rearmed = rearm.contains(&i);
+                        (spec.crossing.side_before() * ZERO, rearmed, !rearmed)
                     } else {
-                        (g, false)
+                        (g, false, false)
                     }
                 }
             };
             self.specs.push(spec);
             self.last.push(g);
             self.disarmed.push(disarmed);
+            self.at_zero.push(at_zero);
         }
     }
 
@@ -153,6 +162,10 @@ impl EventWatch {
             };
             let g1 = problem.event(i, t1, y1, modes);
             self.now.push(g1);
+            if self.at_zero[i] && g1 == 0.0 {
+                // Still on zero: not crossed, and still on the side before.
+                continue;
+            }
             let (mut ta, mut ga) = (t0, self.last[i]);
             if self.disarmed[i] {
                 // The first sign the function shows after leaving zero is its reference.
@@ -187,8 +200,9 @@ impl EventWatch {
         }
         if self.candidates.is_empty() {
             for (i, &g) in self.now.iter().enumerate() {
-                if g != 0.0 || !self.disarmed[i] {
+                if g != 0.0 || !(self.disarmed[i] || self.at_zero[i]) {
                     self.disarmed[i] = false;
+                    self.at_zero[i] = false;
                     self.last[i] = g;
                 }
             }
