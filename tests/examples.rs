@@ -35,7 +35,8 @@ fn an_own_friction_law_runs_through_simulation_and_a_study() {
     assert!((t - exact).abs() < 1e-9, "rig: {t} vs {exact}");
     // Table 2's protocols judge it by what its equation says: a static level above the
     // kinetic one, a falling Stribeck branch, a viscous term and the stick-slip they make on
-    // the belt; no internal state, hence no pre-sliding, no frictional lag, no dwell time.
+    // the belt, and with the static level the hunting of a PID-positioned mass; no internal
+    // state, hence no pre-sliding, no frictional lag, no dwell time.
     let expected = [
         ("stiction", true),
         ("presliding", false),
@@ -44,6 +45,7 @@ fn an_own_friction_law_runs_through_simulation_and_a_study() {
         ("hysteresis", false),
         ("stick_slip", true),
         ("rising_static_friction", false),
+        ("hunting", true),
     ];
     let measured: Vec<(&str, bool)> = r.table2.iter().map(|(p, m)| (p.name(), *m)).collect();
     assert_eq!(measured, expected);

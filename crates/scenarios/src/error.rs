@@ -25,7 +25,8 @@ pub enum ScenarioError {
         /// The solver's error.
         error: SolverError,
     },
-    /// A run of a study failed; the message names which and why.
+    /// A run of a study or of a Table 2 protocol did not give what it is for (it failed, or
+    /// ended in a transient that decides nothing); the message names which and why.
     #[error("{0}")]
     RunFailed(String),
 }

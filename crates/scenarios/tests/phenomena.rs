@@ -508,3 +508,68 @@ fn a_row_of_ones_own_is_decided_beside_the_papers() {
     // The paper has no such row: no claim.
     assert_eq!(cell(0, 1).1.paper, None);
 }
+
+#[test]
+fn hunting_needs_a_static_level_above_the_kinetic_one() {
+    use scenarios::phenomena::{thresholds, Bench};
+    use scenarios::{Scenario, ScenarioParams};
+    let judge = |model: ModelId| {
+        decide(
+            Phenomenon::HUNTING,
+            &Law::from(model),
+            &parameters_for(model),
+            Protocol::default(),
+        )
+        .unwrap()
+    };
+    // Coulomb with stiction hunts: its period, read off the position error's passes of the
+    // set point, is the spacing of its forward break-aways in the switching log (it breaks
+    // away backwards in between).
+    let v = judge(ModelId::Static);
+    assert!(v.measured, "{:?}", v.evidence);
+    let law = Law::from(ModelId::Static);
+    let p = FrictionParams::paper();
+    let built = law.build(&p).unwrap();
+    let bench = Bench::new(
+        &law,
+        built.as_ref(),
+        p,
+        Protocol::default(),
+        ScenarioParams::default(),
+    );
+    let o = bench
+        .outcome(&bench.spec(
+            Scenario::SERVO,
+            ScenarioParams::default(),
+            thresholds::HUNTING_T_END,
+            thresholds::HUNTING_POINTS,
+        ))
+        .unwrap();
+    let half = 0.5 * thresholds::HUNTING_T_END;
+    let breakaways: Vec<f64> = (o.events.iter())
+        .filter(|e| e.to == friction_systems::SLIP_POSITIVE && e.t >= half)
+        .map(|e| e.t)
+        .collect();
+    let spacing =
+        (breakaways[breakaways.len() - 1] - breakaways[0]) / (breakaways.len() - 1) as f64;
+    let period = v.evidence["period_s"];
+    assert!(
+        (period - spacing).abs() < 1e-3 * spacing,
+        "period {period} s, break-aways {spacing} s apart"
+    );
+    // Plain Coulomb: each stop nearer the set point, the loop never settles in a finite run.
+    let v = judge(ModelId::Coulomb);
+    assert!(!v.measured, "{:?}", v.evidence);
+    assert_eq!(v.evidence["settled"], 0.0, "{:?}", v.evidence);
+    assert!(v.evidence["stops"] >= 4.0, "{:?}", v.evidence);
+    assert!(v.evidence["stop_error_ratio"] <= 0.9, "{:?}", v.evidence);
+    // Viscous friction: a linear loop, converged to the set point.
+    let v = judge(ModelId::Viscous);
+    assert!(!v.measured, "{:?}", v.evidence);
+    assert_eq!(v.evidence["settled"], 1.0, "{:?}", v.evidence);
+    assert!(
+        v.evidence["final_error_m"].abs() <= 1e-9,
+        "{:?}",
+        v.evidence
+    );
+}

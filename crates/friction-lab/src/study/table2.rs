@@ -292,7 +292,9 @@ pub fn markdown(rows: &[(Law, Row)], protocol: &Protocol, parameters: &str) -> S
          and viscous relative change beyond {}; hysteresis: a friction–velocity loop wider than {} \
          in sliding or a pre-sliding loss above {} per cycle; stick–slip: at \
          least {} stick phases in the settled half and {} per cycle; rising static friction: \
-         break-away force change beyond {}.\n",
+         break-away force change beyond {}; hunting: the servo settled on a limit cycle over \
+         the last half of {} s, none if it settled at rest or each of its last {} stops is at \
+         least {} nearer the set point than the one before.\n",
         thresholds::STICTION_RATE,
         thresholds::STATIC_EXCESS,
         thresholds::PRESLIDING_MIN,
@@ -303,6 +305,9 @@ pub fn markdown(rows: &[(Law, Row)], protocol: &Protocol, parameters: &str) -> S
         thresholds::STICK_PHASES,
         thresholds::STICK_PER_CYCLE,
         thresholds::BREAKAWAY_CHANGE,
+        thresholds::HUNTING_T_END,
+        thresholds::DYING_STOPS,
+        thresholds::DYING_RATIO,
     );
     s
 }

@@ -13,7 +13,7 @@ pub mod thresholds;
 
 pub use bench::{Bench, Breakaway, Cycle};
 pub use experiments::{
-    Hysteresis, Presliding, RisingStaticFriction, StickSlip, Stiction, Stribeck, Viscous,
+    Hunting, Hysteresis, Presliding, RisingStaticFriction, StickSlip, Stiction, Stribeck, Viscous,
 };
 pub use phenomenon::{Axes, Experiment, Phenomenon};
 

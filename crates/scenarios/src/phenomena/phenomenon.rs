@@ -3,7 +3,7 @@
 
 use super::bench::Bench;
 use super::experiments::{
-    Hysteresis, Presliding, RisingStaticFriction, StickSlip, Stiction, Stribeck, Viscous,
+    Hunting, Hysteresis, Presliding, RisingStaticFriction, StickSlip, Stiction, Stribeck, Viscous,
 };
 use super::Verdict;
 use crate::error::ScenarioError;
@@ -64,9 +64,12 @@ impl Phenomenon {
     pub const STICK_SLIP: Phenomenon = Phenomenon::built_in(&StickSlip);
     /// The break-away force depends on how fast the applied force rises.
     pub const RISING_STATIC_FRICTION: Phenomenon = Phenomenon::built_in(&RisingStaticFriction);
+    /// A PID-positioned mass settles on a limit cycle around its set point (the paper's
+    /// closed-loop criterion; not a row of its Table 2).
+    pub const HUNTING: Phenomenon = Phenomenon::built_in(&Hunting);
 
-    /// Every built-in row, in the paper's order.
-    pub const ALL: [Phenomenon; 7] = [
+    /// Every built-in row: the paper's seven in its order, then closed-loop hunting.
+    pub const ALL: [Phenomenon; 8] = [
         Phenomenon::STICTION,
         Phenomenon::PRESLIDING,
         Phenomenon::STRIBECK,
@@ -74,6 +77,7 @@ impl Phenomenon {
         Phenomenon::HYSTERESIS,
         Phenomenon::STICK_SLIP,
         Phenomenon::RISING_STATIC_FRICTION,
+        Phenomenon::HUNTING,
     ];
 
     const fn built_in(experiment: &'static dyn Experiment) -> Phenomenon {

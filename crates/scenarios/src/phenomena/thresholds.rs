@@ -38,3 +38,14 @@ pub const LONGEST_RAMP: f64 = 100.0;
 /// Rising static friction: a break-away exists only if the peak friction before gross
 /// sliding reaches this fraction of F_s.
 pub const BREAKAWAY_MIN: f64 = 0.01;
+/// Hunting: length of the servo run, s (the second half is the settled part): at least
+/// seven cycles of every hunting model of the catalog (their periods are 24–52 s).
+pub const HUNTING_T_END: f64 = 800.0;
+/// Hunting: output points of the servo run (0.1 s apart).
+pub const HUNTING_POINTS: usize = 8001;
+/// Hunting: how many successive stops must close in on the set point for an unsettled loop
+/// to count as dying out.
+pub const DYING_STOPS: usize = 3;
+/// Hunting: the least relative fall of the error from one stop to the next that counts as
+/// closing in (Coulomb friction under the 1995 PID: about 55 %).
+pub const DYING_RATIO: f64 = 0.1;
