@@ -4,6 +4,7 @@ from the library's numbers, not from the text of a file."""
 
 from __future__ import annotations
 
+import io
 from typing import Any, Dict, List, Optional
 
 import numpy as np
@@ -86,12 +87,24 @@ class Study:
         return f"<friction_lab.Study: {', '.join(self.tables)}>"
 
 
+def _cheapest(entry: Dict[str, Any]) -> Dict[str, Any]:
+    """One law's simulation cost on one system as a row of ``Table2.cost``."""
+    run = entry["cheapest"] or {}
+    return {"solver": run.get("solver"), "tolerance": run.get("tolerance"),
+            "error": run.get("error"), "work": run.get("work"),
+            "relative_work": entry["relative_work"], "failed": entry["failed"]}
+
+
 class Table2:
     """Table 2 decided by simulation (``phenomena``): ``cells`` has one row per law and
     phenomenon (``law``, ``phenomenon``, ``measured``: True, False, or None where its protocol
-    run failed, ``paper``: the paper's claim or None, ``failed``: why), ``json`` is
-    ``table2.json`` (its ``provenance``, and under ``models`` each cell's evidence and its
-    verdict over a grid of rig parameters) and ``markdown`` the text of ``table2.md``."""
+    run failed, ``paper``: the paper's claim or None, ``failed``: why); ``cost`` one row per law
+    and stick–slip system (``law``, ``system``, the cheapest adequate run's ``solver``,
+    ``tolerance``, grid ``error`` and ``work``, ``relative_work``: over Coulomb's, ``failed``:
+    why no solver reached the target); ``timing`` the wall times of those runs
+    (``table2-timing.csv``); ``json`` is ``table2.json`` (its ``provenance``, and under
+    ``models`` each cell's evidence and its verdict over a grid of rig parameters, and each
+    law's ``simulation_cost``) and ``markdown`` the text of ``table2.md``."""
 
     def __init__(self, made: Made):
         self.json: Dict[str, Any] = made.json("table2.json")
@@ -99,9 +112,16 @@ class Table2:
         rows = [{"law": law, "phenomenon": phenomenon, "measured": cell["measured"],
                  "paper": cell["paper"], "failed": cell["failed"]}
                 for law, cells in self.json["models"].items()
-                for phenomenon, cell in cells.items()]
+                for phenomenon, cell in cells.items() if phenomenon != "simulation_cost"]
         self.cells: pd.DataFrame = pd.DataFrame(
             rows, columns=["law", "phenomenon", "measured", "paper", "failed"])
+        cost = [{"law": law, "system": system, **_cheapest(entry)}
+                for law, cells in self.json["models"].items()
+                for system, entry in cells["simulation_cost"].items()]
+        self.cost: pd.DataFrame = pd.DataFrame(
+            cost, columns=["law", "system", "solver", "tolerance", "error", "work",
+                           "relative_work", "failed"])
+        self.timing: pd.DataFrame = pd.read_csv(io.StringIO(made.text("table2-timing.csv")))
 
     def __repr__(self) -> str:
         return f"<friction_lab.Table2: {', '.join(self.json['models'])}>"

@@ -170,10 +170,17 @@ def test_table_2_judges_a_python_law_as_the_catalogs():
     assert list(t.json["models"]) == ["coulomb", "py-coulomb"]
     models = t.json["models"]
     assert models["py-coulomb"] == models["coulomb"]
-    assert len(t.cells) == 2 * len(models["coulomb"]) >= 12
+    # One cell a phenomenon; the simulation cost is a frame of its own.
+    assert len(t.cells) == 2 * (len(models["coulomb"]) - 1) >= 16
     assert t.cells["paper"].isna().all() and t.cells["failed"].isna().all()
     assert "| phenomenon | coulomb | py-coulomb |" in t.markdown
     assert "(its own)" in t.markdown
+    # The simulation cost: each law on the belt and the two masses, Coulomb's own work
+    # over Coulomb's is 1, and the Python law costs what the catalog's does in counted work.
+    assert list(t.cost["system"]) == ["belt", "two_mass"] * 2
+    assert (t.cost[t.cost["law"] == "coulomb"]["relative_work"] == 1.0).all()
+    assert list(t.cost["work"][:2]) == list(t.cost["work"][2:])
+    assert set(t.timing["system"]) == {"belt", "two_mass"}
 
 
 def test_a_sweep_of_a_python_law_in_process_and_on_dask_is_the_catalogs():

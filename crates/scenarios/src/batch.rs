@@ -155,6 +155,17 @@ fn reference_of(
     }
 }
 
+/// Measures `run`'s errors against the reference's measures `reference` and judges it by
+/// them ([`Verdict::against_reference`]). A failed run ends early: its last state is not a
+/// state at the end, and it has no error against the reference.
+pub fn judge(run: &mut StudyRun, reference: &Measures) {
+    if run.failure.is_none() {
+        run.errors = Errors::between(&run.measures, reference);
+        let largest = run.errors.grid_relative.max(run.errors.final_relative);
+        run.verdict = (run.verdict.clone()).and(Verdict::against_reference(largest));
+    }
+}
+
 /// What a study computed on one case.
 pub struct CaseRuns {
     /// The reference and its measures, if one was asked for.
@@ -338,12 +349,8 @@ pub fn run_cases(
                 _ => unreachable!("results come back in the order of the tasks"),
             }));
             run.wall_time = WallTimes::of(&times);
-            // A failed run ends early: its last state is not a state at the end, and it has
-            // no error against the reference.
-            if let (Some((_, m)), None) = (&reference, &run.failure) {
-                run.errors = Errors::between(&run.measures, m);
-                let largest = run.errors.grid_relative.max(run.errors.final_relative);
-                run.verdict = (run.verdict.clone()).and(Verdict::against_reference(largest));
+            if let Some((_, m)) = &reference {
+                judge(&mut run, m);
             }
             runs.push(*run);
         }

@@ -27,8 +27,7 @@ impl Part for Table2 {
         if let Some(failure) = target.failure.take() {
             return Err(failure);
         }
-        let disagreements = table
-            .iter()
+        let disagreements = (table.rows.iter())
             .flat_map(|(_, r)| r.iter())
             .filter(|(_, c)| c.disagrees())
             .count();

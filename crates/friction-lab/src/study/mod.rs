@@ -16,6 +16,7 @@ pub mod solver_studies;
 mod stick_slip;
 mod stiffness;
 mod table2;
+mod table2_cost;
 mod tables;
 mod testset;
 mod work_precision;

@@ -2,11 +2,13 @@
 //! each cell with its verdict over a grid of rig parameters, written beside the paper's claims
 //! as `table2.md` and `table2.json` with the numbers that decided each cell.
 
+use super::table2_cost;
 use super::{Study, StudyFiles};
 use crate::error::AppError;
 use crate::laws::check_read;
 use friction_models::{FrictionParams, ModelId};
 use integrators::Solver;
+use scenarios::phenomena::cost::{Costs, RUNS_PER_LAW};
 use scenarios::phenomena::{
     table, thresholds, Cell, Phenomenon, Protocol, Row, PROTOCOL_PARAMETERS,
 };
@@ -27,39 +29,50 @@ pub struct Table2Study<'a> {
     pub parameters: Option<(FrictionParams, String)>,
 }
 
+/// Table 2 as decided: every law's row, and every law's simulation cost.
+pub struct Decided {
+    /// Each law with its cells, in column order.
+    pub rows: Vec<(Law, Row)>,
+    /// Each law's simulation cost, and Coulomb's.
+    pub cost: Costs,
+}
+
 impl Study for Table2Study<'_> {
-    type Result = Vec<(Law, Row)>;
+    type Result = Decided;
 
     fn name(&self) -> &'static str {
         "Table 2"
     }
 
     fn runs(&self) -> usize {
-        self.laws.len() * self.phenomena.len()
+        self.laws.len() * self.phenomena.len() + (self.laws.len() + 1) * RUNS_PER_LAW
     }
 
     fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<Self::Result, AppError> {
         let parameters = self.parameters.as_ref().map(|p| &p.0);
-        table(
+        let rows = table(
             self.laws,
             self.phenomena,
             self.protocol,
             parameters,
             true,
             progress,
-        )
-        .map_err(AppError::from)
+        )?;
+        let cost = Costs::of(self.laws, parameters, &self.protocol, progress)?;
+        Ok(Decided { rows, cost })
     }
 
     /// Cells left undecided, their protocol runs failed ([`check_decided`]): the files mark
     /// them, and the command exits 1.
-    fn failure(&self, rows: &Self::Result) -> Option<AppError> {
-        check_decided(rows).err()
+    fn failure(&self, decided: &Self::Result) -> Option<AppError> {
+        check_decided(&decided.rows).err()
     }
 
     /// `{stem}.md` (the table beside the paper's, with the protocols and their verdicts over
-    /// their grids) and `{stem}.json` (every cell with its evidence).
-    fn write(&self, rows: &Self::Result, out: &mut StudyFiles) -> Result<(), AppError> {
+    /// their grids, and the simulation cost), `{stem}.json` (every cell with its evidence)
+    /// and `{stem}-timing.csv` (the wall times of the simulation cost).
+    fn write(&self, decided: &Self::Result, out: &mut StudyFiles) -> Result<(), AppError> {
+        let (rows, cost) = (&decided.rows, &decided.cost);
         let own = own_parameters();
         let described = self
             .parameters
@@ -67,19 +80,23 @@ impl Study for Table2Study<'_> {
             .map_or(own.as_str(), |p| p.1.as_str());
         out.files.add(
             out.path(".md"),
-            markdown(rows, &self.protocol, described).into_bytes(),
+            markdown(rows, cost, &self.protocol, described).into_bytes(),
         );
-        out.add_json(&json!({ "models": json_table(rows) }))
+        out.files.add(
+            out.path("-timing.csv"),
+            table2_cost::timing_csv(self.laws, cost).into_bytes(),
+        );
+        out.add_json(&json!({ "models": json_table(rows, cost) }))
     }
 }
 
 /// Table 2 as `table2.json`: `{"<model>": {"<phenomenon>": {measured, failed, paper,
-/// evidence, region}}}`: `measured` null and `failed` the reason for a cell whose run failed,
-/// `region` the verdict over the cell's grid of rig parameters (axes, points, fraction,
-/// flips, undecided).
-fn json_table(rows: &[(Law, Row)]) -> Value {
+/// evidence, region}, "simulation_cost": …}}`: `measured` null and `failed` the reason for a
+/// cell whose run failed, `region` the verdict over the cell's grid of rig parameters (axes,
+/// points, fraction, flips, undecided); `simulation_cost` as [`table2_cost::json`] writes it.
+fn json_table(rows: &[(Law, Row)], cost: &Costs) -> Value {
     let mut out = Map::new();
-    for (model, row) in rows {
+    for (i, (model, row)) in rows.iter().enumerate() {
         let mut cells = Map::new();
         for (p, c) in row {
             cells.insert(
@@ -93,6 +110,7 @@ fn json_table(rows: &[(Law, Row)]) -> Value {
                 }),
             );
         }
+        cells.insert("simulation_cost".into(), table2_cost::json(cost, i));
         out.insert(model.to_string(), Value::Object(cells));
     }
     Value::Object(out)
@@ -204,7 +222,12 @@ fn phenomena(rows: &[(Law, Row)]) -> Vec<Phenomenon> {
 }
 
 /// Table 2 as markdown: the measured table beside the paper's, then the evidence.
-pub fn markdown(rows: &[(Law, Row)], protocol: &Protocol, parameters: &str) -> String {
+pub fn markdown(
+    rows: &[(Law, Row)],
+    cost: &Costs,
+    protocol: &Protocol,
+    parameters: &str,
+) -> String {
     let mut s = String::from("# Table 2, decided by simulation\n\n");
     if integrators::interrupt::requested() {
         s += &crate::artifacts::stopped_banner(&format!(
@@ -247,6 +270,11 @@ pub fn markdown(rows: &[(Law, Row)], protocol: &Protocol, parameters: &str) -> S
         }
         s += "\n";
     }
+    s += &format!("| {} |", table2_cost::LABEL);
+    for i in 0..rows.len() {
+        s += &format!(" {} |", table2_cost::cell(cost, i));
+    }
+    s += "\n";
     let disagreements: usize = rows
         .iter()
         .flat_map(|(_, r)| r.iter())
@@ -266,6 +294,8 @@ pub fn markdown(rows: &[(Law, Row)], protocol: &Protocol, parameters: &str) -> S
     }
     s += "\n\n";
     s += &regions_markdown(rows);
+    let laws: Vec<Law> = rows.iter().map(|(law, _)| law.clone()).collect();
+    s += &table2_cost::section(&laws, cost);
     s += "## Evidence\n\n";
     for (model, row) in rows {
         s += &format!(

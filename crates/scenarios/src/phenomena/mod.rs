@@ -7,6 +7,7 @@
 //! `Experiment` run as [`Phenomenon::own`].
 
 mod bench;
+pub mod cost;
 mod experiments;
 mod phenomenon;
 pub mod thresholds;
