@@ -158,7 +158,29 @@ fn reproduce_writes_six_figures_notes_and_report_deterministically() {
         without_provenance(&a.join("table2.json")),
         without_provenance(&b.join("table2.json"))
     );
+    // The closed loop: the models as plants and compensators, and the hunting map.
+    for file in [
+        "closed-loop/closed-loop.md",
+        "closed-loop/closed-loop.json",
+        "closed-loop/hunting-map.csv",
+    ] {
+        assert_eq!(
+            without_provenance(&a.join(file)),
+            without_provenance(&b.join(file)),
+            "{file} differs"
+        );
+    }
+    assert!(a.join("closed-loop/closed-loop-error.png").is_file());
+    let loops = std::fs::read_to_string(a.join("closed-loop/closed-loop.md")).unwrap();
+    assert!(
+        loops.contains("| lugre | hunting |"),
+        "the 1995 example hunts: {loops}"
+    );
     let report = std::fs::read_to_string(a.join("report.md")).unwrap();
+    assert!(
+        report.contains("## Closed loop: hunting and friction compensation"),
+        "{report}"
+    );
     assert!(report.contains("[Figure 6 (SD)](figures/figure-6-SD.png)"));
     // The chain, integrated three ways: work-precision at N = 100, cost against N.
     let wp = std::fs::read_to_string(a.join("studies/work-precision-chain-100.csv")).unwrap();

@@ -32,6 +32,7 @@ pub mod settled;
 pub mod stick_slip;
 pub mod studies;
 pub mod study_run;
+pub mod tracking;
 pub mod verdict;
 
 pub use error::ScenarioError;

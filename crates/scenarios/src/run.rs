@@ -609,6 +609,21 @@ pub fn settling_time(model: &dyn FrictionModel, v: f64) -> f64 {
     friction_models::steady::time_constant(model, v).map_or(1e-3, |tau| 20.0 * tau)
 }
 
+/// Runs `spec` on `system`, a one-body system of the caller's in place of the rig's
+/// apparatus (the rig's own, changed: [`crate::tracking::run_tracking`]), checked as [`run`]
+/// checks the spec.
+pub fn run_system(
+    spec: &RunSpec,
+    system: &System,
+    observe: &mut dyn FnMut(f64),
+) -> Result<Outcome, ScenarioError> {
+    validate(spec)?;
+    let t_end = spec
+        .t_end
+        .unwrap_or_else(|| spec.scenario.default_t_end(&spec.params, &spec.friction));
+    run_body(spec, system, t_end, false, observe)
+}
+
 /// Runs the simulation `spec` describes; `observe` is told the time after each step.
 pub fn run(spec: &RunSpec, observe: &mut dyn FnMut(f64)) -> Result<Outcome, ScenarioError> {
     run_as(spec, false, observe)

@@ -10,14 +10,15 @@ fn servo_at(model: ModelId, friction: FrictionParams, solver: Solver, points: us
     servo_with(model, friction, solver, points, Scenario::SERVO.defaults())
 }
 
-fn servo_with(
+/// The servo with `model` at `friction` under `solver` at rtol 1e-9, to its own end time.
+fn servo_spec(
     model: ModelId,
     friction: FrictionParams,
     solver: Solver,
     points: usize,
     params: scenarios::ScenarioParams,
-) -> Outcome {
-    let spec = RunSpec {
+) -> RunSpec {
+    RunSpec {
         scenario: Scenario::SERVO,
         law: model.into(),
         friction,
@@ -32,7 +33,17 @@ fn servo_with(
         t_end: None,
         output_points: points,
         limits: Limits::default(),
-    };
+    }
+}
+
+fn servo_with(
+    model: ModelId,
+    friction: FrictionParams,
+    solver: Solver,
+    points: usize,
+    params: scenarios::ScenarioParams,
+) -> Outcome {
+    let spec = servo_spec(model, friction, solver, points, params);
     let o = run(&spec, &mut |_| {}).unwrap();
     assert!(o.error.is_none(), "{model}: {:?}", o.error);
     o
@@ -155,4 +166,32 @@ fn a_body_stuck_off_the_set_point_has_converged_only_without_integral_action() {
         (true, Some(false), 1.0),
         "{c:?}"
     );
+}
+
+#[test]
+fn a_tracking_task_replaces_the_set_point_and_needs_a_controlled_rig() {
+    use friction_systems::Reference;
+    use scenarios::tracking::run_tracking;
+    let spec = |scenario: Scenario| RunSpec {
+        scenario,
+        t_end: Some(50.0),
+        ..servo_spec(
+            ModelId::Viscous,
+            FrictionParams::paper(),
+            Solver::DOPRI5,
+            5001,
+            Scenario::SERVO.defaults(),
+        )
+    };
+    // A ramp x_r = 0.1·t under viscous friction mu_v (a linear plant): the PID's integral
+    // action removes the steady tracking error, which a set point of 1 m would not measure.
+    let ramp = Reference::Ramp { x0: 0.0, v: 0.1 };
+    let o = run_tracking(&spec(Scenario::SERVO), &ramp, None, &mut |_| {}).unwrap();
+    assert!(o.error.is_none(), "{:?}", o.error);
+    assert_eq!(o.reference, Some(ramp.clone()));
+    let last = o.last().unwrap();
+    assert!((0.1 * last.t - last.x).abs() < 1e-6, "{last:?}");
+    // A rig without a controller has no reference to replace.
+    let e = run_tracking(&spec(Scenario::BELT), &ramp, None, &mut |_| {}).unwrap_err();
+    assert!(e.to_string().contains("`belt` has no controller"), "{e}");
 }

@@ -5,6 +5,7 @@
 //! part ([`Section`], `examples/own_study.rs`).
 
 mod chain;
+mod closed_loop;
 mod experiment;
 mod figures;
 mod solver_studies;
@@ -192,7 +193,7 @@ impl Paper {
     }
 
     /// The paper's parts, in the report's order: Figures 2–7, the experiment, Table 2, the
-    /// solver studies, the chain's studies and the belt's stick–slip map.
+    /// solver studies, the chain's studies, the belt's stick–slip map and the closed loop.
     pub fn parts(&self) -> Vec<Box<dyn Part>> {
         let friction = self.friction;
         vec![
@@ -205,6 +206,7 @@ impl Paper {
             Box::new(solver_studies::SolverStudies { friction }),
             Box::new(chain::ChainStudies { friction }),
             Box::new(stick_slip::StickSlip { friction }),
+            Box::new(closed_loop::ClosedLoopPart),
         ]
     }
 

@@ -6,6 +6,7 @@
 //! the thread count), its files added to a [`Target`]. The command line, `reproduce` and a
 //! user's own code conduct the same studies; each study is a file of this module.
 
+mod closed_loop;
 mod convergence;
 mod draw;
 mod independence;
@@ -21,6 +22,7 @@ mod tables;
 mod testset;
 mod work_precision;
 
+pub use closed_loop::{ClosedLoopStudy, ClosedLoops, Regulation, Task, Tracking, TASKS};
 pub use convergence::ConvergenceStudy;
 pub use independence::{IndependenceStudy, Refinement};
 pub use phenomena::{Phenomena, PHENOMENA_ATOL, PHENOMENA_RTOL};

@@ -10,6 +10,7 @@ use crate::params::{is_file_path, parse_assignment};
 use crate::ranges::{self, first_repeat};
 use crate::simulate::{chosen_bodies, Simulation, Target};
 use crate::study::{conduct, Target as StudyTarget};
+use crate::sweep::PointResult;
 use friction_systems::Layout;
 use scenarios::stick_slip::sliding_start;
 use scenarios::Scenario;
@@ -42,6 +43,36 @@ impl Sweep {
     /// point is a row that says why, and the sweep's failure.
     pub fn run(&self, out: &Path) -> Result<Made, AppError> {
         let threads = ranges::threads(self.threads)?;
+        let mut files = Artifacts::default();
+        let mut target = StudyTarget {
+            files: &mut files,
+            dir: out,
+            threads,
+            failure: None,
+        };
+        let results = self.conduct(&mut target, "sweep")?;
+        let failure = target.failure;
+        let failed = results.iter().filter(|r| r.error.is_some()).count();
+        Ok(Made {
+            files,
+            notes: vec![format!(
+                "{}, {failed} failed",
+                counted(results.len(), "point", "points")
+            )],
+            warnings: self.simulation.warnings(),
+            failure,
+            trajectory: None,
+        })
+    }
+
+    /// Checks the sweep and conducts it into `target` as the study `{stem}` (its files
+    /// `{stem}.csv`, `{stem}.json`, `{stem}.png`), returning every point's result: how
+    /// `reproduce` draws its hunting map.
+    pub fn conduct(
+        &self,
+        target: &mut StudyTarget,
+        stem: &str,
+    ) -> Result<Vec<PointResult>, AppError> {
         check_axes(&self.axes, &self.simulation)?;
         let n = points(&self.axes).len();
         let range = match &self.range {
@@ -63,26 +94,7 @@ impl Sweep {
             model: (self.simulation.model.as_ref()).map(|m| m.name().to_string()),
             start: self.start,
         };
-        let mut files = Artifacts::default();
-        let mut target = StudyTarget {
-            files: &mut files,
-            dir: out,
-            threads,
-            failure: None,
-        };
-        let results = conduct(&study, &mut target, "sweep")?;
-        let failure = target.failure;
-        let failed = results.iter().filter(|r| r.error.is_some()).count();
-        Ok(Made {
-            files,
-            notes: vec![format!(
-                "{}, {failed} failed",
-                counted(results.len(), "point", "points")
-            )],
-            warnings: self.simulation.warnings(),
-            failure,
-            trajectory: None,
-        })
+        conduct(&study, target, stem)
     }
 }
 

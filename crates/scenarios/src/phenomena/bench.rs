@@ -6,7 +6,7 @@ use super::thresholds;
 use super::Protocol;
 use crate::error::ScenarioError;
 use crate::motion::Motion;
-use crate::run::{run, run_motion, settling_time, Law, RunSpec, SwitchingKind};
+use crate::run::{run, run_motion, settling_time, Law, RunSpec};
 use crate::scenario::Scenario;
 use crate::ScenarioParams;
 use friction_models::{FrictionModel, FrictionParams};
@@ -92,18 +92,7 @@ impl<'a> Bench<'a> {
         t_end: f64,
         points: usize,
     ) -> RunSpec {
-        RunSpec {
-            scenario,
-            law: self.law.clone(),
-            friction: self.p,
-            params,
-            solver: self.protocol.solver,
-            switching: SwitchingKind::Event,
-            step: self.protocol.step,
-            t_end: Some(t_end),
-            output_points: points,
-            limits: self.protocol.limits,
-        }
+        (self.protocol).spec(scenario, self.law, self.p, params, t_end, points)
     }
 
     /// The failure of the run `what` of this law's protocol (not bad input: the cell is

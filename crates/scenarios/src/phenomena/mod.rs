@@ -19,7 +19,8 @@ pub use experiments::{
 pub use phenomenon::{Axes, Experiment, Phenomenon};
 
 use crate::error::ScenarioError;
-use crate::run::{Law, Limits};
+use crate::run::{Law, Limits, RunSpec, SwitchingKind};
+use crate::scenario::Scenario;
 use crate::ScenarioParams;
 use friction_models::{FrictionParams, ModelId, Parameters};
 use integrators::{Solver, StepControl};
@@ -65,6 +66,33 @@ impl Default for Protocol {
                 h0: None,
             },
             limits: Limits::default(),
+        }
+    }
+}
+
+impl Protocol {
+    /// A run of `scenario` with `law` at `friction` and the rig's `params` to `t_end` on
+    /// `points` output points, integrated as the protocol says with event switching.
+    pub fn spec(
+        &self,
+        scenario: Scenario,
+        law: &Law,
+        friction: FrictionParams,
+        params: ScenarioParams,
+        t_end: f64,
+        points: usize,
+    ) -> RunSpec {
+        RunSpec {
+            scenario,
+            law: law.clone(),
+            friction,
+            params,
+            solver: self.solver,
+            switching: SwitchingKind::Event,
+            step: self.step,
+            t_end: Some(t_end),
+            output_points: points,
+            limits: self.limits,
         }
     }
 }
