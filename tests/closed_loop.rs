@@ -148,3 +148,67 @@ fn the_servo_runs_lugre_at_its_papers_parameters_unless_told_otherwise() {
     assert!(String::from_utf8_lossy(&o.stderr)
         .contains("option `--model` is required for scenario belt"));
 }
+
+#[test]
+fn a_system_file_with_a_controller_reports_its_loop_as_the_rig_does() {
+    // The servo written as a system file: the same body, contact and PID as the rig.
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("servo.toml");
+    std::fs::write(
+        &file,
+        "param_set = \"paper\"\n\n[[body]]\nname = \"mass\"\nm = 1.0\n\n[[contact]]\nbody = \
+         \"mass\"\nmodel = \"static\"\n\n[[controller]]\nbody = \"mass\"\nkp = 3.0\nki = 4.0\n\
+         kd = 6.0\nreference = { kind = \"constant\", x = 1.0 }\n",
+    )
+    .unwrap();
+    let (system, rig) = (dir.path().join("system"), dir.path().join("rig"));
+    let o = friction_lab(&[
+        "simulate",
+        "--system",
+        file.to_str().unwrap(),
+        "--t-end",
+        "800",
+        "--points",
+        "8001",
+        "--out",
+        system.to_str().unwrap(),
+    ]);
+    let printed = String::from_utf8(o.stdout).unwrap();
+    assert!(printed.contains("closed loop: hunting"), "{printed}");
+    friction_lab(&[
+        "simulate",
+        "servo",
+        "--model",
+        "static",
+        "--points",
+        "8001",
+        "--out",
+        rig.to_str().unwrap(),
+    ]);
+    let (a, b) = (
+        json(&system.join("summary.json"))["closed_loop"].clone(),
+        json(&rig.join("summary.json"))["closed_loop"].clone(),
+    );
+    assert_eq!(a["hunting"], true, "{a}");
+    for key in ["period", "amplitude", "stick_time_per_cycle", "final_error"] {
+        assert_eq!(a[key], b[key], "{key}: system {a}, rig {b}");
+    }
+    // Without a controller there is no loop to report.
+    let plain = dir.path().join("plain");
+    std::fs::write(
+        &file,
+        "param_set = \"paper\"\n\n[[body]]\nname = \"mass\"\nm = 1.0\nv0 = 1.0\n\n[[contact]]\n\
+         body = \"mass\"\nmodel = \"coulomb\"\n",
+    )
+    .unwrap();
+    friction_lab(&[
+        "simulate",
+        "--system",
+        file.to_str().unwrap(),
+        "--out",
+        plain.to_str().unwrap(),
+    ]);
+    assert!(json(&plain.join("summary.json"))
+        .get("closed_loop")
+        .is_none());
+}

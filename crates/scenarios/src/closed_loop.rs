@@ -14,7 +14,7 @@
 //! the integral winds up will move again). Otherwise the run ends in a transient: `hunting`
 //! is undefined (null), never false.
 
-use crate::run::Outcome;
+use crate::run::{Outcome, Row};
 use crate::settled::{crossings, half_range, MIN_CYCLES, SETTLE_TOLERANCE};
 use friction_systems::{Reference, STICK};
 use serde::Serialize;
@@ -83,11 +83,24 @@ impl ClosedLoop {
 
     /// The measures of `outcome`, whose body tracks `reference`.
     pub fn of(outcome: &Outcome, reference: &Reference) -> ClosedLoop {
-        let error = |r: &crate::Row| reference.at(r.t).0 - r.x;
-        let all: Vec<f64> = outcome.rows.iter().map(error).collect();
+        let events: Vec<f64> = outcome.events.iter().map(|e| e.t).collect();
+        ClosedLoop::of_rows(&outcome.rows, &events, reference, outcome.integral_action)
+    }
+
+    /// The measures of a body recorded as `recorded` (evenly spaced rows, and rows at the
+    /// times `events` of its contact's switches), tracking `reference` under a controller
+    /// with integral action or not.
+    pub fn of_rows(
+        recorded: &[Row],
+        events: &[f64],
+        reference: &Reference,
+        integral_action: bool,
+    ) -> ClosedLoop {
+        let error = |r: &Row| reference.at(r.t).0 - r.x;
+        let all: Vec<f64> = recorded.iter().map(error).collect();
         // The evenly spaced rows (those recorded at events left out), the last half.
-        let rows: Vec<&crate::Row> = (outcome.rows.iter())
-            .filter(|r| !outcome.events.iter().any(|e| e.t == r.t))
+        let rows: Vec<&Row> = (recorded.iter())
+            .filter(|r| !events.contains(&r.t))
             .collect();
         let t: Vec<f64> = rows.iter().map(|r| r.t).collect();
         // x − r, whose upward crossings of zero are the passes of the reference.
@@ -108,7 +121,7 @@ impl ClosedLoop {
         let last = d.last().copied().unwrap_or(f64::NAN);
         let at_rest = k.len() >= 2
             && whole.amplitude <= REST_AMPLITUDE
-            && (!outcome.integral_action || last.abs() <= REST_AMPLITUDE);
+            && (!integral_action || last.abs() <= REST_AMPLITUDE);
         let cycling = !at_rest
             && a.cycles >= MIN_CYCLES
             && b.cycles >= MIN_CYCLES

@@ -20,7 +20,8 @@ use friction_models::{FrictionParams, Variant};
 use friction_systems::{mode_name, Run, System, SLIP_NEGATIVE, SLIP_POSITIVE};
 use integrators::{Options, Solver};
 use scenarios::chain::ChainSource;
-use scenarios::SwitchingKind;
+use scenarios::closed_loop::ClosedLoop;
+use scenarios::{Row, SwitchingKind};
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -189,6 +190,34 @@ pub struct SystemRun<'a> {
     pub variant: Option<Variant>,
 }
 
+/// The closed loop of the system's first controller ([`ClosedLoop`]), read off its body's
+/// recorded states; `None` for a system without a controller.
+fn closed_loop(run: &Run, system: &System) -> Option<ClosedLoop> {
+    let c = system.controllers.first()?;
+    let rows: Vec<Row> = (run.body(c.body).into_iter())
+        .map(|b| Row {
+            t: b.t,
+            x: b.x,
+            v: b.v,
+            friction: b.friction,
+            // A body without a contact never sticks.
+            mode: b.mode.unwrap_or(SLIP_POSITIVE),
+            z: b.z,
+        })
+        .take_while(Row::is_finite)
+        .collect();
+    let events: Vec<f64> = (run.contact_events().iter())
+        .filter(|e| e.body == c.body)
+        .map(|e| e.t)
+        .collect();
+    Some(ClosedLoop::of_rows(
+        &rows,
+        &events,
+        &c.reference,
+        c.ki > 0.0,
+    ))
+}
+
 /// Simulates `run` and its files into `out`, in memory: `trajectory.csv` (or its columns) of
 /// the bodies chosen, `summary.json`, `events.csv`, their velocities, the space–time picture of
 /// the contact modes, and the stiffness along the run. The warnings are the run's: its
@@ -260,6 +289,7 @@ pub fn simulate_system(
     };
     let events = run.contact_events();
     let energy = run.energy();
+    let measured_loop = closed_loop(&run, system);
     let integrated = Integrated {
         error: run.error.clone(),
         t_reached: run.solution.t.last().copied(),
@@ -274,7 +304,7 @@ pub fn simulate_system(
         method_switches: run.solution.method_switches.clone(),
         stiffness: StiffnessSummary::of(&stiffness),
         instability: run.instability(&scheme, step),
-        closed_loop: None,
+        closed_loop: measured_loop,
     };
     let record = RunRecord {
         summary: RunSummary::new(setup, integrated),
@@ -297,6 +327,7 @@ pub fn simulate_system(
             run.wall_time_s
         ))
         .chain(spectra)
+        .chain(measured_loop.iter().map(|c| c.to_string()))
         .collect(),
         warnings: run
             .solution
