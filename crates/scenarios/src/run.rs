@@ -618,10 +618,13 @@ pub fn run_system(
     observe: &mut dyn FnMut(f64),
 ) -> Result<Outcome, ScenarioError> {
     validate(spec)?;
-    let t_end = spec
-        .t_end
-        .unwrap_or_else(|| spec.scenario.default_t_end(&spec.params, &spec.friction));
-    run_body(spec, system, t_end, false, observe)
+    run_body(spec, system, end_time(spec), false, observe)
+}
+
+/// The end time of `spec`: its own, or its rig's default.
+fn end_time(spec: &RunSpec) -> f64 {
+    spec.t_end
+        .unwrap_or_else(|| spec.scenario.default_t_end(&spec.params, &spec.friction))
 }
 
 /// Runs the simulation `spec` describes; `observe` is told the time after each step.
@@ -646,9 +649,7 @@ fn run_as(
 ) -> Result<Outcome, ScenarioError> {
     validate(spec)?;
     let model = spec.law.build(&spec.friction)?;
-    let t_end = spec
-        .t_end
-        .unwrap_or_else(|| spec.scenario.default_t_end(&spec.params, &spec.friction));
+    let t_end = end_time(spec);
     let apparatus = (spec.scenario.rig()).apparatus(&spec.params, &spec.friction, model.clone());
     Ok(match apparatus {
         Apparatus::SteadySweep(velocities) => run_sweep(spec, model.as_ref(), &velocities, observe),

@@ -9,16 +9,12 @@ use crate::plot::{Corner, Plot, Series, PALETTE};
 use friction_systems::{CompensatedAt, Compensation, Reference};
 use integrators::even_grid;
 use scenarios::closed_loop::ClosedLoop;
-use scenarios::phenomena::{parameters_for, Protocol};
+use scenarios::phenomena::{own_parameters, thresholds, Protocol};
 use scenarios::tracking::run_tracking;
 use scenarios::{Law, Outcome, RunSpec, Scenario, ScenarioParams};
 use serde::Serialize;
 use std::f64::consts::PI;
 
-/// The servo's run at its set point, s (the rig's own end time: the last half settles).
-pub const REGULATION_T_END: f64 = 800.0;
-/// Output points of a regulation run.
-pub const REGULATION_POINTS: usize = 8001;
 /// Points of the position error drawn and kept per plant.
 const DRAWN_POINTS: usize = 801;
 /// Output points of a tracking run.
@@ -63,7 +59,7 @@ pub fn tracking_t_end() -> f64 {
 
 /// The plants, the compensators and the protocol of a closed-loop study.
 pub struct ClosedLoopStudy<'a> {
-    /// The plants, each at its Table 2 parameter set ([`parameters_for`]).
+    /// The plants, each at its Table 2 parameter set ([`own_parameters`]).
     pub plants: &'a [Law],
     /// The compensators tried on every plant besides none, each at the plant's parameters
     /// (the same friction levels, another shape), evaluated at the reference velocity.
@@ -142,14 +138,13 @@ impl ClosedLoops {
 
 impl ClosedLoopStudy<'_> {
     fn spec(&self, plant: &Law, t_end: f64, points: usize) -> RunSpec {
-        let friction =
-            (plant.catalog()).map_or_else(friction_models::FrictionParams::paper, parameters_for);
-        let params = ScenarioParams::default();
+        let (friction, params) = (own_parameters(plant), ScenarioParams::default());
         (self.protocol).spec(Scenario::SERVO, plant, friction, params, t_end, points)
     }
 
     fn regulate(&self, plant: &Law) -> Result<Regulation, AppError> {
-        let spec = self.spec(plant, REGULATION_T_END, REGULATION_POINTS);
+        // Table 2's hunting run.
+        let spec = self.spec(plant, thresholds::HUNTING_T_END, thresholds::HUNTING_POINTS);
         let o = scenarios::run(&spec, &mut |_| {})?;
         Ok(Regulation {
             plant: plant.clone(),

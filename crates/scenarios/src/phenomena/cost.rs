@@ -7,7 +7,7 @@
 //! Jacobians and factorisations counted as [`integrators::Stats::work`] says), with that
 //! run's wall time over [`TIMING_REPEATS`] runs. Table 2 divides both by Coulomb's.
 
-use super::{parameters_for, Protocol};
+use super::{own_parameters, Protocol};
 use crate::batch;
 use crate::cases::{Case, StudyCase, SystemCase};
 use crate::error::ScenarioError;
@@ -242,8 +242,8 @@ pub struct Costs {
 }
 
 impl Costs {
-    /// The cost of `laws` (and of Coulomb friction), each at `parameters` or its own set
-    /// ([`parameters_for`]; the paper's for a law of one's own), computed in parallel on
+    /// The cost of `laws` (and of Coulomb friction), each at `parameters` or its own
+    /// ([`own_parameters`]), computed in parallel on
     /// rayon's pool and collected in order.
     pub fn of(
         laws: &[Law],
@@ -252,17 +252,14 @@ impl Costs {
         progress: &(dyn Fn() + Sync),
     ) -> Result<Costs, ScenarioError> {
         use rayon::prelude::*;
-        let own = |law: &Law| {
-            parameters.copied().unwrap_or_else(|| {
-                law.catalog()
-                    .map_or_else(FrictionParams::paper, parameters_for)
-            })
-        };
         let coulomb = Law::from(ModelId::Coulomb);
         let all: Vec<&Law> = laws.iter().chain([&coulomb]).collect();
         let mut costs = all
             .par_iter()
-            .map(|law| simulation_cost(law, &own(law), protocol, progress))
+            .map(|law| {
+                let p = parameters.copied().unwrap_or_else(|| own_parameters(law));
+                simulation_cost(law, &p, protocol, progress)
+            })
             .collect::<Result<Vec<_>, _>>()?;
         let coulomb = costs.pop().expect("Coulomb's is the last");
         Ok(Costs {
@@ -273,20 +270,22 @@ impl Costs {
 
     /// The work of law `i` on system `s` over Coulomb's, where both reached the target.
     pub fn relative_work(&self, i: usize, s: usize) -> Option<f64> {
-        let (a, b) = (
-            self.laws[i][s].as_ref().ok()?,
-            self.coulomb[s].as_ref().ok()?,
-        );
-        Some(a.work as f64 / b.work as f64)
+        self.relative(i, s, |c| c.work as f64)
     }
 
     /// The median wall time of law `i` on system `s` over Coulomb's, where both reached the
     /// target.
     pub fn relative_wall_time(&self, i: usize, s: usize) -> Option<f64> {
+        self.relative(i, s, |c| c.wall_time.median)
+    }
+
+    /// `measure` of law `i`'s cheapest run on system `s` over Coulomb's, where both reached
+    /// the target.
+    fn relative(&self, i: usize, s: usize, measure: fn(&Cheapest) -> f64) -> Option<f64> {
         let (a, b) = (
             self.laws[i][s].as_ref().ok()?,
             self.coulomb[s].as_ref().ok()?,
         );
-        Some(a.wall_time.median / b.wall_time.median)
+        Some(measure(a) / measure(b))
     }
 }

@@ -97,6 +97,14 @@ impl Protocol {
     }
 }
 
+/// The parameters `law` is judged at unless told otherwise: its own set for a model of the
+/// catalog ([`parameters_for`]), the paper's for a law of one's own (which then set only the
+/// rigs' scales).
+pub fn own_parameters(law: &Law) -> FrictionParams {
+    law.catalog()
+        .map_or_else(FrictionParams::paper, parameters_for)
+}
+
 /// The parameter set a model is judged with: the paper's for the six and the classical
 /// terms, the LuGre paper's for the bristle models (LuGre, its two variants and GMS), whose
 /// stiffness σ0 = 1e5 N/m sets a micrometre pre-sliding scale only with its levels.
@@ -273,10 +281,7 @@ pub fn table(
     let cells: Vec<Result<Cell, ScenarioError>> = jobs
         .par_iter()
         .map(|&(law, phenomenon)| {
-            let p = parameters.copied().unwrap_or_else(|| {
-                law.catalog()
-                    .map_or_else(FrictionParams::paper, parameters_for)
-            });
+            let p = parameters.copied().unwrap_or_else(|| own_parameters(law));
             let paper = law.catalog().and_then(|m| phenomenon.paper_claim(m));
             let cell = match decide(phenomenon, law, &p, protocol) {
                 Ok(v) => Ok(Cell {
