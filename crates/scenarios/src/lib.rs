@@ -13,6 +13,7 @@ pub mod cases;
 pub mod chain;
 pub mod closed_loop;
 pub mod curves;
+pub mod describing_function;
 pub mod error;
 pub mod errors;
 pub mod figures;

@@ -104,6 +104,47 @@ fn reads_tracking(r: &ClosedLoops) -> String {
     s + "\n"
 }
 
+/// The section's paragraph on the describing function: each idealised law's predicted cycles
+/// against its simulated one.
+fn reads_describing(r: &ClosedLoops) -> String {
+    let rows: Vec<String> = (r.describing_function.iter())
+        .map(|d| {
+            let predicted = match &d.predicted[..] {
+                [] => "none predicted".to_string(),
+                cycles => (cycles.iter())
+                    .map(|c| {
+                        format!(
+                            "a cycle of {:.2} s and {:.1} mm predicted",
+                            c.period,
+                            1e3 * c.half_range
+                        )
+                    })
+                    .collect::<Vec<_>>()
+                    .join(" and "),
+            };
+            let simulated = match (&d.simulated.closed_loop, &d.simulated.failed) {
+                (Some(c), None) => match c.hunting {
+                    Some(true) => format!(
+                        "{:.2} s and {:.1} mm simulated",
+                        c.period,
+                        1e3 * c.amplitude
+                    ),
+                    Some(false) => "converged in simulation".into(),
+                    None => "not settled in simulation".into(),
+                },
+                _ => "the simulation failed".into(),
+            };
+            format!("{}: {predicted}, {simulated}", d.plant)
+        })
+        .collect();
+    format!(
+        "- [The describing function](closed-loop/closed-loop.md) of each law idealised as a \
+         mass with Coulomb friction, stiction and viscous friction, balanced against the PID: \
+         {}.\n",
+        rows.join("; ")
+    )
+}
+
 /// The section's paragraph on the hunting map.
 fn reads_map(points: &[PointResult]) -> String {
     let count = |regime: Regime| points.iter().filter(|p| p.regime == Some(regime)).count();
@@ -134,9 +175,11 @@ impl Part for ClosedLoopPart {
         let laws = plants();
         let mut compensators = laws.clone();
         compensators.push(Law::from(ModelId::Coulomb));
+        let idealised = [ModelId::Static, ModelId::Coulomb, ModelId::LuGre].map(Law::from);
         let study = ClosedLoopStudy {
             plants: &laws,
             compensators: &compensators,
+            idealised: &idealised,
             protocol: Protocol::default(),
         };
         let loops = conduct(&study, target, "closed-loop")?;
@@ -159,8 +202,9 @@ impl Part for ClosedLoopPart {
             "The paper's second criterion, a model's prediction of the limit cycles of a closed \
              loop, on the servo rig (docs/closed-loop.md): the 1995 example's PID positioning \
              a unit mass, each model as the plant at its Table 2 parameters, integrated as \
-             Table 2's protocols are.\n\n{}{}{}",
+             Table 2's protocols are.\n\n{}{}{}{}",
             reads_regulation(&loops),
+            reads_describing(&loops),
             reads_tracking(&loops),
             reads_map(&points)
         ))

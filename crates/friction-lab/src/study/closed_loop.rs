@@ -1,7 +1,8 @@
 //! The paper's closed-loop criterion on its models ([`ClosedLoopStudy`]): each model as the
 //! plant of the servo rig at its set point (does it hunt, with what period and amplitude; the
 //! position error against time), and each as the friction compensator of every plant on a
-//! slow and a fast reference (the tracking error, against no compensation).
+//! slow and a fast reference (the tracking error, against no compensation); and the
+//! describing-function prediction of the hunting cycle beside the simulated one.
 
 use super::{Study, StudyFiles};
 use crate::error::AppError;
@@ -9,6 +10,9 @@ use crate::plot::{Corner, Plot, Series, PALETTE};
 use friction_systems::{CompensatedAt, Compensation, Reference};
 use integrators::even_grid;
 use scenarios::closed_loop::ClosedLoop;
+use scenarios::describing_function::{
+    break_away_gain, predict_hunting, HuntingPrediction, Pid, StictionMass,
+};
 use scenarios::phenomena::{own_parameters, thresholds, Protocol};
 use scenarios::tracking::run_tracking;
 use scenarios::{Law, Outcome, RunSpec, Scenario, ScenarioParams};
@@ -64,6 +68,10 @@ pub struct ClosedLoopStudy<'a> {
     /// The compensators tried on every plant besides none, each at the plant's parameters
     /// (the same friction levels, another shape), evaluated at the reference velocity.
     pub compensators: &'a [Law],
+    /// The laws whose describing-function prediction is set beside their simulated cycle at
+    /// the set point, each idealised at its Table 2 parameters
+    /// ([`StictionMass::idealising`]); simulated as the plants are.
+    pub idealised: &'a [Law],
     /// The solver, tolerances and bounds of every run (event switching).
     pub protocol: Protocol,
 }
@@ -102,6 +110,22 @@ pub struct Tracking {
     pub failed: Option<String>,
 }
 
+/// One law's describing-function prediction of the servo's cycle and its simulated cycle.
+#[derive(Clone, Debug, Serialize)]
+pub struct Described {
+    /// The law.
+    #[serde(serialize_with = "law_name")]
+    pub plant: Law,
+    /// The mass with its friction idealised; `None` for a law without an idealisation.
+    pub idealised: Option<StictionMass>,
+    /// |C·N| at the phase crossover as the mass starts to move ([`break_away_gain`]).
+    pub break_away_gain: Option<f64>,
+    /// The cycles of the harmonic balance; none predicted where empty.
+    pub predicted: Vec<HuntingPrediction>,
+    /// The simulated run at the set point (Table 2's hunting run).
+    pub simulated: Regulation,
+}
+
 fn law_name<S: serde::Serializer>(law: &Law, s: S) -> Result<S::Ok, S::Error> {
     s.serialize_str(&law.to_string())
 }
@@ -120,6 +144,8 @@ pub struct ClosedLoops {
     pub regulation: Vec<Regulation>,
     /// Each plant, task and compensator (none first, then in order).
     pub tracking: Vec<Tracking>,
+    /// Each idealised law's predicted and simulated cycle.
+    pub describing_function: Vec<Described>,
 }
 
 impl ClosedLoops {
@@ -155,6 +181,24 @@ impl ClosedLoopStudy<'_> {
             failed: o.error.as_ref().map(|e| e.to_string()),
             error: drawn_error(&o),
         })
+    }
+
+    /// The idealisation of `law` and the cycles its harmonic balance predicts in the servo.
+    fn predict(&self, law: &Law) -> (Option<StictionMass>, Option<f64>, Vec<HuntingPrediction>) {
+        let p = ScenarioParams::default();
+        let pid = Pid {
+            kp: p.kp,
+            ki: p.ki,
+            kd: p.kd,
+        };
+        match StictionMass::idealising(law, &own_parameters(law), p.m) {
+            Some(mass) => (
+                Some(mass),
+                break_away_gain(&mass, &pid),
+                predict_hunting(&mass, &pid),
+            ),
+            None => (None, None, Vec::new()),
+        }
     }
 
     fn track(
@@ -218,11 +262,20 @@ fn drawn_error(o: &Outcome) -> Vec<(f64, f64)> {
 enum Job<'a> {
     Regulate(&'a Law),
     Track(&'a Law, Option<&'a Law>, Task),
+    Predict(&'a Law),
 }
 
 enum Done {
     Regulation(Regulation),
     Tracking(Tracking),
+    Prediction(Option<StictionMass>, Option<f64>, Vec<HuntingPrediction>),
+}
+
+impl ClosedLoopStudy<'_> {
+    /// The idealised laws that are not plants, whose set-point runs the study adds.
+    fn extra(&self) -> impl Iterator<Item = &Law> {
+        (self.idealised.iter()).filter(|l| !self.plants.contains(l))
+    }
 }
 
 impl Study for ClosedLoopStudy<'_> {
@@ -234,11 +287,16 @@ impl Study for ClosedLoopStudy<'_> {
 
     fn runs(&self) -> usize {
         self.plants.len() * (1 + (1 + self.compensators.len()) * TASKS.len())
+            + self.extra().count()
+            + self.idealised.len()
     }
 
     fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<ClosedLoops, AppError> {
         use rayon::prelude::*;
-        let mut jobs: Vec<Job> = self.plants.iter().map(Job::Regulate).collect();
+        let mut jobs: Vec<Job> = (self.plants.iter().chain(self.extra()))
+            .map(Job::Regulate)
+            .collect();
+        jobs.extend(self.idealised.iter().map(Job::Predict));
         for plant in self.plants {
             for task in TASKS {
                 jobs.push(Job::Track(plant, None, task));
@@ -253,22 +311,41 @@ impl Study for ClosedLoopStudy<'_> {
                 let d = match *job {
                     Job::Regulate(plant) => Done::Regulation(self.regulate(plant)?),
                     Job::Track(plant, c, task) => Done::Tracking(self.track(plant, c, task)?),
+                    Job::Predict(law) => {
+                        let (mass, gain, cycles) = self.predict(law);
+                        Done::Prediction(mass, gain, cycles)
+                    }
                 };
                 progress();
                 Ok(d)
             })
             .collect::<Result<Vec<Done>, AppError>>()?;
-        let mut out = ClosedLoops {
-            regulation: Vec::new(),
-            tracking: Vec::new(),
-        };
+        let (mut regulation, mut tracking, mut predictions) = (Vec::new(), Vec::new(), Vec::new());
         for d in done {
             match d {
-                Done::Regulation(r) => out.regulation.push(r),
-                Done::Tracking(t) => out.tracking.push(t),
+                Done::Regulation(r) => regulation.push(r),
+                Done::Tracking(t) => tracking.push(t),
+                Done::Prediction(mass, gain, cycles) => predictions.push((mass, gain, cycles)),
             }
         }
-        Ok(out)
+        let describing_function = (self.idealised.iter().zip(predictions))
+            .map(|(law, (idealised, break_away_gain, predicted))| Described {
+                plant: law.clone(),
+                idealised,
+                break_away_gain,
+                predicted,
+                simulated: (regulation.iter())
+                    .find(|g| &g.plant == law)
+                    .cloned()
+                    .unwrap_or_else(|| unreachable!("every idealised law is regulated")),
+            })
+            .collect();
+        regulation.truncate(self.plants.len());
+        Ok(ClosedLoops {
+            regulation,
+            tracking,
+            describing_function,
+        })
     }
 
     /// `{stem}.md` (the hunting table and the tracking tables), `{stem}.json` (every run's
@@ -307,13 +384,6 @@ fn markdown(study: &ClosedLoopStudy, r: &ClosedLoops) -> String {
                     Some(true) => "hunting",
                     Some(false) => "converged",
                     None => "not settled",
-                };
-                let num = |x: f64| {
-                    if x.is_finite() {
-                        format!("{x:.2}")
-                    } else {
-                        "-".into()
-                    }
                 };
                 s += &format!(
                     "| {} | {verdict} | {} | {} | {} | {} |\n",
@@ -366,6 +436,74 @@ fn markdown(study: &ClosedLoopStudy, r: &ClosedLoops) -> String {
     }
     s += "\nBold: the plant's own model as its compensator. Failed runs: `closed-loop.json` \
           says why.\n";
+    if !r.describing_function.is_empty() {
+        s += &describing_markdown(r);
+    }
+    s
+}
+
+/// A number to two decimals, `-` for an undefined one.
+fn num(x: f64) -> String {
+    if x.is_finite() {
+        format!("{x:.2}")
+    } else {
+        "-".into()
+    }
+}
+
+/// The describing-function section: each idealised law's predicted cycles beside its
+/// simulated one.
+fn describing_markdown(r: &ClosedLoops) -> String {
+    let mut s = String::from(
+        "\n## The describing function beside the simulation\n\nEach law idealised as the mass \
+         with Coulomb friction F_c, stiction F_s and viscous friction F_v; its describing \
+         function (force in, position out, the mass and its friction together) balanced \
+         against the PID, 1 + C(jω)·N(U, ω) = 0 (docs/closed-loop.md). Gain: |C·N| at the \
+         phase crossover as the mass starts to move (N jumps there from 0). Predicted amplitude: half the range of x in the response to \
+         U·sin ωt (the simulated one: half the range of the error).\n\n| law | F_c, F_s, F_v \
+         | gain | predicted period (s) | U (N) | amplitude (mm) | stuck per period (s) | \
+         simulated | period (s) | amplitude (mm) | stuck per cycle (s) |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|\n",
+    );
+    for d in &r.describing_function {
+        let ideal = d.idealised.map_or_else(
+            || "no idealisation".to_string(),
+            |m| format!("{}, {}, {}", m.f_c, m.f_s, m.f_v),
+        );
+        let gain = d.break_away_gain.map_or_else(|| "-".into(), num);
+        let simulated = match (&d.simulated.closed_loop, &d.simulated.failed) {
+            (Some(c), None) => match c.hunting {
+                Some(true) => format!(
+                    "hunting | {} | {} | {}",
+                    num(c.period),
+                    mm(c.amplitude),
+                    num(c.stick_time_per_cycle)
+                ),
+                Some(false) => "converged | | | ".into(),
+                None => "not settled | | | ".into(),
+            },
+            (_, why) => format!(
+                "failed: {} | | | ",
+                why.as_deref().unwrap_or("no controller")
+            ),
+        };
+        if d.predicted.is_empty() {
+            s += &format!(
+                "| {} | {ideal} | {gain} | none | | | | {simulated} |\n",
+                d.plant
+            );
+        }
+        for c in &d.predicted {
+            s += &format!(
+                "| {} | {ideal} | {gain} | {} | {} | {} | {} | {simulated} |\n",
+                d.plant,
+                num(c.period),
+                num(c.force_amplitude),
+                mm(c.half_range),
+                num(c.stick_time)
+            );
+        }
+    }
     s
 }
 
@@ -400,12 +538,14 @@ mod tests {
     fn hunting_agrees_with_table_2_and_compensation_restores_coulomb_tracking() {
         let plants = [ModelId::Static, ModelId::Viscous, ModelId::Coulomb].map(Law::from);
         let compensators = [Law::from(ModelId::Coulomb)];
+        let c_period = |r: &super::ClosedLoops| r.regulation[0].closed_loop.unwrap().period;
         let study = ClosedLoopStudy {
             plants: &plants,
             compensators: &compensators,
+            idealised: &plants,
             protocol: Protocol::default(),
         };
-        assert_eq!(study.runs(), 3 * (1 + 2 * TASKS.len()));
+        assert_eq!(study.runs(), 3 * (1 + 2 * TASKS.len()) + 3);
         let r = study.run(&|| {}).unwrap();
         // At the set point: the same cycle as Table 2's hunting cell (the same run).
         let table2 = decide(
@@ -422,6 +562,20 @@ mod tests {
         let c = r.regulation[1].closed_loop.as_ref().unwrap();
         assert_eq!(c.hunting, Some(false), "viscous friction converges");
         assert_eq!(r.regulation[0].error.len(), super::DRAWN_POINTS);
+        assert_eq!(r.regulation.len(), 3);
+        // The describing function: one cycle for stiction, at under half the simulated period
+        // (11.9 s against 38.2 s); none for the linear plant; a cycle for Coulomb friction,
+        // whose simulated loop never settles (module `describing_function`).
+        let [stiction, viscous, coulomb] = &r.describing_function[..] else {
+            panic!("three idealised laws: {:?}", r.describing_function);
+        };
+        assert_eq!(stiction.predicted.len(), 1);
+        let simulated = stiction.simulated.closed_loop.unwrap();
+        assert_eq!(simulated.period, c_period(&r));
+        assert!(stiction.predicted[0].period < 0.5 * simulated.period);
+        assert!(viscous.predicted.is_empty());
+        assert_eq!(coulomb.predicted.len(), 1);
+        assert_eq!(coulomb.simulated.closed_loop.unwrap().hunting, None);
         // Coulomb friction compensated by its own model at the reference velocity: the
         // feed-forward cancels it wherever the body follows the reference's direction, and
         // the tracking error falls to well under half of the uncompensated one on both tasks.
