@@ -245,10 +245,10 @@ fn bench(c: &mut Criterion) {
         log: true,
     };
     let stem = Path::new("target/criterion/dopri5-vs-tsit45");
-    if let Ok(bytes) = plot::png(&plot, &stem.with_extension("png")) {
+    if let Ok(bytes) = plot::png(&plot, &stem.with_extension("png"), &plot::Format::default()) {
         let _ = std::fs::write(stem.with_extension("png"), bytes);
     }
-    if let Ok(text) = plot::svg(&plot, &stem.with_extension("svg")) {
+    if let Ok(text) = plot::svg(&plot, &stem.with_extension("svg"), &plot::Format::default()) {
         let _ = std::fs::write(stem.with_extension("svg"), text);
     }
 }

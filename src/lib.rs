@@ -6,6 +6,7 @@ pub mod options;
 
 use clap::{Parser, Subcommand};
 use friction_lab::error::AppError;
+use friction_lab::plot::Format;
 use friction_lab::trajectory::TrajectoryAs;
 use friction_lab::{artifacts, destination, ranges};
 
@@ -28,6 +29,15 @@ pub struct Cli {
     /// The command to run.
     #[command(subcommand)]
     pub command: Command,
+    /// Size of a one-panel figure in inches, WIDTHxHEIGHT (default 6x4; a journal column
+    /// 3.5x2.6): the text keeps its size in points, so a smaller figure is a denser one;
+    /// panels side by side each take this size.
+    #[arg(long, global = true, value_name = "WxH")]
+    pub figure_size: Option<String>,
+    /// Resolution of the PNG figures, pixels per inch (default 150; 300 or 600 for print).
+    /// SVG figures state their size in inches and scale without it.
+    #[arg(long, global = true, value_name = "DPI", allow_hyphen_values = true)]
+    pub dpi: Option<f64>,
 }
 
 /// The commands of `friction-lab` (README.md describes each).
@@ -77,19 +87,30 @@ pub enum Command {
     Reproduce(commands::reproduce::ReproduceArgs),
 }
 
-/// Runs one parsed command, its output folder checked first ([`destination::check`]).
+/// Runs one parsed command, its figure format and output folder checked first
+/// ([`Format::parse`], [`destination::check`]).
 pub fn run(cli: Cli) -> Result<(), AppError> {
+    let format = Format::parse(cli.figure_size.as_deref(), cli.dpi)?;
     if let Some(out) = cli.command.out_folder() {
         destination::check(out)?;
     }
     match &cli.command {
-        Command::Models { json } => commands::models::run(*json),
-        Command::Phenomena(args) => commands::phenomena::run(args),
-        Command::Reproduce(args) => commands::reproduce::run(args),
+        Command::Models { json } => {
+            if cli.figure_size.is_some() || cli.dpi.is_some() {
+                return Err(AppError::Usage(
+                    "--figure-size and --dpi: `models` draws no figure".into(),
+                ));
+            }
+            commands::models::run(*json)
+        }
+        Command::Phenomena(args) => commands::phenomena::run(args, format),
+        Command::Reproduce(args) => commands::reproduce::run(args, format),
         command => {
             let (out, threads) = command.destination();
             let threads = ranges::threads(threads)?;
-            make(command)?.deliver(out, threads)
+            let mut made = make(command)?;
+            made.files.set_format(format);
+            made.deliver(out, threads)
         }
     }
 }

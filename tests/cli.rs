@@ -4278,3 +4278,62 @@ fn the_brake_example_is_swept_over_its_disc_speed_by_a_path_of_the_file() {
         assert!(e.contains(message), "{path}: {e}");
     }
 }
+
+/// `--figure-size` and `--dpi` set every figure's size: a PNG of the figure's inches times its
+/// resolution (a legend beside the plot widens it), an SVG stating its size in inches; a bad
+/// value exits 2 naming the option, the value and the allowed range, and writes nothing.
+#[test]
+fn figures_take_the_size_and_resolution_asked_for() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("belt");
+    let run = |extra: &[&str]| {
+        let mut args = vec!["simulate", "belt", "--model", "CS", "--t-end", "5"];
+        args.extend(extra);
+        args.extend(["--out", out.to_str().unwrap()]);
+        friction_lab(&args)
+    };
+    let o = run(&["--figure-size", "3.5x2.6", "--dpi", "300"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let mut pngs = 0;
+    for entry in std::fs::read_dir(&out).unwrap() {
+        let path = entry.unwrap().path();
+        let name = path.file_name().unwrap().to_string_lossy().to_string();
+        if name.ends_with(".png") {
+            let bytes = std::fs::read(&path).unwrap();
+            let word = |at: usize| u32::from_be_bytes(bytes[at..at + 4].try_into().unwrap());
+            assert_eq!(word(20), 780, "{name}: 2.6 in at 300 dpi");
+            assert!(word(16) >= 1050, "{name}: {} px wide", word(16));
+            pngs += 1;
+        }
+        if name.ends_with(".svg") {
+            let text = std::fs::read_to_string(&path).unwrap();
+            assert!(
+                text.starts_with("<svg width=\"") && text.contains("height=\"2.6in\""),
+                "{name}"
+            );
+        }
+    }
+    assert!(pngs >= 5, "{pngs} figures");
+    let history = std::fs::read(out.join("history-v.png")).unwrap();
+    assert_eq!(
+        u32::from_be_bytes(history[16..20].try_into().unwrap()),
+        1050
+    );
+    std::fs::remove_dir_all(&out).unwrap();
+    for (args, message) in [
+        (
+            &["--figure-size", "3x30"][..],
+            "--figure-size 3x30: the height 30 in is outside [1.5, 20] in",
+        ),
+        (&["--dpi", "-5"][..], "--dpi -5: outside [50, 1200]"),
+        (
+            &["--figure-size", "wide"][..],
+            "expected WIDTHxHEIGHT in inches",
+        ),
+    ] {
+        let o = run(args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}");
+        assert!(stderr(&o).contains(message), "{args:?}: {}", stderr(&o));
+        assert!(!out.exists(), "{args:?} wrote nothing");
+    }
+}

@@ -6,6 +6,7 @@ use crate::options::{LimitArgs, ParamOptions};
 use clap::Args;
 use friction_lab::error::AppError;
 use friction_lab::laws::ModelChoice;
+use friction_lab::plot::Format;
 use friction_lab::ranges;
 use friction_lab::study::Phenomena;
 use friction_lab::threads::with_threads;
@@ -67,11 +68,13 @@ pub struct PhenomenaArgs {
 }
 
 /// Runs `phenomena`: its files written, then the advice and the failure of undecided cells.
-pub fn run(args: &PhenomenaArgs) -> Result<(), AppError> {
+/// `format`: the figures' size and resolution.
+pub fn run(args: &PhenomenaArgs, format: Format) -> Result<(), AppError> {
     let start = Instant::now();
     let threads = ranges::threads(args.threads)?;
     let made = args.study().run(&args.out)?;
-    let files = made.files;
+    let mut files = made.files;
+    files.set_format(format);
     let written = with_threads(threads, || files.write(&args.out))??;
     println!(
         "{} in {:.1} s",

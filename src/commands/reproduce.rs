@@ -5,6 +5,7 @@
 use crate::options::ParamOptions;
 use clap::Args;
 use friction_lab::error::AppError;
+use friction_lab::plot::Format;
 use friction_lab::ranges;
 use friction_lab::reproduce::Paper;
 use friction_lab::threads::with_threads;
@@ -28,7 +29,8 @@ pub struct ReproduceArgs {
 }
 
 /// Runs `reproduce`.
-pub fn run(args: &ReproduceArgs) -> Result<(), AppError> {
+/// `format`: the figures' size and resolution.
+pub fn run(args: &ReproduceArgs, format: Format) -> Result<(), AppError> {
     let start = Instant::now();
     let threads = ranges::threads(args.threads)?;
     // Friction parameters only: every rig of the report runs at its own defaults.
@@ -65,7 +67,8 @@ pub fn run(args: &ReproduceArgs) -> Result<(), AppError> {
     let made = paper
         .report(parts.iter().map(|p| p.as_ref()).collect())
         .conduct(&args.out, threads)?;
-    let files = made.files;
+    let mut files = made.files;
+    files.set_format(format);
     let written = with_threads(threads, || files.write(&args.out))??;
     println!(
         "{} in {:.2} s",

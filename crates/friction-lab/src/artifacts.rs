@@ -39,14 +39,14 @@ enum Content {
 }
 
 impl Content {
-    /// The file's bytes, drawing the figure if it is one.
-    fn render(self, path: &Path) -> Result<Vec<u8>, AppError> {
+    /// The file's bytes, drawing the figure if it is one in `format`.
+    fn render(self, path: &Path, format: &plot::Format) -> Result<Vec<u8>, AppError> {
         match self {
             Content::Bytes(b) | Content::Table(_, b) | Content::Json(_, b) => Ok(b),
-            Content::Png(plots) => plot::png_panels(&plots, path),
-            Content::Svg(plots) => plot::svg_panels(&plots, path).map(String::into_bytes),
-            Content::RasterPng(r) => plot::raster_png(&r, path),
-            Content::RasterSvg(r) => plot::raster_svg(&r, path).map(String::into_bytes),
+            Content::Png(plots) => plot::png_panels(&plots, path, format),
+            Content::Svg(plots) => plot::svg_panels(&plots, path, format).map(String::into_bytes),
+            Content::RasterPng(r) => plot::raster_png(&r, path, format),
+            Content::RasterSvg(r) => plot::raster_svg(&r, path, format).map(String::into_bytes),
         }
     }
 }
@@ -66,9 +66,16 @@ pub enum Data<'a> {
 #[derive(Debug, Default)]
 pub struct Artifacts {
     files: Vec<(PathBuf, Content)>,
+    format: plot::Format,
 }
 
 impl Artifacts {
+    /// Draws the figures in `format` when the files are written (default:
+    /// [`plot::Format::default`]).
+    pub fn set_format(&mut self, format: plot::Format) {
+        self.format = format;
+    }
+
     /// Adds a file.
     pub fn add(&mut self, path: PathBuf, bytes: Vec<u8>) {
         self.files.push((path, Content::Bytes(bytes)));
@@ -184,11 +191,12 @@ impl Artifacts {
         let what = format!("writing into {}", folder.display());
         let progress = Progress::count(self.files.len(), "files drawn", &what);
         // Figures are drawn here, in parallel, in order; the first error (in file order) wins.
+        let format = self.format;
         let files: Vec<(PathBuf, Vec<u8>)> = self
             .files
             .into_par_iter()
             .map(|(path, content)| {
-                let rendered = content.render(&path).map(|bytes| (path, bytes));
+                let rendered = content.render(&path, &format).map(|bytes| (path, bytes));
                 progress.inc();
                 rendered
             })

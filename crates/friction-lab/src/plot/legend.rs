@@ -22,9 +22,16 @@ pub enum Corner {
     LowerRight,
 }
 
-/// The plotting area of one panel of [`SIZE`] inside its label areas, margins and caption,
-/// pixels (measured on the drawn figures).
-const PLOT_AREA: (f64, f64) = (800.0, 493.0);
+/// The plotting area of a panel of `panel` design pixels inside its label areas, margins and
+/// caption, pixels: 100 narrower and 107 lower (measured on the drawn figures: 800 × 493 in a
+/// 900 × 600 panel).
+pub(super) fn plot_area((w, h): (u32, u32)) -> (f64, f64) {
+    (f64::from(w) - 100.0, f64::from(h) - 107.0)
+}
+
+/// The plotting area's top below the panel's, pixels: the margin and the caption (measured
+/// on the drawn figures).
+const PLOT_TOP: f64 = 57.0;
 
 /// The legend box, pixels: its gap to the plotting area's corner, its width besides the
 /// longest label's text (plotters' legend area, 30, and its two margins, 10), and its height
@@ -48,7 +55,7 @@ pub(super) struct LegendBox {
 }
 
 /// The legend's font.
-pub(super) const LEGEND_FONT: (&str, u32) = ("sans-serif", 15);
+pub(super) const LEGEND_FONT: (&str, u32) = (super::FAMILY, 15);
 
 /// Where a plot's legend is drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -63,11 +70,13 @@ pub(super) enum LegendPlace {
 /// [`legend_corner`] if it covers no data there, else beside the plot (a stick–slip map's grid
 /// of markers; the nine methods of a chain's work–precision plot, whose curves reach every
 /// corner: raising the y range above the data, as done before, left six empty decades), unless
-/// it is taller than the plot, when it stays in the corner where it covers least.
-pub(super) fn layout(plot: &Plot) -> (Bounds, LegendPlace) {
+/// it is taller than the panel below the plotting area's top, when it stays in the corner
+/// where it covers least. The panel is `panel` design pixels.
+pub(super) fn layout(plot: &Plot, panel: (u32, u32)) -> (Bounds, LegendPlace) {
     let fitted = bounds(plot);
-    let (corner, covered) = legend_corner(plot, fitted);
-    if covered == 0 || legend_size(plot).1 > 1.0 {
+    let (corner, covered) = legend_corner(plot, fitted, panel);
+    let below_top = f64::from(panel.1) - PLOT_TOP;
+    if covered == 0 || legend_pixels(plot).1 > below_top {
         (fitted, LegendPlace::Inside(corner))
     } else {
         (fitted, LegendPlace::Beside)
@@ -75,10 +84,11 @@ pub(super) fn layout(plot: &Plot) -> (Bounds, LegendPlace) {
 }
 
 /// The legend box of `plot` with its gap and margin, as fractions of the plotting area's width
-/// and height (zero without a legend).
-fn legend_size(plot: &Plot) -> (f64, f64) {
+/// and height in a panel of `panel` pixels (zero without a legend).
+fn legend_size(plot: &Plot, panel: (u32, u32)) -> (f64, f64) {
     let (w, h) = legend_pixels(plot);
-    (w / PLOT_AREA.0, h / PLOT_AREA.1)
+    let (area_w, area_h) = plot_area(panel);
+    (w / area_w, h / area_h)
 }
 
 /// The legend box of `plot` with its gap and margin, pixels (zero without a legend).
@@ -118,8 +128,8 @@ pub(super) fn box_pixels(labels: &[&str]) -> (f64, f64) {
 /// corner whose legend box covers the fewest of the plot's points and of the samples along its
 /// lines (16 a segment), the preferred [`Plot::legend`] on a tie. (The belt's work–precision
 /// plot had its implicit Euler's last point under the box in the upper right.)
-fn legend_corner(plot: &Plot, ((x0, x1), (y0, y1)): Bounds) -> (Corner, usize) {
-    let (w, h) = legend_size(plot);
+fn legend_corner(plot: &Plot, ((x0, x1), (y0, y1)): Bounds, panel: (u32, u32)) -> (Corner, usize) {
+    let (w, h) = legend_size(plot, panel);
     if w == 0.0 {
         return (plot.legend, 0);
     }
@@ -245,8 +255,11 @@ pub(super) fn draw_box<DB: DrawingBackend>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::plot::{svg, RED, SIZE};
+    use crate::plot::{svg, Format, RED};
     use std::path::Path;
+
+    /// A one-panel figure of the default format.
+    const PANEL: (u32, u32) = (900, 600);
 
     #[test]
     fn the_legend_goes_to_the_preferred_corner_unless_it_would_cover_data() {
@@ -267,16 +280,22 @@ mod tests {
         };
         // A line from the lower left to the upper right: the upper left is free.
         let rising = plot(vec![(0.0, 0.0), (1.0, 1.0)], Corner::UpperRight);
-        assert_eq!(legend_corner(&rising, bounds(&rising)).0, Corner::UpperLeft);
+        assert_eq!(
+            legend_corner(&rising, bounds(&rising), PANEL).0,
+            Corner::UpperLeft
+        );
         let kept = plot(vec![(0.0, 0.0), (1.0, 1.0)], Corner::LowerRight);
-        assert_eq!(legend_corner(&kept, bounds(&kept)).0, Corner::LowerRight);
+        assert_eq!(
+            legend_corner(&kept, bounds(&kept), PANEL).0,
+            Corner::LowerRight
+        );
         // Falling, with a point in each corner but the lower left: the lower left.
         let falling = plot(
             vec![(0.0, 1.0), (0.5, 0.5), (1.0, 0.0), (1.0, 1.0)],
             Corner::UpperLeft,
         );
         assert_eq!(
-            legend_corner(&falling, bounds(&falling)).0,
+            legend_corner(&falling, bounds(&falling), PANEL).0,
             Corner::LowerLeft
         );
         // On log axes the corners are taken in decades: a point at (1e3, 1e-3) of
@@ -285,7 +304,10 @@ mod tests {
             log: true,
             ..plot(vec![(1.0, 1.0), (1e3, 1e-3)], Corner::LowerRight)
         };
-        assert_eq!(legend_corner(&log, bounds(&log)).0, Corner::UpperRight);
+        assert_eq!(
+            legend_corner(&log, bounds(&log), PANEL).0,
+            Corner::UpperRight
+        );
         // A grid of markers everywhere: the legend goes beside the plot, the ranges those of
         // the data; its text is drawn right of every marker.
         let grid: Vec<(f64, f64)> = (1..=20)
@@ -300,9 +322,9 @@ mod tests {
                 }],
                 ..plot(vec![], Corner::UpperLeft)
             };
-            assert!(legend_corner(&map, bounds(&map)).1 > 0);
-            assert_eq!(layout(&map), (bounds(&map), LegendPlace::Beside));
-            let svg = svg(&map, Path::new("map.svg")).unwrap();
+            assert!(legend_corner(&map, bounds(&map), PANEL).1 > 0);
+            assert_eq!(layout(&map, PANEL), (bounds(&map), LegendPlace::Beside));
+            let svg = svg(&map, Path::new("map.svg"), &Format::default()).unwrap();
             let rightmost = svg
                 .split("<circle cx=\"")
                 .skip(1)
@@ -313,7 +335,8 @@ mod tests {
             let label_x: f64 = label_x.split('"').next().unwrap().parse().unwrap();
             assert!(rightmost > 100.0, "the markers are drawn: {rightmost}");
             assert!(label_x > rightmost + 10.0, "{label_x} {rightmost}");
-            assert!(label_x < f64::from(SIZE.0), "{label_x}");
+            // Beside the data's panel, on a canvas widened for it.
+            assert!(label_x > f64::from(PANEL.0), "{label_x}");
         }
         // A legend of thirty entries is taller than the plot: it stays in the corner where it
         // covers least, over the data's ranges.
@@ -321,7 +344,7 @@ mod tests {
             series: (0..30).map(|_| line(grid.clone())).collect(),
             ..plot(vec![], Corner::UpperLeft)
         };
-        assert_eq!(layout(&many).0, bounds(&many));
-        assert!(matches!(layout(&many).1, LegendPlace::Inside(_)));
+        assert_eq!(layout(&many, PANEL).0, bounds(&many));
+        assert!(matches!(layout(&many, PANEL).1, LegendPlace::Inside(_)));
     }
 }

@@ -1,15 +1,20 @@
 //! Line plots as PNG and SVG, drawn by plotters with an embedded DejaVu Sans font so that
 //! no system font package is needed: the plot and its series, drawn on linear or log axes
 //! (`axes`: ranges, ticks, labels), with a legend (`legend`: where it goes); and a raster of
-//! coloured cells (`raster`).
+//! coloured cells (`raster`). Every figure is laid out on the design canvas of its
+//! [`Format`] and drawn at the format's resolution (`scaled`); an SVG names its font.
 
 mod axes;
+mod format;
 mod glyphs;
 mod legend;
 mod raster;
+mod scaled;
 
 use crate::error::AppError;
 use axes::{log_ticks, sample_ticks, tick_label, TickForm};
+pub use format::{Format, DESIGN_DPI};
+use glyphs::Glyphs;
 pub use legend::Corner;
 use legend::{
     draw_legend_beside, key, layout, legend_pixels, LegendPlace, LegendTarget, LEGEND_BOX,
@@ -19,11 +24,16 @@ use plotters::coord::ranged1d::ValueFormatter;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 pub use raster::{raster_png, raster_svg, Raster};
+use scaled::Scaled;
 use std::path::Path;
 use std::sync::Once;
 
-/// Width and height of every figure, pixels.
-pub const SIZE: (u32, u32) = (900, 600);
+/// The family of the one font of the figures, DejaVu Sans (embedded), as SVG files name it.
+pub const FAMILY: &str = "DejaVu Sans";
+
+/// The fonts an SVG names after [`FAMILY`], for a reader without DejaVu Sans: sans-serif
+/// faces of close metrics.
+const FALLBACK_FAMILIES: &str = "Verdana, Arial, sans-serif";
 
 /// One polyline of a plot.
 #[derive(Clone, Debug, PartialEq)]
@@ -102,7 +112,7 @@ static FONT: Once = Once::new();
 
 fn register_font() {
     FONT.call_once(|| {
-        plotters::style::register_font("sans-serif", FontStyle::Normal, dejavu::sans::regular())
+        plotters::style::register_font(FAMILY, FontStyle::Normal, dejavu::sans::regular())
             .unwrap_or_else(|_| unreachable!("the embedded DejaVu Sans font is valid"));
     });
 }
@@ -119,27 +129,64 @@ fn drawn<'a>(plot: &'a Plot, s: &'a Series) -> impl Iterator<Item = (f64, f64)> 
     })
 }
 
-/// Draws `plots` side by side on `root`.
-fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, plots: &[Plot]) -> Result<(), String> {
+/// The design width of each panel of `plots`: a one-panel figure of `panel` pixels, and on
+/// top of it the strip of a legend that goes beside the plot, so that the legend takes no
+/// width from the data.
+fn panel_widths(plots: &[Plot], panel: (u32, u32)) -> Vec<u32> {
+    (plots.iter())
+        .map(|plot| match layout(plot, panel).1 {
+            LegendPlace::Beside => panel.0 + strip_width(plot),
+            LegendPlace::Inside(_) => panel.0,
+        })
+        .collect()
+}
+
+/// The width of the strip a legend beside `plot` takes, pixels.
+fn strip_width(plot: &Plot) -> u32 {
+    legend_pixels(plot).0.ceil() as u32 + LEGEND_BOX.gap as u32
+}
+
+/// The design canvas of `plots` side by side in `format`.
+fn canvas(plots: &[Plot], format: &Format) -> (u32, u32) {
+    let panel = format.design(1);
+    let widths = panel_widths(plots, panel);
+    (widths.iter().sum::<u32>().max(panel.0), panel.1)
+}
+
+/// Draws `plots` side by side on `root`, each on a panel of `panel` pixels and its legend's
+/// strip ([`panel_widths`]).
+fn draw<DB: DrawingBackend>(
+    root: DrawingArea<DB, Shift>,
+    plots: &[Plot],
+    panel: (u32, u32),
+) -> Result<(), String> {
     let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
     root.fill(&WHITE).map_err(err)?;
-    for (panel, plot) in root.split_evenly((1, plots.len().max(1))).iter().zip(plots) {
-        let (((x0, x1), (y0, y1)), legend) = layout(plot);
-        // A legend beside the plot takes a strip on the panel's right.
+    let widths = panel_widths(plots, panel);
+    let breaks: Vec<u32> = (widths.iter())
+        .scan(0, |x, w| {
+            *x += w;
+            Some(*x)
+        })
+        .take(widths.len().saturating_sub(1))
+        .collect();
+    let panels = root.split_by_breakpoints(breaks, Vec::<u32>::new());
+    for (whole, plot) in panels.iter().zip(plots) {
+        let (((x0, x1), (y0, y1)), legend) = layout(plot, panel);
+        // A legend beside the plot takes the strip right of the panel.
         let strip;
         let (area, target) = match legend {
             LegendPlace::Beside => {
-                let width = legend_pixels(plot).0.ceil() as u32 + LEGEND_BOX.gap as u32;
-                let (a, b) = panel.split_horizontally(panel.dim_in_pixel().0.saturating_sub(width));
+                let (a, b) = whole.split_horizontally(panel.0);
                 strip = b;
                 (a, LegendTarget::Strip(&strip))
             }
-            LegendPlace::Inside(c) => (panel.clone(), LegendTarget::Corner(c)),
+            LegendPlace::Inside(c) => (whole.clone(), LegendTarget::Corner(c)),
         };
         let mut builder = ChartBuilder::on(&area);
         let caption = caption_size(&plot.title, area.dim_in_pixel().0);
         builder
-            .caption(&plot.title, ("sans-serif", caption))
+            .caption(&plot.title, (FAMILY, caption))
             .margin(15)
             .x_label_area_size(50)
             .y_label_area_size(70);
@@ -183,15 +230,33 @@ const CAPTION_SIZES: (u32, u32) = (22, 12);
 /// [`CAPTION_SIZES`] whose text fits with 10 pixels each side (a model's title with its
 /// reference, such as GMS's, ran over both edges at the largest).
 fn caption_size(title: &str, width: u32) -> u32 {
+    fitting(title, width.saturating_sub(20), CAPTION_SIZES)
+}
+
+/// The largest and smallest font sizes of the axes' names, pixels.
+const AXIS_NAME_SIZES: (u32, u32) = (17, 10);
+
+/// The font size of the axes' names `names`, each along an axis of the given length, pixels:
+/// the largest of [`AXIS_NAME_SIZES`] at which each fits its axis (a convergence plot's
+/// long y name ran over both ends of a column-sized figure).
+fn axis_name_size(names: [(&str, u32); 2]) -> u32 {
+    (names.iter())
+        .map(|&(name, length)| fitting(name, length, AXIS_NAME_SIZES))
+        .min()
+        .unwrap_or(AXIS_NAME_SIZES.0)
+}
+
+/// The largest font size of `sizes` (largest, smallest) at which `text` is at most `length`
+/// pixels long; the smallest if none is.
+fn fitting(text: &str, length: u32, (largest, smallest): (u32, u32)) -> u32 {
     register_font();
-    let (largest, smallest) = CAPTION_SIZES;
     (smallest..=largest)
         .rev()
         .find(|&size| {
-            ("sans-serif", size)
+            (FAMILY, size)
                 .into_font()
-                .box_size(title)
-                .map_or(true, |(w, _)| w + 20 <= width)
+                .box_size(text)
+                .map_or(true, |(w, _)| w <= length)
         })
         .unwrap_or(smallest)
 }
@@ -237,12 +302,14 @@ where
     };
     let x_tick = |v: &f64| linear(zero(*v, &xr), x_whole, X::format);
     let y_tick = |v: &f64| linear(zero(*v, &yr), y_whole, Y::format);
+    let (area_w, area_h) = chart.plotting_area().dim_in_pixel();
+    let names = axis_name_size([(&plot.x_label, area_w), (&plot.y_label, area_h)]);
     let mut mesh = chart.configure_mesh();
     mesh.light_line_style(WHITE)
         .x_desc(plot.x_label.as_str())
         .y_desc(plot.y_label.as_str())
-        .label_style(("sans-serif", 15))
-        .axis_desc_style(("sans-serif", 17));
+        .label_style((FAMILY, 15))
+        .axis_desc_style((FAMILY, names));
     if plot.log {
         mesh.x_label_formatter(&x_log_tick)
             .y_label_formatter(&y_log_tick);
@@ -328,56 +395,65 @@ where
     }
 }
 
-/// The size of a figure of `panels` plots side by side.
-fn size(panels: usize) -> (u32, u32) {
-    (SIZE.0 * panels.max(1) as u32, SIZE.1)
-}
-
 /// The plot as SVG text.
-pub fn svg(plot: &Plot, path: &Path) -> Result<String, AppError> {
-    svg_panels(std::slice::from_ref(plot), path)
+pub fn svg(plot: &Plot, path: &Path, format: &Format) -> Result<String, AppError> {
+    svg_panels(std::slice::from_ref(plot), path, format)
 }
 
 /// Plots side by side as SVG text.
-pub fn svg_panels(plots: &[Plot], path: &Path) -> Result<String, AppError> {
-    render_svg(size(plots.len()), path, |root| draw(root, plots))
+pub fn svg_panels(plots: &[Plot], path: &Path, format: &Format) -> Result<String, AppError> {
+    let panel = format.design(1);
+    render_svg(canvas(plots, format), path, |root| draw(root, plots, panel))
 }
 
 /// The plot as PNG bytes.
-pub fn png(plot: &Plot, path: &Path) -> Result<Vec<u8>, AppError> {
-    png_panels(std::slice::from_ref(plot), path)
+pub fn png(plot: &Plot, path: &Path, format: &Format) -> Result<Vec<u8>, AppError> {
+    png_panels(std::slice::from_ref(plot), path, format)
 }
 
 /// Plots side by side as PNG bytes.
-pub fn png_panels(plots: &[Plot], path: &Path) -> Result<Vec<u8>, AppError> {
-    render_png(size(plots.len()), path, |root| draw(root, plots))
+pub fn png_panels(plots: &[Plot], path: &Path, format: &Format) -> Result<Vec<u8>, AppError> {
+    let panel = format.design(1);
+    render_png(canvas(plots, format), format, path, |root| {
+        draw(root, plots, panel)
+    })
 }
 
-/// What `paint` draws on an SVG canvas of `size` pixels, as text; a drawing error names the
-/// figure's `path`.
+/// What `paint` draws on an SVG canvas of `design` pixels, as text, its size stated in inches
+/// and its font named with fallbacks; a drawing error names the figure's `path`.
 fn render_svg(
-    size: (u32, u32),
+    design: (u32, u32),
     path: &Path,
     paint: impl FnOnce(DrawingArea<SVGBackend, Shift>) -> Result<(), String>,
 ) -> Result<String, AppError> {
     register_font();
     let mut text = String::new();
-    paint(SVGBackend::with_string(&mut text, size).into_drawing_area())
+    paint(SVGBackend::with_string(&mut text, design).into_drawing_area())
         .map_err(|message| plot_error(path, message))?;
-    Ok(text)
+    let named = text.replace(
+        &format!("font-family=\"{FAMILY}\""),
+        &format!("font-family=\"{FAMILY}, {FALLBACK_FAMILIES}\""),
+    );
+    Ok(Format::physical_svg(named, design))
 }
 
-/// What `paint` draws on an RGB canvas of `size` pixels, as PNG bytes; a drawing error names
-/// the figure's `path`.
+/// What `paint` draws on a design canvas of `design` pixels, as PNG bytes at the resolution of
+/// `format`; a drawing error names the figure's `path`.
 fn render_png(
-    (w, h): (u32, u32),
+    design: (u32, u32),
+    format: &Format,
     path: &Path,
-    paint: impl FnOnce(DrawingArea<glyphs::Glyphs, Shift>) -> Result<(), String>,
+    paint: impl FnOnce(DrawingArea<Scaled<Glyphs>, Shift>) -> Result<(), String>,
 ) -> Result<Vec<u8>, AppError> {
     register_font();
-    let mut pixels = vec![0u8; (w * h * 3) as usize];
-    paint(glyphs::Glyphs(BitMapBackend::with_buffer(&mut pixels, (w, h))).into_drawing_area())
-        .map_err(|message| plot_error(path, message))?;
+    let (w, h) = format.pixels(design);
+    let mut pixels = vec![0u8; (w as usize) * (h as usize) * 3];
+    let backend = Scaled {
+        inner: Glyphs(BitMapBackend::with_buffer(&mut pixels, (w, h))),
+        design,
+        scale: format.scale(),
+    };
+    paint(backend.into_drawing_area()).map_err(|message| plot_error(path, message))?;
     encode_png(&pixels, (w, h), path)
 }
 
@@ -414,13 +490,23 @@ mod tests {
     fn a_long_title_is_set_smaller_to_fit_its_panel() {
         let gms = "gms: generalized Maxwell-slip (Al-Bender et al. 2005) (Al-Bender, Lampaert, \
                    Swevers (2005), IEEE TAC 50(11))";
-        let size = caption_size(gms, SIZE.0);
+        let size = caption_size(gms, Format::default().design(1).0);
         assert!((CAPTION_SIZES.1..CAPTION_SIZES.0).contains(&size), "{size}");
-        let width = |size: u32| ("sans-serif", size).into_font().box_size(gms).unwrap().0;
-        assert!(width(size) + 20 <= SIZE.0, "{}", width(size));
-        assert!(width(size + 1) + 20 > SIZE.0, "the largest that fits");
+        let width = |size: u32| (FAMILY, size).into_font().box_size(gms).unwrap().0;
+        assert!(
+            width(size) + 20 <= Format::default().design(1).0,
+            "{}",
+            width(size)
+        );
+        assert!(
+            width(size + 1) + 20 > Format::default().design(1).0,
+            "the largest that fits"
+        );
         assert_eq!(
-            caption_size("Work-precision: belt with CS", SIZE.0),
+            caption_size(
+                "Work-precision: belt with CS",
+                Format::default().design(1).0
+            ),
             CAPTION_SIZES.0
         );
     }
@@ -455,7 +541,7 @@ mod tests {
                 legend: Corner::UpperRight,
                 log: false,
             };
-            let text = svg(&plot, Path::new("markers.svg")).unwrap();
+            let text = svg(&plot, Path::new("markers.svg"), &Format::default()).unwrap();
             assert_eq!(visible_circles(&text), 3 + 1, "{label}");
             // A curve's key is no dot.
             let curve = Plot {
@@ -466,7 +552,7 @@ mod tests {
                 }],
                 ..plot
             };
-            let text = svg(&curve, Path::new("curve.svg")).unwrap();
+            let text = svg(&curve, Path::new("curve.svg"), &Format::default()).unwrap();
             assert_eq!(visible_circles(&text), 0, "{label}");
         }
     }
@@ -489,13 +575,119 @@ mod tests {
             legend: Corner::default(),
             log: false,
         };
-        let text = svg(&plot, Path::new("indices.svg")).unwrap();
+        let text = svg(&plot, Path::new("indices.svg"), &Format::default()).unwrap();
         // The texts of the SVG, each written as <text …>\nTEXT\n</text>.
         let texts: Vec<&str> = (text.split("<text").skip(1))
             .filter_map(|t| Some(t.split_once('>')?.1.split("</text>").next()?.trim()))
             .collect();
         assert!(texts.contains(&"8") && !texts.contains(&"8.0"), "{texts:?}");
         assert!(texts.contains(&"0.5"), "{texts:?}");
+    }
+
+    /// The width, height and RGB pixels of a PNG.
+    fn decoded(bytes: &[u8]) -> (u32, u32, Vec<u8>) {
+        let mut reader = png::Decoder::new(bytes).read_info().unwrap();
+        let mut pixels = vec![0; reader.output_buffer_size()];
+        let info = reader.next_frame(&mut pixels).unwrap();
+        (info.width, info.height, pixels)
+    }
+
+    /// The horizontal extent of the ink (non-white pixels) in rows `rows` of an RGB image.
+    fn ink_columns((w, _, pixels): &(u32, u32, Vec<u8>), rows: std::ops::Range<u32>) -> u32 {
+        let inked = |x: u32| {
+            rows.clone().any(|y| {
+                let i = ((y * w + x) * 3) as usize;
+                pixels[i..i + 3].iter().any(|&c| c < 200)
+            })
+        };
+        let first = (0..*w).find(|&x| inked(x)).unwrap();
+        let last = (0..*w).rev().find(|&x| inked(x)).unwrap();
+        last - first + 1
+    }
+
+    #[test]
+    fn a_figure_at_twice_the_resolution_is_the_same_figure_at_twice_the_pixels() {
+        // The title's ink spans twice the pixels at 300 dpi as at 150: text keeps its size in
+        // points, and the PNG's size is the figure's in inches times its resolution.
+        let plot = Plot {
+            title: "time t (s), dopri5, implicit-euler".into(),
+            x_label: "time t (s)".into(),
+            y_label: "velocity v (m/s)".into(),
+            series: vec![Series {
+                label: None,
+                points: vec![(0.0, 0.0), (1.0, 1.0)],
+                color: RED,
+                width: 2,
+                marker: Marker::None,
+            }],
+            legend: Corner::default(),
+            log: false,
+        };
+        let draw = |dpi: f64| {
+            let format = Format::parse(Some("3.5x2.6"), Some(dpi)).unwrap();
+            decoded(&png(&plot, Path::new("t.png"), &format).unwrap())
+        };
+        let (one, two) = (draw(150.0), draw(300.0));
+        assert_eq!((one.0, one.1), (525, 390));
+        assert_eq!((two.0, two.1), (1050, 780));
+        let (a, b) = (ink_columns(&one, 5..35), ink_columns(&two, 10..70));
+        assert!(
+            b.abs_diff(2 * a) <= 3,
+            "title ink {a} px at 150 dpi, {b} px at 300"
+        );
+        // And the SVG states the size in inches around the design canvas, naming its font.
+        let text = svg(
+            &plot,
+            Path::new("t.svg"),
+            &Format::parse(Some("3.5x2.6"), None).unwrap(),
+        )
+        .unwrap();
+        assert!(text.starts_with("<svg width=\"3.5in\" height=\"2.6in\" viewBox=\"0 0 525 390\""));
+        assert!(text.contains("font-family=\"DejaVu Sans, Verdana, Arial, sans-serif\""));
+        assert!(!text.contains("font-family=\"sans-serif\""));
+    }
+
+    #[test]
+    fn a_long_axis_name_is_set_smaller_to_fit_its_axis() {
+        let long = "relative error on the time grid, max over x, v, z of |Δ|/max|reference| (1)";
+        let size = axis_name_size([("time t (s)", 800), (long, 400)]);
+        assert!(
+            (AXIS_NAME_SIZES.1..AXIS_NAME_SIZES.0).contains(&size),
+            "{size}"
+        );
+        let width = |size: u32| (FAMILY, size).into_font().box_size(long).unwrap().0;
+        assert!(width(size) <= 400 && width(size + 1) > 400);
+        assert_eq!(
+            axis_name_size([("time t (s)", 800), ("v (m/s)", 493)]),
+            AXIS_NAME_SIZES.0
+        );
+    }
+
+    #[test]
+    fn a_legend_beside_the_plot_widens_the_canvas_and_leaves_the_panel_whole() {
+        // A grid of markers everywhere: its legend goes beside, on a strip added to the panel.
+        let grid: Vec<(f64, f64)> = (1..=20)
+            .flat_map(|i| (1..=20).map(move |j| (f64::from(i), f64::from(j))))
+            .collect();
+        let map = Plot {
+            title: "map".into(),
+            x_label: "x".into(),
+            y_label: "y".into(),
+            series: vec![Series {
+                label: Some("stick-slip".into()),
+                points: grid,
+                color: RED,
+                width: 0,
+                marker: Marker::Dot,
+            }],
+            legend: Corner::UpperRight,
+            log: false,
+        };
+        let format = Format::default();
+        let (w, h) = canvas(std::slice::from_ref(&map), &format);
+        assert_eq!(h, 600);
+        assert_eq!(w, 900 + strip_width(&map));
+        assert!(strip_width(&map) > 100);
     }
 
     #[test]
@@ -515,7 +707,7 @@ mod tests {
             log: false,
         };
         assert_eq!(bounds(&plot), ((0.0, 1.0), (0.0, 1.0)));
-        assert!(svg(&plot, Path::new("empty.svg"))
+        assert!(svg(&plot, Path::new("empty.svg"), &Format::default())
             .unwrap()
             .contains("nothing"));
     }
@@ -548,14 +740,14 @@ mod tests {
                     legend: Corner::UpperRight,
                     log,
                 };
-                let ((x0, x1), (y0, y1)) = layout(&plot).0;
+                let ((x0, x1), (y0, y1)) = layout(&plot, (900, 600)).0;
                 assert!(x0 < x1 && y0 < y1, "{points:?} {log}: {x0} {x1} {y0} {y1}");
                 assert!(
                     [x0, x1, y0, y1].iter().all(|v| v.is_finite()),
                     "{points:?} {log}: {x0} {x1} {y0} {y1}"
                 );
                 assert!(
-                    svg(&plot, Path::new("edge.svg")).is_ok(),
+                    svg(&plot, Path::new("edge.svg"), &Format::default()).is_ok(),
                     "{points:?} {log}"
                 );
             }

@@ -1,7 +1,7 @@
 //! A raster of coloured cells over time and an index: a chain's contact modes.
 
 use super::legend::{box_pixels, draw_box, LEGEND_BOX};
-use super::{render_png, render_svg, whole_label, whole_numbers, MESH_LABELS, SIZE};
+use super::{render_png, render_svg, whole_label, whole_numbers, Format, FAMILY, MESH_LABELS};
 use crate::error::AppError;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -49,11 +49,12 @@ impl Raster {
         }
     }
 
-    /// The canvas: [`SIZE`] for the cells and their axes, and a strip on the right for the
-    /// legend, so that it covers no cell and takes no width from them.
-    fn size(&self) -> (u32, u32) {
+    /// The canvas: a one-panel figure of `format` for the cells and their axes, and a strip
+    /// on the right for the legend, so that it covers no cell and takes no width from them.
+    fn size(&self, format: &Format) -> (u32, u32) {
         let labels: Vec<&str> = self.shown().iter().map(|e| e.1.as_str()).collect();
-        (SIZE.0 + box_pixels(&labels).0.ceil() as u32, SIZE.1)
+        let (w, h) = format.design(1);
+        (w + box_pixels(&labels).0.ceil() as u32, h)
     }
 }
 
@@ -68,17 +69,22 @@ fn row_ticks(rows: usize) -> Vec<f64> {
     (1..=rows.max(1)).step_by(step).map(|r| r as f64).collect()
 }
 
-fn draw_raster<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, r: &Raster) -> Result<(), String> {
+/// Draws `r` on `root`, the cells on its left `cells_width` pixels.
+fn draw_raster<DB: DrawingBackend>(
+    root: DrawingArea<DB, Shift>,
+    r: &Raster,
+    cells_width: u32,
+) -> Result<(), String> {
     let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
     root.fill(&WHITE).map_err(err)?;
-    let (cells_area, strip) = root.split_horizontally(SIZE.0);
+    let (cells_area, strip) = root.split_horizontally(cells_width);
     let (x0, x1) = match (r.x_edges.first(), r.x_edges.last()) {
         (Some(&a), Some(&b)) if b > a => (a, b),
         _ => (0.0, 1.0),
     };
     let (y0, y1) = (0.5, r.rows.max(1) as f64 + 0.5);
     let mut chart = ChartBuilder::on(&cells_area)
-        .caption(&r.title, ("sans-serif", 22))
+        .caption(&r.title, (FAMILY, 22))
         .margin(15)
         .x_label_area_size(50)
         .y_label_area_size(70)
@@ -106,14 +112,13 @@ fn draw_raster<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, r: &Raster) -> 
         .y_labels(0)
         .x_desc(r.x_label.as_str())
         .y_desc(r.y_label.as_str())
-        .label_style(("sans-serif", 15))
-        .axis_desc_style(("sans-serif", 17));
+        .label_style((FAMILY, 15))
+        .axis_desc_style((FAMILY, 17));
     if x_whole {
         mesh.x_label_formatter(&whole_label);
     }
     mesh.draw().map_err(err)?;
-    let label =
-        TextStyle::from(("sans-serif", 15).into_font()).pos(Pos::new(HPos::Right, VPos::Center));
+    let label = TextStyle::from((FAMILY, 15).into_font()).pos(Pos::new(HPos::Right, VPos::Center));
     for row in row_ticks(r.rows) {
         let (px, py) = chart.backend_coord(&(x0, row));
         let tick = PathElement::new([(px - 5, py), (px, py)], BLACK);
@@ -136,13 +141,17 @@ fn draw_raster<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, r: &Raster) -> 
 }
 
 /// The raster as SVG text.
-pub fn raster_svg(r: &Raster, path: &Path) -> Result<String, AppError> {
-    render_svg(r.size(), path, |root| draw_raster(root, r))
+pub fn raster_svg(r: &Raster, path: &Path, format: &Format) -> Result<String, AppError> {
+    let cells = format.design(1).0;
+    render_svg(r.size(format), path, |root| draw_raster(root, r, cells))
 }
 
 /// The raster as PNG bytes.
-pub fn raster_png(r: &Raster, path: &Path) -> Result<Vec<u8>, AppError> {
-    render_png(r.size(), path, |root| draw_raster(root, r))
+pub fn raster_png(r: &Raster, path: &Path, format: &Format) -> Result<Vec<u8>, AppError> {
+    let cells = format.design(1).0;
+    render_png(r.size(format), format, path, |root| {
+        draw_raster(root, r, cells)
+    })
 }
 
 #[cfg(test)]
@@ -188,7 +197,7 @@ mod tests {
             legend: vec![(RED, "slip+".into())],
         };
         assert_eq!(raster.index_of(2.0), "151");
-        let svg = raster_svg(&raster, Path::new("rows.svg")).unwrap();
+        let svg = raster_svg(&raster, Path::new("rows.svg"), &Format::default()).unwrap();
         assert_eq!(text_x(&svg, "151").len(), 1);
         let unsampled = Raster {
             row_index: vec![],
@@ -214,16 +223,22 @@ mod tests {
                 .map(|(l, c)| (c, l.to_string()))
                 .collect(),
         };
-        let svg = raster_svg(&raster, Path::new("modes.svg")).unwrap();
-        let width: f64 = (svg.split("width=\"").nth(1).unwrap().split('"').next())
-            .unwrap()
-            .parse()
-            .unwrap();
-        assert!(width > f64::from(SIZE.0) + 60.0, "{width}");
+        let svg = raster_svg(&raster, Path::new("modes.svg"), &Format::default()).unwrap();
+        // The canvas's width in design pixels, from the viewBox (its width is in inches).
+        let view = svg.split("viewBox=\"0 0 ").nth(1).unwrap();
+        let width: f64 = view.split(' ').next().unwrap().parse().unwrap();
+        assert!(
+            width > f64::from(Format::default().design(1).0) + 60.0,
+            "{width}"
+        );
         for shown in ["slip+", "stick"] {
             let x = text_x(&svg, shown);
             assert_eq!(x.len(), 1, "{shown}: {x:?}");
-            assert!(x[0] > f64::from(SIZE.0), "{shown} at x = {}", x[0]);
+            assert!(
+                x[0] > f64::from(Format::default().design(1).0),
+                "{shown} at x = {}",
+                x[0]
+            );
         }
         for absent in ["slip-", "no contact"] {
             assert!(text_x(&svg, absent).is_empty(), "{absent} is listed");
