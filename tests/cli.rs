@@ -1003,9 +1003,22 @@ fn simulate_chain_writes_the_system_files() {
         "spectrum.csv",
         "spectrum.json",
         "spectrum.png",
+        "velocity-space-time.png",
+        "velocity-space-time.svg",
     ] {
         assert!(out.join(f).exists(), "{f}");
     }
+    // The line figures and the spectra draw four of the twenty bodies written, spread over
+    // them; every body's velocity is in the space–time picture, in bands of equal width.
+    let svg = std::fs::read_to_string(out.join("velocity.svg")).unwrap();
+    assert!(svg.contains("velocities of 4 of the 20 bodies written"));
+    let spectrum = std::fs::read_to_string(out.join("spectrum.csv")).unwrap();
+    assert_eq!(spectrum.lines().next(), Some("frequency,b1,b10,b20,b30"));
+    let picture = std::fs::read_to_string(out.join("velocity-space-time.svg")).unwrap();
+    assert!(
+        picture.contains(" m/s") && picture.contains(" to "),
+        "band labels"
+    );
 }
 
 /// The stiffness along a chain too large for its eigenvalues (120 unknowns): power iteration's

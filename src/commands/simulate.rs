@@ -127,8 +127,9 @@ pub struct SimulateArgs {
     /// system, fewer when 2001 states would exceed 1e7 numbers].
     #[arg(long, value_name = "N", allow_hyphen_values = true)]
     pub points: Option<i64>,
-    /// Systems: the bodies written to trajectory.csv and drawn in velocity.png, as names or
-    /// 1-based indices, comma-separated [default: all up to 20 bodies, else 20 evenly spaced].
+    /// Systems: the bodies written to trajectory.csv, as names or 1-based indices,
+    /// comma-separated; velocity.png, the phase portraits and the spectra draw at most four of
+    /// them, spread evenly [default: all up to 20 bodies, else 20 evenly spaced].
     #[arg(long, value_name = "LIST", value_delimiter = ',')]
     pub bodies: Vec<String>,
     /// The solver.

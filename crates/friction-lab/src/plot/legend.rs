@@ -190,6 +190,7 @@ type Key = (
     PathElement<(i32, i32)>,
     Cross<(i32, i32), i32>,
     Circle<(i32, i32), i32>,
+    Circle<(i32, i32), i32>,
 );
 
 /// The key of a series in a legend, relative to its left end, showing what the series draws:
@@ -200,10 +201,12 @@ pub(super) fn key(color: RGBColor, marker: Marker, width: u32) -> Key {
     let line = shown(width > 0 || marker == Marker::None);
     let cross = shown(marker == Marker::Cross);
     let dot = shown(marker == Marker::Dot);
+    let ring = shown(marker == Marker::Ring);
     (
         PathElement::new([(0, 0), (20, 0)], color.mix(line).stroke_width(3)),
         Cross::new((10, 0), 5, color.mix(cross).stroke_width(2)),
         Circle::new((10, 0), 4, color.mix(dot).filled()),
+        Circle::new((10, 0), 5, color.mix(ring).stroke_width(2)),
     )
 }
 
@@ -218,8 +221,8 @@ pub(super) fn draw_legend_beside<DB: DrawingBackend>(
     let labels: Vec<&str> = labelled.iter().filter_map(|s| s.label.as_deref()).collect();
     draw_box(area, &labels, top, |k, at| {
         let s = labelled[k];
-        let (line, cross, dot) = key(s.color, s.marker, s.width);
-        area.draw(&(EmptyElement::at(at) + line + cross + dot))
+        let (line, cross, dot, ring) = key(s.color, s.marker, s.width);
+        area.draw(&(EmptyElement::at(at) + line + cross + dot + ring))
     })
 }
 

@@ -60,6 +60,9 @@ pub enum Marker {
     Dot,
     /// A cross (a run that failed or did not reach its target).
     Cross,
+    /// An open circle, drawn around a point that a [`Marker::Dot`] of another series may
+    /// fill (a second branch of the same diagram).
+    Ring,
 }
 
 /// A labelled line plot.
@@ -348,8 +351,8 @@ where
         };
         if let Some(label) = &s.label {
             drawn.label(label.as_str()).legend(move |p| {
-                let (line, cross, dot) = key(color, marker, width);
-                EmptyElement::at(p) + line + cross + dot
+                let (line, cross, dot, ring) = key(color, marker, width);
+                EmptyElement::at(p) + line + cross + dot + ring
             });
         }
         match marker {
@@ -366,6 +369,11 @@ where
                             .iter()
                             .map(|&p| Cross::new(p, 6, color.stroke_width(2))),
                     )
+                    .map_err(err)?;
+            }
+            Marker::Ring => {
+                chart
+                    .draw_series((points.iter()).map(|&p| Circle::new(p, 6, color.stroke_width(2))))
                     .map_err(err)?;
             }
         }

@@ -7,12 +7,14 @@ mod bodies;
 mod motion;
 pub mod request;
 mod rig;
+mod space_time;
 mod spectra;
 mod stiffness;
 mod system;
 
 pub use bodies::chosen_bodies;
+pub use motion::{spread, LINE_BODIES};
 pub use request::{Simulation, Target};
 pub use rig::simulate_rig;
 pub use stiffness::add_stiffness;
-pub use system::{load, simulate_system, Described, SystemRun, DRAWN_BODIES};
+pub use system::{load, simulate_system, Described, SystemRun};

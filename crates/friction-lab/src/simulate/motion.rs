@@ -1,7 +1,8 @@
-//! The figures of a system's drawn bodies (the first [`super::DRAWN_BODIES`] written), one
-//! colour each: their velocities against time (`velocity.png`) and their phase portraits,
-//! velocity against displacement (`phase-portrait.png`), where a stick–slip cycle is a closed
-//! loop with a flat edge at the surface's speed.
+//! The line figures of a system's bodies, at most [`LINE_BODIES`] of those written, spread
+//! over them ([`spread`]), one colour each: their velocities against time (`velocity.png`) and
+//! their phase portraits, velocity against displacement (`phase-portrait.png`), where a
+//! stick–slip cycle is a closed loop with a flat edge at the surface's speed. Every body's
+//! velocity is in `velocity-space-time.png` (`space_time`).
 
 use crate::artifacts::Artifacts;
 use crate::error::AppError;
@@ -9,25 +10,39 @@ use crate::plot::{Corner, Marker, Plot, Series, PALETTE};
 use friction_systems::{Run, System};
 use std::path::Path;
 
-/// Adds `velocity` and `phase-portrait` of the first `drawn` of `bodies` (indices into
-/// `system`) of `run` to `files`, in `out`.
+/// Most bodies a line figure draws: more lines over a long run are no longer told apart.
+pub const LINE_BODIES: usize = 4;
+
+/// At most `most` of `bodies`, spread evenly over them: the first and the last, and between
+/// them at equal steps of the list.
+pub fn spread(bodies: &[usize], most: usize) -> Vec<usize> {
+    let (n, k) = (bodies.len(), bodies.len().min(most));
+    match k {
+        0 | 1 => bodies[..k].to_vec(),
+        _ => (0..k)
+            .map(|j| bodies[(j * (n - 1) + (k - 1) / 2) / (k - 1)])
+            .collect(),
+    }
+}
+
+/// Adds `velocity` and `phase-portrait` of the bodies `shown` (indices into `system`) of the
+/// `written` ones of `run` to `files`, in `out`.
 pub fn add_motion(
     files: &mut Artifacts,
     out: &Path,
     run: &Run,
     system: &System,
-    bodies: &[usize],
-    drawn: usize,
+    (shown, written): (&[usize], usize),
     title: &str,
 ) -> Result<(), AppError> {
-    let of = |what: &str| match drawn < bodies.len() {
+    let of = |what: &str| match shown.len() < written {
         true => format!(
-            "{title}: {what} of the first {drawn} of {} bodies written",
-            bodies.len()
+            "{title}: {what} of {} of the {written} bodies written",
+            shown.len()
         ),
         false => format!("{title}: {what}"),
     };
-    let states: Vec<_> = bodies[..drawn].iter().map(|&i| (i, run.body(i))).collect();
+    let states: Vec<_> = shown.iter().map(|&i| (i, run.body(i))).collect();
     let series = |point: &dyn Fn(&friction_systems::BodyState) -> (f64, f64)| {
         (states.iter().enumerate())
             .map(|(c, (i, states))| Series {
@@ -57,4 +72,19 @@ pub fn add_motion(
         log: false,
     };
     files.add_plot(&out.join("phase-portrait"), &phase)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::spread;
+
+    #[test]
+    fn the_bodies_drawn_are_spread_over_those_written() {
+        let bodies: Vec<usize> = (0..20).collect();
+        assert_eq!(spread(&bodies, 4), [0, 6, 13, 19]);
+        assert_eq!(spread(&bodies[..3], 4), [0, 1, 2]);
+        assert_eq!(spread(&[7], 4), [7]);
+        assert_eq!(spread(&[], 4), Vec::<usize>::new());
+        assert_eq!(spread(&[2, 4, 6, 8, 10], 2), [2, 10]);
+    }
 }

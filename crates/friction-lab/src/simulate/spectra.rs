@@ -1,4 +1,5 @@
 //! The spectra of a system's motion: the amplitude spectrum of the velocity of each drawn body
+//! (the bodies of the line figures, `motion::spread`)
 //! over the last half of the run (the first half left to the transient, as a sweep's
 //! settled part; at most its last [`crate::spectrum::MAX_SAMPLES`] points), with its dominant
 //! frequency: `spectrum.csv`, `spectrum.json` and a figure.

@@ -2,13 +2,13 @@
 //! of the bodies chosen, summary, events) and figures (velocities, the space–time picture of
 //! the contact modes, stiffness along the run).
 
-use super::motion::add_motion;
+use super::motion::{add_motion, spread, LINE_BODIES};
+use super::space_time::Sampling;
 use super::spectra::add_spectra;
 use super::stiffness::add_stiffness;
 use crate::artifacts::{Artifacts, Made};
 use crate::error::AppError;
-use crate::output::{counted, Cell, Table};
-use crate::plot::{self, Raster};
+use crate::output::counted;
 use crate::progress::Progress;
 use crate::ranges;
 use crate::run_record::{
@@ -17,23 +17,13 @@ use crate::run_record::{
 use crate::scheme::SchemeName;
 use crate::trajectory::{Trajectory, TrajectoryAs};
 use friction_models::{FrictionParams, Variant};
-use friction_systems::{mode_name, Run, System, SLIP_NEGATIVE, SLIP_POSITIVE};
+use friction_systems::{Run, System, SLIP_POSITIVE};
 use integrators::{Options, Solver};
 use scenarios::chain::ChainSource;
 use scenarios::closed_loop::ClosedLoop;
 use scenarios::{Row, SwitchingKind};
 use std::collections::BTreeMap;
 use std::path::Path;
-
-/// Most bodies drawn in `velocity.png`, one colour each.
-pub const DRAWN_BODIES: usize = 10;
-
-/// The colour of a body without a contact in the space–time picture: sand, seen on the white
-/// page (white left such a body invisible).
-const NO_CONTACT: plotters::style::RGBColor = plotters::style::RGBColor(230, 195, 110);
-
-/// Most columns and rows of the space–time picture.
-const RASTER: (usize, usize) = (300, 200);
 
 /// What the arguments describe: the system, its name, the parameters the summary reports, and
 /// the friction parameters (whose `epsilon` the regularised treatment reads).
@@ -89,70 +79,6 @@ pub fn load(
     }
 }
 
-/// The space–time picture: body index against time, coloured by contact mode, sampled on at
-/// most [`RASTER`] columns and rows; with its data as a CSV table. The solution must hold a
-/// point (a run that failed before its first one has no picture).
-fn space_time(run: &Run, title: &str) -> (Raster, Table) {
-    let s = &run.solution;
-    let n = run.problem.system.bodies.len();
-    let (t0, t1) = (
-        s.t.first().copied().unwrap_or(0.0),
-        s.t.last().copied().unwrap_or(1.0),
-    );
-    let columns = RASTER.0.min(s.len().saturating_sub(1)).max(1);
-    let rows = n.min(RASTER.1);
-    let x_edges: Vec<f64> = (0..=columns)
-        .map(|c| t0 + (t1 - t0) * c as f64 / columns as f64)
-        .collect();
-    let body_of_row = |r: usize| r * n / rows;
-    let mut cells = Vec::with_capacity(columns * rows);
-    let mut table = Table::new(&["t_start", "t_end", "body", "mode"]);
-    let mut k = 0;
-    for c in 0..columns {
-        while k + 1 < s.len() && s.t[k] < x_edges[c] {
-            k += 1;
-        }
-        let modes = s.modes_at(k);
-        for r in 0..rows {
-            let i = body_of_row(r);
-            let mode = run.problem.layout.contact[i]
-                .map(|j| run.problem.reported_mode(j, s.y_at(k), modes));
-            cells.push(match mode {
-                None => 3,
-                Some(SLIP_POSITIVE) => 0,
-                Some(SLIP_NEGATIVE) => 1,
-                Some(_) => 2,
-            });
-            table.rows.push(vec![
-                Cell::Num(x_edges[c]),
-                Cell::Num(x_edges[c + 1]),
-                Cell::Text(run.problem.system.bodies[i].name.clone()),
-                Cell::Text(mode.map_or("none", mode_name).into()),
-            ]);
-        }
-    }
-    let raster = Raster {
-        title: format!("{title}: contact modes"),
-        x_label: "time t (s)".into(),
-        y_label: if rows < n {
-            format!("body index ({rows} of {n} bodies)")
-        } else {
-            "body index".into()
-        },
-        x_edges,
-        rows,
-        row_index: (0..rows).map(|r| body_of_row(r) + 1).collect(),
-        cells,
-        legend: vec![
-            (plot::RED, "slip+".into()),
-            (plot::BLUE, "slip-".into()),
-            (plotters::style::RGBColor(170, 170, 170), "stick".into()),
-            (NO_CONTACT, "no contact".into()),
-        ],
-    };
-    (raster, table)
-}
-
 /// The advice for a chain of a law of the user's own with a `spread` above 0: the spread
 /// scales the force levels of a law of the catalog, and an own law is the same on every block.
 fn unspread_warning(source: &ChainSource) -> Option<String> {
@@ -184,7 +110,8 @@ pub struct SystemRun<'a> {
     pub solver: Solver,
     /// The step control, bounds and output grid; its `t_end` is the run's.
     pub options: Options,
-    /// The bodies written to `trajectory.csv` (0-based), the first [`DRAWN_BODIES`] drawn.
+    /// The bodies written to `trajectory.csv` (0-based); the line figures draw a few spread over
+    /// them ([`spread`]).
     pub bodies: &'a [usize],
     /// The reading of a catalog model named for every contact (the chain's), if one was.
     pub variant: Option<Variant>,
@@ -266,14 +193,25 @@ pub fn simulate_system(
     let mut files = Artifacts::default();
     add_stiffness(&mut files, out, &stiffness, &title)?;
     if !run.solution.is_empty() {
-        let (raster, table) = space_time(&run, &title);
+        let sampling = Sampling::of(&run);
+        let (raster, table) = sampling.modes(&run, &title);
         files.add_table(out.join("space-time.csv"), table)?;
         files.add_raster(&out.join("space-time"), &raster)?;
+        let velocities = sampling.velocities(&run, &title);
+        files.add_raster(&out.join("velocity-space-time"), &velocities)?;
     }
-    // One colour each: the first bodies written, at most ten.
-    let drawn = bodies.len().min(DRAWN_BODIES);
-    add_motion(&mut files, out, &run, system, bodies, drawn, &title)?;
-    let spectra = add_spectra(&mut files, out, &run, system, &bodies[..drawn], &title)?;
+    // The line figures and the spectra: a few bodies spread over those written, one colour
+    // each.
+    let shown = spread(bodies, LINE_BODIES);
+    add_motion(
+        &mut files,
+        out,
+        &run,
+        system,
+        (&shown, bodies.len()),
+        &title,
+    )?;
+    let spectra = add_spectra(&mut files, out, &run, system, &shown, &title)?;
     let setup = RunSetup {
         system: name.clone(),
         model: common_model(system),

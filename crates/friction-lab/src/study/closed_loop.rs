@@ -512,7 +512,7 @@ fn error_figure(r: &ClosedLoops) -> Plot {
     Plot {
         title: "Servo at its set point: position error of each plant".into(),
         x_label: "time t (s)".into(),
-        y_label: "position error r - x (m)".into(),
+        y_label: "position error r − x (m)".into(),
         series: (r.regulation.iter().enumerate())
             .map(|(i, g)| Series {
                 label: Some(g.plant.to_string()),

@@ -30,7 +30,7 @@ pub use report::{conduct_all, Entry, ReportEntry};
 pub use scaling::ScalingStudy;
 pub use solver_studies::{Converge, Independence, Problem, Stiffness, WorkPrecision};
 pub use stick_slip::{
-    regime_series, Bifurcation, BifurcationStudy, StickSlipMap, StickSlipMapStudy,
+    regime_series, Bifurcation, BifurcationStudy, StickSlipMap, StickSlipMapStudy, REGIMES,
 };
 pub use stiffness::StiffnessStudy;
 pub use table2::{

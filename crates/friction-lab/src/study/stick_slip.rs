@@ -7,6 +7,7 @@ use super::{Study, StudyFiles};
 use crate::error::AppError;
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Marker, Plot, Series, BLUE, PALETTE};
+use plotters::style::RGBColor;
 use scenarios::settled::Settled;
 use scenarios::stick_slip::{
     bifurcation, log_space, map, stability_boundary, Branches, MapPoint, Regime,
@@ -24,10 +25,22 @@ fn boundary(base: &RunSpec) -> Result<Vec<f64>, ScenarioError> {
     Ok(stability_boundary(model.as_ref(), base.params.c, lo, hi, n))
 }
 
-/// The points of one regime as the figures draw them, each regime in its colour and marker
-/// (a dot for a sustained oscillation, a cross for the others), named `label`.
-pub fn regime_series(regime: Regime, label: &str, points: Vec<(f64, f64)>) -> Series {
-    let (color, marker) = match regime {
+/// What the figures call each regime, in legend order (one list for the map, the bifurcation
+/// diagram and a sweep's figure).
+pub const REGIMES: [(Regime, &str); 7] = [
+    (Regime::Hunting, "hunting (a limit cycle)"),
+    (Regime::Converged, "converged"),
+    (Regime::StickSlip, "stick-slip"),
+    (Regime::Oscillation, "oscillation without stick"),
+    (Regime::SteadySliding, "steady sliding"),
+    (Regime::Stuck, "carried by the surface all along"),
+    (Regime::Unsettled, "not settled (a transient)"),
+];
+
+/// The colour and marker of a regime in the figures: a dot for a sustained oscillation, a
+/// cross for the others.
+fn regime_style(regime: Regime) -> (RGBColor, Marker) {
+    match regime {
         Regime::StickSlip => (PALETTE[0], Marker::Dot),
         Regime::Oscillation => (PALETTE[2], Marker::Dot),
         Regime::SteadySliding => (BLUE, Marker::Cross),
@@ -35,7 +48,13 @@ pub fn regime_series(regime: Regime, label: &str, points: Vec<(f64, f64)>) -> Se
         Regime::Unsettled => (PALETTE[4], Marker::Cross),
         Regime::Hunting => (PALETTE[0], Marker::Dot),
         Regime::Converged => (BLUE, Marker::Cross),
-    };
+    }
+}
+
+/// The points of one regime as the figures draw them, in its colour and marker
+/// (`regime_style`), named `label`.
+pub fn regime_series(regime: Regime, label: &str, points: Vec<(f64, f64)>) -> Series {
+    let (color, marker) = regime_style(regime);
     Series {
         label: Some(label.into()),
         points,
@@ -130,20 +149,10 @@ impl Study for StickSlipMapStudy<'_> {
                 .map(|p| (p.v_belt, p.k))
                 .collect()
         };
-        let mut series: Vec<Series> = [
-            (Regime::StickSlip, "stick-slip"),
-            (Regime::Oscillation, "oscillation without stick"),
-            (Regime::SteadySliding, "steady sliding"),
-            (Regime::Stuck, "carried by the belt all along"),
-            (
-                Regime::Unsettled,
-                "not settled within 8 spans (a transient)",
-            ),
-        ]
-        .into_iter()
-        .map(|(regime, label)| regime_series(regime, label, at(regime)))
-        .filter(|s| !s.points.is_empty())
-        .collect();
+        let mut series: Vec<Series> = (REGIMES.into_iter())
+            .map(|(regime, label)| regime_series(regime, label, at(regime)))
+            .filter(|s| !s.points.is_empty())
+            .collect();
         let inside: Vec<f64> = boundary
             .iter()
             .copied()
@@ -237,45 +246,39 @@ impl Study for BifurcationStudy<'_> {
         }
         let csv = out.path(".csv");
         out.files.add_table(csv.clone(), table)?;
-        // A branch's settled amplitudes joined by a line; a run that did not settle is no
-        // amplitude of the branch: a cross of its own, apart.
-        let branch = |label: &str,
-                      pick: fn(&scenarios::stick_slip::Branches) -> &Settled,
-                      color,
-                      marker| Series {
-            label: Some(label.into()),
-            points: (branches.iter())
-                .filter(|b| Regime::of(pick(b), b.v_belt) != Regime::Unsettled)
-                .map(|b| (b.v_belt, pick(b).x_amplitude))
-                .collect(),
-            color,
-            width: 1,
-            marker,
-        };
-        let unsettled: Vec<(f64, f64)> = (branches.iter())
-            .flat_map(|b| [&b.from_rest, &b.from_sliding].map(|s| (b.v_belt, s)))
-            .filter(|(v, s)| Regime::of(s, *v) == Regime::Unsettled)
-            .map(|(v, s)| (v, s.x_amplitude))
-            .collect();
-        let mut series = vec![
-            branch("from rest", |b| &b.from_rest, PALETTE[0], Marker::Dot),
-            branch(
-                "from steady sliding",
-                |b| &b.from_sliding,
-                BLUE,
-                Marker::Cross,
-            ),
-            Series {
-                label: Some(format!(
-                    "not settled within 8 spans: {} run(s), amplitude at the end",
-                    unsettled.len()
-                )),
-                points: unsettled,
-                color: PALETTE[4],
-                width: 0,
-                marker: Marker::Cross,
-            },
+        // Each branch's points in the colour of their regime, filled from rest and open
+        // from steady sliding; its settled amplitudes joined by a thin grey line (a run
+        // that did not settle is no amplitude of the branch).
+        type Pick = fn(&Branches) -> &Settled;
+        let picks: [(&str, Pick, Marker); 2] = [
+            ("from rest", |b| &b.from_rest, Marker::Dot),
+            ("from steady sliding", |b| &b.from_sliding, Marker::Ring),
         ];
+        let mut series = Vec::new();
+        for (name, pick, marker) in picks {
+            series.push(Series {
+                label: None,
+                points: (branches.iter())
+                    .filter(|b| Regime::of(pick(b), b.v_belt) != Regime::Unsettled)
+                    .map(|b| (b.v_belt, pick(b).x_amplitude))
+                    .collect(),
+                color: RGBColor(170, 170, 170),
+                width: 1,
+                marker: Marker::None,
+            });
+            for (regime, label) in REGIMES {
+                series.push(Series {
+                    label: Some(format!("{label}, {name}")),
+                    points: (branches.iter())
+                        .filter(|b| Regime::of(pick(b), b.v_belt) == regime)
+                        .map(|b| (b.v_belt, pick(b).x_amplitude))
+                        .collect(),
+                    color: regime_style(regime).0,
+                    width: 0,
+                    marker,
+                });
+            }
+        }
         series.retain(|s| !s.points.is_empty());
         let top = branches
             .iter()
@@ -295,7 +298,7 @@ impl Study for BifurcationStudy<'_> {
             &Plot {
                 title: "Belt with CVS, k = 100 N/m: settled amplitude against belt speed".into(),
                 x_label: "belt speed v_belt (m/s)".into(),
-                y_label: "amplitude of x - v_mean*t (m)".into(),
+                y_label: "amplitude of x − v̄·t (m)".into(),
                 series,
                 legend: Corner::UpperRight,
                 log: false,

@@ -3,19 +3,7 @@
 
 use super::{Axis, PointResult};
 use crate::plot::{Corner, Marker, Plot, Series, PALETTE};
-use crate::study::regime_series;
-use scenarios::stick_slip::Regime;
-
-/// The labels of the regimes in a sweep's figure.
-const REGIMES: [(Regime, &str); 7] = [
-    (Regime::Hunting, "hunting (a limit cycle)"),
-    (Regime::Converged, "converged"),
-    (Regime::StickSlip, "stick-slip"),
-    (Regime::Oscillation, "oscillation without stick"),
-    (Regime::SteadySliding, "steady sliding"),
-    (Regime::Stuck, "carried by the surface all along"),
-    (Regime::Unsettled, "not settled (a transient)"),
-];
+use crate::study::{regime_series, REGIMES};
 
 /// Whether `values` are drawn on a log axis: all positive and spanning a decade or more.
 fn log_axis(values: &[f64]) -> bool {
