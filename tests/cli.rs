@@ -1005,6 +1005,8 @@ fn simulate_chain_writes_the_system_files() {
         "spectrum.png",
         "velocity-space-time.png",
         "velocity-space-time.svg",
+        "friction-velocity.png",
+        "friction-velocity.svg",
     ] {
         assert!(out.join(f).exists(), "{f}");
     }
@@ -4349,4 +4351,67 @@ fn figures_take_the_size_and_resolution_asked_for() {
         assert!(stderr(&o).contains(message), "{args:?}: {}", stderr(&o));
         assert!(!out.exists(), "{args:?} wrote nothing");
     }
+}
+
+/// A rig has a spectrum of its velocity: a viscously damped oscillator's dominant frequency is
+/// its damped natural frequency √(k/m − (μ_v/2m)²)/2π. `--window T0:T1` draws the figures over
+/// that span and measures the spectrum there, the data files keeping the whole run; a window
+/// outside the run exits 2.
+#[test]
+fn a_rigs_spectrum_finds_its_frequency_and_a_window_draws_a_span() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |name: &str, extra: &[&str]| {
+        let out = dir.path().join(name);
+        let mut args = vec!["simulate", "free-vibration", "--model", "viscous"];
+        args.extend(extra);
+        args.extend(["--out", out.to_str().unwrap()]);
+        (friction_lab(&args), out)
+    };
+    let json = |path: std::path::PathBuf| -> serde_json::Value {
+        serde_json::from_slice(&std::fs::read(path).unwrap()).unwrap()
+    };
+    let (o, whole) = run("whole", &[]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("body: dominant frequency"));
+    let spectrum = json(whole.join("spectrum.json"));
+    assert_eq!(
+        (spectrum["from"].as_f64(), spectrum["to"].as_f64()),
+        (Some(5.0), Some(10.0))
+    );
+    let (m, k, mu_v) = (1.0f64, 100.0f64, 0.5f64);
+    let damped = (k / m - (mu_v / (2.0 * m)).powi(2)).sqrt() / (2.0 * std::f64::consts::PI);
+    let found = spectrum["bodies"][0]["dominant_frequency"]
+        .as_f64()
+        .unwrap();
+    let resolution = spectrum["resolution"].as_f64().unwrap();
+    assert!(
+        (found - damped).abs() <= 0.1 * resolution,
+        "{found} Hz against {damped} Hz (resolution {resolution} Hz)"
+    );
+    let (o, window) = run("window", &["--window", "2:4"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let spectrum = json(window.join("spectrum.json"));
+    assert_eq!(
+        (spectrum["from"].as_f64(), spectrum["to"].as_f64()),
+        (Some(2.0), Some(4.0))
+    );
+    let svg = std::fs::read_to_string(window.join("history-v.svg")).unwrap();
+    assert!(svg.contains("t = 2…4 s"), "the title names the window");
+    let trajectory = std::fs::read_to_string(window.join("trajectory.csv")).unwrap();
+    assert_eq!(
+        trajectory.lines().last(),
+        std::fs::read_to_string(whole.join("trajectory.csv"))
+            .unwrap()
+            .lines()
+            .last(),
+        "the data keep the whole run"
+    );
+    let (o, out) = run("outside", &["--window", "4:12"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("--window 4:12: allowed 0 <= T0 < T1 <= 10 s"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!out.exists());
 }

@@ -132,6 +132,11 @@ pub struct SimulateArgs {
     /// them, spread evenly [default: all up to 20 bodies, else 20 evenly spaced].
     #[arg(long, value_name = "LIST", value_delimiter = ',')]
     pub bodies: Vec<String>,
+    /// The span of time the figures draw, T0:T1 in seconds (time histories, phase portraits,
+    /// friction plots, space-time pictures, stiffness), and the spectra measure [default: the
+    /// whole run; the spectra its last half]. The data files keep every point.
+    #[arg(long, value_name = "T0:T1")]
+    pub window: Option<String>,
     /// The solver.
     #[command(flatten)]
     pub solver: SolverOptions,
@@ -156,6 +161,7 @@ impl SimulateArgs {
             t_end: self.t_end,
             points: self.points,
             bodies: self.bodies.clone(),
+            window: self.window.clone(),
         }
     }
 }

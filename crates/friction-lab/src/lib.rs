@@ -44,3 +44,4 @@ pub mod testset;
 pub mod threads;
 pub mod trajectory;
 pub mod warnings;
+pub mod window;

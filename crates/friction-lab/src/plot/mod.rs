@@ -83,9 +83,10 @@ pub struct Plot {
     pub log: bool,
 }
 
-/// The labels plotters' mesh puts on each axis by default (`MeshStyle`'s `n_x_labels`,
-/// `n_y_labels`).
-const MESH_LABELS: usize = 10;
+/// The labels plotters' mesh puts on each axis by default (`MeshStyle`'s `n_x_labels` and
+/// `n_y_labels`, 11 in plotters 0.3.7's `chart/mesh.rs`; with 10 the check of whole numbers
+/// saw the ticks 5, 6, … where the mesh labelled 5, 5.5, 6, … and wrote "5, 5, 6").
+const MESH_LABELS: usize = 11;
 
 /// The colours of the figures: the paper's red for the model, blue and green beside it.
 pub const RED: RGBColor = RGBColor(200, 30, 30);
@@ -563,6 +564,35 @@ mod tests {
             let text = svg(&curve, Path::new("curve.svg"), &Format::default()).unwrap();
             assert_eq!(visible_circles(&text), 0, "{label}");
         }
+    }
+
+    #[test]
+    fn half_ticks_keep_their_decimals() {
+        // Time from 5 to 10 s: the mesh labels every half second, so no label loses its
+        // decimals ("5, 5, 6, 6" before).
+        let plot = Plot {
+            title: "window".into(),
+            x_label: "t".into(),
+            y_label: "v".into(),
+            series: vec![Series {
+                label: None,
+                points: (0..=50).map(|i| (5.0 + 0.1 * f64::from(i), 1.0)).collect(),
+                color: RED,
+                width: 1,
+                marker: Marker::None,
+            }],
+            legend: Corner::default(),
+            log: false,
+        };
+        let text = svg(&plot, Path::new("window.svg"), &Format::default()).unwrap();
+        let texts: Vec<&str> = (text.split("<text").skip(1))
+            .filter_map(|t| Some(t.split_once('>')?.1.split("</text>").next()?.trim()))
+            .collect();
+        assert!(
+            texts.contains(&"5.5") && texts.contains(&"6.0"),
+            "{texts:?}"
+        );
+        assert_eq!(texts.iter().filter(|t| **t == "5").count(), 0, "{texts:?}");
     }
 
     #[test]

@@ -7,7 +7,8 @@
 use crate::artifacts::Artifacts;
 use crate::error::AppError;
 use crate::plot::{Corner, Marker, Plot, Series, PALETTE};
-use friction_systems::{Run, System};
+use crate::window::Window;
+use friction_systems::{BodyState, Run};
 use std::path::Path;
 
 /// Most bodies a line figure draws: more lines over a long run are no longer told apart.
@@ -25,15 +26,15 @@ pub fn spread(bodies: &[usize], most: usize) -> Vec<usize> {
     }
 }
 
-/// Adds `velocity` and `phase-portrait` of the bodies `shown` (indices into `system`) of the
-/// `written` ones of `run` to `files`, in `out`.
+/// Adds `velocity`, `phase-portrait` and `friction-velocity` of the bodies `shown` (indices
+/// into the system) of the `written` ones of `run` to `files`, in `out`, over `window`.
 pub fn add_motion(
     files: &mut Artifacts,
     out: &Path,
     run: &Run,
-    system: &System,
     (shown, written): (&[usize], usize),
     title: &str,
+    window: Option<Window>,
 ) -> Result<(), AppError> {
     let of = |what: &str| match shown.len() < written {
         true => format!(
@@ -42,8 +43,16 @@ pub fn add_motion(
         ),
         false => format!("{title}: {what}"),
     };
-    let states: Vec<_> = shown.iter().map(|&i| (i, run.body(i))).collect();
-    let series = |point: &dyn Fn(&friction_systems::BodyState) -> (f64, f64)| {
+    let system = &run.problem.system;
+    let states: Vec<_> = (shown.iter())
+        .map(|&i| {
+            let states: Vec<BodyState> = (run.body(i).into_iter())
+                .filter(|b| Window::draws(window, b.t))
+                .collect();
+            (i, states)
+        })
+        .collect();
+    let series = |point: &dyn Fn(&BodyState) -> (f64, f64)| {
         (states.iter().enumerate())
             .map(|(c, (i, states))| Series {
                 label: Some(system.bodies[*i].name.clone()),
@@ -54,24 +63,53 @@ pub fn add_motion(
             })
             .collect()
     };
-    let velocity = Plot {
-        title: of("velocities"),
-        x_label: "time t (s)".into(),
-        y_label: "velocity v (m/s)".into(),
-        series: series(&|b| (b.t, b.v)),
+    let plot = |what: &str, x_label: &str, y_label: &str, series| Plot {
+        title: of(what),
+        x_label: x_label.into(),
+        y_label: y_label.into(),
+        series,
         legend: Corner::UpperRight,
         log: false,
     };
-    files.add_plot(&out.join("velocity"), &velocity)?;
-    let phase = Plot {
-        title: of("phase portraits"),
-        x_label: "displacement x (m)".into(),
-        y_label: "velocity v (m/s)".into(),
-        series: series(&|b| (b.x, b.v)),
-        legend: Corner::UpperRight,
-        log: false,
-    };
-    files.add_plot(&out.join("phase-portrait"), &phase)
+    let v = "velocity v (m/s)";
+    files.add_plot(
+        &out.join("velocity"),
+        &plot("velocities", "time t (s)", v, series(&|b| (b.t, b.v))),
+    )?;
+    files.add_plot(
+        &out.join("phase-portrait"),
+        &plot(
+            "phase portraits",
+            "displacement x (m)",
+            v,
+            series(&|b| (b.x, b.v)),
+        ),
+    )?;
+    // Friction against the velocity relative to the body's surface (the floor's 0, a belt's
+    // or a disc's own), for the bodies drawn that have a contact, in their colours above.
+    let friction: Vec<Series> = (states.iter().enumerate())
+        .filter_map(|(c, (i, states))| {
+            let contact = system.contacts.iter().find(|k| k.body == *i)?;
+            Some(Series {
+                label: Some(system.bodies[*i].name.clone()),
+                points: (states.iter())
+                    .map(|b| (b.v - contact.surface_velocity, b.friction))
+                    .collect(),
+                color: PALETTE[c],
+                width: 2,
+                marker: Marker::None,
+            })
+        })
+        .collect();
+    files.add_plot(
+        &out.join("friction-velocity"),
+        &plot(
+            "friction against relative velocity",
+            "relative velocity v − v_surface (m/s)",
+            "friction force F (N)",
+            friction,
+        ),
+    )
 }
 
 #[cfg(test)]

@@ -12,6 +12,7 @@ use crate::simulate::{chosen_bodies, load, simulate_rig, simulate_system, Descri
 use crate::sweep::RECORD_LIMIT;
 use crate::trajectory::TrajectoryAs;
 use crate::warnings::unread_warnings;
+use crate::window::Window;
 use friction_systems::chain::{ChainParams, CHAIN_PARAMETERS};
 use integrators::Options;
 use scenarios::chain::ChainSource;
@@ -97,6 +98,9 @@ pub struct Simulation {
     /// The bodies of a system written and drawn, as names or 1-based indices; empty: the
     /// default choice ([`chosen_bodies`]).
     pub bodies: Vec<String>,
+    /// The span of time the figures draw and the spectra measure, `T0:T1` in seconds
+    /// ([`Window::parse`]); `None`: the whole run.
+    pub window: Option<String>,
 }
 
 impl Simulation {
@@ -110,7 +114,15 @@ impl Simulation {
             t_end: None,
             points: None,
             bodies: Vec::new(),
+            window: None,
         }
+    }
+
+    /// `window`, checked against a run that ends at `t_end`.
+    pub fn checked_window(&self, t_end: f64) -> Result<Option<Window>, AppError> {
+        (self.window.as_deref())
+            .map(|text| Window::parse(text, t_end))
+            .transpose()
     }
 
     /// `t_end`, checked.
@@ -225,7 +237,11 @@ impl Simulation {
         let mut made = match &self.target {
             Target::Rig(scenario) => {
                 let spec = self.rig_spec(*scenario)?;
-                simulate_rig(&spec, &self.rig_law(*scenario)?.0, out, trajectory_as)?
+                let t_end = (spec.t_end)
+                    .unwrap_or_else(|| spec.scenario.default_t_end(&spec.params, &spec.friction));
+                let window = self.checked_window(t_end)?;
+                let model = self.rig_law(*scenario)?.0;
+                simulate_rig(&spec, &model, out, trajectory_as, window)?
             }
             _ => self.run_system(out, trajectory_as)?,
         };
@@ -240,6 +256,7 @@ impl Simulation {
         described.system.validate()?;
         let bodies = chosen_bodies(&described.system, &self.bodies)?;
         let t_end = self.system_t_end()?;
+        let window = self.checked_window(t_end)?;
         let points = self.system_points(friction_systems::Layout::of(&described.system).dim())?;
         let run = SystemRun {
             described: &described,
@@ -250,6 +267,7 @@ impl Simulation {
             variant: (self.model.as_ref())
                 .and_then(ModelChoice::catalog)
                 .map(|_| self.model_settings.variant),
+            window,
         };
         simulate_system(run, out, trajectory_as)
     }

@@ -1,6 +1,8 @@
 //! A rig's run: its files (trajectory, summary, events) and figures (time histories, phase
-//! portrait, friction against velocity and against displacement, stiffness along the run).
+//! portrait, friction against velocity and against displacement, stiffness along the run, the
+//! spectrum of the velocity).
 
+use super::spectra::{add_spectra, measured_span, Measured};
 use super::stiffness::add_stiffness;
 use crate::artifacts::{Artifacts, Made};
 use crate::error::AppError;
@@ -14,6 +16,7 @@ use crate::run_record::{
 use crate::scheme::SchemeName;
 use crate::trajectory::{Trajectory, TrajectoryAs};
 use crate::warnings::{coarse_step_warning, failure_warnings, stiffness_warning};
+use crate::window::Window;
 use friction_models::Parameters;
 use friction_systems::{BodyState, ContactEvent};
 use scenarios::closed_loop::ClosedLoop;
@@ -88,8 +91,8 @@ fn drawn_rows(o: &Outcome) -> Vec<&scenarios::Row> {
     out
 }
 
-/// The figures of a simulation: (file stem, title, x label, y label, points).
-fn figures(o: &Outcome, name: &str) -> Vec<(&'static str, Plot)> {
+/// The figures of a simulation over `window`: (file stem, plot).
+fn figures(o: &Outcome, name: &str, window: Option<Window>) -> Vec<(&'static str, Plot)> {
     type Pick = fn(&scenarios::Row) -> f64;
     let specs: [(&str, &str, &str, &str, Pick, Pick); 6] = [
         (
@@ -141,7 +144,9 @@ fn figures(o: &Outcome, name: &str) -> Vec<(&'static str, Plot)> {
             |r| r.friction,
         ),
     ];
-    let rows = drawn_rows(o);
+    let rows: Vec<&scenarios::Row> = (drawn_rows(o).into_iter())
+        .filter(|r| Window::draws(window, r.t))
+        .collect();
     specs
         .into_iter()
         .map(|(stem, what, xl, yl, fx, fy)| {
@@ -166,15 +171,53 @@ fn figures(o: &Outcome, name: &str) -> Vec<(&'static str, Plot)> {
         .collect()
 }
 
+/// The body's velocity over `window`, else over the last half of the run, at as many evenly
+/// spaced times as it has recorded points there (at most [`crate::spectrum::MAX_SAMPLES`]),
+/// interpolated linearly: a rig's recorded points are its output grid and its switches;
+/// `None` for fewer than eight.
+fn even_velocity(rows: &[scenarios::Row], window: Option<Window>) -> Option<Measured> {
+    let (first, last) = (rows.first()?.t, rows.last()?.t);
+    let (from, to) = measured_span(window, (first, last));
+    let inside = rows.iter().filter(|r| (from..=to).contains(&r.t)).count();
+    let n = inside.min(crate::spectrum::MAX_SAMPLES);
+    if n < 8 || to <= from {
+        return None;
+    }
+    let dt = (to - from) / (n - 1) as f64;
+    let mut k = 0;
+    let v = (0..n)
+        .map(|i| {
+            let t = from + i as f64 * dt;
+            while k + 2 < rows.len() && rows[k + 1].t <= t {
+                k += 1;
+            }
+            let (a, b) = (&rows[k], &rows[(k + 1).min(rows.len() - 1)]);
+            match b.t > a.t {
+                true => a.v + (b.v - a.v) * ((t - a.t) / (b.t - a.t)).clamp(0.0, 1.0),
+                false => b.v,
+            }
+        })
+        .collect();
+    Some(Measured {
+        from,
+        to,
+        dt,
+        bodies: vec![(RIG_BODY.to_string(), v)],
+    })
+}
+
 /// Simulates the rig of `spec` with `model` (the law of `spec`, named) and its files into
 /// `out`, in memory: `trajectory.csv` (or its columns), `summary.json`, `events.csv`, the
-/// time histories, phase portrait and friction curves, and the stiffness along the run. The
-/// warnings are the run's: its stiffness, a step too coarse for its time scale, why it failed.
+/// time histories, phase portrait and friction curves and the stiffness along the run (over
+/// `window` where one is given), and the spectrum of the velocity (over `window`, else the
+/// last half). The warnings are the run's: its stiffness, a step too coarse for its time
+/// scale, why it failed.
 pub fn simulate_rig(
     spec: &RunSpec,
     model: &ModelChoice,
     out: &Path,
     trajectory_as: TrajectoryAs,
+    window: Option<Window>,
 ) -> Result<Made, AppError> {
     let t_end = spec
         .t_end
@@ -192,15 +235,20 @@ pub fn simulate_rig(
 
     let has_state = spec.law.build(&spec.friction)?.n_states() > 0;
     let name = format!(
-        "{} with {model} ({method}, {} switching)",
+        "{} with {model} ({method}, {} switching{})",
         spec.scenario,
-        spec.switching.name()
+        spec.switching.name(),
+        Window::note(window)
     );
     let mut files = Artifacts::default();
-    for (stem, p) in figures(&outcome, &name) {
+    for (stem, p) in figures(&outcome, &name, window) {
         files.add_plot(&out.join(stem), &p)?;
     }
-    add_stiffness(&mut files, out, &outcome.stiffness, &name)?;
+    add_stiffness(&mut files, out, &outcome.stiffness, &name, window)?;
+    let spectra = match even_velocity(&outcome.rows, window) {
+        Some(measured) => add_spectra(&mut files, out, &measured, &name)?,
+        None => Vec::new(),
+    };
     let mut parameters = model.parameters_read(&spec.friction);
     for &p in spec.scenario.parameters() {
         let value = spec.params.value(p).expect("scenario parameters exist");
@@ -230,7 +278,9 @@ pub fn simulate_rig(
     Ok(Made {
         files,
         trajectory: columns,
-        notes: closed_loop.iter().map(|c| c.to_string()).collect(),
+        notes: (closed_loop.iter().map(|c| c.to_string()))
+            .chain(spectra)
+            .collect(),
         warnings: outcome
             .stiffness_detected_at
             .map(|t| stiffness_warning(spec.solver.name(), t))

@@ -5,6 +5,7 @@
 
 use crate::output::{Cell, Table};
 use crate::plot::{self, Raster};
+use crate::window::Window;
 use friction_systems::{mode_name, Run, SLIP_NEGATIVE, SLIP_POSITIVE};
 use plotters::style::RGBColor;
 
@@ -38,14 +39,16 @@ pub struct Sampling {
 }
 
 impl Sampling {
-    /// The sampling of `run`, whose solution holds a point.
-    pub fn of(run: &Run) -> Self {
+    /// The sampling of `run`, whose solution holds a point, over `window` (else its span).
+    pub fn of(run: &Run, window: Option<Window>) -> Self {
         let s = &run.solution;
         let bodies = run.problem.system.bodies.len();
-        let (t0, t1) = (
+        let (first, last) = (
             s.t.first().copied().unwrap_or(0.0),
             s.t.last().copied().unwrap_or(1.0),
         );
+        let (t0, t1) = window.map_or((first, last), |w| (w.from.max(first), w.to.min(last)));
+        let (t0, t1) = if t1 > t0 { (t0, t1) } else { (first, last) };
         let columns = RASTER.0.min(s.len().saturating_sub(1)).max(1);
         let x_edges: Vec<f64> = (0..=columns)
             .map(|c| t0 + (t1 - t0) * c as f64 / columns as f64)

@@ -9,6 +9,7 @@ use crate::error::AppError;
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Marker, Plot, Series, PALETTE};
 use crate::spectrum::Spectrum;
+use crate::window::Window;
 use friction_systems::{Run, System};
 use serde::Serialize;
 use std::path::Path;
@@ -37,38 +38,72 @@ struct SpectrumFile<'a> {
     bodies: Vec<Dominant<'a>>,
 }
 
-/// Adds the spectra of the velocities of `bodies` (indices into `system`) of `run` over the
-/// last half of its recorded span to `files`, in `out`; returns a line per body with its
-/// dominant frequency. A run of fewer than eight recorded points has none.
-pub fn add_spectra(
-    files: &mut Artifacts,
-    out: &Path,
+/// The velocities whose spectra are taken: each body's name and its samples, evenly spaced
+/// `dt` apart from `from` to `to`.
+pub struct Measured {
+    /// The first sample's time, s.
+    pub from: f64,
+    /// The last sample's time, s.
+    pub to: f64,
+    /// The spacing of the samples, s.
+    pub dt: f64,
+    /// Each body's name and velocity samples, m/s.
+    pub bodies: Vec<(String, Vec<f64>)>,
+}
+
+/// The span a spectrum is measured over: `window` where one is given, else the last half of
+/// `[t0, t1]`.
+pub fn measured_span(window: Option<Window>, (t0, t1): (f64, f64)) -> (f64, f64) {
+    window.map_or((t1 - MEASURED * (t1 - t0), t1), |w| (w.from, w.to))
+}
+
+/// The velocities of `bodies` of a system's `run` at its recorded points within `window`,
+/// else over the last half of the run (at most its last [`crate::spectrum::MAX_SAMPLES`]
+/// points; the system records its evenly spaced output grid only); `None` for fewer than
+/// eight points.
+pub fn system_velocities(
     run: &Run,
     system: &System,
     bodies: &[usize],
+    window: Option<Window>,
+) -> Option<Measured> {
+    let t = &run.solution.t;
+    let (&t0, &t1) = (t.first()?, t.last()?);
+    let (from, to) = measured_span(window, (t0, t1));
+    let start = t.partition_point(|&s| s < from);
+    let end = t.partition_point(|&s| s <= to);
+    // A longer span is measured over its last samples (`Spectrum::of`).
+    let start = start.max(end.saturating_sub(crate::spectrum::MAX_SAMPLES));
+    if end < start + 8 {
+        return None;
+    }
+    Some(Measured {
+        from: t[start],
+        to: t[end - 1],
+        dt: (t[end - 1] - t[start]) / (end - start - 1) as f64,
+        bodies: (bodies.iter())
+            .map(|&i| {
+                let v = (start..end).map(|k| run.body_at(i, k).v).collect();
+                (system.bodies[i].name.clone(), v)
+            })
+            .collect(),
+    })
+}
+
+/// Adds the spectra of `measured` to `files`, in `out`: `spectrum.csv`, `spectrum.json` and
+/// its figure; returns a line per body with its dominant frequency.
+pub fn add_spectra(
+    files: &mut Artifacts,
+    out: &Path,
+    measured: &Measured,
     title: &str,
 ) -> Result<Vec<String>, AppError> {
-    let t = &run.solution.t;
-    let (Some(&t0), Some(&t1)) = (t.first(), t.last()) else {
-        return Ok(Vec::new());
-    };
-    let start = t.partition_point(|&s| s < t1 - MEASURED * (t1 - t0));
-    // A longer span is measured over its last samples (`Spectrum::of`).
-    let start = start.max(t.len().saturating_sub(crate::spectrum::MAX_SAMPLES));
-    if t.len() - start < 8 {
-        return Ok(Vec::new());
-    }
-    // The system records its evenly spaced output grid only.
-    let dt = (t1 - t[start]) / (t.len() - start - 1) as f64;
-    let spectra: Vec<(usize, Spectrum)> = (bodies.iter())
-        .map(|&i| {
-            let v: Vec<f64> = (start..t.len()).map(|k| run.body_at(i, k).v).collect();
-            (i, Spectrum::of(&v, dt))
-        })
+    let (from, to) = (measured.from, measured.to);
+    let spectra: Vec<(&str, Spectrum)> = (measured.bodies.iter())
+        .map(|(name, v)| (name.as_str(), Spectrum::of(v, measured.dt)))
         .collect();
-    let name = |i: usize| system.bodies[i].name.as_str();
     let mut header = vec!["frequency"];
-    header.extend(spectra.iter().map(|(i, _)| name(*i)));
+    header.extend(spectra.iter().map(|(i, _)| *i));
     let mut table = Table::new(&header);
     let bins = spectra.first().map_or(0, |(_, s)| s.frequency.len());
     for k in 0..bins {
@@ -84,12 +119,12 @@ pub fn add_spectra(
     files.add_json(
         out.join("spectrum.json"),
         &SpectrumFile {
-            from: t[start],
-            to: t1,
+            from,
+            to,
             resolution,
             bodies: (spectra.iter())
                 .map(|(i, s)| Dominant {
-                    body: name(*i),
+                    body: i,
                     dominant_frequency: s.dominant,
                     amplitude: s.dominant_amplitude,
                 })
@@ -97,15 +132,12 @@ pub fn add_spectra(
         },
     )?;
     let plot = Plot {
-        title: format!(
-            "{title}: spectrum of v over t = {:.3}…{:.3} s",
-            t[start], t1
-        ),
+        title: format!("{title}: spectrum of v over t = {from:.3}…{to:.3} s"),
         x_label: "frequency f (Hz)".into(),
         y_label: "amplitude of v (m/s)".into(),
         series: (spectra.iter().enumerate())
             .map(|(c, (i, s))| Series {
-                label: Some(name(*i).to_string()),
+                label: Some(i.to_string()),
                 points: (s.frequency.iter().copied())
                     .zip(s.amplitude.iter().copied())
                     .collect(),
@@ -121,10 +153,9 @@ pub fn add_spectra(
     Ok((spectra.iter())
         .map(|(i, s)| match (s.dominant, s.dominant_amplitude) {
             (Some(f), Some(a)) => format!(
-                "{}: dominant frequency {f:.4} Hz (amplitude {a:.3e} m/s, resolution {resolution:.3e} Hz)",
-                name(*i)
+                "{i}: dominant frequency {f:.4} Hz (amplitude {a:.3e} m/s, resolution {resolution:.3e} Hz)"
             ),
-            _ => format!("{}: no oscillation in the last half of the run", name(*i)),
+            _ => format!("{i}: no oscillation in the span measured"),
         })
         .collect())
 }

@@ -5,15 +5,16 @@ use crate::artifacts::Artifacts;
 use crate::error::AppError;
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Marker, Plot, Series, BLUE, RED};
+use crate::window::Window;
 use friction_systems::StiffnessPoint;
 use std::path::Path;
 
 /// `log10(h·ρ)` against t, with Dormand–Prince's stability boundary on the negative real axis
 /// (h·ρ ≈ 3.3) as a line: above it an explicit step of that size is unstable on the stiffest
 /// mode.
-fn stiffness_plot(stiffness: &[StiffnessPoint], name: &str) -> Plot {
+fn stiffness_plot(stiffness: &[StiffnessPoint], name: &str, window: Option<Window>) -> Plot {
     let points: Vec<(f64, f64)> = (stiffness.iter())
-        .filter(|p| p.h_rho > 0.0)
+        .filter(|p| p.h_rho > 0.0 && Window::draws(window, p.t))
         .map(|p| (p.t, p.h_rho.log10()))
         .collect();
     let (t0, t1) = (
@@ -47,12 +48,13 @@ fn stiffness_plot(stiffness: &[StiffnessPoint], name: &str) -> Plot {
 }
 
 /// `stiffness.csv` (t, h, ρ and h·ρ at each point of `stiffness`) and its figure
-/// `stiffness.png`/`.svg`, for the run `name` (none for a run without points).
+/// `stiffness.png`/`.svg` over `window`, for the run `name` (none for a run without points).
 pub fn add_stiffness(
     files: &mut Artifacts,
     out: &Path,
     stiffness: &[StiffnessPoint],
     name: &str,
+    window: Option<Window>,
 ) -> Result<(), AppError> {
     if stiffness.is_empty() {
         return Ok(());
@@ -65,7 +67,10 @@ pub fn add_stiffness(
             .push([p.t, p.h, p.rho, p.h_rho].map(Cell::Num).to_vec());
     }
     files.add_table(path.clone(), table)?;
-    files.add_plot(&out.join("stiffness"), &stiffness_plot(stiffness, name))
+    files.add_plot(
+        &out.join("stiffness"),
+        &stiffness_plot(stiffness, name, window),
+    )
 }
 
 /// Dormand–Prince's stability boundary on the negative real axis (Hairer & Wanner, *Solving

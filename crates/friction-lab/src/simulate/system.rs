@@ -4,7 +4,7 @@
 
 use super::motion::{add_motion, spread, LINE_BODIES};
 use super::space_time::Sampling;
-use super::spectra::add_spectra;
+use super::spectra::{add_spectra, system_velocities};
 use super::stiffness::add_stiffness;
 use crate::artifacts::{Artifacts, Made};
 use crate::error::AppError;
@@ -16,6 +16,7 @@ use crate::run_record::{
 };
 use crate::scheme::SchemeName;
 use crate::trajectory::{Trajectory, TrajectoryAs};
+use crate::window::Window;
 use friction_models::{FrictionParams, Variant};
 use friction_systems::{Run, System, SLIP_POSITIVE};
 use integrators::{Options, Solver};
@@ -115,6 +116,9 @@ pub struct SystemRun<'a> {
     pub bodies: &'a [usize],
     /// The reading of a catalog model named for every contact (the chain's), if one was.
     pub variant: Option<Variant>,
+    /// The span of time the figures draw and the spectra measure; `None`: the whole run (the
+    /// spectra its last half).
+    pub window: Option<Window>,
 }
 
 /// The closed loop of the system's first controller ([`ClosedLoop`]), read off its body's
@@ -162,6 +166,7 @@ pub fn simulate_system(
         options,
         bodies,
         variant,
+        window,
     } = run;
     let Described {
         system,
@@ -189,11 +194,15 @@ pub fn simulate_system(
     let stiffness = run.stiffness(&step_ends);
     drop(step_ends);
 
-    let title = format!("{name} ({method}, {} switching)", switching.name());
+    let title = format!(
+        "{name} ({method}, {} switching{})",
+        switching.name(),
+        Window::note(window)
+    );
     let mut files = Artifacts::default();
-    add_stiffness(&mut files, out, &stiffness, &title)?;
+    add_stiffness(&mut files, out, &stiffness, &title, window)?;
     if !run.solution.is_empty() {
-        let sampling = Sampling::of(&run);
+        let sampling = Sampling::of(&run, window);
         let (raster, table) = sampling.modes(&run, &title);
         files.add_table(out.join("space-time.csv"), table)?;
         files.add_raster(&out.join("space-time"), &raster)?;
@@ -207,11 +216,14 @@ pub fn simulate_system(
         &mut files,
         out,
         &run,
-        system,
         (&shown, bodies.len()),
         &title,
+        window,
     )?;
-    let spectra = add_spectra(&mut files, out, &run, system, &shown, &title)?;
+    let spectra = match system_velocities(&run, system, &shown, window) {
+        Some(measured) => add_spectra(&mut files, out, &measured, &title)?,
+        None => Vec::new(),
+    };
     let setup = RunSetup {
         system: name.clone(),
         model: common_model(system),
