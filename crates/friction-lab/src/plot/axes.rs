@@ -1,4 +1,5 @@
-//! The axes of a plot: the ranges of the data, padded, and the ticks and labels of a log axis.
+//! The axes of a plot: the ranges of the data, padded, the ticks and labels of a log axis,
+//! and the one number of decimals of a linear axis's labels.
 
 use super::{drawable, Marker, Plot};
 
@@ -172,9 +173,66 @@ pub(super) fn tick_label(v: f64, form: TickForm) -> String {
     }
 }
 
+/// The most decimals a linear axis's labels take; an axis whose ticks need more keeps
+/// plotters' own labels.
+const MAX_DECIMALS: usize = 6;
+
+/// The number of decimals with which every labelled tick `keys` of a linear axis is written,
+/// the same for all ("0.00, 0.05, 0.10", where plotters wrote "0.0, 0.05, 0.1"; "8", not
+/// "8.0"): the fewest, up to [`MAX_DECIMALS`], at which each key written and read back is
+/// itself to a millionth of the ticks' spacing. `None` for ticks that need more, or that are
+/// too large for decimals (1e7 and over).
+pub(super) fn common_decimals(keys: &[f64]) -> Option<usize> {
+    let mut sorted: Vec<f64> = keys.iter().copied().filter(|k| k.is_finite()).collect();
+    sorted.sort_by(f64::total_cmp);
+    let largest = sorted.iter().fold(0.0f64, |m, k| m.max(k.abs()));
+    if sorted.is_empty() || largest >= 1e7 {
+        return None;
+    }
+    let spacing = (sorted.windows(2))
+        .map(|w| w[1] - w[0])
+        .filter(|d| *d > 0.0)
+        .fold(f64::INFINITY, f64::min);
+    let scale = if spacing.is_finite() {
+        spacing
+    } else {
+        largest.max(1.0)
+    };
+    (0..=MAX_DECIMALS).find(|&d| {
+        (sorted.iter()).all(|k| {
+            let written: f64 = format!("{k:.d$}").parse().unwrap_or(f64::NAN);
+            (written - k).abs() <= 1e-6 * scale
+        })
+    })
+}
+
+/// `v` written with `decimals` decimals, a rounding of zero written without its sign.
+pub(super) fn fixed(v: f64, decimals: usize) -> String {
+    let text = format!("{v:.decimals$}");
+    match text.parse::<f64>() {
+        Ok(0.0) => format!("{:.decimals$}", 0.0),
+        _ => text,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_linear_axis_writes_all_its_labels_with_one_number_of_decimals() {
+        assert_eq!(common_decimals(&[-0.15, -0.1, -0.05, 0.0, 0.05]), Some(2));
+        assert_eq!(common_decimals(&[0.0, 2.0, 4.0, 8.0]), Some(0));
+        assert_eq!(common_decimals(&[0.0, 0.25, 0.5, 0.75]), Some(2));
+        assert_eq!(common_decimals(&[1.5, 2.0, 2.5]), Some(1));
+        // A sum of steps off by a rounding still reads as its decimal.
+        assert_eq!(common_decimals(&[0.1, 0.2, 0.30000000000000004]), Some(1));
+        assert_eq!(common_decimals(&[1e-8, 2e-8]), None);
+        assert_eq!(common_decimals(&[1e7, 2e7]), None);
+        assert_eq!(common_decimals(&[3.0]), Some(0));
+        assert_eq!(fixed(-0.0000001, 2), "0.00");
+        assert_eq!(fixed(-0.1, 2), "-0.10");
+    }
     use crate::plot::{Corner, Marker, Series, RED};
 
     /// A plot of dotted runs at `xs` (y = x) on log axes.

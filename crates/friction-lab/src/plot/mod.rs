@@ -12,7 +12,7 @@ mod raster;
 mod scaled;
 
 use crate::error::AppError;
-use axes::{log_ticks, sample_ticks, tick_label, TickForm};
+use axes::{common_decimals, fixed, log_ticks, sample_ticks, tick_label, TickForm};
 pub use format::{Format, DESIGN_DPI};
 use glyphs::Glyphs;
 pub use legend::Corner;
@@ -216,12 +216,6 @@ fn draw<DB: DrawingBackend>(
     root.present().map_err(err)
 }
 
-/// Whether the labelled ticks `keys` of an axis are all whole numbers, which are then labelled
-/// without decimals ("8", where plotters writes "8.0").
-fn whole_numbers(keys: &[f64]) -> bool {
-    keys.iter().all(|v| v.fract() == 0.0 && v.abs() < 1e15)
-}
-
 /// A whole number's tick label.
 fn whole_label(v: &f64) -> String {
     format!("{}", *v as i64)
@@ -292,20 +286,20 @@ where
             v
         }
     };
-    // An axis whose labelled ticks are all whole numbers (plotters' ten a mesh labels) is
-    // labelled without decimals; plotters writes at least one ("8.0").
-    let whole = |keys: Vec<f64>| whole_numbers(&keys);
+    // Each linear axis writes all its labels with one number of decimals (`common_decimals`
+    // of the ticks the mesh labels); plotters writes "0.0" beside "0.05", and "8.0".
+    let decimals = |keys: Vec<f64>| common_decimals(&keys);
     let spec = chart.as_coord_spec();
-    let (x_whole, y_whole) = (
-        whole(spec.x_spec().key_points(MESH_LABELS)),
-        whole(spec.y_spec().key_points(MESH_LABELS)),
+    let (x_decimals, y_decimals) = (
+        decimals(spec.x_spec().key_points(MESH_LABELS)),
+        decimals(spec.y_spec().key_points(MESH_LABELS)),
     );
-    let linear = |v: f64, whole: bool, format: fn(&f64) -> String| match whole {
-        true => whole_label(&v),
-        false => format(&v),
+    let linear = |v: f64, decimals: Option<usize>, format: fn(&f64) -> String| match decimals {
+        Some(d) => fixed(v, d),
+        None => format(&v),
     };
-    let x_tick = |v: &f64| linear(zero(*v, &xr), x_whole, X::format);
-    let y_tick = |v: &f64| linear(zero(*v, &yr), y_whole, Y::format);
+    let x_tick = |v: &f64| linear(zero(*v, &xr), x_decimals, X::format);
+    let y_tick = |v: &f64| linear(zero(*v, &yr), y_decimals, Y::format);
     let (area_w, area_h) = chart.plotting_area().dim_in_pixel();
     let names = axis_name_size([(&plot.x_label, area_w), (&plot.y_label, area_h)]);
     let mut mesh = chart.configure_mesh();
@@ -683,6 +677,108 @@ mod tests {
         assert!(text.starts_with("<svg width=\"3.5in\" height=\"2.6in\" viewBox=\"0 0 525 390\""));
         assert!(text.contains("font-family=\"DejaVu Sans, Verdana, Arial, sans-serif\""));
         assert!(!text.contains("font-family=\"sans-serif\""));
+    }
+
+    /// The numbers of attribute `name` in each element `<tag …>` of an SVG.
+    fn attributes(svg: &str, tag: &str, name: &str) -> Vec<f64> {
+        (svg.split(&format!("<{tag} ")).skip(1))
+            .filter_map(|e| {
+                let e = format!(" {e}");
+                let value = e.split(&format!(" {name}=\"")).nth(1)?.split('"').next()?;
+                value.parse().ok()
+            })
+            .collect()
+    }
+
+    #[test]
+    fn every_figure_kind_draws_at_its_size_and_keeps_its_legend_off_the_data() {
+        let dots = |label: &str, points: Vec<(f64, f64)>, color| Series {
+            label: Some(label.into()),
+            points,
+            color,
+            width: 0,
+            marker: Marker::Dot,
+        };
+        let plot = |series, log| Plot {
+            title: "kind".into(),
+            x_label: "time t (s)".into(),
+            y_label: "velocity v (m/s)".into(),
+            series,
+            legend: Corner::UpperLeft,
+            log,
+        };
+        let rising: Vec<(f64, f64)> = (1..=30).map(|i| (f64::from(i), f64::from(i))).collect();
+        let falling: Vec<(f64, f64)> = (0..=12)
+            .map(|i| {
+                (
+                    10f64.powf(f64::from(i) / 4.0),
+                    10f64.powf(-f64::from(i) / 2.0),
+                )
+            })
+            .collect();
+        let grid: Vec<(f64, f64)> = (1..=15)
+            .flat_map(|i| (1..=15).map(move |j| (f64::from(i), f64::from(j))))
+            .collect();
+        let curve = plot(vec![dots("rising", rising, RED)], false);
+        let log = plot(vec![dots("falling", falling, BLUE)], true);
+        let map = plot(vec![dots("a grid", grid, GREEN)], false);
+        let raster = Raster {
+            title: "modes".into(),
+            x_label: "time t (s)".into(),
+            y_label: "body index".into(),
+            x_edges: vec![0.0, 1.0, 2.0],
+            rows: 3,
+            row_index: vec![],
+            cells: vec![0, 1, 0, 1, 0, 1],
+            legend: vec![(RED, "slip+".into()), (BLUE, "stick".into())],
+        };
+        for format in [
+            Format::default(),
+            Format::parse(Some("3.5x2.6"), Some(300.0)).unwrap(),
+        ] {
+            let kinds: [(&str, &[Plot]); 4] = [
+                ("curve", std::slice::from_ref(&curve)),
+                ("log", std::slice::from_ref(&log)),
+                ("map", std::slice::from_ref(&map)),
+                ("panels", &[curve.clone(), log.clone()]),
+            ];
+            for (kind, plots) in kinds {
+                let design = canvas(plots, &format);
+                let png = decoded(&png_panels(plots, Path::new("k.png"), &format).unwrap());
+                assert_eq!((png.0, png.1), format.pixels(design), "{kind}");
+                let svg = svg_panels(plots, Path::new("k.svg"), &format).unwrap();
+                let view = format!("viewBox=\"0 0 {} {}\"", design.0, design.1);
+                assert!(svg.contains(&view), "{kind}: {view}");
+                // A legend inside the axes (the white box of opacity 0.85) covers none of the
+                // data's dots (drawn before the legend's key: the first circles).
+                let [one] = plots else { continue };
+                let dots: usize = one.series.iter().map(|s| s.points.len()).sum();
+                let (cx, cy) = (
+                    attributes(&svg, "circle", "cx"),
+                    attributes(&svg, "circle", "cy"),
+                );
+                assert!(cx.len() > dots, "{kind}: {} circles", cx.len());
+                let boxes: Vec<&str> = (svg.split("<rect ").skip(1))
+                    .filter(|r| r.contains("opacity=\"0.85\""))
+                    .collect();
+                assert_eq!(boxes.len(), 1, "{kind}: one legend");
+                for b in boxes {
+                    let n = |name: &str| attributes(&format!("<rect {b}"), "rect", name)[0];
+                    let (x, y, w, h) = (n("x"), n("y"), n("width"), n("height"));
+                    // The grid fills every corner: its legend is beside the panel.
+                    let beside = x >= f64::from(format.design(1).0);
+                    assert_eq!(beside, kind == "map", "{kind}: legend at x = {x}");
+                    for (px, py) in cx.iter().zip(&cy).take(dots) {
+                        let inside = (x..=x + w).contains(px) && (y..=y + h).contains(py);
+                        assert!(!inside, "{kind}: a dot at ({px}, {py}) under the legend");
+                    }
+                }
+            }
+            // The map's legend is beside: the canvas is wider than a panel by its strip.
+            assert!(canvas(std::slice::from_ref(&map), &format).0 > format.design(1).0);
+            let png = decoded(&raster_png(&raster, Path::new("r.png"), &format).unwrap());
+            assert_eq!((png.0, png.1), format.pixels(raster.size(&format)));
+        }
     }
 
     #[test]

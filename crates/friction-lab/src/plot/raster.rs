@@ -1,7 +1,8 @@
 //! A raster of coloured cells over time and an index: a chain's contact modes.
 
+use super::axes::{common_decimals, fixed};
 use super::legend::{box_pixels, draw_box, LEGEND_BOX};
-use super::{render_png, render_svg, whole_label, whole_numbers, Format, FAMILY, MESH_LABELS};
+use super::{render_png, render_svg, whole_label, Format, FAMILY, MESH_LABELS};
 use crate::error::AppError;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -51,7 +52,7 @@ impl Raster {
 
     /// The canvas: a one-panel figure of `format` for the cells and their axes, and a strip
     /// on the right for the legend, so that it covers no cell and takes no width from them.
-    fn size(&self, format: &Format) -> (u32, u32) {
+    pub(super) fn size(&self, format: &Format) -> (u32, u32) {
         let labels: Vec<&str> = self.shown().iter().map(|e| e.1.as_str()).collect();
         let (w, h) = format.design(1);
         (w + box_pixels(&labels).0.ceil() as u32, h)
@@ -104,9 +105,11 @@ fn draw_raster<DB: DrawingBackend>(
         })
     });
     chart.draw_series(cells).map_err(err)?;
-    // Whole seconds labelled without decimals; the index axis labelled at whole rows only
-    // ([`row_ticks`]), drawn here: plotters would label it between rows.
-    let x_whole = whole_numbers(&chart.as_coord_spec().x_spec().key_points(MESH_LABELS));
+    // Time labelled with one number of decimals (none for whole seconds); the index axis
+    // labelled at whole rows only ([`row_ticks`]), drawn here: plotters would label it
+    // between rows.
+    let x_decimals = common_decimals(&chart.as_coord_spec().x_spec().key_points(MESH_LABELS));
+    let x_label = |v: &f64| fixed(*v, x_decimals.unwrap_or(0));
     let mut mesh = chart.configure_mesh();
     mesh.disable_mesh()
         .y_labels(0)
@@ -114,8 +117,8 @@ fn draw_raster<DB: DrawingBackend>(
         .y_desc(r.y_label.as_str())
         .label_style((FAMILY, 15))
         .axis_desc_style((FAMILY, 17));
-    if x_whole {
-        mesh.x_label_formatter(&whole_label);
+    if x_decimals.is_some() {
+        mesh.x_label_formatter(&x_label);
     }
     mesh.draw().map_err(err)?;
     let label = TextStyle::from((FAMILY, 15).into_font()).pos(Pos::new(HPos::Right, VPos::Center));
