@@ -29,12 +29,12 @@ pub struct Cli {
     /// The command to run.
     #[command(subcommand)]
     pub command: Command,
-    /// Size of a one-panel figure in inches, WIDTHxHEIGHT (default 6x4; a journal column
-    /// 3.5x2.6): the text keeps its size in points, so a smaller figure is a denser one;
-    /// panels side by side each take this size.
+    /// Size of a one-panel figure in inches, WIDTHxHEIGHT (default 3.5x2.6, a journal's
+    /// column; 6x4 a page): the text keeps its size in points, so a smaller figure is a denser
+    /// one; panels side by side each take this size.
     #[arg(long, global = true, value_name = "WxH")]
     pub figure_size: Option<String>,
-    /// Resolution of the PNG figures, pixels per inch (default 150; 300 or 600 for print).
+    /// Resolution of the PNG figures, pixels per inch (default 300, for print; 150 on screen).
     /// SVG figures state their size in inches and scale without it.
     #[arg(long, global = true, value_name = "DPI", allow_hyphen_values = true)]
     pub dpi: Option<f64>,

@@ -28,11 +28,12 @@ pub struct Format {
 }
 
 impl Default for Format {
-    /// 6 × 4 in at 150 dpi: 900 × 600 pixels.
+    /// A journal's column: 3.5 × 2.6 in (89 mm wide) at 300 dpi, 1050 × 780 pixels (a legend
+    /// that covers data goes below the axes and makes the figure higher, not wider).
     fn default() -> Self {
         Format {
-            size: (6.0, 4.0),
-            dpi: DESIGN_DPI,
+            size: (3.5, 2.6),
+            dpi: 300.0,
         }
     }
 }
@@ -142,7 +143,9 @@ mod tests {
         assert_eq!(f.pixels(f.design(1)), (1050, 780));
         assert_eq!(f.design(2), (1050, 390));
         assert_eq!(Format::parse(None, None).unwrap(), Format::default());
-        assert_eq!(Format::default().design(1), (900, 600));
+        assert_eq!(Format::default().design(1), (525, 390));
+        let page = Format::parse(Some("6x4"), Some(150.0)).unwrap();
+        assert_eq!(page.pixels(page.design(1)), (900, 600));
         let message = |size: Option<&str>, dpi: Option<f64>| {
             Format::parse(size, dpi).unwrap_err().to_string()
         };

@@ -24,7 +24,7 @@ pub enum Corner {
 
 /// The plotting area of a panel of `panel` design pixels inside its label areas, margins and
 /// caption, pixels: 100 narrower and 107 lower (measured on the drawn figures: 800 × 493 in a
-/// 900 × 600 panel).
+/// 900 × 600 panel; the same margins in any panel).
 pub(super) fn plot_area((w, h): (u32, u32)) -> (f64, f64) {
     (f64::from(w) - 100.0, f64::from(h) - 107.0)
 }
@@ -64,23 +64,36 @@ pub(super) enum LegendPlace {
     Inside(Corner),
     /// Beside the plotting area, on its right, level with its top.
     Beside,
+    /// Below the panel, level with the plotting area's left: for a panel narrower than
+    /// [`BESIDE_MIN_WIDTH`], which a strip beside would widen past a journal's column.
+    Below,
 }
+
+/// The narrowest panel, design pixels, beside which a legend goes (4.7 in at 150 px/in); a
+/// narrower one (a column figure, 3.5 in) takes it below.
+pub(super) const BESIDE_MIN_WIDTH: u32 = 700;
 
 /// The axes' ranges as [`bounds`] gives them, and where the legend goes: in the corner of
 /// [`legend_corner`] if it covers no data there, else beside the plot (a stick–slip map's grid
 /// of markers; the nine methods of a chain's work–precision plot, whose curves reach every
 /// corner: raising the y range above the data, as done before, left six empty decades), unless
 /// it is taller than the panel below the plotting area's top, when it stays in the corner
-/// where it covers least. The panel is `panel` design pixels.
+/// where it covers least; below the panel where the panel is narrow. The panel is `panel`
+/// design pixels.
 pub(super) fn layout(plot: &Plot, panel: (u32, u32)) -> (Bounds, LegendPlace) {
     let fitted = bounds(plot);
     let (corner, covered) = legend_corner(plot, fitted, panel);
     let below_top = f64::from(panel.1) - PLOT_TOP;
-    if covered == 0 || legend_pixels(plot).1 > below_top {
-        (fitted, LegendPlace::Inside(corner))
+    let place = if covered == 0 {
+        LegendPlace::Inside(corner)
+    } else if panel.0 < BESIDE_MIN_WIDTH {
+        LegendPlace::Below
+    } else if legend_pixels(plot).1 > below_top {
+        LegendPlace::Inside(corner)
     } else {
-        (fitted, LegendPlace::Beside)
-    }
+        LegendPlace::Beside
+    };
+    (fitted, place)
 }
 
 /// The legend box of `plot` with its gap and margin, as fractions of the plotting area's width
@@ -182,6 +195,7 @@ fn legend_corner(plot: &Plot, ((x0, x1), (y0, y1)): Bounds, panel: (u32, u32)) -
 pub(super) enum LegendTarget<'b, DB: DrawingBackend> {
     Corner(Corner),
     Strip(&'b DrawingArea<DB, Shift>),
+    Below(&'b DrawingArea<DB, Shift>),
 }
 
 /// A legend's key: a line sample, a cross and a dot, in pixels from the key's left end, the
@@ -210,35 +224,36 @@ pub(super) fn key(color: RGBColor, marker: Marker, width: u32) -> Key {
     )
 }
 
-/// The legend of `plot` drawn in `area`, a strip beside its plotting area, its box's top at
-/// `top` pixels of the strip: the box, key and text of plotters' own legend.
-pub(super) fn draw_legend_beside<DB: DrawingBackend>(
+/// The legend of `plot` drawn in `area`, a strip beside or below its plotting area, its
+/// box's upper left corner at `at` pixels of the strip: the box, key and text of plotters' own
+/// legend.
+pub(super) fn draw_legend_in_strip<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     plot: &Plot,
-    top: i32,
+    at: (i32, i32),
 ) -> Result<(), String> {
     let labelled: Vec<&Series> = plot.series.iter().filter(|s| s.label.is_some()).collect();
     let labels: Vec<&str> = labelled.iter().filter_map(|s| s.label.as_deref()).collect();
-    draw_box(area, &labels, top, |k, at| {
+    draw_box(area, &labels, at, |k, at| {
         let s = labelled[k];
         let (line, cross, dot, ring) = key(s.color, s.marker, s.width);
         area.draw(&(EmptyElement::at(at) + line + cross + dot + ring))
     })
 }
 
-/// A legend box of `labels` drawn in `area`, its top at `top` pixels of the area: the box of
-/// plotters' own legend, each label's key drawn by `key(k, left end of the key)`, then its
-/// text.
+/// A legend box of `labels` drawn in `area`, its upper left corner at (`left`, `top`) pixels
+/// of the area: the box of plotters' own legend, each label's key drawn by `key(k, left end of
+/// the key)`, then its text.
 pub(super) fn draw_box<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     labels: &[&str],
-    top: i32,
+    (left, top): (i32, i32),
     key: impl Fn(usize, (i32, i32)) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>>,
 ) -> Result<(), String> {
     let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
     let b = &LEGEND_BOX;
     let (w, h) = box_pixels(labels);
-    let corner = |x: f64, y: f64| (x as i32, top + y as i32);
+    let corner = |x: f64, y: f64| (left + x as i32, top + y as i32);
     let (x0, x1) = (0.0, w - b.gap - b.margin);
     let height = h - b.gap - b.margin;
     let frame = [corner(x0, 0.0), corner(x1, height)];
@@ -327,7 +342,8 @@ mod tests {
             };
             assert!(legend_corner(&map, bounds(&map), PANEL).1 > 0);
             assert_eq!(layout(&map, PANEL), (bounds(&map), LegendPlace::Beside));
-            let svg = svg(&map, Path::new("map.svg"), &Format::default()).unwrap();
+            let page = Format::parse(Some("6x4"), Some(150.0)).unwrap();
+            let svg = svg(&map, Path::new("map.svg"), &page).unwrap();
             let rightmost = svg
                 .split("<circle cx=\"")
                 .skip(1)

@@ -17,7 +17,7 @@ pub use format::{Format, DESIGN_DPI};
 use glyphs::Glyphs;
 pub use legend::Corner;
 use legend::{
-    draw_legend_beside, key, layout, legend_pixels, LegendPlace, LegendTarget, LEGEND_BOX,
+    draw_legend_in_strip, key, layout, legend_pixels, LegendPlace, LegendTarget, LEGEND_BOX,
     LEGEND_FONT,
 };
 use plotters::coord::ranged1d::ValueFormatter;
@@ -140,7 +140,7 @@ fn panel_widths(plots: &[Plot], panel: (u32, u32)) -> Vec<u32> {
     (plots.iter())
         .map(|plot| match layout(plot, panel).1 {
             LegendPlace::Beside => panel.0 + strip_width(plot),
-            LegendPlace::Inside(_) => panel.0,
+            LegendPlace::Inside(_) | LegendPlace::Below => panel.0,
         })
         .collect()
 }
@@ -150,11 +150,22 @@ fn strip_width(plot: &Plot) -> u32 {
     legend_pixels(plot).0.ceil() as u32 + LEGEND_BOX.gap as u32
 }
 
-/// The design canvas of `plots` side by side in `format`.
+/// The height of the strip a legend below `plot` takes, pixels.
+fn below_height(plot: &Plot) -> u32 {
+    legend_pixels(plot).1.ceil() as u32 + LEGEND_BOX.gap as u32
+}
+
+/// The design canvas of `plots` side by side in `format`: the panels' widths, and their
+/// height with the tallest legend below any of them.
 fn canvas(plots: &[Plot], format: &Format) -> (u32, u32) {
     let panel = format.design(1);
     let widths = panel_widths(plots, panel);
-    (widths.iter().sum::<u32>().max(panel.0), panel.1)
+    let below = (plots.iter())
+        .filter(|plot| layout(plot, panel).1 == LegendPlace::Below)
+        .map(below_height)
+        .max()
+        .unwrap_or(0);
+    (widths.iter().sum::<u32>().max(panel.0), panel.1 + below)
 }
 
 /// Draws `plots` side by side on `root`, each on a panel of `panel` pixels and its legend's
@@ -177,20 +188,25 @@ fn draw<DB: DrawingBackend>(
     let panels = root.split_by_breakpoints(breaks, Vec::<u32>::new());
     for (whole, plot) in panels.iter().zip(plots) {
         let (((x0, x1), (y0, y1)), legend) = layout(plot, panel);
-        // A legend beside the plot takes the strip right of the panel.
+        // A legend beside the plot takes the strip right of the panel, one below it the strip
+        // under it (every panel is as high as a one-panel figure above that strip).
+        let (upper, lower) = whole.split_vertically(panel.1);
         let strip;
         let (area, target) = match legend {
             LegendPlace::Beside => {
-                let (a, b) = whole.split_horizontally(panel.0);
+                let (a, b) = upper.split_horizontally(panel.0);
                 strip = b;
                 (a, LegendTarget::Strip(&strip))
             }
-            LegendPlace::Inside(c) => (whole.clone(), LegendTarget::Corner(c)),
+            LegendPlace::Below => (upper, LegendTarget::Below(&lower)),
+            LegendPlace::Inside(c) => (upper, LegendTarget::Corner(c)),
         };
         let mut builder = ChartBuilder::on(&area);
-        let caption = caption_size(&plot.title, area.dim_in_pixel().0);
+        let width = area.dim_in_pixel().0;
+        let caption = caption_size(&plot.title, width);
+        let title = shortened(&plot.title, caption, width);
         builder
-            .caption(&plot.title, (FAMILY, caption))
+            .caption(&title, (FAMILY, caption))
             .margin(15)
             .x_label_area_size(50)
             .y_label_area_size(70);
@@ -229,6 +245,27 @@ const CAPTION_SIZES: (u32, u32) = (22, 12);
 /// reference, such as GMS's, ran over both edges at the largest).
 fn caption_size(title: &str, width: u32) -> u32 {
     fitting(title, width.saturating_sub(20), CAPTION_SIZES)
+}
+
+/// `title` as it fits an area `width` pixels wide at font size `size` with 10 pixels each
+/// side: whole where it fits, else cut at its end to an ellipsis (a column-wide figure's
+/// title with a reference ran over both edges at the smallest size).
+fn shortened(title: &str, size: u32, width: u32) -> String {
+    let fits = |text: &str| {
+        (FAMILY, size)
+            .into_font()
+            .box_size(text)
+            .map_or(true, |(w, _)| w + 20 <= width)
+    };
+    if fits(title) {
+        return title.to_string();
+    }
+    let chars: Vec<char> = title.chars().collect();
+    (0..chars.len())
+        .rev()
+        .map(|n| format!("{}…", chars[..n].iter().collect::<String>().trim_end()))
+        .find(|t| fits(t))
+        .unwrap_or_else(|| "…".into())
 }
 
 /// The largest and smallest font sizes of the axes' names, pixels.
@@ -393,7 +430,12 @@ where
         LegendTarget::Strip(area) => {
             // Level with the plotting area's top (both in the panel's pixels).
             let top = chart.plotting_area().get_base_pixel().1 - area.get_base_pixel().1;
-            draw_legend_beside(area, plot, top + LEGEND_BOX.gap as i32)
+            draw_legend_in_strip(area, plot, (0, top + LEGEND_BOX.gap as i32))
+        }
+        LegendTarget::Below(area) => {
+            // Level with the plotting area's left.
+            let left = chart.plotting_area().get_base_pixel().0 - area.get_base_pixel().0;
+            draw_legend_in_strip(area, plot, (left, 0))
         }
     }
 }
@@ -488,30 +530,33 @@ fn encode_png(pixels: &[u8], (w, h): (u32, u32), path: &Path) -> Result<Vec<u8>,
 mod tests {
     use super::*;
     use axes::bounds;
+    use legend::BESIDE_MIN_WIDTH;
 
     #[test]
     fn a_long_title_is_set_smaller_to_fit_its_panel() {
         let gms = "gms: generalized Maxwell-slip (Al-Bender et al. 2005) (Al-Bender, Lampaert, \
                    Swevers (2005), IEEE TAC 50(11))";
-        let size = caption_size(gms, Format::default().design(1).0);
+        let width = |size: u32, text: &str| (FAMILY, size).into_font().box_size(text).unwrap().0;
+        // A page-wide panel (6 in, 900 px): the largest size that fits.
+        let size = caption_size(gms, 900);
         assert!((CAPTION_SIZES.1..CAPTION_SIZES.0).contains(&size), "{size}");
-        let width = |size: u32| (FAMILY, size).into_font().box_size(gms).unwrap().0;
-        assert!(
-            width(size) + 20 <= Format::default().design(1).0,
-            "{}",
-            width(size)
-        );
-        assert!(
-            width(size + 1) + 20 > Format::default().design(1).0,
-            "the largest that fits"
-        );
+        assert!(width(size, gms) + 20 <= 900, "{}", width(size, gms));
+        assert!(width(size + 1, gms) + 20 > 900, "the largest that fits");
+        assert_eq!(shortened(gms, size, 900), gms);
         assert_eq!(
-            caption_size(
-                "Work-precision: belt with CS",
-                Format::default().design(1).0
-            ),
+            caption_size("Work-precision: belt with CS", 900),
             CAPTION_SIZES.0
         );
+        // A column (3.5 in, 525 px): the smallest size, cut to an ellipsis that fits.
+        let column = Format::default().design(1).0;
+        let size = caption_size(gms, column);
+        assert_eq!(size, CAPTION_SIZES.1);
+        let cut = shortened(gms, size, column);
+        assert!(
+            cut.ends_with('…') && gms.starts_with(cut.trim_end_matches('…')),
+            "{cut}"
+        );
+        assert!(width(size, &cut) + 20 <= column, "{cut}");
     }
 
     /// The visible circles of an SVG: plotters writes a transparent one as `opacity="0"`.
@@ -765,17 +810,24 @@ mod tests {
                 for b in boxes {
                     let n = |name: &str| attributes(&format!("<rect {b}"), "rect", name)[0];
                     let (x, y, w, h) = (n("x"), n("y"), n("width"), n("height"));
-                    // The grid fills every corner: its legend is beside the panel.
-                    let beside = x >= f64::from(format.design(1).0);
-                    assert_eq!(beside, kind == "map", "{kind}: legend at x = {x}");
+                    // The grid fills every corner: its legend is beside the panel or below it.
+                    let (pw, ph) = format.design(1);
+                    let outside = x >= f64::from(pw) || y >= f64::from(ph);
+                    assert_eq!(outside, kind == "map", "{kind}: legend at ({x}, {y})");
                     for (px, py) in cx.iter().zip(&cy).take(dots) {
                         let inside = (x..=x + w).contains(px) && (y..=y + h).contains(py);
                         assert!(!inside, "{kind}: a dot at ({px}, {py}) under the legend");
                     }
                 }
             }
-            // The map's legend is beside: the canvas is wider than a panel by its strip.
-            assert!(canvas(std::slice::from_ref(&map), &format).0 > format.design(1).0);
+            // The map's legend is beside a page-wide panel (the canvas wider by its strip),
+            // below a column's (the canvas higher, as wide as the column).
+            let (w, h) = canvas(std::slice::from_ref(&map), &format);
+            let (pw, ph) = format.design(1);
+            match pw >= BESIDE_MIN_WIDTH {
+                true => assert!(w > pw && h == ph, "{w} x {h}"),
+                false => assert!(w == pw && h > ph, "{w} x {h}"),
+            }
             let png = decoded(&raster_png(&raster, Path::new("r.png"), &format).unwrap());
             assert_eq!((png.0, png.1), format.pixels(raster.size(&format)));
         }
@@ -798,7 +850,7 @@ mod tests {
     }
 
     #[test]
-    fn a_legend_beside_the_plot_widens_the_canvas_and_leaves_the_panel_whole() {
+    fn a_legend_beside_a_page_wide_plot_widens_the_canvas_and_leaves_the_panel_whole() {
         // A grid of markers everywhere: its legend goes beside, on a strip added to the panel.
         let grid: Vec<(f64, f64)> = (1..=20)
             .flat_map(|i| (1..=20).map(move |j| (f64::from(i), f64::from(j))))
@@ -817,7 +869,7 @@ mod tests {
             legend: Corner::UpperRight,
             log: false,
         };
-        let format = Format::default();
+        let format = Format::parse(Some("6x4"), Some(150.0)).unwrap();
         let (w, h) = canvas(std::slice::from_ref(&map), &format);
         assert_eq!(h, 600);
         assert_eq!(w, 900 + strip_width(&map));

@@ -134,12 +134,17 @@ fn draw_raster<DB: DrawingBackend>(
     let labels: Vec<&str> = shown.iter().map(|e| e.1.as_str()).collect();
     // Level with the plotting area's top (both in the canvas's pixels).
     let top = chart.plotting_area().get_base_pixel().1 - strip.get_base_pixel().1;
-    draw_box(&strip, &labels, top + LEGEND_BOX.gap as i32, |k, (x, y)| {
-        strip.draw(&Rectangle::new(
-            [(x, y - 6), (x + 16, y + 6)],
-            shown[k].0.filled(),
-        ))
-    })?;
+    draw_box(
+        &strip,
+        &labels,
+        (0, top + LEGEND_BOX.gap as i32),
+        |k, (x, y)| {
+            strip.draw(&Rectangle::new(
+                [(x, y - 6), (x + 16, y + 6)],
+                shown[k].0.filled(),
+            ))
+        },
+    )?;
     root.present().map_err(err)
 }
 
