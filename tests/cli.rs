@@ -4406,6 +4406,26 @@ fn a_rigs_spectrum_finds_its_frequency_and_a_window_draws_a_span() {
             .last(),
         "the data keep the whole run"
     );
+    // A sweep measures settled parts, not spans of time: a window is refused, not ignored.
+    let sweep = dir.path().join("sweep");
+    let o = friction_lab(&[
+        "sweep",
+        "belt",
+        "--model",
+        "CS",
+        "--grid",
+        "k=50,100",
+        "--window",
+        "1:2",
+        "--out",
+        sweep.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("option `window` = 1:2 applies to simulate"),
+        "{}",
+        stderr(&o)
+    );
     let (o, out) = run("outside", &["--window", "4:12"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(

@@ -56,7 +56,8 @@ def simulate(scenario: Optional[str] = None, *, system: Any = None,
     of a system (``system=`` a TOML or JSON file, or a dict with the keys of docs/systems.md).
     Options: ``model``, ``scheme``, ``solver``, ``switching``, ``theta``, ``t_end``, ``rtol``, ``atol``,
     ``dt``, ``fixed_step``, ``points``, ``bodies``, ``variant``, ``param_set``,
-    ``max_steps``, ``time_limit`` (``friction-lab simulate --help``)."""
+    ``max_steps``, ``time_limit``, ``window`` (``(T0, T1)``: the span the spectrum is taken
+    over) (``friction-lab simulate --help``)."""
     _name("simulate", scenario)
     given = values("simulate", params=params, **options)
     with SystemFile(system) as f:

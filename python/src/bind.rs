@@ -106,8 +106,8 @@ pub fn keywords(function: &str) -> Option<Vec<&'static str>> {
     let own: &[&[&str]] = match function {
         "curve" => return Some(CURVE.to_vec()),
         "phenomena" => return Some(PHENOMENA.to_vec()),
-        "simulate" => &[SIMULATE_OWN],
-        "sweep" => &[SIMULATE_OWN, SWEEP_OWN, &["grid"]],
+        "simulate" => &[SIMULATE_OWN, &["window"]],
+        "sweep" => &[SIMULATE_OWN, &["window"], SWEEP_OWN, &["grid"]],
         _ => {
             let (_, study) = STUDY_OWN.iter().find(|(name, _)| *name == function)?;
             &[PROBLEM_OWN, study]
@@ -386,6 +386,16 @@ pub fn simulation(
             "rtol" => solver.rtol = number(k, &value)?,
             "atol" => solver.atol = number(k, &value)?,
             "points" => run.points = Some(whole(k, &value)?),
+            // `--window T0:T1`: the text, or a pair of numbers.
+            "window" => {
+                run.window = Some(match value.is_instance_of::<PyString>() {
+                    true => name(k, &value)?,
+                    false => match &items(&value)?[..] {
+                        [a, b] => format!("{}:{}", number(k, a)?, number(k, b)?),
+                        _ => return Err(expected(k, &value, "a pair (T0, T1) or \"T0:T1\"")),
+                    },
+                })
+            }
             _ if also.contains(&k) => {}
             _ => return Err(unknown(function, k)),
         }

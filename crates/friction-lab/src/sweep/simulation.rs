@@ -73,6 +73,12 @@ impl Sweep {
         target: &mut StudyTarget,
         stem: &str,
     ) -> Result<Vec<PointResult>, AppError> {
+        if let Some(window) = &self.simulation.window {
+            return Err(AppError::Usage(format!(
+                "option `window` = {window} applies to simulate, whose figures it draws over \
+                 time: a sweep measures each point's settled part (`settle`)"
+            )));
+        }
         check_axes(&self.axes, &self.simulation)?;
         let n = points(&self.axes).len();
         let range = match &self.range {
