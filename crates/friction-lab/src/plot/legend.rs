@@ -30,8 +30,9 @@ pub(super) fn plot_area((w, h): (u32, u32)) -> (f64, f64) {
 }
 
 /// The plotting area's top below the panel's, pixels: the margin and the caption (measured
-/// on the drawn figures).
-const PLOT_TOP: f64 = 57.0;
+/// on the drawn figures: a 600-pixel panel's plotting area runs from y = 42 to 534, the 493
+/// of [`plot_area`]).
+const PLOT_TOP: f64 = 42.0;
 
 /// The legend box, pixels: its gap to the plotting area's corner, its width besides the
 /// longest label's text (plotters' legend area, 30, and its two margins, 10), and its height
