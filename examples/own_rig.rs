@@ -4,7 +4,9 @@
 //! at rest from the spring's natural length (x along the slope, downhill positive). It
 //! implements the public `Rig` trait with its own parameter (the angle θ) beside the
 //! scenario parameters it reads (`m`, `k`); wrapped as `Scenario::own`, it runs through
-//! `scenarios::run` and a convergence study, without a line of friction-lab changed.
+//! `scenarios::run` and a convergence study, without a line of friction-lab changed; registered
+//! (`Scenario::register`), it is found by its name as a built-in one is, here by the command
+//! line's own library call.
 //!
 //! With Coulomb friction F_c < m·g·sin θ the body slides down one half-period
 //! `π·√(m/k)` to `x = 2·(m·g·sin θ − F_c)/k`, where it stops and sticks for good when the
@@ -13,6 +15,9 @@
 //!
 //! Run: `cargo run --release --example own_rig`.
 
+use clap::Parser;
+use friction_lab::artifacts::Data;
+use friction_lab::columns::Column;
 use friction_lab::friction_models::{FrictionModel, FrictionParams, ModelId};
 use friction_lab::friction_systems::{End, Profile, System, STICK};
 use friction_lab::integrators::{Solver, StepControl};
@@ -162,8 +167,48 @@ pub fn run() -> Report {
     }
 }
 
+/// Registers the slope and runs `friction-lab simulate slope --model coulomb` through the
+/// command line's own library call, as a user's program built on it would: the rig is found
+/// by its name, as a built-in one is. Returns the summary's rig and status, and the final x.
+pub fn by_name() -> (String, String, f64) {
+    Scenario::register(&SLOPE).expect("slope is a name of its own");
+    let words = [
+        "friction-lab",
+        "simulate",
+        "slope",
+        "--model",
+        "coulomb",
+        "--solver",
+        "dopri5",
+        "--rtol",
+        "1e-12",
+        "--atol",
+        "1e-12",
+        "--out",
+        "by-name",
+    ];
+    let cli = friction_lab_cli::Cli::try_parse_from(words).expect("slope is a rig's name");
+    let made = friction_lab_cli::make(&cli.command).expect("the run is made");
+    let Some(Data::Json(summary)) = made.files.get("summary.json") else {
+        panic!("a summary");
+    };
+    let field = |k: &str| summary[k].as_str().unwrap_or_default().to_string();
+    let Some(Data::Table(last)) = made.files.get("final.csv") else {
+        panic!("a final state");
+    };
+    let x = (last.columns().into_iter())
+        .find_map(|(name, column)| match column {
+            Column::Numbers(x) if name == "x" => x.last().copied(),
+            _ => None,
+        })
+        .expect("a column x");
+    (field("system"), field("status"), x)
+}
+
 #[allow(dead_code)]
 fn main() {
+    let (scenario, status, x) = by_name();
+    println!("simulate {scenario}: {status}, final x = {x:.6} m");
     let r = run();
     let ((x, t), (x_exact, t_exact)) = r.coulomb_stop;
     println!(

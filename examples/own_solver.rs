@@ -7,10 +7,13 @@
 //! It implements the public `Stepper` and `OneStepMethod` traits; wrapped as `Solver::own`, it
 //! integrates a stick–slip belt with event location on its dense output, goes through a
 //! convergence study at fixed steps and a work–precision study beside Dormand–Prince,
-//! without a line of friction-lab changed.
+//! without a line of friction-lab changed; registered (`Solver::register`), it is found by its
+//! name as a built-in one is, here by the command line's own library call.
 //!
 //! Run: `cargo run --release --example own_solver`.
 
+use clap::Parser;
+use friction_lab::artifacts::Data;
 use friction_lab::friction_models::{FrictionParams, ModelId, Variant};
 use friction_lab::friction_systems::{simulate, End, Scheme, Switching, System};
 use friction_lab::integrators::stepper::{
@@ -332,7 +335,36 @@ pub fn run() -> Report {
     }
 }
 
+/// Registers BS23 and runs `friction-lab simulate belt --model CVS --solver bs23` through the
+/// command line's own library call, as a user's program built on it would: the solver is
+/// found by its name, as a built-in one is. Returns the summary's solver and status.
+pub fn by_name() -> (String, String) {
+    Solver::register(&BS23).expect("bs23 is a name of its own");
+    let words = [
+        "friction-lab",
+        "simulate",
+        "belt",
+        "--model",
+        "CVS",
+        "--solver",
+        "bs23",
+        "--t-end",
+        "5",
+        "--out",
+        "by-name",
+    ];
+    let cli = friction_lab_cli::Cli::try_parse_from(words).expect("bs23 is a solver's name");
+    let made = friction_lab_cli::make(&cli.command).expect("the run is made");
+    let Some(Data::Json(summary)) = made.files.get("summary.json") else {
+        panic!("a summary");
+    };
+    let field = |k: &str| summary[k].as_str().unwrap_or_default().to_string();
+    (field("solver"), field("status"))
+}
+
 fn main() {
+    let (solver, status) = by_name();
+    println!("simulate belt --solver {solver}: {status}");
     let r = run();
     println!(
         "belt over 10 s at 1e-8: {} switches (bs23), {} (dopri5); final states differ by {:.2e}",

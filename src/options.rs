@@ -26,20 +26,20 @@ pub struct ParamOptions {
     pub set: Vec<String>,
 }
 
-/// The help of a solver option: `what`, the names of [`integrators::Solver::ALL`] (the list
-/// the option takes, from the one registry of built-in solvers), then `then` (its default and
-/// when it is refused).
+/// The help of a solver option: `what`, the names in [`integrators::SOLVERS`] (the list the
+/// option takes, from the one registry of solvers), then `then` (its default and when it is
+/// refused).
 pub fn solver_help(what: &str, then: &str) -> String {
-    let names: Vec<&str> = integrators::Solver::ALL.iter().map(|s| s.name()).collect();
+    let names = integrators::SOLVERS.names();
     format!("{what}: {} {then}", names.join(", "))
 }
 
-/// The help of a target argument: the names of [`scenarios::Scenario::ALL`] (the rigs the
-/// argument takes, from the one registry of built-in rigs), then `then` (the other targets).
+/// The help of a target argument: the names in [`scenarios::SCENARIOS`] (the rigs the
+/// argument takes, from the one registry of rigs), then `then` (the other targets).
 pub fn scenario_help(what: &str, then: &str) -> String {
     format!(
         "{what}: {} (one contact each), {then}",
-        scenarios::Scenario::names().join(", ")
+        scenarios::SCENARIOS.names().join(", ")
     )
 }
 

@@ -100,7 +100,6 @@ fn docs_scenarios_gives_every_rig_with_its_equation() {
 
 #[test]
 fn the_help_lists_the_registered_rigs_and_solvers() {
-    use friction_lab::scenarios::Scenario;
     let help = |command: &str| {
         let o = Command::new(env!("CARGO_BIN_EXE_friction-lab"))
             .args([command, "--help"])
@@ -108,7 +107,7 @@ fn the_help_lists_the_registered_rigs_and_solvers() {
             .unwrap();
         String::from_utf8(o.stdout).unwrap()
     };
-    let rigs = Scenario::names().join(", ");
+    let rigs = friction_lab::scenarios::SCENARIOS.names().join(", ");
     let solvers: Vec<&str> = friction_lab::integrators::Solver::ALL
         .iter()
         .map(|s| s.name())

@@ -72,6 +72,12 @@ fn an_own_two_mass_system_runs_event_driven_regularised_and_in_a_study() {
 }
 
 #[test]
+fn a_registered_solver_is_found_by_name_by_the_command_line() {
+    let (solver, status) = own_solver::by_name();
+    assert_eq!((solver.as_str(), status.as_str()), ("bs23", "ok"));
+}
+
+#[test]
 fn an_own_solver_runs_through_simulation_and_two_studies() {
     let r = own_solver::run();
     // Both methods find the same stick-slip history, and agree to their tolerance 1e-8.
@@ -159,6 +165,15 @@ fn an_own_study_is_conducted_and_writes_its_files_and_figure() {
     assert!((slope - 0.5).abs() < 0.1, "error ~ tol^{slope}");
     let csv = std::fs::read_to_string(out.join("step-counts.csv")).unwrap();
     assert_eq!(csv.lines().count(), 1 + 6 + 5);
+}
+
+#[test]
+fn a_registered_rig_is_found_by_name_by_the_command_line() {
+    let (scenario, status, x) = own_rig::by_name();
+    assert_eq!((scenario.as_str(), status.as_str()), ("slope", "ok"));
+    // Stopped for good at 2·(m·g·sin θ − F_c)/k (m = 1 kg, k = 100 N/m, F_c = 6 N).
+    let exact = 2.0 * (own_rig::SLOPE.downhill(1.0) - 6.0) / 100.0;
+    assert!((x - exact).abs() < 1e-9, "x {x} vs {exact}");
 }
 
 #[test]

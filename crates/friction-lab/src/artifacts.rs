@@ -141,6 +141,12 @@ impl Artifacts {
         Ok(())
     }
 
+    /// The data file written as `name` inside the output folder (`summary.json`), if one is.
+    pub fn get(&self, name: &str) -> Option<Data<'_>> {
+        (self.data(Path::new("")).into_iter())
+            .find_map(|(path, data)| path.file_name().is_some_and(|f| f == name).then_some(data))
+    }
+
     /// The data files (tables, JSON documents, text), each by its path relative to `root`, in
     /// the order they were added, as the values they were made from; figures are left
     /// undrawn. This is what the Python package reads, in memory.

@@ -62,6 +62,6 @@ pub use radau5::Radau5;
 pub use rk4::Rk4;
 pub use rodas::Rodas;
 pub use solution::{EventRecord, Failure, MethodSwitch, ModeSwitch, Solution};
-pub use solver::Solver;
+pub use solver::{Solver, SOLVERS};
 pub use stats::{Stats, WorkWeights};
 pub use stepper::{Ode, Stepper, StepperState};

@@ -1,6 +1,6 @@
 //! Every solver by the name the command line uses, behind one call: a [`Solver`] is a
 //! [`OneStepMethod`], the built-in ones listed in [`Solver::ALL`] and a user's own through
-//! [`Solver::own`].
+//! [`Solver::own`] (registered with [`Solver::register`], found by its name too).
 
 use crate::auto::AutoMethod;
 use crate::diffsol_backend::DiffsolMethod;
@@ -14,34 +14,18 @@ use crate::rk4::Rk4Method;
 use crate::rodas::RodasMethod;
 use crate::solution::{Failure, Solution};
 
-/// A solver of friction-lab: a [`OneStepMethod`], built in or a user's own.
-#[derive(Clone, Copy)]
-pub struct Solver {
-    method: &'static dyn OneStepMethod,
-    /// Whether it is a user's own ([`Solver::own`]).
-    own: bool,
-}
+registry::handle!(
+    /// A solver of friction-lab: a [`OneStepMethod`], built in or a user's own. Built-in
+    /// solvers are equal when they have the same name, and so are own methods (the name is a
+    /// method's identity in a study's tables); an own method is never equal to a built-in one,
+    /// so that a study refuses one under a built-in's name.
+    Solver => dyn OneStepMethod, SOLVERS
+);
 
-/// A built-in solver shows as its name, an own one as `own NAME`.
-impl std::fmt::Debug for Solver {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        if self.own {
-            f.write_str("own ")?;
-        }
-        f.write_str(self.name())
-    }
-}
-
-/// Built-in solvers are equal when they have the same name, and so are own methods (the name
-/// is a method's identity in a study's tables); an own method is never equal to a built-in
-/// one, so that a study refuses one under a built-in's name.
-impl PartialEq for Solver {
-    fn eq(&self, other: &Solver) -> bool {
-        self.own == other.own && self.name() == other.name()
-    }
-}
-
-impl Eq for Solver {}
+/// Every solver by name: the built-in ones ([`Solver::ALL`]) and those registered with
+/// [`Solver::register`].
+pub static SOLVERS: registry::Registry<Solver> =
+    registry::Registry::new("solver", "solvers", &Solver::ALL);
 
 impl Solver {
     /// Classical Runge–Kutta, fixed step.
@@ -79,65 +63,9 @@ impl Solver {
         Solver::AUTO,
     ];
 
-    const fn built_in(method: &'static dyn OneStepMethod) -> Solver {
-        Solver { method, own: false }
-    }
-
-    /// A method of the user's own, run wherever a built-in one runs.
-    pub const fn own(method: &'static dyn OneStepMethod) -> Solver {
-        Solver { method, own: true }
-    }
-
     /// The method.
     pub fn method(self) -> &'static dyn OneStepMethod {
-        self.method
-    }
-
-    /// The name the command line takes.
-    pub fn name(self) -> &'static str {
-        self.method.name()
-    }
-
-    /// The built-in solver called `name`.
-    pub fn from_name(name: &str) -> Result<Solver, String> {
-        Solver::ALL
-            .into_iter()
-            .find(|s| s.name() == name)
-            .ok_or_else(|| {
-                let known: Vec<_> = Solver::ALL.iter().map(|s| s.name()).collect();
-                format!(
-                    "unknown solver `{name}`; known solvers: {}",
-                    known.join(", ")
-                )
-            })
-    }
-
-    /// The stability polynomial `R(z)` (ascending powers) of an explicit method that can take
-    /// a fixed step: RK4's and Dormand–Prince's ([`crate::stability`]); `None` for the
-    /// implicit methods, for Tsit45 (adaptive only) and for an own method that gives none.
-    pub fn stability_polynomial(self) -> Option<&'static [f64]> {
-        self.method.stability_polynomial()
-    }
-
-    /// Whether the method is implicit (solves a nonlinear system per step).
-    pub fn is_implicit(self) -> bool {
-        self.method.is_implicit()
-    }
-
-    /// The order p of the method: its global error ∝ h^p (BDF: its highest order, 5).
-    pub fn order(self) -> usize {
-        self.method.order()
-    }
-
-    /// Whether the method needs a fixed step (`--dt`) rather than tolerances.
-    pub fn is_fixed_step(self) -> bool {
-        self.method.is_fixed_step()
-    }
-
-    /// Whether the method takes fixed steps when a study asks for observed orders (every
-    /// hand-written method; diffsol's take tolerances only).
-    pub fn takes_fixed_steps(self) -> bool {
-        self.method.takes_fixed_steps()
+        self.0.item()
     }
 
     /// Integrates `problem` from `y0` in `modes` with `options`.
@@ -148,27 +76,7 @@ impl Solver {
         modes: &[Mode],
         options: Options,
     ) -> Result<Solution, Failure> {
-        self.solve_observed(problem, y0, modes, options, &mut |_| {})
-    }
-
-    /// As [`Solver::solve`], telling `observe` the time reached after every step
-    /// ([`OneStepMethod::solve_observed`]).
-    pub fn solve_observed(
-        self,
-        problem: &dyn OdeProblem,
-        y0: &[f64],
-        modes: &[Mode],
-        options: Options,
-        observe: &mut dyn FnMut(f64),
-    ) -> Result<Solution, Failure> {
-        self.method
-            .solve_observed(problem, y0, modes, options, observe)
-    }
-}
-
-impl std::str::FromStr for Solver {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        Solver::from_name(s)
+        self.method()
+            .solve_observed(problem, y0, modes, options, &mut |_| {})
     }
 }

@@ -40,4 +40,4 @@ pub use error::ScenarioError;
 pub use params::ScenarioParams;
 pub use rig::{Apparatus, EndTime, Rig};
 pub use run::{run, run_measuring_stiffness, Law, Limits, Outcome, Row, RunSpec, SwitchingKind};
-pub use scenario::Scenario;
+pub use scenario::{Scenario, SCENARIOS};

@@ -1,24 +1,24 @@
 //! The registry of rigs (`docs/scenarios.md`): a [`Scenario`] is a [`Rig`], the built-in
-//! ones listed in [`Scenario::ALL`] and a user's own through [`Scenario::own`].
+//! ones listed in [`Scenario::ALL`] and a user's own through [`Scenario::own`] (registered
+//! with [`Scenario::register`], found by its name too).
 
 use crate::params::ScenarioParams;
-use crate::rig::{EndTime, Rig};
+use crate::rig::Rig;
 use crate::rigs::{
     Belt, ForceRamp, FreeVibration, Oscillation, PaperBlock, PrescribedMotion, Presliding, Servo,
     VelocityOscillation, VelocitySweep,
 };
 use friction_models::FrictionParams;
-use serde::{Serialize, Serializer};
-use std::fmt;
-use std::hash::{Hash, Hasher};
 
-/// A test rig of friction-lab: a [`Rig`], built in or a user's own.
-#[derive(Clone, Copy)]
-pub struct Scenario {
-    rig: &'static dyn Rig,
-    /// Whether it is a user's own ([`Scenario::own`]).
-    own: bool,
-}
+registry::handle!(
+    /// A test rig of friction-lab: a [`Rig`], built in or a user's own.
+    Scenario => dyn Rig, SCENARIOS
+);
+
+/// Every rig by name: the built-in ones ([`Scenario::ALL`]) and those registered with
+/// [`Scenario::register`].
+pub static SCENARIOS: registry::Registry<Scenario> =
+    registry::Registry::new("scenario", "scenarios", &Scenario::ALL);
 
 impl Scenario {
     /// m·v' = F_ex − F(v) from rest: the paper's experiment.
@@ -56,122 +56,13 @@ impl Scenario {
         Scenario::SERVO,
     ];
 
-    const fn built_in(rig: &'static dyn Rig) -> Scenario {
-        Scenario { rig, own: false }
-    }
-
-    /// A rig of the user's own, run wherever a built-in one runs.
-    pub const fn own(rig: &'static dyn Rig) -> Scenario {
-        Scenario { rig, own: true }
-    }
-
     /// The rig.
     pub fn rig(self) -> &'static dyn Rig {
-        self.rig
-    }
-
-    /// The name the command line takes.
-    pub fn name(self) -> &'static str {
-        self.rig.name()
-    }
-
-    /// The built-in rig called `name`.
-    pub fn from_name(name: &str) -> Result<Scenario, String> {
-        Scenario::ALL
-            .into_iter()
-            .find(|s| s.name() == name)
-            .ok_or_else(|| {
-                format!(
-                    "unknown scenario `{name}`; known scenarios: {}",
-                    Scenario::names().join(", ")
-                )
-            })
-    }
-
-    /// The names of the built-in rigs, in listing order.
-    pub fn names() -> Vec<&'static str> {
-        Scenario::ALL.iter().map(|s| s.name()).collect()
-    }
-
-    /// The equation of the rig, in words.
-    pub fn equation(self) -> &'static str {
-        self.rig.equation()
-    }
-
-    /// The scenario parameters the rig reads.
-    pub fn parameters(self) -> &'static [&'static str] {
-        self.rig.parameters()
-    }
-
-    /// Whether a body is integrated (rather than a motion imposed).
-    pub fn has_body(self) -> bool {
-        self.rig.has_body()
-    }
-
-    /// The rig's default parameters (`docs/scenarios.md`).
-    pub fn defaults(self) -> ScenarioParams {
-        self.rig.defaults()
-    }
-
-    /// The end time of a run that asks for none, and how it follows from the parameters.
-    pub fn end_time(self, p: &ScenarioParams, f: &FrictionParams) -> EndTime {
-        self.rig.end_time(p, f)
-    }
-
-    /// The law the rig runs when a run names none ([`Rig::default_law`]).
-    pub fn default_law(self) -> Option<(friction_models::ModelId, &'static str)> {
-        self.rig.default_law()
+        self.0.item()
     }
 
     /// The default end time, s.
     pub fn default_t_end(self, p: &ScenarioParams, f: &FrictionParams) -> f64 {
         self.end_time(p, f).value()
-    }
-}
-
-/// A built-in rig shows as its name, an own one as `own NAME`.
-impl fmt::Debug for Scenario {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if self.own {
-            f.write_str("own ")?;
-        }
-        f.write_str(self.name())
-    }
-}
-
-/// Built-in rigs are equal when they have the same name, and so are own rigs; an own rig is
-/// never equal to a built-in one.
-impl PartialEq for Scenario {
-    fn eq(&self, other: &Scenario) -> bool {
-        self.own == other.own && self.name() == other.name()
-    }
-}
-
-impl Eq for Scenario {}
-
-impl Hash for Scenario {
-    fn hash<H: Hasher>(&self, state: &mut H) {
-        self.own.hash(state);
-        self.name().hash(state);
-    }
-}
-
-/// Written as its name.
-impl Serialize for Scenario {
-    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        serializer.serialize_str(self.name())
-    }
-}
-
-impl fmt::Display for Scenario {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl std::str::FromStr for Scenario {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        Scenario::from_name(s)
     }
 }

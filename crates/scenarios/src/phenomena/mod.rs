@@ -16,7 +16,7 @@ pub use bench::{Bench, Breakaway, Cycle};
 pub use experiments::{
     Hunting, Hysteresis, Presliding, RisingStaticFriction, StickSlip, Stiction, Stribeck, Viscous,
 };
-pub use phenomenon::{Axes, Experiment, Phenomenon};
+pub use phenomenon::{Axes, Experiment, Phenomenon, PHENOMENA};
 
 use crate::error::ScenarioError;
 use crate::run::{Law, Limits, RunSpec, SwitchingKind};

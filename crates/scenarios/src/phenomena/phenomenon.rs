@@ -1,5 +1,6 @@
 //! The rows of Table 2: a [`Phenomenon`] is an [`Experiment`] that decides it, the built-in
-//! ones listed in [`Phenomenon::ALL`] and a user's own through [`Phenomenon::own`].
+//! ones listed in [`Phenomenon::ALL`] and a user's own through [`Phenomenon::own`]
+//! (registered with [`Phenomenon::register`], found by its name too).
 
 use super::bench::Bench;
 use super::experiments::{
@@ -8,8 +9,6 @@ use super::experiments::{
 use super::Verdict;
 use crate::error::ScenarioError;
 use friction_models::ModelId;
-use serde::{Serialize, Serializer};
-use std::fmt;
 
 /// The grid of rig parameters a verdict is also decided over: each axis a scenario parameter
 /// with its values.
@@ -41,13 +40,15 @@ pub trait Experiment: Send + Sync {
     fn decide(&self, bench: &Bench) -> Result<Verdict, ScenarioError>;
 }
 
-/// A row of Table 2: an [`Experiment`], built in or a user's own.
-#[derive(Clone, Copy)]
-pub struct Phenomenon {
-    experiment: &'static dyn Experiment,
-    /// Whether it is a user's own ([`Phenomenon::own`]).
-    own: bool,
-}
+registry::handle!(
+    /// A row of Table 2: an [`Experiment`], built in or a user's own.
+    Phenomenon => dyn Experiment, PHENOMENA
+);
+
+/// Every row by name: the built-in ones ([`Phenomenon::ALL`]) and those registered with
+/// [`Phenomenon::register`].
+pub static PHENOMENA: registry::Registry<Phenomenon> =
+    registry::Registry::new("phenomenon", "phenomena", &Phenomenon::ALL);
 
 impl Phenomenon {
     /// The body stays put under a force below break-away.
@@ -80,92 +81,15 @@ impl Phenomenon {
         Phenomenon::HUNTING,
     ];
 
-    const fn built_in(experiment: &'static dyn Experiment) -> Phenomenon {
-        Phenomenon {
-            experiment,
-            own: false,
-        }
-    }
-
-    /// A row of the user's own, decided wherever a built-in one is.
-    pub const fn own(experiment: &'static dyn Experiment) -> Phenomenon {
-        Phenomenon {
-            experiment,
-            own: true,
-        }
-    }
-
     /// The experiment that decides it.
     pub fn experiment(self) -> &'static dyn Experiment {
-        self.experiment
-    }
-
-    /// The name used in `table2.json`.
-    pub fn name(self) -> &'static str {
-        self.experiment.name()
-    }
-
-    /// The built-in row called `name`.
-    pub fn from_name(name: &str) -> Result<Phenomenon, String> {
-        Phenomenon::ALL
-            .into_iter()
-            .find(|p| p.name() == name)
-            .ok_or_else(|| {
-                let known: Vec<_> = Phenomenon::ALL.iter().map(|p| p.name()).collect();
-                format!(
-                    "unknown phenomenon `{name}`; known phenomena: {}",
-                    known.join(", ")
-                )
-            })
-    }
-
-    /// The row's label in the table.
-    pub fn label(self) -> &'static str {
-        self.experiment.label()
-    }
-
-    /// The grid of rig parameters a verdict is also decided over ([`Experiment::region`]).
-    pub fn region(self) -> Axes {
-        self.experiment.region()
+        self.0.item()
     }
 
     /// What Table 2 of the paper claims for `model`: `None` for a model or a row the paper
     /// does not cover.
     pub fn paper_claim(self, model: ModelId) -> Option<bool> {
         let column = ModelId::PAPER.iter().position(|&m| m == model)?;
-        Some(self.experiment.paper_row()?[column])
-    }
-}
-
-/// A built-in row shows as its name, an own one as `own NAME`.
-impl fmt::Debug for Phenomenon {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if self.own {
-            f.write_str("own ")?;
-        }
-        f.write_str(self.name())
-    }
-}
-
-/// Built-in rows are equal when they have the same name, and so are own rows; an own row is
-/// never equal to a built-in one.
-impl PartialEq for Phenomenon {
-    fn eq(&self, other: &Phenomenon) -> bool {
-        self.own == other.own && self.name() == other.name()
-    }
-}
-
-impl Eq for Phenomenon {}
-
-/// Written as its name.
-impl Serialize for Phenomenon {
-    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        serializer.serialize_str(self.name())
-    }
-}
-
-impl fmt::Display for Phenomenon {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
+        Some(self.paper_row()?[column])
     }
 }
