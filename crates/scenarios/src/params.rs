@@ -14,7 +14,7 @@ const FRACTION: Range = Range {
 
 parameters! {
     /// Parameters of the rigs; each scenario reads the ones it lists in
-    /// [`crate::Scenario::parameters`].
+    /// [`crate::Rig::parameters`].
     pub struct ScenarioParams {
         /// Mass of the body.
         m: "m", "kg", Range::POSITIVE, "mass of the sliding body";
@@ -58,7 +58,7 @@ parameters! {
 }
 
 impl Default for ScenarioParams {
-    /// The common defaults; scenarios override a few (see `Scenario::defaults`).
+    /// The common defaults; scenarios override a few (see `Rig::defaults`).
     fn default() -> Self {
         ScenarioParams {
             m: 1.0,

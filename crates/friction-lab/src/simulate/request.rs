@@ -275,7 +275,7 @@ impl Simulation {
 
 /// The model of a run of rig `scenario` and where its parameters come from: `model` with
 /// `params`, or without a model the rig's default law, read at its parameter set unless
-/// `params` names one ([`Scenario::default_law`]); a rig without a default law requires a
+/// `params` names one ([`scenarios::Rig::default_law`]); a rig without a default law requires a
 /// model.
 pub fn rig_law(
     scenario: Scenario,

@@ -160,7 +160,7 @@ pub struct Cell {
     pub region: Option<Region>,
 }
 
-/// A verdict over the grid of [`Phenomenon::region`].
+/// A verdict over the grid of [`Experiment::region`].
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Region {
     /// The grid's axes: parameter and values.
@@ -190,7 +190,7 @@ impl Region {
     }
 }
 
-/// Decides `phenomenon` for `law` at every point of its [`Phenomenon::region`]; `measured`
+/// Decides `phenomenon` for `law` at every point of its [`Experiment::region`]; `measured`
 /// is the verdict on the default rig, against which the flips are listed.
 pub fn region(
     phenomenon: Phenomenon,
