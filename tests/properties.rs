@@ -108,16 +108,16 @@ proptest! {
         let friction = FrictionParams::specs();
         let rig = ScenarioParams::specs();
         let spec = if k < friction.len() { &friction[k] } else { &rig[k % rig.len()] };
-        let options = friction_lab_cli::options::ParamOptions {
+        let options = friction_lab::params::ParamSource {
             set: vec![format!("{}={x}", spec.name)],
             ..Default::default()
         };
-        let options = friction_lab_cli::options::ParamOptions { param_set: Some("paper".into()), ..options };
+        let options = friction_lab::params::ParamSource { param_set: Some("paper".into()), ..options };
         // Scenario parameters are checked for a scenario that reads them.
         let scenario = Scenario::ALL
             .into_iter()
             .find(|s| s.parameters().contains(&spec.name));
-        match options.source().resolve_for(scenario) {
+        match options.resolve_for(scenario) {
             Ok(_) => prop_assert!(spec.range.contains(x), "{} = {x} accepted", spec.name),
             Err(e) => {
                 prop_assert_eq!(e.exit_code(), 2);

@@ -1,9 +1,9 @@
 //! `friction-lab curve MODEL --out DIR`: one friction curve as CSV, PNG, SVG and a JSON
 //! summary of its key values ([`FrictionCurve`]).
 
-use crate::options::ModelOptions;
 use clap::Args;
 use friction_lab::curve::{FrictionCurve, CURVE_POINTS};
+use friction_lab::settings::ModelSettings;
 use friction_models::ModelId;
 use std::path::PathBuf;
 
@@ -33,7 +33,7 @@ pub struct CurveArgs {
     pub points: i64,
     /// The model's parameters and reading.
     #[command(flatten)]
-    pub model_options: ModelOptions,
+    pub model_options: ModelSettings,
 }
 
 impl CurveArgs {
@@ -44,7 +44,7 @@ impl CurveArgs {
             v_max: self.v_max,
             t_end: self.t_end,
             points: self.points,
-            model_settings: self.model_options.settings(),
+            model_settings: self.model_options.clone(),
         }
     }
 }

@@ -2,12 +2,13 @@
 //! models and the reference models, beside the paper's claims, with the numbers that
 //! decided each cell.
 
-use crate::options::{LimitArgs, ParamOptions};
 use clap::Args;
 use friction_lab::error::AppError;
 use friction_lab::laws::ModelChoice;
+use friction_lab::params::ParamSource;
 use friction_lab::plot::Format;
 use friction_lab::ranges;
+use friction_lab::settings::RunLimits;
 use friction_lab::study::Phenomena;
 use friction_lab::threads::with_threads;
 use integrators::Solver;
@@ -25,7 +26,7 @@ pub struct PhenomenaArgs {
         long,
         value_name = "SOLVER",
         default_value = "bdf",
-        help = crate::options::solver_help(
+        help = friction_lab::settings::solver_help(
             "The solver every protocol uses, one of",
             "(adaptive solvers only; BDF by default: the bristle models' stiff states make \
              Dormand-Prince four times slower, with the same verdicts)"
@@ -61,10 +62,10 @@ pub struct PhenomenaArgs {
     /// the bristle models lugre, lugre-vd, elasto-plastic and gms]. Naming `--param-set paper`
     /// alone is the default.
     #[command(flatten)]
-    pub params: ParamOptions,
+    pub params: ParamSource,
     /// The bounds of every protocol run: a run that reaches one leaves its cell undecided.
     #[command(flatten)]
-    pub limits: LimitArgs,
+    pub limits: RunLimits,
 }
 
 /// Runs `phenomena`: its files written, then the advice and the failure of undecided cells.
@@ -96,8 +97,8 @@ impl PhenomenaArgs {
             atol: self.atol,
             threads: self.threads,
             models: self.models.clone(),
-            params: self.params.source(),
-            limits: self.limits.settings(),
+            params: self.params.clone(),
+            limits: self.limits,
         }
     }
 }

@@ -2,9 +2,9 @@
 //! ([`friction_lab::reproduce`]): Figures 2–7 with notes, the experiment, Table 2, the solver
 //! studies, the chain's and the belt's stick–slip map, and a report that links them.
 
-use crate::options::ParamOptions;
 use clap::Args;
 use friction_lab::error::AppError;
+use friction_lab::params::ParamSource;
 use friction_lab::plot::Format;
 use friction_lab::ranges;
 use friction_lab::reproduce::Paper;
@@ -21,7 +21,7 @@ pub struct ReproduceArgs {
     pub out: PathBuf,
     /// The parameters (Table 1 of the paper unless changed).
     #[command(flatten)]
-    pub params: ParamOptions,
+    pub params: ParamSource,
     /// Worker threads for the parallel parts (default: all cores; more than the machine has are
     /// capped to its cores). Results do not depend on it.
     #[arg(long, value_name = "N", allow_hyphen_values = true)]
@@ -40,7 +40,7 @@ pub fn run(args: &ReproduceArgs, format: Format) -> Result<(), AppError> {
                 .iter()
                 .any(|p| p.0 == name)
     };
-    let params = args.params.source().resolve_with(&[], |name, _| {
+    let params = args.params.resolve_with(&[], |name, _| {
         if !rig_or_chain(name) {
             return Ok(false);
         }
@@ -55,7 +55,7 @@ pub fn run(args: &ReproduceArgs, format: Format) -> Result<(), AppError> {
         friction: params,
         parameters: format!(
             "Parameter set `{}`{}",
-            args.params.source().set_name(),
+            args.params.set_name(),
             if args.params.set.is_empty() && args.params.params.is_none() {
                 ""
             } else {

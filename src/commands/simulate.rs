@@ -2,79 +2,12 @@
 //! written as `trajectory.csv`, `summary.json` and figures (time histories of x, v and
 //! friction; phase portrait; friction against velocity and against displacement).
 
-use crate::options::{LimitArgs, ModelOptions, SchemeArgs};
 use clap::Args;
 use friction_lab::laws::ModelChoice;
-use friction_lab::settings::SolverSettings;
+use friction_lab::settings::{ModelSettings, SolverSettings};
 use friction_lab::simulate::{Simulation, Target as Run};
-use integrators::Solver;
 use scenarios::Scenario;
 use std::path::PathBuf;
-
-/// Options that choose and tune the solver, shared by every command that integrates.
-#[derive(Args, Clone, Debug)]
-pub struct SolverOptions {
-    /// The scheme, and the treatment of v = 0 under the event-driven one.
-    #[command(flatten)]
-    pub scheme: SchemeArgs,
-    /// The solver of event-driven integration (its help lists the built-in solvers).
-    #[arg(
-        long,
-        value_name = "SOLVER",
-        help = crate::options::solver_help(
-            "The solver of event-driven integration",
-            "[default: dopri5; refused under time-stepping]"
-        )
-    )]
-    pub solver: Option<Solver>,
-    /// θ of --scheme time-stepping: the weight of the step's end on the smooth forces,
-    /// 0.5 (trapezoidal, second order) to 1 (implicit Euler, first order) [default: 0.5;
-    /// refused under the event-driven scheme, which has no θ].
-    #[arg(long, value_name = "THETA", allow_hyphen_values = true)]
-    pub theta: Option<f64>,
-    /// Fixed step of rk4 and of time-stepping (default 1e-3 s, the paper's), or the initial
-    /// step of the adaptive solvers (the fixed step with --fixed-step).
-    #[arg(long, value_name = "H", allow_hyphen_values = true)]
-    pub dt: Option<f64>,
-    /// Integrate dopri5 or implicit-euler with fixed steps of --dt.
-    #[arg(long)]
-    pub fixed_step: bool,
-    /// Relative tolerance of the adaptive solvers.
-    #[arg(
-        long,
-        value_name = "R",
-        allow_hyphen_values = true,
-        default_value = "1e-8"
-    )]
-    pub rtol: f64,
-    /// Absolute tolerance of the adaptive solvers.
-    #[arg(
-        long,
-        value_name = "A",
-        allow_hyphen_values = true,
-        default_value = "1e-10"
-    )]
-    pub atol: f64,
-    /// The bounds of the run.
-    #[command(flatten)]
-    pub limits: LimitArgs,
-}
-
-impl SolverOptions {
-    /// The settings as the library takes them (checked there: [`SolverSettings::checked_step`]).
-    pub fn settings(&self) -> SolverSettings {
-        SolverSettings {
-            scheme: self.scheme.choice(),
-            solver: self.solver,
-            theta: self.theta,
-            dt: self.dt,
-            fixed_step: self.fixed_step,
-            rtol: self.rtol,
-            atol: self.atol,
-            limits: self.limits.settings(),
-        }
-    }
-}
 
 /// What `simulate` integrates: a single-body rig, or the built-in chain of blocks.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -139,10 +72,10 @@ pub struct SimulateArgs {
     pub window: Option<String>,
     /// The solver.
     #[command(flatten)]
-    pub solver: SolverOptions,
+    pub solver: SolverSettings,
     /// The model's parameters (friction and scenario parameters alike) and reading.
     #[command(flatten)]
-    pub model_options: ModelOptions,
+    pub model_options: ModelSettings,
 }
 
 impl SimulateArgs {
@@ -156,37 +89,12 @@ impl SimulateArgs {
         Simulation {
             target,
             model: self.model.clone(),
-            model_settings: self.model_options.settings(),
-            solver: self.solver.settings(),
+            model_settings: self.model_options.clone(),
+            solver: self.solver,
             t_end: self.t_end,
             points: self.points,
             bodies: self.bodies.clone(),
             window: self.window.clone(),
         }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use crate::{Cli, Command};
-    use clap::Parser;
-    use friction_lab::settings::SolverSettings;
-
-    #[test]
-    fn the_options_default_to_the_librarys_settings() {
-        let cli = Cli::try_parse_from(["fl", "simulate", "belt", "--out", "x"]).unwrap();
-        let Command::Simulate(args) = cli.command else {
-            unreachable!()
-        };
-        let (given, library) = (args.solver.settings(), SolverSettings::default());
-        assert_eq!((given.rtol, given.atol), (library.rtol, library.atol));
-        assert_eq!(given.limits.max_steps, library.limits.max_steps);
-        assert_eq!(given.scheme, library.scheme);
-        let simulation = args.simulation();
-        let params = simulation.model_settings.params;
-        assert_eq!(
-            params.param_set,
-            friction_lab::params::ParamSource::default().param_set
-        );
     }
 }

@@ -3,11 +3,11 @@
 //! state at the end time) and `summary.json` (the counts and the significant correct digits
 //! against the published reference).
 
-use crate::options::LimitArgs;
 use clap::Args;
 use friction_lab::artifacts::Made;
 use friction_lab::error::AppError;
 use friction_lab::ranges;
+use friction_lab::settings::RunLimits;
 use friction_lab::testset::{solve_test_problem, TestSetRun};
 use integrators::testset;
 use integrators::Solver;
@@ -23,7 +23,7 @@ pub struct TestsetArgs {
     #[arg(
         long,
         value_name = "SOLVER",
-        help = crate::options::solver_help("The solver", "[default: radau5]")
+        help = friction_lab::settings::solver_help("The solver", "[default: radau5]")
     )]
     pub solver: Option<Solver>,
     /// Relative tolerance.
@@ -54,7 +54,7 @@ pub struct TestsetArgs {
     pub out: PathBuf,
     /// The run's step cap and wall-clock limit.
     #[command(flatten)]
-    pub limits: LimitArgs,
+    pub limits: RunLimits,
 }
 
 /// Runs `testset`; its files in memory.

@@ -18,27 +18,21 @@ pub fn is_file_path(name: &str) -> bool {
     name.contains('.')
 }
 
-/// Where the parameters come from (`--param-set`, `--params` and `--set` on the command line).
-#[derive(Clone, Debug)]
+/// Where the parameters come from (`--param-set`, `--params` and `--set` on the command line);
+/// the default: the run's default set, no file, no assignment.
+#[derive(clap::Args, Clone, Debug, Default)]
 pub struct ParamSource {
-    /// The named parameter set started from: `paper` (Table 1) or `lugre-1995`; `None`: the
-    /// run's default, [`DEFAULT_PARAM_SET`] or the set of a rig's default law.
+    /// Start from a named parameter set: `paper` (Table 1) or `lugre-1995` [default: paper;
+    /// for a rig run without --model, the set of its default law (servo: LuGre at
+    /// lugre-1995)].
+    #[arg(long = "param-set", value_name = "NAME")]
     pub param_set: Option<String>,
-    /// A TOML file of `NAME = VALUE` lines, applied over the set.
+    /// A TOML file of `NAME = VALUE` lines, applied over the parameter set.
+    #[arg(long = "params", value_name = "FILE.toml")]
     pub params: Option<PathBuf>,
-    /// Assignments `NAME=VALUE`, applied last, in order.
+    /// Override one parameter (repeatable; wins over --params). Names as `models` lists them.
+    #[arg(long = "set", value_name = "NAME=VALUE")]
     pub set: Vec<String>,
-}
-
-/// The default set, no file, no assignment.
-impl Default for ParamSource {
-    fn default() -> Self {
-        ParamSource {
-            param_set: None,
-            params: None,
-            set: Vec::new(),
-        }
-    }
 }
 
 impl ParamSource {

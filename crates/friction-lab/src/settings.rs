@@ -1,7 +1,10 @@
 //! The settings of a run as every front end gives them (the command line's options, Python's
 //! keyword arguments, a Rust user's struct): the scheme and the treatment of v = 0, the
 //! solver and its step control, the bounds of the run, and where the model's parameters come
-//! from. Each is checked here, once, against the ranges of [`crate::ranges`].
+//! from. Each is declared here once, with its help, default and unit, as clap arguments: the
+//! command line flattens them into its commands, the other front ends fill the same structs
+//! (whose `Default` is the declared defaults: [`declared_defaults`]). Each is checked here,
+//! once, against the ranges of [`crate::ranges`].
 
 use crate::error::AppError;
 use crate::params::ParamSource;
@@ -14,12 +17,29 @@ use std::time::Instant;
 
 /// The paper's time step, s: RK4's and time-stepping's default.
 pub const PAPER_DT: f64 = 1e-3;
-/// The default relative tolerance of the adaptive solvers.
-pub const DEFAULT_RTOL: f64 = 1e-8;
-/// The default absolute tolerance of the adaptive solvers.
-pub const DEFAULT_ATOL: f64 = 1e-10;
-/// The default step cap of a run (accepted and rejected steps).
-pub const DEFAULT_MAX_STEPS: i64 = 10_000_000;
+
+/// The request `T` with every option at its declared default and no argument given: what a
+/// front end that sets no option gets. The defaults are written once, in `T`'s declaration.
+pub fn declared_defaults<T: clap::Args + clap::FromArgMatches>() -> T {
+    let command = T::augment_args(clap::Command::new("defaults"));
+    let matches = command
+        .try_get_matches_from(["defaults"])
+        .expect("every option of a request is optional or has a default");
+    T::from_arg_matches(&matches).expect("a request's defaults parse as its fields")
+}
+
+/// [`Default`] as the declared defaults ([`declared_defaults`]) of each request type.
+macro_rules! default_as_declared {
+    ($($request:ty),*) => {$(
+        impl Default for $request {
+            fn default() -> Self {
+                declared_defaults()
+            }
+        }
+    )*};
+}
+
+default_as_declared!(SchemeChoice, RunLimits, SolverSettings, ModelSettings);
 
 /// The note given for `switching = timestepping`, the former spelling of the time-stepping
 /// scheme, which is still taken.
@@ -27,23 +47,24 @@ pub const TIMESTEPPING_SPELLING: &str = "`--switching timestepping` is now spelt
      time-stepping` (time-stepping is a scheme, not a treatment of v = 0); the old spelling is \
      taken for now and will be refused in a later release";
 
-/// The scheme, and the treatment of v = 0 under the event-driven one.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// `--scheme` and `--switching`: how a run or a study is integrated, and how v = 0 is treated
+/// under the event-driven scheme.
+#[derive(clap::Args, Clone, Copy, Debug, PartialEq)]
 pub struct SchemeChoice {
-    /// Event-driven (a solver steps between located events) or time-stepping (Moreau–Jean).
+    /// event-driven (a solver steps between located events; v = 0 treated by --switching) or
+    /// time-stepping (Moreau–Jean: fixed steps, no event located, no solver; a study's one
+    /// method, over its step sizes, against an event-driven reference).
+    #[arg(
+        long,
+        value_name = "event-driven|time-stepping",
+        default_value = "event-driven"
+    )]
     pub scheme: SchemeName,
-    /// The treatment of v = 0 under event-driven integration (event, regularized, naive);
-    /// `None`: event.
+    /// The treatment of v = 0 under event-driven integration: event (stick/slip switching),
+    /// regularized (tanh, width epsilon) or naive [default: event]. (`timestepping`, the
+    /// former spelling of --scheme time-stepping, is still taken, with a note.)
+    #[arg(long, value_name = "event|regularized|naive")]
     pub switching: Option<SwitchingKind>,
-}
-
-impl Default for SchemeChoice {
-    fn default() -> Self {
-        SchemeChoice {
-            scheme: SchemeName::EventDriven,
-            switching: None,
-        }
-    }
 }
 
 impl SchemeChoice {
@@ -76,27 +97,27 @@ impl SchemeChoice {
 }
 
 /// The bounds of a run: a step cap and a wall-clock limit.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(clap::Args, Clone, Copy, Debug, PartialEq)]
 pub struct RunLimits {
-    /// Most steps (accepted and rejected) before the run ends with an error, keeping what it
-    /// computed.
+    /// Most steps (accepted and rejected) of a run before it ends with an error, keeping what
+    /// it computed.
+    #[arg(
+        long,
+        value_name = "N",
+        allow_hyphen_values = true,
+        default_value = "10000000"
+    )]
     pub max_steps: i64,
-    /// Wall-clock limit, s, counted from [`RunLimits::since`].
+    /// Wall-clock limit of the command, s, counted from its start: a run in progress when it
+    /// passes ends with an error, keeping what it computed, and a run not started yet ends at
+    /// its first step (a study or a sweep of many runs is bounded as a whole).
+    #[arg(long, value_name = "S", allow_hyphen_values = true)]
     pub time_limit: Option<f64>,
     /// When the limit started counting: set by a front end that checks these bounds once for
     /// each of many runs (a sweep), so that they bound the whole; `None` for the moment they
     /// are checked.
+    #[arg(skip)]
     pub since: Option<Instant>,
-}
-
-impl Default for RunLimits {
-    fn default() -> Self {
-        RunLimits {
-            max_steps: DEFAULT_MAX_STEPS,
-            time_limit: None,
-            since: None,
-        }
-    }
 }
 
 impl RunLimits {
@@ -113,40 +134,62 @@ impl RunLimits {
     }
 }
 
-/// The scheme, the solver and its step control, and the bounds of a run.
-#[derive(Clone, Copy, Debug)]
-pub struct SolverSettings {
-    /// The scheme, and the treatment of v = 0 under the event-driven one.
-    pub scheme: SchemeChoice,
-    /// The solver of event-driven integration; `None`: Dormand–Prince.
-    pub solver: Option<Solver>,
-    /// θ of time-stepping, in [1/2, 1]; `None`: 1/2.
-    pub theta: Option<f64>,
-    /// The fixed step of RK4 and of time-stepping, or an adaptive solver's initial step, s.
-    pub dt: Option<f64>,
-    /// Integrate an adaptive solver that can with fixed steps of `dt`.
-    pub fixed_step: bool,
-    /// Relative tolerance of the adaptive solvers.
-    pub rtol: f64,
-    /// Absolute tolerance of the adaptive solvers.
-    pub atol: f64,
-    /// The bounds of the run.
-    pub limits: RunLimits,
+/// The help of a solver option: `what`, the names in [`integrators::SOLVERS`] (the list the
+/// option takes, from the one registry of solvers), then `then` (its default and when it is
+/// refused).
+pub fn solver_help(what: &str, then: &str) -> String {
+    let names = integrators::SOLVERS.names();
+    format!("{what}: {} {then}", names.join(", "))
 }
 
-impl Default for SolverSettings {
-    fn default() -> Self {
-        SolverSettings {
-            scheme: SchemeChoice::default(),
-            solver: None,
-            theta: None,
-            dt: None,
-            fixed_step: false,
-            rtol: DEFAULT_RTOL,
-            atol: DEFAULT_ATOL,
-            limits: RunLimits::default(),
-        }
-    }
+/// The scheme, the solver and its step control, and the bounds of a run: the options every
+/// command that integrates shares.
+#[derive(clap::Args, Clone, Copy, Debug)]
+pub struct SolverSettings {
+    /// The scheme, and the treatment of v = 0 under the event-driven one.
+    #[command(flatten)]
+    pub scheme: SchemeChoice,
+    /// The solver of event-driven integration; `None`: Dormand–Prince.
+    #[arg(
+        long,
+        value_name = "SOLVER",
+        help = solver_help(
+            "The solver of event-driven integration",
+            "[default: dopri5; refused under time-stepping]"
+        )
+    )]
+    pub solver: Option<Solver>,
+    /// θ of --scheme time-stepping: the weight of the step's end on the smooth forces,
+    /// 0.5 (trapezoidal, second order) to 1 (implicit Euler, first order) [default: 0.5;
+    /// refused under the event-driven scheme, which has no θ].
+    #[arg(long, value_name = "THETA", allow_hyphen_values = true)]
+    pub theta: Option<f64>,
+    /// Fixed step of rk4 and of time-stepping (default 1e-3 s, the paper's), or the initial
+    /// step of the adaptive solvers (the fixed step with --fixed-step).
+    #[arg(long, value_name = "H", allow_hyphen_values = true)]
+    pub dt: Option<f64>,
+    /// Integrate dopri5 or implicit-euler with fixed steps of --dt.
+    #[arg(long)]
+    pub fixed_step: bool,
+    /// Relative tolerance of the adaptive solvers.
+    #[arg(
+        long,
+        value_name = "R",
+        allow_hyphen_values = true,
+        default_value = "1e-8"
+    )]
+    pub rtol: f64,
+    /// Absolute tolerance of the adaptive solvers.
+    #[arg(
+        long,
+        value_name = "A",
+        allow_hyphen_values = true,
+        default_value = "1e-10"
+    )]
+    pub atol: f64,
+    /// The bounds of the run.
+    #[command(flatten)]
+    pub limits: RunLimits,
 }
 
 impl SolverSettings {
@@ -242,10 +285,36 @@ impl SolverSettings {
 }
 
 /// Where a model's parameters come from, and the reading of its equations.
-#[derive(Clone, Debug, Default)]
+#[derive(clap::Args, Clone, Debug)]
 pub struct ModelSettings {
     /// The parameter set, file and assignments.
+    #[command(flatten)]
     pub params: ParamSource,
-    /// `odd`: the static term carries sign(v) (default); `printed`: as printed.
+    /// `odd`: the static term carries sign(v) (default); `printed`: the equations as printed.
+    #[arg(long, value_name = "odd|printed", default_value = "odd")]
     pub variant: Variant,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_declared_defaults_are_the_documented_ones() {
+        // docs/inputs.md: dopri5 at rtol 1e-8, atol 1e-10, at most 1e7 steps, event-driven
+        // with event switching, the paper's parameters in the sign-consistent reading.
+        let s = SolverSettings::default();
+        assert_eq!(
+            (s.rtol, s.atol, s.limits.max_steps),
+            (1e-8, 1e-10, 10_000_000)
+        );
+        assert_eq!(
+            (s.solver, s.theta, s.dt, s.fixed_step),
+            (None, None, None, false)
+        );
+        assert_eq!(s.scheme.scheme, SchemeName::EventDriven);
+        assert_eq!(s.switching(), SwitchingKind::Event);
+        let m = ModelSettings::default();
+        assert_eq!((m.params.set_name(), m.variant), ("paper", Variant::Odd));
+    }
 }

@@ -15,7 +15,7 @@ pub struct ConvergeArgs {
     #[arg(
         long,
         value_delimiter = ',',
-        help = crate::options::solver_help(
+        help = friction_lab::settings::solver_help(
             "Solvers, comma-separated, of",
             "[default: rk4,dopri5,implicit-euler; refused under --scheme time-stepping, whose one method \
              is Moreau–Jean's scheme]"

@@ -16,7 +16,7 @@ pub struct IndependenceArgs {
     #[arg(
         long,
         value_name = "SOLVER",
-        help = crate::options::solver_help(
+        help = friction_lab::settings::solver_help(
             "The solver",
             "[default: rk4; refused under --scheme time-stepping, whose one method is \
              Moreau–Jean's scheme]"

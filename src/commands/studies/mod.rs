@@ -2,9 +2,9 @@
 //! library's study of the same name ([`friction_lab::study::solver_studies`]).
 
 use crate::commands::simulate::Target as Run;
-use crate::options::{LimitArgs, ModelOptions, SchemeArgs};
 use clap::Args;
 use friction_lab::laws::ModelChoice;
+use friction_lab::settings::{ModelSettings, RunLimits, SchemeChoice};
 use friction_lab::simulate::Target;
 use friction_lab::study::Problem;
 use std::path::PathBuf;
@@ -48,7 +48,7 @@ pub struct CaseArgs {
     pub bodies: Vec<String>,
     /// The scheme, and the treatment of v = 0 under the event-driven one.
     #[command(flatten)]
-    pub scheme: SchemeArgs,
+    pub scheme: SchemeChoice,
     /// End time, s [default: the scenario's; 10 for the chain (its horizon of predictability:
     /// docs/studies.md); 20 for a system file].
     #[arg(long, value_name = "T", allow_hyphen_values = true)]
@@ -58,14 +58,14 @@ pub struct CaseArgs {
     pub out: PathBuf,
     /// The bounds of each run (a run past them fails, and the study says which).
     #[command(flatten)]
-    pub limits: LimitArgs,
+    pub limits: RunLimits,
     /// Worker threads (default: all cores; more than the machine has are capped to its cores).
     /// The results do not depend on it.
     #[arg(long, value_name = "N", allow_hyphen_values = true)]
     pub threads: Option<i64>,
     /// The model's parameters and reading.
     #[command(flatten)]
-    pub model_options: ModelOptions,
+    pub model_options: ModelSettings,
 }
 
 impl CaseArgs {
@@ -81,11 +81,11 @@ impl CaseArgs {
             target,
             model: self.model.clone(),
             bodies: self.bodies.clone(),
-            scheme: self.scheme.choice(),
+            scheme: self.scheme,
             t_end: self.t_end,
-            limits: self.limits.settings(),
+            limits: self.limits,
             threads: self.threads,
-            model_settings: self.model_options.settings(),
+            model_settings: self.model_options.clone(),
         }
     }
 }

@@ -29,7 +29,7 @@ pub struct StiffnessArgs {
     #[arg(
         long,
         value_delimiter = ',',
-        help = crate::options::solver_help(
+        help = friction_lab::settings::solver_help(
             "Solvers, comma-separated, of",
             "[default: dopri5,tsit45,implicit-euler,bdf,esdirk34; refused under --scheme time-stepping, whose one method \
              is Moreau–Jean's scheme]"

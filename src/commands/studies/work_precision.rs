@@ -28,7 +28,7 @@ pub struct WorkPrecisionArgs {
     #[arg(
         long,
         value_delimiter = ',',
-        help = crate::options::solver_help(
+        help = friction_lab::settings::solver_help(
             "Solvers, comma-separated, of",
             "[default: all ten; with --testset radau5,rodas,auto,bdf,tr-bdf2,esdirk34, \
              the adaptive ones taken; refused under --scheme time-stepping, whose one method \
