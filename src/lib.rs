@@ -2,7 +2,6 @@
 //! [`friction_lab`] per command, whose files it writes and whose messages it prints.
 
 pub mod commands;
-pub mod options;
 
 use clap::{Parser, Subcommand};
 use friction_lab::error::AppError;
@@ -53,25 +52,25 @@ pub enum Command {
     /// Draw one friction curve: force against velocity, or against displacement under the
     /// paper's prescribed motion (DV, SD, SV, dahl).
     #[command(after_help = EXIT_CODES)]
-    Curve(commands::curve::CurveArgs),
+    Curve(commands::Writing<friction_lab::curve::FrictionCurve>),
     /// Integrate one scenario: trajectory.csv, summary.json and figures.
     #[command(after_help = EXIT_CODES)]
-    Simulate(commands::simulate::SimulateArgs),
+    Simulate(commands::Writing<friction_lab::simulate::Simulation>),
     /// Decide Table 2 by simulation, beside the paper's table.
     #[command(after_help = EXIT_CODES)]
-    Phenomena(commands::phenomena::PhenomenaArgs),
+    Phenomena(commands::Writing<friction_lab::study::Phenomena>),
     /// Convergence study: observed orders against a reference.
     #[command(after_help = EXIT_CODES)]
-    Converge(commands::studies::ConvergeArgs),
+    Converge(commands::Writing<friction_lab::study::Converge>),
     /// Step-size independence: successive differences, Richardson estimate, verdict.
     #[command(after_help = EXIT_CODES)]
-    Independence(commands::studies::IndependenceArgs),
+    Independence(commands::Writing<friction_lab::study::Independence>),
     /// Work-precision: error against cost for every solver.
     #[command(after_help = EXIT_CODES)]
-    WorkPrecision(commands::studies::WorkPrecisionArgs),
+    WorkPrecision(commands::Writing<friction_lab::study::WorkPrecision>),
     /// Stiffness sweep: where the implicit solvers overtake the explicit ones.
     #[command(after_help = EXIT_CODES)]
-    Stiffness(commands::studies::StiffnessArgs),
+    Stiffness(commands::Writing<friction_lab::study::Stiffness>),
     /// Sweep a rig, the chain or a system file over a grid of parameters: the settled state at every point
     /// (stick phases per cycle, amplitude and period, friction, solver statistics).
     #[command(after_help = EXIT_CODES)]
@@ -132,13 +131,13 @@ impl Command {
         match self {
             Command::Curve(a) => (&a.out, None),
             Command::Simulate(a) => (&a.out, None),
-            Command::Converge(a) => (&a.case.out, a.case.threads),
-            Command::Independence(a) => (&a.case.out, a.case.threads),
-            Command::WorkPrecision(a) => (&a.case.out, a.case.threads),
-            Command::Stiffness(a) => (&a.case.out, a.case.threads),
+            Command::Converge(a) => (&a.out, a.request.problem.threads),
+            Command::Independence(a) => (&a.out, a.request.problem.threads),
+            Command::WorkPrecision(a) => (&a.out, a.request.problem.threads),
+            Command::Stiffness(a) => (&a.out, a.request.problem.threads),
             Command::Sweep(a) => (&a.run.out, a.threads),
             Command::Testset(a) => (&a.out, None),
-            Command::Phenomena(a) => (&a.out, a.threads),
+            Command::Phenomena(a) => (&a.out, a.request.threads),
             Command::Models { .. } | Command::Reproduce(_) => (std::path::Path::new("."), None),
         }
     }
@@ -149,15 +148,15 @@ impl Command {
 /// `reproduce` are refused here.
 pub fn make(command: &Command) -> Result<artifacts::Made, AppError> {
     match command {
-        Command::Curve(args) => args.curve().run(&args.out),
-        Command::Simulate(args) => args.simulation().run(&args.out, TrajectoryAs::File),
-        Command::Converge(args) => args.study().run(&args.case.out),
-        Command::Independence(args) => args.study().run(&args.case.out),
-        Command::WorkPrecision(args) => args.study().run(&args.case.out),
-        Command::Stiffness(args) => args.study().run(&args.case.out),
+        Command::Curve(args) => args.request.run(&args.out),
+        Command::Simulate(args) => args.request.run(&args.out, TrajectoryAs::File),
+        Command::Converge(args) => args.request.run(&args.out),
+        Command::Independence(args) => args.request.run(&args.out),
+        Command::WorkPrecision(args) => args.request.run(&args.out),
+        Command::Stiffness(args) => args.request.run(&args.out),
         Command::Sweep(args) => commands::sweep::make(args),
         Command::Testset(args) => commands::testset::make(args),
-        Command::Phenomena(args) => args.study().run(&args.out),
+        Command::Phenomena(args) => args.request.run(&args.out),
         Command::Models { .. } | Command::Reproduce(_) => Err(AppError::Usage(
             "models and reproduce write no in-memory result".into(),
         )),

@@ -66,7 +66,7 @@ fn checked(option: &OptionRange, value: f64) {
     let Command::Simulate(args) = cli.command else {
         unreachable!()
     };
-    match args.simulation().rig_spec(Scenario::BELT) {
+    match args.request.rig_spec(Scenario::BELT) {
         Ok(_) => assert!(
             option.range.contains(value),
             "--{} {value} was accepted outside {}",

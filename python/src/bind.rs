@@ -412,10 +412,12 @@ fn problem<'py>(
     function: &str,
     own: &[&str],
 ) -> PyResult<(Problem, Keywords<'py>)> {
-    let mut problem = Problem {
-        target: target(scenario, system)?,
-        ..Problem::default()
-    };
+    let target = target(scenario, system)?;
+    let mut problem = Problem::default();
+    match target {
+        Some(Target::System(path)) => problem.system = Some(path),
+        named => problem.scenario = named,
+    }
     let mut left = Vec::new();
     for (key, value) in given(options)? {
         let k = key.as_str();

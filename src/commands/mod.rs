@@ -1,10 +1,23 @@
-//! One module per command of `friction-lab`.
+//! One module per command of `friction-lab`, and what they share: a request of the library
+//! with the folder its files go to ([`Writing`]).
 
-pub mod curve;
+use clap::{Args, FromArgMatches};
+use std::path::PathBuf;
+
 pub mod models;
 pub mod phenomena;
 pub mod reproduce;
-pub mod simulate;
-pub mod studies;
 pub mod sweep;
 pub mod testset;
+
+/// A request of the library, declared there ([`friction_lab::curve::FrictionCurve`],
+/// [`friction_lab::study::Phenomena`], …), and the folder its files are written into.
+#[derive(Args, Debug)]
+pub struct Writing<R: Args + FromArgMatches> {
+    /// Folder to write into (created if missing).
+    #[arg(long, value_name = "DIR")]
+    pub out: PathBuf,
+    /// The request.
+    #[command(flatten)]
+    pub request: R,
+}

@@ -2,10 +2,11 @@
 //! sweep of [`friction_lab::sweep`] over the run `simulate` would make, each point's values set as
 //! `--set` would set them.
 
-use crate::commands::simulate::SimulateArgs;
+use super::Writing;
 use clap::Args;
 use friction_lab::artifacts::Made;
 use friction_lab::error::AppError;
+use friction_lab::simulate::Simulation;
 use friction_lab::sweep::{parse_point_range, points, Axis, Start, Sweep, DEFAULT_SETTLE};
 
 /// Options of `sweep`.
@@ -14,7 +15,7 @@ pub struct SweepArgs {
     /// What to run at every point: the rig or chain, the model, the solver and the fixed
     /// parameters, as `simulate` takes them.
     #[command(flatten)]
-    pub run: SimulateArgs,
+    pub run: Writing<Simulation>,
     /// One axis of the grid, repeatable: NAME=V1,V2,... (a list), NAME=START:STOP:COUNT
     /// (evenly spaced), or NAME=log:START:STOP:COUNT (evenly spaced in log); any friction,
     /// scenario or chain parameter. The grid is the product of the axes, the first varying
@@ -53,7 +54,7 @@ pub fn make(args: &SweepArgs) -> Result<Made, AppError> {
         .collect::<Result<_, _>>()?;
     let n = points(&axes).len();
     let sweep = Sweep {
-        simulation: args.run.simulation(),
+        simulation: args.run.request.clone(),
         axes,
         settle: args.settle,
         start: args.start,

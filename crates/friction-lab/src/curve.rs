@@ -17,19 +17,29 @@ use std::path::Path;
 /// The samples on each side of zero of a curve unless told otherwise.
 pub const CURVE_POINTS: i64 = 2000;
 
-/// One friction curve of a model of the catalog.
-#[derive(Clone, Debug)]
+/// One friction curve of a model of the catalog (`friction-lab curve`).
+#[derive(clap::Args, Clone, Debug)]
 pub struct FrictionCurve {
-    /// The model.
+    /// The model, as `friction-lab models` lists it (AV, CS, CVS, DV, SD, SV, coulomb, ...).
+    #[arg(value_name = "MODEL")]
     pub model: ModelId,
-    /// Largest |v| of a force–velocity curve, m/s; `None`: 1.
+    /// Largest |v| of a force-velocity curve, m/s [default: 1].
+    #[arg(long, value_name = "V", allow_hyphen_values = true)]
     pub v_max: Option<f64>,
-    /// End time of the prescribed motion X(t) = t³/3 + t²/2 of a force–displacement curve, s;
-    /// `None`: 2.
+    /// End time of the prescribed motion X(t) = t^3/3 + t^2/2 of a force-displacement curve,
+    /// s [default: 2].
+    #[arg(long, value_name = "T", allow_hyphen_values = true)]
     pub t_end: Option<f64>,
     /// Samples on each side of zero.
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = CURVE_POINTS,
+        allow_hyphen_values = true
+    )]
     pub points: i64,
-    /// Where the parameters come from, and the reading of the equations.
+    /// The model's parameters and reading.
+    #[command(flatten)]
     pub model_settings: ModelSettings,
 }
 

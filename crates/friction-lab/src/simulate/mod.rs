@@ -14,7 +14,7 @@ mod system;
 
 pub use bodies::chosen_bodies;
 pub use motion::{spread, LINE_BODIES};
-pub use request::{Simulation, Target};
+pub use request::{scenario_help, Simulation, Target};
 pub use rig::simulate_rig;
 pub use stiffness::add_stiffness;
 pub use system::{load, simulate_system, Described, SystemRun};

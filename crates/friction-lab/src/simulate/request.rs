@@ -50,6 +50,14 @@ pub enum Target {
     System(PathBuf),
 }
 
+/// A rig or the chain by name ([`Target::named`]).
+impl std::str::FromStr for Target {
+    type Err = String;
+    fn from_str(name: &str) -> Result<Target, String> {
+        Target::named(name)
+    }
+}
+
 impl Target {
     /// The rig named `name`, or the chain (`chain`); the message of another name lists both.
     pub fn named(name: &str) -> Result<Target, String> {
@@ -79,35 +87,73 @@ impl Target {
     }
 }
 
-/// One run: what is integrated, with which model and settings, how long, and what is
-/// recorded. [`Simulation::run`] checks it and makes its files.
-#[derive(Clone, Debug)]
+/// The help of a target argument: the names in [`scenarios::SCENARIOS`] (the rigs the
+/// argument takes, from the one registry of rigs), then `then` (the other targets).
+pub fn scenario_help(what: &str, then: &str) -> String {
+    format!(
+        "{what}: {} (one contact each), {then}",
+        scenarios::SCENARIOS.names().join(", ")
+    )
+}
+
+/// One run (`friction-lab simulate`): what is integrated, with which model and settings, how
+/// long, and what is recorded. [`Simulation::run`] checks it and makes its files.
+#[derive(clap::Args, Clone, Debug)]
 pub struct Simulation {
-    /// The rig, the chain or a system file.
-    pub target: Target,
-    /// The friction model (rigs and the chain; a system file's contacts name their own).
+    /// The rig (docs/scenarios.md) or the chain: [`Simulation::target`] with `system`.
+    #[arg(
+        help = scenario_help(
+            "The rig",
+            "or chain (the Burridge–Knopoff chain of docs/systems.md, parameters n_bodies, m, \
+             k_chain, k_driver, v_driver, spread by --set)",
+        ),
+        value_name = "SCENARIO",
+        required_unless_present = "system",
+        conflicts_with = "system"
+    )]
+    pub scenario: Option<Target>,
+    /// A system file (TOML or JSON, docs/systems.md) to integrate instead of a scenario.
+    #[arg(long, value_name = "FILE.toml")]
+    pub system: Option<PathBuf>,
+    /// The friction model, as `friction-lab models` lists it, or a law registered by name
+    /// (from Python: docs/python.md) (rigs and chain).
+    #[arg(long, value_name = "MODEL")]
     pub model: Option<ModelChoice>,
-    /// Where the parameters come from, and the reading of the equations.
-    pub model_settings: ModelSettings,
-    /// The scheme, solver, step control and bounds.
-    pub solver: SolverSettings,
-    /// End time, s; `None`: the rig's own, [`CHAIN_T_END`], or [`FILE_T_END`].
+    /// End time, s [default: the scenario's; 50 for the chain; 20 for a system file].
+    #[arg(long, value_name = "T", allow_hyphen_values = true)]
     pub t_end: Option<f64>,
-    /// Evenly spaced output points; `None`: [`RIG_POINTS`], or [`default_points`].
+    /// Evenly spaced output points (events are recorded besides) [default: 2001; for a
+    /// system, fewer when 2001 states would exceed 1e7 numbers].
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
     pub points: Option<i64>,
-    /// The bodies of a system written and drawn, as names or 1-based indices; empty: the
-    /// default choice ([`chosen_bodies`]).
+    /// Systems: the bodies written to trajectory.csv, as names or 1-based indices,
+    /// comma-separated; velocity.png, the phase portraits and the spectra draw at most four of
+    /// them, spread evenly [default: all up to 20 bodies, else 20 evenly spaced].
+    #[arg(long, value_name = "LIST", value_delimiter = ',')]
     pub bodies: Vec<String>,
-    /// The span of time the figures draw and the spectra measure, `T0:T1` in seconds
-    /// ([`Window::parse`]); `None`: the whole run.
+    /// The span of time the figures draw, T0:T1 in seconds (time histories, phase portraits,
+    /// friction plots, space-time pictures, stiffness), and the spectra measure [default: the
+    /// whole run; the spectra its last half]. The data files keep every point.
+    #[arg(long, value_name = "T0:T1")]
     pub window: Option<String>,
+    /// The scheme, solver, step control and bounds.
+    #[command(flatten)]
+    pub solver: SolverSettings,
+    /// The model's parameters (friction and scenario parameters alike) and reading.
+    #[command(flatten)]
+    pub model_settings: ModelSettings,
 }
 
 impl Simulation {
     /// A run of `target` with `model` and every setting at its default.
     pub fn new(target: Target, model: Option<ModelChoice>) -> Simulation {
+        let (scenario, system) = match target {
+            Target::System(path) => (None, Some(path)),
+            named => (Some(named), None),
+        };
         Simulation {
-            target,
+            scenario,
+            system,
             model,
             model_settings: ModelSettings::default(),
             solver: SolverSettings::default(),
@@ -115,6 +161,20 @@ impl Simulation {
             points: None,
             bodies: Vec::new(),
             window: None,
+        }
+    }
+
+    /// What the run integrates: the rig or the chain `scenario` names, or the file `system`.
+    pub fn target(&self) -> Result<Target, AppError> {
+        match (&self.scenario, &self.system) {
+            (Some(target), None) => Ok(target.clone()),
+            (None, Some(path)) => Ok(Target::System(path.clone())),
+            (Some(_), Some(_)) => Err(AppError::Usage(
+                "give a scenario or a `system`, not both".into(),
+            )),
+            (None, None) => Err(AppError::Usage(
+                "a scenario (a rig's name or \"chain\") or a `system` is required".into(),
+            )),
         }
     }
 
@@ -171,7 +231,7 @@ impl Simulation {
     /// The system of the chain or the system file, described.
     pub fn described(&self) -> Result<Described, AppError> {
         system_of(
-            self.target.file(),
+            self.system.as_deref(),
             self.model.as_ref(),
             &self.model_settings,
         )
@@ -181,7 +241,7 @@ impl Simulation {
     pub fn system_t_end(&self) -> Result<f64, AppError> {
         Ok(self
             .checked_t_end()?
-            .unwrap_or_else(|| default_t_end(self.target.file())))
+            .unwrap_or_else(|| default_t_end(self.system.as_deref())))
     }
 
     /// The output points of a system of `dim` unknowns: `points`, checked against its range
@@ -217,8 +277,8 @@ impl Simulation {
     /// The advice on settings the run does not read, and on former spellings.
     pub fn warnings(&self) -> Vec<String> {
         // A rig's own default law where no model is named.
-        let model = match (&self.target, &self.model) {
-            (Target::Rig(scenario), None) => scenario.default_law().map(|(m, _)| m),
+        let model = match (&self.scenario, &self.model) {
+            (Some(Target::Rig(scenario)), None) => scenario.default_law().map(|(m, _)| m),
             _ => self.model.as_ref().and_then(ModelChoice::catalog),
         };
         unread_warnings(
@@ -234,13 +294,13 @@ impl Simulation {
     /// Checks the run, runs it and makes its files in `out` (in memory), the trajectory as a
     /// file or as columns.
     pub fn run(&self, out: &Path, trajectory_as: TrajectoryAs) -> Result<Made, AppError> {
-        let mut made = match &self.target {
+        let mut made = match self.target()? {
             Target::Rig(scenario) => {
-                let spec = self.rig_spec(*scenario)?;
+                let spec = self.rig_spec(scenario)?;
                 let t_end = (spec.t_end)
                     .unwrap_or_else(|| spec.scenario.default_t_end(&spec.params, &spec.friction));
                 let window = self.checked_window(t_end)?;
-                let model = self.rig_law(*scenario)?.0;
+                let model = self.rig_law(scenario)?.0;
                 simulate_rig(&spec, &model, out, trajectory_as, window)?
             }
             _ => self.run_system(out, trajectory_as)?,

@@ -10,28 +10,47 @@ use crate::ranges;
 use integrators::Solver;
 use scenarios::studies::{self, Independence, StudyCase};
 
-/// The levels of an independence study.
-#[derive(Clone, Copy, Debug)]
+/// The levels of an independence study; by default four levels from 1e-3, halved each time,
+/// judged at a relative tolerance of 1e-6 (the declared defaults).
+#[derive(clap::Args, Clone, Copy, Debug)]
 pub struct Refinement {
-    /// The coarsest step size or tolerance.
+    /// The coarsest step size (rk4) or tolerance (adaptive solvers).
+    #[arg(
+        long,
+        value_name = "H",
+        default_value_t = 1e-3,
+        allow_hyphen_values = true
+    )]
     pub start: f64,
-    /// The ratio between levels.
+    /// Refinement ratio between levels.
+    #[arg(
+        long,
+        value_name = "R",
+        default_value_t = 2.0,
+        allow_hyphen_values = true
+    )]
     pub ratio: f64,
     /// Number of levels.
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 4,
+        allow_hyphen_values = true
+    )]
     pub levels: i64,
     /// Relative tolerance of the verdict.
+    #[arg(
+        long,
+        value_name = "TOL",
+        default_value = "1e-6",
+        allow_hyphen_values = true
+    )]
     pub tol: f64,
 }
 
-/// Four levels from 1e-3, halved each time, judged at a relative tolerance of 1e-6.
 impl Default for Refinement {
     fn default() -> Self {
-        Refinement {
-            start: 1e-3,
-            ratio: 2.0,
-            levels: 4,
-            tol: 1e-6,
-        }
+        crate::settings::declared_defaults()
     }
 }
 

@@ -14,44 +14,59 @@ use scenarios::phenomena::{catalog_laws, Phenomenon, Protocol};
 use scenarios::Law;
 use std::path::Path;
 
-/// The relative tolerance of every protocol run unless told otherwise.
-pub const PHENOMENA_RTOL: f64 = 1e-10;
-/// The absolute tolerance of every protocol run unless told otherwise.
-pub const PHENOMENA_ATOL: f64 = 1e-12;
-
-/// Table 2 for some laws.
-#[derive(Clone, Debug)]
+/// Table 2 for some laws (`friction-lab phenomena`); its `Default` is the declared defaults.
+#[derive(clap::Args, Clone, Debug)]
 pub struct Phenomena {
     /// The solver every protocol uses (an adaptive one); BDF by default: the bristle models'
     /// stiff states make Dormand–Prince four times slower, with the same verdicts.
+    #[arg(
+        long,
+        value_name = "SOLVER",
+        default_value = "bdf",
+        help = crate::settings::solver_help(
+            "The solver every protocol uses, one of",
+            "(adaptive solvers only; BDF by default: the bristle models' stiff states make \
+             Dormand-Prince four times slower, with the same verdicts)"
+        )
+    )]
     pub solver: Solver,
     /// Relative tolerance.
+    #[arg(
+        long,
+        value_name = "R",
+        allow_hyphen_values = true,
+        default_value = "1e-10"
+    )]
     pub rtol: f64,
     /// Absolute tolerance.
+    #[arg(
+        long,
+        value_name = "A",
+        allow_hyphen_values = true,
+        default_value = "1e-12"
+    )]
     pub atol: f64,
-    /// Worker threads; `None`: all cores. The table does not depend on it.
+    /// Worker threads (default: all cores; more than the machine has are capped to its cores).
+    /// The table does not depend on it.
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
     pub threads: Option<i64>,
-    /// The laws judged; empty: every model of the catalog.
+    /// The models to judge, repeatable: names `friction-lab models` lists, or laws registered
+    /// by name (from Python: docs/python.md) [default: every model of the catalog].
+    #[arg(long = "model", value_name = "MODEL")]
     pub models: Vec<ModelChoice>,
     /// Parameters for every judged law (friction parameters only); the default source (the
     /// set `paper`, no file, no assignment) leaves each model at its own set, `paper`, or
-    /// `lugre-1995` for the bristle models.
+    /// `lugre-1995` for the bristle models lugre, lugre-vd, elasto-plastic and gms.
+    #[command(flatten)]
     pub params: ParamSource,
     /// The bounds of every protocol run: a run that reaches one leaves its cell undecided.
+    #[command(flatten)]
     pub limits: RunLimits,
 }
 
 impl Default for Phenomena {
     fn default() -> Self {
-        Phenomena {
-            solver: Solver::BDF,
-            rtol: PHENOMENA_RTOL,
-            atol: PHENOMENA_ATOL,
-            threads: None,
-            models: Vec::new(),
-            params: ParamSource::default(),
-            limits: RunLimits::default(),
-        }
+        crate::settings::declared_defaults()
     }
 }
 

@@ -96,7 +96,7 @@ impl Sweep {
             axes: &self.axes,
             settle: self.settle,
             range,
-            target: self.simulation.target.name(),
+            target: self.simulation.target()?.name(),
             model: (self.simulation.model.as_ref()).map(|m| m.name().to_string()),
             start: self.start,
         };
@@ -159,7 +159,7 @@ fn check_axes(axes: &[Axis], run: &Simulation) -> Result<(), AppError> {
              would override it; give its values in the axis only"
         )));
     }
-    if run.target.file().is_some() {
+    if run.system.is_some() {
         // A system file's contacts carry their own parameters: the regularisation width is
         // shared, any other number is swept by its path in the file.
         if let Some(name) = names.iter().find(|&&n| n != "epsilon" && !is_file_path(n)) {
@@ -207,8 +207,8 @@ fn prepare(run: &Simulation, start: Start) -> Result<PointRun, AppError> {
              steady sliding; use --start rest"
         )))
     };
-    match (&run.target, start) {
-        (Target::Rig(scenario), Start::Sliding) if *scenario == Scenario::BELT => {
+    match (run.target()?, start) {
+        (Target::Rig(scenario), Start::Sliding) if scenario == Scenario::BELT => {
             let mut spec = run.rig_spec(Scenario::BELT)?;
             if spec.params.k <= 0.0 {
                 return refuse(
@@ -226,7 +226,7 @@ fn prepare(run: &Simulation, start: Start) -> Result<PointRun, AppError> {
             Ok(PointRun::Rig(spec))
         }
         (_, Start::Sliding) => refuse("applies to the belt rig only"),
-        (Target::Rig(scenario), Start::Rest) => Ok(PointRun::Rig(run.rig_spec(*scenario)?)),
+        (Target::Rig(scenario), Start::Rest) => Ok(PointRun::Rig(run.rig_spec(scenario)?)),
         _ => {
             let described = run.described()?;
             described.system.validate()?;

@@ -9,32 +9,47 @@ use std::path::Path;
 
 /// The solvers `converge` compares by default.
 pub const CONVERGE_SOLVERS: [Solver; 3] = [Solver::RK4, Solver::DOPRI5, Solver::IMPLICIT_EULER];
-/// The step sizes of the fixed-step solvers by default, coarse to fine.
-pub const CONVERGE_STEPS: [f64; 4] = [0.02, 0.01, 0.005, 0.0025];
-/// The tolerances of the adaptive solvers by default, loose to tight.
-pub const CONVERGE_TOLERANCES: [f64; 3] = [1e-4, 1e-6, 1e-8];
-
-/// Observed orders of each solver on a problem against a reference.
-#[derive(Clone, Debug)]
+/// Observed orders of each solver on a problem against a reference (`friction-lab converge`).
+#[derive(clap::Args, Clone, Debug)]
 pub struct Converge {
     /// The problem.
+    #[command(flatten)]
     pub problem: Problem,
     /// The solvers; empty: [`CONVERGE_SOLVERS`].
+    #[arg(
+        long,
+        value_delimiter = ',',
+        help = crate::settings::solver_help(
+            "Solvers, comma-separated, of",
+            "[default: rk4,dopri5,implicit-euler; refused under --scheme time-stepping, whose one method \
+             is Moreau–Jean's scheme]"
+        )
+    )]
     pub solvers: Vec<Solver>,
-    /// Step sizes of the fixed-step solvers, coarse to fine.
+    /// Step sizes of rk4, dopri5 and implicit-euler (fixed steps), coarse to fine.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        allow_hyphen_values = true,
+        default_value = "0.02,0.01,0.005,0.0025"
+    )]
     pub dt_list: Vec<f64>,
-    /// Tolerances of the adaptive solvers, loose to tight.
+    /// Tolerances of diffsol's adaptive methods, loose to tight.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        allow_hyphen_values = true,
+        default_value = "1e-4,1e-6,1e-8"
+    )]
     pub tol_list: Vec<f64>,
 }
 
 impl Converge {
-    /// The study of `problem` with every other setting at its default.
+    /// The study of `problem` with every other setting at its declared default.
     pub fn new(problem: Problem) -> Converge {
         Converge {
             problem,
-            solvers: Vec::new(),
-            dt_list: CONVERGE_STEPS.to_vec(),
-            tol_list: CONVERGE_TOLERANCES.to_vec(),
+            ..crate::settings::declared_defaults()
         }
     }
 

@@ -9,14 +9,25 @@ use crate::warnings::diverged_line;
 use integrators::Solver;
 use std::path::Path;
 
-/// Step-size independence of one solver on a problem.
-#[derive(Clone, Debug)]
+/// Step-size independence of one solver on a problem (`friction-lab independence`).
+#[derive(clap::Args, Clone, Debug)]
 pub struct Independence {
     /// The problem.
+    #[command(flatten)]
     pub problem: Problem,
     /// The solver; `None`: RK4.
+    #[arg(
+        long,
+        value_name = "SOLVER",
+        help = crate::settings::solver_help(
+            "The solver",
+            "[default: rk4; refused under --scheme time-stepping, whose one method is \
+             Moreau–Jean's scheme]"
+        )
+    )]
     pub solver: Option<Solver>,
     /// The ladder of resolutions and the verdict's tolerance.
+    #[command(flatten)]
     pub refinement: Refinement,
 }
 

@@ -10,12 +10,10 @@ mod independence;
 mod stiffness;
 mod work_precision;
 
-pub use converge::{Converge, CONVERGE_SOLVERS, CONVERGE_STEPS, CONVERGE_TOLERANCES};
+pub use converge::{Converge, CONVERGE_SOLVERS};
 pub use independence::Independence;
-pub use stiffness::{Stiffness, STIFFNESS_SOLVERS, STIFFNESS_STEPS, STIFFNESS_TOLERANCES};
-pub use work_precision::{
-    WorkPrecision, TESTSET_SOLVERS, TESTSET_TOLERANCES, WORK_PRECISION_STEPS, WP_TOLERANCES,
-};
+pub use stiffness::{Stiffness, STIFFNESS_SOLVERS};
+pub use work_precision::{WorkPrecision, TESTSET_SOLVERS, TESTSET_TOLERANCES, WP_TOLERANCES};
 
 use crate::artifacts::{Artifacts, Made};
 use crate::error::AppError;
@@ -32,37 +30,77 @@ use integrators::Solver;
 use scenarios::run::DEFAULT_THETA;
 use scenarios::studies::{Case, StepKind, StudyCase, StudyRun, SystemCase};
 use scenarios::{Scenario, SwitchingKind};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
-/// The problem a solver study runs, with the settings every study shares.
-#[derive(Clone, Debug, Default)]
+/// The problem a solver study runs, with the settings every study shares; its `Default` is
+/// the declared defaults, with no problem named.
+#[derive(clap::Args, Clone, Debug)]
 pub struct Problem {
-    /// A rig, the chain or a system file; `None` is refused (work–precision also takes a
-    /// problem of the stiff test set instead).
-    pub target: Option<simulate::Target>,
-    /// The friction model (rigs and the chain).
+    /// The rig or the chain ([`Problem::target`] with `system`); neither is refused
+    /// (work–precision also takes a problem of the stiff test set instead).
+    #[arg(
+        help = simulate::scenario_help(
+            "The rig",
+            "or chain (the Burridge–Knopoff chain of docs/systems.md, its parameters by --set); \
+             omit it with --system (or, for work-precision, --testset)",
+        ),
+        value_name = "SCENARIO",
+        conflicts_with = "system"
+    )]
+    pub scenario: Option<simulate::Target>,
+    /// A system file (TOML or JSON, docs/systems.md) to study instead of a scenario.
+    #[arg(long, value_name = "FILE.toml")]
+    pub system: Option<PathBuf>,
+    /// The friction model (scenarios and chain), as `friction-lab models` lists it, or a law
+    /// registered by name (from Python: docs/python.md).
+    #[arg(long, value_name = "MODEL")]
     pub model: Option<ModelChoice>,
     /// Systems: the bodies whose trajectories, event times and stick phases are measured
-    /// (names or 1-based indices); empty: the first body. The final state is measured on
+    /// (names or 1-based indices) [default: the first body]; the final state is measured on
     /// every body.
+    #[arg(long, value_name = "LIST", value_delimiter = ',')]
     pub bodies: Vec<String>,
     /// The scheme, and the treatment of v = 0 under the event-driven one.
+    #[command(flatten)]
     pub scheme: SchemeChoice,
-    /// End time, s; `None`: the rig's own, [`crate::simulate::request::CHAIN_STUDY_T_END`]
-    /// for the chain, [`crate::simulate::request::FILE_T_END`] for a system file.
+    /// End time, s [default: the scenario's; 10 for the chain (its horizon of predictability:
+    /// docs/studies.md); 20 for a system file].
+    #[arg(long, value_name = "T", allow_hyphen_values = true)]
     pub t_end: Option<f64>,
     /// The bounds of each run (a run past them fails, and the study says which).
+    #[command(flatten)]
     pub limits: RunLimits,
-    /// Worker threads; `None`: all cores. The results do not depend on it.
+    /// Worker threads (default: all cores; more than the machine has are capped to its cores).
+    /// The results do not depend on it.
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
     pub threads: Option<i64>,
-    /// Where the parameters come from, and the reading of the equations.
+    /// The model's parameters and reading.
+    #[command(flatten)]
     pub model_settings: ModelSettings,
 }
 
+impl Default for Problem {
+    fn default() -> Self {
+        crate::settings::declared_defaults()
+    }
+}
+
 impl Problem {
+    /// The problem `scenario` or `system` names: a rig, the chain or a system file; `None`
+    /// for neither.
+    pub fn target(&self) -> Result<Option<simulate::Target>, AppError> {
+        match (&self.scenario, &self.system) {
+            (Some(_), Some(_)) => Err(AppError::Usage(
+                "give a scenario or a `system`, not both".into(),
+            )),
+            (Some(target), None) => Ok(Some(target.clone())),
+            (None, system) => Ok(system.clone().map(simulate::Target::System)),
+        }
+    }
+
     /// The study case: a rig, the chain, or a system file.
     pub fn case(&self) -> Result<Box<dyn StudyCase>, AppError> {
-        let Some(target) = &self.target else {
+        let Some(target) = &self.target()? else {
             return Err(AppError::Usage(
                 "the study needs a problem: a SCENARIO, or --system FILE.toml (work-precision \
                  also takes --testset PROBLEM)"
@@ -167,7 +205,7 @@ impl Problem {
         let failure = target.failure;
         // A study of a system under event switching also runs its regularised peer (BDF on
         // the regularised system), which reads epsilon.
-        let switching = match (&self.target, self.treatment()?) {
+        let switching = match (&self.scenario, self.treatment()?) {
             (Some(simulate::Target::Rig(_)), s) => s,
             (_, SwitchingKind::Event) => SwitchingKind::Regularized,
             (_, s) => s,

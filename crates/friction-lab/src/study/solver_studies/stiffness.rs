@@ -22,48 +22,72 @@ pub const STIFFNESS_SOLVERS: [Solver; 5] = [
     Solver::ESDIRK34,
 ];
 
-/// The step sizes of RK4 by default, coarse to fine (three a decade).
-pub const STIFFNESS_STEPS: [f64; 7] = [0.01, 0.00464, 0.00215, 0.001, 0.000464, 0.000215, 0.0001];
-
-/// The tolerances tried by default, loose to tight (three a decade: the cost at the target is
-/// interpolated between the two that bracket it).
-pub const STIFFNESS_TOLERANCES: [f64; 16] = [
-    0.01, 0.00464, 0.00215, 0.001, 0.000464, 0.000215, 0.0001, 4.64e-5, 2.15e-5, 1e-5, 4.64e-6,
-    2.15e-6, 1e-6, 4.64e-7, 2.15e-7, 1e-7,
-];
-
-/// The cost of each solver to reach a target error across the values of a parameter.
-#[derive(Clone, Debug)]
+/// The cost of each solver to reach a target error across the values of a parameter
+/// (`friction-lab stiffness`).
+#[derive(clap::Args, Clone, Debug)]
 pub struct Stiffness {
     /// The problem.
+    #[command(flatten)]
     pub problem: Problem,
     /// The parameter swept: epsilon, sigma, sigma0, k, or any other the run reads (on the
-    /// chain: k_chain, m, …, or its law's; on a system file: epsilon).
+    /// chain: k_chain, m, …, or its law's; on a system file: epsilon). A rig swept over
+    /// epsilon without --switching is regularized.
+    #[arg(long, value_name = "NAME", default_value = "epsilon")]
     pub parameter: String,
     /// Its values, in sweep order.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        allow_hyphen_values = true,
+        default_value = "1e-1,1e-2,1e-3,1e-4"
+    )]
     pub values: Vec<f64>,
     /// The solvers; empty: [`STIFFNESS_SOLVERS`].
+    #[arg(
+        long,
+        value_delimiter = ',',
+        help = crate::settings::solver_help(
+            "Solvers, comma-separated, of",
+            "[default: dopri5,tsit45,implicit-euler,bdf,esdirk34; refused under --scheme time-stepping, whose one method \
+             is Moreau–Jean's scheme]"
+        )
+    )]
     pub solvers: Vec<Solver>,
     /// The error to reach: `grid_relative`, the largest error on the time grid over the
     /// solution's scale in each quantity (dimensionless).
+    #[arg(
+        long,
+        value_name = "E",
+        default_value_t = 1e-3,
+        allow_hyphen_values = true
+    )]
     pub target: f64,
-    /// Step sizes of RK4, coarse to fine.
+    /// Step sizes of rk4, coarse to fine (three a decade).
+    #[arg(
+        long,
+        value_delimiter = ',',
+        allow_hyphen_values = true,
+        default_value = "0.01,0.00464,0.00215,0.001,0.000464,0.000215,0.0001"
+    )]
     pub dt_list: Vec<f64>,
-    /// Tolerances tried, loose to tight.
+    /// Tolerances tried, loose to tight (three a decade: the cost at the target is
+    /// interpolated between the two that bracket it).
+    #[arg(
+        long,
+        value_delimiter = ',',
+        allow_hyphen_values = true,
+        default_value = "0.01,0.00464,0.00215,0.001,0.000464,0.000215,0.0001,4.64e-5,2.15e-5,1e-5,4.64e-6,2.15e-6,1e-6,4.64e-7,2.15e-7,1e-7"
+    )]
     pub tol_list: Vec<f64>,
 }
 
 impl Stiffness {
-    /// The study of `problem` over ε = 1e-1 … 1e-4 with every other setting at its default.
+    /// The study of `problem` over ε = 1e-1 … 1e-4 with every other setting at its declared
+    /// default.
     pub fn new(problem: Problem) -> Stiffness {
         Stiffness {
             problem,
-            parameter: "epsilon".into(),
-            values: vec![1e-1, 1e-2, 1e-3, 1e-4],
-            solvers: Vec::new(),
-            target: 1e-3,
-            dt_list: STIFFNESS_STEPS.to_vec(),
-            tol_list: STIFFNESS_TOLERANCES.to_vec(),
+            ..crate::settings::declared_defaults()
         }
     }
 
@@ -74,7 +98,7 @@ impl Stiffness {
     /// whose regularised BDF peer is the method that depends on it.
     pub fn run(&self, out: &Path) -> Result<Made, AppError> {
         let mut problem = self.problem.clone();
-        let rig = matches!(problem.target, Some(Run::Rig(_)));
+        let rig = matches!(problem.scenario, Some(Run::Rig(_)));
         if problem.scheme.switching.is_none()
             && problem.scheme.scheme == SchemeName::EventDriven
             && self.parameter == "epsilon"

@@ -9,9 +9,6 @@ use crate::study::{conduct, Target, TestSetStudy, WorkPrecisionStudy};
 use integrators::Solver;
 use std::path::Path;
 
-/// The step sizes of RK4 by default, coarse to fine.
-pub const WORK_PRECISION_STEPS: [f64; 6] = [0.01, 0.00464, 0.00215, 0.001, 0.000464, 0.000215];
-
 /// The tolerances of a study of a rig or a system: 1e-3 to 1e-8, three a decade.
 pub const WP_TOLERANCES: [f64; 16] = [
     1e-3, 4.64e-4, 2.15e-4, 1e-4, 4.64e-5, 2.15e-5, 1e-5, 4.64e-6, 2.15e-6, 1e-6, 4.64e-7, 2.15e-7,
@@ -36,37 +33,67 @@ pub const TESTSET_SOLVERS: [Solver; 6] = [
 ];
 
 /// Error against work and wall time of each solver on a problem, or on a problem of the stiff
-/// test set.
-#[derive(Clone, Debug)]
+/// test set (`friction-lab work-precision`).
+#[derive(clap::Args, Clone, Debug)]
 pub struct WorkPrecision {
     /// The problem (its bounds and threads also those of a test-set study).
+    #[command(flatten)]
     pub problem: Problem,
     /// A problem of the stiff test set (van-der-pol, robertson, hires, orego, pollution),
-    /// studied instead of the problem's target: the largest relative error at its end time
-    /// against the published reference, rtol = atol = each tolerance (Robertson: atol =
-    /// 1e-14·tol).
+    /// studied instead of a scenario: the largest relative error at its end time against the
+    /// published reference (10^−scd) against work and wall time, rtol = atol = each tolerance
+    /// (Robertson: atol = 1e-14·tol).
+    #[arg(
+        long,
+        value_name = "PROBLEM",
+        conflicts_with_all = [
+            "scenario", "system", "model", "bodies", "t_end", "dt_list", "set", "params",
+            "param_set", "switching"
+        ]
+    )]
     pub testset: Option<String>,
     /// The solvers; empty: every built-in solver, or [`TESTSET_SOLVERS`] on the test set.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        help = crate::settings::solver_help(
+            "Solvers, comma-separated, of",
+            "[default: all ten; with --testset radau5,rodas,auto,bdf,tr-bdf2,esdirk34, \
+             the adaptive ones taken; refused under --scheme time-stepping, whose one method \
+             is Moreau–Jean's scheme]"
+        )
+    )]
     pub solvers: Vec<Solver>,
-    /// Step sizes of RK4, coarse to fine.
+    /// Step sizes of rk4, coarse to fine.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        allow_hyphen_values = true,
+        default_value = "0.01,0.00464,0.00215,0.001,0.000464,0.000215"
+    )]
     pub dt_list: Vec<f64>,
-    /// Tolerances of the adaptive solvers, loose to tight; empty: [`WP_TOLERANCES`], or
-    /// [`TESTSET_TOLERANCES`] on the test set.
+    /// Tolerances of the adaptive solvers, loose to tight [default: 1e-3 to 1e-8, three a
+    /// decade; with --testset 1e-4 to 1e-10, two a decade].
+    // Empty: WP_TOLERANCES, or TESTSET_TOLERANCES on the test set.
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     pub tol_list: Vec<f64>,
-    /// Timings of each run (five at least for a spread worth quoting).
+    /// Timings of each run: the median wall time, its extremes and quartiles (five at least
+    /// for a spread worth quoting).
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 5,
+        allow_hyphen_values = true
+    )]
     pub repeats: i64,
 }
 
 impl WorkPrecision {
-    /// The study of `problem` with every other setting at its default.
+    /// The study of `problem` with every other setting at its declared default.
     pub fn new(problem: Problem) -> WorkPrecision {
         WorkPrecision {
             problem,
-            testset: None,
-            solvers: Vec::new(),
-            dt_list: WORK_PRECISION_STEPS.to_vec(),
-            tol_list: Vec::new(),
-            repeats: 5,
+            ..crate::settings::declared_defaults()
         }
     }
 
