@@ -74,12 +74,12 @@ pub enum Command {
     /// Sweep a rig, the chain or a system file over a grid of parameters: the settled state at every point
     /// (stick phases per cycle, amplitude and period, friction, solver statistics).
     #[command(after_help = EXIT_CODES)]
-    Sweep(commands::sweep::SweepArgs),
+    Sweep(commands::Writing<friction_lab::sweep::Sweep>),
     /// Run one problem of the standard stiff test set (van-der-pol, robertson, hires, orego,
     /// pollution): the state at the end time and the significant correct digits against its
     /// published reference.
     #[command(after_help = EXIT_CODES)]
-    Testset(commands::testset::TestsetArgs),
+    Testset(commands::Writing<friction_lab::testset::TestSet>),
     /// Reproduce the paper into one folder: Figures 2-7 with notes, the experiment, Table 2,
     /// the solver studies, and a report.md that links them.
     #[command(after_help = EXIT_CODES)]
@@ -135,7 +135,7 @@ impl Command {
             Command::Independence(a) => (&a.out, a.request.problem.threads),
             Command::WorkPrecision(a) => (&a.out, a.request.problem.threads),
             Command::Stiffness(a) => (&a.out, a.request.problem.threads),
-            Command::Sweep(a) => (&a.run.out, a.threads),
+            Command::Sweep(a) => (&a.out, a.request.threads),
             Command::Testset(a) => (&a.out, None),
             Command::Phenomena(a) => (&a.out, a.request.threads),
             Command::Models { .. } | Command::Reproduce(_) => (std::path::Path::new("."), None),
@@ -154,8 +154,8 @@ pub fn make(command: &Command) -> Result<artifacts::Made, AppError> {
         Command::Independence(args) => args.request.run(&args.out),
         Command::WorkPrecision(args) => args.request.run(&args.out),
         Command::Stiffness(args) => args.request.run(&args.out),
-        Command::Sweep(args) => commands::sweep::make(args),
-        Command::Testset(args) => commands::testset::make(args),
+        Command::Sweep(args) => args.request.run(&args.out),
+        Command::Testset(args) => args.request.run(&args.out),
         Command::Phenomena(args) => args.request.run(&args.out),
         Command::Models { .. } | Command::Reproduce(_) => Err(AppError::Usage(
             "models and reproduce write no in-memory result".into(),

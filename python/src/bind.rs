@@ -15,7 +15,7 @@ use friction_lab::laws::ModelChoice;
 use friction_lab::settings::{ModelSettings, RunLimits, SchemeChoice, SolverSettings};
 use friction_lab::simulate::{Simulation, Target};
 use friction_lab::study::{Converge, Independence, Phenomena, Problem, Stiffness, WorkPrecision};
-use friction_lab::sweep::{parse_point_range, points, Axis, Start, Sweep, DEFAULT_SETTLE};
+use friction_lab::sweep::{point_range, Axis, Start, Sweep, DEFAULT_SETTLE};
 use integrators::Solver;
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
@@ -562,9 +562,7 @@ pub fn sweep(
             "threads" => sweep.threads = Some(whole(k, &value)?),
             "point_range" => {
                 sweep.range = Some(if value.is_instance_of::<PyString>() {
-                    let text = name(k, &value)?;
-                    parse_point_range(&text, points(&sweep.axes).len())
-                        .map_err(|e| PyValueError::new_err(e.to_string()))?
+                    point_range(&name(k, &value)?).map_err(PyValueError::new_err)?
                 } else {
                     let ends = items(&value)?
                         .iter()

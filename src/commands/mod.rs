@@ -7,8 +7,6 @@ use std::path::PathBuf;
 pub mod models;
 pub mod phenomena;
 pub mod reproduce;
-pub mod sweep;
-pub mod testset;
 
 /// A request of the library, declared there ([`friction_lab::curve::FrictionCurve`],
 /// [`friction_lab::study::Phenomena`], …), and the folder its files are written into.

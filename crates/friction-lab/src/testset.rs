@@ -4,30 +4,95 @@
 
 use crate::artifacts::{Artifacts, Made};
 use crate::error::AppError;
-use integrators::testset::TestProblem;
+use crate::ranges;
+use crate::settings::RunLimits;
+use integrators::testset::{self, TestProblem};
 use integrators::{MethodSwitch, Solution, Solver};
 use scenarios::studies::{self, TestRun, TestSetCounts};
 use scenarios::Limits;
 use serde::Serialize;
 use std::path::Path;
 
-/// A run of a test problem: the problem, the solver (adaptive), its tolerances, its initial
-/// step (the solver's choice when `None`), the end time and the bounds.
-pub struct TestSetRun<'a> {
-    /// The problem.
-    pub problem: &'a TestProblem,
-    /// The solver.
-    pub solver: Solver,
+/// A run of a test problem (`friction-lab testset`): the problem, the solver (adaptive), its
+/// tolerances, its initial step (the solver's choice when `None`), the end time and the
+/// bounds.
+#[derive(clap::Args, Clone, Debug)]
+pub struct TestSet {
+    /// The problem: van-der-pol, robertson, hires, orego or pollution.
+    #[arg(value_name = "PROBLEM")]
+    pub problem: String,
+    /// The solver; `None`: radau5.
+    #[arg(
+        long,
+        value_name = "SOLVER",
+        help = crate::settings::solver_help("The solver", "[default: radau5]")
+    )]
+    pub solver: Option<Solver>,
     /// Relative tolerance.
+    #[arg(
+        long,
+        value_name = "R",
+        allow_hyphen_values = true,
+        default_value = "1e-6"
+    )]
     pub rtol: f64,
     /// Absolute tolerance.
+    #[arg(
+        long,
+        value_name = "A",
+        allow_hyphen_values = true,
+        default_value = "1e-6"
+    )]
     pub atol: f64,
-    /// Initial step, s.
+    /// Initial step, s [default: the solver's choice].
+    #[arg(long, value_name = "H", allow_hyphen_values = true)]
     pub h0: Option<f64>,
-    /// End time.
-    pub t_end: f64,
-    /// The step cap and wall-clock limit.
-    pub limits: Limits,
+    /// End time [default: the problem's, where its reference is given]; `scd` is null at a
+    /// time without published values (Robertson has them at 40 too).
+    #[arg(long, value_name = "T", allow_hyphen_values = true)]
+    pub t_end: Option<f64>,
+    /// The run's step cap and wall-clock limit.
+    #[command(flatten)]
+    pub limits: RunLimits,
+}
+
+impl TestSet {
+    /// Checks the run, solves it and makes its files in `out` ([`solve_test_problem`]).
+    pub fn run(&self, out: &Path) -> Result<Made, AppError> {
+        let problem = testset::named(&self.problem).map_err(AppError::Usage)?;
+        let solver = self.solver.unwrap_or(Solver::RADAU5);
+        if solver.is_fixed_step() {
+            return Err(AppError::Usage(format!(
+                "option `--solver {}` takes a fixed step: the test set is run with tolerances; \
+                 choose an adaptive solver",
+                solver.name()
+            )));
+        }
+        let checked = Checked {
+            problem,
+            solver,
+            rtol: ranges::RTOL.check(self.rtol)?,
+            atol: ranges::ATOL.check(self.atol)?,
+            h0: self.h0.map(|h| ranges::DT.check(h)).transpose()?,
+            t_end: match self.t_end {
+                Some(t) => ranges::TESTSET_T_END.check(t)?,
+                None => problem.t_end,
+            },
+            limits: self.limits.limits()?,
+        };
+        solve_test_problem(&checked, out)
+    }
+}
+
+/// A [`TestSet`] run checked: the problem found, the default solver and end time taken.
+struct Checked<'a> {
+    problem: &'a TestProblem,
+    solver: Solver,
+    rtol: f64,
+    atol: f64,
+    h0: Option<f64>,
+    t_end: f64,
+    limits: Limits,
 }
 
 /// The counts of `summary.json`, in the test set's terms.
@@ -63,7 +128,7 @@ struct Summary<'a> {
 
 /// Solves `run` and its files into `out`, in memory: `final.csv` and `summary.json`, a note
 /// of the significant correct digits where the reference gives them, and the solver's failure.
-pub fn solve_test_problem(run: &TestSetRun, out: &Path) -> Result<Made, AppError> {
+fn solve_test_problem(run: &Checked, out: &Path) -> Result<Made, AppError> {
     let (problem, solver) = (run.problem, run.solver);
     let solved = studies::solve_test_problem(
         problem,

@@ -18,6 +18,14 @@ pub struct Axis {
     pub values: Vec<f64>,
 }
 
+/// An axis from its text ([`Axis::parse`]).
+impl std::str::FromStr for Axis {
+    type Err = String;
+    fn from_str(text: &str) -> Result<Axis, String> {
+        Axis::parse(text).map_err(|e| e.to_string())
+    }
+}
+
 impl Axis {
     /// Parses `NAME=V1,V2`, `NAME=START:STOP:COUNT` or `NAME=log:START:STOP:COUNT`.
     pub fn parse(text: &str) -> Result<Axis, AppError> {

@@ -11,7 +11,7 @@ mod simulation;
 
 pub use axis::{points, Axis, MAX_AXIS, MAX_POINTS};
 pub use point::{grid_options, PointResult, PointRun, RECORD_LIMIT};
-pub use simulation::{check_point_range, parse_point_range, Sweep, DEFAULT_SETTLE};
+pub use simulation::{check_point_range, point_range, Sweep, DEFAULT_SETTLE};
 
 use crate::error::AppError;
 use crate::output::{Cell, Table};

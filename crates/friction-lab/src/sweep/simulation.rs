@@ -21,21 +21,40 @@ use std::time::Instant;
 /// The measured part of each run of a sweep unless told otherwise: its last half.
 pub const DEFAULT_SETTLE: f64 = 0.5;
 
-/// A sweep of a run over a grid of its parameters.
-#[derive(Clone, Debug)]
+/// A sweep of a run over a grid of its parameters (`friction-lab sweep`).
+#[derive(clap::Args, Clone, Debug)]
 pub struct Sweep {
-    /// The run at every point, before the point's values are assigned.
+    /// What to run at every point, before the point's values are assigned: the rig or chain,
+    /// the model, the solver and the fixed parameters, as `simulate` takes them.
+    #[command(flatten)]
     pub simulation: Simulation,
-    /// The axes of the grid, the first varying slowest.
+    /// One axis of the grid, repeatable: NAME=V1,V2,... (a list), NAME=START:STOP:COUNT
+    /// (evenly spaced), or NAME=log:START:STOP:COUNT (evenly spaced in log); any friction,
+    /// scenario or chain parameter. The grid is the product of the axes, the first varying
+    /// slowest.
+    #[arg(long = "grid", value_name = "NAME=VALUES", required = true)]
     pub axes: Vec<Axis>,
     /// The measured, settled part of each run: its last fraction (0, 1] of the time span.
+    #[arg(
+        long,
+        value_name = "FRACTION",
+        default_value_t = DEFAULT_SETTLE,
+        allow_hyphen_values = true
+    )]
     pub settle: f64,
-    /// Where every run starts.
-    pub start: Start,
-    /// The points run, in grid order; `None`: all. Every point is checked all the same.
-    pub range: Option<Range<usize>>,
-    /// Worker threads; `None`: all cores. The rows do not depend on it.
+    /// Worker threads (default: all cores); the results do not depend on it.
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
     pub threads: Option<i64>,
+    /// Where every run starts: `rest` (the rig's x0, v0) or `sliding` (the belt only: the
+    /// body at rest at the equilibrium of steady sliding, x0 = −F(−v_belt)/k, the other half of
+    /// a bifurcation diagram).
+    #[arg(long, value_name = "rest|sliding", default_value = "rest")]
+    pub start: Start,
+    /// Run only the grid points START <= i < END (0-based, in grid order): one part of the
+    /// sweep, for spreading it over machines or Dask tasks; its rows equal those of the whole
+    /// sweep. Every point of the grid is still checked first.
+    #[arg(long = "point-range", value_name = "START:END", value_parser = point_range)]
+    pub range: Option<Range<usize>>,
 }
 
 impl Sweep {
@@ -123,17 +142,17 @@ pub fn check_point_range(range: Range<usize>, n: usize) -> Result<Range<usize>, 
     Ok(range)
 }
 
-/// The points `START:END` of a grid of `n` points, from the text `START:END`.
-pub fn parse_point_range(text: &str, n: usize) -> Result<Range<usize>, AppError> {
-    let (start, end) = text
-        .split_once(':')
-        .ok_or_else(|| point_range_error(text, n))?;
-    let parse = |s: &str| {
-        s.trim()
-            .parse::<usize>()
-            .map_err(|_| point_range_error(text, n))
-    };
-    check_point_range(parse(start)?..parse(end)?, n).map_err(|_| point_range_error(text, n))
+/// The points `START:END` from the text `START:END`, two whole numbers; checked against the
+/// grid when the sweep runs ([`check_point_range`]).
+pub fn point_range(text: &str) -> Result<Range<usize>, String> {
+    let parse = |s: &str| s.trim().parse::<usize>().ok();
+    match text.split_once(':').map(|(a, b)| (parse(a), parse(b))) {
+        Some((Some(start), Some(end))) => Ok(start..end),
+        _ => Err(format!(
+            "option `point-range` = `{text}` is not START:END: allowed two whole numbers \
+             0 <= START <= END, at most the grid's points"
+        )),
+    }
 }
 
 /// Refuses an axis that names a parameter a second time (only the last would be used), a
