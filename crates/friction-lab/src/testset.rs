@@ -57,7 +57,7 @@ pub struct TestSet {
 }
 
 impl TestSet {
-    /// Checks the run, solves it and makes its files in `out` ([`solve_test_problem`]).
+    /// Checks the run, solves it and makes its files in `out`: `final.csv`, `summary.json`.
     pub fn run(&self, out: &Path) -> Result<Made, AppError> {
         let problem = testset::named(&self.problem).map_err(AppError::Usage)?;
         let solver = self.solver.unwrap_or(Solver::RADAU5);
