@@ -1,119 +1,74 @@
-//! Python's keyword arguments as the library's typed settings: `simulate`'s as a
-//! [`Simulation`], `sweep`'s as a [`Sweep`], a solver study's as a [`Problem`] and the study
-//! ([`Converge`], [`Independence`], [`WorkPrecision`], [`Stiffness`]), `curve`'s as a
-//! [`FrictionCurve`], `phenomena`'s as [`Phenomena`]. Each keyword is one field; its value is
-//! taken as the field's type (a number, a whole number, a name, a list) or refused with a
-//! `ValueError` naming the keyword; an unknown keyword is a `TypeError` naming it and those
-//! taken (the Python layer names the close match before it calls). The ranges and the checks
-//! between settings are the library's ([`Simulation::run`], [`Sweep::run`], …), the command
-//! line's too.
+//! Python's keyword arguments as the library's requests, through their one declaration.
+//!
+//! Each function fills the request the library declares for it ([`Simulation`], [`Sweep`],
+//! [`Converge`], [`Independence`], [`WorkPrecision`], [`Stiffness`], [`FrictionCurve`],
+//! [`Phenomena`]) as the command line does: the keyword `t_end` is the option `--t-end`, and
+//! its value, checked as the option's type (a number, a whole number, a name, a list of them,
+//! `True` for a flag), is given to the option's own parser. So the keywords a function takes,
+//! their defaults, their ranges and the checks between them are the declaration's: an option
+//! added to a request is a keyword in Python with no edit here. Python's own forms are taken
+//! besides: `params` a mapping (the command line's `--set NAME=VALUE`), `model` a law object
+//! (registered under its name), `window` and `point_range` a pair, `bodies` names or indices,
+//! and `grid` a mapping of names to values or range texts.
 
+use clap::{ArgAction, Args, FromArgMatches};
 use friction_lab::artifacts::Made;
 use friction_lab::curve::FrictionCurve;
 use friction_lab::error::AppError;
-use friction_lab::laws::ModelChoice;
-use friction_lab::settings::{ModelSettings, RunLimits, SchemeChoice, SolverSettings};
-use friction_lab::simulate::{Simulation, Target};
-use friction_lab::study::{Converge, Independence, Phenomena, Problem, Stiffness, WorkPrecision};
-use friction_lab::sweep::{point_range, Axis, Start, Sweep, DEFAULT_SETTLE};
-use integrators::Solver;
+use friction_lab::simulate::Simulation;
+use friction_lab::study::{Converge, Independence, Phenomena, Stiffness, WorkPrecision};
+use friction_lab::sweep::Sweep;
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyList, PyString, PyTuple};
+use std::any::TypeId;
 use std::path::{Path, PathBuf};
-use std::str::FromStr;
 
-/// Keyword arguments by name.
-type Keywords<'py> = Vec<(String, Bound<'py, PyAny>)>;
-
-/// A study set up, to be run into a folder (in memory).
+/// A request filled from Python, to be run into a folder (in memory).
 pub type Conduct = Box<dyn FnOnce(&Path) -> Result<Made, AppError> + Send>;
 
-/// The keyword arguments every run and study takes ([`Shared`]).
-const SHARED: &[&str] = &[
-    "model",
-    "params",
-    "param_set",
-    "variant",
-    "scheme",
-    "switching",
-    "max_steps",
-    "time_limit",
-    "t_end",
-    "bodies",
-];
+/// The options of the request the function `function` fills, as clap declares them; `None`
+/// for a function that binds none.
+fn declared(function: &str) -> Option<clap::Command> {
+    let command = clap::Command::new("friction_lab").no_binary_name(true);
+    Some(match function {
+        "simulate" => Simulation::augment_args(command),
+        "sweep" => Sweep::augment_args(command),
+        "converge" => Converge::augment_args(command),
+        "independence" => Independence::augment_args(command),
+        "work_precision" => WorkPrecision::augment_args(command),
+        "stiffness" => Stiffness::augment_args(command),
+        "curve" => FrictionCurve::augment_args(command),
+        "phenomena" => Phenomena::augment_args(command),
+        _ => return None,
+    })
+}
 
-/// The keyword arguments of `simulate` besides the scenario, `system` and [`SHARED`].
-const SIMULATE_OWN: &[&str] = &[
-    "solver",
-    "theta",
-    "dt",
-    "fixed_step",
-    "rtol",
-    "atol",
-    "points",
-];
-
-/// The keyword arguments of `sweep` besides those of `simulate` and `grid`.
-const SWEEP_OWN: &[&str] = &["settle", "start", "threads", "point_range"];
-
-/// The keyword arguments of `curve` besides the model.
-const CURVE: &[&str] = &["params", "param_set", "variant", "v_max", "t_end", "points"];
-
-/// The keyword arguments of `phenomena`.
-const PHENOMENA: &[&str] = &[
-    "model",
-    "params",
-    "param_set",
-    "solver",
-    "rtol",
-    "atol",
-    "threads",
-    "max_steps",
-    "time_limit",
-];
-
-/// The keyword arguments of a study besides [`SHARED`] and its own.
-const PROBLEM_OWN: &[&str] = &["threads"];
-
-/// The keyword arguments of each study of its own.
-const STUDY_OWN: [(&str, &[&str]); 4] = [
-    ("converge", &["solvers", "dt_list", "tol_list"]),
-    (
-        "independence",
-        &["solver", "start", "ratio", "levels", "tol"],
-    ),
-    (
-        "work_precision",
-        &["testset", "solvers", "dt_list", "tol_list", "repeats"],
-    ),
-    (
-        "stiffness",
-        &[
-            "parameter",
-            "values",
-            "solvers",
-            "target",
-            "dt_list",
-            "tol_list",
-        ],
-    ),
-];
+/// The option a keyword is: its name with `-` for `_`, and `params` (a mapping in Python) for
+/// `--set`.
+fn option_of(keyword: &str) -> String {
+    match keyword {
+        "params" => "set".into(),
+        _ => keyword.replace('_', "-"),
+    }
+}
 
 /// The keyword arguments of the function `function` bound to the library, besides its
-/// scenario and `system`; `None` for a function that is not.
-pub fn keywords(function: &str) -> Option<Vec<&'static str>> {
-    let own: &[&[&str]] = match function {
-        "curve" => return Some(CURVE.to_vec()),
-        "phenomena" => return Some(PHENOMENA.to_vec()),
-        "simulate" => &[SIMULATE_OWN, &["window"]],
-        "sweep" => &[SIMULATE_OWN, &["window"], SWEEP_OWN, &["grid"]],
-        _ => {
-            let (_, study) = STUDY_OWN.iter().find(|(name, _)| *name == function)?;
-            &[PROBLEM_OWN, study]
-        }
-    };
-    Some([&[SHARED], own].concat().concat())
+/// positional argument and `system`: the long options of its request (`--set` as `params`;
+/// the parameter file `--params` is the command line's alone); `None` for a function that is
+/// not bound.
+pub fn keywords(function: &str) -> Option<Vec<String>> {
+    let command = declared(function)?;
+    let mut names: Vec<String> = (command.get_arguments())
+        .filter_map(|a| a.get_long())
+        .filter(|long| !matches!(*long, "params" | "system"))
+        .map(|long| match long {
+            "set" => "params".to_string(),
+            _ => long.replace('-', "_"),
+        })
+        .collect();
+    names.sort_unstable();
+    Some(names)
 }
 
 /// A `ValueError` for keyword `key` = `value`: `what` is expected.
@@ -122,28 +77,22 @@ fn expected(key: &str, value: &Bound<'_, PyAny>, what: &str) -> PyErr {
     PyValueError::new_err(format!("`{key}` = {shown}: {what} is expected"))
 }
 
-/// `value` as a `T`, `what` the message says is expected; `refused` a value that would
-/// convert but is not one (a bool as a number).
-fn typed<'py, T>(key: &str, value: &Bound<'py, PyAny>, refused: bool, what: &str) -> PyResult<T>
-where
-    T: for<'a> FromPyObject<'a, 'py>,
-{
-    match refused {
-        true => Err(expected(key, value, what)),
-        false => value.extract().map_err(|_| expected(key, value, what)),
+/// A real number as the text that parses back to it exactly (a bool or a string is not one).
+fn number(key: &str, value: &Bound<'_, PyAny>) -> PyResult<String> {
+    let refused = value.is_instance_of::<PyBool>() || value.is_instance_of::<PyString>();
+    match (refused, value.extract::<f64>()) {
+        (false, Ok(x)) => Ok(format!("{x:?}")),
+        _ => Err(expected(key, value, "a number")),
     }
 }
 
-/// A real number (a bool or a string is not one).
-fn number(key: &str, value: &Bound<'_, PyAny>) -> PyResult<f64> {
-    let refused = value.is_instance_of::<PyBool>() || value.is_instance_of::<PyString>();
-    typed(key, value, refused, "a number")
-}
-
 /// A whole number: an int, or a numpy integer (a float is refused, even a whole one).
-fn whole(key: &str, value: &Bound<'_, PyAny>) -> PyResult<i64> {
+fn whole(key: &str, value: &Bound<'_, PyAny>) -> PyResult<String> {
     let refused = value.is_instance_of::<PyBool>() || value.is_instance_of::<PyFloat>();
-    typed(key, value, refused, "a whole number")
+    match (refused, value.extract::<i64>()) {
+        (false, Ok(n)) => Ok(n.to_string()),
+        _ => Err(expected(key, value, "a whole number")),
+    }
 }
 
 /// A name (a string or a path).
@@ -152,13 +101,6 @@ fn name(key: &str, value: &Bound<'_, PyAny>) -> PyResult<String> {
         .extract::<PathBuf>()
         .map(|p| p.display().to_string())
         .map_err(|_| expected(key, value, "a name (a string)"))
-}
-
-/// A name parsed as `T`, its parser's message naming `key`.
-fn parsed<T: FromStr<Err = String>>(key: &str, value: &Bound<'_, PyAny>) -> PyResult<T> {
-    let text = name(key, value)?;
-    text.parse()
-        .map_err(|e: String| PyValueError::new_err(format!("`{key}` = '{text}': {e}")))
 }
 
 /// A list, tuple or one-dimensional array as its items; anything else as one item.
@@ -176,341 +118,208 @@ fn items<'py>(value: &Bound<'py, PyAny>) -> PyResult<Vec<Bound<'py, PyAny>>> {
     Ok(vec![value.clone()])
 }
 
+/// `T0:T1` from a text, or from a pair of numbers (`what` names the pair's meaning).
+fn span(
+    key: &str,
+    value: &Bound<'_, PyAny>,
+    parts: fn(&str, &Bound<'_, PyAny>) -> PyResult<String>,
+    what: &str,
+) -> PyResult<String> {
+    if value.is_instance_of::<PyString>() {
+        return name(key, value);
+    }
+    match &items(value)?[..] {
+        [a, b] => Ok(format!("{}:{}", parts(key, a)?, parts(key, b)?)),
+        _ => Err(expected(key, value, what)),
+    }
+}
+
+/// The command-line words of keyword `key` = `value` for the option `arg`: the option and its
+/// value as text, each value checked as the option's type.
+fn words(arg: &clap::Arg, key: &str, value: &Bound<'_, PyAny>) -> PyResult<Vec<String>> {
+    let long = format!("--{}", arg.get_long().unwrap_or(key));
+    if matches!(arg.get_action(), ArgAction::SetTrue) {
+        return match value.extract::<bool>() {
+            Ok(true) => Ok(vec![long]),
+            Ok(false) => Ok(Vec::new()),
+            Err(_) => Err(expected(key, value, "True or False")),
+        };
+    }
+    let of_type = arg.get_value_parser().type_id();
+    let text = |item: &Bound<'_, PyAny>| -> PyResult<String> {
+        match key {
+            "model" if !item.is_instance_of::<PyString>() => crate::law::register_law(item),
+            "bodies" => whole(key, item).or_else(|_| name(key, item)),
+            _ if of_type == TypeId::of::<f64>() => number(key, item),
+            _ if of_type == TypeId::of::<i64>() => whole(key, item),
+            _ => name(key, item),
+        }
+    };
+    let values: Vec<String> = match key {
+        "window" => vec![span(key, value, number, "a pair (T0, T1) or \"T0:T1\"")?],
+        "point_range" => vec![span(
+            key,
+            value,
+            whole,
+            "a pair (start, end) or 'START:END'",
+        )?],
+        _ if matches!(arg.get_action(), ArgAction::Append) => {
+            items(value)?.iter().map(text).collect::<PyResult<_>>()?
+        }
+        _ => vec![text(value)?],
+    };
+    Ok(match arg.get_value_delimiter() {
+        Some(delimiter) => vec![long, values.join(&delimiter.to_string())],
+        None => values.into_iter().flat_map(|v| [long.clone(), v]).collect(),
+    })
+}
+
+/// The words of `params`, a mapping of parameter names to values: `--set NAME=VALUE` each, a
+/// number as its shortest exact text, anything else as its text (refused by the library as
+/// the command line refuses `--set p=text`).
+fn assignments(value: &Bound<'_, PyAny>) -> PyResult<Vec<String>> {
+    let params = value
+        .cast::<PyDict>()
+        .map_err(|_| expected("params", value, "a mapping of parameter names to values"))?;
+    let mut out = Vec::new();
+    for (p, v) in params.iter() {
+        let p = name("params", &p)?;
+        let v = match number(&p, &v) {
+            Ok(x) => x,
+            Err(_) => v.str()?.to_string(),
+        };
+        out.extend(["--set".to_string(), format!("{p}={v}")]);
+    }
+    Ok(out)
+}
+
+/// The words of a sweep's `grid`, a mapping of names to lists of values or to range texts:
+/// `--grid NAME=V1,V2,…` or `--grid NAME=TEXT` each.
+fn grid(value: &Bound<'_, PyDict>) -> PyResult<Vec<String>> {
+    let mut out = Vec::new();
+    for (key, axis) in value.iter() {
+        let key = name("grid", &key)?;
+        let values = match axis.is_instance_of::<PyString>() {
+            true => axis.extract::<String>()?,
+            false => (items(&axis)?.iter())
+                .map(|v| number(&format!("grid[{key:?}]"), v))
+                .collect::<PyResult<Vec<_>>>()?
+                .join(","),
+        };
+        out.extend(["--grid".to_string(), format!("{key}={values}")]);
+    }
+    if out.is_empty() {
+        return Err(PyValueError::new_err(
+            "option `grid`: no axis: give at least one parameter and its values",
+        ));
+    }
+    Ok(out)
+}
+
 /// The `TypeError` of a keyword `function` does not take (the Python layer names the close
 /// match before it calls: `friction_lab._command.check_keywords`).
 fn unknown(function: &str, key: &str) -> PyErr {
-    let mut all = keywords(function).unwrap_or_default();
-    all.sort_unstable();
     PyTypeError::new_err(format!(
         "{function}() got an unexpected keyword argument '{key}'; it takes: {}",
-        all.join(", ")
+        keywords(function).unwrap_or_default().join(", ")
     ))
 }
 
-/// The keyword arguments given, by name; those given as `None` left out.
-fn given<'py>(options: &Bound<'py, PyDict>) -> PyResult<Keywords<'py>> {
-    let mut pairs = Vec::new();
+/// The request `R` of `function` with the positional `words` (a scenario, a model) and the
+/// keyword arguments `options` (those given as `None` left out), parsed by its declaration
+/// as the command line parses its options. A value the option's parser refuses is a
+/// `ValueError` naming the keyword.
+pub fn request<R: Args + FromArgMatches>(
+    function: &str,
+    mut words: Vec<String>,
+    options: &Bound<'_, PyDict>,
+) -> PyResult<R> {
+    let command = R::augment_args(clap::Command::new("friction_lab").no_binary_name(true));
     for (key, value) in options.iter() {
-        if !value.is_none() {
-            pairs.push((key.extract()?, value));
+        if value.is_none() {
+            continue;
         }
-    }
-    Ok(pairs)
-}
-
-/// What a run integrates: the rig or `chain` named `scenario`, or the system file `system`;
-/// `None` when neither is given.
-fn target(scenario: Option<&str>, system: Option<PathBuf>) -> PyResult<Option<Target>> {
-    Ok(Some(match (scenario, system) {
-        (Some(_), Some(_)) => {
-            return Err(PyValueError::new_err(
-                "give a scenario or a `system`, not both",
-            ))
-        }
-        (None, Some(path)) => Target::System(path),
-        (Some(name), None) => Target::named(name).map_err(PyValueError::new_err)?,
-        (None, None) => return Ok(None),
-    }))
-}
-
-/// The settings every run and study shares, each set by its keyword in [`SHARED`].
-struct Shared<'a> {
-    model: &'a mut Option<ModelChoice>,
-    settings: &'a mut ModelSettings,
-    scheme: &'a mut SchemeChoice,
-    limits: &'a mut RunLimits,
-    t_end: &'a mut Option<f64>,
-    bodies: &'a mut Vec<String>,
-}
-
-impl Shared<'_> {
-    /// Sets the setting of keyword `k` to `value`; false if `k` is none of [`SHARED`].
-    fn set(&mut self, k: &str, value: &Bound<'_, PyAny>) -> PyResult<bool> {
-        match k {
-            "model" => *self.model = Some(model_choice(k, value)?),
-            _ if model_setting(k, value, self.settings)? => {}
-            "scheme" => self.scheme.scheme = parsed(k, value)?,
-            "switching" => self.scheme.switching = Some(parsed(k, value)?),
-            "max_steps" => self.limits.max_steps = whole(k, value)?,
-            "time_limit" => self.limits.time_limit = Some(number(k, value)?),
-            "t_end" => *self.t_end = Some(number(k, value)?),
-            "bodies" => {
-                *self.bodies = items(value)?
-                    .iter()
-                    .map(|b| match whole(k, b) {
-                        Ok(i) => Ok(i.to_string()),
-                        Err(_) => name(k, b),
-                    })
-                    .collect::<PyResult<_>>()?
+        let key: String = key.extract()?;
+        match key.as_str() {
+            "params" => words.extend(assignments(&value)?),
+            "grid" => words.extend(grid(value.cast::<PyDict>().map_err(|_| {
+                expected("grid", &value, "a mapping of parameter names to values")
+            })?)?),
+            _ => {
+                let long = option_of(&key);
+                let arg = (command.get_arguments())
+                    .find(|a| a.get_long() == Some(long.as_str()) && long != "params")
+                    .ok_or_else(|| unknown(function, &key))?;
+                words.extend(self::words(arg, &key, &value)?);
             }
-            _ => return Ok(false),
         }
-        Ok(true)
     }
+    let matches = command
+        .try_get_matches_from(&words)
+        .map_err(|e| refused(function, e))?;
+    R::from_arg_matches(&matches).map_err(|e| refused(function, e))
 }
 
-/// A friction model: a name of the catalog or of a registered law, or a law written in
-/// Python (registered under its name).
-fn model_choice(k: &str, value: &Bound<'_, PyAny>) -> PyResult<ModelChoice> {
-    let law = if value.is_instance_of::<PyString>() {
-        name(k, value)?
-    } else {
-        crate::law::register_law(value)?
+/// A value or a combination the declaration refuses, as `ValueError`: a value its option's
+/// parser refused as "`keyword` = 'value': why", anything else as clap's message without its
+/// usage lines (the Python layer spells the options in it as keywords).
+fn refused(function: &str, e: clap::Error) -> PyErr {
+    use clap::error::{ContextKind, ContextValue};
+    use std::error::Error as _;
+    let text = |kind| match e.get(kind) {
+        Some(ContextValue::String(s)) => Some(s.clone()),
+        _ => None,
     };
-    parsed(k, &PyString::new(value.py(), &law).into_any())
-}
-
-/// Sets the model setting of keyword `k` (`params`, `param_set`, `variant`) to `value`;
-/// false if `k` is none of them.
-fn model_setting(
-    k: &str,
-    value: &Bound<'_, PyAny>,
-    settings: &mut ModelSettings,
-) -> PyResult<bool> {
-    match k {
-        "params" => {
-            let params = value
-                .cast::<PyDict>()
-                .map_err(|_| expected(k, value, "a mapping of parameter names to values"))?;
-            for (p, v) in params.iter() {
-                let p = name(k, &p)?;
-                // A number as its shortest round-trip text; anything else as its text,
-                // refused by the library as the command line refuses `--set p=text`.
-                let v = match number(&p, &v) {
-                    Ok(x) => format!("{x:?}"),
-                    Err(_) => v.str()?.to_string(),
-                };
-                settings.params.set.push(format!("{p}={v}"));
-            }
-        }
-        "param_set" => settings.params.param_set = Some(name(k, value)?),
-        "variant" => settings.variant = parsed(k, value)?,
-        _ => return Ok(false),
+    let (arg, value) = (
+        text(ContextKind::InvalidArg),
+        text(ContextKind::InvalidValue),
+    );
+    if let (Some(arg), Some(value), Some(why)) = (arg, value, e.source()) {
+        // `--t-end <T>` or `[SCENARIO]`: the option's or the argument's name.
+        let option = arg.trim_start_matches('-');
+        let option = option.split([' ', '=']).next().unwrap_or(option);
+        let keyword = match option.trim_matches(['[', ']', '<', '>']) {
+            "set" => "params".to_string(),
+            other => other.to_lowercase().replace('-', "_"),
+        };
+        return PyValueError::new_err(format!("`{keyword}` = '{value}': {why}"));
     }
-    Ok(true)
+    let text = e.render().to_string();
+    let message: Vec<&str> = (text.lines())
+        .take_while(|l| !l.starts_with("Usage:") && !l.starts_with("For more information"))
+        .map(|l| l.strip_prefix("error: ").unwrap_or(l))
+        .filter(|l| !l.trim().is_empty())
+        .collect();
+    PyValueError::new_err(format!("{function}(): {}", message.join("\n")))
 }
 
-/// The curve `curve(model, **options)` asks for.
-pub fn curve(model: &str, options: &Bound<'_, PyDict>) -> PyResult<FrictionCurve> {
-    let model = parsed("model", &PyString::new(options.py(), model).into_any())?;
-    let mut curve = FrictionCurve::new(model);
-    for (key, value) in given(options)? {
-        let k = key.as_str();
-        if model_setting(k, &value, &mut curve.model_settings)? {
-            continue;
-        }
-        match k {
-            "v_max" => curve.v_max = Some(number(k, &value)?),
-            "t_end" => curve.t_end = Some(number(k, &value)?),
-            "points" => curve.points = whole(k, &value)?,
-            _ => return Err(unknown("curve", k)),
-        }
+/// The positional words of a run or a study: the rig or `chain` named `scenario`, and
+/// `--system PATH`.
+fn problem(scenario: Option<&str>, system: Option<PathBuf>) -> PyResult<Vec<String>> {
+    if scenario.is_some() && system.is_some() {
+        return Err(PyValueError::new_err(
+            "give a scenario or a `system`, not both",
+        ));
     }
-    Ok(curve)
-}
-
-/// Table 2 as `phenomena(models, **options)` asks for it.
-pub fn phenomena(options: &Bound<'_, PyDict>) -> PyResult<Phenomena> {
-    let mut table = Phenomena::default();
-    let mut settings = ModelSettings::default();
-    for (key, value) in given(options)? {
-        let k = key.as_str();
-        if k != "variant" && model_setting(k, &value, &mut settings)? {
-            continue;
-        }
-        match k {
-            "model" => {
-                table.models = (items(&value)?.iter())
-                    .map(|m| model_choice(k, m))
-                    .collect::<PyResult<_>>()?
-            }
-            "solver" => table.solver = parsed(k, &value)?,
-            "rtol" => table.rtol = number(k, &value)?,
-            "atol" => table.atol = number(k, &value)?,
-            "threads" => table.threads = Some(whole(k, &value)?),
-            "max_steps" => table.limits.max_steps = whole(k, &value)?,
-            "time_limit" => table.limits.time_limit = Some(number(k, &value)?),
-            _ => return Err(unknown("phenomena", k)),
-        }
+    let mut words: Vec<String> = scenario.map(str::to_string).into_iter().collect();
+    if let Some(path) = system {
+        words.extend(["--system".to_string(), path.display().to_string()]);
     }
-    table.params = settings.params;
-    Ok(table)
+    Ok(words)
 }
 
-/// A list of numbers.
-fn numbers(key: &str, value: &Bound<'_, PyAny>) -> PyResult<Vec<f64>> {
-    items(value)?.iter().map(|v| number(key, v)).collect()
-}
-
-/// A list of solvers by name.
-fn solvers(key: &str, value: &Bound<'_, PyAny>) -> PyResult<Vec<Solver>> {
-    items(value)?.iter().map(|v| parsed(key, v)).collect()
-}
-
-/// The run `simulate(scenario, system=..., **options)` asks for; the keywords of `also` (a
-/// sweep's own) are left to the caller.
+/// The run `simulate(scenario, system=..., **options)` asks for.
 pub fn simulation(
     scenario: Option<&str>,
     system: Option<PathBuf>,
     options: &Bound<'_, PyDict>,
-    function: &str,
-    also: &[&str],
 ) -> PyResult<Simulation> {
-    let target = target(scenario, system)?.ok_or_else(|| {
-        PyValueError::new_err("a scenario (a rig's name or \"chain\") or a `system` is required")
-    })?;
-    let mut run = Simulation::new(target, None);
-    for (key, value) in given(options)? {
-        let k = key.as_str();
-        let solver: &mut SolverSettings = &mut run.solver;
-        let mut shared = Shared {
-            model: &mut run.model,
-            settings: &mut run.model_settings,
-            scheme: &mut solver.scheme,
-            limits: &mut solver.limits,
-            t_end: &mut run.t_end,
-            bodies: &mut run.bodies,
-        };
-        if shared.set(k, &value)? {
-            continue;
-        }
-        match k {
-            "solver" => solver.solver = Some(parsed(k, &value)?),
-            "theta" => solver.theta = Some(number(k, &value)?),
-            "dt" => solver.dt = Some(number(k, &value)?),
-            "fixed_step" => {
-                solver.fixed_step = value
-                    .extract::<bool>()
-                    .map_err(|_| expected(k, &value, "True or False"))?
-            }
-            "rtol" => solver.rtol = number(k, &value)?,
-            "atol" => solver.atol = number(k, &value)?,
-            "points" => run.points = Some(whole(k, &value)?),
-            // `--window T0:T1`: the text, or a pair of numbers.
-            "window" => {
-                run.window = Some(match value.is_instance_of::<PyString>() {
-                    true => name(k, &value)?,
-                    false => match &items(&value)?[..] {
-                        [a, b] => format!("{}:{}", number(k, a)?, number(k, b)?),
-                        _ => return Err(expected(k, &value, "a pair (T0, T1) or \"T0:T1\"")),
-                    },
-                })
-            }
-            _ if also.contains(&k) => {}
-            _ => return Err(unknown(function, k)),
-        }
+    if scenario.is_none() && system.is_none() {
+        return Err(PyValueError::new_err(
+            "a scenario (a rig's name or \"chain\") or a `system` is required",
+        ));
     }
-    Ok(run)
-}
-
-/// The problem of a study `function(scenario, system=..., **options)`, with the keywords
-/// that are the study's own (`own`) returned for the caller to set.
-fn problem<'py>(
-    scenario: Option<&str>,
-    system: Option<PathBuf>,
-    options: &Bound<'py, PyDict>,
-    function: &str,
-    own: &[&str],
-) -> PyResult<(Problem, Keywords<'py>)> {
-    let target = target(scenario, system)?;
-    let mut problem = Problem::default();
-    match target {
-        Some(Target::System(path)) => problem.system = Some(path),
-        named => problem.scenario = named,
-    }
-    let mut left = Vec::new();
-    for (key, value) in given(options)? {
-        let k = key.as_str();
-        let mut shared = Shared {
-            model: &mut problem.model,
-            settings: &mut problem.model_settings,
-            scheme: &mut problem.scheme,
-            limits: &mut problem.limits,
-            t_end: &mut problem.t_end,
-            bodies: &mut problem.bodies,
-        };
-        if shared.set(k, &value)? {
-            continue;
-        }
-        match k {
-            "threads" => problem.threads = Some(whole(k, &value)?),
-            _ if own.contains(&k) => left.push((key, value)),
-            _ => return Err(unknown(function, k)),
-        }
-    }
-    Ok((problem, left))
-}
-
-/// The solver study `function` (`converge`, `independence`, `work_precision`, `stiffness`)
-/// of `scenario` or `system` with the keyword arguments `options`, run into `out`.
-pub fn study(
-    function: &str,
-    scenario: Option<&str>,
-    system: Option<PathBuf>,
-    options: &Bound<'_, PyDict>,
-) -> PyResult<Conduct> {
-    let own = (STUDY_OWN.iter())
-        .find(|(name, _)| *name == function)
-        .map(|(_, own)| *own)
-        .ok_or_else(|| PyValueError::new_err(format!("`{function}` is no solver study")))?;
-    let (problem, left) = problem(scenario, system, options, function, own)?;
-    Ok(match function {
-        "converge" => {
-            let mut s = Converge::new(problem);
-            for (key, v) in left {
-                let k = key.as_str();
-                match k {
-                    "solvers" => s.solvers = solvers(k, &v)?,
-                    "dt_list" => s.dt_list = numbers(k, &v)?,
-                    _ => s.tol_list = numbers(k, &v)?,
-                }
-            }
-            Box::new(move |out| s.run(out))
-        }
-        "independence" => {
-            let mut s = Independence::new(problem);
-            for (key, v) in left {
-                let k = key.as_str();
-                match k {
-                    "solver" => s.solver = Some(parsed(k, &v)?),
-                    "start" => s.refinement.start = number(k, &v)?,
-                    "ratio" => s.refinement.ratio = number(k, &v)?,
-                    "levels" => s.refinement.levels = whole(k, &v)?,
-                    _ => s.refinement.tol = number(k, &v)?,
-                }
-            }
-            Box::new(move |out| s.run(out))
-        }
-        "work_precision" => {
-            let mut s = WorkPrecision::new(problem);
-            for (key, v) in left {
-                let k = key.as_str();
-                match k {
-                    "testset" => s.testset = Some(name(k, &v)?),
-                    "solvers" => s.solvers = solvers(k, &v)?,
-                    "dt_list" => s.dt_list = numbers(k, &v)?,
-                    "tol_list" => s.tol_list = numbers(k, &v)?,
-                    _ => s.repeats = whole(k, &v)?,
-                }
-            }
-            Box::new(move |out| s.run(out))
-        }
-        _ => {
-            let mut s = Stiffness::new(problem);
-            for (key, v) in left {
-                let k = key.as_str();
-                match k {
-                    "parameter" => s.parameter = name(k, &v)?,
-                    "values" => s.values = numbers(k, &v)?,
-                    "solvers" => s.solvers = solvers(k, &v)?,
-                    "target" => s.target = number(k, &v)?,
-                    "dt_list" => s.dt_list = numbers(k, &v)?,
-                    _ => s.tol_list = numbers(k, &v)?,
-                }
-            }
-            Box::new(move |out| s.run(out))
-        }
-    })
+    request("simulate", problem(scenario, system)?, options)
 }
 
 /// The sweep `sweep(scenario, grid=..., **options)` asks for: `grid` maps names to lists of
@@ -521,63 +330,51 @@ pub fn sweep(
     grid: &Bound<'_, PyDict>,
     options: &Bound<'_, PyDict>,
 ) -> PyResult<Sweep> {
-    let simulation = simulation(scenario, system, options, "sweep", SWEEP_OWN)?;
-    let axes = grid
-        .iter()
-        .map(|(key, values)| {
-            let key = name("grid", &key)?;
-            let bad = |e: friction_lab::error::AppError| {
-                PyValueError::new_err(format!("option `grid`, axis `{key}`: {e}"))
-            };
-            if values.is_instance_of::<PyString>() {
-                let text: String = values.extract()?;
-                return Axis::parse(&format!("{key}={text}"))
-                    .map_err(|e| PyValueError::new_err(e.to_string()));
-            }
-            let numbers = items(&values)?
-                .iter()
-                .map(|v| number(&format!("grid[{key:?}]"), v))
-                .collect::<PyResult<Vec<f64>>>()?;
-            Axis::new(&key, numbers).map_err(bad)
-        })
-        .collect::<PyResult<Vec<Axis>>>()?;
-    if axes.is_empty() {
-        return Err(PyValueError::new_err(
-            "option `grid`: no axis: give at least one parameter and its values",
-        ));
-    }
-    let mut sweep = Sweep {
-        simulation,
-        axes,
-        settle: DEFAULT_SETTLE,
-        start: Start::Rest,
-        range: None,
-        threads: None,
-    };
-    for (key, value) in given(options)? {
-        let k = key.as_str();
-        match k {
-            "settle" => sweep.settle = number(k, &value)?,
-            "start" => sweep.start = parsed(k, &value)?,
-            "threads" => sweep.threads = Some(whole(k, &value)?),
-            "point_range" => {
-                sweep.range = Some(if value.is_instance_of::<PyString>() {
-                    point_range(&name(k, &value)?).map_err(PyValueError::new_err)?
-                } else {
-                    let ends = items(&value)?
-                        .iter()
-                        .map(|v| {
-                            usize::try_from(whole(k, v)?).map_err(|_| expected(k, v, "an index"))
-                        })
-                        .collect::<PyResult<Vec<usize>>>()?;
-                    match ends[..] {
-                        [start, end] => start..end,
-                        _ => return Err(expected(k, &value, "a pair (start, end) or 'START:END'")),
-                    }
-                })
-            }
-            _ => {}
+    let mut words = problem(scenario, system)?;
+    words.extend(self::grid(grid)?);
+    request("sweep", words, options)
+}
+
+/// The solver study `function` (`converge`, `independence`, `work_precision`, `stiffness`)
+/// of `scenario` or `system` with the keyword arguments `options`, run into `out`.
+pub fn study(
+    function: &str,
+    scenario: Option<&str>,
+    system: Option<PathBuf>,
+    options: &Bound<'_, PyDict>,
+) -> PyResult<Conduct> {
+    let words = problem(scenario, system)?;
+    Ok(match function {
+        "converge" => {
+            let s: Converge = request(function, words, options)?;
+            Box::new(move |out| s.run(out))
         }
-    }
-    Ok(sweep)
+        "independence" => {
+            let s: Independence = request(function, words, options)?;
+            Box::new(move |out| s.run(out))
+        }
+        "work_precision" => {
+            let s: WorkPrecision = request(function, words, options)?;
+            Box::new(move |out| s.run(out))
+        }
+        "stiffness" => {
+            let s: Stiffness = request(function, words, options)?;
+            Box::new(move |out| s.run(out))
+        }
+        _ => {
+            return Err(PyValueError::new_err(format!(
+                "`{function}` is no solver study"
+            )))
+        }
+    })
+}
+
+/// The curve `curve(model, **options)` asks for.
+pub fn curve(model: &str, options: &Bound<'_, PyDict>) -> PyResult<FrictionCurve> {
+    request("curve", vec![model.to_string()], options)
+}
+
+/// Table 2 as `phenomena(**options)` asks for it.
+pub fn phenomena(options: &Bound<'_, PyDict>) -> PyResult<Phenomena> {
+    request("phenomena", Vec::new(), options)
 }

@@ -172,7 +172,7 @@ fn simulate(
     options: Bound<'_, PyDict>,
     stop: Option<Bound<'_, PyAny>>,
 ) -> PyResult<Made> {
-    let run = bind::simulation(scenario.as_deref(), system, &options, "simulate", &[])?;
+    let run = bind::simulation(scenario.as_deref(), system, &options)?;
     deliver(py, stop.as_ref(), || {
         run.run(Path::new(IN_MEMORY), TrajectoryAs::Columns)
     })
@@ -234,7 +234,7 @@ fn phenomena(
 /// The keyword arguments of the function `name` that binds the library directly
 /// (`simulate`, `sweep`, the solver studies), besides its scenario and `system`.
 #[pyfunction]
-fn keywords(name: &str) -> PyResult<Vec<&'static str>> {
+fn keywords(name: &str) -> PyResult<Vec<String>> {
     bind::keywords(name).ok_or_else(|| {
         PyValueError::new_err(format!("`{name}` is no function bound to the library"))
     })
