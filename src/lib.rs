@@ -163,6 +163,63 @@ pub fn make(command: &Command) -> Result<artifacts::Made, AppError> {
     }
 }
 
+/// The reference of every command's options as Markdown (`docs/options.md`), from their one
+/// declaration: for each command its arguments and options with their value, default and help.
+pub fn options_reference() -> String {
+    use clap::CommandFactory;
+    let cli = Cli::command();
+    let one_line = |text: String| text.split_whitespace().collect::<Vec<_>>().join(" ");
+    let mut out = String::from(
+        "# Options of every command\n\nEvery command's arguments and options, with their value, \
+         default and meaning, as `friction-lab COMMAND --help` gives them: written from their one \
+         declaration, the library's request types, which Python fills from its keyword arguments \
+         too (the keyword of `--t-end` is `t_end`, of `--set` `params`). A test holds this page \
+         equal to the declarations (`FRICTION_LAB_BLESS=1 cargo test --test docs` rewrites it).\n\n\
+         Global options, taken by every command: `--figure-size WxH` (default 3.5x2.6, inches), \
+         `--dpi DPI` (default 300).\n",
+    );
+    for command in cli.get_subcommands() {
+        out += &format!(
+            "\n## `friction-lab {}`\n\n{}\n\n| argument or option | value | default | meaning |\n|---|---|---|---|\n",
+            command.get_name(),
+            one_line(command.get_about().map(|a| a.to_string()).unwrap_or_default())
+        );
+        for arg in command.get_arguments().filter(|a| !a.is_global_set()) {
+            let id = arg.get_id().as_str();
+            if matches!(id, "help" | "figure_size" | "dpi") {
+                continue;
+            }
+            let name = match arg.get_long() {
+                Some(long) => format!("`--{long}`"),
+                None => format!(
+                    "`{}`",
+                    arg.get_value_names()
+                        .map_or(id.to_string(), |v| v[0].to_string())
+                ),
+            };
+            let value = match (arg.get_long(), arg.get_value_names()) {
+                (Some(_), Some(names)) if arg.get_action().takes_values() => {
+                    format!("`{}`", names[0].replace('|', "\\|"))
+                }
+                _ => String::new(),
+            };
+            let defaults: Vec<String> = (arg.get_default_values().iter())
+                .map(|d| d.to_string_lossy().into_owned())
+                .collect();
+            let default = match defaults.is_empty() {
+                true => String::new(),
+                false => format!("`{}`", defaults.join(",")),
+            };
+            let help = one_line(arg.get_help().map(|h| h.to_string()).unwrap_or_default());
+            out += &format!(
+                "| {name} | {value} | {default} | {} |\n",
+                help.replace('|', "\\|")
+            );
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::Cli;

@@ -24,6 +24,22 @@ fn docs_copies_of_the_reproduction_are_up_to_date() {
     }
 }
 
+#[test]
+fn docs_options_is_every_commands_declared_options() {
+    let fresh = friction_lab_cli::options_reference();
+    let path = format!("{}/docs/options.md", env!("CARGO_MANIFEST_DIR"));
+    if std::env::var_os("FRICTION_LAB_BLESS").is_some() {
+        std::fs::write(&path, &fresh).unwrap();
+    }
+    let committed = std::fs::read_to_string(&path).unwrap_or_default();
+    assert!(
+        fresh == committed,
+        "docs/options.md is stale: run `FRICTION_LAB_BLESS=1 cargo test --test docs`"
+    );
+    // Every option of converge is there, with its default.
+    assert!(fresh.contains("| `--dt-list` | `DT_LIST` | `0.02,0.01,0.005,0.0025` |"));
+}
+
 /// The text files of the repository a user reads: README.md, docs/, the sources (whose doc
 /// comments become `--help` and the API docs), the Python package and the scripts.
 fn readable_files() -> Vec<std::path::PathBuf> {
