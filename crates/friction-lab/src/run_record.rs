@@ -12,7 +12,7 @@ use friction_models::{FrictionParams, Variant};
 use friction_systems::{mode_name, BodyState, ContactEvent, EnergyBalance};
 use integrators::stability::Instability;
 use integrators::{MethodSwitch, SolverError, Stats, StepControl};
-use scenarios::closed_loop::ClosedLoop;
+use scenarios::analysis::closed_loop::ClosedLoop;
 pub use scenarios::rig::RIG_BODY;
 use scenarios::verdict::{Status, Verdict};
 use scenarios::SwitchingKind;

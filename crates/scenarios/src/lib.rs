@@ -8,12 +8,11 @@
 //! runs as one list: [`batch`]); the settled state a parameter sweep measures ([`settled`]);
 //! what a run's result is worth ([`verdict`]).
 
+pub mod analysis;
 pub mod batch;
 pub mod cases;
 pub mod chain;
-pub mod closed_loop;
 pub mod curves;
-pub mod describing_function;
 pub mod error;
 pub mod errors;
 pub mod figures;
@@ -29,7 +28,6 @@ pub mod rigs;
 pub mod run;
 pub mod scenario;
 pub mod schedule;
-pub mod settled;
 pub mod stick_slip;
 pub mod studies;
 pub mod study_run;

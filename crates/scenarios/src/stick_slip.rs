@@ -9,11 +9,11 @@
 //! it (a subcritical Hopf bifurcation): the two initial states of the bifurcation diagram show
 //! where.
 
-use crate::closed_loop::ClosedLoop;
+use crate::analysis::closed_loop::ClosedLoop;
+use crate::analysis::settled::{spanned, until_settled, Settled, Trace};
 use crate::error::ScenarioError;
 use crate::run::{run, Limits, RunSpec, SwitchingKind};
 use crate::scenario::Scenario;
-use crate::settled::{spanned, until_settled, Settled, Trace};
 use friction_models::{steady, Direction, FrictionModel, SignLaw};
 use friction_models::{FrictionParams, ModelId};
 use integrators::{Solver, StepControl};

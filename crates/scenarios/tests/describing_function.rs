@@ -2,7 +2,9 @@
 //! against closed forms, and the harmonic balance of the servo's PID loop.
 
 use num_complex::Complex64;
-use scenarios::describing_function::{break_away_gain, predict_hunting, Pid, StictionMass};
+use scenarios::analysis::describing_function::{
+    break_away_gain, predict_hunting, Pid, StictionMass,
+};
 use std::f64::consts::PI;
 
 const SERVO: Pid = Pid {

@@ -3,7 +3,7 @@
 
 use friction_models::{FrictionParams, ModelId};
 use integrators::{Solver, StepControl};
-use scenarios::closed_loop::ClosedLoop;
+use scenarios::analysis::closed_loop::ClosedLoop;
 use scenarios::{run, Limits, Outcome, RunSpec, Scenario, SwitchingKind};
 
 fn servo_at(model: ModelId, friction: FrictionParams, solver: Solver, points: usize) -> Outcome {

@@ -1,6 +1,6 @@
 //! The settled-state measures of a sweep against a trace whose answers are known.
 
-use scenarios::settled::{Settled, Trace};
+use scenarios::analysis::settled::{Settled, Trace};
 use std::f64::consts::PI;
 
 /// x = v̄·t + A·sin(ωt) sampled densely over 20 periods, friction c·v, one switch into stick

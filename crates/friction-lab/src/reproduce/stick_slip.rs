@@ -126,7 +126,7 @@ impl Part for StickSlip {
             "The belt rig with CVS at the paper's parameters (m = 1, c = 0; each run 40 s, the \
              last half measured, and doubled up to {} times while it has not settled: \
              `scenarios::stick_slip`, docs/sweep.md):\n\n{}",
-            scenarios::settled::MAX_EXTENSION,
+            scenarios::analysis::settled::MAX_EXTENSION,
             conduct_all(&table, target)?
         ))
     }

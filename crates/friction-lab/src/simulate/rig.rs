@@ -19,7 +19,7 @@ use crate::warnings::{coarse_step_warning, failure_warnings, stiffness_warning};
 use crate::window::Window;
 use friction_models::Parameters;
 use friction_systems::{BodyState, ContactEvent};
-use scenarios::closed_loop::ClosedLoop;
+use scenarios::analysis::closed_loop::ClosedLoop;
 use scenarios::run::Outcome;
 use scenarios::{Law, RunSpec};
 use std::path::Path;

@@ -9,8 +9,8 @@ use crate::error::AppError;
 use crate::plot::{Corner, Plot, Series, PALETTE};
 use friction_systems::{CompensatedAt, Compensation, Reference};
 use integrators::even_grid;
-use scenarios::closed_loop::ClosedLoop;
-use scenarios::describing_function::{
+use scenarios::analysis::closed_loop::ClosedLoop;
+use scenarios::analysis::describing_function::{
     break_away_gain, predict_hunting, HuntingPrediction, Pid, StictionMass,
 };
 use scenarios::phenomena::{own_parameters, thresholds, Protocol};

@@ -8,7 +8,7 @@ use crate::error::AppError;
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Marker, Plot, Series, BLUE, PALETTE};
 use plotters::style::RGBColor;
-use scenarios::settled::Settled;
+use scenarios::analysis::settled::Settled;
 use scenarios::stick_slip::{
     bifurcation, log_space, map, stability_boundary, Branches, MapPoint, Regime,
 };

@@ -1,5 +1,5 @@
 //! A sweep: one run per point of a grid of parameters (the product of its axes), in parallel,
-//! each reduced to its settled state (`scenarios::settled`) and regime, written as `sweep.csv`
+//! each reduced to its settled state (`scenarios::analysis::settled`) and regime, written as `sweep.csv`
 //! (a row per point), `sweep.json` and a figure. A [`SweepStudy`] is a [`Study`]; what is run
 //! at a point comes from a [`Grid`] (a [`Sweep`]: a simulation with the point's values
 //! assigned, or one's own). The rows do not depend on the thread count.
@@ -17,7 +17,7 @@ use crate::error::AppError;
 use crate::output::{Cell, Table};
 use crate::study::{Study, StudyFiles};
 use rayon::prelude::*;
-use scenarios::closed_loop::ClosedLoop;
+use scenarios::analysis::closed_loop::ClosedLoop;
 use serde::Serialize;
 use std::ops::Range;
 

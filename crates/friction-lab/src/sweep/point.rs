@@ -1,11 +1,11 @@
 //! One point of a sweep: its run, set up and checked, run until it settles, and reduced to its
-//! settled-state measures ([`scenarios::settled`]) and regime.
+//! settled-state measures ([`scenarios::analysis::settled`]) and regime.
 
 use crate::error::AppError;
 use friction_systems::{simulate, Layout, Scheme, System, STICK};
 use integrators::{even_grid, Options, Output, Stats, StepControl};
-use scenarios::closed_loop::ClosedLoop;
-use scenarios::settled::{spanned, until_settled, Settled, Trace};
+use scenarios::analysis::closed_loop::ClosedLoop;
+use scenarios::analysis::settled::{spanned, until_settled, Settled, Trace};
 use scenarios::stick_slip::Regime;
 use scenarios::{Limits, RunSpec};
 use serde::Serialize;

@@ -1,7 +1,7 @@
 //! The phenomenon of a closed loop: hunting, the limit cycle of a PID-positioned mass against
 //! friction (the paper's second criterion for choosing a model).
 
-use crate::closed_loop::ClosedLoop;
+use crate::analysis::closed_loop::ClosedLoop;
 use crate::error::ScenarioError;
 use crate::phenomena::{thresholds, Axes, Bench, Experiment, Verdict};
 use crate::scenario::Scenario;
@@ -12,7 +12,7 @@ use friction_systems::STICK;
 /// rig (a unit mass on the floor positioned by the 1995 example's PID, kp = 3 N/m, ki = 4
 /// N/(m·s), kd = 6 N·s/m, to a set point 1 m, from rest), the last half of
 /// [`thresholds::HUNTING_T_END`] settles on a limit cycle of the position error e = r − x
-/// ([`crate::closed_loop`]). It does not hunt if the loop settles at rest, or if the body's
+/// ([`crate::analysis::closed_loop`]). It does not hunt if the loop settles at rest, or if the body's
 /// stops close in on the set point: the error at each of the last
 /// [`thresholds::DYING_STOPS`] entries into stick at most (1 − [`thresholds::DYING_RATIO`])
 /// times the one before (Coulomb friction under integral action: each stop nearer, each

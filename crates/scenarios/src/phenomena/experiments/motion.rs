@@ -81,7 +81,7 @@ impl Experiment for Hysteresis {
 /// Sustained stick–slip (Armstrong-Hélouvry et al. 1994, §2.3): on the belt rig (m = 1
 /// kg, k = 100 N/m, v_belt = 0.05 m/s, from rest), the stick phases the switching log
 /// records over the second half of 40 s, after the transient, and how many of the settled
-/// oscillation's cycles stick ([`crate::settled`], the measures `sweep` writes).
+/// oscillation's cycles stick ([`crate::analysis::settled`], the measures `sweep` writes).
 pub struct StickSlip;
 
 impl Experiment for StickSlip {
@@ -108,7 +108,10 @@ impl Experiment for StickSlip {
             thresholds::STICK_SLIP_T_END,
             4001,
         ))?;
-        let s = crate::settled::Settled::of(&crate::settled::Trace::of_outcome(&o), 0.5);
+        let s = crate::analysis::settled::Settled::of(
+            &crate::analysis::settled::Trace::of_outcome(&o),
+            0.5,
+        );
         let per_cycle = if s.stick_per_cycle.is_nan() {
             0.0
         } else {

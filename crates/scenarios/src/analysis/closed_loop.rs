@@ -14,8 +14,8 @@
 //! the integral winds up will move again). Otherwise the run ends in a transient: `hunting`
 //! is undefined (null), never false.
 
+use super::settled::{crossings, half_range, MIN_CYCLES, SETTLE_TOLERANCE};
 use crate::run::{Outcome, Row};
-use crate::settled::{crossings, half_range, MIN_CYCLES, SETTLE_TOLERANCE};
 use friction_systems::{Reference, STICK};
 use serde::Serialize;
 
