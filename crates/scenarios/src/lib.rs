@@ -5,7 +5,7 @@
 //! ([`figures`]); the rigs (the [`Rig`] trait, the built-in ones in [`rigs`], their registry [`scenario`], [`mod@run`]); the paper's experiment ([`paper`]);
 //! Table 2 by simulation ([`phenomena`]); the solver studies ([`studies`], [`cases`], the chain
 //! they build again for each swept value: [`chain`]; their
-//! runs as one list: [`batch`]); the settled state a parameter sweep measures ([`settled`]);
+//! runs as one list: [`batch`]); what a run's result says, computed after it ([`analysis`]: the settled state a sweep measures, the closed loop, the describing function);
 //! what a run's result is worth ([`verdict`]).
 
 pub mod analysis;
