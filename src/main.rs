@@ -42,7 +42,9 @@ fn main() {
     stop_on_signal();
     let result = friction_lab_cli::run(cli);
     if let Err(e) = &result {
-        eprintln!("error: {}", bounded(&e.to_string()));
+        // A request's field as its option: `t_end` as `--t-end`.
+        let option = |field: &str| format!("--{}", field.replace('_', "-"));
+        eprintln!("error: {}", bounded(&e.message(&option)));
     }
     if interrupt::requested() {
         std::process::exit(INTERRUPTED);

@@ -385,7 +385,7 @@ fn bad_options_and_files_are_rejected() {
         ),
         (
             vec!["curve", "AV", "--points", "1"],
-            "option `points` = 1 is out of range: allowed [2, 1e7]",
+            "option `--points` = 1 is out of range: allowed [2, 1e7]",
         ),
         (
             vec!["curve", "AV", "--t-end", "3"],
@@ -393,7 +393,7 @@ fn bad_options_and_files_are_rejected() {
         ),
         (
             vec!["curve", "DV", "--t-end", "-1"],
-            "option `t-end` = -1 is out of range: allowed [1e-6, 1e6] s",
+            "option `--t-end` = -1 is out of range: allowed [1e-6, 1e6] s",
         ),
         (
             vec!["curve", "AV", "--params", malformed.to_str().unwrap()],
@@ -620,11 +620,11 @@ fn bad_scenario_input_is_rejected_and_writes_nothing() {
         ),
         (
             &["simulate", "belt", "--model", "CS", "--rtol", "0"],
-            "option `rtol` = 0 is out of range: allowed [1e-14, 1]",
+            "option `--rtol` = 0 is out of range: allowed [1e-14, 1]",
         ),
         (
             &["simulate", "belt", "--model", "CS", "--t-end", "-2"],
-            "option `t-end` = -2 is out of range: allowed [1e-6, 1e6] s",
+            "option `--t-end` = -2 is out of range: allowed [1e-6, 1e6] s",
         ),
         (
             &["simulate", "force-ramp", "--model", "CS", "--set", "rate=0"],
@@ -632,7 +632,7 @@ fn bad_scenario_input_is_rejected_and_writes_nothing() {
         ),
         (
             &["phenomena", "--threads", "0"],
-            "option `threads` = 0 is out of range: allowed [1, 1024]",
+            "option `--threads` = 0 is out of range: allowed [1, 1024]",
         ),
         (
             &["phenomena", "--solver", "rk4"],
@@ -866,15 +866,15 @@ fn bad_study_input_is_rejected() {
     let cases: &[(&[&str], &str)] = &[
         (
             &["converge", "belt", "--model", "CS", "--dt-list", "0.01,-1"],
-            "option `dt-list` has -1: allowed values [1e-10, 10] s",
+            "option `--dt-list` has -1: allowed values [1e-10, 10] s",
         ),
         (
             &["independence", "belt", "--model", "CS", "--ratio", "1"],
-            "option `ratio` = 1 is out of range: allowed (1, 1000]",
+            "option `--ratio` = 1 is out of range: allowed (1, 1000]",
         ),
         (
             &["independence", "belt", "--model", "CS", "--levels", "1"],
-            "option `levels` = 1 is out of range: allowed [2, 12]",
+            "option `--levels` = 1 is out of range: allowed [2, 12]",
         ),
         (
             &[
@@ -901,7 +901,7 @@ fn bad_study_input_is_rejected() {
                 "--dt-list",
                 "0.005,0.01",
             ],
-            "option `dt-list` has 0.005 then 0.01: allowed values from coarse to fine",
+            "option `--dt-list` has 0.005 then 0.01: allowed values from coarse to fine",
         ),
         (
             &[
@@ -912,12 +912,12 @@ fn bad_study_input_is_rejected() {
                 "--tol-list",
                 "1e-4,1e-4",
             ],
-            "option `tol-list` has 1e-4 then 1e-4: allowed values from coarse to fine",
+            "option `--tol-list` has 1e-4 then 1e-4: allowed values from coarse to fine",
         ),
         (
             // stiffness did not check its lists at all.
             &["stiffness", "belt", "--model", "CS", "--tol-list", "1e-300"],
-            "option `tol-list` has 1e-300: allowed values [1e-14, 1]",
+            "option `--tol-list` has 1e-300: allowed values [1e-14, 1]",
         ),
         (
             &[
@@ -1504,32 +1504,32 @@ fn every_reproducer_of_unbounded_or_unchecked_input_is_rejected_with_its_range()
         // Negative numbers are values, not flags.
         (
             &["curve", "AV", "--v-max", "-inf"],
-            "option `v-max` = -inf is out of range",
+            "option `--v-max` = -inf is out of range",
         ),
         (
             &["curve", "AV", "--points", "-1"],
-            "option `points` = -1 is out of range",
+            "option `--points` = -1 is out of range",
         ),
         (
             &["converge", "belt", "--model", "CS", "--dt-list", "-1e-3"],
-            "option `dt-list` has -0.001: allowed values [1e-10, 10] s",
+            "option `--dt-list` has -0.001: allowed values [1e-10, 10] s",
         ),
         // Tolerances are checked whatever the solver.
         (
             &[
                 "simulate", "belt", "--model", "CS", "--solver", "rk4", "--rtol", "0",
             ],
-            "option `rtol` = 0 is out of range: allowed [1e-14, 1]",
+            "option `--rtol` = 0 is out of range: allowed [1e-14, 1]",
         ),
         (
             &[
                 "simulate", "belt", "--model", "CS", "--solver", "rk4", "--atol", "-1",
             ],
-            "option `atol` = -1 is out of range: allowed (0, 1]",
+            "option `--atol` = -1 is out of range: allowed (0, 1]",
         ),
         (
             &["simulate", "belt", "--model", "CS", "--atol", "1e309"],
-            "option `atol` = inf is out of range",
+            "option `--atol` = inf is out of range",
         ),
         // Inputs that ran without end.
         (
@@ -1541,7 +1541,7 @@ fn every_reproducer_of_unbounded_or_unchecked_input_is_rejected_with_its_range()
                 "--points",
                 "1000000000",
             ],
-            "option `points` = 1e9 is out of range: allowed [2, 1e7]",
+            "option `--points` = 1e9 is out of range: allowed [2, 1e7]",
         ),
         (
             &["simulate", "belt", "--model", "CS", "--params", &zero_file],
@@ -1549,23 +1549,23 @@ fn every_reproducer_of_unbounded_or_unchecked_input_is_rejected_with_its_range()
         ),
         (
             &["phenomena", "--threads", "1000000000"],
-            "option `threads` = 1e9 is out of range: allowed [1, 1024]",
+            "option `--threads` = 1e9 is out of range: allowed [1, 1024]",
         ),
         (
             &["simulate", "belt", "--model", "CS", "--t-end", "1e12"],
-            "option `t-end` = 1e12 is out of range: allowed [1e-6, 1e6] s",
+            "option `--t-end` = 1e12 is out of range: allowed [1e-6, 1e6] s",
         ),
         (
             &["converge", "belt", "--model", "CS", "--tol-list", "1e-300"],
-            "option `tol-list` has 1e-300: allowed values [1e-14, 1]",
+            "option `--tol-list` has 1e-300: allowed values [1e-14, 1]",
         ),
         (
             &["converge", "belt", "--model", "CS", "--dt-list", "5e-324"],
-            "option `dt-list` has 5e-324",
+            "option `--dt-list` has 5e-324",
         ),
         (
             &["converge", "belt", "--model", "CS", "--t-end", "5e-324"],
-            "option `t-end` = 5e-324 is out of range",
+            "option `--t-end` = 5e-324 is out of range",
         ),
         (
             &["independence", "belt", "--model", "CS", "--start", "1e-12"],
@@ -1580,19 +1580,19 @@ fn every_reproducer_of_unbounded_or_unchecked_input_is_rejected_with_its_range()
                 "--repeats",
                 "1000",
             ],
-            "option `repeats` = 1000 is out of range: allowed [1, 100]",
+            "option `--repeats` = 1000 is out of range: allowed [1, 100]",
         ),
         (
             &["phenomena", "--atol", "1e12"],
-            "option `atol` = 1e12 is out of range: allowed (0, 1]",
+            "option `--atol` = 1e12 is out of range: allowed (0, 1]",
         ),
         (
             &["simulate", "belt", "--model", "CS", "--max-steps", "0"],
-            "option `max-steps` = 0 is out of range",
+            "option `--max-steps` = 0 is out of range",
         ),
         (
             &["simulate", "belt", "--model", "CS", "--time-limit", "-1"],
-            "option `time-limit` = -1 is out of range",
+            "option `--time-limit` = -1 is out of range",
         ),
     ];
     for (args, message) in cases {
@@ -1871,7 +1871,7 @@ fn time_stepping_runs_rigs_and_chains_and_refuses_what_it_cannot_do() {
         "0.4",
     ]);
     assert!(
-        e.contains("option `theta` = 0.4 is out of range: allowed [0.5, 1]"),
+        e.contains("option `--theta` = 0.4 is out of range: allowed [0.5, 1]"),
         "{e}"
     );
 }
@@ -4039,7 +4039,7 @@ fn testset_writes_the_end_state_and_the_digits_against_the_reference() {
         ),
         (
             vec!["testset", "hires", "--rtol", "0"],
-            "option `rtol` = 0 is out of range",
+            "option `--rtol` = 0 is out of range",
         ),
     ] {
         let bad = dir.path().join("bad");
@@ -4157,7 +4157,7 @@ fn work_precision_takes_a_problem_of_the_stiff_test_set() {
                 "--tol-list",
                 "1e-3,1e-2",
             ],
-            "option `tol-list`",
+            "option `--tol-list`",
         ),
         (vec!["work-precision"], "the study needs a problem"),
     ] {

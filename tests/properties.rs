@@ -50,7 +50,9 @@ fn simulate_belt(extra: &[String]) -> Result<Cli, clap::Error> {
 }
 
 fn checked(option: &OptionRange, value: f64) {
-    let whole = option.name == "points" || option.name == "max-steps";
+    // The field's option: `t_end` is `--t-end`.
+    let long = option.name.replace('_', "-");
+    let whole = option.name == "points" || option.name == "max_steps";
     if whole && !(value.is_finite() && value.fract() == 0.0) {
         // Not a whole number: clap refuses it before any check of ours.
         return;
@@ -62,23 +64,18 @@ fn checked(option: &OptionRange, value: f64) {
     } else {
         value.to_string()
     };
-    let cli = simulate_belt(&[format!("--{}", option.name), text]).expect("a number parses");
+    let cli = simulate_belt(&[format!("--{long}"), text]).expect("a number parses");
     let Command::Simulate(args) = cli.command else {
         unreachable!()
     };
     match args.request.rig_spec(Scenario::BELT) {
         Ok(_) => assert!(
             option.range.contains(value),
-            "--{} {value} was accepted outside {}",
-            option.name,
+            "--{long} {value} was accepted outside {}",
             option.range
         ),
         Err(e) => {
-            assert!(
-                !option.range.contains(value),
-                "--{} {value}: {e}",
-                option.name
-            );
+            assert!(!option.range.contains(value), "--{long} {value}: {e}");
             assert_eq!(e.exit_code(), 2);
             let message = e.to_string();
             assert!(

@@ -300,10 +300,11 @@ fn models_json() -> String {
 }
 
 /// A failed command: bad input (exit code 2) as `ValueError`, anything else as `SolverError`;
-/// the message is the one the command line prints after `error: `.
+/// the message is the one the command line prints after `error: `, a request's field named
+/// as its keyword (`t_end`, where the command line says `--t-end`).
 fn to_python(e: AppError) -> PyErr {
     if e.exit_code() == 2 {
-        PyValueError::new_err(bounded(&e.to_string()))
+        PyValueError::new_err(bounded(&e.message(&|field| field.to_string())))
     } else {
         SolverError::new_err(bounded(&failure_message(&e)))
     }

@@ -24,6 +24,9 @@ pub enum AppError {
     /// A curve option was rejected.
     #[error(transparent)]
     Curve(#[from] CurveError),
+    /// A value of a request outside what it allows, as data ([`Invalid`]).
+    #[error("{}", .0.message(&|field| field.to_string()))]
+    Invalid(Invalid),
     /// A command-line value that does not parse or does not apply.
     #[error("{0}")]
     Usage(String),
@@ -103,7 +106,54 @@ pub enum AppError {
     },
 }
 
+/// A value a request does not allow, as data: the field as the request declares it (`t_end`,
+/// `dt_list`), the value as given, and what is allowed. Each front end spells the field its
+/// own way ([`Invalid::message`]): the command line as its option (`--t-end`), Python as its
+/// keyword (`t_end`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Invalid {
+    /// The field of the request.
+    pub field: &'static str,
+    /// The value given, as the message shows it (`-1`; for a list, the value or the pair of
+    /// values at fault: `0.005 then 0.01`).
+    pub value: String,
+    /// What is allowed (`[1e-6, 1e6] s`, `values from coarse to fine, each below the one
+    /// before`).
+    pub allowed: String,
+    /// Whether the field is a list (the message says "has VALUE" for the value at fault, not
+    /// "= VALUE").
+    pub list: bool,
+}
+
+impl Invalid {
+    /// The message with the field spelled by `spell`: "option `--t-end` = -1 is out of range:
+    /// allowed [1e-6, 1e6] s", or for a list "option `--dt-list` has -1: allowed values
+    /// [1e-10, 10] s".
+    pub fn message(&self, spell: &dyn Fn(&str) -> String) -> String {
+        let field = spell(self.field);
+        match self.list {
+            false => format!(
+                "option `{field}` = {} is out of range: allowed {}",
+                self.value, self.allowed
+            ),
+            true => format!(
+                "option `{field}` has {}: allowed {}",
+                self.value, self.allowed
+            ),
+        }
+    }
+}
+
 impl AppError {
+    /// The message with every request field it names spelled by `spell` (a front end's
+    /// spelling of [`Invalid::field`]); the other errors' messages as they are.
+    pub fn message(&self, spell: &dyn Fn(&str) -> String) -> String {
+        match self {
+            AppError::Invalid(invalid) => invalid.message(spell),
+            other => other.to_string(),
+        }
+    }
+
     /// The process exit code: 2 for bad input, 1 for a failure while running, 130 for a
     /// command stopped by a signal before it computed anything.
     pub fn exit_code(&self) -> i32 {
@@ -113,6 +163,7 @@ impl AppError {
             | AppError::SystemFile(_)
             | AppError::Curve(_)
             | AppError::OutputFolder { .. }
+            | AppError::Invalid(_)
             | AppError::Usage(_)
             | AppError::ParamFile { .. } => 2,
             AppError::NonFinite { .. }

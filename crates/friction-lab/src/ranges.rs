@@ -1,13 +1,14 @@
-//! The allowed range of every numeric option of the command line, in one table, checked before
-//! any work starts: an error names the option, the value and the range, and exits 2.
+//! The allowed range of every numeric field of a request, in one table, checked before any
+//! work starts: an error ([`Invalid`]) names the field, the value and the range, and each front
+//! end spells the field its own way (exit code 2 on the command line).
 
-use crate::error::AppError;
+use crate::error::{AppError, Invalid};
 use friction_models::params::Range;
 
-/// A numeric option: its name as the command line spells it, its unit and its range.
+/// A numeric field of a request: its name as the request declares it, its unit and its range.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct OptionRange {
-    /// The option, as `--NAME` takes it.
+    /// The field (`t_end`: the option `--t-end`, Python's keyword `t_end`).
     pub name: &'static str,
     /// Unit of the value ("" for a count).
     pub unit: &'static str,
@@ -35,13 +36,13 @@ const fn left_open(min: f64, max: f64) -> Range {
 
 /// End time: 1 µs to 1e6 s (11 days of simulated time).
 pub const T_END: OptionRange = OptionRange {
-    name: "t-end",
+    name: "t_end",
     unit: "s",
     range: closed(1e-6, 1e6),
 };
 /// End time of a test-set problem (`testset --t-end`): up to 1e12, beyond Robertson's 1e11.
 pub const TESTSET_T_END: OptionRange = OptionRange {
-    name: "t-end",
+    name: "t_end",
     unit: "",
     range: left_open(0.0, 1e12),
 };
@@ -78,13 +79,13 @@ pub const POINTS: OptionRange = OptionRange {
 };
 /// Step cap of one run.
 pub const MAX_STEPS: OptionRange = OptionRange {
-    name: "max-steps",
+    name: "max_steps",
     unit: "",
     range: closed(1.0, 1e10),
 };
 /// Wall-clock limit of one run.
 pub const TIME_LIMIT: OptionRange = OptionRange {
-    name: "time-limit",
+    name: "time_limit",
     unit: "s",
     range: left_open(0.0, 1e6),
 };
@@ -100,9 +101,27 @@ pub const REPEATS: OptionRange = OptionRange {
     unit: "",
     range: closed(1.0, 100.0),
 };
+/// Relative tolerance of an independence study's verdict.
+pub const VERDICT_TOL: OptionRange = OptionRange {
+    name: "tol",
+    unit: "",
+    range: left_open(0.0, 1.0),
+};
+/// Refinement ratio between an independence study's levels.
+pub const RATIO: OptionRange = OptionRange {
+    name: "ratio",
+    unit: "",
+    range: left_open(1.0, 1e3),
+};
+/// Levels of an independence study.
+pub const LEVELS: OptionRange = OptionRange {
+    name: "levels",
+    unit: "",
+    range: closed(2.0, 12.0),
+};
 /// Largest |v| of a velocity curve.
 pub const V_MAX: OptionRange = OptionRange {
-    name: "v-max",
+    name: "v_max",
     unit: "m/s",
     range: left_open(0.0, 1e6),
 };
@@ -118,13 +137,12 @@ impl OptionRange {
         if self.range.contains(value) {
             Ok(value)
         } else {
-            Err(AppError::Usage(format!(
-                "option `{}` = {} is out of range: allowed {}{}",
-                self.name,
-                show(value),
-                self.range,
-                unit_suffix(self.unit)
-            )))
+            Err(AppError::Invalid(Invalid {
+                field: self.name,
+                value: show(value),
+                allowed: format!("{}{}", self.range, unit_suffix(self.unit)),
+                list: false,
+            }))
         }
     }
 
@@ -133,31 +151,30 @@ impl OptionRange {
         self.check(value as f64).map(|v| v as usize)
     }
 
-    /// Every value of the list option `option` (`dt-list`, `tol-list`), checked against this
+    /// Every value of the list field `field` (`dt_list`, `tol_list`), checked against this
     /// range; a list has 1 to 50 values, coarse to fine (each below the one before: the
     /// observed orders are taken between neighbours, and a repeated value is a repeated run).
-    pub fn list(&self, option: &str, values: &[f64]) -> Result<(), AppError> {
+    pub fn list(&self, field: &'static str, values: &[f64]) -> Result<(), AppError> {
+        let invalid = |value: String, allowed: String| {
+            Err(AppError::Invalid(Invalid {
+                field,
+                value,
+                allowed,
+                list: true,
+            }))
+        };
         if values.is_empty() || values.len() > 50 {
-            return Err(AppError::Usage(format!(
-                "option `{option}` has {} values: allowed 1 to 50",
-                values.len()
-            )));
+            return invalid(format!("{} values", values.len()), "1 to 50".into());
         }
         if let Some(&v) = values.iter().find(|&&v| !self.range.contains(v)) {
-            return Err(AppError::Usage(format!(
-                "option `{option}` has {}: allowed values {}{}",
-                show(v),
-                self.range,
-                unit_suffix(self.unit)
-            )));
+            let allowed = format!("values {}{}", self.range, unit_suffix(self.unit));
+            return invalid(show(v), allowed);
         }
         match values.windows(2).find(|w| w[1] >= w[0]) {
-            Some(w) => Err(AppError::Usage(format!(
-                "option `{option}` has {} then {}: allowed values from coarse to fine, each \
-                 below the one before",
-                show(w[0]),
-                show(w[1])
-            ))),
+            Some(w) => invalid(
+                format!("{} then {}", show(w[0]), show(w[1])),
+                "values from coarse to fine, each below the one before".into(),
+            ),
             None => Ok(()),
         }
     }

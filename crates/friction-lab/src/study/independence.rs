@@ -82,21 +82,9 @@ impl Study for IndependenceStudy<'_> {
             levels,
             tol,
         } = self.refinement;
-        if !(0.0..=1.0).contains(&tol) || tol == 0.0 {
-            return Err(AppError::Usage(format!(
-                "option `tol` = {tol} is out of range: allowed (0, 1]"
-            )));
-        }
-        if !(ratio.is_finite() && ratio > 1.0 && ratio <= 1e3) {
-            return Err(AppError::Usage(format!(
-                "option `ratio` = {ratio} is out of range: allowed (1, 1000]"
-            )));
-        }
-        if !(2..=12).contains(&levels) {
-            return Err(AppError::Usage(format!(
-                "option `levels` = {levels} is out of range: allowed [2, 12]"
-            )));
-        }
+        ranges::VERDICT_TOL.check(tol)?;
+        ranges::RATIO.check(ratio)?;
+        ranges::LEVELS.count(levels)?;
         // Every level is a step size (fixed-step solvers) or a tolerance, in that option's range.
         let resolution = if solver.is_fixed_step() || case.switching().is_time_stepping() {
             ranges::DT

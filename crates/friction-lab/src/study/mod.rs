@@ -253,18 +253,24 @@ pub fn runs_with_peers(
 /// each solver once, every step size and tolerance in its range (`--dt-list`, `--tol-list`).
 pub fn check_lists(solvers: &[Solver], steps: &[f64], tols: &[f64]) -> Result<(), AppError> {
     distinct(solvers)?;
-    crate::ranges::DT.list("dt-list", steps)?;
-    crate::ranges::RTOL.list("tol-list", tols)?;
+    crate::ranges::DT.list("dt_list", steps)?;
+    crate::ranges::RTOL.list("tol_list", tols)?;
     Ok(())
 }
 
 /// A list option of positive finite numbers, not empty.
 pub fn positive_list(name: &'static str, values: &[f64]) -> Result<(), AppError> {
+    let invalid = |value: String, allowed: &str| {
+        Err(AppError::Invalid(crate::error::Invalid {
+            field: name,
+            value,
+            allowed: allowed.into(),
+            list: true,
+        }))
+    };
     match values.iter().find(|v| !(v.is_finite() && **v > 0.0)) {
-        Some(v) => Err(AppError::Usage(format!(
-            "option `{name}` has {v}: allowed values (0, inf)"
-        ))),
-        None if values.is_empty() => Err(AppError::Usage(format!("option `{name}` is empty"))),
+        Some(v) => invalid(v.to_string(), "values (0, inf)"),
+        None if values.is_empty() => invalid("no value".into(), "1 value or more"),
         None => Ok(()),
     }
 }

@@ -55,7 +55,7 @@ impl Study for TestSetStudy<'_> {
                 adaptive.join(", ")
             )));
         }
-        ranges::RTOL.list("tol-list", self.tols)?;
+        ranges::RTOL.list("tol_list", self.tols)?;
         Ok(())
     }
 

@@ -125,10 +125,12 @@ impl Sweep {
 
 /// The error of a point range `text` outside a grid of `n` points.
 fn point_range_error(text: &str, n: usize) -> AppError {
-    AppError::Usage(format!(
-        "option `point-range` = `{text}` is out of range: allowed START:END with \
-         0 <= START <= END <= {n} (the grid's points)"
-    ))
+    AppError::Invalid(crate::error::Invalid {
+        field: "point_range",
+        value: format!("`{text}`"),
+        allowed: format!("START:END with 0 <= START <= END <= {n} (the grid's points)"),
+        list: false,
+    })
 }
 
 /// `range`, if it lies within a grid of `n` points (START <= END <= n).
