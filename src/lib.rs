@@ -109,7 +109,7 @@ pub fn run(cli: Cli) -> Result<(), AppError> {
             let threads = ranges::threads(threads)?;
             let mut made = make(command)?;
             made.files.set_format(format);
-            made.deliver(out, threads)
+            deliver(made, out, threads)
         }
     }
 }
@@ -141,6 +141,25 @@ impl Command {
             Command::Models { .. } | Command::Reproduce(_) => (std::path::Path::new("."), None),
         }
     }
+}
+
+/// Writes what a command made as the folder `out` (figures drawn on `threads` threads, all
+/// cores when `None`), prints what was written and the notes, and returns the failure.
+pub fn deliver(
+    made: artifacts::Made,
+    out: &std::path::Path,
+    threads: Option<usize>,
+) -> Result<(), AppError> {
+    let files = made.files;
+    let written = friction_lab::threads::with_threads(threads, || files.write(out))??;
+    println!("{}", written.line());
+    for note in &made.notes {
+        println!("{note}");
+    }
+    for warning in made.warnings.iter().chain(written.stop_note().iter()) {
+        eprintln!("note: {warning}");
+    }
+    made.failure.map_or(Ok(()), Err)
 }
 
 /// Runs `curve`, `simulate`, a study, `sweep`, `testset` or `phenomena`, and keeps its files in memory

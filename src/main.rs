@@ -40,6 +40,8 @@ fn main() {
         }
     };
     stop_on_signal();
+    // Progress of long work: a bar on a terminal, a heartbeat line without one.
+    friction_lab::progress::observe_with(std::sync::Arc::new(terminal::Terminal));
     let result = friction_lab_cli::run(cli);
     if let Err(e) = &result {
         // A request's field as its option: `t_end` as `--t-end`.

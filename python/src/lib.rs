@@ -374,6 +374,9 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     // The pools' workers, as the run's worker in `interruptible`: attached once, detached at
     // once, so that a law written in Python takes the GIL on a living thread state.
     friction_lab::threads::set_worker_wrapper(|work| Python::attach(|py| py.detach(work)));
+    // Progress of long work as on the command line: a bar on a terminal, else a heartbeat
+    // line on stderr (a notebook's log); Ctrl-C is watched by `interruptible`.
+    friction_lab::progress::observe_with(std::sync::Arc::new(terminal::Terminal));
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
     m.add_function(wrap_pyfunction!(study, m)?)?;

@@ -371,23 +371,6 @@ pub struct Made {
     pub trajectory: Option<crate::trajectory::Trajectory>,
 }
 
-impl Made {
-    /// Writes the files as the folder `out` (figures drawn on `threads` threads, all cores
-    /// when `None`), prints what was written and the notes, and returns the failure.
-    pub fn deliver(self, out: &Path, threads: Option<usize>) -> Result<(), AppError> {
-        let files = self.files;
-        let written = crate::threads::with_threads(threads, || files.write(out))??;
-        println!("{}", written.line());
-        for note in &self.notes {
-            println!("{note}");
-        }
-        for warning in self.warnings.iter().chain(written.stop_note().iter()) {
-            eprintln!("note: {warning}");
-        }
-        self.failure.map_or(Ok(()), Err)
-    }
-}
-
 /// The marker's text after its status line.
 const MARKER_TEXT: &str =
     "This folder was written by friction-lab; the next run into it replaces it whole.\n";
