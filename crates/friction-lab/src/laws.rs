@@ -4,9 +4,10 @@
 
 use crate::error::AppError;
 use friction_models::{FrictionModel, FrictionParams, ModelId, Parameters, Variant};
+use registry::{Named, Registry};
 use scenarios::{Law, SwitchingKind};
 use std::collections::BTreeMap;
-use std::sync::{Arc, RwLock};
+use std::sync::Arc;
 
 /// The parameters `model` of the catalog reads, with their values in `p`.
 pub fn used_parameters(model: ModelId, p: &FrictionParams) -> BTreeMap<&'static str, f64> {
@@ -17,39 +18,30 @@ pub fn used_parameters(model: ModelId, p: &FrictionParams) -> BTreeMap<&'static 
         .collect()
 }
 
-/// The laws registered by name, beside the catalog.
-static REGISTERED: RwLock<BTreeMap<String, Arc<dyn FrictionModel>>> = RwLock::new(BTreeMap::new());
+/// The laws registered by name while the program runs, beside the catalog's models
+/// ([`ModelId`], a closed list): the one registry type of solvers, rigs and Table 2's rows.
+pub static LAWS: Registry<ModelChoice> = Registry::new("law", "laws", &[]);
 
 /// Registers `law` under its name, replacing a law registered before under the same name;
-/// refused (with the reason) when the name is empty or a model of the catalog has it, since
-/// `--model NAME` would then mean two laws.
+/// refused (with the reason) when the name is not a non-empty word without commas, or a
+/// model of the catalog has it (in any case), since `--model NAME` would then mean two laws.
 pub fn register(law: Arc<dyn FrictionModel>) -> Result<(), String> {
     let name = law.name().to_string();
-    if name.trim().is_empty() || name.contains(',') {
-        return Err(format!(
-            "a law's name must be a non-empty word without commas, not {name:?}"
-        ));
-    }
     if ModelId::from_name(&name).is_ok() {
         return Err(format!(
             "a law cannot be named `{name}`: the catalog has a model of that name \
              (`friction-lab models` lists them); choose another name"
         ));
     }
-    REGISTERED
-        .write()
-        .unwrap_or_else(|e| e.into_inner())
-        .insert(name, law);
-    Ok(())
+    LAWS.register(ModelChoice::Registered(law)).map(|_| ())
 }
 
 /// The law registered under `name`, if any.
 pub fn registered(name: &str) -> Option<Arc<dyn FrictionModel>> {
-    REGISTERED
-        .read()
-        .unwrap_or_else(|e| e.into_inner())
-        .get(name)
-        .cloned()
+    match LAWS.find(name)? {
+        ModelChoice::Registered(law) => Some(law),
+        ModelChoice::Catalog(_) => None,
+    }
 }
 
 /// The law `--model` names: a model of the catalog, or a law registered by name.
@@ -103,6 +95,13 @@ impl ModelChoice {
     }
 }
 
+/// Found in [`LAWS`] by its name.
+impl Named for ModelChoice {
+    fn name(&self) -> &str {
+        ModelChoice::name(self)
+    }
+}
+
 impl std::fmt::Display for ModelChoice {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(self.name())
@@ -120,12 +119,7 @@ impl std::str::FromStr for ModelChoice {
                 if let Some(law) = registered(s) {
                     return Ok(ModelChoice::Registered(law));
                 }
-                let names: Vec<String> = REGISTERED
-                    .read()
-                    .unwrap_or_else(|e| e.into_inner())
-                    .keys()
-                    .cloned()
-                    .collect();
+                let names = LAWS.names();
                 Err(if names.is_empty() {
                     e
                 } else {
@@ -220,5 +214,6 @@ mod tests {
         assert!(e.contains("the catalog has a model of that name"), "{e}");
         let e = register(Arc::new(Named("a,b"))).unwrap_err();
         assert!(e.contains("without commas"), "{e}");
+        assert_eq!(LAWS.names(), ["two-newton-coulomb"]);
     }
 }
