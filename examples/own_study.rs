@@ -1,4 +1,6 @@
-//! A solver study written outside friction-lab, conducted like a built-in one.
+//! A solver study written outside friction-lab, conducted like a built-in one; registered
+//! (`NamedStudy::register`), it is a command of its own, found by its name as the built-in
+//! studies are.
 //!
 //! The step-count study: an adaptive method whose error estimate is of order q (local error
 //! O(h^(q+1))) keeps that error near the tolerance with steps h ∝ tol^(1/(q+1)), so it takes
@@ -15,6 +17,7 @@
 //!
 //! Run: `cargo run --release --example own_study -- OUT_DIR`.
 
+use friction_lab::artifacts::Made;
 use friction_lab::error::AppError;
 use friction_lab::friction_models::{FrictionParams, ModelId};
 use friction_lab::integrators::{Solver, StepControl};
@@ -23,6 +26,7 @@ use friction_lab::plot::{Corner, Marker, Plot, Series, PALETTE};
 use friction_lab::reproduce::{Report, Section};
 use friction_lab::scenarios::studies::{slope, Case, StudyCase};
 use friction_lab::scenarios::{Limits, Scenario, ScenarioError, SwitchingKind};
+use friction_lab::study::solver_studies::{Declared, NamedStudy, Runs};
 use friction_lab::study::{Entry, Study, StudyFiles};
 use serde::Serialize;
 use std::path::Path;
@@ -202,17 +206,56 @@ fn reads(counts: &StepCounts) -> String {
     )
 }
 
-/// The paper's block pushed from rest against viscous friction (x, v in closed form), studied
-/// with Dormand–Prince from tol 1e-7 to 1e-12 (looser, it takes a dozen steps, too few for the
-/// asymptotic law) and implicit Euler from 1e-3 to 1e-7, written into `dir` with a report.
-pub fn run(dir: &Path) -> Result<Outcome, AppError> {
+/// The study as a command a front end names, once registered: `friction-lab step-counts
+/// --out DIR [--t-end T]`.
+#[derive(clap::Args, Debug)]
+pub struct StepCountRequest {
+    /// End time of the paper's block, s.
+    #[arg(long, value_name = "T", default_value_t = 5.0)]
+    pub t_end: f64,
+}
+
+impl Runs for StepCountRequest {
+    fn run(&self, out: &Path) -> Result<Made, AppError> {
+        made(out, self.t_end)
+    }
+}
+
+/// `step-counts`, registered with `NamedStudy::register(&STEP_COUNTS)`.
+pub static STEP_COUNTS: Declared<StepCountRequest> = Declared::new(
+    "step-counts",
+    "Step counts of adaptive solvers against the tolerance",
+);
+
+/// Registers the study and runs `friction-lab step-counts --out DIR` through the command
+/// line's own library calls, as a user's program built on it would: the study is found by its
+/// name, as a built-in one is, and writes its files into `dir`.
+pub fn by_name(dir: &Path) -> Result<(), AppError> {
+    NamedStudy::register(&STEP_COUNTS).map_err(AppError::Usage)?;
+    let words = [
+        "friction-lab",
+        "step-counts",
+        "--out",
+        &dir.display().to_string(),
+    ]
+    .map(String::from);
+    let invocation =
+        friction_lab_cli::parse_from(words).map_err(|e| AppError::Usage(e.to_string()))?;
+    friction_lab_cli::invoke(invocation)
+}
+
+/// The paper's block pushed from rest against viscous friction (x, v in closed form) to
+/// `t_end`, studied with Dormand–Prince from tol 1e-7 to 1e-12 (looser, it takes a dozen
+/// steps, too few for the asymptotic law) and implicit Euler from 1e-3 to 1e-7: the study's
+/// files and its report, in `dir`, in memory.
+fn made(dir: &Path, t_end: f64) -> Result<Made, AppError> {
     let case = Case {
         scenario: Scenario::PAPER_BLOCK,
         law: ModelId::Viscous.into(),
         friction: FrictionParams::paper(),
         params: Scenario::PAPER_BLOCK.defaults(),
         switching: SwitchingKind::Event,
-        t_end: 5.0,
+        t_end,
         limits: Limits::default(),
     };
     let study = StepCountStudy {
@@ -238,7 +281,12 @@ pub fn run(dir: &Path) -> Result<Outcome, AppError> {
         preface: String::new(),
         parts: vec![&section],
     };
-    let made = report.conduct(dir, None)?;
+    report.conduct(dir, None)
+}
+
+/// The study of [`made`] to 5 s, written into `dir` with its report.
+pub fn run(dir: &Path) -> Result<Outcome, AppError> {
+    let made = made(dir, 5.0)?;
     if let Some(failure) = made.failure {
         return Err(failure);
     }

@@ -6,6 +6,7 @@ pub mod commands;
 use clap::{Parser, Subcommand};
 use friction_lab::error::AppError;
 use friction_lab::plot::Format;
+use friction_lab::study::solver_studies::{NamedStudy, STUDIES};
 use friction_lab::trajectory::TrajectoryAs;
 use friction_lab::{artifacts, destination, ranges};
 
@@ -59,18 +60,6 @@ pub enum Command {
     /// Decide Table 2 by simulation, beside the paper's table.
     #[command(after_help = EXIT_CODES)]
     Phenomena(commands::Writing<friction_lab::study::Phenomena>),
-    /// Convergence study: observed orders against a reference.
-    #[command(after_help = EXIT_CODES)]
-    Converge(commands::Writing<friction_lab::study::Converge>),
-    /// Step-size independence: successive differences, Richardson estimate, verdict.
-    #[command(after_help = EXIT_CODES)]
-    Independence(commands::Writing<friction_lab::study::Independence>),
-    /// Work-precision: error against cost for every solver.
-    #[command(after_help = EXIT_CODES)]
-    WorkPrecision(commands::Writing<friction_lab::study::WorkPrecision>),
-    /// Stiffness sweep: where the implicit solvers overtake the explicit ones.
-    #[command(after_help = EXIT_CODES)]
-    Stiffness(commands::Writing<friction_lab::study::Stiffness>),
     /// Sweep a rig, the chain or a system file over a grid of parameters: the settled state at every point
     /// (stick phases per cycle, amplitude and period, friction, solver statistics).
     #[command(after_help = EXIT_CODES)]
@@ -84,6 +73,97 @@ pub enum Command {
     /// the solver studies, and a report.md that links them.
     #[command(after_help = EXIT_CODES)]
     Reproduce(commands::reproduce::ReproduceArgs),
+}
+
+/// A parsed command line: one of [`Cli`]'s commands, or a named study ([`STUDIES`]) with its
+/// options.
+pub enum Invocation {
+    /// A command [`Cli`] declares.
+    Command(Box<Cli>),
+    /// A study of [`STUDIES`], built in or registered.
+    Study(StudyInvocation),
+}
+
+/// A study as the command line asked for it.
+pub struct StudyInvocation {
+    /// The study.
+    pub study: NamedStudy,
+    /// Its options, parsed by its declaration.
+    pub matches: clap::ArgMatches,
+    /// The folder its files go to.
+    pub out: std::path::PathBuf,
+    /// `--figure-size`.
+    pub figure_size: Option<String>,
+    /// `--dpi`.
+    pub dpi: Option<f64>,
+}
+
+/// The whole command line: [`Cli`]'s commands, and a command for each study in [`STUDIES`]
+/// (built in or registered) with the study's declared options and `--out`.
+pub fn command() -> clap::Command {
+    use clap::CommandFactory;
+    let out = clap::Arg::new("out")
+        .long("out")
+        .value_name("DIR")
+        .required(true)
+        .value_parser(clap::value_parser!(std::path::PathBuf))
+        .help("Folder to write into (created if missing)");
+    (STUDIES.all().into_iter()).fold(Cli::command(), |cli, study| {
+        // Declared first: a request's own doc comment would replace the study's `about`.
+        let command = study.declare(clap::Command::new(study.name()).arg(out.clone()));
+        cli.subcommand(command.about(study.about()).after_help(EXIT_CODES))
+    })
+}
+
+/// Parses `words` (the program's name first) as [`command`] does.
+pub fn parse_from<I, T>(words: I) -> Result<Invocation, clap::Error>
+where
+    I: IntoIterator<Item = T>,
+    T: Into<std::ffi::OsString> + Clone,
+{
+    use clap::FromArgMatches;
+    let matches = command().try_get_matches_from(words)?;
+    if let Some((name, options)) = matches.subcommand() {
+        if let Some(study) = STUDIES.find(name) {
+            return Ok(Invocation::Study(StudyInvocation {
+                study,
+                out: options
+                    .get_one::<std::path::PathBuf>("out")
+                    .cloned()
+                    .unwrap_or_default(),
+                matches: options.clone(),
+                figure_size: matches.get_one::<String>("figure_size").cloned(),
+                dpi: matches.get_one::<f64>("dpi").copied(),
+            }));
+        }
+    }
+    Cli::from_arg_matches(&matches).map(|cli| Invocation::Command(Box::new(cli)))
+}
+
+/// Runs a parsed command line ([`run`], or a study: [`run_study`]).
+pub fn invoke(invocation: Invocation) -> Result<(), AppError> {
+    match invocation {
+        Invocation::Command(cli) => run(*cli),
+        Invocation::Study(study) => run_study(study),
+    }
+}
+
+/// Runs a named study, its figure format and output folder checked first, and writes its
+/// files.
+pub fn run_study(s: StudyInvocation) -> Result<(), AppError> {
+    let format = Format::parse(s.figure_size.as_deref(), s.dpi)?;
+    destination::check(&s.out)?;
+    // A study that declares `--threads` (the solver studies do) draws on that many.
+    let asked = s
+        .matches
+        .try_get_one::<i64>("threads")
+        .ok()
+        .flatten()
+        .copied();
+    let threads = ranges::threads(asked)?;
+    let mut made = s.study.run(&s.matches, &s.out)?;
+    made.files.set_format(format);
+    deliver(made, &s.out, threads)
 }
 
 /// Runs one parsed command, its figure format and output folder checked first
@@ -131,10 +211,6 @@ impl Command {
         match self {
             Command::Curve(a) => (&a.out, None),
             Command::Simulate(a) => (&a.out, None),
-            Command::Converge(a) => (&a.out, a.request.problem.threads),
-            Command::Independence(a) => (&a.out, a.request.problem.threads),
-            Command::WorkPrecision(a) => (&a.out, a.request.problem.threads),
-            Command::Stiffness(a) => (&a.out, a.request.problem.threads),
             Command::Sweep(a) => (&a.out, a.request.threads),
             Command::Testset(a) => (&a.out, None),
             Command::Phenomena(a) => (&a.out, a.request.threads),
@@ -169,10 +245,6 @@ pub fn make(command: &Command) -> Result<artifacts::Made, AppError> {
     match command {
         Command::Curve(args) => args.request.run(&args.out),
         Command::Simulate(args) => args.request.run(&args.out, TrajectoryAs::File),
-        Command::Converge(args) => args.request.run(&args.out),
-        Command::Independence(args) => args.request.run(&args.out),
-        Command::WorkPrecision(args) => args.request.run(&args.out),
-        Command::Stiffness(args) => args.request.run(&args.out),
         Command::Sweep(args) => args.request.run(&args.out),
         Command::Testset(args) => args.request.run(&args.out),
         Command::Phenomena(args) => args.request.run(&args.out),
@@ -185,8 +257,7 @@ pub fn make(command: &Command) -> Result<artifacts::Made, AppError> {
 /// The reference of every command's options as Markdown (`docs/options.md`), from their one
 /// declaration: for each command its arguments and options with their value, default and help.
 pub fn options_reference() -> String {
-    use clap::CommandFactory;
-    let cli = Cli::command();
+    let cli = command();
     let one_line = |text: String| text.split_whitespace().collect::<Vec<_>>().join(" ");
     let mut out = String::from(
         "# Options of every command\n\nEvery command's arguments and options, with their value, \
@@ -241,8 +312,6 @@ pub fn options_reference() -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::Cli;
-    use clap::{CommandFactory, Parser};
 
     #[test]
     fn every_numeric_option_takes_a_value_that_begins_with_a_hyphen() {
@@ -258,7 +327,7 @@ mod tests {
             type_of(clap::value_parser!(f64).into()),
             type_of(clap::value_parser!(i64).into()),
         ];
-        let cli = Cli::command();
+        let cli = super::command();
         let mut refused = Vec::new();
         for command in cli.get_subcommands() {
             for arg in command.get_arguments() {
@@ -270,7 +339,7 @@ mod tests {
                 }
                 let option = format!("--{long}");
                 let words = ["friction-lab", command.get_name(), &option, "-1e-3"];
-                if let Err(e) = Cli::try_parse_from(words) {
+                if let Err(e) = super::parse_from(words) {
                     if e.kind() == clap::error::ErrorKind::UnknownArgument {
                         refused.push(format!("{} {option}", command.get_name()));
                     }

@@ -1,6 +1,5 @@
 //! The `friction-lab` command line; README.md and `friction-lab --help` describe its commands.
 
-use clap::Parser;
 use friction_lab::error::bounded;
 use friction_lab::integrators::interrupt;
 
@@ -29,8 +28,8 @@ fn stop_on_signal() {
 }
 
 fn main() {
-    let cli = match friction_lab_cli::Cli::try_parse() {
-        Ok(cli) => cli,
+    let invocation = match friction_lab_cli::parse_from(std::env::args_os()) {
+        Ok(invocation) => invocation,
         // --help and --version print as they are; a usage error with what was typed shortened
         // (error::bounded).
         Err(e) if !e.use_stderr() => e.exit(),
@@ -42,7 +41,7 @@ fn main() {
     stop_on_signal();
     // Progress of long work: a bar on a terminal, a heartbeat line without one.
     friction_lab::progress::observe_with(std::sync::Arc::new(terminal::Terminal));
-    let result = friction_lab_cli::run(cli);
+    let result = friction_lab_cli::invoke(invocation);
     if let Err(e) = &result {
         // A request's field as its option: `t_end` as `--t-end`.
         let option = |field: &str| format!("--{}", field.replace('_', "-"));

@@ -83,8 +83,7 @@ fn the_docs_and_the_help_name_no_file_outside_the_repository() {
         .map(|p| p.display().to_string())
         .collect();
     assert!(named.is_empty(), "{named:?}");
-    use clap::CommandFactory;
-    let commands: Vec<String> = friction_lab_cli::Cli::command()
+    let commands: Vec<String> = friction_lab_cli::command()
         .get_subcommands()
         .map(|c| c.get_name().to_string())
         .collect();

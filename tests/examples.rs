@@ -97,6 +97,27 @@ fn an_own_solver_runs_through_simulation_and_two_studies() {
 }
 
 #[test]
+fn a_registered_study_is_a_command_of_the_command_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("by-name");
+    own_study::by_name(&out).unwrap();
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("step-counts.json")).unwrap()).unwrap();
+    assert_eq!(json["orders"].as_array().map(Vec::len), Some(2));
+    let names = friction_lab::study::solver_studies::STUDIES.names();
+    assert_eq!(
+        names,
+        [
+            "converge",
+            "independence",
+            "work-precision",
+            "stiffness",
+            "step-counts"
+        ]
+    );
+}
+
+#[test]
 fn an_own_study_is_conducted_and_writes_its_files_and_figure() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("step-counts");

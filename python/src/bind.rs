@@ -16,7 +16,8 @@ use friction_lab::artifacts::Made;
 use friction_lab::curve::FrictionCurve;
 use friction_lab::error::AppError;
 use friction_lab::simulate::Simulation;
-use friction_lab::study::{Converge, Independence, Phenomena, Stiffness, WorkPrecision};
+use friction_lab::study::solver_studies::STUDIES;
+use friction_lab::study::Phenomena;
 use friction_lab::sweep::Sweep;
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
@@ -34,13 +35,9 @@ fn declared(function: &str) -> Option<clap::Command> {
     Some(match function {
         "simulate" => Simulation::augment_args(command),
         "sweep" => Sweep::augment_args(command),
-        "converge" => Converge::augment_args(command),
-        "independence" => Independence::augment_args(command),
-        "work_precision" => WorkPrecision::augment_args(command),
-        "stiffness" => Stiffness::augment_args(command),
         "curve" => FrictionCurve::augment_args(command),
         "phenomena" => Phenomena::augment_args(command),
-        _ => return None,
+        study => STUDIES.find(&study.replace('_', "-"))?.declare(command),
     })
 }
 
@@ -231,10 +228,22 @@ fn unknown(function: &str, key: &str) -> PyErr {
 /// `ValueError` naming the keyword.
 pub fn request<R: Args + FromArgMatches>(
     function: &str,
-    mut words: Vec<String>,
+    words: Vec<String>,
     options: &Bound<'_, PyDict>,
 ) -> PyResult<R> {
     let command = R::augment_args(clap::Command::new("friction_lab").no_binary_name(true));
+    let matches = parse(command, function, words, options)?;
+    R::from_arg_matches(&matches).map_err(|e| refused(function, e))
+}
+
+/// The options of `command` (a request's declaration) parsed from the positional `words` and
+/// the keyword arguments `options` ([`request`]).
+fn parse(
+    command: clap::Command,
+    function: &str,
+    mut words: Vec<String>,
+    options: &Bound<'_, PyDict>,
+) -> PyResult<clap::ArgMatches> {
     for (key, value) in options.iter() {
         if value.is_none() {
             continue;
@@ -254,10 +263,9 @@ pub fn request<R: Args + FromArgMatches>(
             }
         }
     }
-    let matches = command
+    command
         .try_get_matches_from(&words)
-        .map_err(|e| refused(function, e))?;
-    R::from_arg_matches(&matches).map_err(|e| refused(function, e))
+        .map_err(|e| refused(function, e))
 }
 
 /// A value or a combination the declaration refuses, as `ValueError`: a value its option's
@@ -335,38 +343,21 @@ pub fn sweep(
     request("sweep", words, options)
 }
 
-/// The solver study `function` (`converge`, `independence`, `work_precision`, `stiffness`)
-/// of `scenario` or `system` with the keyword arguments `options`, run into `out`.
+/// The study `function` of [`STUDIES`] (`converge`, `independence`, `work_precision`,
+/// `stiffness`, or one a program registered) of `scenario` or `system` with the keyword
+/// arguments `options`, run into `out`.
 pub fn study(
     function: &str,
     scenario: Option<&str>,
     system: Option<PathBuf>,
     options: &Bound<'_, PyDict>,
 ) -> PyResult<Conduct> {
-    let words = problem(scenario, system)?;
-    Ok(match function {
-        "converge" => {
-            let s: Converge = request(function, words, options)?;
-            Box::new(move |out| s.run(out))
-        }
-        "independence" => {
-            let s: Independence = request(function, words, options)?;
-            Box::new(move |out| s.run(out))
-        }
-        "work_precision" => {
-            let s: WorkPrecision = request(function, words, options)?;
-            Box::new(move |out| s.run(out))
-        }
-        "stiffness" => {
-            let s: Stiffness = request(function, words, options)?;
-            Box::new(move |out| s.run(out))
-        }
-        _ => {
-            return Err(PyValueError::new_err(format!(
-                "`{function}` is no solver study"
-            )))
-        }
-    })
+    let study = STUDIES
+        .get(&function.replace('_', "-"))
+        .map_err(PyValueError::new_err)?;
+    let command = study.declare(clap::Command::new("friction_lab").no_binary_name(true));
+    let matches = parse(command, function, problem(scenario, system)?, options)?;
+    Ok(Box::new(move |out| study.run(&matches, out)))
 }
 
 /// The curve `curve(model, **options)` asks for.

@@ -37,7 +37,6 @@ pub mod run_record;
 pub mod scheme;
 pub mod settings;
 pub mod simulate;
-pub mod spectrum;
 pub mod study;
 pub mod sweep;
 pub mod testset;

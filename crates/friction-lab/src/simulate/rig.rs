@@ -172,14 +172,14 @@ fn figures(o: &Outcome, name: &str, window: Option<Window>) -> Vec<(&'static str
 }
 
 /// The body's velocity over `window`, else over the last half of the run, at as many evenly
-/// spaced times as it has recorded points there (at most [`crate::spectrum::MAX_SAMPLES`]),
+/// spaced times as it has recorded points there (at most [`scenarios::analysis::spectrum::MAX_SAMPLES`]),
 /// interpolated linearly: a rig's recorded points are its output grid and its switches;
 /// `None` for fewer than eight.
 fn even_velocity(rows: &[scenarios::Row], window: Option<Window>) -> Option<Measured> {
     let (first, last) = (rows.first()?.t, rows.last()?.t);
     let (from, to) = measured_span(window, (first, last));
     let inside = rows.iter().filter(|r| (from..=to).contains(&r.t)).count();
-    let n = inside.min(crate::spectrum::MAX_SAMPLES);
+    let n = inside.min(scenarios::analysis::spectrum::MAX_SAMPLES);
     if n < 8 || to <= from {
         return None;
     }

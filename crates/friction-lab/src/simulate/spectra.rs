@@ -1,16 +1,16 @@
 //! The spectra of a system's motion: the amplitude spectrum of the velocity of each drawn body
 //! (the bodies of the line figures, `motion::spread`)
 //! over the last half of the run (the first half left to the transient, as a sweep's
-//! settled part; at most its last [`crate::spectrum::MAX_SAMPLES`] points), with its dominant
+//! settled part; at most its last [`scenarios::analysis::spectrum::MAX_SAMPLES`] points), with its dominant
 //! frequency: `spectrum.csv`, `spectrum.json` and a figure.
 
 use crate::artifacts::Artifacts;
 use crate::error::AppError;
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Marker, Plot, Series, PALETTE};
-use crate::spectrum::Spectrum;
 use crate::window::Window;
 use friction_systems::{Run, System};
+use scenarios::analysis::spectrum::Spectrum;
 use serde::Serialize;
 use std::path::Path;
 
@@ -58,7 +58,7 @@ pub fn measured_span(window: Option<Window>, (t0, t1): (f64, f64)) -> (f64, f64)
 }
 
 /// The velocities of `bodies` of a system's `run` at its recorded points within `window`,
-/// else over the last half of the run (at most its last [`crate::spectrum::MAX_SAMPLES`]
+/// else over the last half of the run (at most its last [`scenarios::analysis::spectrum::MAX_SAMPLES`]
 /// points; the system records its evenly spaced output grid only); `None` for fewer than
 /// eight points.
 pub fn system_velocities(
@@ -73,7 +73,7 @@ pub fn system_velocities(
     let start = t.partition_point(|&s| s < from);
     let end = t.partition_point(|&s| s <= to);
     // A longer span is measured over its last samples (`Spectrum::of`).
-    let start = start.max(end.saturating_sub(crate::spectrum::MAX_SAMPLES));
+    let start = start.max(end.saturating_sub(scenarios::analysis::spectrum::MAX_SAMPLES));
     if end < start + 8 {
         return None;
     }

@@ -7,11 +7,16 @@
 
 mod converge;
 mod independence;
+mod named;
 mod stiffness;
 mod work_precision;
 
 pub use converge::{Converge, CONVERGE_SOLVERS};
 pub use independence::Independence;
+pub use named::{
+    Declared, NamedStudy, Runs, StudyRequest, CONVERGE, INDEPENDENCE, STIFFNESS, STUDIES,
+    WORK_PRECISION,
+};
 pub use stiffness::{Stiffness, STIFFNESS_SOLVERS};
 pub use work_precision::{WorkPrecision, TESTSET_SOLVERS, TESTSET_TOLERANCES, WP_TOLERANCES};
 

@@ -1,0 +1,124 @@
+//! The studies a front end names: each a request declared with clap and run into its files,
+//! the four built-in solver studies ([`NamedStudy::ALL`]) and those a program registers
+//! ([`NamedStudy::register`]), held in the registry [`STUDIES`]. The command line makes a
+//! command of each and Python a call (`study(name, …)`), both from the study's own
+//! declaration.
+
+use super::{Converge, Independence, Stiffness, WorkPrecision};
+use crate::artifacts::Made;
+use crate::error::AppError;
+use clap::{ArgMatches, Args, FromArgMatches};
+use std::marker::PhantomData;
+use std::path::Path;
+
+/// A study a front end names: its options, declared once, and how the request they make runs.
+pub trait StudyRequest: Send + Sync {
+    /// The name the command line takes (`work-precision`; Python's `work_precision`).
+    fn name(&self) -> &'static str;
+
+    /// What it does, in one line (the command's `--help`).
+    fn about(&self) -> &'static str;
+
+    /// `command` with the study's options added (its request's `clap::Args`).
+    fn declare(&self, command: clap::Command) -> clap::Command;
+
+    /// The request the parsed options `matches` make, checked and run, its files in `out` (in
+    /// memory).
+    fn run(&self, matches: &ArgMatches, out: &Path) -> Result<Made, AppError>;
+}
+
+/// A request that runs into its files.
+pub trait Runs {
+    /// Checks and runs the request, its files in `out` (in memory).
+    fn run(&self, out: &Path) -> Result<Made, AppError>;
+}
+
+/// The request type `R` as a named study: its options `R`'s declaration, its run `R`'s.
+pub struct Declared<R> {
+    name: &'static str,
+    about: &'static str,
+    request: PhantomData<fn() -> R>,
+}
+
+impl<R> Declared<R> {
+    /// The study `name` (`about`: what it does) of the request `R`.
+    pub const fn new(name: &'static str, about: &'static str) -> Declared<R> {
+        Declared {
+            name,
+            about,
+            request: PhantomData,
+        }
+    }
+}
+
+impl<R: Args + FromArgMatches + Runs> StudyRequest for Declared<R> {
+    fn name(&self) -> &'static str {
+        self.name
+    }
+
+    fn about(&self) -> &'static str {
+        self.about
+    }
+
+    fn declare(&self, command: clap::Command) -> clap::Command {
+        R::augment_args(command)
+    }
+
+    fn run(&self, matches: &ArgMatches, out: &Path) -> Result<Made, AppError> {
+        let request = R::from_arg_matches(matches).map_err(|e| AppError::Usage(e.to_string()))?;
+        request.run(out)
+    }
+}
+
+/// `converge`, as the command line and Python name it.
+pub static CONVERGE: Declared<Converge> = Declared::new(
+    "converge",
+    "Convergence study: observed orders against a reference",
+);
+/// `independence`.
+pub static INDEPENDENCE: Declared<Independence> = Declared::new(
+    "independence",
+    "Step-size independence: successive differences, Richardson estimate, verdict",
+);
+/// `work-precision`.
+pub static WORK_PRECISION: Declared<WorkPrecision> = Declared::new(
+    "work-precision",
+    "Work-precision: error against cost for every solver",
+);
+/// `stiffness`.
+pub static STIFFNESS: Declared<Stiffness> = Declared::new(
+    "stiffness",
+    "Stiffness sweep: where the implicit solvers overtake the explicit ones",
+);
+
+registry::handle!(
+    /// A study a front end names: a [`StudyRequest`], built in or a user's own.
+    NamedStudy => dyn StudyRequest, STUDIES
+);
+
+/// Every study a front end names: the built-in ones ([`NamedStudy::ALL`]) and those registered
+/// with [`NamedStudy::register`].
+pub static STUDIES: registry::Registry<NamedStudy> =
+    registry::Registry::new("study", "studies", &NamedStudy::ALL);
+
+impl NamedStudy {
+    /// The four solver studies, in the order the command line lists them.
+    pub const ALL: [NamedStudy; 4] = [
+        NamedStudy::built_in(&CONVERGE),
+        NamedStudy::built_in(&INDEPENDENCE),
+        NamedStudy::built_in(&WORK_PRECISION),
+        NamedStudy::built_in(&STIFFNESS),
+    ];
+}
+
+macro_rules! runs {
+    ($($request:ty),*) => {$(
+        impl Runs for $request {
+            fn run(&self, out: &Path) -> Result<Made, AppError> {
+                <$request>::run(self, out)
+            }
+        }
+    )*};
+}
+
+runs!(Converge, Independence, WorkPrecision, Stiffness);
