@@ -315,7 +315,7 @@ fn main() {
         }
         Err(e) => {
             eprintln!("error: {e}");
-            std::process::exit(e.exit_code());
+            std::process::exit(friction_lab_cli::exit_code(&e));
         }
     }
 }

@@ -4,7 +4,7 @@
 pub mod commands;
 
 use clap::{Parser, Subcommand};
-use friction_lab::error::AppError;
+use friction_lab::error::{AppError, ErrorKind};
 use friction_lab::plot::Format;
 use friction_lab::study::solver_studies::{NamedStudy, STUDIES};
 use friction_lab::trajectory::TrajectoryAs;
@@ -73,6 +73,17 @@ pub enum Command {
     /// the solver studies, and a report.md that links them.
     #[command(after_help = EXIT_CODES)]
     Reproduce(commands::reproduce::ReproduceArgs),
+}
+
+/// The process exit code of a failed command (as `--help` lists them, [`EXIT_CODES`]): 2 for
+/// bad input, 1 for a failure while running, 130 for a command stopped by a signal before it
+/// computed anything.
+pub fn exit_code(e: &AppError) -> i32 {
+    match e.kind() {
+        ErrorKind::BadInput => 2,
+        ErrorKind::Failed => 1,
+        ErrorKind::Stopped => 130,
+    }
 }
 
 /// A parsed command line: one of [`Cli`]'s commands, or a named study ([`STUDIES`]) with its

@@ -51,6 +51,6 @@ fn main() {
         std::process::exit(INTERRUPTED);
     }
     if let Err(e) = result {
-        std::process::exit(e.exit_code());
+        std::process::exit(friction_lab_cli::exit_code(&e));
     }
 }

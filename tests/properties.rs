@@ -76,7 +76,7 @@ fn checked(option: &OptionRange, value: f64) {
         ),
         Err(e) => {
             assert!(!option.range.contains(value), "--{long} {value}: {e}");
-            assert_eq!(e.exit_code(), 2);
+            assert_eq!(friction_lab_cli::exit_code(&e), 2);
             let message = e.to_string();
             assert!(
                 message.contains(&format!("`{}`", option.name)) && message.contains("allowed"),
@@ -117,7 +117,7 @@ proptest! {
         match options.resolve_for(scenario) {
             Ok(_) => prop_assert!(spec.range.contains(x), "{} = {x} accepted", spec.name),
             Err(e) => {
-                prop_assert_eq!(e.exit_code(), 2);
+                prop_assert_eq!(friction_lab_cli::exit_code(&e), 2);
                 prop_assert!(e.to_string().contains(spec.name), "{}", e);
             }
         }

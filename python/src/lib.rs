@@ -14,7 +14,7 @@ mod law;
 
 use friction_lab::artifacts::Data;
 use friction_lab::columns::Column;
-use friction_lab::error::{bounded, AppError};
+use friction_lab::error::{bounded, AppError, ErrorKind};
 use friction_lab::friction_systems::mode_name;
 use friction_lab::trajectory::{Trajectory, TrajectoryAs};
 use integrators::{Mode, SolverError as RunError};
@@ -303,7 +303,7 @@ fn models_json() -> String {
 /// the message is the one the command line prints after `error: `, a request's field named
 /// as its keyword (`t_end`, where the command line says `--t-end`).
 fn to_python(e: AppError) -> PyErr {
-    if e.exit_code() == 2 {
+    if e.kind() == ErrorKind::BadInput {
         PyValueError::new_err(bounded(&e.message(&|field| field.to_string())))
     } else {
         SolverError::new_err(bounded(&failure_message(&e)))

@@ -154,9 +154,10 @@ impl AppError {
         }
     }
 
-    /// The process exit code: 2 for bad input, 1 for a failure while running, 130 for a
-    /// command stopped by a signal before it computed anything.
-    pub fn exit_code(&self) -> i32 {
+    /// What kind of failure it is: bad input, a failure while running, or a stop by a signal
+    /// before anything was computed (each front end says it its own way: the command line as
+    /// its exit code 2, 1 or 130, Python as `ValueError` or `SolverError`).
+    pub fn kind(&self) -> ErrorKind {
         match self {
             AppError::Param(_)
             | AppError::System(_)
@@ -165,17 +166,29 @@ impl AppError {
             | AppError::OutputFolder { .. }
             | AppError::Invalid(_)
             | AppError::Usage(_)
-            | AppError::ParamFile { .. } => 2,
+            | AppError::ParamFile { .. } => ErrorKind::BadInput,
             AppError::NonFinite { .. }
             | AppError::Io { .. }
             | AppError::Plot { .. }
             | AppError::Write { .. }
             | AppError::Solver(_)
             | AppError::StudyRun(_)
-            | AppError::Diverged(_) => 1,
-            AppError::Stopped(_) => 130,
+            | AppError::Diverged(_) => ErrorKind::Failed,
+            AppError::Stopped(_) => ErrorKind::Stopped,
         }
     }
+}
+
+/// What kind of failure an [`AppError`] is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ErrorKind {
+    /// Bad input (an option, a parameter, a file, the output folder): nothing was run or
+    /// written.
+    BadInput,
+    /// A failure while running (a solver error, a limit, a write): what was computed is kept.
+    Failed,
+    /// A signal stopped the command before it computed anything.
+    Stopped,
 }
 
 impl From<ScenarioError> for AppError {

@@ -153,7 +153,7 @@ fn section(
     }
     match result() {
         Ok(text) => Ok(format!("\n## {heading}\n\n{text}")),
-        Err(e) if e.exit_code() == 2 => Err(e),
+        Err(e) if e.kind() == crate::error::ErrorKind::BadInput => Err(e),
         Err(e) => {
             let text = format!(
                 "\n## {heading}\n\nNot completed: {e}. The files of the parts that finished \
@@ -246,7 +246,7 @@ mod tests {
         // Bad input still ends the command, writing nothing.
         let mut none = None;
         let usage = section("Map", &mut none, || Err(AppError::Usage("bad".into())));
-        assert_eq!(usage.unwrap_err().exit_code(), 2);
+        assert_eq!(usage.unwrap_err().kind(), crate::error::ErrorKind::BadInput);
         assert!(none.is_none());
     }
 }

@@ -195,7 +195,7 @@ mod tests {
             exponents: Vec::new(),
         };
         let e = study.failure(&all_failed).expect("nothing was measured");
-        assert_eq!(e.exit_code(), 1);
+        assert_eq!(e.kind(), crate::error::ErrorKind::Failed);
         assert_eq!(
             e.to_string(),
             format!(
