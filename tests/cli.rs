@@ -4435,3 +4435,40 @@ fn a_rigs_spectrum_finds_its_frequency_and_a_window_draws_a_span() {
     );
     assert!(!out.exists());
 }
+
+#[test]
+fn a_system_given_as_json_text_runs_as_the_same_file_does() {
+    let dir = tempfile::tempdir().unwrap();
+    let json = r#"{"body": [{"name": "block", "m": 1.0}], "anchor": [{"name": "wall"}],
+        "spring": [{"between": ["wall", "block"], "k": 100.0}],
+        "contact": [{"body": "block", "model": "CS", "surface_velocity": 0.1}]}"#;
+    let file = dir.path().join("belt.json");
+    std::fs::write(&file, json).unwrap();
+    let final_state = |system: &str, out: &str| {
+        let out = dir.path().join(out);
+        let o = friction_lab(&[
+            "simulate",
+            "--system",
+            system,
+            "--t-end",
+            "5",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        std::fs::read_to_string(out.join("final.csv")).unwrap()
+    };
+    let from_file = final_state(file.to_str().unwrap(), "file");
+    assert_eq!(final_state(json, "text"), from_file);
+    assert!(from_file.lines().count() == 2, "{from_file}");
+    // Its errors say where the system came from.
+    let e = rejected(&[
+        "simulate",
+        "--system",
+        r#"{"body": [{"name": "b", "mass": 1}]}"#,
+    ]);
+    assert!(
+        e.contains("system (given as JSON): unknown field `mass`"),
+        "{e}"
+    );
+}

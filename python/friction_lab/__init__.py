@@ -18,7 +18,7 @@ from typing import Any, Dict, List, Optional
 import numpy as np
 
 from . import _native
-from ._command import SolverError, SystemFile, _name, call, values
+from ._command import SolverError, _name, call, system_value, values
 from ._result import Result, Study, Table2
 from ._sweep import sweep
 
@@ -60,8 +60,7 @@ def simulate(scenario: Optional[str] = None, *, system: Any = None,
     over) (``friction-lab simulate --help``)."""
     _name("simulate", scenario)
     given = values("simulate", params=params, **options)
-    with SystemFile(system) as f:
-        made = call("simulate", scenario, f.path, given)
+    made = call("simulate", scenario, system_value(system), given)
     result = Result(made)
     if made.failure is not None:
         raise SolverError(made.failure, result)
@@ -73,8 +72,7 @@ def _study(command: str, scenario: str, params: Optional[Dict[str, float]],
     _name(command, scenario)
     system = options.pop("system", None)
     given = values(command, params=params, **options)
-    with SystemFile(system) as f:
-        made = call(command, scenario, f.path, given)
+    made = call(command, scenario, system_value(system), given)
     study = Study(made, command)
     if made.failure is not None:
         # Written and failed (an independence level): the study keeps what finished.

@@ -16,7 +16,6 @@ import json
 import math
 import numbers
 import os
-import tempfile
 import warnings
 from dataclasses import dataclass, field
 from typing import Any, Callable, Dict, List, Mapping, Optional, Tuple
@@ -222,43 +221,19 @@ def _made(command: str, native: Callable[[], Any]) -> Made:
     return Made(dict(files), [spelled(n, command) for n in notes], failure, trajectory)
 
 
-class SystemFile:
-    """A system given as a path, or as a dict with the keys of ``docs/systems.md`` (written as a
-    temporary JSON file for the duration of the call), or none (``path`` is ``None``)."""
-
-    def __init__(self, system: Any):
-        self._temporary = None
-        if system is None:
-            self.path = None
-        elif isinstance(system, Mapping):
-            # Made whole (and refused, naming `system`) before the file is created: nothing
-            # is left behind by a dict that cannot be written.
-            text = json.dumps(_plain(system))
-            self._temporary = tempfile.NamedTemporaryFile(
-                "w", suffix=".json", prefix="friction-lab-system-", delete=False)
-            try:
-                self._temporary.write(text)
-            finally:
-                self._temporary.close()
-            self.path = self._temporary.name
-        elif isinstance(system, (str, os.PathLike)):
-            self.path = os.fspath(system)
-        else:
-            raise TypeError("system: expected a path (str or os.PathLike) or a dict with the "
-                            f"keys of docs/systems.md, got {type(system).__name__}")
-
-    def __enter__(self) -> "SystemFile":
-        return self
-
-    def __exit__(self, kind: Any, error: Any, trace: Any) -> None:
-        if self._temporary is None:
-            return
-        os.unlink(self._temporary.name)
-        # The command line names the file it read; the caller gave a dict, not that file.
-        named = f"system file {self.path}"
-        if isinstance(error, ValueError) and str(error).startswith(named):
-            raise ValueError("system (the dict given, read as JSON)"
-                             + str(error)[len(named):]) from None
+def system_value(system: Any) -> Optional[str]:
+    """What the library's ``system`` takes for a system given as a path (the path), as a dict
+    with the keys of ``docs/systems.md`` (its JSON text: the system reaches the library as a
+    value, through no file), or none (``None``)."""
+    if system is None:
+        return None
+    if isinstance(system, Mapping):
+        # Made whole (and refused, naming `system`) before the call.
+        return json.dumps(_plain(system))
+    if isinstance(system, (str, os.PathLike)):
+        return os.fspath(system)
+    raise TypeError("system: expected a path (str or os.PathLike) or a dict with the "
+                    f"keys of docs/systems.md, got {type(system).__name__}")
 
 
 def _plain(value: Any) -> Any:

@@ -20,7 +20,7 @@ from typing import Any, Callable, Dict, Optional, Sequence, Tuple, Union
 import pandas as pd
 
 from . import _native
-from ._command import Made, SolverError, SystemFile, _name, call, values
+from ._command import Made, SolverError, _name, call, system_value, values
 
 
 def sweep(scenario: str, *, grid: Dict[str, Union[Sequence[float], str]],
@@ -42,17 +42,16 @@ def sweep(scenario: str, *, grid: Dict[str, Union[Sequence[float], str]],
     system = options.pop("system", None)
     given = values("sweep", params=params, grid=grid, **options)
     axes = given.pop("grid")
-    with SystemFile(system) as f:
-        arguments = (scenario, f.path, axes, given)
-        if client is None:
-            made = call("sweep", *arguments)
-            frame = made.table("sweep.csv")
-            failure = made.failure
-        else:
-            frame = _on_dask(client, arguments, chunk_size)
-            failed = int((frame["status"] != "ok").sum())
-            failure = (f"{failed} of {len(frame)} runs failed; sweep.csv says which and why"
-                       if failed else None)
+    arguments = (scenario, system_value(system), axes, given)
+    if client is None:
+        made = call("sweep", *arguments)
+        frame = made.table("sweep.csv")
+        failure = made.failure
+    else:
+        frame = _on_dask(client, arguments, chunk_size)
+        failed = int((frame["status"] != "ok").sum())
+        failure = (f"{failed} of {len(frame)} runs failed; sweep.csv says which and why"
+                   if failed else None)
     if failure is not None:
         raise SolverError(failure, frame)
     return frame

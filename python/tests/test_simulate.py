@@ -177,8 +177,9 @@ def test_bad_options_raise_value_error_naming_the_field(cli, tmp_path):
     assert set(glob.glob(os.path.join(tempfile.gettempdir(), "friction-lab-system-*"))) <= left
     with pytest.raises(ValueError, match="unknown field `mass`") as e:
         fl.simulate(system={"body": [{"name": "b", "mass": 1.0}]})
-    # The message names the dict, not the temporary file it was written to.
-    assert str(e.value).startswith("system (the dict given, read as JSON): "), e.value
+    # The message names the system given, which reaches the library as a value (its JSON
+    # text), through no file.
+    assert str(e.value).startswith("system (given as JSON): "), e.value
     assert "friction-lab-system-" not in str(e.value)
     # params and grid are mappings (or pairs, or a Series); anything else is named, not left
     # to dict()'s "'int' object is not iterable".

@@ -44,14 +44,75 @@ fn echo(text: &str) -> String {
     }
 }
 
-/// A system file that cannot be read or does not declare a valid system.
+/// A system file (or a system given as JSON text) that cannot be read or does not declare a
+/// valid system.
 #[derive(Debug, Error)]
-#[error("system file {}: {message}", path.display())]
+#[error("{}: {message}", origin.describe())]
 pub struct SystemFileError {
-    /// The file.
-    pub path: PathBuf,
+    /// Where the system was declared.
+    pub origin: SystemSource,
     /// What is wrong, naming the table and key.
     pub message: String,
+}
+
+/// Where a system is declared: a file (TOML, or JSON by its name), or JSON text given as a
+/// value (how the Python package hands over `system=dict(...)`, and `--system '{…}'`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum SystemSource {
+    /// A file.
+    File(PathBuf),
+    /// The text of a system written as JSON.
+    Json(String),
+}
+
+impl SystemSource {
+    /// A file's path; or JSON text, the value if it starts with `{` (after white space): no
+    /// file's name starts so without a folder before it (`./{x}.toml`).
+    pub fn parse(value: &str) -> SystemSource {
+        match value.trim_start().starts_with('{') {
+            true => SystemSource::Json(value.to_string()),
+            false => SystemSource::File(PathBuf::from(value)),
+        }
+    }
+
+    /// How messages name it: `system file PATH`, or `system (given as JSON)`.
+    pub fn describe(&self) -> String {
+        match self {
+            SystemSource::File(path) => format!("system file {}", path.display()),
+            SystemSource::Json(_) => "system (given as JSON)".into(),
+        }
+    }
+
+    /// The name a run's summary gives the system: the file's path, or `system (given as
+    /// JSON)`.
+    pub fn name(&self) -> String {
+        match self {
+            SystemSource::File(path) => path.display().to_string(),
+            SystemSource::Json(_) => "system (given as JSON)".into(),
+        }
+    }
+
+    /// The system declared there, each number at a path of `assignments` set first: a file
+    /// as [`read_with`] reads it, JSON text as [`parse_json`] parses it.
+    pub fn read_with(&self, assignments: &[(String, f64)]) -> Result<System, SystemFileError> {
+        match self {
+            SystemSource::File(path) => read_with(path, assignments),
+            SystemSource::Json(text) => {
+                parse_json_with(text, assignments).map_err(|message| SystemFileError {
+                    origin: self.clone(),
+                    message,
+                })
+            }
+        }
+    }
+}
+
+/// Its text as given on a command line: a path, or JSON text ([`SystemSource::parse`]).
+impl std::str::FromStr for SystemSource {
+    type Err = std::convert::Infallible;
+    fn from_str(value: &str) -> Result<SystemSource, Self::Err> {
+        Ok(SystemSource::parse(value))
+    }
 }
 
 #[derive(Deserialize, Default)]
@@ -174,7 +235,7 @@ pub fn read(path: &Path) -> Result<System, SystemFileError> {
 /// `assignments` (`TABLE.WHICH.KEY`, docs/systems.md) set to its value first.
 pub fn read_with(path: &Path, assignments: &[(String, f64)]) -> Result<System, SystemFileError> {
     let error = |message: String| SystemFileError {
-        path: path.to_path_buf(),
+        origin: SystemSource::File(path.to_path_buf()),
         message,
     };
     let json = path
@@ -192,10 +253,7 @@ pub fn read_with(path: &Path, assignments: &[(String, f64)]) -> Result<System, S
         )));
     }
     if json {
-        serde_json::from_str(&text)
-            .map_err(|e| e.to_string())
-            .and_then(|f| assigned(f, assignments))
-            .and_then(build)
+        parse_json_with(&text, assignments)
     } else {
         parse_with(&text, assignments)
     }
@@ -247,7 +305,16 @@ fn parse_toml(text: &str) -> Result<FileSystem, String> {
 /// Parses a system written as JSON with the keys and tables of the TOML file (each
 /// `[[table]]` an array of objects): how the Python package hands over `system=dict(...)`.
 pub fn parse_json(text: &str) -> Result<System, String> {
-    build(serde_json::from_str(text).map_err(|e| e.to_string())?)
+    parse_json_with(text, &[])
+}
+
+/// [`parse_json`], each number at a path of `assignments` (`TABLE.WHICH.KEY`) set to its
+/// value first.
+pub fn parse_json_with(text: &str, assignments: &[(String, f64)]) -> Result<System, String> {
+    build(assigned(
+        serde_json::from_str(text).map_err(|e| e.to_string())?,
+        assignments,
+    )?)
 }
 
 /// The system a parsed file declares.

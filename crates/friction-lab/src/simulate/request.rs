@@ -14,10 +14,11 @@ use crate::trajectory::TrajectoryAs;
 use crate::warnings::unread_warnings;
 use crate::window::Window;
 use friction_systems::chain::{ChainParams, CHAIN_PARAMETERS};
+use friction_systems::file::SystemSource;
 use integrators::Options;
 use scenarios::chain::ChainSource;
 use scenarios::{RunSpec, Scenario};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// Bodies written to the trajectory when none are chosen: all of a chain this long or shorter,
 /// otherwise this many evenly spaced.
@@ -46,8 +47,8 @@ pub enum Target {
     Rig(Scenario),
     /// The Burridge–Knopoff chain of docs/systems.md.
     Chain,
-    /// A system file (TOML or JSON, docs/systems.md).
-    System(PathBuf),
+    /// A system file (TOML or JSON, docs/systems.md), or a system given as JSON text.
+    System(SystemSource),
 }
 
 /// A rig or the chain by name ([`Target::named`]).
@@ -69,10 +70,10 @@ impl Target {
             .map_err(|e| format!("{e}, chain"))
     }
 
-    /// The system file, if the target is one.
-    pub fn file(&self) -> Option<&Path> {
+    /// The system's source, if the target is a system.
+    pub fn system(&self) -> Option<&SystemSource> {
         match self {
-            Target::System(path) => Some(path),
+            Target::System(source) => Some(source),
             _ => None,
         }
     }
@@ -82,7 +83,7 @@ impl Target {
         match self {
             Target::Rig(s) => s.name().to_string(),
             Target::Chain => "chain".into(),
-            Target::System(path) => path.display().to_string(),
+            Target::System(source) => source.name(),
         }
     }
 }
@@ -112,9 +113,10 @@ pub struct Simulation {
         conflicts_with = "system"
     )]
     pub scenario: Option<Target>,
-    /// A system file (TOML or JSON, docs/systems.md) to integrate instead of a scenario.
+    /// A system file (TOML or JSON, docs/systems.md) to integrate instead of a scenario, or
+    /// the system itself as JSON text (starting with `{`).
     #[arg(long, value_name = "FILE.toml")]
-    pub system: Option<PathBuf>,
+    pub system: Option<SystemSource>,
     /// The friction model, as `friction-lab models` lists it, or a law registered by name
     /// (from Python: docs/python.md) (rigs and chain).
     #[arg(long, value_name = "MODEL")]
@@ -148,7 +150,7 @@ impl Simulation {
     /// A run of `target` with `model` and every setting at its default.
     pub fn new(target: Target, model: Option<ModelChoice>) -> Simulation {
         let (scenario, system) = match target {
-            Target::System(path) => (None, Some(path)),
+            Target::System(source) => (None, Some(source)),
             named => (Some(named), None),
         };
         Simulation {
@@ -168,7 +170,7 @@ impl Simulation {
     pub fn target(&self) -> Result<Target, AppError> {
         match (&self.scenario, &self.system) {
             (Some(target), None) => Ok(target.clone()),
-            (None, Some(path)) => Ok(Target::System(path.clone())),
+            (None, Some(source)) => Ok(Target::System(source.clone())),
             (Some(_), Some(_)) => Err(AppError::Usage(
                 "give a scenario or a `system`, not both".into(),
             )),
@@ -231,7 +233,7 @@ impl Simulation {
     /// The system of the chain or the system file, described.
     pub fn described(&self) -> Result<Described, AppError> {
         system_of(
-            self.system.as_deref(),
+            self.system.as_ref(),
             self.model.as_ref(),
             &self.model_settings,
         )
@@ -241,7 +243,7 @@ impl Simulation {
     pub fn system_t_end(&self) -> Result<f64, AppError> {
         Ok(self
             .checked_t_end()?
-            .unwrap_or_else(|| default_t_end(self.system.as_deref())))
+            .unwrap_or_else(|| default_t_end(self.system.as_ref())))
     }
 
     /// The output points of a system of `dim` unknowns: `points`, checked against its range
@@ -375,16 +377,16 @@ pub fn derived_t_end(
     }
 }
 
-/// The default end time of a system: [`FILE_T_END`] for a system `file`, else (the chain)
-/// [`CHAIN_T_END`].
-pub fn default_t_end(file: Option<&Path>) -> f64 {
-    file.map_or(CHAIN_T_END, |_| FILE_T_END)
+/// The default end time of a system: [`FILE_T_END`] for a declared `system`, else (the
+/// chain) [`CHAIN_T_END`].
+pub fn default_t_end(system: Option<&SystemSource>) -> f64 {
+    system.map_or(CHAIN_T_END, |_| FILE_T_END)
 }
 
-/// The default end time of a solver study of a system: [`FILE_T_END`] for a system `file`,
-/// else (the chain) [`CHAIN_STUDY_T_END`].
-pub fn study_t_end(file: Option<&Path>) -> f64 {
-    file.map_or(CHAIN_STUDY_T_END, |_| FILE_T_END)
+/// The default end time of a solver study of a system: [`FILE_T_END`] for a declared
+/// `system`, else (the chain) [`CHAIN_STUDY_T_END`].
+pub fn study_t_end(system: Option<&SystemSource>) -> f64 {
+    system.map_or(CHAIN_STUDY_T_END, |_| FILE_T_END)
 }
 
 /// The default number of output points for a system of `dim` unknowns: 2001, fewer for a
@@ -393,14 +395,14 @@ pub fn default_points(dim: usize) -> usize {
     (RECORD_BUDGET / dim.max(1)).clamp(101, 2001)
 }
 
-/// The system of a system `file` or, without one, the chain with `model` and the parameters
-/// of `settings` (chain parameters among them).
+/// The system declared by `system` (a file or JSON text) or, without one, the chain with
+/// `model` and the parameters of `settings` (chain parameters among them).
 pub fn system_of(
-    file: Option<&Path>,
+    system: Option<&SystemSource>,
     model: Option<&ModelChoice>,
     settings: &ModelSettings,
 ) -> Result<Described, AppError> {
-    if let Some(path) = file {
+    if let Some(source) = system {
         if model.is_some() {
             return Err(AppError::Usage(
                 "option `--model` does not apply to --system: each [[contact]] of the file \
@@ -418,8 +420,8 @@ pub fn system_of(
         }
         let assignments = settings.params.file_assignments()?;
         return Ok(Described {
-            system: load(path, &assignments)?,
-            name: path.display().to_string(),
+            system: load(source, &assignments)?,
+            name: source.name(),
             // The numbers of the file that were set, by their paths.
             parameters: assignments.into_iter().collect(),
             friction: settings.params.without_file_paths().resolve()?,

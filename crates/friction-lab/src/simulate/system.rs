@@ -18,6 +18,7 @@ use crate::scheme::SchemeName;
 use crate::trajectory::{Trajectory, TrajectoryAs};
 use crate::window::Window;
 use friction_models::{FrictionParams, Variant};
+use friction_systems::file::SystemSource;
 use friction_systems::{Run, System, SLIP_POSITIVE};
 use integrators::{Options, Solver};
 use scenarios::analysis::closed_loop::ClosedLoop;
@@ -44,25 +45,27 @@ pub struct Described {
 /// How often [`load`] looks for a signal, s.
 const LOAD_POLL_S: f64 = 0.05;
 
-/// Reads the system file at `path`, each number at a path of `assignments` (`TABLE.WHICH.KEY`,
-/// docs/systems.md) set first, with a heartbeat, on a thread of its own: a signal stops the
-/// command at once ([`AppError::Stopped`]; the parse cannot be stopped inside, so it is left to
-/// end with the process), where a file of 10⁶ bodies takes seconds to parse.
+/// Reads the system `source` declares (a file, or JSON text), each number at a path of
+/// `assignments` (`TABLE.WHICH.KEY`, docs/systems.md) set first, with a heartbeat, on a thread
+/// of its own: a signal stops the command at once ([`AppError::Stopped`]; the parse cannot be
+/// stopped inside, so it is left to end with the process), where a file of 10⁶ bodies takes
+/// seconds to parse.
 pub fn load(
-    path: &Path,
+    source: &SystemSource,
     assignments: &[(String, f64)],
 ) -> Result<friction_systems::System, AppError> {
-    let progress = Progress::elapsed(&format!("loading {}", path.display()));
+    let what = source.name();
+    let progress = Progress::elapsed(&format!("loading {what}"));
     let (send, receive) = std::sync::mpsc::channel();
-    let owned = path.to_path_buf();
+    let owned = source.clone();
     let assignments = assignments.to_vec();
     std::thread::spawn(move || {
-        let _ = send.send(friction_systems::file::read_with(&owned, &assignments));
+        let _ = send.send(owned.read_with(&assignments));
     });
     let poll = std::time::Duration::from_secs_f64(LOAD_POLL_S);
     loop {
         if integrators::interrupt::requested() {
-            return Err(AppError::Stopped(format!("loading {}", path.display())));
+            return Err(AppError::Stopped(format!("loading {what}")));
         }
         match receive.recv_timeout(poll) {
             Ok(read) => {
@@ -72,8 +75,7 @@ pub fn load(
             Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {}
             Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => {
                 return Err(AppError::StudyRun(format!(
-                    "loading {} ended without a result",
-                    path.display()
+                    "loading {what} ended without a result"
                 )))
             }
         }

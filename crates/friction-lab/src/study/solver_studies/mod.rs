@@ -31,11 +31,12 @@ use crate::simulate::request::{derived_t_end, rig_law, study_t_end, system_of};
 use crate::study::Target;
 use crate::warnings::{diverged_line, unread_warnings};
 use friction_models::params::show;
+use friction_systems::file::SystemSource;
 use integrators::Solver;
 use scenarios::run::DEFAULT_THETA;
 use scenarios::studies::{Case, StepKind, StudyCase, StudyRun, SystemCase};
 use scenarios::{Scenario, SwitchingKind};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// The problem a solver study runs, with the settings every study shares; its `Default` is
 /// the declared defaults, with no problem named.
@@ -53,9 +54,10 @@ pub struct Problem {
         conflicts_with = "system"
     )]
     pub scenario: Option<simulate::Target>,
-    /// A system file (TOML or JSON, docs/systems.md) to study instead of a scenario.
+    /// A system file (TOML or JSON, docs/systems.md) to study instead of a scenario, or the
+    /// system itself as JSON text (starting with `{`).
     #[arg(long, value_name = "FILE.toml")]
-    pub system: Option<PathBuf>,
+    pub system: Option<SystemSource>,
     /// The friction model (scenarios and chain), as `friction-lab models` lists it, or a law
     /// registered by name (from Python: docs/python.md).
     #[arg(long, value_name = "MODEL")]
@@ -117,7 +119,7 @@ impl Problem {
             simulate::Target::Rig(s) => *s,
             _ => {
                 let described =
-                    system_of(target.file(), self.model.as_ref(), &self.model_settings)?;
+                    system_of(target.system(), self.model.as_ref(), &self.model_settings)?;
                 described.system.validate()?;
                 let bodies = if self.bodies.is_empty() {
                     vec![0]
@@ -129,7 +131,7 @@ impl Problem {
                     system: described.system,
                     switching: self.treatment()?,
                     epsilon: described.friction.epsilon,
-                    t_end: check_t_end(self.t_end.unwrap_or_else(|| study_t_end(target.file())))?,
+                    t_end: check_t_end(self.t_end.unwrap_or_else(|| study_t_end(target.system())))?,
                     bodies,
                     limits: self.limits.limits()?,
                     chain: described.source,
