@@ -219,6 +219,10 @@ impl Runs for StepCountRequest {
     fn run(&self, out: &Path) -> Result<Made, AppError> {
         made(out, self.t_end)
     }
+
+    fn threads(&self) -> Option<i64> {
+        None
+    }
 }
 
 /// `step-counts`, registered with `NamedStudy::register(&STEP_COUNTS)`.

@@ -112,16 +112,13 @@ pub struct StudyInvocation {
 /// The whole command line: [`Cli`]'s commands, and a command for each study in [`STUDIES`]
 /// (built in or registered) with the study's declared options and `--out`.
 pub fn command() -> clap::Command {
-    use clap::CommandFactory;
-    let out = clap::Arg::new("out")
-        .long("out")
-        .value_name("DIR")
-        .required(true)
-        .value_parser(clap::value_parser!(std::path::PathBuf))
-        .help("Folder to write into (created if missing)");
+    use clap::{Args, CommandFactory};
     (STUDIES.all().into_iter()).fold(Cli::command(), |cli, study| {
-        // Declared first: a request's own doc comment would replace the study's `about`.
-        let command = study.declare(clap::Command::new(study.name()).arg(out.clone()));
+        // `--out` as every command declares it ([`commands::Writing`]), then the study's
+        // options; `about` last: a request's own doc comment would replace it.
+        let out =
+            commands::Writing::<commands::Nothing>::augment_args(clap::Command::new(study.name()));
+        let command = study.declare(out);
         cli.subcommand(command.about(study.about()).after_help(EXIT_CODES))
     })
 }
@@ -164,14 +161,7 @@ pub fn invoke(invocation: Invocation) -> Result<(), AppError> {
 pub fn run_study(s: StudyInvocation) -> Result<(), AppError> {
     let format = Format::parse(s.figure_size.as_deref(), s.dpi)?;
     destination::check(&s.out)?;
-    // A study that declares `--threads` (the solver studies do) draws on that many.
-    let asked = s
-        .matches
-        .try_get_one::<i64>("threads")
-        .ok()
-        .flatten()
-        .copied();
-    let threads = ranges::threads(asked)?;
+    let threads = ranges::threads(s.study.threads(&s.matches)?)?;
     let mut made = s.study.run(&s.matches, &s.out)?;
     made.files.set_format(format);
     deliver(made, &s.out, threads)

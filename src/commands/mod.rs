@@ -8,6 +8,11 @@ pub mod models;
 pub mod phenomena;
 pub mod reproduce;
 
+/// No request: [`Writing`] alone, `--out`, to which a study registered at run time adds its own
+/// options ([`crate::command`]).
+#[derive(Args, Debug)]
+pub struct Nothing {}
+
 /// A request of the library, declared there ([`friction_lab::curve::FrictionCurve`],
 /// [`friction_lab::study::Phenomena`], …), and the folder its files are written into.
 #[derive(Args, Debug)]

@@ -25,12 +25,18 @@ pub trait StudyRequest: Send + Sync {
     /// The request the parsed options `matches` make, checked and run, its files in `out` (in
     /// memory).
     fn run(&self, matches: &ArgMatches, out: &Path) -> Result<Made, AppError>;
+
+    /// The worker threads the parsed options `matches` ask for (`None`: all cores).
+    fn threads(&self, matches: &ArgMatches) -> Result<Option<i64>, AppError>;
 }
 
 /// A request that runs into its files.
 pub trait Runs {
     /// Checks and runs the request, its files in `out` (in memory).
     fn run(&self, out: &Path) -> Result<Made, AppError>;
+
+    /// The worker threads it asks for (`None`: all cores; the results do not depend on it).
+    fn threads(&self) -> Option<i64>;
 }
 
 /// The request type `R` as a named study: its options `R`'s declaration, its run `R`'s.
@@ -65,8 +71,18 @@ impl<R: Args + FromArgMatches + Runs> StudyRequest for Declared<R> {
     }
 
     fn run(&self, matches: &ArgMatches, out: &Path) -> Result<Made, AppError> {
-        let request = R::from_arg_matches(matches).map_err(|e| AppError::Usage(e.to_string()))?;
-        request.run(out)
+        Declared::<R>::request(matches)?.run(out)
+    }
+
+    fn threads(&self, matches: &ArgMatches) -> Result<Option<i64>, AppError> {
+        Ok(Declared::<R>::request(matches)?.threads())
+    }
+}
+
+impl<R: FromArgMatches> Declared<R> {
+    /// The request the parsed options `matches` make.
+    fn request(matches: &ArgMatches) -> Result<R, AppError> {
+        R::from_arg_matches(matches).map_err(|e| AppError::Usage(e.to_string()))
     }
 }
 
@@ -116,6 +132,10 @@ macro_rules! runs {
         impl Runs for $request {
             fn run(&self, out: &Path) -> Result<Made, AppError> {
                 <$request>::run(self, out)
+            }
+
+            fn threads(&self) -> Option<i64> {
+                self.problem.threads
             }
         }
     )*};
