@@ -162,9 +162,7 @@ pub fn run_study(s: StudyInvocation) -> Result<(), AppError> {
     let format = Format::parse(s.figure_size.as_deref(), s.dpi)?;
     destination::check(&s.out)?;
     let threads = ranges::threads(s.study.threads(&s.matches)?)?;
-    let mut made = s.study.run(&s.matches, &s.out)?;
-    made.files.set_format(format);
-    deliver(made, &s.out, threads)
+    deliver(s.study.run(&s.matches, &s.out)?, &s.out, threads, format)
 }
 
 /// Runs one parsed command, its figure format and output folder checked first
@@ -188,9 +186,7 @@ pub fn run(cli: Cli) -> Result<(), AppError> {
         command => {
             let (out, threads) = command.destination();
             let threads = ranges::threads(threads)?;
-            let mut made = make(command)?;
-            made.files.set_format(format);
-            deliver(made, out, threads)
+            deliver(make(command)?, out, threads, format)
         }
     }
 }
@@ -220,14 +216,17 @@ impl Command {
     }
 }
 
-/// Writes what a command made as the folder `out` (figures drawn on `threads` threads, all
-/// cores when `None`), prints what was written and the notes, and returns the failure.
+/// Writes what a command made as the folder `out` (figures drawn in `format` on `threads`
+/// threads, all cores when `None`), prints what was written and the notes, and returns the
+/// failure.
 pub fn deliver(
     made: artifacts::Made,
     out: &std::path::Path,
     threads: Option<usize>,
+    format: Format,
 ) -> Result<(), AppError> {
-    let files = made.files;
+    let mut files = made.files;
+    files.set_format(format);
     let written = friction_lab::threads::with_threads(threads, || files.write(out))??;
     println!("{}", written.line());
     for note in &made.notes {

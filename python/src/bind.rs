@@ -41,13 +41,11 @@ fn declared(function: &str) -> Option<clap::Command> {
     })
 }
 
-/// The option a keyword is: its name with `-` for `_`, and `params` (a mapping in Python) for
-/// `--set`.
-fn option_of(keyword: &str) -> String {
-    match keyword {
-        "params" => "set".into(),
-        _ => keyword.replace('_', "-"),
-    }
+/// Whether the long option `long` is a keyword of its own in Python: not `--system` (an
+/// argument of its own), `--set` (the mapping `params`) nor the parameter file `--params` (the
+/// command line's alone).
+fn is_keyword(long: &str) -> bool {
+    !matches!(long, "system" | "set" | "params")
 }
 
 /// The keyword arguments of the function `function` bound to the library, besides its
@@ -56,13 +54,14 @@ fn option_of(keyword: &str) -> String {
 /// not bound.
 pub fn keywords(function: &str) -> Option<Vec<String>> {
     let command = declared(function)?;
-    let mut names: Vec<String> = (command.get_arguments())
+    let longs: Vec<&str> = command
+        .get_arguments()
         .filter_map(|a| a.get_long())
-        .filter(|long| !matches!(*long, "params" | "system"))
-        .map(|long| match long {
-            "set" => "params".to_string(),
-            _ => long.replace('-', "_"),
-        })
+        .collect();
+    let mut names: Vec<String> = (longs.iter())
+        .filter(|long| is_keyword(long))
+        .map(|long| long.replace('-', "_"))
+        .chain(longs.contains(&"set").then(|| "params".to_string()))
         .collect();
     names.sort_unstable();
     Some(names)
@@ -255,9 +254,9 @@ fn parse(
                 expected("grid", &value, "a mapping of parameter names to values")
             })?)?),
             _ => {
-                let long = option_of(&key);
+                let long = key.replace('_', "-");
                 let arg = (command.get_arguments())
-                    .find(|a| a.get_long() == Some(long.as_str()) && long != "params")
+                    .find(|a| a.get_long() == Some(long.as_str()) && is_keyword(&long))
                     .ok_or_else(|| unknown(function, &key))?;
                 words.extend(self::words(arg, &key, &value)?);
             }

@@ -33,11 +33,13 @@ macro_rules! default_as_declared {
     ($($request:ty),*) => {$(
         impl Default for $request {
             fn default() -> Self {
-                declared_defaults()
+                $crate::settings::declared_defaults()
             }
         }
     )*};
 }
+
+pub(crate) use default_as_declared;
 
 default_as_declared!(SchemeChoice, RunLimits, SolverSettings, ModelSettings);
 

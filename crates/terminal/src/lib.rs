@@ -103,15 +103,15 @@ impl Ticker {
 }
 
 /// A progress display that works with and without a terminal: one task's bar or heartbeat.
-struct Display {
+struct Shown {
     state: Arc<State>,
     bar: Option<indicatif::ProgressBar>,
     /// The heartbeat's thread, taken when it is stopped.
     ticker: Mutex<Option<Ticker>>,
 }
 
-impl Display {
-    fn new(what: &str, unit: Unit, total: u64, t_end: f64) -> Display {
+impl Shown {
+    fn new(what: &str, unit: Unit, total: u64, t_end: f64) -> Shown {
         let bar = std::io::stderr().is_terminal().then(|| {
             let template = match unit {
                 Unit::Count(noun) => format!("{{msg}} [{{bar:40}}] {{pos}}/{{len}} {noun}"),
@@ -145,7 +145,7 @@ impl Display {
             period,
         });
         let ticker = (bar.is_none() && period > 0.0).then(|| Ticker::start(Arc::clone(&state)));
-        Display {
+        Shown {
             state,
             bar,
             ticker: Mutex::new(ticker),
@@ -161,7 +161,7 @@ impl Display {
     }
 }
 
-impl Task for Display {
+impl Task for Shown {
     fn inc(&self) {
         let done = self.state.done.fetch_add(1, Ordering::Relaxed) + 1;
         self.show(done);
@@ -191,6 +191,6 @@ pub struct Terminal;
 
 impl Observer for Terminal {
     fn task(&self, what: &str, unit: Unit, total: u64, t_end: f64) -> Box<dyn Task> {
-        Box::new(Display::new(what, unit, total, t_end))
+        Box::new(Shown::new(what, unit, total, t_end))
     }
 }

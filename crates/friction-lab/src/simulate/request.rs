@@ -60,6 +60,21 @@ impl std::str::FromStr for Target {
 }
 
 impl Target {
+    /// The target a request's `scenario` (a rig or the chain) or `system` names; `None` for
+    /// neither, refused for both.
+    pub fn of(
+        scenario: Option<&Target>,
+        system: Option<&SystemSource>,
+    ) -> Result<Option<Target>, AppError> {
+        match (scenario, system) {
+            (Some(_), Some(_)) => Err(AppError::Usage(
+                "give a scenario or a `system`, not both".into(),
+            )),
+            (Some(target), None) => Ok(Some(target.clone())),
+            (None, system) => Ok(system.cloned().map(Target::System)),
+        }
+    }
+
     /// The rig named `name`, or the chain (`chain`); the message of another name lists both.
     pub fn named(name: &str) -> Result<Target, String> {
         if name == "chain" {
@@ -168,16 +183,11 @@ impl Simulation {
 
     /// What the run integrates: the rig or the chain `scenario` names, or the file `system`.
     pub fn target(&self) -> Result<Target, AppError> {
-        match (&self.scenario, &self.system) {
-            (Some(target), None) => Ok(target.clone()),
-            (None, Some(source)) => Ok(Target::System(source.clone())),
-            (Some(_), Some(_)) => Err(AppError::Usage(
-                "give a scenario or a `system`, not both".into(),
-            )),
-            (None, None) => Err(AppError::Usage(
+        Target::of(self.scenario.as_ref(), self.system.as_ref())?.ok_or_else(|| {
+            AppError::Usage(
                 "a scenario (a rig's name or \"chain\") or a `system` is required".into(),
-            )),
-        }
+            )
+        })
     }
 
     /// `window`, checked against a run that ends at `t_end`.

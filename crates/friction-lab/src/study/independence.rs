@@ -48,11 +48,7 @@ pub struct Refinement {
     pub tol: f64,
 }
 
-impl Default for Refinement {
-    fn default() -> Self {
-        crate::settings::declared_defaults()
-    }
-}
+crate::settings::default_as_declared!(Refinement);
 
 /// `solver` on `case` at the levels of `refinement`: `start`, `start/ratio`, … (step sizes
 /// for a fixed-step solver or time-stepping, else tolerances).

@@ -64,11 +64,7 @@ pub struct Phenomena {
     pub limits: RunLimits,
 }
 
-impl Default for Phenomena {
-    fn default() -> Self {
-        crate::settings::declared_defaults()
-    }
-}
+crate::settings::default_as_declared!(Phenomena);
 
 impl Phenomena {
     /// Decides Table 2, its files in `out` (in memory): `table2.md` and `table2.json`, the

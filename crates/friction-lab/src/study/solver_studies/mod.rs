@@ -86,23 +86,13 @@ pub struct Problem {
     pub model_settings: ModelSettings,
 }
 
-impl Default for Problem {
-    fn default() -> Self {
-        crate::settings::declared_defaults()
-    }
-}
+crate::settings::default_as_declared!(Problem);
 
 impl Problem {
     /// The problem `scenario` or `system` names: a rig, the chain or a system file; `None`
     /// for neither.
     pub fn target(&self) -> Result<Option<simulate::Target>, AppError> {
-        match (&self.scenario, &self.system) {
-            (Some(_), Some(_)) => Err(AppError::Usage(
-                "give a scenario or a `system`, not both".into(),
-            )),
-            (Some(target), None) => Ok(Some(target.clone())),
-            (None, system) => Ok(system.clone().map(simulate::Target::System)),
-        }
+        simulate::Target::of(self.scenario.as_ref(), self.system.as_ref())
     }
 
     /// The study case: a rig, the chain, or a system file.
