@@ -4,15 +4,16 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use friction_lab::friction_models::{FrictionParams, ModelId};
+use friction_lab::friction_systems::{Scheme, Switching};
 use friction_lab::integrators::{Solver, StepControl};
 use friction_lab::scenarios::studies::{self, Case};
-use friction_lab::scenarios::{run, Limits, RunSpec, Scenario, SwitchingKind};
+use friction_lab::scenarios::{run, Limits, RunSpec, Scenario};
 use std::hint::black_box;
 
 fn spec(
     scenario: Scenario,
     model: ModelId,
-    switching: SwitchingKind,
+    switching: Switching,
     friction: FrictionParams,
     solver: &str,
     step: StepControl,
@@ -23,8 +24,10 @@ fn spec(
         law: model.into(),
         friction,
         params: scenario.defaults(),
-        solver: Solver::from_name(solver).unwrap(),
-        switching,
+        scheme: Scheme::EventDriven {
+            solver: Solver::from_name(solver).unwrap(),
+            switching,
+        },
         step,
         t_end: Some(t_end),
         output_points: 2,
@@ -42,14 +45,12 @@ fn adaptive(tol: f64) -> StepControl {
 
 fn solvers(c: &mut Criterion) {
     let paper = FrictionParams::paper();
-    let mut regularized = paper;
-    regularized.epsilon = 1e-3;
     let cases = [
         (
             "paper-block AV",
             Scenario::PAPER_BLOCK,
             ModelId::Av,
-            SwitchingKind::Event,
+            Switching::Event,
             paper,
             5.0,
         ),
@@ -57,7 +58,7 @@ fn solvers(c: &mut Criterion) {
             "belt CS switched",
             Scenario::BELT,
             ModelId::Cs,
-            SwitchingKind::Event,
+            Switching::Event,
             paper,
             5.0,
         ),
@@ -65,15 +66,15 @@ fn solvers(c: &mut Criterion) {
             "belt CS regularized eps=1e-3",
             Scenario::BELT,
             ModelId::Cs,
-            SwitchingKind::Regularized,
-            regularized,
+            Switching::Regularized { epsilon: 1e-3 },
+            paper,
             5.0,
         ),
         (
             "paper-block LuGre (stiff)",
             Scenario::PAPER_BLOCK,
             ModelId::LuGre,
-            SwitchingKind::Event,
+            Switching::Event,
             FrictionParams::lugre_1995(),
             1.0,
         ),
@@ -106,7 +107,6 @@ fn study_threads(c: &mut Criterion) {
         law: ModelId::Cs.into(),
         friction: FrictionParams::paper(),
         params: Scenario::BELT.defaults(),
-        switching: SwitchingKind::Event,
         t_end: 10.0,
         limits: Limits::default(),
     };
@@ -116,9 +116,9 @@ fn study_threads(c: &mut Criterion) {
         Solver::IMPLICIT_EULER,
         Solver::from_name("bdf").unwrap(),
     ]
-    .map(studies::Method::of);
+    .map(studies::Method::events);
     // The command's defaults: `friction-lab work-precision belt --model CS`.
-    let all = Solver::ALL.map(studies::Method::of);
+    let all = Solver::ALL.map(studies::Method::events);
     let configurations: [(&str, &[studies::Method], usize); 2] = [
         ("work-precision sweep (belt CS, 28 runs)", &four, 1),
         (

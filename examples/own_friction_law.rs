@@ -15,8 +15,8 @@ use friction_lab::friction_models::{
 use friction_lab::friction_systems::{simulate, End, Scheme, Switching, System, STICK};
 use friction_lab::integrators::{Options, Solver, StepControl};
 use friction_lab::scenarios::phenomena::{self, Phenomenon, Protocol};
-use friction_lab::scenarios::studies::{self, SystemCase};
-use friction_lab::scenarios::{Law, Limits, RunSpec, Scenario, ScenarioParams, SwitchingKind};
+use friction_lab::scenarios::studies::{self, Method, SystemCase};
+use friction_lab::scenarios::{Law, Limits, RunSpec, Scenario, ScenarioParams};
 use std::sync::Arc;
 
 /// Tustin's law.
@@ -125,8 +125,7 @@ fn rig_break_away() -> (f64, f64) {
         law: Law::Own(law()),
         friction: FrictionParams::paper(),
         params,
-        solver: Solver::DOPRI5,
-        switching: SwitchingKind::Event,
+        scheme: Scheme::events(Solver::DOPRI5),
         step: StepControl::Adaptive {
             rtol: 1e-10,
             atol: 1e-12,
@@ -168,7 +167,7 @@ pub fn run() -> Report {
     let case = SystemCase::new("belt with Tustin's law", system.clone(), 3.0);
     let study = studies::convergence(
         &case,
-        &[Solver::RK4],
+        &[Method::events(Solver::RK4)],
         &[0.01, 0.005, 0.0025, 0.00125],
         &[],
         &|| {},

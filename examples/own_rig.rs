@@ -19,13 +19,13 @@ use clap::Parser;
 use friction_lab::artifacts::Data;
 use friction_lab::columns::Column;
 use friction_lab::friction_models::{FrictionModel, FrictionParams, ModelId};
-use friction_lab::friction_systems::{End, Profile, System, STICK};
+use friction_lab::friction_systems::{End, Profile, Scheme, System, STICK};
 use friction_lab::integrators::{Solver, StepControl};
 use friction_lab::scenarios::cases::Case;
 use friction_lab::scenarios::rig::RIG_BODY;
-use friction_lab::scenarios::studies::{self, ErrorMeasure};
+use friction_lab::scenarios::studies::{self, ErrorMeasure, Method};
 use friction_lab::scenarios::{
-    Apparatus, EndTime, Law, Limits, Rig, RunSpec, Scenario, ScenarioParams, SwitchingKind,
+    Apparatus, EndTime, Law, Limits, Rig, RunSpec, Scenario, ScenarioParams,
 };
 use std::sync::Arc;
 
@@ -105,7 +105,6 @@ fn case(model: ModelId) -> Case {
         law: Law::from(model),
         friction: FrictionParams::paper(),
         params: ScenarioParams::default(),
-        switching: SwitchingKind::Event,
         t_end: 1.0,
         limits: Limits::default(),
     }
@@ -114,7 +113,7 @@ fn case(model: ModelId) -> Case {
 /// Runs the slope with `model`, Dormand–Prince at tight tolerances.
 fn simulate(model: ModelId) -> friction_lab::scenarios::Outcome {
     let spec: RunSpec = case(model).spec(
-        Solver::DOPRI5,
+        Scheme::events(Solver::DOPRI5),
         StepControl::Adaptive {
             rtol: 1e-12,
             atol: 1e-12,
@@ -145,7 +144,7 @@ pub fn run() -> Report {
     let stiction = simulate(ModelId::Static);
     let study = studies::convergence(
         &case(ModelId::Coulomb),
-        &[Solver::DOPRI5],
+        &[Method::events(Solver::DOPRI5)],
         &[0.04, 0.02, 0.01, 0.005, 0.0025],
         &[],
         &|| {},

@@ -305,8 +305,8 @@ pub fn run() -> Report {
     let [(n_bs23, a), (n_dopri5, b)] = simulated;
     let case = SystemCase::new("switched belt, CVS", system, 3.0);
     let steps = [0.01, 0.005, 0.0025, 0.00125];
-    let convergence =
-        studies::convergence(&case, &[bs23], &steps, &[], &|| {}).expect("the study runs");
+    let convergence = studies::convergence(&case, &[Method::events(bs23)], &steps, &[], &|| {})
+        .expect("the study runs");
     let fitted = |measure: ErrorMeasure| {
         convergence
             .orders
@@ -314,7 +314,7 @@ pub fn run() -> Report {
             .find(|o| o.measure == measure)
             .and_then(|o| o.fit.map(|f| f.slope))
     };
-    let methods = [Method::of(bs23), Method::of(Solver::DOPRI5)];
+    let methods = [Method::events(bs23), Method::events(Solver::DOPRI5)];
     let tolerances = [1e-4, 1e-6, 1e-8];
     let wp = studies::work_precision(&case, &methods, &[], &tolerances, 0, &|| {})
         .expect("the study runs");

@@ -20,12 +20,13 @@
 use friction_lab::artifacts::Made;
 use friction_lab::error::AppError;
 use friction_lab::friction_models::{FrictionParams, ModelId};
+use friction_lab::friction_systems::Scheme;
 use friction_lab::integrators::{Solver, StepControl};
 use friction_lab::output::{Cell, Table};
 use friction_lab::plot::{Corner, Marker, Plot, Series, PALETTE};
 use friction_lab::reproduce::{Report, Section};
 use friction_lab::scenarios::studies::{slope, Case, StudyCase};
-use friction_lab::scenarios::{Limits, Scenario, ScenarioError, SwitchingKind};
+use friction_lab::scenarios::{Limits, Scenario, ScenarioError};
 use friction_lab::study::solver_studies::{Declared, NamedStudy, Runs};
 use friction_lab::study::{Entry, Study, StudyFiles};
 use serde::Serialize;
@@ -100,7 +101,7 @@ impl Study for StepCountStudy<'_> {
                     atol: tol,
                     h0: None,
                 };
-                let m = self.case.measure(solver, step)?;
+                let m = self.case.measure(Scheme::events(solver), step)?;
                 if let Some(error) = m.error {
                     return Err(ScenarioError::Solver {
                         what: format!("{} at tol {tol:e}", solver.name()),
@@ -175,7 +176,10 @@ impl Study for StepCountStudy<'_> {
             })
             .collect();
         let plot = Plot {
-            title: format!("Steps against tolerance: {}", self.case.describe()),
+            title: format!(
+                "Steps against tolerance: {} (event switching)",
+                self.case.describe()
+            ),
             x_label: "1/tol (rtol = atol)".into(),
             y_label: "accepted steps".into(),
             series,
@@ -258,7 +262,6 @@ fn made(dir: &Path, t_end: f64) -> Result<Made, AppError> {
         law: ModelId::Viscous.into(),
         friction: FrictionParams::paper(),
         params: Scenario::PAPER_BLOCK.defaults(),
-        switching: SwitchingKind::Event,
         t_end,
         limits: Limits::default(),
     };
@@ -277,7 +280,10 @@ fn made(dir: &Path, t_end: f64) -> Result<Made, AppError> {
     let section = Section {
         heading: "Step counts against the tolerance".into(),
         folder: "",
-        intro: format!("{}, adaptive solvers, rtol = atol.\n\n", case.describe()),
+        intro: format!(
+            "{} (event switching), adaptive solvers, rtol = atol.\n\n",
+            case.describe()
+        ),
         entries: vec![&entry],
     };
     let report = Report {

@@ -76,7 +76,7 @@ pub fn run() -> Report {
     };
     let wp = studies::work_precision(
         &case,
-        &[Solver::DOPRI5, Solver::IMPLICIT_EULER].map(studies::Method::of),
+        &[Solver::DOPRI5, Solver::IMPLICIT_EULER].map(studies::Method::events),
         &[],
         &[1e-4, 1e-6, 1e-8],
         1,

@@ -170,7 +170,9 @@ proptest! {
         switching in prop::sample::select(vec!["event", "regularized", "naive"]),
     ) {
         use friction_lab::integrators::{Solver, StepControl};
-        use friction_lab::scenarios::{run, Limits, RunSpec, SwitchingKind};
+        use friction_lab::friction_systems::Scheme;
+        use friction_lab::scheme::SwitchingName;
+        use friction_lab::scenarios::{run, Limits, RunSpec};
         let mut params = Scenario::BELT.defaults();
         params.m = m;
         params.k = k;
@@ -186,8 +188,10 @@ proptest! {
             law: model.parse::<ModelId>().unwrap().into(),
             friction: FrictionParams::paper(),
             params,
-            solver,
-            switching: switching.parse::<SwitchingKind>().unwrap(),
+            scheme: Scheme::EventDriven {
+                solver,
+                switching: switching.parse::<SwitchingName>().unwrap().switching(1e-3).unwrap(),
+            },
             step,
             t_end: Some(1.0),
             output_points: 11,

@@ -5,7 +5,7 @@
 use crate::error::AppError;
 use friction_models::{FrictionModel, FrictionParams, ModelId, Parameters, Variant};
 use registry::{Named, Registry};
-use scenarios::{Law, SwitchingKind};
+use scenarios::Law;
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
@@ -131,22 +131,22 @@ impl std::str::FromStr for ModelChoice {
 
 /// Refuses `name`, swept by `option` (a sweep's axis, a stiffness study's parameter), when it
 /// is a friction parameter the run does not read, so that every value would give the same
-/// run: one `model` does not list, or `epsilon` outside `--switching regularized`.
+/// run: one `model` does not list, or `epsilon` (the width of the regularised treatment of
+/// v = 0) where `unread_epsilon` names the treatment asked for, which does not read it.
 pub fn check_read(
     option: &str,
     name: &str,
     model: Option<ModelId>,
-    switching: SwitchingKind,
+    unread_epsilon: Option<&str>,
 ) -> Result<(), AppError> {
     if FrictionParams::spec(name).is_none() {
         return Ok(());
     }
     if name == "epsilon" {
-        if switching != SwitchingKind::Regularized {
+        if let Some(treatment) = unread_epsilon {
             return Err(AppError::Usage(format!(
                 "option `{option}`: parameter `epsilon` is read only under --switching \
-                 regularized, not {}: every value would give the same run",
-                switching.name()
+                 regularized, not {treatment}: every value would give the same run"
             )));
         }
     } else if let Some(why) = model.and_then(|m| m.unread(name)) {

@@ -8,14 +8,13 @@ use crate::error::AppError;
 use crate::output::{Cell, Table};
 use crate::progress::Progress;
 use crate::trajectory::{Trajectory, TrajectoryAs};
-use friction_models::{FrictionParams, Variant};
+use friction_models::Variant;
 use friction_systems::{mode_name, BodyState, ContactEvent, EnergyBalance};
 use integrators::stability::Instability;
 use integrators::{MethodSwitch, SolverError, Stats, StepControl};
 use scenarios::analysis::closed_loop::ClosedLoop;
 pub use scenarios::rig::RIG_BODY;
 use scenarios::verdict::{Status, Verdict};
-use scenarios::SwitchingKind;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -187,19 +186,6 @@ impl StiffnessSummary {
             median_h_rho: median,
             max_rho: points.iter().map(|p| p.rho).fold(0.0, f64::max),
         })
-    }
-}
-
-/// The parameters of the scheme that `summary.json` reports: the regularisation width
-/// `epsilon` (from `friction`) of the regularised treatment, θ of time-stepping.
-pub fn scheme_parameters(
-    switching: SwitchingKind,
-    friction: &FrictionParams,
-) -> Option<(String, f64)> {
-    match switching {
-        SwitchingKind::Regularized => Some(("epsilon".into(), friction.epsilon)),
-        SwitchingKind::TimeStepping { theta } => Some(("theta".into(), theta)),
-        SwitchingKind::Event | SwitchingKind::Naive => None,
     }
 }
 

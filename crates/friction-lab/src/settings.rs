@@ -9,10 +9,11 @@
 use crate::error::AppError;
 use crate::params::ParamSource;
 use crate::ranges;
-use crate::scheme::SchemeName;
+use crate::scheme::{SchemeName, SwitchingName};
 use friction_models::Variant;
+use friction_systems::Scheme;
 use integrators::{Solver, StepControl};
-use scenarios::{Limits, SwitchingKind};
+use scenarios::Limits;
 use std::time::Instant;
 
 /// The paper's time step, s: RK4's and time-stepping's default.
@@ -66,35 +67,72 @@ pub struct SchemeChoice {
     /// regularized (tanh, width epsilon) or naive [default: event]. (`timestepping`, the
     /// former spelling of --scheme time-stepping, is still taken, with a note.)
     #[arg(long, value_name = "event|regularized|naive")]
-    pub switching: Option<SwitchingKind>,
+    pub switching: Option<SwitchingName>,
 }
 
 impl SchemeChoice {
     /// The notes on their spelling: [`TIMESTEPPING_SPELLING`] for `switching = timestepping`.
     pub fn spelling_notes(&self) -> Vec<String> {
-        let old = matches!(self.switching, Some(SwitchingKind::TimeStepping { .. }));
+        let old = self.switching == Some(SwitchingName::TimeStepping);
         old.then(|| TIMESTEPPING_SPELLING.to_string())
             .into_iter()
             .collect()
     }
 
-    /// The treatment of v = 0 they ask for: time-stepping at `theta` (also from the former
-    /// spelling `switching = timestepping`), or the switching under event-driven integration
-    /// (event by default). Regularized or naive switching with the time-stepping scheme is
-    /// refused: time-stepping treats v = 0 by the set-valued law.
-    pub fn treatment(&self, theta: f64) -> Result<SwitchingKind, AppError> {
+    /// Whether they ask for time-stepping (also by the former spelling
+    /// `switching = timestepping`).
+    pub fn is_time_stepping(&self) -> bool {
+        self.scheme == SchemeName::TimeStepping
+            || self.switching == Some(SwitchingName::TimeStepping)
+    }
+
+    /// The treatment of v = 0 they ask for when it does not read the friction parameter
+    /// `epsilon` (`event`, `naive`, `timestepping`); `None` under regularized switching, which
+    /// does.
+    pub fn unread_epsilon(&self) -> Option<&'static str> {
+        match (self.is_time_stepping(), self.switching) {
+            (true, _) => Some(SwitchingName::TimeStepping.name()),
+            (false, Some(SwitchingName::Regularized)) => None,
+            (false, s) => Some(s.unwrap_or(SwitchingName::Event).name()),
+        }
+    }
+
+    /// The combination checked: regularized or naive switching with the time-stepping scheme
+    /// is refused (time-stepping treats v = 0 by the set-valued law).
+    pub fn check(&self) -> Result<(), AppError> {
         match (self.scheme, self.switching) {
-            (_, Some(SwitchingKind::TimeStepping { .. }))
-            | (SchemeName::TimeStepping, None | Some(SwitchingKind::Event)) => {
-                Ok(SwitchingKind::TimeStepping { theta })
-            }
-            (SchemeName::TimeStepping, Some(s)) => Err(AppError::Usage(format!(
-                "option `--switching {}` applies to --scheme event-driven: time-stepping locates \
-                 no event and treats v = 0 by the set-valued law at the end of each step",
+            (
+                SchemeName::TimeStepping,
+                Some(s @ (SwitchingName::Regularized | SwitchingName::Naive)),
+            ) => Err(AppError::Usage(format!(
+                "option `--switching {}` applies to --scheme event-driven: time-stepping \
+                     locates no event and treats v = 0 by the set-valued law at the end of each \
+                     step",
                 s.name()
             ))),
-            (SchemeName::EventDriven, s) => Ok(s.unwrap_or(SwitchingKind::Event)),
+            _ => Ok(()),
         }
+    }
+
+    /// The schemes they ask for, checked ([`SchemeChoice::check`]): each of `solvers` under
+    /// the treatment of v = 0 (event by default; regularised at width `epsilon`), or
+    /// time-stepping at `theta`, the one scheme whatever the solvers.
+    pub fn schemes(
+        &self,
+        solvers: &[Solver],
+        epsilon: f64,
+        theta: f64,
+    ) -> Result<Vec<Scheme>, AppError> {
+        self.check()?;
+        if self.is_time_stepping() {
+            return Ok(vec![Scheme::TimeStepping { theta }]);
+        }
+        let name = self.switching.unwrap_or(SwitchingName::Event);
+        let switching = name.switching(epsilon).expect("not time-stepping");
+        Ok(solvers
+            .iter()
+            .map(|&solver| Scheme::EventDriven { solver, switching })
+            .collect())
     }
 }
 
@@ -207,8 +245,9 @@ impl SolverSettings {
         if let Some(dt) = self.dt {
             ranges::DT.check(dt)?;
         }
-        let switching = self.checked_switching()?;
-        if let (Some(theta), false) = (self.theta, switching.is_time_stepping()) {
+        self.scheme.check()?;
+        let time_stepping = self.scheme.is_time_stepping();
+        if let (Some(theta), false) = (self.theta, time_stepping) {
             return Err(AppError::Usage(format!(
                 "option `--theta {}` applies to --scheme time-stepping, the weight of its \
                  θ-method: the event-driven solvers have none; drop --theta, or choose \
@@ -216,7 +255,7 @@ impl SolverSettings {
                 ranges::show(theta)
             )));
         }
-        if let (Some(solver), true) = (self.solver, switching.is_time_stepping()) {
+        if let (Some(solver), true) = (self.solver, time_stepping) {
             return Err(AppError::Usage(format!(
                 "option `--solver {}` does not apply to --scheme time-stepping: Moreau–Jean's \
                  scheme takes no ODE solver (its step is --dt, its weight --theta); drop \
@@ -224,7 +263,7 @@ impl SolverSettings {
                 solver.name()
             )));
         }
-        if self.fixed_step && !self.solver().takes_fixed_steps() && !switching.is_time_stepping() {
+        if self.fixed_step && !self.solver().takes_fixed_steps() && !time_stepping {
             let fixed: Vec<_> = Solver::ALL
                 .iter()
                 .filter(|s| s.takes_fixed_steps())
@@ -245,23 +284,19 @@ impl SolverSettings {
         self.limits.limits()
     }
 
-    /// The treatment of v = 0 that the scheme and the switching ask for, θ from `theta`
-    /// ([`SchemeChoice::treatment`]; checked by [`SolverSettings::checked_step`]).
-    pub fn checked_switching(&self) -> Result<SwitchingKind, AppError> {
-        self.scheme.treatment(self.theta())
-    }
-
     /// θ of time-stepping: `theta`, or the trapezoidal rule's 1/2.
     pub fn theta(&self) -> f64 {
         self.theta.unwrap_or(scenarios::run::DEFAULT_THETA)
     }
 
-    /// The treatment of v = 0, once [`SolverSettings::checked_step`] has passed.
-    pub fn switching(&self) -> SwitchingKind {
-        self.checked_switching()
-            .unwrap_or(SwitchingKind::TimeStepping {
-                theta: self.theta(),
-            })
+    /// The scheme they ask for, regularised at width `epsilon` under regularized switching,
+    /// checked by [`SolverSettings::checked_step`].
+    pub fn scheme(&self, epsilon: f64) -> Result<Scheme, AppError> {
+        self.checked_step()?;
+        let schemes = self
+            .scheme
+            .schemes(&[self.solver()], epsilon, self.theta())?;
+        Ok(schemes[0])
     }
 
     /// The solver of event-driven integration: `solver`, or Dormand–Prince.
@@ -272,7 +307,7 @@ impl SolverSettings {
     /// The step control these settings ask for.
     pub fn step(&self) -> StepControl {
         let fixed = self.solver().is_fixed_step() || self.fixed_step;
-        if fixed || self.switching().is_time_stepping() {
+        if fixed || self.scheme.is_time_stepping() {
             StepControl::Fixed {
                 h: self.dt.unwrap_or(PAPER_DT),
             }
@@ -315,7 +350,7 @@ mod tests {
             (None, None, None, false)
         );
         assert_eq!(s.scheme.scheme, SchemeName::EventDriven);
-        assert_eq!(s.switching(), SwitchingKind::Event);
+        assert_eq!(s.scheme(1e-3).unwrap(), Scheme::events(Solver::DOPRI5));
         let m = ModelSettings::default();
         assert_eq!((m.params.set_name(), m.variant), ("paper", Variant::Odd));
         // docs/phenomena.md: every protocol with BDF at rtol 1e-10, atol 1e-12.

@@ -5,8 +5,8 @@
 use crate::laws::check_read;
 use crate::ranges;
 use friction_models::ModelId;
-use integrators::{Solver, SolverError, StepControl};
-use scenarios::SwitchingKind;
+use friction_systems::{Scheme, Switching};
+use integrators::{SolverError, StepControl};
 
 /// The advice given when `method` found the problem stiff at time `t` (Hairer's test).
 pub fn stiffness_warning(method: &str, t: f64) -> String {
@@ -67,12 +67,19 @@ fn lacked_steps(error: Option<&SolverError>) -> bool {
 /// shrinks the step there until the cap (the belt with CS: 1e7 steps by t = 0.03 s, h =
 /// 2.5e-9 s), which is what naive switching exists to show.
 pub fn naive_chatter_warning(
-    switching: SwitchingKind,
+    scheme: Scheme,
     step: StepControl,
     error: Option<&SolverError>,
 ) -> Option<String> {
     let adaptive = matches!(step, StepControl::Adaptive { .. });
-    (switching == SwitchingKind::Naive && adaptive && lacked_steps(error)).then(|| {
+    let naive = matches!(
+        scheme,
+        Scheme::EventDriven {
+            switching: Switching::Naive,
+            ..
+        }
+    );
+    (naive && adaptive && lacked_steps(error)).then(|| {
         "naive switching steps blindly through the jump of the friction law at v_rel = 0, \
          where an adaptive solver's error control shrinks the step until the cap: \
          --switching event locates the switches, regularized smooths the jump (width \
@@ -86,8 +93,7 @@ pub fn naive_chatter_warning(
 /// whose shortest natural period is `period`: [`unresolvable_period_warning`],
 /// [`unstable_step_warning`] and [`naive_chatter_warning`], each where it applies.
 pub fn failure_warnings(
-    solver: Solver,
-    switching: SwitchingKind,
+    scheme: Scheme,
     step: StepControl,
     span: f64,
     period: Option<f64>,
@@ -95,21 +101,20 @@ pub fn failure_warnings(
 ) -> Vec<String> {
     unresolvable_period_warning(span, period, error)
         .into_iter()
-        .chain(unstable_step_warning(solver, switching, step, error))
-        .chain(naive_chatter_warning(switching, step, error))
+        .chain(unstable_step_warning(scheme, step, error))
+        .chain(naive_chatter_warning(scheme, step, error))
         .collect()
 }
 
-/// The advice given when an explicit `solver` with a fixed step (RK4, or Dormand–Prince with
-/// `--fixed-step`; under any `switching` but time-stepping) ended past its stability limit
+/// The advice given when a `scheme` with an explicit solver and a fixed step (RK4, or
+/// Dormand–Prince with `--fixed-step`; not time-stepping) ended past its stability limit
 /// ([`scenarios::run::diverged`]).
 pub fn unstable_step_warning(
-    solver: Solver,
-    switching: SwitchingKind,
+    scheme: Scheme,
     step: StepControl,
     error: Option<&SolverError>,
 ) -> Option<String> {
-    let explicit = !solver.is_implicit() && !switching.is_time_stepping();
+    let explicit = scheme.solver().is_some_and(|s| !s.is_implicit());
     let StepControl::Fixed { h } = step else {
         return None;
     };
@@ -142,17 +147,18 @@ pub fn unstable_step(option: &str) -> String {
 }
 
 /// The advice given for each `--set` of a friction parameter the run does not read
-/// ([`check_read`]: one `model` does not list, or `epsilon` outside regularized switching).
+/// ([`check_read`]: one `model` does not list, or `epsilon` where `unread_epsilon` names the
+/// treatment of v = 0 asked for, which does not read it).
 /// Accepted, as a parameter file's are (a notebook may pass one set to many models), but said:
 /// every value would give the same run.
 pub fn unread_warnings(
     set: &[String],
     model: Option<ModelId>,
-    switching: SwitchingKind,
+    unread_epsilon: Option<&str>,
 ) -> Vec<String> {
     set.iter()
         .filter_map(|s| s.split_once('=').map(|(name, _)| name.trim()))
-        .filter_map(|name| check_read("set", name, model, switching).err())
+        .filter_map(|name| check_read("set", name, model, unread_epsilon).err())
         .map(|e| e.to_string())
         .collect()
 }
@@ -167,8 +173,12 @@ mod tests {
     fn naive_switching_that_runs_out_of_steps_is_told_why_and_what_else_to_use() {
         // The belt with CS under naive switching and Dormand–Prince at the defaults: 1e7 steps
         // by t = 0.03 s, the step shrunk to 2.5e-9 s at the jump.
+        let naive = Scheme::EventDriven {
+            solver: integrators::Solver::DOPRI5,
+            switching: Switching::Naive,
+        };
         let spec = RunSpec {
-            switching: SwitchingKind::Naive,
+            scheme: naive,
             limits: scenarios::Limits {
                 max_steps: 2000,
                 ..scenarios::Limits::default()
@@ -181,7 +191,7 @@ mod tests {
             matches!(error, Some(SolverError::TooManySteps { max: 2000, .. })),
             "{error:?}"
         );
-        let warning = naive_chatter_warning(spec.switching, spec.step, error).unwrap();
+        let warning = naive_chatter_warning(spec.scheme, spec.step, error).unwrap();
         assert!(
             warning.starts_with("naive switching steps blindly"),
             "{warning}"
@@ -190,22 +200,13 @@ mod tests {
         // Not for event switching, nor for a fixed step, nor for a run that did not lack steps.
         let adaptive = spec.step;
         assert_eq!(
-            naive_chatter_warning(SwitchingKind::Event, adaptive, error),
+            naive_chatter_warning(Scheme::events(integrators::Solver::DOPRI5), adaptive, error),
             None
         );
         let fixed = StepControl::Fixed { h: 1e-3 };
-        assert_eq!(
-            naive_chatter_warning(SwitchingKind::Naive, fixed, error),
-            None
-        );
+        assert_eq!(naive_chatter_warning(naive, fixed, error), None);
         let limit = SolverError::TimeLimit { t: 1.0, limit: 2.0 };
-        assert_eq!(
-            naive_chatter_warning(SwitchingKind::Naive, adaptive, Some(&limit)),
-            None
-        );
-        assert_eq!(
-            naive_chatter_warning(SwitchingKind::Naive, adaptive, None),
-            None
-        );
+        assert_eq!(naive_chatter_warning(naive, adaptive, Some(&limit)), None);
+        assert_eq!(naive_chatter_warning(naive, adaptive, None), None);
     }
 }

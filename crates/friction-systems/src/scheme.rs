@@ -31,6 +31,59 @@ pub enum Scheme {
 }
 
 impl Scheme {
+    /// Event-driven integration by `solver` with event location at v_rel = 0
+    /// ([`Switching::Event`]).
+    pub fn events(solver: Solver) -> Scheme {
+        Scheme::EventDriven {
+            solver,
+            switching: Switching::Event,
+        }
+    }
+
+    /// The solver of the event-driven scheme; `None` under time-stepping, which takes none.
+    pub fn solver(self) -> Option<Solver> {
+        match self {
+            Scheme::EventDriven { solver, .. } => Some(solver),
+            Scheme::TimeStepping { .. } => None,
+        }
+    }
+
+    /// Whether it is Moreau–Jean time-stepping.
+    pub fn is_time_stepping(self) -> bool {
+        matches!(self, Scheme::TimeStepping { .. })
+    }
+
+    /// The scheme's name: `event-driven` or `time-stepping`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Scheme::EventDriven { .. } => "event-driven",
+            Scheme::TimeStepping { .. } => "time-stepping",
+        }
+    }
+
+    /// The name of its treatment of v_rel = 0 as summaries and study files write it:
+    /// [`Switching::name`], or `timestepping`.
+    pub fn treatment_name(self) -> &'static str {
+        match self {
+            Scheme::EventDriven { switching, .. } => switching.name(),
+            Scheme::TimeStepping { .. } => "timestepping",
+        }
+    }
+
+    /// The parameter of its treatment, with its name: the regularisation width `epsilon`
+    /// (m/s) of [`Switching::Regularized`], or `theta`, the weight of time-stepping's
+    /// θ-method; `None` for event location and naive stepping.
+    pub fn parameter(self) -> Option<(&'static str, f64)> {
+        match self {
+            Scheme::EventDriven {
+                switching: Switching::Regularized { epsilon },
+                ..
+            } => Some(("epsilon", epsilon)),
+            Scheme::TimeStepping { theta } => Some(("theta", theta)),
+            Scheme::EventDriven { .. } => None,
+        }
+    }
+
     /// The treatment of v_rel = 0 the problem is built with: the event-driven scheme's own;
     /// [`Switching::Event`]'s modes under time-stepping.
     pub fn switching(self) -> Switching {

@@ -56,6 +56,15 @@ pub enum Switching {
 }
 
 impl Switching {
+    /// Its name, as `--switching` takes it: `event`, `regularized` or `naive`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Switching::Event => "event",
+            Switching::Regularized { .. } => "regularized",
+            Switching::Naive => "naive",
+        }
+    }
+
     /// The law sign(v) is evaluated by in a sliding `mode`.
     pub fn law(self, mode: Mode) -> SignLaw {
         match self {

@@ -12,10 +12,10 @@
 use crate::cases::{Measured, Measures, StudyCase};
 use crate::error::ScenarioError;
 use crate::method::{resolution, Method, StepKind};
-use crate::run::SwitchingKind;
 use crate::schedule;
 use crate::study_run::{Errors, Reference, StudyRun, WallTimes, REFERENCE_TOLERANCE};
 use crate::verdict::Verdict;
+use friction_systems::{Scheme, Switching};
 use integrators::{Solver, StepControl};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -24,11 +24,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 /// `T·tol^(−1/(p+1))` with a tolerance, for a method of order p whose error per step is
 /// held at the tolerance (steps ∝ h⁻¹, local error ∝ h^(p+1)), on a unit time scale.
 pub fn expected_steps(method: &Method, step: StepControl, t_span: f64) -> f64 {
-    let order = if method.switching.is_some_and(|s| s.is_time_stepping()) {
-        1
-    } else {
-        method.solver.order()
-    };
+    let order = method.order();
     match step {
         StepControl::Fixed { h } => t_span / h,
         StepControl::Adaptive { rtol, .. } => t_span * rtol.powf(-1.0 / (order as f64 + 1.0)),
@@ -43,7 +39,7 @@ enum Plan {
     /// reference and the second its cross-check; and, if Dormand–Prince's stiffness test
     /// fires in either, a tight run of an implicit method that becomes the reference.
     Runs {
-        own: Box<dyn StudyCase>,
+        switching: Switching,
         solver: Solver,
         check: Solver,
     },
@@ -63,9 +59,9 @@ const REFERENCE_STEP: StepControl = StepControl::Adaptive {
 /// against 7.2e-8 and 3.2e-7 for ESDIRK34 and 5.5e-7 and 2.2e-6 for TR-BDF2 (docs/studies.md).
 const STIFF_REFERENCE: Solver = Solver::BDF;
 
-/// The reference of `case` for a study of `studied` solvers: the closed form where one
+/// The reference of `case` for a study of `methods`: the closed form where one
 /// exists; otherwise a run at rtol = atol = [`REFERENCE_TOLERANCE`] of Dormand–Prince, or,
-/// when Dormand–Prince itself is studied (and Tsit45 not), of diffsol's Tsit45 (an independent
+/// when Dormand–Prince itself is one of the studied solvers (and Tsit45 not), of diffsol's Tsit45 (an independent
 /// 5(4) pair, its own error control and dense output), always cross-checked by a tight run of
 /// the other: their largest difference on the time grid is the reference's estimated error.
 /// Where Dormand–Prince's stiffness test (Hairer & Wanner II, §IV.2) fires in its tight run
@@ -73,11 +69,12 @@ const STIFF_REFERENCE: Solver = Solver::BDF;
 /// accuracy, and the reference is a tight run of an implicit method ([`STIFF_REFERENCE`]),
 /// cross-checked by the explicit one (another family: one-step explicit against implicit).
 /// Event switching for a naive or a time-stepped study (the exact solution of the
-/// discontinuous problem both approximate), the study's own switching otherwise.
-fn plan(case: &dyn StudyCase, studied: &[Solver]) -> Plan {
+/// discontinuous problem both approximate), the studied methods' switching otherwise.
+fn plan(case: &dyn StudyCase, methods: &[Method]) -> Plan {
     if let Some((name, m)) = case.closed_form() {
         return Plan::Exact(Reference::ClosedForm(name), Box::new(m));
     }
+    let studied = Method::own_solvers(methods);
     let (dopri5, tsit45) = (Solver::DOPRI5, Solver::TSIT45);
     let (solver, check) = match (studied.contains(&dopri5), studied.contains(&tsit45)) {
         (true, false) => (tsit45, dopri5),
@@ -86,20 +83,26 @@ fn plan(case: &dyn StudyCase, studied: &[Solver]) -> Plan {
     // Naive stepping and time-stepping approximate the discontinuous problem, whose exact
     // solution event switching computes (time-stepping takes no tolerance, so it could not
     // compute a tight reference of its own); a regularized problem is its own (smooth) ODE.
-    let switching = match case.switching() {
-        SwitchingKind::Naive | SwitchingKind::TimeStepping { .. } => SwitchingKind::Event,
+    // (Time-stepping's modes are event switching's.)
+    let switching = match Method::studied_switching(methods) {
+        Switching::Naive => Switching::Event,
         other => other,
     };
     Plan::Runs {
-        own: case.with_switching(switching),
+        switching,
         solver,
         check,
     }
 }
 
-/// One tight run of a reference; a failure is the study's error.
-fn reference_run(own: &dyn StudyCase, solver: Solver) -> Result<Measured, ScenarioError> {
-    let o = own.measure(solver, REFERENCE_STEP)?;
+/// One tight run of a reference by `solver` under `switching`; a failure is the study's
+/// error.
+fn reference_run(
+    case: &dyn StudyCase,
+    switching: Switching,
+    solver: Solver,
+) -> Result<Measured, ScenarioError> {
+    let o = case.measure(Scheme::EventDriven { solver, switching }, REFERENCE_STEP)?;
     match o.error {
         Some(error) => Err(ScenarioError::Solver {
             what: format!("the reference run ({})", solver.name()),
@@ -109,15 +112,21 @@ fn reference_run(own: &dyn StudyCase, solver: Solver) -> Result<Measured, Scenar
     }
 }
 
-/// The reference of `case` for a study of `studied` solvers: the closed form where one
-/// exists; otherwise a run at rtol = atol = [`REFERENCE_TOLERANCE`] of Dormand–Prince (of
-/// Tsit45 when Dormand–Prince is studied and Tsit45 not), cross-checked by a tight run of the
-/// other, whose difference is its estimated error. Its runs are concurrent.
+/// The reference of `case` for a study of `methods`: the closed form where one exists;
+/// otherwise a run at rtol = atol = [`REFERENCE_TOLERANCE`] of Dormand–Prince (of Tsit45 when
+/// Dormand–Prince is studied and Tsit45 not) under the studied treatment of v = 0,
+/// cross-checked by a tight run of the other, whose difference is its estimated error. Its
+/// runs are concurrent.
 pub fn reference(
     case: &dyn StudyCase,
-    studied: &[Solver],
+    methods: &[Method],
 ) -> Result<(Reference, Measures), ScenarioError> {
-    let mut out = run_cases(&[case], Some(studied), &[], 0, &|| {})?;
+    let posed = Posed {
+        case,
+        reference_for: Some(methods),
+        jobs: &[],
+    };
+    let mut out = run_cases(&[posed], 0, &|| {})?;
     Ok(out.remove(0).reference.expect("a reference was asked for"))
 }
 
@@ -166,6 +175,34 @@ pub fn judge(run: &mut StudyRun, reference: &Measures) {
     }
 }
 
+/// A case and the runs a study makes of it.
+#[derive(Clone, Copy)]
+pub struct Posed<'a> {
+    /// The case.
+    pub case: &'a dyn StudyCase,
+    /// The methods the case's reference is computed for ([`reference()`]: their treatment of
+    /// v = 0, solvers other than theirs), beside the runs; `None`: no reference.
+    pub reference_for: Option<&'a [Method]>,
+    /// Every (method, step) to run.
+    pub jobs: &'a [(Method, StepControl)],
+}
+
+/// `jobs` on `case` without a reference, each `1 + repeats` times ([`run_cases`]): the runs,
+/// their errors not measured.
+pub fn run_jobs(
+    case: &dyn StudyCase,
+    jobs: &[(Method, StepControl)],
+    repeats: usize,
+    progress: &(dyn Fn() + Sync),
+) -> Result<Vec<StudyRun>, ScenarioError> {
+    let posed = Posed {
+        case,
+        reference_for: None,
+        jobs,
+    };
+    Ok(run_cases(&[posed], repeats, progress)?.remove(0).runs)
+}
+
 /// What a study computed on one case.
 pub struct CaseRuns {
     /// The reference and its measures, if one was asked for.
@@ -208,33 +245,35 @@ fn check_labels(jobs: &[(Method, StepControl)]) -> Result<(), ScenarioError> {
                 "two methods of the study are both named `{}` ({:?} and {:?}): give a method of \
                  your own a name no other method of the study has",
                 a.label(),
-                b.solver,
-                a.solver
+                b.scheme,
+                a.scheme
             )));
         }
     }
     Ok(())
 }
 
-/// Runs `jobs` on every case of `cases`, each `1 + repeats` times (the repeats only for their
-/// wall time: [`StudyRun::wall_time`] is their median and spread), with each case's reference when
-/// `studied` gives the solvers of the study, as one list (see the module). `progress` is told
+/// Runs each case's jobs, each `1 + repeats` times (the repeats only for their wall time:
+/// [`StudyRun::wall_time`] is their median and spread), with each case's reference where it
+/// asks for one ([`Posed::reference_for`]), as one list (see the module). `progress` is told
 /// of every run and repeat (not of the reference runs). Errors: the first failing reference
 /// (by case), then the first run that could not be set up; before any run, two different
 /// methods under one label (an own method named like a built-in one), whose rows no table could
 /// tell apart.
 pub fn run_cases(
-    cases: &[&dyn StudyCase],
-    studied: Option<&[Solver]>,
-    jobs: &[(Method, StepControl)],
+    cases: &[Posed],
     repeats: usize,
     progress: &(dyn Fn() + Sync),
 ) -> Result<Vec<CaseRuns>, ScenarioError> {
-    check_labels(jobs)?;
-    let plans: Vec<Option<Plan>> = cases.iter().map(|&c| studied.map(|s| plan(c, s))).collect();
+    for c in cases {
+        check_labels(c.jobs)?;
+    }
+    let plans: Vec<Option<Plan>> = (cases.iter())
+        .map(|c| c.reference_for.map(|m| plan(c.case, m)))
+        .collect();
     let dims = cases
         .iter()
-        .map(|c| c.dim())
+        .map(|c| c.case.dim())
         .collect::<Result<Vec<_>, _>>()?;
     let mut tasks = Vec::new();
     for (case, p) in plans.iter().enumerate() {
@@ -244,8 +283,8 @@ pub fn run_cases(
             }
         }
     }
-    for case in 0..cases.len() {
-        for job in 0..jobs.len() {
+    for (case, c) in cases.iter().enumerate() {
+        for job in 0..c.jobs.len() {
             for repeat in 0..=repeats {
                 tasks.push(Task::Run { case, job, repeat });
             }
@@ -253,11 +292,12 @@ pub fn run_cases(
     }
     let cost = |t: &Task| match *t {
         Task::Reference { case, solver } => {
-            expected_steps(&Method::of(solver), REFERENCE_STEP, cases[case].t_end())
+            let method = Method::of(Scheme::events(solver));
+            expected_steps(&method, REFERENCE_STEP, cases[case].case.t_end())
         }
         Task::Run { case, job, .. } => {
-            let (method, step) = jobs[job];
-            expected_steps(&method, step, cases[case].t_end())
+            let (method, step) = cases[case].jobs[job];
+            expected_steps(&method, step, cases[case].case.t_end())
         }
     };
     // The references first: every error is measured against them, so a reference that fails
@@ -272,24 +312,32 @@ pub fn run_cases(
     // Whether each (case, job)'s first run failed: its timing repeats are then not run (a
     // step cap would stop them alike, and a partial run's time measures nothing; a repeat
     // taken beside its first run still runs).
-    let failed: Vec<AtomicBool> = (0..cases.len() * jobs.len())
+    let first_job: Vec<usize> = (cases.iter())
+        .scan(0, |n, c| {
+            let first = *n;
+            *n += c.jobs.len();
+            Some(first)
+        })
+        .collect();
+    let failed: Vec<AtomicBool> = (cases.iter())
+        .flat_map(|c| c.jobs)
         .map(|_| AtomicBool::new(false))
         .collect();
     let done = schedule::in_order(&order, is_reference, |i| match tasks[i] {
         Task::Reference { case, solver } => {
-            let Some(Plan::Runs { own, .. }) = &plans[case] else {
+            let Some(Plan::Runs { switching, .. }) = plans[case] else {
                 unreachable!("reference tasks come from run plans")
             };
-            reference_run(own.as_ref(), solver).map(|m| Done::Reference(Box::new(m)))
+            reference_run(cases[case].case, switching, solver).map(|m| Done::Reference(Box::new(m)))
         }
         Task::Run { case, job, repeat } => {
-            let (method, step) = jobs[job];
-            let first_failed = &failed[case * jobs.len() + job];
+            let (method, step) = cases[case].jobs[job];
+            let first_failed = &failed[first_job[case] + job];
             if repeat > 0 && first_failed.load(Ordering::Relaxed) {
                 progress();
                 return Ok(Done::Time(None));
             }
-            let o = cases[case].measure_by(&method, step)?;
+            let o = cases[case].case.measure(method.scheme, step)?;
             progress();
             if repeat > 0 {
                 return Ok(Done::Time(Some(o.wall_time_s)));
@@ -325,21 +373,23 @@ pub fn run_cases(
         }
     }
     // A stiff case's reference is an implicit method's tight run (see `plan`).
-    let implicit_runs: Vec<Option<Measures>> = (plans.par_iter().zip(&tight))
-        .map(|(plan, tight)| match plan {
-            Some(Plan::Runs { own, .. })
+    let implicit_runs: Vec<Option<Measures>> = (plans.par_iter().zip(&tight).zip(cases))
+        .map(|((plan, tight), c)| match plan {
+            Some(Plan::Runs { switching, .. })
                 if tight.iter().any(|m| m.stiffness_detected_at.is_some()) =>
             {
-                reference_run(own.as_ref(), STIFF_REFERENCE).map(|m| Some(m.measures))
+                reference_run(c.case, *switching, STIFF_REFERENCE).map(|m| Some(m.measures))
             }
             _ => Ok(None),
         })
         .collect::<Result<_, _>>()?;
     let mut out: Vec<CaseRuns> = Vec::with_capacity(cases.len());
-    for ((plan, tight), implicit_run) in plans.into_iter().zip(tight).zip(implicit_runs) {
+    for (((plan, tight), implicit_run), c) in
+        (plans.into_iter().zip(tight).zip(implicit_runs)).zip(cases)
+    {
         let reference = plan.map(|p| reference_of(p, tight, implicit_run));
-        let mut runs = Vec::with_capacity(jobs.len());
-        for _ in jobs {
+        let mut runs = Vec::with_capacity(c.jobs.len());
+        for _ in c.jobs {
             let Some(Done::Run(mut run)) = done.next() else {
                 unreachable!("results come back in the order of the tasks")
             };

@@ -8,11 +8,11 @@ use crate::method::Method;
 use crate::motion::Kinematic;
 use crate::quantity::Quantity;
 use crate::run::Limits;
-use crate::run::{body_system, run, Law, Outcome, Row, RunSpec, SwitchingKind, DEFAULT_THETA};
+use crate::run::{body_system, run, Law, Outcome, Row, RunSpec};
 use crate::scenario::Scenario;
 use crate::ScenarioParams;
 use friction_models::{FrictionParams, ModelId, Parameters};
-use friction_systems::{simulate, EnergyBalance, Layout, Run, System, STICK};
+use friction_systems::{simulate, EnergyBalance, Layout, Run, Scheme, System, STICK};
 use integrators::stability::Instability;
 use integrators::{Options, Output, Solver, SolverError, Stats, StepControl};
 use serde::Serialize;
@@ -74,48 +74,38 @@ pub struct Measured {
     pub instability: Option<Instability>,
 }
 
-/// A problem a study integrates with many solvers and steps.
+/// A problem a study integrates with many schemes and steps: the declared problem only, as
+/// Siconos declares a nonsmooth system once; each run's [`Scheme`] says how it is integrated.
 pub trait StudyCase: Sync + Send {
-    /// What it is, for titles: "belt with CS (event switching)".
+    /// What it is, for titles: "belt with CS" ([`describe`] adds the studied treatment).
     fn describe(&self) -> String;
 
     /// End time, s.
     fn t_end(&self) -> f64;
 
-    /// The treatment of v = 0.
-    fn switching(&self) -> SwitchingKind;
-
     /// Number of unknowns the solvers integrate (the `dim` of [`Stats::work`]).
     fn dim(&self) -> Result<usize, ScenarioError>;
-
-    /// The same problem under another treatment of v = 0 (for a reference run).
-    fn with_switching(&self, switching: SwitchingKind) -> Box<dyn StudyCase>;
 
     /// The same problem with parameter `name` set to `value` (for a stiffness sweep).
     fn with_parameter(&self, name: &str, value: f64) -> Result<Box<dyn StudyCase>, ScenarioError>;
 
-    /// One run with `solver` and `step`, measured on the common grid.
-    fn measure(&self, solver: Solver, step: StepControl) -> Result<Measured, ScenarioError>;
-
-    /// One run of `method` with `step`: [`StudyCase::measure`] with its solver, under this
-    /// case's treatment of v = 0 or the method's own.
-    fn measure_by(&self, method: &Method, step: StepControl) -> Result<Measured, ScenarioError> {
-        match method.switching {
-            None => self.measure(method.solver, step),
-            Some(s) => self.with_switching(s).measure(method.solver, step),
-        }
-    }
+    /// One run under `scheme` with `step`, measured on the common grid.
+    fn measure(&self, scheme: Scheme, step: StepControl) -> Result<Measured, ScenarioError>;
 
     /// The exact solution's measures, where one is known, with its formula.
     fn closed_form(&self) -> Option<(String, Measures)> {
         None
     }
+}
 
-    /// Methods under other treatments of v = 0 that the work–precision and stiffness studies
-    /// draw beside the studied solvers (none by default).
-    fn peers(&self) -> Vec<Method> {
-        Vec::new()
-    }
+/// `case` as a study of `methods` titles it: "belt with CS (event switching)", with the
+/// treatment of v = 0 of the studied methods (`timestepping` for Moreau–Jean's).
+pub fn describe(case: &dyn StudyCase, methods: &[Method]) -> String {
+    format!(
+        "{} ({} switching)",
+        case.describe(),
+        Method::treatment_name(methods)
+    )
 }
 
 /// Stick durations from a sequence of (time, mode after) of one contact.
@@ -226,19 +216,17 @@ impl Measures {
     }
 }
 
-/// A rig to study: everything of a run but the solver and its step control.
+/// A rig to study: everything of a run but its scheme and step control.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Case {
     /// The rig.
     pub scenario: Scenario,
     /// The friction law at its contact.
     pub law: Law,
-    /// Friction parameters.
+    /// Friction parameters (the width ε of a regularised run is its scheme's).
     pub friction: FrictionParams,
     /// Scenario parameters.
     pub params: ScenarioParams,
-    /// The treatment of v = 0.
-    pub switching: SwitchingKind,
     /// End time.
     pub t_end: f64,
     /// Bounds of every run.
@@ -246,15 +234,14 @@ pub struct Case {
 }
 
 impl Case {
-    /// The run of this case with `solver` and `step`.
-    pub fn spec(&self, solver: Solver, step: StepControl) -> RunSpec {
+    /// The run of this case under `scheme` with `step`.
+    pub fn spec(&self, scheme: Scheme, step: StepControl) -> RunSpec {
         RunSpec {
             scenario: self.scenario,
             law: self.law.clone(),
             friction: self.friction,
             params: self.params,
-            solver,
-            switching: self.switching,
+            scheme,
             step,
             t_end: Some(self.t_end),
             output_points: GRID_POINTS,
@@ -268,38 +255,25 @@ type ExactMotion = Box<dyn Fn(f64) -> (f64, f64)>;
 
 impl StudyCase for Case {
     fn describe(&self) -> String {
-        format!(
-            "{} with {} ({} switching)",
-            self.scenario,
-            self.law,
-            self.switching.name()
-        )
+        format!("{} with {}", self.scenario, self.law)
     }
 
     fn t_end(&self) -> f64 {
         self.t_end
     }
 
-    fn switching(&self) -> SwitchingKind {
-        self.switching
-    }
-
     /// A body rig's: the unknowns of its one-body system (x, v, the internal states, the
     /// energy accumulators); a prescribed motion's: those of its kinematic problem.
     fn dim(&self) -> Result<usize, ScenarioError> {
         let model = self.law.build(&self.friction)?;
-        // The solver and step do not change the system.
-        let spec = self.spec(Solver::DOPRI5, StepControl::Fixed { h: self.t_end });
+        // The scheme and step do not change the system.
+        let spec = self.spec(
+            Scheme::events(Solver::DOPRI5),
+            StepControl::Fixed { h: self.t_end },
+        );
         Ok(match body_system(&spec, model.clone()) {
             Some(system) => Layout::of(&system).dim(),
             None => Kinematic::dim_of(model.as_ref()),
-        })
-    }
-
-    fn with_switching(&self, switching: SwitchingKind) -> Box<dyn StudyCase> {
-        Box::new(Case {
-            switching,
-            ..self.clone()
         })
     }
 
@@ -313,8 +287,8 @@ impl StudyCase for Case {
         Ok(Box::new(c))
     }
 
-    fn measure(&self, solver: Solver, step: StepControl) -> Result<Measured, ScenarioError> {
-        let o = run(&self.spec(solver, step), &mut |_| {})?;
+    fn measure(&self, scheme: Scheme, step: StepControl) -> Result<Measured, ScenarioError> {
+        let o = run(&self.spec(scheme, step), &mut |_| {})?;
         Ok(Measured {
             measures: Measures::of(&o),
             stats: o.stats,
@@ -392,10 +366,6 @@ pub struct SystemCase {
     pub name: String,
     /// The system.
     pub system: System,
-    /// The treatment of v = 0.
-    pub switching: SwitchingKind,
-    /// The regularisation width ε of `switching = regularized`, m/s.
-    pub epsilon: f64,
     /// End time, s.
     pub t_end: f64,
     /// The bodies whose trajectories, events and stick phases are measured.
@@ -409,15 +379,13 @@ pub struct SystemCase {
 }
 
 impl SystemCase {
-    /// A study of `system` over `t_end` seconds: event-driven, its first body measured, the
-    /// regularised peer at ε = 1e-3, the default limits, no chain to build again (change any
-    /// field with `SystemCase { bodies: …, ..SystemCase::new(…) }`).
+    /// A study of `system` over `t_end` seconds: its first body measured, the default limits,
+    /// no chain to build again (change any field with
+    /// `SystemCase { bodies: …, ..SystemCase::new(…) }`).
     pub fn new(name: impl Into<String>, system: System, t_end: f64) -> SystemCase {
         SystemCase {
             name: name.into(),
             system,
-            switching: SwitchingKind::Event,
-            epsilon: 1e-3,
             t_end,
             bodies: vec![0],
             limits: Limits::default(),
@@ -428,15 +396,11 @@ impl SystemCase {
 
 impl StudyCase for SystemCase {
     fn describe(&self) -> String {
-        format!("{} ({} switching)", self.name, self.switching.name())
+        self.name.clone()
     }
 
     fn t_end(&self) -> f64 {
         self.t_end
-    }
-
-    fn switching(&self) -> SwitchingKind {
-        self.switching
     }
 
     fn dim(&self) -> Result<usize, ScenarioError> {
@@ -444,84 +408,36 @@ impl StudyCase for SystemCase {
         Ok(friction_systems::Layout::of(&self.system).dim())
     }
 
-    fn with_switching(&self, switching: SwitchingKind) -> Box<dyn StudyCase> {
-        Box::new(SystemCase {
-            switching,
-            ..self.clone()
-        })
-    }
-
-    /// The regularisation width `epsilon` can be swept on any system, under a switching some
-    /// run of the study reads it with: regularized, or event (whose regularised BDF peer
-    /// reads it). On the chain, so can its parameters and those its law reads, each value
-    /// building the chain again ([`ChainSource::with`]); on a system file nothing else (each
-    /// contact has its own parameters).
+    /// On the chain, its parameters and those its law reads can be swept, each value building
+    /// the chain again ([`ChainSource::with`]); on a system file none (each contact has its
+    /// own parameters). (The regularisation width `epsilon`, a parameter of the scheme, is
+    /// swept by the study on its methods: [`crate::studies::stiffness`].)
     fn with_parameter(&self, name: &str, value: f64) -> Result<Box<dyn StudyCase>, ScenarioError> {
-        if name != "epsilon" {
-            let Some(source) = &self.chain else {
-                return Err(ScenarioError::Invalid(format!(
-                    "parameter `{name}` cannot be swept on a system file (each contact has its \
-                     own parameters): allowed epsilon"
-                )));
-            };
-            let source = source.with(name, value)?;
-            let system = source.build()?;
-            if let Some(&b) = self.bodies.iter().find(|&&b| b >= system.bodies.len()) {
-                return Err(ScenarioError::Invalid(format!(
-                    "parameter `{name}` = {value} leaves {} bodies: the measured body {} is not \
-                     among them",
-                    system.bodies.len(),
-                    b + 1
-                )));
-            }
-            return Ok(Box::new(SystemCase {
-                name: source.name(),
-                system,
-                chain: Some(source),
-                ..self.clone()
-            }));
-        }
-        if !matches!(
-            self.switching,
-            SwitchingKind::Regularized | SwitchingKind::Event
-        ) {
+        let Some(source) = &self.chain else {
             return Err(ScenarioError::Invalid(format!(
-                "parameter `epsilon` is read on a system only under --switching regularized, or \
-                 event (by its regularised BDF peer); not {}: every value would give the same runs",
-                self.switching.name()
+                "parameter `{name}` cannot be swept on a system file (each contact has its \
+                 own parameters): allowed epsilon"
+            )));
+        };
+        let source = source.with(name, value)?;
+        let system = source.build()?;
+        if let Some(&b) = self.bodies.iter().find(|&&b| b >= system.bodies.len()) {
+            return Err(ScenarioError::Invalid(format!(
+                "parameter `{name}` = {value} leaves {} bodies: the measured body {} is not \
+                 among them",
+                system.bodies.len(),
+                b + 1
             )));
         }
-        FrictionParams::paper().set(name, value)?;
         Ok(Box::new(SystemCase {
-            epsilon: value,
+            name: source.name(),
+            system,
+            chain: Some(source),
             ..self.clone()
         }))
     }
 
-    /// Under event switching: diffsol's BDF on the regularised system (sparse Jacobian and
-    /// LU) and Moreau–Jean time-stepping at θ = 1/2 — the two other ways to integrate many
-    /// contacts.
-    fn peers(&self) -> Vec<Method> {
-        if self.switching != SwitchingKind::Event {
-            return Vec::new();
-        }
-        vec![
-            Method {
-                solver: Solver::BDF,
-                switching: Some(SwitchingKind::Regularized),
-            },
-            Method {
-                solver: Solver::RK4,
-                switching: Some(SwitchingKind::TimeStepping {
-                    theta: DEFAULT_THETA,
-                }),
-            },
-        ]
-    }
-
-    fn measure(&self, solver: Solver, step: StepControl) -> Result<Measured, ScenarioError> {
-        let mut friction = FrictionParams::paper();
-        friction.epsilon = self.epsilon;
+    fn measure(&self, scheme: Scheme, step: StepControl) -> Result<Measured, ScenarioError> {
         let grid = integrators::even_grid(0.0, self.t_end, GRID_POINTS);
         let options = Options {
             step,
@@ -531,7 +447,6 @@ impl StudyCase for SystemCase {
             time_limit_since: self.limits.time_limit_since,
             ..Options::adaptive(0.0, self.t_end, 1e-8, 1e-10)
         };
-        let scheme = self.switching.scheme(solver, &friction);
         let run = simulate(&self.system, scheme, options, &mut |_| {})?;
         Ok(Measured {
             measures: Measures::of_run(&run, &self.bodies),

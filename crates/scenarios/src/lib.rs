@@ -37,5 +37,5 @@ pub mod verdict;
 pub use error::ScenarioError;
 pub use params::ScenarioParams;
 pub use rig::{Apparatus, EndTime, Rig};
-pub use run::{run, run_measuring_stiffness, Law, Limits, Outcome, Row, RunSpec, SwitchingKind};
+pub use run::{run, run_measuring_stiffness, Law, Limits, Outcome, Row, RunSpec};
 pub use scenario::{Scenario, SCENARIOS};

@@ -14,10 +14,11 @@
 
 use crate::error::ScenarioError;
 use crate::run::Limits;
-use crate::run::{run, RunSpec, SwitchingKind};
+use crate::run::{run, RunSpec};
 use crate::scenario::Scenario;
 use crate::ScenarioParams;
 use friction_models::{FrictionParams, ModelId, Variant};
+use friction_systems::Scheme;
 use integrators::{Solver, StepControl};
 use serde::Serialize;
 
@@ -95,8 +96,7 @@ fn spec(
         law: model.into(),
         friction: *p,
         params: *s,
-        solver: Solver::DOPRI5,
-        switching: SwitchingKind::Event,
+        scheme: Scheme::events(Solver::DOPRI5),
         step: StepControl::Adaptive {
             rtol: 1e-12,
             atol: 1e-12,

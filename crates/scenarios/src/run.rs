@@ -8,32 +8,14 @@ use crate::params::ScenarioParams;
 use crate::rig::Apparatus;
 use crate::scenario::Scenario;
 use friction_models::{FrictionModel, FrictionParams, ModelId, ParamError, Parameters, Variant};
-use friction_systems::{EnergyBalance, Reference, Scheme, Switching, System, STICK};
+use friction_systems::{EnergyBalance, Reference, Scheme, System, STICK};
 use integrators::stability::Instability;
 use integrators::{
-    Failure, Mode, OdeProblem, Options, Output, Solution, Solver, SolverError, Stats, StepControl,
+    Failure, Mode, OdeProblem, Options, Output, Solution, SolverError, Stats, StepControl,
 };
 use serde::Serialize;
 use std::sync::Arc;
 use std::time::Instant;
-
-/// How v = 0 is treated, by the name the command line takes.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum SwitchingKind {
-    /// Event location with stick/slip mode switching.
-    Event,
-    /// tanh(v/ε) with ε the friction parameter `epsilon`.
-    Regularized,
-    /// The discontinuous law stepped through.
-    Naive,
-    /// Moreau–Jean time-stepping (fixed steps, no event located).
-    #[serde(rename = "timestepping")]
-    TimeStepping {
-        /// Weight θ of the step's end on the smooth forces, in [1/2, 1].
-        theta: f64,
-    },
-}
 
 /// θ of time-stepping unless `--theta` says otherwise: the trapezoidal rule.
 pub const DEFAULT_THETA: f64 = 0.5;
@@ -47,78 +29,6 @@ pub fn diverged(explicit: bool, step: StepControl, error: Option<&SolverError>) 
     explicit
         && matches!(step, StepControl::Fixed { .. })
         && matches!(error, Some(SolverError::NonFinite { .. }))
-}
-
-impl SwitchingKind {
-    /// Every treatment (time-stepping at the default θ).
-    pub const ALL: [SwitchingKind; 4] = [
-        SwitchingKind::Event,
-        SwitchingKind::Regularized,
-        SwitchingKind::Naive,
-        SwitchingKind::TimeStepping {
-            theta: DEFAULT_THETA,
-        },
-    ];
-
-    /// The name the command line takes.
-    pub fn name(self) -> &'static str {
-        match self {
-            SwitchingKind::Event => "event",
-            SwitchingKind::Regularized => "regularized",
-            SwitchingKind::Naive => "naive",
-            SwitchingKind::TimeStepping { .. } => "timestepping",
-        }
-    }
-
-    /// The name of the method that integrates under this treatment with `solver`: the solver's,
-    /// or Moreau–Jean's under time-stepping (which uses no ODE solver).
-    pub fn method(self, solver: Solver) -> &'static str {
-        match self {
-            SwitchingKind::TimeStepping { .. } => friction_systems::moreau_jean::NAME,
-            _ => solver.name(),
-        }
-    }
-
-    /// Whether the scheme takes fixed steps whatever the solver (time-stepping).
-    pub fn is_time_stepping(self) -> bool {
-        matches!(self, SwitchingKind::TimeStepping { .. })
-    }
-
-    /// The scheme a run with `solver` takes: event-driven under this treatment (the width of
-    /// regularisation from `p`), or time-stepped (no solver takes part).
-    pub fn scheme(self, solver: Solver, p: &FrictionParams) -> Scheme {
-        let switching = match self {
-            SwitchingKind::Event => Switching::Event,
-            SwitchingKind::Regularized => Switching::Regularized { epsilon: p.epsilon },
-            SwitchingKind::Naive => Switching::Naive,
-            SwitchingKind::TimeStepping { theta } => return Scheme::TimeStepping { theta },
-        };
-        Scheme::EventDriven { solver, switching }
-    }
-}
-
-impl std::fmt::Display for SwitchingKind {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            SwitchingKind::TimeStepping { theta } => write!(f, "timestepping (θ = {theta})"),
-            other => f.write_str(other.name()),
-        }
-    }
-}
-
-impl std::str::FromStr for SwitchingKind {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        SwitchingKind::ALL
-            .into_iter()
-            .find(|k| k.name() == s)
-            .ok_or_else(|| {
-                format!(
-                    "unknown switching `{s}`; allowed: event, regularized, naive \
-                     (time-stepping is a scheme: --scheme time-stepping)"
-                )
-            })
-    }
 }
 
 /// The friction law at a rig's contact: a model of the catalog, built from the run's friction
@@ -211,11 +121,10 @@ pub struct RunSpec {
     pub friction: FrictionParams,
     /// Scenario parameters.
     pub params: ScenarioParams,
-    /// The solver.
-    pub solver: Solver,
-    /// The treatment of v = 0.
-    pub switching: SwitchingKind,
-    /// Step control.
+    /// The scheme: a solver under a treatment of v = 0 (its regularisation width ε is the
+    /// scheme's; `friction.epsilon` is not read by a run), or time-stepping at θ.
+    pub scheme: Scheme,
+    /// Step control (time-stepping's step h when it is fixed).
     pub step: StepControl,
     /// End time (the scenario's default when `None`).
     pub t_end: Option<f64>,
@@ -348,7 +257,7 @@ impl Outcome {
 fn validate(spec: &RunSpec) -> Result<(), ScenarioError> {
     spec.params.validate()?;
     spec.scenario.rig().check(&spec.params)?;
-    if !spec.scenario.has_body() && spec.switching.is_time_stepping() {
+    if !spec.scenario.has_body() && spec.scheme.is_time_stepping() {
         return Err(ScenarioError::Invalid(format!(
             "scheme `time-stepping` cannot run {}: the motion is prescribed, there is no body \
              to time-step; use the event-driven scheme (event, regularized or naive switching)",
@@ -417,7 +326,7 @@ fn run_body(
     measure_stiffness: bool,
     observe: &mut dyn FnMut(f64),
 ) -> Result<Outcome, ScenarioError> {
-    let scheme = spec.switching.scheme(spec.solver, &spec.friction);
+    let scheme = spec.scheme;
     let mut step_ends = Vec::new();
     let run = friction_systems::simulate(system, scheme, options(spec, t_end), &mut |t| {
         if measure_stiffness {
@@ -488,21 +397,13 @@ pub fn run_motion(
     let k = Kinematic {
         model,
         motion,
-        // (A prescribed motion is never time-stepped: `validate` refuses it.)
-        switching: spec
-            .switching
-            .scheme(spec.solver, &spec.friction)
-            .switching(),
+        switching: spec.scheme.switching(),
     };
     let y0 = vec![0.0; k.dim()];
     let clock = Instant::now();
-    let (s, error) = finish(spec.solver.solve_observed(
-        &k,
-        &y0,
-        &[k.mode_at(0.0)],
-        options(spec, t_end),
-        observe,
-    ));
+    let solver = (spec.scheme.solver()).expect("`validate` refuses a time-stepped motion");
+    let (s, error) =
+        finish(solver.solve_observed(&k, &y0, &[k.mode_at(0.0)], options(spec, t_end), observe));
     let wall_time_s = clock.elapsed().as_secs_f64();
     let w = k.work_index();
     let rows = (0..s.len())

@@ -12,10 +12,11 @@
 use crate::analysis::closed_loop::ClosedLoop;
 use crate::analysis::settled::{spanned, until_settled, Settled, Trace};
 use crate::error::ScenarioError;
-use crate::run::{run, Limits, RunSpec, SwitchingKind};
+use crate::run::{run, Limits, RunSpec};
 use crate::scenario::Scenario;
 use friction_models::{steady, Direction, FrictionModel, SignLaw};
 use friction_models::{FrictionParams, ModelId};
+use friction_systems::Scheme;
 use integrators::{Solver, StepControl};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -28,8 +29,7 @@ pub fn belt_run(model: ModelId, friction: &FrictionParams) -> RunSpec {
         law: model.into(),
         friction: *friction,
         params: Scenario::BELT.defaults(),
-        solver: Solver::DOPRI5,
-        switching: SwitchingKind::Event,
+        scheme: Scheme::events(Solver::DOPRI5),
         step: StepControl::Adaptive {
             rtol: 1e-8,
             atol: 1e-10,

@@ -6,8 +6,9 @@
 //! against the true 40 %).
 
 use friction_models::{FrictionParams, ModelId, Parameters};
+use friction_systems::Scheme;
 use integrators::{Solver, StepControl};
-use scenarios::{run, Limits, RunSpec, Scenario, SwitchingKind};
+use scenarios::{run, Limits, RunSpec, Scenario};
 
 fn end_displacement(solver: Solver, step: StepControl) -> f64 {
     let mut params = Scenario::PRESLIDING.defaults();
@@ -17,8 +18,7 @@ fn end_displacement(solver: Solver, step: StepControl) -> f64 {
         law: ModelId::LuGre.into(),
         friction: FrictionParams::lugre_1995(),
         params,
-        solver,
-        switching: SwitchingKind::Event,
+        scheme: Scheme::events(solver),
         step,
         t_end: None,
         output_points: 11,

@@ -1,9 +1,10 @@
 //! The paper's experiment against closed forms.
 
 use friction_models::{FrictionParams, ModelId, Parameters};
+use friction_systems::Scheme;
 use integrators::{Solver, StepControl};
 use scenarios::paper::{experiment, Asymptote, ExperimentRow};
-use scenarios::{run, Limits, RunSpec, Scenario, ScenarioParams, SwitchingKind};
+use scenarios::{run, Limits, RunSpec, Scenario, ScenarioParams};
 
 /// The experiment's rows at `p`, every model's run finished.
 fn measured(p: &FrictionParams) -> Vec<ExperimentRow> {
@@ -95,8 +96,7 @@ fn paper_block(model: ModelId, p: FrictionParams) -> Vec<(f64, f64, f64)> {
         law: model.into(),
         friction: p,
         params: ScenarioParams::default(),
-        solver: Solver::DOPRI5,
-        switching: SwitchingKind::Event,
+        scheme: Scheme::events(Solver::DOPRI5),
         step: StepControl::Adaptive {
             rtol: 1e-12,
             atol: 1e-12,

@@ -2,9 +2,10 @@
 //! it, and the hunting cycle's measures agree with the switching log and between solvers.
 
 use friction_models::{FrictionParams, ModelId};
+use friction_systems::Scheme;
 use integrators::{Solver, StepControl};
 use scenarios::analysis::closed_loop::ClosedLoop;
-use scenarios::{run, Limits, Outcome, RunSpec, Scenario, SwitchingKind};
+use scenarios::{run, Limits, Outcome, RunSpec, Scenario};
 
 fn servo_at(model: ModelId, friction: FrictionParams, solver: Solver, points: usize) -> Outcome {
     servo_with(model, friction, solver, points, Scenario::SERVO.defaults())
@@ -23,8 +24,7 @@ fn servo_spec(
         law: model.into(),
         friction,
         params,
-        solver,
-        switching: SwitchingKind::Event,
+        scheme: Scheme::events(solver),
         step: StepControl::Adaptive {
             rtol: 1e-9,
             atol: 1e-11,

@@ -2,11 +2,12 @@
 //! step-size independence correctly where the answer is known.
 
 use friction_models::{FrictionParams, ModelId};
+use friction_systems::{Scheme, Switching};
 use integrators::Solver;
 use scenarios::studies::{
-    convergence, independence, Case, ErrorMeasure, Fit, Reference, StudyCase,
+    convergence, independence, Case, ErrorMeasure, Fit, Method, Reference, StudyCase,
 };
-use scenarios::{Limits, Scenario, SwitchingKind};
+use scenarios::{Limits, Scenario};
 
 /// The block pushed by 15 N against viscous friction: smooth, with a closed form.
 fn viscous_block() -> Case {
@@ -15,26 +16,32 @@ fn viscous_block() -> Case {
         law: ModelId::Viscous.into(),
         friction: FrictionParams::paper(),
         params: Scenario::PAPER_BLOCK.defaults(),
-        switching: SwitchingKind::Event,
         t_end: 5.0,
         limits: Limits::default(),
     }
 }
 
-fn fit(case: &Case, solver: Solver, steps: &[f64], measure: ErrorMeasure) -> Fit {
-    let c = convergence(case, &[solver], steps, &[], &|| {}).unwrap();
+fn fit(case: &Case, method: Method, steps: &[f64], measure: ErrorMeasure) -> Fit {
+    let c = convergence(case, &[method], steps, &[], &|| {}).unwrap();
     let t = c.orders.iter().find(|t| t.measure == measure).unwrap();
     t.fit.expect("an asymptotic range")
 }
 
-fn slope(case: &Case, solver: Solver, steps: &[f64], measure: ErrorMeasure) -> f64 {
-    fit(case, solver, steps, measure).slope
+fn slope(case: &Case, method: Method, steps: &[f64], measure: ErrorMeasure) -> f64 {
+    fit(case, method, steps, measure).slope
 }
 
 #[test]
 fn the_study_recovers_the_orders_of_the_methods_on_a_smooth_problem() {
     let case = viscous_block();
-    let c = convergence(&case, &[Solver::RK4], &[0.4, 0.2], &[], &|| {}).unwrap();
+    let c = convergence(
+        &case,
+        &[Method::events(Solver::RK4)],
+        &[0.4, 0.2],
+        &[],
+        &|| {},
+    )
+    .unwrap();
     assert!(
         matches!(c.reference, Reference::ClosedForm(_)),
         "{:?}",
@@ -43,7 +50,7 @@ fn the_study_recovers_the_orders_of_the_methods_on_a_smooth_problem() {
     // RK4's order, with an interval that holds 4, from every pair of the four steps.
     let rk4 = fit(
         &case,
-        Solver::RK4,
+        Method::events(Solver::RK4),
         &[0.4, 0.2, 0.1, 0.05],
         ErrorMeasure::GridRelative,
     );
@@ -53,14 +60,14 @@ fn the_study_recovers_the_orders_of_the_methods_on_a_smooth_problem() {
     assert_eq!((rk4.pairs_used, rk4.range), (3, [0.05, 0.4]));
     let dopri5 = slope(
         &case,
-        Solver::DOPRI5,
+        Method::events(Solver::DOPRI5),
         &[1.0, 0.5, 0.25, 0.125],
         ErrorMeasure::GridRelative,
     );
     assert!((dopri5 - 5.0).abs() < 0.3, "dopri5 {dopri5}");
     let euler = slope(
         &case,
-        Solver::IMPLICIT_EULER,
+        Method::events(Solver::IMPLICIT_EULER),
         &[0.04, 0.02, 0.01, 0.005],
         ErrorMeasure::GridRelative,
     );
@@ -70,13 +77,12 @@ fn the_study_recovers_the_orders_of_the_methods_on_a_smooth_problem() {
 /// Free vibration against Coulomb friction with stiction (m = 1, k = 100, x0 = 0.5): every
 /// half period π/10 s the velocity crosses zero and the friction jumps; after four half
 /// periods the body sticks at x = 0.02 m.
-fn coulomb_vibration(switching: SwitchingKind) -> Case {
+fn coulomb_vibration() -> Case {
     Case {
         scenario: Scenario::FREE_VIBRATION,
         law: ModelId::Static.into(),
         friction: FrictionParams::paper(),
         params: Scenario::FREE_VIBRATION.defaults(),
-        switching,
         t_end: 2.0,
         limits: Limits::default(),
     }
@@ -86,23 +92,26 @@ fn coulomb_vibration(switching: SwitchingKind) -> Case {
 fn stepping_through_v_0_costs_rk4_its_order_and_event_location_restores_it() {
     let steps = [2e-2, 1e-2, 5e-3, 2.5e-3];
     let naive = slope(
-        &coulomb_vibration(SwitchingKind::Naive),
-        Solver::RK4,
+        &coulomb_vibration(),
+        Method::of(Scheme::EventDriven {
+            solver: Solver::RK4,
+            switching: Switching::Naive,
+        }),
         &steps,
         ErrorMeasure::GridRelative,
     );
     assert!((naive - 1.0).abs() < 0.25, "naive {naive}");
     let switched = slope(
-        &coulomb_vibration(SwitchingKind::Event),
-        Solver::RK4,
+        &coulomb_vibration(),
+        Method::events(Solver::RK4),
         &steps,
         ErrorMeasure::GridRelative,
     );
     assert!((switched - 4.0).abs() < 0.25, "switched {switched}");
     // The switched events are the closed form's: reversals every π/ω.
     let c = convergence(
-        &coulomb_vibration(SwitchingKind::Event),
-        &[Solver::RK4],
+        &coulomb_vibration(),
+        &[Method::events(Solver::RK4)],
         &[1e-3],
         &[],
         &|| {},
@@ -125,9 +134,27 @@ fn stepping_through_v_0_costs_rk4_its_order_and_event_location_restores_it() {
 #[test]
 fn the_independence_verdict_is_negative_for_a_coarse_step_and_positive_for_a_fine_one() {
     let case = viscous_block();
-    let coarse = independence(&case, Solver::RK4, 2.0, 2.0, 3, 1e-6, &|| {}).unwrap();
+    let coarse = independence(
+        &case,
+        Method::events(Solver::RK4),
+        2.0,
+        2.0,
+        3,
+        1e-6,
+        &|| {},
+    )
+    .unwrap();
     assert!(!coarse.independent, "{:?}", coarse.outputs);
-    let fine = independence(&case, Solver::RK4, 1e-2, 2.0, 3, 1e-6, &|| {}).unwrap();
+    let fine = independence(
+        &case,
+        Method::events(Solver::RK4),
+        1e-2,
+        2.0,
+        3,
+        1e-6,
+        &|| {},
+    )
+    .unwrap();
     assert!(fine.independent, "{:?}", fine.outputs);
     // The Richardson estimate of the remaining error in v(5) bounds the true error.
     let v = fine
@@ -156,7 +183,16 @@ fn levels_outside_the_asymptotic_range_do_not_make_a_small_richardson_estimate()
         t_end: 10.0,
         ..viscous_block()
     };
-    let study = independence(&case, Solver::RK4, 1e-3, 2.0, 4, 1e-6, &|| {}).unwrap();
+    let study = independence(
+        &case,
+        Method::events(Solver::RK4),
+        1e-3,
+        2.0,
+        4,
+        1e-6,
+        &|| {},
+    )
+    .unwrap();
     assert_eq!(study.first_level, 1, "{:?}", study.failed);
     let x = &study.outputs[0];
     assert!(x.name.starts_with("final x"), "{x:?}");
@@ -167,7 +203,11 @@ fn levels_outside_the_asymptotic_range_do_not_make_a_small_richardson_estimate()
         atol: 1e-13,
         h0: None,
     };
-    let truth = case.measure(bdf, tight).unwrap().measures.final_state[0];
+    let truth = case
+        .measure(Scheme::events(bdf), tight)
+        .unwrap()
+        .measures
+        .final_state[0];
     let error = (x.values.last().unwrap() - truth).abs();
     assert!(error > 1e-10, "a true error to bound: {error:e}");
     assert!(error <= x.remaining_error, "{error:e} against {x:?}");
@@ -286,7 +326,6 @@ fn switched_belt() -> Case {
         law: ModelId::Cs.into(),
         friction: FrictionParams::paper(),
         params: Scenario::BELT.defaults(),
-        switching: SwitchingKind::Event,
         t_end: 5.0,
         limits: Limits::default(),
     }
@@ -307,11 +346,15 @@ fn the_reference_is_an_independent_tight_run_cross_checked_by_another() {
     };
     // Always cross-checked by the other 5(4) pair: their difference is the reference's
     // estimated error.
-    let (r, _) = reference(&case, &[Solver::RK4]).unwrap();
+    let (r, _) = reference(&case, &[Method::events(Solver::RK4)]).unwrap();
     assert_eq!((solver_of(&r).0, solver_of(&r).1 .0), ("dopri5", "tsit45"));
-    let (r, _) = reference(&case, &[Solver::DOPRI5]).unwrap();
+    let (r, _) = reference(&case, &[Method::events(Solver::DOPRI5)]).unwrap();
     assert_eq!((solver_of(&r).0, solver_of(&r).1 .0), ("tsit45", "dopri5"));
-    let (r, _) = reference(&case, &[Solver::DOPRI5, tsit45]).unwrap();
+    let (r, _) = reference(
+        &case,
+        &[Method::events(Solver::DOPRI5), Method::events(tsit45)],
+    )
+    .unwrap();
     let (solver, (other, difference)) = solver_of(&r);
     assert_eq!((solver, other), ("dopri5", "tsit45"));
     // Two independent 5(4) codes at 1e-13 agree far below the tolerances a study uses.
@@ -342,7 +385,7 @@ fn a_study_whose_reference_fails_starts_no_run_after_it() {
         .install(|| {
             work_precision(
                 &case,
-                &[Method::of(Solver::RK4)],
+                &[Method::events(Solver::RK4)],
                 &[1e-3, 1e-4],
                 &[],
                 1,
@@ -374,14 +417,8 @@ impl StudyCase for Counted {
     fn t_end(&self) -> f64 {
         self.block.t_end
     }
-    fn switching(&self) -> SwitchingKind {
-        self.block.switching
-    }
     fn dim(&self) -> Result<usize, scenarios::ScenarioError> {
         self.block.dim()
-    }
-    fn with_switching(&self, switching: SwitchingKind) -> Box<dyn StudyCase> {
-        self.block.with_switching(switching)
     }
     fn with_parameter(
         &self,
@@ -392,7 +429,7 @@ impl StudyCase for Counted {
     }
     fn measure(
         &self,
-        solver: Solver,
+        scheme: Scheme,
         step: integrators::StepControl,
     ) -> Result<scenarios::studies::Measured, scenarios::ScenarioError> {
         let h = step.given_step().unwrap_or(0.0);
@@ -404,7 +441,7 @@ impl StudyCase for Counted {
             },
             ..self.block.clone()
         };
-        if h == 0.01 { &capped } else { &self.block }.measure(solver, step)
+        if h == 0.01 { &capped } else { &self.block }.measure(scheme, step)
     }
     fn closed_form(&self) -> Option<(String, scenarios::studies::Measures)> {
         self.block.closed_form()
@@ -428,7 +465,7 @@ fn a_run_that_failed_is_not_timed_again() {
         .install(|| {
             work_precision(
                 &case,
-                &[Method::of(Solver::RK4)],
+                &[Method::events(Solver::RK4)],
                 &[0.01, 0.005],
                 &[],
                 4,
@@ -458,7 +495,7 @@ fn a_run_that_failed_is_not_timed_again() {
 #[test]
 fn a_system_study_draws_regularised_bdf_and_time_stepping_beside_its_solvers() {
     use friction_systems::chain::ChainParams;
-    use scenarios::studies::{work_precision, Method, StudyCase, SystemCase};
+    use scenarios::studies::{work_precision, Method, SystemCase};
     use std::sync::Arc;
     let system = ChainParams {
         n_bodies: 5,
@@ -471,10 +508,16 @@ fn a_system_study_draws_regularised_bdf_and_time_stepping_beside_its_solvers() {
     })
     .unwrap();
     let case = SystemCase::new("chain", system, 10.0);
-    let peers = case.peers();
+    let peers = [
+        Method::peer(Scheme::EventDriven {
+            solver: Solver::BDF,
+            switching: Switching::Regularized { epsilon: 1e-3 },
+        }),
+        Method::peer(Scheme::TimeStepping { theta: 0.5 }),
+    ];
     let labels: Vec<String> = peers.iter().map(Method::label).collect();
     assert_eq!(labels, ["bdf (regularized)", "moreau-jean (timestepping)"]);
-    let mut methods = vec![Method::of(Solver::DOPRI5)];
+    let mut methods = vec![Method::events(Solver::DOPRI5)];
     methods.extend(peers);
     let w = work_precision(&case, &methods, &[1e-2, 1e-3], &[1e-6, 1e-8], 1, &|| {}).unwrap();
     let errors = |label: &str| -> Vec<f64> {
@@ -503,13 +546,13 @@ fn a_system_study_draws_regularised_bdf_and_time_stepping_beside_its_solvers() {
 /// threads and with the timing repeats in the same list.
 #[test]
 fn a_sweep_in_one_list_gives_each_case_its_own_results_on_one_or_two_threads() {
-    use scenarios::batch::{expected_steps, run_cases};
+    use scenarios::batch::{expected_steps, run_cases, Posed};
     use scenarios::studies::{run_against_reference, Method, StudyCase};
     let belt = switched_belt();
     let stiff = belt.with_parameter("k", 400.0).unwrap();
     let cases: [&dyn StudyCase; 2] = [&belt, stiff.as_ref()];
     let solvers = [Solver::RK4, Solver::DOPRI5, Solver::IMPLICIT_EULER];
-    let methods = solvers.map(Method::of);
+    let methods = solvers.map(Method::events);
     let jobs = Method::jobs(&methods, &[0.01, 0.005], &[1e-4, 1e-6], false);
     assert_eq!(jobs.len(), 6);
     // The list's order: implicit Euler (order 1) at 1e-6 expects 5·1e3 steps, RK4 at
@@ -527,7 +570,7 @@ fn a_sweep_in_one_list_gives_each_case_its_own_results_on_one_or_two_threads() {
     let alone: Vec<_> = cases
         .iter()
         .map(|&c| {
-            let (r, m, runs) = run_against_reference(c, &solvers, &jobs, &|| {}).unwrap();
+            let (r, m, runs) = run_against_reference(c, &methods, &jobs, &|| {}).unwrap();
             (r, m, without_times(runs))
         })
         .collect();
@@ -539,7 +582,12 @@ fn a_sweep_in_one_list_gives_each_case_its_own_results_on_one_or_two_threads() {
         let counted = std::sync::atomic::AtomicUsize::new(0);
         let together = pool
             .install(|| {
-                run_cases(&cases, Some(&solvers), &jobs, 2, &|| {
+                let posed = cases.map(|case| Posed {
+                    case,
+                    reference_for: Some(&methods),
+                    jobs: &jobs,
+                });
+                run_cases(&posed, 2, &|| {
                     counted.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
                 })
             })
@@ -831,7 +879,10 @@ fn an_own_method_is_studied_beside_the_built_ins_under_its_own_name_only() {
     let case = switched_belt();
     let tolerances = [1e-6, 1e-8];
     let run = |own: &'static Named| {
-        let methods = [Method::of(Solver::DOPRI5), Method::of(Solver::own(own))];
+        let methods = [
+            Method::events(Solver::DOPRI5),
+            Method::events(Solver::own(own)),
+        ];
         work_precision(&case, &methods, &[], &tolerances, 0, &|| {})
     };
     // Under a name of its own: the same runs as the built-in method it wraps.
@@ -848,20 +899,17 @@ fn an_own_method_is_studied_beside_the_built_ins_under_its_own_name_only() {
     assert!(message.contains("both named `dopri5`"), "{message}");
 }
 
-/// A time-stepped study runs one method, Moreau–Jean (it takes no solver: the three asked
-/// for would name the same runs), over the step sizes, against the case's closed form; on
+/// A time-stepped study runs one method, Moreau–Jean (it takes no solver), over the step
+/// sizes, against the case's closed form; on
 /// the smooth viscous block θ = 1/2 is the trapezoidal rule (order 2) and θ = 1 implicit
 /// Euler (order 1).
 #[test]
 fn a_time_stepped_study_measures_moreau_jeans_order_under_its_own_name() {
-    let solvers = [Solver::RK4, Solver::DOPRI5, Solver::IMPLICIT_EULER];
     let steps = [0.04, 0.02, 0.01, 0.005];
+    let case = viscous_block();
     for (theta, order) in [(0.5, 2.0), (1.0, 1.0)] {
-        let case = Case {
-            switching: SwitchingKind::TimeStepping { theta },
-            ..viscous_block()
-        };
-        let c = convergence(&case, &solvers, &steps, &[1e-6], &|| {}).unwrap();
+        let stepped = [Method::of(Scheme::TimeStepping { theta })];
+        let c = convergence(&case, &stepped, &steps, &[1e-6], &|| {}).unwrap();
         assert!(matches!(c.reference, Reference::ClosedForm(_)));
         let labels: Vec<&str> = c.runs.iter().map(|r| r.solver.as_str()).collect();
         assert_eq!(labels, ["moreau-jean (timestepping)"; 4], "θ = {theta}");
@@ -888,11 +936,9 @@ fn a_time_stepped_study_measures_moreau_jeans_order_under_its_own_name() {
 #[test]
 fn a_time_stepped_study_without_a_closed_form_takes_the_event_driven_reference() {
     use scenarios::studies::reference;
-    let stepped = Case {
-        switching: SwitchingKind::TimeStepping { theta: 0.5 },
-        ..switched_belt()
-    };
-    let c = convergence(&stepped, &[Solver::DOPRI5], &[0.01, 0.005], &[1e-6], &|| {}).unwrap();
+    let belt = switched_belt();
+    let stepped = [Method::of(Scheme::TimeStepping { theta: 0.5 })];
+    let c = convergence(&belt, &stepped, &[0.01, 0.005], &[1e-6], &|| {}).unwrap();
     let Reference::Run { solver, .. } = c.reference else {
         panic!("{:?}", c.reference)
     };
@@ -901,8 +947,8 @@ fn a_time_stepped_study_without_a_closed_form_takes_the_event_driven_reference()
         "the time-stepped method is not a solver studied"
     );
     assert!(c.runs.iter().all(|r| r.failure.is_none()));
-    let (_, stepped_reference) = reference(&stepped, &[]).unwrap();
-    let (_, event_reference) = reference(&switched_belt(), &[]).unwrap();
+    let (_, stepped_reference) = reference(&belt, &stepped).unwrap();
+    let (_, event_reference) = reference(&belt, &[]).unwrap();
     assert_eq!(
         stepped_reference.final_state, event_reference.final_state,
         "the same run"
@@ -921,7 +967,7 @@ fn a_law_with_an_internal_state_has_its_error_in_z() {
         t_end: 2.0,
         ..viscous_block()
     };
-    let bdf = Solver::BDF;
+    let bdf = Method::events(Solver::BDF);
     let c = convergence(&case, &[bdf], &[], &[1e-5, 1e-7], &|| {}).unwrap();
     for r in &c.runs {
         let e = r.errors;
@@ -946,21 +992,21 @@ fn a_law_with_an_internal_state_has_its_error_in_z() {
 /// stiff keeps the explicit pair.
 #[test]
 fn a_stiff_case_has_an_implicit_reference_checked_by_an_explicit_one() {
-    let belt = |switching, epsilon| {
-        let mut friction = FrictionParams::paper();
-        friction.epsilon = epsilon;
-        Case {
-            scenario: Scenario::BELT,
-            law: ModelId::Cs.into(),
-            friction,
-            params: Scenario::BELT.defaults(),
-            switching,
-            t_end: 2.0,
-            ..viscous_block()
-        }
+    let belt = Case {
+        scenario: Scenario::BELT,
+        law: ModelId::Cs.into(),
+        params: Scenario::BELT.defaults(),
+        t_end: 2.0,
+        ..viscous_block()
     };
-    let stiff = belt(SwitchingKind::Regularized, 1e-4);
-    let (r, _) = scenarios::studies::reference(&stiff, &[Solver::RK4]).unwrap();
+    let rk4 = |switching| {
+        Method::of(Scheme::EventDriven {
+            solver: Solver::RK4,
+            switching,
+        })
+    };
+    let regularized = rk4(Switching::Regularized { epsilon: 1e-4 });
+    let (r, _) = scenarios::studies::reference(&belt, &[regularized]).unwrap();
     let Reference::Run {
         solver,
         cross_check: (check, estimate),
@@ -975,8 +1021,7 @@ fn a_stiff_case_has_an_implicit_reference_checked_by_an_explicit_one() {
     let t = stiffness_detected_at.expect("judged stiff");
     assert!(t > 0.0 && t < 2.0, "{t}");
     assert!(estimate > 0.0 && estimate < 1e-7, "{estimate}");
-    let smooth = belt(SwitchingKind::Event, 1e-4);
-    let (r, _) = scenarios::studies::reference(&smooth, &[Solver::RK4]).unwrap();
+    let (r, _) = scenarios::studies::reference(&belt, &[rk4(Switching::Event)]).unwrap();
     let Reference::Run {
         solver,
         stiffness_detected_at: None,

@@ -1,10 +1,11 @@
 //! A rig is a system of one body: the same system written as a file runs to the same numbers.
 
 use friction_models::{FrictionParams, ModelId};
+use friction_systems::Scheme;
 use friction_systems::{file, simulate};
 use integrators::{Solver, StepControl};
 use scenarios::run::options;
-use scenarios::{run, Limits, RunSpec, Scenario, SwitchingKind};
+use scenarios::{run, Limits, RunSpec, Scenario};
 
 #[test]
 fn a_one_body_system_file_equals_the_belt_rig() {
@@ -13,8 +14,7 @@ fn a_one_body_system_file_equals_the_belt_rig() {
         law: ModelId::Cvs.into(),
         friction: FrictionParams::paper(),
         params: Scenario::BELT.defaults(),
-        solver: Solver::DOPRI5,
-        switching: SwitchingKind::Event,
+        scheme: Scheme::events(Solver::DOPRI5),
         step: StepControl::Adaptive {
             rtol: 1e-9,
             atol: 1e-11,
@@ -40,13 +40,7 @@ fn a_one_body_system_file_equals_the_belt_rig() {
         model = "CVS"
     "#;
     let system = file::parse(text).unwrap();
-    let sys = simulate(
-        &system,
-        spec.switching.scheme(spec.solver, &spec.friction),
-        options(&spec, 10.0),
-        &mut |_| {},
-    )
-    .unwrap();
+    let sys = simulate(&system, spec.scheme, options(&spec, 10.0), &mut |_| {}).unwrap();
     let body = sys.body(0);
     assert_eq!(body.len(), rig.rows.len());
     for (b, r) in body.iter().zip(&rig.rows) {

@@ -9,28 +9,32 @@
 //! Newton's method alone cycled.
 
 use friction_models::{FrictionParams, ModelId};
+use friction_systems::Scheme;
 use integrators::{Solver, StepControl};
-use scenarios::{run, Limits, Outcome, RunSpec, Scenario, ScenarioParams, SwitchingKind};
+use scenarios::{run, Limits, Outcome, RunSpec, Scenario, ScenarioParams};
 
 const T_END: f64 = 2.0;
 
-fn outcome(scenario: Scenario, model: ModelId, switching: SwitchingKind) -> Outcome {
-    outcome_with(scenario, scenario.defaults(), model, switching, 1e-3)
+fn outcome(scenario: Scenario, model: ModelId, time_stepped: bool) -> Outcome {
+    outcome_with(scenario, scenario.defaults(), model, time_stepped, 1e-3)
 }
 
-/// The run of `model` on `scenario` with `params`: time-stepped with step h, or event-driven
-/// by BDF at rtol 1e-10.
+/// The run of `model` on `scenario` with `params`: time-stepped (θ = 1/2) with step h, or
+/// event-driven by BDF at rtol 1e-10.
 fn outcome_with(
     scenario: Scenario,
     params: ScenarioParams,
     model: ModelId,
-    switching: SwitchingKind,
+    time_stepped: bool,
     h: f64,
 ) -> Outcome {
-    let (solver, step) = match switching {
-        SwitchingKind::TimeStepping { .. } => (Solver::RK4, StepControl::Fixed { h }),
-        _ => (
-            Solver::from_name("bdf").expect("a solver"),
+    let (scheme, step) = match time_stepped {
+        true => (
+            Scheme::TimeStepping { theta: 0.5 },
+            StepControl::Fixed { h },
+        ),
+        false => (
+            Scheme::events(Solver::BDF),
             StepControl::Adaptive {
                 rtol: 1e-10,
                 atol: 1e-13,
@@ -43,8 +47,7 @@ fn outcome_with(
         law: model.into(),
         friction: FrictionParams::paper(),
         params,
-        solver,
-        switching,
+        scheme,
         step,
         t_end: Some(T_END),
         output_points: 21,
@@ -62,9 +65,9 @@ fn slow_sliding_with_an_internal_state_is_time_stepped_through_and_agrees_with_b
         (Scenario::FREE_VIBRATION, ModelId::LuGreVd),
     ] {
         let case = format!("{scenario:?}, {model:?}");
-        let stepped = outcome(scenario, model, SwitchingKind::TimeStepping { theta: 0.5 });
+        let stepped = outcome(scenario, model, true);
         assert!(stepped.error.is_none(), "{case}: {:?}", stepped.error);
-        let reference = outcome(scenario, model, SwitchingKind::Event);
+        let reference = outcome(scenario, model, false);
         assert!(reference.error.is_none(), "{case}: {:?}", reference.error);
         let (a, b) = (stepped.last().unwrap(), reference.last().unwrap());
         assert_eq!((a.t, b.t), (T_END, T_END), "{case}");
@@ -85,15 +88,14 @@ fn fast_sliding_with_the_elasto_plastic_model_is_time_stepped_through_and_agrees
         ..Scenario::BELT.defaults()
     };
     let model = ModelId::ElastoPlastic;
-    let reference = outcome_with(Scenario::BELT, params, model, SwitchingKind::Event, 0.0);
+    let reference = outcome_with(Scenario::BELT, params, model, false, 0.0);
     assert!(reference.error.is_none(), "{:?}", reference.error);
     let b = reference.last().unwrap();
     let scale = reference.rows.iter().map(|r| r.x.abs()).fold(0.0, f64::max);
     // Observed: 3.3e-3 of the largest displacement at h = 1e-3, 1.8e-5 at h = 2.5e-4 (the
     // stick-slip cycle's switches make the error uneven in h).
     for (h, bound) in [(1e-3, 1e-2), (2.5e-4, 1e-4)] {
-        let theta = SwitchingKind::TimeStepping { theta: 0.5 };
-        let stepped = outcome_with(Scenario::BELT, params, model, theta, h);
+        let stepped = outcome_with(Scenario::BELT, params, model, true, h);
         assert!(stepped.error.is_none(), "h = {h}: {:?}", stepped.error);
         let a = stepped.last().unwrap();
         assert_eq!((a.t, b.t), (T_END, T_END));

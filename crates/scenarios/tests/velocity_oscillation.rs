@@ -1,8 +1,9 @@
 //! The velocity-oscillation rig, v = v_mean + v_amplitude·cos(omega·t), against closed forms.
 
 use friction_models::{FrictionParams, ModelId};
+use friction_systems::Scheme;
 use integrators::{Solver, StepControl};
-use scenarios::{run, Limits, Outcome, RunSpec, Scenario, SwitchingKind};
+use scenarios::{run, Limits, Outcome, RunSpec, Scenario};
 use std::f64::consts::PI;
 
 fn oscillate(model: ModelId) -> Outcome {
@@ -11,8 +12,7 @@ fn oscillate(model: ModelId) -> Outcome {
         law: model.into(),
         friction: FrictionParams::paper(),
         params: Scenario::VELOCITY_OSCILLATION.defaults(),
-        solver: Solver::DOPRI5,
-        switching: SwitchingKind::Event,
+        scheme: Scheme::events(Solver::DOPRI5),
         step: StepControl::Adaptive {
             rtol: 1e-10,
             atol: 1e-12,

@@ -4,9 +4,11 @@
 
 use super::Part;
 use crate::error::AppError;
+use crate::study::solver_studies::system_peers;
 use crate::study::{conduct_all, Entry, ReportEntry, ScalingStudy, Target, WorkPrecisionStudy};
 use friction_models::{FrictionParams, ModelId, Variant};
 use friction_systems::chain::ChainParams;
+use friction_systems::Scheme;
 use integrators::{Solver, StepControl};
 use scenarios::studies::{Method, Scaling, StudyCase, SystemCase, WorkPrecision};
 use std::sync::Arc;
@@ -17,7 +19,7 @@ const PRELOAD_X0: f64 = -0.7;
 /// The chain of `docs/systems.md` (`static` friction: stiction on every block) with `n` blocks,
 /// every block started at x0 = −0.7 m (its driver spring loaded to 7 N, just below the
 /// break-away level 7.5 N, so that the blocks break away within the first second), as a study
-/// case over `t_end` seconds, event-driven.
+/// case over `t_end` seconds.
 fn chain_case(n: usize, friction: &FrictionParams, t_end: f64) -> Result<SystemCase, AppError> {
     let mut system = ChainParams {
         n_bodies: n,
@@ -30,14 +32,11 @@ fn chain_case(n: usize, friction: &FrictionParams, t_end: f64) -> Result<SystemC
         b.x0 = PRELOAD_X0;
     }
     // Pre-loaded after it was built: not the chain its parameters build, so no `chain`.
-    Ok(SystemCase {
-        epsilon: friction.epsilon,
-        ..SystemCase::new(
-            format!("chain of {n} blocks with static friction"),
-            system,
-            t_end,
-        )
-    })
+    Ok(SystemCase::new(
+        format!("chain of {n} blocks with static friction"),
+        system,
+        t_end,
+    ))
 }
 
 /// The report's section on the chain: work–precision at N = 100 and the cost per step against
@@ -91,8 +90,8 @@ impl Part for ChainStudies {
             atol: 1e-6,
             h0: None,
         };
-        let mut methods = vec![(Method::of(Solver::DOPRI5), adaptive)];
-        methods.extend(cases[0].1.peers().into_iter().map(|m| {
+        let mut methods = vec![(Method::of(Scheme::events(Solver::DOPRI5)), adaptive)];
+        methods.extend(system_peers(friction.epsilon).into_iter().map(|m| {
             let step = if m.is_fixed_step() {
                 StepControl::Fixed { h: 1e-3 }
             } else {
@@ -101,12 +100,17 @@ impl Part for ChainStudies {
             (m, step)
         }));
         let epsilon = friction.epsilon;
+        let chain_methods: Vec<Method> = [Solver::DOPRI5, Solver::BDF]
+            .map(|s| Method::of(Scheme::events(s)))
+            .into_iter()
+            .chain(system_peers(epsilon))
+            .collect();
         let table: [&dyn ReportEntry; 2] = [
             &Entry {
                 stem: "work-precision-chain-100",
                 study: WorkPrecisionStudy {
                     case: &chain_100,
-                    solvers: &[Solver::DOPRI5, Solver::BDF],
+                    methods: &chain_methods,
                     steps: &[0.01, 0.00464, 0.00215, 0.001, 0.000464],
                     tols: &[
                         1e-4, 4.64e-5, 2.15e-5, 1e-5, 4.64e-6, 2.15e-6, 1e-6, 4.64e-7, 2.15e-7,

@@ -10,27 +10,30 @@ use crate::study::{
     StiffnessStudy, Target, WorkPrecisionStudy,
 };
 use friction_models::{FrictionParams, ModelId};
+use friction_systems::{Scheme, Switching};
 use integrators::Solver;
-use scenarios::studies::{Case, Convergence, ErrorMeasure, Independence, Stiffness, WorkPrecision};
-use scenarios::{Limits, Scenario, SwitchingKind};
+use scenarios::studies::{
+    Case, Convergence, ErrorMeasure, Independence, Method, Stiffness, WorkPrecision,
+};
+use scenarios::{Limits, Scenario};
 
 /// A study case on the paper's parameters.
-fn case(
-    scenario: Scenario,
-    model: ModelId,
-    switching: SwitchingKind,
-    friction: &FrictionParams,
-    t_end: f64,
-) -> Case {
+fn case(scenario: Scenario, model: ModelId, friction: &FrictionParams, t_end: f64) -> Case {
     Case {
         scenario,
         law: model.into(),
         friction: *friction,
         params: scenario.defaults(),
-        switching,
         t_end,
         limits: Limits::default(),
     }
+}
+
+/// Each of `solvers` under `switching`, studied.
+fn under(switching: Switching, solvers: &[Solver]) -> Vec<Method> {
+    (solvers.iter())
+        .map(|&solver| Method::of(Scheme::EventDriven { solver, switching }))
+        .collect()
 }
 
 fn observed_orders(c: &Convergence, measure: ErrorMeasure) -> String {
@@ -73,50 +76,33 @@ impl Part for SolverStudies {
             levels: 4,
             tol: 1e-6,
         };
-        let rk4 = [Solver::RK4];
-        let native = [Solver::RK4, Solver::DOPRI5, Solver::IMPLICIT_EULER];
-        let steps = [0.02, 0.01, 0.005, 0.0025];
-        let all = Solver::ALL;
-        let explicit_implicit = [
-            Solver::DOPRI5,
-            Solver::TSIT45,
-            Solver::IMPLICIT_EULER,
-            Solver::BDF,
-            Solver::ESDIRK34,
-        ];
-        let block_cvs = case(
-            Scenario::PAPER_BLOCK,
-            ModelId::Cvs,
-            SwitchingKind::Event,
-            friction,
-            5.0,
-        );
-        let block_av = case(
-            Scenario::PAPER_BLOCK,
-            ModelId::Av,
-            SwitchingKind::Event,
-            friction,
-            5.0,
-        );
-        let vibration = |switching| {
-            case(
-                Scenario::FREE_VIBRATION,
-                ModelId::Static,
-                switching,
-                friction,
-                2.0,
-            )
+        let (event, naive) = (Switching::Event, Switching::Naive);
+        let regularized = Switching::Regularized {
+            epsilon: friction.epsilon,
         };
-        let (naive, switched) = (
-            vibration(SwitchingKind::Naive),
-            vibration(SwitchingKind::Event),
+        let rk4 = Method::of(Scheme::events(Solver::RK4));
+        let native = under(
+            event,
+            &[Solver::RK4, Solver::DOPRI5, Solver::IMPLICIT_EULER],
         );
-        let belt = |switching, t_end| case(Scenario::BELT, ModelId::Cs, switching, friction, t_end);
-        let (belt_naive, belt_event) = (
-            belt(SwitchingKind::Naive, 20.0),
-            belt(SwitchingKind::Event, 5.0),
+        let steps = [0.02, 0.01, 0.005, 0.0025];
+        let all = under(event, &Solver::ALL);
+        let explicit_implicit = under(
+            regularized,
+            &[
+                Solver::DOPRI5,
+                Solver::TSIT45,
+                Solver::IMPLICIT_EULER,
+                Solver::BDF,
+                Solver::ESDIRK34,
+            ],
         );
-        let belt_regularized = belt(SwitchingKind::Regularized, 2.0);
+        let rk4_naive = under(naive, &[Solver::RK4]);
+        let block_cvs = case(Scenario::PAPER_BLOCK, ModelId::Cvs, friction, 5.0);
+        let block_av = case(Scenario::PAPER_BLOCK, ModelId::Av, friction, 5.0);
+        let vibration = case(Scenario::FREE_VIBRATION, ModelId::Static, friction, 2.0);
+        let belt = |t_end| case(Scenario::BELT, ModelId::Cs, friction, t_end);
+        let (belt_naive, belt_event, belt_regularized) = (belt(20.0), belt(5.0), belt(2.0));
         let independent = |i: &scenarios::studies::Independence| {
             if i.independent {
                 "independent"
@@ -124,9 +110,9 @@ impl Part for SolverStudies {
                 "**not** independent"
             }
         };
-        let convergence = |case| ConvergenceStudy {
-            case,
-            solvers: &rk4,
+        let convergence = |methods| ConvergenceStudy {
+            case: &vibration,
+            methods,
             steps: &steps,
             tols: &[1e-6],
         };
@@ -134,8 +120,8 @@ impl Part for SolverStudies {
             &Entry {
                 stem: "converge-paper-block-CVS",
                 study: ConvergenceStudy {
-                    solvers: &native,
-                    ..convergence(&block_cvs)
+                    case: &block_cvs,
+                    ..convergence(&native)
                 },
                 reads: |c: &Convergence| {
                     format!(
@@ -148,7 +134,7 @@ impl Part for SolverStudies {
             },
             &Entry {
                 stem: "converge-free-vibration-naive",
-                study: convergence(&naive),
+                study: convergence(&rk4_naive),
                 reads: |c: &Convergence| {
                     format!(
                         "- [Stepping blindly through v = 0](studies/converge-free-vibration-naive.png) \
@@ -160,7 +146,7 @@ impl Part for SolverStudies {
             },
             &Entry {
                 stem: "converge-free-vibration-event",
-                study: convergence(&switched),
+                study: convergence(std::slice::from_ref(&rk4)),
                 reads: |c: &Convergence| {
                     format!(
                         "- [The same with event-located switching](studies/converge-free-vibration-event.png): \
@@ -173,7 +159,7 @@ impl Part for SolverStudies {
                 stem: "independence-paper-block-AV",
                 study: IndependenceStudy {
                     case: &block_av,
-                    solver: Solver::RK4,
+                    method: rk4,
                     refinement: from_paper_dt,
                 },
                 reads: |i: &Independence| {
@@ -188,7 +174,7 @@ impl Part for SolverStudies {
                 stem: "independence-belt-CS-naive",
                 study: IndependenceStudy {
                     case: &belt_naive,
-                    solver: Solver::RK4,
+                    method: rk4_naive[0],
                     refinement: from_paper_dt,
                 },
                 reads: |i: &Independence| {
@@ -202,7 +188,7 @@ impl Part for SolverStudies {
                 stem: "work-precision-belt-CS",
                 study: WorkPrecisionStudy {
                     case: &belt_event,
-                    solvers: &all,
+                    methods: &all,
                     steps: &[0.01, 0.003, 0.001, 0.0003],
                     tols: &[
                         0.001, 0.000464, 0.000215, 0.0001, 4.64e-5, 2.15e-5, 1e-5, 4.64e-6,
@@ -227,7 +213,7 @@ impl Part for SolverStudies {
                         values: &[1.0, 1e-1, 1e-2, 1e-3, 1e-4],
                         target: 1e-3,
                     },
-                    solvers: &explicit_implicit,
+                    methods: &explicit_implicit,
                     steps: &[0.01],
                     tols: &[
                         0.01, 0.00464, 0.00215, 0.001, 0.000464, 0.000215, 0.0001, 4.64e-05,

@@ -231,8 +231,7 @@ impl Simulation {
             law: model.law(self.model_settings.variant),
             friction,
             params,
-            solver: self.solver.solver(),
-            switching: self.solver.switching(),
+            scheme: self.solver.scheme(friction.epsilon)?,
             step,
             t_end: self.t_end,
             output_points: self.checked_points()?.unwrap_or(RIG_POINTS),
@@ -296,7 +295,7 @@ impl Simulation {
         unread_warnings(
             &self.model_settings.params.set,
             model,
-            self.solver.switching(),
+            self.solver.scheme.unread_epsilon(),
         )
         .into_iter()
         .chain(self.solver.scheme.spelling_notes())
@@ -332,8 +331,7 @@ impl Simulation {
         let points = self.system_points(friction_systems::Layout::of(&described.system).dim())?;
         let run = SystemRun {
             described: &described,
-            switching: self.solver.switching(),
-            solver: self.solver.solver(),
+            scheme: self.solver.scheme(described.friction.epsilon)?,
             options: self.grid_options(t_end, points)?,
             bodies: &bodies,
             variant: (self.model.as_ref())

@@ -10,10 +10,8 @@ use crate::laws::ModelChoice;
 use crate::plot::{Corner, Marker, Plot, Series, BLUE};
 use crate::progress::Progress;
 use crate::run_record::{
-    event_counts, scheme_parameters, Integrated, RunRecord, RunSetup, RunSummary, StiffnessSummary,
-    RIG_BODY,
+    event_counts, Integrated, RunRecord, RunSetup, RunSummary, StiffnessSummary, RIG_BODY,
 };
-use crate::scheme::SchemeName;
 use crate::trajectory::{Trajectory, TrajectoryAs};
 use crate::warnings::{coarse_step_warning, failure_warnings, stiffness_warning};
 use crate::window::Window;
@@ -222,7 +220,7 @@ pub fn simulate_rig(
     let t_end = spec
         .t_end
         .unwrap_or_else(|| spec.scenario.default_t_end(&spec.params, &spec.friction));
-    let method = spec.switching.method(spec.solver);
+    let method = spec.scheme.method_name();
     let what = format!("{} {model} {method}", spec.scenario);
     let bar = Progress::time(t_end, &what);
     let outcome = scenarios::run_measuring_stiffness(spec, &mut |t| {
@@ -237,7 +235,7 @@ pub fn simulate_rig(
     let name = format!(
         "{} with {model} ({method}, {} switching{})",
         spec.scenario,
-        spec.switching.name(),
+        spec.scheme.treatment_name(),
         Window::note(window)
     );
     let mut files = Artifacts::default();
@@ -254,7 +252,7 @@ pub fn simulate_rig(
         let value = spec.params.value(p).expect("scenario parameters exist");
         parameters.insert(p.to_string(), value);
     }
-    parameters.extend(scheme_parameters(spec.switching, &spec.friction));
+    parameters.extend(spec.scheme.parameter().map(|(k, v)| (k.to_string(), v)));
     let setup = RunSetup {
         system: spec.scenario.name().to_string(),
         model: Some(model.name().to_string()),
@@ -264,9 +262,9 @@ pub fn simulate_rig(
         },
         n_bodies: 1,
         n_contacts: 1,
-        scheme: SchemeName::of(spec.switching).name(),
+        scheme: spec.scheme.name(),
         solver: method,
-        switching: spec.switching.name(),
+        switching: spec.scheme.treatment_name(),
         step: spec.step,
         t_end,
         parameters,
@@ -283,12 +281,11 @@ pub fn simulate_rig(
             .collect(),
         warnings: outcome
             .stiffness_detected_at
-            .map(|t| stiffness_warning(spec.solver.name(), t))
+            .map(|t| stiffness_warning(method, t))
             .into_iter()
             .chain(coarse_step_warning(spec.step, outcome.time_scale))
             .chain(failure_warnings(
-                spec.solver,
-                spec.switching,
+                spec.scheme,
                 spec.step,
                 t_end,
                 outcome.time_scale,

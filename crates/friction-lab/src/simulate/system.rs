@@ -12,18 +12,17 @@ use crate::output::counted;
 use crate::progress::Progress;
 use crate::ranges;
 use crate::run_record::{
-    event_counts, scheme_parameters, Integrated, RunRecord, RunSetup, RunSummary, StiffnessSummary,
+    event_counts, Integrated, RunRecord, RunSetup, RunSummary, StiffnessSummary,
 };
-use crate::scheme::SchemeName;
 use crate::trajectory::{Trajectory, TrajectoryAs};
 use crate::window::Window;
 use friction_models::{FrictionParams, Variant};
 use friction_systems::file::SystemSource;
-use friction_systems::{Run, System, SLIP_POSITIVE};
-use integrators::{Options, Solver};
+use friction_systems::{Run, Scheme, System, SLIP_POSITIVE};
+use integrators::Options;
 use scenarios::analysis::closed_loop::ClosedLoop;
 use scenarios::chain::ChainSource;
-use scenarios::{Row, SwitchingKind};
+use scenarios::Row;
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -107,10 +106,8 @@ fn common_model(system: &System) -> Option<String> {
 pub struct SystemRun<'a> {
     /// The system, its name and parameters.
     pub described: &'a Described,
-    /// The treatment of v = 0, or time-stepping.
-    pub switching: SwitchingKind,
-    /// The solver of event-driven integration.
-    pub solver: Solver,
+    /// The scheme.
+    pub scheme: Scheme,
     /// The step control, bounds and output grid; its `t_end` is the run's.
     pub options: Options,
     /// The bodies written to `trajectory.csv` (0-based); the line figures draw a few spread over
@@ -163,8 +160,7 @@ pub fn simulate_system(
 ) -> Result<Made, AppError> {
     let SystemRun {
         described,
-        switching,
-        solver,
+        scheme,
         options,
         bodies,
         variant,
@@ -174,13 +170,12 @@ pub fn simulate_system(
         system,
         name,
         parameters,
-        friction,
         source,
+        ..
     } = described;
     let mut parameters = parameters.clone();
-    parameters.extend(scheme_parameters(switching, friction));
+    parameters.extend(scheme.parameter().map(|(k, v)| (k.to_string(), v)));
     system.validate()?;
-    let scheme = switching.scheme(solver, friction);
     let t_end = options.t_end;
     let step = options.step;
     let method = scheme.method_name();
@@ -198,7 +193,7 @@ pub fn simulate_system(
 
     let title = format!(
         "{name} ({method}, {} switching{})",
-        switching.name(),
+        scheme.treatment_name(),
         Window::note(window)
     );
     let mut files = Artifacts::default();
@@ -232,9 +227,9 @@ pub fn simulate_system(
         variant,
         n_bodies: system.bodies.len(),
         n_contacts: system.contacts.len(),
-        scheme: SchemeName::of(switching).name(),
+        scheme: scheme.name(),
         solver: method,
-        switching: switching.name(),
+        switching: scheme.treatment_name(),
         step,
         t_end,
         parameters,
@@ -288,8 +283,7 @@ pub fn simulate_system(
             .into_iter()
             .chain(crate::warnings::coarse_step_warning(step, period))
             .chain(crate::warnings::failure_warnings(
-                solver,
-                switching,
+                scheme,
                 step,
                 t_end,
                 period,

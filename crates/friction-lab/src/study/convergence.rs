@@ -7,16 +7,17 @@ use super::tables::runs_table;
 use super::{check_lists, study_file, Study, StudyFiles};
 use crate::error::AppError;
 use crate::plot::{Corner, Plot};
-use integrators::Solver;
-use scenarios::studies::{self, Convergence, ErrorMeasure, OrderTable, StepKind, StudyCase};
+use scenarios::studies::{
+    self, Convergence, ErrorMeasure, Method, OrderTable, StepKind, StudyCase,
+};
 
-/// Every solver of `solvers` on `case` at the fixed step sizes `steps` (those that take fixed
+/// Every method of `methods` on `case` at the fixed step sizes `steps` (those that take fixed
 /// steps) or at the tolerances `tols` (rtol = atol), against one reference.
 pub struct ConvergenceStudy<'a> {
     /// The problem.
     pub case: &'a dyn StudyCase,
-    /// The solvers, each once.
-    pub solvers: &'a [Solver],
+    /// The methods, each solver once.
+    pub methods: &'a [Method],
     /// Step sizes, coarse to fine.
     pub steps: &'a [f64],
     /// Tolerances, loose to tight.
@@ -31,18 +32,15 @@ impl Study for ConvergenceStudy<'_> {
     }
 
     fn check(&self) -> Result<(), AppError> {
-        check_lists(self.solvers, self.steps, self.tols)
+        check_lists(self.methods, self.steps, self.tols)
     }
 
     fn runs(&self) -> usize {
-        self.solvers
-            .iter()
-            .map(|&s| studies::steps_for(s, self.steps, self.tols, true).len())
-            .sum()
+        Method::jobs(self.methods, self.steps, self.tols, true).len()
     }
 
     fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<Convergence, AppError> {
-        studies::convergence(self.case, self.solvers, self.steps, self.tols, progress)
+        studies::convergence(self.case, self.methods, self.steps, self.tols, progress)
             .map_err(AppError::from)
     }
 
@@ -56,7 +54,7 @@ impl Study for ConvergenceStudy<'_> {
         let case = self.case;
         let csv = out.path(".csv");
         out.files.add_table(csv.clone(), runs_table(&c.runs))?;
-        out.add_json(&study_file(case, c))?;
+        out.add_json(&study_file(case, self.methods, c))?;
         // Step sizes and tolerances are different things: one panel each, each fitted slope
         // drawn through the asymptotic range it rests on.
         let panel = |step: StepKind, x_label: &str| {
@@ -71,7 +69,11 @@ impl Study for ConvergenceStudy<'_> {
                 .collect();
             series.extend(fitted_guides(&tables));
             Plot {
-                title: format!("Convergence ({} steps): {}", step.name(), case.describe()),
+                title: format!(
+                    "Convergence ({} steps): {}",
+                    step.name(),
+                    studies::describe(case, self.methods)
+                ),
                 x_label: x_label.into(),
                 y_label: ErrorMeasure::GridRelative.label().into(),
                 series,

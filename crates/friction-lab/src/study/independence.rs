@@ -7,8 +7,7 @@ use crate::error::AppError;
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Marker, Plot, Series, PALETTE};
 use crate::ranges;
-use integrators::Solver;
-use scenarios::studies::{self, Independence, StudyCase};
+use scenarios::studies::{self, Independence, Method, StudyCase};
 
 /// The levels of an independence study; by default four levels from 1e-3, halved each time,
 /// judged at a relative tolerance of 1e-6 (the declared defaults).
@@ -50,13 +49,13 @@ pub struct Refinement {
 
 crate::settings::default_as_declared!(Refinement);
 
-/// `solver` on `case` at the levels of `refinement`: `start`, `start/ratio`, … (step sizes
+/// `method` on `case` at the levels of `refinement`: `start`, `start/ratio`, … (step sizes
 /// for a fixed-step solver or time-stepping, else tolerances).
 pub struct IndependenceStudy<'a> {
     /// The problem.
     pub case: &'a dyn StudyCase,
-    /// The solver.
-    pub solver: Solver,
+    /// The method.
+    pub method: Method,
     /// The levels and the verdict's tolerance.
     pub refinement: Refinement,
 }
@@ -71,7 +70,7 @@ impl Study for IndependenceStudy<'_> {
     /// Each of `tol`, `ratio` and `levels` in its range, and every level in the range of a
     /// step size or a tolerance.
     fn check(&self) -> Result<(), AppError> {
-        let (case, solver) = (self.case, self.solver);
+        let method = self.method;
         let Refinement {
             start,
             ratio,
@@ -82,7 +81,7 @@ impl Study for IndependenceStudy<'_> {
         ranges::RATIO.check(ratio)?;
         ranges::LEVELS.count(levels)?;
         // Every level is a step size (fixed-step solvers) or a tolerance, in that option's range.
-        let resolution = if solver.is_fixed_step() || case.switching().is_time_stepping() {
+        let resolution = if method.is_fixed_step() {
             ranges::DT
         } else {
             ranges::RTOL
@@ -96,7 +95,7 @@ impl Study for IndependenceStudy<'_> {
                     "option `start` = {} (finest level {finest:e}) is out of range for {}: every \
              level must lie in {} (the range of --{})",
                     ranges::show(start),
-                    solver.name(),
+                    method.label(),
                     resolution.range,
                     resolution.name
                 ))
@@ -112,7 +111,7 @@ impl Study for IndependenceStudy<'_> {
         let r = self.refinement;
         studies::independence(
             self.case,
-            self.solver,
+            self.method,
             r.start,
             r.ratio,
             r.levels as usize,
@@ -177,7 +176,7 @@ impl Study for IndependenceStudy<'_> {
         }
         let csv = out.path(".csv");
         out.files.add_table(csv.clone(), table)?;
-        out.add_json(&study_file(case, s))?;
+        out.add_json(&study_file(case, &[self.method], s))?;
         let series = s
             .trajectories
             .iter()
@@ -198,7 +197,7 @@ impl Study for IndependenceStudy<'_> {
         let plot = Plot {
             title: format!(
                 "Independence: {}: {}",
-                case.describe(),
+                studies::describe(case, &[self.method]),
                 if s.independent {
                     "independent".to_string()
                 } else if s.failed.is_empty() {

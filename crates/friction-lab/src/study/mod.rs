@@ -44,9 +44,9 @@ use crate::error::AppError;
 use crate::progress::Progress;
 use crate::provenance::Provenance;
 use crate::threads::with_threads;
+use friction_systems::{Scheme, Switching};
 use integrators::Solver;
-use scenarios::studies::{Method, StepKind, StudyCase, StudyRun};
-use scenarios::SwitchingKind;
+use scenarios::studies::{self, Method, StepKind, StudyCase, StudyRun};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 
@@ -195,25 +195,52 @@ pub struct StudyFile<'a, T: Serialize> {
 #[derive(Serialize)]
 pub struct CaseRecord {
     description: String,
-    switching: SwitchingKind,
+    switching: TreatmentRecord,
     t_end: f64,
 }
 
+/// The studied treatment of v = 0 as a study's JSON writes it: `"event"`, `"regularized"`,
+/// `"naive"`, or `{"timestepping": {"theta": θ}}`.
+#[derive(Serialize)]
+#[serde(rename_all = "lowercase")]
+enum TreatmentRecord {
+    Event,
+    Regularized,
+    Naive,
+    TimeStepping { theta: f64 },
+}
+
 impl CaseRecord {
-    /// The record of `case`.
-    pub fn of(case: &dyn StudyCase) -> CaseRecord {
+    /// The record of `case` studied with `methods`.
+    pub fn of(case: &dyn StudyCase, methods: &[Method]) -> CaseRecord {
+        let switching = match Method::first_studied(methods).map(|m| m.scheme) {
+            Some(Scheme::TimeStepping { theta }) => TreatmentRecord::TimeStepping { theta },
+            Some(Scheme::EventDriven {
+                switching: Switching::Regularized { .. },
+                ..
+            }) => TreatmentRecord::Regularized,
+            Some(Scheme::EventDriven {
+                switching: Switching::Naive,
+                ..
+            }) => TreatmentRecord::Naive,
+            _ => TreatmentRecord::Event,
+        };
         CaseRecord {
-            description: case.describe(),
-            switching: case.switching(),
+            description: studies::describe(case, methods),
+            switching,
             t_end: case.t_end(),
         }
     }
 }
 
-/// `study` of `case`, for its JSON.
-pub fn study_file<'a, T: Serialize>(case: &dyn StudyCase, study: &'a T) -> StudyFile<'a, T> {
+/// `study` of `case` with `methods`, for its JSON.
+pub fn study_file<'a, T: Serialize>(
+    case: &dyn StudyCase,
+    methods: &[Method],
+    study: &'a T,
+) -> StudyFile<'a, T> {
     StudyFile {
-        case: CaseRecord::of(case),
+        case: CaseRecord::of(case, methods),
         study,
     }
 }
@@ -229,30 +256,10 @@ pub fn distinct(solvers: &[Solver]) -> Result<(), AppError> {
     }
 }
 
-/// The methods a study of `solvers` compares on `case`: each solver under the case's treatment
-/// of v = 0 (or the case's one time-stepping method), then the case's peers.
-pub fn methods_with_peers(case: &dyn StudyCase, solvers: &[Solver]) -> Vec<Method> {
-    Method::studied(case.switching(), solvers)
-        .into_iter()
-        .chain(case.peers())
-        .collect()
-}
-
-/// How many runs [`methods_with_peers`] make at the step sizes `steps` (fixed-step methods)
-/// or the tolerances `tols` (the others): one per method and resolution.
-pub fn runs_with_peers(
-    case: &dyn StudyCase,
-    solvers: &[Solver],
-    steps: &[f64],
-    tols: &[f64],
-) -> usize {
-    Method::jobs(&methods_with_peers(case, solvers), steps, tols, false).len()
-}
-
-/// The options of a study of `solvers` at the step sizes `steps` and the tolerances `tols`:
+/// The options of a study of `methods` at the step sizes `steps` and the tolerances `tols`:
 /// each solver once, every step size and tolerance in its range (`--dt-list`, `--tol-list`).
-pub fn check_lists(solvers: &[Solver], steps: &[f64], tols: &[f64]) -> Result<(), AppError> {
-    distinct(solvers)?;
+pub fn check_lists(methods: &[Method], steps: &[f64], tols: &[f64]) -> Result<(), AppError> {
+    distinct(&Method::own_solvers(methods))?;
     crate::ranges::DT.list("dt_list", steps)?;
     crate::ranges::RTOL.list("tol_list", tols)?;
     Ok(())

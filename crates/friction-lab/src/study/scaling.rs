@@ -116,13 +116,14 @@ impl Study for ScalingStudy<'_> {
         out.files.add_table(csv.clone(), table)?;
         let timing_csv = out.path("-timing.csv");
         out.files.add_table(timing_csv.clone(), timing)?;
+        let methods: Vec<Method> = self.methods.iter().map(|&(m, _)| m).collect();
         let file = ScalingFile {
             cases: self
                 .cases
                 .iter()
                 .map(|(bodies, case)| SizedCase {
                     bodies: *bodies,
-                    case: CaseRecord::of(case.as_ref()),
+                    case: CaseRecord::of(case.as_ref(), &methods),
                 })
                 .collect(),
             study: s,

@@ -3,19 +3,16 @@
 
 use super::draw::row_at_top;
 use super::tables::resolution_cells;
-use super::{
-    check_lists, methods_with_peers, positive_list, runs_with_peers, study_file, Study, StudyFiles,
-};
+use super::{check_lists, positive_list, study_file, Study, StudyFiles};
 use crate::error::AppError;
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Marker, Plot, Series, PALETTE};
-use integrators::Solver;
-use scenarios::studies::{self, Reached, Stiffness, StudyCase, Sweep};
+use scenarios::studies::{self, Method, Reached, Stiffness, StudyCase, Sweep};
 
 /// The most values a sweep takes.
 const MAX_VALUES: usize = 50;
 
-/// Every solver of `solvers` on `case`, and the case's peers, at each value of the swept
+/// Every method of `methods` on `case` (the studied ones and their peers), at each value of the swept
 /// parameter: the least work that reaches the sweep's target error, over the step sizes
 /// `steps` (fixed-step methods) or the tolerances `tols`.
 pub struct StiffnessStudy<'a> {
@@ -23,8 +20,8 @@ pub struct StiffnessStudy<'a> {
     pub case: &'a dyn StudyCase,
     /// The parameter, its values and the target error.
     pub sweep: Sweep<'a>,
-    /// The solvers, each once.
-    pub solvers: &'a [Solver],
+    /// The methods, each solver once among the studied ones.
+    pub methods: &'a [Method],
     /// Step sizes, coarse to fine.
     pub steps: &'a [f64],
     /// Tolerances, loose to tight.
@@ -42,7 +39,7 @@ impl Study for StiffnessStudy<'_> {
         let values = self.sweep.values;
         positive_list("values", values)?;
         positive_list("target", &[self.sweep.target])?;
-        check_lists(self.solvers, self.steps, self.tols)?;
+        check_lists(self.methods, self.steps, self.tols)?;
         if values.len() > MAX_VALUES {
             return Err(AppError::Usage(format!(
                 "option `values` has {} values: allowed 1 to {MAX_VALUES}",
@@ -53,7 +50,7 @@ impl Study for StiffnessStudy<'_> {
     }
 
     fn runs(&self) -> usize {
-        runs_with_peers(self.case, self.solvers, self.steps, self.tols) * self.sweep.values.len()
+        Method::jobs(self.methods, self.steps, self.tols, false).len() * self.sweep.values.len()
     }
 
     /// No method met the target at any value: no cost was measured, no kind wins anywhere.
@@ -72,11 +69,10 @@ impl Study for StiffnessStudy<'_> {
     }
 
     fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<Stiffness, AppError> {
-        let methods = methods_with_peers(self.case, self.solvers);
         studies::stiffness(
             self.case,
             Sweep { ..self.sweep },
-            &methods,
+            self.methods,
             self.steps,
             self.tols,
             progress,
@@ -86,7 +82,7 @@ impl Study for StiffnessStudy<'_> {
 
     /// `{stem}.csv` (a row per value and method), `{stem}.json` and `{stem}.png`/`.svg`.
     fn write(&self, s: &Stiffness, out: &mut StudyFiles) -> Result<(), AppError> {
-        let (case, methods) = (self.case, methods_with_peers(self.case, self.solvers));
+        let (case, methods) = (self.case, self.methods);
         let Sweep {
             parameter, target, ..
         } = self.sweep;
@@ -137,7 +133,7 @@ impl Study for StiffnessStudy<'_> {
         }
         let csv = out.path(".csv");
         out.files.add_table(csv.clone(), table)?;
-        out.add_json(&study_file(case, s))?;
+        out.add_json(&study_file(case, methods, s))?;
         // A solver that met the target at a value: a dot at its interpolated cost and a bar
         // over the bracket its resolutions leave; one that did not: a cross at the top of the
         // plot, named, each such solver in a row of its own.
@@ -201,7 +197,7 @@ impl Study for StiffnessStudy<'_> {
         let plot = Plot {
             title: format!(
                 "Cost to reach error {target:e} against {parameter}: {}",
-                case.describe()
+                studies::describe(case, methods)
             ),
             x_label: parameter.to_string(),
             y_label: "work at the target (f evaluations; Jacobians, LU and solves weighted), with its bracket"

@@ -12,7 +12,7 @@ use scenarios::phenomena::cost::{Costs, RUNS_PER_LAW};
 use scenarios::phenomena::{
     table, thresholds, Cell, Phenomenon, Protocol, Row, PROTOCOL_PARAMETERS,
 };
-use scenarios::{Law, SwitchingKind};
+use scenarios::Law;
 use serde_json::{json, Map, Value};
 
 /// Table 2 for `laws` under `protocol`, each at its own parameter set or all at `parameters`
@@ -415,7 +415,7 @@ pub fn reachable(solver: Solver, rtol: f64) -> Result<(), AppError> {
 /// switching ([`check_read`]; `epsilon` never): accepted, as `simulate` accepts it, but
 /// said: every value would give the same table.
 pub fn unread_by_all(set: &[String], laws: &[Law]) -> Vec<String> {
-    let unread = |name: &str, m: ModelId| check_read("set", name, Some(m), SwitchingKind::Event);
+    let unread = |name: &str, m: ModelId| check_read("set", name, Some(m), Some("event"));
     // A law of one's own may read any friction parameter through the rigs' scales.
     let unread_by = |name: &str, law: &Law| law.catalog().is_some_and(|m| unread(name, m).is_err());
     set.iter()

@@ -3,21 +3,20 @@
 
 use super::draw::per_solver_series;
 use super::tables::{resolution_cells, runs_table, timing_table};
-use super::{check_lists, methods_with_peers, runs_with_peers, study_file, Study, StudyFiles};
+use super::{check_lists, study_file, Study, StudyFiles};
 use crate::error::AppError;
 use crate::output::Cell;
 use crate::plot::{Corner, Plot};
-use integrators::Solver;
-use scenarios::studies::{self, ErrorMeasure, StudyCase, WorkPrecision};
+use scenarios::studies::{self, ErrorMeasure, Method, StudyCase, WorkPrecision};
 
-/// Every solver of `solvers` on `case`, and the case's peers (methods under another treatment
-/// of v = 0), at the step sizes `steps` (fixed-step methods) or the tolerances `tols`, each run
+/// Every method of `methods` on `case` (the studied ones and their peers, under another
+/// treatment of v = 0), at the step sizes `steps` (fixed-step methods) or the tolerances `tols`, each run
 /// `repeats` times for its median wall time.
 pub struct WorkPrecisionStudy<'a> {
     /// The problem.
     pub case: &'a dyn StudyCase,
-    /// The solvers, each once.
-    pub solvers: &'a [Solver],
+    /// The methods, each solver once among the studied ones.
+    pub methods: &'a [Method],
     /// Step sizes, coarse to fine.
     pub steps: &'a [f64],
     /// Tolerances, loose to tight.
@@ -34,18 +33,17 @@ impl Study for WorkPrecisionStudy<'_> {
     }
 
     fn check(&self) -> Result<(), AppError> {
-        check_lists(self.solvers, self.steps, self.tols)
+        check_lists(self.methods, self.steps, self.tols)
     }
 
     fn runs(&self) -> usize {
-        runs_with_peers(self.case, self.solvers, self.steps, self.tols) * self.repeats
+        Method::jobs(self.methods, self.steps, self.tols, false).len() * self.repeats
     }
 
     fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<WorkPrecision, AppError> {
-        let methods = methods_with_peers(self.case, self.solvers);
         studies::work_precision(
             self.case,
-            &methods,
+            self.methods,
             self.steps,
             self.tols,
             self.repeats,
@@ -76,10 +74,10 @@ impl Study for WorkPrecisionStudy<'_> {
         );
         let timing_csv = out.path("-timing.csv");
         out.files.add_table(timing_csv.clone(), timing)?;
-        out.add_json(&study_file(case, w))?;
+        out.add_json(&study_file(case, self.methods, w))?;
         let error = ErrorMeasure::GridRelative.label();
         let plot = Plot {
-            title: format!("Work-precision: {}", case.describe()),
+            title: format!("Work-precision: {}", studies::describe(case, self.methods)),
             x_label: "work (f evaluations; Jacobians, LU and solves weighted by flops)".into(),
             y_label: error.into(),
             series: per_solver_series(
@@ -98,7 +96,7 @@ impl Study for WorkPrecisionStudy<'_> {
             title: format!(
                 "Work-precision against wall time (median of {} repeats): {}",
                 self.repeats,
-                case.describe()
+                studies::describe(case, self.methods)
             ),
             x_label: "wall time, median (s)".into(),
             y_label: error.into(),

@@ -197,7 +197,7 @@ fn check_axes(axes: &[Axis], run: &Simulation) -> Result<(), AppError> {
             "grid",
             name,
             run.model.as_ref().and_then(ModelChoice::catalog),
-            run.solver.switching(),
+            run.solver.scheme.unread_epsilon(),
         )
     })
 }
@@ -262,7 +262,7 @@ fn prepare(run: &Simulation, start: Start) -> Result<PointRun, AppError> {
             let step = run.solver.checked_step()?;
             let t_end = run.system_t_end()?;
             let points = run.system_points(Layout::of(&described.system).dim())?;
-            let scheme = (run.solver.switching()).scheme(run.solver.solver(), &described.friction);
+            let scheme = run.solver.scheme(described.friction.epsilon)?;
             Ok(PointRun::System {
                 system: described.system,
                 scheme,

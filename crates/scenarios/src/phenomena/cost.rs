@@ -12,13 +12,13 @@ use crate::batch;
 use crate::cases::{Case, StudyCase, SystemCase};
 use crate::error::ScenarioError;
 use crate::method::Method;
-use crate::run::{Law, SwitchingKind};
+use crate::run::Law;
 use crate::scenario::Scenario;
 use crate::studies::reached;
 use crate::study_run::{StudyRun, WallTimes};
 use crate::ScenarioParams;
 use friction_models::{FrictionParams, ModelId};
-use friction_systems::{End, System};
+use friction_systems::{End, Scheme, System};
 use integrators::{Solver, Stats, StepControl};
 use serde::Serialize;
 
@@ -87,7 +87,6 @@ fn belt(
         law: law.clone(),
         friction: *p,
         params: ScenarioParams::default(),
-        switching: SwitchingKind::Event,
         t_end: T_END,
         limits: protocol.limits,
     }))
@@ -148,7 +147,10 @@ pub fn simulation_cost(
     protocol: &Protocol,
     progress: &(dyn Fn() + Sync),
 ) -> Result<SimulationCost, ScenarioError> {
-    let methods: Vec<Method> = SOLVERS.iter().map(|&s| Method::of(s)).collect();
+    let methods: Vec<Method> = SOLVERS
+        .iter()
+        .map(|&s| Method::of(Scheme::events(s)))
+        .collect();
     SYSTEMS
         .iter()
         .map(|system| {
@@ -167,8 +169,7 @@ fn cheapest(
     progress: &(dyn Fn() + Sync),
 ) -> Result<Result<Cheapest, String>, ScenarioError> {
     use rayon::prelude::*;
-    let solvers: Vec<Solver> = methods.iter().map(|m| m.solver).collect();
-    let reference = match batch::reference(case, &solvers) {
+    let reference = match batch::reference(case, methods) {
         Ok((_, measures)) => measures,
         Err(e @ (ScenarioError::Solver { .. } | ScenarioError::RunFailed(_))) => {
             return Ok(Err(e.to_string()))
@@ -181,10 +182,7 @@ fn cheapest(
             let mut runs: Vec<StudyRun> = Vec::new();
             for (k, &tolerance) in TOLERANCES.iter().enumerate() {
                 let job = (method, tolerance_step(tolerance));
-                let mut run = batch::run_cases(&[case], None, &[job], 0, progress)?
-                    .remove(0)
-                    .runs
-                    .remove(0);
+                let mut run = batch::run_jobs(case, &[job], 0, progress)?.remove(0);
                 batch::judge(&mut run, &reference);
                 runs.push(run);
                 let all: Vec<&StudyRun> = runs.iter().collect();
@@ -207,14 +205,14 @@ fn cheapest(
         )));
     };
     let job = (method, tolerance_step(r.resolution));
-    let timed = batch::run_cases(&[case], None, &[job], TIMING_REPEATS - 1, progress)?;
+    let timed = batch::run_jobs(case, &[job], TIMING_REPEATS - 1, progress)?;
     Ok(Ok(Cheapest {
-        solver: method.solver.name().to_string(),
+        solver: method.label(),
         tolerance: r.resolution,
         error: r.error,
         work: r.work,
         stats: r.stats,
-        wall_time: timed[0].runs[0].wall_time,
+        wall_time: timed[0].wall_time,
     }))
 }
 

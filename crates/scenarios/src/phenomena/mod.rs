@@ -19,10 +19,11 @@ pub use experiments::{
 pub use phenomenon::{Axes, Experiment, Phenomenon, PHENOMENA};
 
 use crate::error::ScenarioError;
-use crate::run::{Law, Limits, RunSpec, SwitchingKind};
+use crate::run::{Law, Limits, RunSpec};
 use crate::scenario::Scenario;
 use crate::ScenarioParams;
 use friction_models::{FrictionParams, ModelId, Parameters};
+use friction_systems::Scheme;
 use integrators::{Solver, StepControl};
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -87,8 +88,7 @@ impl Protocol {
             law: law.clone(),
             friction,
             params,
-            solver: self.solver,
-            switching: SwitchingKind::Event,
+            scheme: Scheme::events(self.solver),
             step: self.step,
             t_end: Some(t_end),
             output_points: points,

@@ -7,7 +7,6 @@ use super::{StudyCase, StudyRun};
 use crate::error::ScenarioError;
 use crate::errors::Scales;
 use friction_models::params::show;
-use integrators::Solver;
 use serde::ser::SerializeStruct;
 use serde::{Serialize, Serializer};
 
@@ -148,22 +147,20 @@ pub struct Convergence {
     pub reference_limit: Option<String>,
 }
 
-/// Runs each solver over the step sizes (or tolerances) against the reference and reports
+/// Runs each method over the step sizes (or tolerances) against the reference and reports
 /// the observed orders of every error measure that exists for it.
 pub fn convergence(
     case: &dyn StudyCase,
-    solvers: &[Solver],
+    methods: &[Method],
     step_sizes: &[f64],
     tolerances: &[f64],
     progress: &(dyn Fn() + Sync),
 ) -> Result<Convergence, ScenarioError> {
-    let methods = Method::studied(case.switching(), solvers);
-    let jobs = Method::jobs(&methods, step_sizes, tolerances, true);
-    let own = Method::own_solvers(&methods);
-    let (reference, ref_measures, runs) = run_against_reference(case, &own, &jobs, progress)?;
+    let jobs = Method::jobs(methods, step_sizes, tolerances, true);
+    let (reference, ref_measures, runs) = run_against_reference(case, methods, &jobs, progress)?;
     let scales = Scales::of(&ref_measures);
     let mut tables = Vec::new();
-    for method in &methods {
+    for method in methods {
         let label = method.label();
         let mine: Vec<&StudyRun> = runs.iter().filter(|r| r.solver == label).collect();
         let Some(step) = mine.first().map(|r| r.step) else {

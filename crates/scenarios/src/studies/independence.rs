@@ -3,7 +3,6 @@
 
 use super::{batch, Measures, Method, StepKind, StudyCase};
 use crate::error::ScenarioError;
-use integrators::Solver;
 use serde::Serialize;
 
 /// One output of an independence study across the refinement levels.
@@ -115,14 +114,14 @@ fn check(
     }
 }
 
-/// Runs `solver` at `levels` resolutions, each `ratio` times finer, and judges whether the
+/// Runs `method` at `levels` resolutions, each `ratio` times finer, and judges whether the
 /// final state, the first events, the stick durations and the peak friction are independent
 /// of the resolution to the relative `tolerance`. A failed level is kept in
 /// [`Independence::failed`] and the longest unbroken run of finished levels is judged; with
 /// fewer than two finished in a row there is nothing to judge, and the study fails.
 pub fn independence(
     case: &dyn StudyCase,
-    solver: Solver,
+    method: Method,
     start: f64,
     ratio: f64,
     levels: usize,
@@ -130,11 +129,8 @@ pub fn independence(
     progress: &(dyn Fn() + Sync),
 ) -> Result<Independence, ScenarioError> {
     let resolutions: Vec<f64> = (0..levels).map(|i| start / ratio.powi(i as i32)).collect();
-    let method = Method::studied(case.switching(), &[solver]);
-    let jobs = Method::jobs(&method, &resolutions, &resolutions, false);
-    let runs = batch::run_cases(&[case], None, &jobs, 0, progress)?
-        .remove(0)
-        .runs;
+    let jobs = Method::jobs(&[method], &resolutions, &resolutions, false);
+    let runs = batch::run_jobs(case, &jobs, 0, progress)?;
     let failed: Vec<FailedLevel> = runs
         .iter()
         .enumerate()
@@ -156,7 +152,7 @@ pub fn independence(
         )));
     }
     let m: Vec<&Measures> = runs[judged.clone()].iter().map(|r| &r.measures).collect();
-    let judge = |name, values| check(name, values, ratio, tolerance, method[0].order_bound());
+    let judge = |name, values| check(name, values, ratio, tolerance, method.order_bound());
     let mut outputs = vec![
         judge(
             "final x (m)".into(),
@@ -202,7 +198,7 @@ pub fn independence(
         });
     }
     Ok(Independence {
-        solver: method[0].label(),
+        solver: method.label(),
         step: runs.first().map_or(StepKind::Fixed, |r| r.step),
         independent: failed.is_empty() && outputs.iter().all(|o| o.independent),
         resolutions: resolutions[judged.clone()].to_vec(),

@@ -14,7 +14,7 @@ mod work_precision;
 
 use crate::batch;
 pub use crate::batch::reference;
-pub use crate::cases::{Case, Measured, Measures, StudyCase, SystemCase, GRID_POINTS};
+pub use crate::cases::{describe, Case, Measured, Measures, StudyCase, SystemCase, GRID_POINTS};
 use crate::error::ScenarioError;
 pub use crate::errors::{Quantity, Scales};
 pub use crate::method::{resolution, steps_for, Method, StepKind};
@@ -23,7 +23,7 @@ pub use crate::study_run::{
 };
 pub use convergence::{convergence, Convergence, OrderTable};
 pub use independence::{independence, FailedLevel, Independence, OutputCheck};
-use integrators::{Solver, StepControl};
+use integrators::StepControl;
 pub use orders::{
     observed_order, orders, student_t_975, Fit, PairOrder, MIN_PAIRS, ORDER_AGREEMENT, ROUND_OFF,
 };
@@ -37,15 +37,20 @@ pub use testset::{
 };
 pub use work_precision::{work_precision, WorkPrecision};
 
-/// Runs `case` with each (method, step) against its reference for a study of `studied`
-/// solvers, the reference runs and the runs in one list ([`batch`]).
+/// Runs `case` with each (method, step) against its reference for a study of `methods`, the
+/// reference runs and the runs in one list ([`batch`]).
 pub fn run_against_reference(
     case: &dyn StudyCase,
-    studied: &[Solver],
+    methods: &[Method],
     jobs: &[(Method, StepControl)],
     progress: &(dyn Fn() + Sync),
 ) -> Result<(Reference, Measures, Vec<StudyRun>), ScenarioError> {
-    let c = batch::run_cases(&[case], Some(studied), jobs, 0, progress)?.remove(0);
+    let posed = batch::Posed {
+        case,
+        reference_for: Some(methods),
+        jobs,
+    };
+    let c = batch::run_cases(&[posed], 0, progress)?.remove(0);
     let (reference, measures) = c.reference.expect("a reference was asked for");
     Ok((reference, measures, c.runs))
 }

@@ -59,7 +59,7 @@ pub fn scaling(
         let (c, m) = jobs[j];
         let (size, case) = (&cases[c].0, cases[c].1.as_ref());
         let (method, step) = methods[m];
-        let o = case.measure_by(&method, step)?;
+        let o = case.measure(method.scheme, step)?;
         progress();
         let work = o.stats.work(case.dim()?);
         let run = ScalingRun {

@@ -4,6 +4,7 @@
 
 use super::{batch, Method, Reference, StepKind, StudyCase, StudyRun};
 use crate::error::ScenarioError;
+use friction_models::{FrictionParams, Parameters};
 use integrators::Stats;
 use serde::Serialize;
 
@@ -332,21 +333,47 @@ pub fn stiffness(
     tolerances: &[f64],
     progress: &(dyn Fn() + Sync),
 ) -> Result<Stiffness, ScenarioError> {
-    let own = Method::own_solvers(methods);
     let Sweep {
         parameter,
         values,
         target,
     } = sweep;
-    let cases = values
-        .iter()
-        .map(|&value| case.with_parameter(parameter, value))
-        .collect::<Result<Vec<_>, _>>()?;
-    let cases: Vec<&dyn StudyCase> = cases.iter().map(|c| c.as_ref()).collect();
-    let jobs = Method::jobs(methods, step_sizes, tolerances, false);
+    // The regularisation width is the schemes' (each value changes the methods that read it);
+    // any other parameter the case's.
+    let scheme_parameter = parameter == "epsilon";
+    if scheme_parameter && !methods.iter().any(Method::reads_epsilon) {
+        return Err(ScenarioError::Invalid(format!(
+            "parameter `epsilon` is read only under --switching regularized (or by a \
+             regularised peer); not {}: every value would give the same runs",
+            Method::treatment_name(methods)
+        )));
+    }
+    let mut cases = Vec::new();
+    let mut jobs = Vec::new();
+    for &value in values {
+        if scheme_parameter {
+            FrictionParams::paper().set(parameter, value)?;
+            let at: Vec<Method> = methods.iter().map(|m| m.regularised_at(value)).collect();
+            jobs.push((at.clone(), Method::jobs(&at, step_sizes, tolerances, false)));
+            cases.push(None);
+        } else {
+            jobs.push((
+                methods.to_vec(),
+                Method::jobs(methods, step_sizes, tolerances, false),
+            ));
+            cases.push(Some(case.with_parameter(parameter, value)?));
+        }
+    }
+    let posed: Vec<batch::Posed> = (cases.iter().zip(&jobs))
+        .map(|(c, (methods, jobs))| batch::Posed {
+            case: c.as_deref().unwrap_or(case),
+            reference_for: Some(methods),
+            jobs,
+        })
+        .collect();
     // Every value's runs and references in one list: no value waits for the last run of
     // the one before.
-    let done = batch::run_cases(&cases, Some(&own), &jobs, 0, progress)?;
+    let done = batch::run_cases(&posed, 0, progress)?;
     let mut points = Vec::new();
     for (&value, batch::CaseRuns { runs, reference }) in values.iter().zip(done) {
         let (reference, _) = reference.expect("a stiffness study asks for its references");

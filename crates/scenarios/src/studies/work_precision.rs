@@ -18,8 +18,8 @@ pub struct WorkPrecision {
 
 /// Runs every method over its step sizes or tolerances, `repeats` times each for the
 /// median wall time, the repetitions in the same list as the runs (each run alone on its
-/// core: see docs/performance.md for what a neighbour costs a small problem). The reference is the one of the methods' solvers under the case's own
-/// treatment.
+/// core: see docs/performance.md for what a neighbour costs a small problem). The reference
+/// is the one of the studied methods ([`batch::reference`]).
 pub fn work_precision(
     case: &dyn StudyCase,
     methods: &[Method],
@@ -29,8 +29,12 @@ pub fn work_precision(
     progress: &(dyn Fn() + Sync),
 ) -> Result<WorkPrecision, ScenarioError> {
     let jobs = Method::jobs(methods, step_sizes, tolerances, false);
-    let own = Method::own_solvers(methods);
-    let c = batch::run_cases(&[case], Some(&own), &jobs, repeats.max(1) - 1, progress)?.remove(0);
+    let posed = batch::Posed {
+        case,
+        reference_for: Some(methods),
+        jobs: &jobs,
+    };
+    let c = batch::run_cases(&[posed], repeats.max(1) - 1, progress)?.remove(0);
     let (reference, _) = c.reference.expect("a reference was asked for");
     Ok(WorkPrecision {
         reference_limit: reference.limits(&c.runs),

@@ -56,10 +56,12 @@ impl Converge {
     /// Checks and runs the study: its files in `out` (in memory), and one line per solver
     /// and measure with its observed order, or why there is none.
     pub fn run(&self, out: &Path) -> Result<Made, AppError> {
-        self.problem.make(out, |t, case| {
+        self.problem.make(out, |t, setup| {
+            let methods =
+                (self.problem).methods(setup, "solvers", &self.solvers, &CONVERGE_SOLVERS)?;
             let study = ConvergenceStudy {
-                case,
-                solvers: &(self.problem).solvers("solvers", &self.solvers, &CONVERGE_SOLVERS)?,
+                case: setup.case.as_ref(),
+                methods: &methods,
                 steps: &self.dt_list,
                 tols: &self.tol_list,
             };

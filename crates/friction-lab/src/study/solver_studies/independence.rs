@@ -45,11 +45,12 @@ impl Independence {
     /// Checks and runs the study: its files in `out` (in memory), and one line per output
     /// with its remaining error, the failed levels, and the verdict.
     pub fn run(&self, out: &Path) -> Result<Made, AppError> {
-        self.problem.make(out, |t, case| {
+        self.problem.make(out, |t, setup| {
+            let methods =
+                (self.problem).methods(setup, "solver", self.solver.as_slice(), &[Solver::RK4])?;
             let study = IndependenceStudy {
-                case,
-                solver: (self.problem).solvers("solver", self.solver.as_slice(), &[Solver::RK4])?
-                    [0],
+                case: setup.case.as_ref(),
+                method: methods[0],
                 refinement: self.refinement,
             };
             let s = conduct(&study, t, "independence")?;

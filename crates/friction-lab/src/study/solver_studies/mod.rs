@@ -32,10 +32,11 @@ use crate::study::Target;
 use crate::warnings::{diverged_line, unread_warnings};
 use friction_models::params::show;
 use friction_systems::file::SystemSource;
+use friction_systems::{Scheme, Switching};
 use integrators::Solver;
 use scenarios::run::DEFAULT_THETA;
-use scenarios::studies::{Case, StepKind, StudyCase, StudyRun, SystemCase};
-use scenarios::{Scenario, SwitchingKind};
+use scenarios::studies::{Case, Method, StepKind, StudyCase, StudyRun, SystemCase};
+use scenarios::Scenario;
 use std::path::Path;
 
 /// The problem a solver study runs, with the settings every study shares; its `Default` is
@@ -88,6 +89,52 @@ pub struct Problem {
 
 crate::settings::default_as_declared!(Problem);
 
+/// A study's case, with what its methods read beside it.
+pub struct CaseSetup {
+    /// The case.
+    pub case: Box<dyn StudyCase>,
+    /// The width ε of a regularised method (the friction parameter `epsilon`), m/s.
+    pub epsilon: f64,
+    /// Whether it is a system (the chain or a system file): studied event-driven, it has
+    /// peers ([`CaseSetup::with_peers`]).
+    pub system: bool,
+}
+
+impl CaseSetup {
+    /// `methods` and, for a system studied event-driven with event switching, its peers
+    /// ([`system_peers`] at the case's ε).
+    pub fn with_peers(&self, mut methods: Vec<Method>) -> Vec<Method> {
+        let event = Method::first_studied(&methods).is_some_and(|m| {
+            matches!(
+                m.scheme,
+                Scheme::EventDriven {
+                    switching: Switching::Event,
+                    ..
+                }
+            )
+        });
+        if self.system && event {
+            methods.extend(system_peers(self.epsilon));
+        }
+        methods
+    }
+}
+
+/// The peers drawn beside event-driven solvers on a system of many contacts: diffsol's BDF
+/// on the regularised system (sparse Jacobian and LU, width `epsilon`) and Moreau–Jean
+/// time-stepping at θ = 1/2 — the two other ways to integrate many contacts.
+pub fn system_peers(epsilon: f64) -> [Method; 2] {
+    [
+        Method::peer(Scheme::EventDriven {
+            solver: Solver::BDF,
+            switching: Switching::Regularized { epsilon },
+        }),
+        Method::peer(Scheme::TimeStepping {
+            theta: DEFAULT_THETA,
+        }),
+    ]
+}
+
 impl Problem {
     /// The problem `scenario` or `system` names: a rig, the chain or a system file; `None`
     /// for neither.
@@ -96,7 +143,7 @@ impl Problem {
     }
 
     /// The study case: a rig, the chain, or a system file.
-    pub fn case(&self) -> Result<Box<dyn StudyCase>, AppError> {
+    pub fn case(&self) -> Result<CaseSetup, AppError> {
         let Some(target) = &self.target()? else {
             return Err(AppError::Usage(
                 "the study needs a problem: a SCENARIO, or --system FILE.toml (work-precision \
@@ -116,16 +163,19 @@ impl Problem {
                 } else {
                     chosen_bodies(&described.system, &self.bodies)?
                 };
-                return Ok(Box::new(SystemCase {
+                let case = SystemCase {
                     name: described.name,
                     system: described.system,
-                    switching: self.treatment()?,
-                    epsilon: described.friction.epsilon,
                     t_end: check_t_end(self.t_end.unwrap_or_else(|| study_t_end(target.system())))?,
                     bodies,
                     limits: self.limits.limits()?,
                     chain: described.source,
-                }));
+                };
+                return Ok(CaseSetup {
+                    case: Box::new(case),
+                    epsilon: described.friction.epsilon,
+                    system: true,
+                });
             }
         };
         if scenario == Scenario::VELOCITY_SWEEP {
@@ -145,27 +195,33 @@ impl Problem {
             Some(t) => check_t_end(t)?,
             None => check_t_end(derived_t_end(scenario, &params, &friction)?)?,
         };
-        Ok(Box::new(Case {
+        let case = Case {
             scenario,
             law: model.law(self.model_settings.variant),
             friction,
             params,
-            switching: self.treatment()?,
             t_end,
             limits: self.limits.limits()?,
-        }))
+        };
+        Ok(CaseSetup {
+            case: Box::new(case),
+            epsilon: friction.epsilon,
+            system: false,
+        })
     }
 
-    /// The solvers a study compares: those `given` by `option`, or `defaults` when none are.
-    /// Under time-stepping the study's one method is Moreau–Jean's scheme, which takes no
-    /// solver: naming one is refused rather than ignored.
-    pub fn solvers(
+    /// The methods a study compares on `setup`: each solver `given` by `option` (or of
+    /// `defaults` when none are) under the scheme's treatment of v = 0 (regularised at the
+    /// case's ε), or under time-stepping the study's one method, Moreau–Jean's scheme at
+    /// θ = 1/2, which takes no solver: naming one is refused rather than ignored.
+    pub fn methods(
         &self,
+        setup: &CaseSetup,
         option: &str,
         given: &[Solver],
         defaults: &[Solver],
-    ) -> Result<Vec<Solver>, AppError> {
-        if !given.is_empty() && self.treatment()?.is_time_stepping() {
+    ) -> Result<Vec<Method>, AppError> {
+        if !given.is_empty() && self.scheme.is_time_stepping() {
             return Err(AppError::Usage(format!(
                 "option `--{option} {}` does not apply to --scheme time-stepping: the study's one \
                  method is Moreau–Jean's scheme over the study's step sizes, which takes no ODE \
@@ -173,13 +229,11 @@ impl Problem {
                 given.iter().map(|s| s.name()).collect::<Vec<_>>().join(",")
             )));
         }
-        Ok(or_default(given, defaults))
-    }
-
-    /// The treatment of v = 0 that the scheme and the switching ask for (time-stepping at
-    /// θ = 1/2).
-    pub fn treatment(&self) -> Result<SwitchingKind, AppError> {
-        self.scheme.treatment(DEFAULT_THETA)
+        let solvers = or_default(given, defaults);
+        let schemes = self
+            .scheme
+            .schemes(&solvers, setup.epsilon, DEFAULT_THETA)?;
+        Ok(Method::studied(&schemes))
     }
 
     /// Sets up the case, runs `study` (which returns its lines for the terminal), and keeps
@@ -187,10 +241,9 @@ impl Problem {
     fn make(
         &self,
         out: &Path,
-        study: impl FnOnce(&mut Target, &dyn StudyCase) -> Result<Vec<String>, AppError>,
+        study: impl FnOnce(&mut Target, &CaseSetup) -> Result<Vec<String>, AppError>,
     ) -> Result<Made, AppError> {
-        let case = self.case()?;
-        let case = case.as_ref();
+        let setup = self.case()?;
         let mut files = Artifacts::default();
         let mut target = Target {
             files: &mut files,
@@ -198,14 +251,13 @@ impl Problem {
             threads: ranges::threads(self.threads)?,
             failure: None,
         };
-        let notes = study(&mut target, case)?;
+        let notes = study(&mut target, &setup)?;
         let failure = target.failure;
         // A study of a system under event switching also runs its regularised peer (BDF on
         // the regularised system), which reads epsilon.
-        let switching = match (&self.scenario, self.treatment()?) {
-            (Some(simulate::Target::Rig(_)), s) => s,
-            (_, SwitchingKind::Event) => SwitchingKind::Regularized,
-            (_, s) => s,
+        let unread_epsilon = match (setup.system, self.scheme.unread_epsilon()) {
+            (true, Some("event")) => None,
+            (_, unread) => unread,
         };
         Ok(Made {
             files,
@@ -213,7 +265,7 @@ impl Problem {
             warnings: unread_warnings(
                 &self.model_settings.params.set,
                 self.model.as_ref().and_then(ModelChoice::catalog),
-                switching,
+                unread_epsilon,
             )
             .into_iter()
             .chain(self.scheme.spelling_notes())

@@ -5,12 +5,11 @@ use super::Problem;
 use crate::artifacts::Made;
 use crate::error::AppError;
 use crate::laws::ModelChoice;
-use crate::scheme::SchemeName;
+use crate::scheme::{SchemeName, SwitchingName};
 use crate::simulate::Target as Run;
 use crate::study::{conduct, StiffnessStudy};
 use integrators::Solver;
-use scenarios::studies;
-use scenarios::SwitchingKind;
+use scenarios::studies::{self, Method};
 use std::path::Path;
 
 /// The solvers `stiffness` compares by default: two explicit, three implicit.
@@ -104,30 +103,40 @@ impl Stiffness {
             && self.parameter == "epsilon"
             && rig
         {
-            problem.scheme.switching = Some(SwitchingKind::Regularized);
+            problem.scheme.switching = Some(SwitchingName::Regularized);
         }
-        // A rig's run reads only what its model and switching read. A system's case checks
-        // its parameter itself (`StudyCase::with_parameter`): epsilon, which under event
-        // switching its regularised peer reads, and on the chain the chain's parameters and
-        // its law's.
+        // A rig's run reads only what its model and switching read. On a system the study
+        // checks epsilon against its methods (under event switching the regularised peer reads
+        // it), and the case any other parameter (`StudyCase::with_parameter`: on the chain the
+        // chain's parameters and its law's).
         if rig {
             crate::laws::check_read(
                 "parameter",
                 &self.parameter,
                 problem.model.as_ref().and_then(ModelChoice::catalog),
-                problem.treatment()?,
+                problem.scheme.unread_epsilon(),
             )?;
         }
-        problem.make(out, |t, case| {
+        problem.make(out, |t, setup| {
+            let studied = problem.methods(setup, "solvers", &self.solvers, &STIFFNESS_SOLVERS)?;
+            let methods = setup.with_peers(studied);
+            if self.parameter == "epsilon" && !methods.iter().any(Method::reads_epsilon) {
+                return Err(AppError::Usage(format!(
+                    "parameter `epsilon` is read on a system only under --switching regularized, \
+                     or event (by its regularised BDF peer); not {}: every value would give the \
+                     same runs",
+                    Method::treatment_name(&methods)
+                )));
+            }
             let sweep = studies::Sweep {
                 parameter: &self.parameter,
                 values: &self.values,
                 target: self.target,
             };
             let study = StiffnessStudy {
-                case,
+                case: setup.case.as_ref(),
                 sweep,
-                solvers: &(self.problem).solvers("solvers", &self.solvers, &STIFFNESS_SOLVERS)?,
+                methods: &methods,
                 steps: &self.dt_list,
                 tols: &self.tol_list,
             };

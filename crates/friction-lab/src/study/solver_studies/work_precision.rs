@@ -103,10 +103,12 @@ impl WorkPrecision {
         if let Some(name) = &self.testset {
             return self.testset(name, out);
         }
-        self.problem.make(out, |t, case| {
+        self.problem.make(out, |t, setup| {
+            let studied = (self.problem).methods(setup, "solvers", &self.solvers, &Solver::ALL)?;
+            let methods = setup.with_peers(studied);
             let study = WorkPrecisionStudy {
-                case,
-                solvers: &(self.problem).solvers("solvers", &self.solvers, &Solver::ALL)?,
+                case: setup.case.as_ref(),
+                methods: &methods,
                 steps: &self.dt_list,
                 tols: &or_default(&self.tol_list, &WP_TOLERANCES),
                 repeats: ranges::REPEATS.count(self.repeats)?,
