@@ -1,7 +1,7 @@
 //! Python's keyword arguments as the library's requests, through their one declaration.
 //!
 //! Each function fills the request the library declares for it ([`Simulation`], [`Sweep`],
-//! [`Converge`], [`Independence`], [`WorkPrecision`], [`Stiffness`], [`FrictionCurve`],
+//! [`ConvergeRequest`], [`IndependenceRequest`], [`WorkPrecisionRequest`], [`StiffnessRequest`], [`FrictionCurve`],
 //! [`Phenomena`]) as the command line does: the keyword `t_end` is the option `--t-end`, and
 //! its value, checked as the option's type (a number, a whole number, a name, a list of them,
 //! `True` for a flag), is given to the option's own parser. So the keywords a function takes,

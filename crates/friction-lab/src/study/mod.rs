@@ -28,7 +28,9 @@ pub use independence::{IndependenceStudy, Refinement};
 pub use phenomena::Phenomena;
 pub use report::{conduct_all, Entry, ReportEntry};
 pub use scaling::ScalingStudy;
-pub use solver_studies::{Converge, Independence, Problem, Stiffness, WorkPrecision};
+pub use solver_studies::{
+    ConvergeRequest, IndependenceRequest, Problem, StiffnessRequest, WorkPrecisionRequest,
+};
 pub use stick_slip::{
     regime_series, Bifurcation, BifurcationStudy, StickSlipMap, StickSlipMapStudy, REGIMES,
 };

@@ -11,7 +11,7 @@ use std::path::Path;
 pub const CONVERGE_SOLVERS: [Solver; 3] = [Solver::RK4, Solver::DOPRI5, Solver::IMPLICIT_EULER];
 /// Observed orders of each solver on a problem against a reference (`friction-lab converge`).
 #[derive(clap::Args, Clone, Debug)]
-pub struct Converge {
+pub struct ConvergeRequest {
     /// The problem.
     #[command(flatten)]
     pub problem: Problem,
@@ -44,10 +44,10 @@ pub struct Converge {
     pub tol_list: Vec<f64>,
 }
 
-impl Converge {
+impl ConvergeRequest {
     /// The study of `problem` with every other setting at its declared default.
-    pub fn new(problem: Problem) -> Converge {
-        Converge {
+    pub fn new(problem: Problem) -> ConvergeRequest {
+        ConvergeRequest {
             problem,
             ..crate::settings::declared_defaults()
         }

@@ -11,7 +11,7 @@ use std::path::Path;
 
 /// Step-size independence of one solver on a problem (`friction-lab independence`).
 #[derive(clap::Args, Clone, Debug)]
-pub struct Independence {
+pub struct IndependenceRequest {
     /// The problem.
     #[command(flatten)]
     pub problem: Problem,
@@ -31,11 +31,11 @@ pub struct Independence {
     pub refinement: Refinement,
 }
 
-impl Independence {
+impl IndependenceRequest {
     /// The study of `problem` with every other setting at its default
     /// ([`Refinement::default`]).
-    pub fn new(problem: Problem) -> Independence {
-        Independence {
+    pub fn new(problem: Problem) -> IndependenceRequest {
+        IndependenceRequest {
             problem,
             solver: None,
             refinement: Refinement::default(),

@@ -1,6 +1,6 @@
 //! The four solver studies as a front end asks for them: a [`Problem`] (a rig, the chain or a
 //! system file, with its model, scheme, end time and bounds) and each study's own settings
-//! ([`Converge`], [`Independence`], [`WorkPrecision`], [`Stiffness`]), checked here and run
+//! ([`ConvergeRequest`], [`IndependenceRequest`], [`WorkPrecisionRequest`], [`StiffnessRequest`]), checked here and run
 //! into their files and the lines a front end prints. Every run of a study is independent;
 //! they run on a pool of threads and are collected in order, so the files do not depend on the
 //! thread count (wall times, which cannot be reproduced, go to a separate `*-timing.csv`).
@@ -11,14 +11,16 @@ mod named;
 mod stiffness;
 mod work_precision;
 
-pub use converge::{Converge, CONVERGE_SOLVERS};
-pub use independence::Independence;
+pub use converge::{ConvergeRequest, CONVERGE_SOLVERS};
+pub use independence::IndependenceRequest;
 pub use named::{
     Declared, NamedStudy, Runs, StudyRequest, CONVERGE, INDEPENDENCE, STIFFNESS, STUDIES,
     WORK_PRECISION,
 };
-pub use stiffness::{Stiffness, STIFFNESS_SOLVERS};
-pub use work_precision::{WorkPrecision, TESTSET_SOLVERS, TESTSET_TOLERANCES, WP_TOLERANCES};
+pub use stiffness::{StiffnessRequest, STIFFNESS_SOLVERS};
+pub use work_precision::{
+    WorkPrecisionRequest, TESTSET_SOLVERS, TESTSET_TOLERANCES, WP_TOLERANCES,
+};
 
 use crate::artifacts::{Artifacts, Made};
 use crate::error::AppError;

@@ -4,7 +4,7 @@
 //! command of each and Python a call (`study(name, …)`), both from the study's own
 //! declaration.
 
-use super::{Converge, Independence, Stiffness, WorkPrecision};
+use super::{ConvergeRequest, IndependenceRequest, StiffnessRequest, WorkPrecisionRequest};
 use crate::artifacts::Made;
 use crate::error::AppError;
 use clap::{ArgMatches, Args, FromArgMatches};
@@ -87,22 +87,22 @@ impl<R: FromArgMatches> Declared<R> {
 }
 
 /// `converge`, as the command line and Python name it.
-pub static CONVERGE: Declared<Converge> = Declared::new(
+pub static CONVERGE: Declared<ConvergeRequest> = Declared::new(
     "converge",
     "Convergence study: observed orders against a reference",
 );
 /// `independence`.
-pub static INDEPENDENCE: Declared<Independence> = Declared::new(
+pub static INDEPENDENCE: Declared<IndependenceRequest> = Declared::new(
     "independence",
     "Step-size independence: successive differences, Richardson estimate, verdict",
 );
 /// `work-precision`.
-pub static WORK_PRECISION: Declared<WorkPrecision> = Declared::new(
+pub static WORK_PRECISION: Declared<WorkPrecisionRequest> = Declared::new(
     "work-precision",
     "Work-precision: error against cost for every solver",
 );
 /// `stiffness`.
-pub static STIFFNESS: Declared<Stiffness> = Declared::new(
+pub static STIFFNESS: Declared<StiffnessRequest> = Declared::new(
     "stiffness",
     "Stiffness sweep: where the implicit solvers overtake the explicit ones",
 );
@@ -141,4 +141,9 @@ macro_rules! runs {
     )*};
 }
 
-runs!(Converge, Independence, WorkPrecision, Stiffness);
+runs!(
+    ConvergeRequest,
+    IndependenceRequest,
+    WorkPrecisionRequest,
+    StiffnessRequest
+);

@@ -24,7 +24,7 @@ pub const STIFFNESS_SOLVERS: [Solver; 5] = [
 /// The cost of each solver to reach a target error across the values of a parameter
 /// (`friction-lab stiffness`).
 #[derive(clap::Args, Clone, Debug)]
-pub struct Stiffness {
+pub struct StiffnessRequest {
     /// The problem.
     #[command(flatten)]
     pub problem: Problem,
@@ -80,11 +80,11 @@ pub struct Stiffness {
     pub tol_list: Vec<f64>,
 }
 
-impl Stiffness {
+impl StiffnessRequest {
     /// The study of `problem` over ε = 1e-1 … 1e-4 with every other setting at its declared
     /// default.
-    pub fn new(problem: Problem) -> Stiffness {
-        Stiffness {
+    pub fn new(problem: Problem) -> StiffnessRequest {
+        StiffnessRequest {
             problem,
             ..crate::settings::declared_defaults()
         }

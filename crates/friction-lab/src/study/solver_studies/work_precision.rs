@@ -35,7 +35,7 @@ pub const TESTSET_SOLVERS: [Solver; 6] = [
 /// Error against work and wall time of each solver on a problem, or on a problem of the stiff
 /// test set (`friction-lab work-precision`).
 #[derive(clap::Args, Clone, Debug)]
-pub struct WorkPrecision {
+pub struct WorkPrecisionRequest {
     /// The problem (its bounds and threads also those of a test-set study).
     #[command(flatten)]
     pub problem: Problem,
@@ -88,10 +88,10 @@ pub struct WorkPrecision {
     pub repeats: i64,
 }
 
-impl WorkPrecision {
+impl WorkPrecisionRequest {
     /// The study of `problem` with every other setting at its declared default.
-    pub fn new(problem: Problem) -> WorkPrecision {
-        WorkPrecision {
+    pub fn new(problem: Problem) -> WorkPrecisionRequest {
+        WorkPrecisionRequest {
             problem,
             ..crate::settings::declared_defaults()
         }
