@@ -4,7 +4,7 @@
 pub mod commands;
 
 use clap::{Parser, Subcommand};
-use friction_lab::error::{AppError, ErrorKind};
+use friction_lab::error::{as_option, spell_fields, AppError, ErrorKind};
 use friction_lab::plot::Format;
 use friction_lab::study::solver_studies::{NamedStudy, STUDIES};
 use friction_lab::trajectory::TrajectoryAs;
@@ -230,12 +230,18 @@ pub fn deliver(
     let written = friction_lab::threads::with_threads(threads, || files.write(out))??;
     println!("{}", written.line());
     for note in &made.notes {
-        println!("{note}");
+        println!("{}", spell_fields(note, &as_option));
     }
     for warning in made.warnings.iter().chain(written.stop_note().iter()) {
-        eprintln!("note: {warning}");
+        print_note(warning);
     }
     made.failure.map_or(Ok(()), Err)
+}
+
+/// Prints `warning` on stderr as a note, each option it names spelled as the command line
+/// takes it (`--t-end`).
+pub fn print_note(warning: &str) {
+    eprintln!("note: {}", spell_fields(warning, &as_option));
 }
 
 /// Runs `curve`, `simulate`, a study, `sweep`, `testset` or `phenomena`, and keeps its files in memory

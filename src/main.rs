@@ -1,6 +1,6 @@
 //! The `friction-lab` command line; README.md and `friction-lab --help` describe its commands.
 
-use friction_lab::error::bounded;
+use friction_lab::error::{as_option, bounded, spell_fields};
 use friction_lab::integrators::interrupt;
 
 /// The exit code of a command stopped by a signal (Ctrl-C, SIGTERM, SIGHUP): 128 + SIGINT's 2,
@@ -34,7 +34,10 @@ fn main() {
         // (error::bounded).
         Err(e) if !e.use_stderr() => e.exit(),
         Err(e) => {
-            eprint!("{}", bounded(&e.render().to_string()));
+            eprint!(
+                "{}",
+                bounded(&spell_fields(&e.render().to_string(), &as_option))
+            );
             std::process::exit(e.exit_code());
         }
     };
@@ -44,8 +47,7 @@ fn main() {
     let result = friction_lab_cli::invoke(invocation);
     if let Err(e) = &result {
         // A request's field as its option: `t_end` as `--t-end`.
-        let option = |field: &str| format!("--{}", field.replace('_', "-"));
-        eprintln!("error: {}", bounded(&e.message(&option)));
+        eprintln!("error: {}", bounded(&e.message(&as_option)));
     }
     if interrupt::requested() {
         std::process::exit(INTERRUPTED);

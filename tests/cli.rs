@@ -648,7 +648,7 @@ fn bad_scenario_input_is_rejected_and_writes_nothing() {
                 "bdf",
                 "--fixed-step",
             ],
-            "option `fixed-step` does not apply to solver `bdf`: it chooses its own steps \
+            "option `--fixed-step` does not apply to solver `bdf`: it chooses its own steps \
              from --rtol and --atol; allowed with rk4, dopri5, implicit-euler",
         ),
         (
@@ -661,7 +661,7 @@ fn bad_scenario_input_is_rejected_and_writes_nothing() {
                 "esdirk34",
                 "--fixed-step",
             ],
-            "option `fixed-step` does not apply to solver `esdirk34`",
+            "option `--fixed-step` does not apply to solver `esdirk34`",
         ),
     ];
     for (args, message) in cases {
@@ -928,7 +928,7 @@ fn bad_study_input_is_rejected() {
                 "--solvers",
                 "bdf,dopri5,bdf",
             ],
-            "option `solvers` names `bdf` twice: allowed each solver once",
+            "option `--solvers` names `bdf` twice: allowed each solver once",
         ),
         (
             // Every value would give the same runs, and a vacuous verdict.
@@ -940,7 +940,7 @@ fn bad_study_input_is_rejected() {
                 "--parameter",
                 "sigma0",
             ],
-            "option `parameter`: parameter `sigma0` is not read by model `CS`",
+            "option `--parameter`: parameter `sigma0` is not read by model `CS`",
         ),
     ];
     for (args, message) in cases {
@@ -1359,7 +1359,7 @@ fn bad_system_input_is_rejected_and_writes_nothing() {
                 "--points",
                 "100000",
             ],
-            "option `points` = 100000 would record 2.00003e10 numbers for the system's 200003 \
+            "option `--points` = 100000 would record 2.00003e10 numbers for the system's 200003 \
              unknowns: allowed at most 2.5e8 numbers, so at most 1249 points",
         ),
         (
@@ -1569,7 +1569,7 @@ fn every_reproducer_of_unbounded_or_unchecked_input_is_rejected_with_its_range()
         ),
         (
             &["independence", "belt", "--model", "CS", "--start", "1e-12"],
-            "option `start` = 1e-12 (finest level 1.25e-13) is out of range for rk4",
+            "option `--start` = 1e-12 (finest level 1.25e-13) is out of range for rk4",
         ),
         (
             &[
@@ -1970,7 +1970,7 @@ fn sweep_runs_a_grid_in_parallel_measures_the_settled_cycle_and_rejects_bad_axes
     ]);
     assert!(
         e.contains(
-            "option `grid`: parameter `F_s` is also given by --set F_s=7: every point would \
+            "option `--grid`: parameter `F_s` is also given by --set F_s=7: every point would \
              override it; give its values in the axis only"
         ),
         "{e}"
@@ -2136,7 +2136,7 @@ fn phenomena_judges_the_chosen_models_at_the_given_parameters() {
     let e = stderr(&o);
     assert!(
         e.contains(
-            "note: option `set`: parameter `sigma0` is read by none of the judged models: every \
+            "note: option `--set`: parameter `sigma0` is read by none of the judged models: every \
              value would give the same table"
         ),
         "{e}"
@@ -2363,7 +2363,7 @@ fn stiffness_of_a_rig_over_epsilon_is_regularized_unless_told_otherwise() {
     assert!(reference(1)["stiffness_detected_at"].as_f64().unwrap() < 2.0);
     let e = rejected(&["stiffness", "belt", "--model", "CS", "--switching", "event"]);
     assert!(
-        e.contains("option `parameter`: parameter `epsilon` is read only under --switching regularized, not event"),
+        e.contains("option `--parameter`: parameter `epsilon` is read only under --switching regularized, not event"),
         "{e}"
     );
 }
@@ -2508,7 +2508,7 @@ fn a_set_parameter_the_model_does_not_read_gets_a_note() {
     );
     assert!(
         e.contains(
-            "note: option `set`: parameter `sigma0` is not read by model `CS` (it reads: F_c, \
+            "note: option `--set`: parameter `sigma0` is not read by model `CS` (it reads: F_c, \
              F_s, C1, C2, v_s)"
         ),
         "{e}"
@@ -4422,7 +4422,7 @@ fn a_rigs_spectrum_finds_its_frequency_and_a_window_draws_a_span() {
     ]);
     assert_eq!(o.status.code(), Some(2));
     assert!(
-        stderr(&o).contains("option `window` = 1:2 applies to simulate"),
+        stderr(&o).contains("option `--window` = 1:2 applies to simulate"),
         "{}",
         stderr(&o)
     );

@@ -5,7 +5,8 @@ arguments become the fields of the library's settings (``python/src/bind.rs``), 
 default and range check is the library's, the command line's too (docs/python.md lists them).
 What Python is told is in Python's words: an unknown keyword argument is a ``TypeError``
 naming it and its close match, and the messages name the keyword arguments (``t_end``,
-``params``), not the command line's options (``--t-end``, ``--set``).
+``params``), not the command line's options (``--t-end``, ``--set``): the library's errors
+name each option as data, which the native binding spells as its keyword.
 """
 
 from __future__ import annotations
@@ -61,8 +62,7 @@ def _mapping(name: str, value: Any, example: str) -> Mapping:
 @functools.lru_cache(maxsize=None)
 def keywords(command: str) -> Dict[str, str]:
     """The keyword arguments of ``command``'s function (``_native.keywords``), each with the
-    command-line option it is (how the library's messages name it): the name with ``-`` for
-    ``_``, ``params`` for ``--set``."""
+    command-line option it is: the name with ``-`` for ``_``, ``params`` for ``--set``."""
     names = {k: k.replace("_", "-") for k in _native.keywords(command.replace("-", "_"))}
     names["system"] = "system"
     names["params"] = "set"
@@ -81,17 +81,6 @@ def check_keywords(command: str, options: Mapping[str, Any]) -> None:
                 else "; it takes: " + ", ".join(sorted(known)))
         raise TypeError(f"{command.replace('-', '_')}() got an unexpected keyword argument "
                         f"'{name}'{hint}")
-
-
-def spelled(message: str, command: str) -> str:
-    """A message of the command line in Python's words: each option of ``command`` named as
-    its keyword argument (``--t-end`` and `` `t-end` `` as ``t_end``, ``--set`` as
-    ``params``), and no usage line."""
-    text = "\n".join(line for line in message.splitlines()
-                     if not line.startswith("Usage:")).strip()
-    for python, long in sorted(keywords(command).items(), key=lambda kv: -len(kv[1])):
-        text = text.replace(f"--{long}", python).replace(f"`{long}`", f"`{python}`")
-    return text
 
 
 def _name(command: str, argument: Any) -> None:
@@ -208,17 +197,15 @@ class SolverError(RuntimeError):
 
 
 def _made(command: str, native: Callable[[], Any]) -> Made:
-    """What the native call ``native`` made, its messages in Python's words."""
+    """What the native call ``native`` made for ``command``; its messages name the options as
+    keywords (the library spells them so for Python)."""
     try:
         files, notes, advice, failure, trajectory = native()
     except _native.SolverError as e:
-        raise SolverError(spelled(str(e), command)) from None
-    except ValueError as e:
-        raise ValueError(spelled(str(e), command)) from None
+        raise SolverError(str(e)) from None
     for line in advice:
-        warnings.warn(spelled(line, command), RuntimeWarning, stacklevel=3)
-    failure = None if failure is None else spelled(failure, command)
-    return Made(dict(files), [spelled(n, command) for n in notes], failure, trajectory)
+        warnings.warn(line, RuntimeWarning, stacklevel=3)
+    return Made(dict(files), list(notes), failure, trajectory)
 
 
 def system_value(system: Any) -> Optional[str]:

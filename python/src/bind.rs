@@ -14,7 +14,7 @@
 use clap::{ArgAction, Args, FromArgMatches};
 use friction_lab::artifacts::Made;
 use friction_lab::curve::FrictionCurve;
-use friction_lab::error::AppError;
+use friction_lab::error::{spell_fields, AppError};
 use friction_lab::simulate::Simulation;
 use friction_lab::study::solver_studies::STUDIES;
 use friction_lab::study::Phenomena;
@@ -232,7 +232,7 @@ pub fn request<R: Args + FromArgMatches>(
 ) -> PyResult<R> {
     let command = R::augment_args(clap::Command::new("friction_lab").no_binary_name(true));
     let matches = parse(command, function, words, options)?;
-    R::from_arg_matches(&matches).map_err(|e| refused(function, e))
+    R::from_arg_matches(&matches).map_err(|e| refused(function, &[], e))
 }
 
 /// The options of `command` (a request's declaration) parsed from the positional `words` and
@@ -262,15 +262,19 @@ fn parse(
             }
         }
     }
+    let longs: Vec<String> = (command.get_arguments())
+        .filter_map(|a| a.get_long().map(str::to_string))
+        .collect();
     command
         .try_get_matches_from(&words)
-        .map_err(|e| refused(function, e))
+        .map_err(|e| refused(function, &longs, e))
 }
 
 /// A value or a combination the declaration refuses, as `ValueError`: a value its option's
 /// parser refused as "`keyword` = 'value': why", anything else as clap's message without its
-/// usage lines (the Python layer spells the options in it as keywords).
-fn refused(function: &str, e: clap::Error) -> PyErr {
+/// usage lines, each of the command's options `longs` it names (`--t-end`) spelled as its
+/// keyword (`t_end`).
+fn refused(function: &str, longs: &[String], e: clap::Error) -> PyErr {
     use clap::error::{ContextKind, ContextValue};
     use std::error::Error as _;
     let text = |kind| match e.get(kind) {
@@ -289,6 +293,7 @@ fn refused(function: &str, e: clap::Error) -> PyErr {
             "set" => "params".to_string(),
             other => other.to_lowercase().replace('-', "_"),
         };
+        let why = spell_fields(&why.to_string(), &crate::keyword);
         return PyValueError::new_err(format!("`{keyword}` = '{value}': {why}"));
     }
     let text = e.render().to_string();
@@ -297,7 +302,15 @@ fn refused(function: &str, e: clap::Error) -> PyErr {
         .map(|l| l.strip_prefix("error: ").unwrap_or(l))
         .filter(|l| !l.trim().is_empty())
         .collect();
-    PyValueError::new_err(format!("{function}(): {}", message.join("\n")))
+    let mut message = message.join("\n");
+    // Longest first: `--dt-list` before `--dt`.
+    let mut longs: Vec<&String> = longs.iter().collect();
+    longs.sort_by_key(|l| std::cmp::Reverse(l.len()));
+    for long in longs {
+        let keyword = crate::keyword(&long.replace('-', "_"));
+        message = message.replace(&format!("--{long}"), &keyword);
+    }
+    PyValueError::new_err(format!("{function}(): {message}"))
 }
 
 /// The positional words of a run or a study: the rig or `chain` named `scenario`, and

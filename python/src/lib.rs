@@ -14,7 +14,7 @@ mod law;
 
 use friction_lab::artifacts::Data;
 use friction_lab::columns::Column;
-use friction_lab::error::{bounded, AppError, ErrorKind};
+use friction_lab::error::{bounded, spell_fields, AppError, ErrorKind};
 use friction_lab::friction_systems::mode_name;
 use friction_lab::trajectory::{Trajectory, TrajectoryAs};
 use integrators::{Mode, SolverError as RunError};
@@ -270,10 +270,15 @@ fn deliver(
         .as_ref()
         .map(|t| trajectory(py, t).map(Bound::unbind))
         .transpose()?;
+    let spelled = |lines: Vec<String>| -> Vec<String> {
+        (lines.iter())
+            .map(|line| spell_fields(line, &keyword))
+            .collect()
+    };
     Ok((
         files,
-        made.notes,
-        made.warnings,
+        spelled(made.notes),
+        spelled(made.warnings),
         made.failure.as_ref().map(failure_message),
         columns,
     ))
@@ -289,6 +294,15 @@ fn failure_message(e: &AppError) -> String {
         }
         AppError::Solver(s) => format!("the solver failed: {s} ({KEPT} the failure)"),
         AppError::Diverged(why) => format!("the run diverged: {why} ({KEPT} its end)"),
+        other => other.message(&keyword),
+    }
+}
+
+/// Python's spelling of a request's field: its keyword argument, the field's own name but
+/// `params` for the assignments the command line takes as `--set`.
+pub fn keyword(field: &str) -> String {
+    match field {
+        "set" => "params".to_string(),
         other => other.to_string(),
     }
 }
@@ -304,7 +318,7 @@ fn models_json() -> String {
 /// as its keyword (`t_end`, where the command line says `--t-end`).
 fn to_python(e: AppError) -> PyErr {
     if e.kind() == ErrorKind::BadInput {
-        PyValueError::new_err(bounded(&e.message(&|field| field.to_string())))
+        PyValueError::new_err(bounded(&e.message(&keyword)))
     } else {
         SolverError::new_err(bounded(&failure_message(&e)))
     }

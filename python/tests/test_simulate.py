@@ -234,3 +234,20 @@ def test_a_system_files_numbers_are_set_by_their_paths():
     rows = fl.sweep(None, system=str(brake), t_end=10.0,
                     grid={"contact.pad.surface_velocity": [0.05, 1.0]})
     assert rows["regime"].tolist() == ["StickSlip", "SteadySliding"]
+
+
+def test_one_refusal_names_its_options_as_each_front_end_spells_them(cli, tmp_path):
+    # The library marks the options a message names; Python writes each as its keyword, the
+    # command line as its option, in the same sentence.
+    with pytest.raises(ValueError) as e:
+        fl.simulate("belt", model="CS", theta=0.7)
+    python = str(e.value)
+    assert python == ("option `theta 0.7` applies to scheme time-stepping, the weight of its "
+                      "θ-method: the event-driven solvers have none; drop theta, or choose "
+                      "scheme time-stepping")
+    done = cli("simulate", "belt", "--model", "CS", "--theta", "0.7", "--out", tmp_path / "x")
+    command_line = python.replace("theta", "--theta").replace("scheme", "--scheme")
+    assert (done.returncode, done.stderr.strip()) == (2, "error: " + command_line)
+    # An advice too: the command line's `--set` is Python's `params`.
+    with pytest.warns(RuntimeWarning, match=r"^option `params`: parameter `F_s` is not read"):
+        fl.simulate("paper-block", model="coulomb", params={"F_s": 9.0}, t_end=0.1)

@@ -25,7 +25,7 @@ pub fn run(args: &Writing<Phenomena>, format: Format) -> Result<(), AppError> {
         start.elapsed().as_secs_f64()
     );
     for warning in made.warnings.iter().chain(written.stop_note().iter()) {
-        eprintln!("note: {warning}");
+        crate::print_note(warning);
     }
     made.failure.map_or(Ok(()), Err)
 }

@@ -76,7 +76,7 @@ pub fn run(args: &ReproduceArgs, format: Format) -> Result<(), AppError> {
         start.elapsed().as_secs_f64()
     );
     if let Some(note) = written.stop_note() {
-        eprintln!("note: {note}");
+        crate::print_note(&note);
     }
     made.failure.map_or(Ok(()), Err)
 }

@@ -3,7 +3,7 @@
 //! summary of its key values.
 
 use crate::artifacts::{Artifacts, Made};
-use crate::error::AppError;
+use crate::error::{field, AppError};
 use crate::figure::{Drawn, KeyValues};
 use crate::laws::used_parameters;
 use crate::ranges;
@@ -73,13 +73,15 @@ impl FrictionCurve {
     fn extent(&self) -> Result<f64, AppError> {
         let axis = self.model.curve_axis();
         let (own, other, other_flag) = match axis {
-            CurveAxis::Velocity => (self.v_max, self.t_end, "--t-end"),
-            CurveAxis::Displacement => (self.t_end, self.v_max, "--v-max"),
+            CurveAxis::Velocity => (self.v_max, self.t_end, field("t_end")),
+            CurveAxis::Displacement => (self.t_end, self.v_max, field("v_max")),
         };
         if other.is_some() {
             let (drawn, use_flag) = match axis {
-                CurveAxis::Velocity => ("velocity", "--v-max"),
-                CurveAxis::Displacement => ("displacement under the prescribed motion", "--t-end"),
+                CurveAxis::Velocity => ("velocity", field("v_max")),
+                CurveAxis::Displacement => {
+                    ("displacement under the prescribed motion", field("t_end"))
+                }
             };
             return Err(AppError::Usage(format!(
                 "{other_flag} does not apply to {}: it is drawn against {drawn}; use {use_flag}",

@@ -27,11 +27,13 @@ pub enum AppError {
     /// A value of a request outside what it allows, as data ([`Invalid`]).
     #[error("{}", .0.message(&|field| field.to_string()))]
     Invalid(Invalid),
-    /// A command-line value that does not parse or does not apply.
-    #[error("{0}")]
+    /// A value that does not parse or does not apply, or a combination refused; the options it
+    /// names are marked ([`field`]) for each front end to spell.
+    #[error("{}", spell_fields(.0, &as_declared))]
     Usage(String),
-    /// A parameter file that is not valid TOML or holds something other than numbers.
-    #[error("parameter file {path}: {message}")]
+    /// A parameter file that is not valid TOML or holds something other than numbers (the
+    /// options its message names marked, as [`AppError::Usage`]'s).
+    #[error("parameter file {path}: {}", spell_fields(.message, &as_declared))]
     ParamFile {
         /// The file.
         path: PathBuf,
@@ -67,8 +69,9 @@ pub enum AppError {
     /// The solver failed; the files written say how far it got.
     #[error("{}", solver_failure(.0))]
     Solver(SolverError),
-    /// A run that a study needs failed in the solver.
-    #[error("{0}")]
+    /// A run that a study needs failed in the solver (the options it names marked, as
+    /// [`AppError::Usage`]'s).
+    #[error("{}", spell_fields(.0, &as_declared))]
     StudyRun(String),
     /// A run ended without a solver error, but its result diverged (the verdict's reason).
     #[error("the run diverged: {0} (summary.json and trajectory.csv keep what was computed)")]
@@ -146,12 +149,24 @@ impl Invalid {
 
 impl AppError {
     /// The message with every request field it names spelled by `spell` (a front end's
-    /// spelling of [`Invalid::field`]); the other errors' messages as they are.
+    /// spelling of [`Invalid::field`] and of the fields marked by [`field`]).
     pub fn message(&self, spell: &dyn Fn(&str) -> String) -> String {
         match self {
             AppError::Invalid(invalid) => invalid.message(spell),
+            AppError::Usage(m) | AppError::StudyRun(m) => spell_fields(m, spell),
+            AppError::ParamFile { path, message } => format!(
+                "parameter file {}: {}",
+                path.display(),
+                spell_fields(message, spell)
+            ),
             other => other.to_string(),
         }
+    }
+
+    /// The message with the fields it names still marked ([`field`]): for a message passed
+    /// on as advice, which each front end spells when it shows it.
+    pub fn marked(&self) -> String {
+        self.message(&|name| field(name))
     }
 
     /// What kind of failure it is: bad input, a failure while running, or a stop by a signal
@@ -203,6 +218,45 @@ impl From<ScenarioError> for AppError {
             }
         }
     }
+}
+
+/// Where a marked field begins, in a message ([`field`]).
+const FIELD_OPEN: char = '\u{27E8}';
+/// Where it ends.
+const FIELD_CLOSE: char = '\u{27E9}';
+
+/// A request's field (`t_end`, `switching`, `set`), named inside a message, an advice or a
+/// note for each front end to spell its own way ([`spell_fields`]): the command line as its
+/// option (`--t-end`), Python as its keyword (`t_end`). The library names options only so.
+pub fn field(name: &str) -> String {
+    format!("{FIELD_OPEN}{name}{FIELD_CLOSE}")
+}
+
+/// `text` with every field marked by [`field`] spelled by `spell`.
+pub fn spell_fields(text: &str, spell: &dyn Fn(&str) -> String) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(start) = rest.find(FIELD_OPEN) {
+        let after = &rest[start + FIELD_OPEN.len_utf8()..];
+        let Some(end) = after.find(FIELD_CLOSE) else {
+            break;
+        };
+        out += &rest[..start];
+        out += &spell(&after[..end]);
+        rest = &after[end + FIELD_CLOSE.len_utf8()..];
+    }
+    out + rest
+}
+
+/// A field as its request declares it (`t_end`): how the library's own `Display` spells
+/// the fields its messages mark.
+fn as_declared(name: &str) -> String {
+    name.to_string()
+}
+
+/// The command line's spelling of a field: its long option, `t_end` as `--t-end`.
+pub fn as_option(name: &str) -> String {
+    format!("--{}", name.replace('_', "-"))
 }
 
 /// A size in bytes as a reader takes it in: `512 bytes`, `3.4 MB` (decimal units).
@@ -262,7 +316,29 @@ pub fn bounded(message: &str) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::{bounded, MAX_ECHO};
+    use super::{as_option, bounded, field, spell_fields, AppError, MAX_ECHO};
+
+    #[test]
+    fn each_front_end_spells_the_marked_fields_its_own_way() {
+        let e = AppError::Usage(format!(
+            "option `{} 0.5` applies to {} time-stepping",
+            field("theta"),
+            field("scheme")
+        ));
+        assert_eq!(
+            e.message(&as_option),
+            "option `--theta 0.5` applies to --scheme time-stepping"
+        );
+        let keyword = |name: &str| name.to_string();
+        assert_eq!(
+            e.message(&keyword),
+            "option `theta 0.5` applies to scheme time-stepping"
+        );
+        assert_eq!(e.to_string(), e.message(&keyword));
+        assert_eq!(as_option("t_end"), "--t-end");
+        // An unclosed mark is left as it is.
+        assert_eq!(spell_fields("a \u{27E8}b", &as_option), "a \u{27E8}b");
+    }
 
     #[test]
     fn a_long_word_is_cut_and_the_rest_kept() {

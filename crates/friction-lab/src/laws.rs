@@ -2,7 +2,7 @@
 //! program runs (the Python package registers a law written in Python here, so that every
 //! check, default and output of a run is the one the catalog's laws get).
 
-use crate::error::AppError;
+use crate::error::{field, AppError};
 use friction_models::{FrictionModel, FrictionParams, ModelId, Parameters, Variant};
 use registry::{Named, Registry};
 use scenarios::Law;
@@ -145,13 +145,16 @@ pub fn check_read(
     if name == "epsilon" {
         if let Some(treatment) = unread_epsilon {
             return Err(AppError::Usage(format!(
-                "option `{option}`: parameter `epsilon` is read only under --switching \
-                 regularized, not {treatment}: every value would give the same run"
+                "option `{}`: parameter `epsilon` is read only under {} regularized, not \
+                 {treatment}: every value would give the same run",
+                field(option),
+                field("switching")
             )));
         }
     } else if let Some(why) = model.and_then(|m| m.unread(name)) {
         return Err(AppError::Usage(format!(
-            "option `{option}`: {why}: every value would give the same run"
+            "option `{}`: {why}: every value would give the same run",
+            field(option)
         )));
     }
     Ok(())

@@ -2,7 +2,7 @@
 //! assignments `NAME=VALUE`, every value checked against its range; the friction parameters,
 //! and a rig's or a system's own.
 
-use crate::error::AppError;
+use crate::error::{field, AppError};
 use crate::ranges::first_repeat;
 use friction_models::{FrictionParams, ParamError, Parameters};
 use scenarios::{Scenario, ScenarioParams};
@@ -81,20 +81,23 @@ impl ParamSource {
     /// run) and the paths of the file's own numbers ([`ParamSource::file_assignments`]): each
     /// `[[contact]]` of the file names its own model and parameters.
     pub fn check_for_system_file(&self) -> Result<(), AppError> {
-        const READ: &str = "each [[contact]] of the file names its own parameters (the file's \
-                            `param_set` and a contact's `params`); a system file run reads \
-                            `epsilon`, the regularisation width, and the file's own numbers by \
-                            their paths, e.g. --set contact.pad.F_c=2 (docs/systems.md)";
+        let [set, system, param_set] = ["set", "system", "param_set"].map(field);
+        let read = format!(
+            "each [[contact]] of the file names its own parameters (the file's `param_set` and \
+             a contact's `params`); a system file run reads `epsilon`, the regularisation \
+             width, and the file's own numbers by their paths, e.g. {set} contact.pad.F_c=2 \
+             (docs/systems.md)"
+        );
         if self.set_name() != DEFAULT_PARAM_SET {
             return Err(AppError::Usage(format!(
-                "option `--param-set` does not apply to --system: {READ}"
+                "option `{param_set}` does not apply to {system}: {read}"
             )));
         }
         if let Some(path) = &self.params {
             if let Some((name, _)) = read_file(path)?.into_iter().find(|(n, _)| n != "epsilon") {
                 return Err(AppError::ParamFile {
                     path: path.clone(),
-                    message: format!("parameter `{name}` does not apply to --system: {READ}"),
+                    message: format!("parameter `{name}` does not apply to {system}: {read}"),
                 });
             }
         }
@@ -102,7 +105,7 @@ impl ParamSource {
             let (name, _) = parse_assignment(assignment)?;
             if name != "epsilon" && !is_file_path(name) {
                 return Err(AppError::Usage(format!(
-                    "option `--set`: parameter `{name}` does not apply to --system: {READ}"
+                    "option `{set}`: parameter `{name}` does not apply to {system}: {read}"
                 )));
             }
         }
@@ -177,9 +180,12 @@ impl ParamSource {
         let names: Vec<&str> = assignments.iter().map(|a| a.0).collect();
         if let Some((j, k)) = first_repeat(&names) {
             return Err(AppError::Usage(format!(
-                "option `--set`: parameter `{}` is set twice, {} and {}: set each parameter \
+                "option `{}`: parameter `{}` is set twice, {} and {}: set each parameter \
                  once (only the last would be used)",
-                names[k], self.set[j], self.set[k]
+                field("set"),
+                names[k],
+                self.set[j],
+                self.set[k]
             )));
         }
         for (name, value) in assignments {
@@ -192,24 +198,27 @@ impl ParamSource {
 
 /// Splits `NAME=VALUE` and parses the value as a number.
 pub fn parse_assignment(text: &str) -> Result<(&str, f64), AppError> {
+    let set = field("set");
     let (name, value) = text.split_once('=').ok_or_else(|| {
         AppError::Usage(format!(
-            "--set `{text}`: expected NAME=VALUE, e.g. --set F_s=7.5"
+            "{set} `{text}`: expected NAME=VALUE, e.g. {set} F_s=7.5"
         ))
     })?;
     let (name, value) = (name.trim(), value.trim());
     let number = value.parse::<f64>().map_err(|_| {
         // The two misreadings seen: several parameters in one --set, and a list of values.
         let hint = if value.contains('=') {
-            format!(" (one parameter per --set: --set {name}=… --set …)")
+            format!(" (one parameter per {set}: {set} {name}=… {set} …)")
         } else if value.contains(',') {
-            " (one value per --set: a list of values is a sweep, `sweep --grid NAME=a,b`)"
-                .to_string()
+            format!(
+                " (one value per {set}: a list of values is a sweep, `sweep {} NAME=a,b`)",
+                field("grid")
+            )
         } else {
             String::new()
         };
         AppError::Usage(format!(
-            "--set {name}={value}: `{value}` is not a number{hint}"
+            "{set} {name}={value}: `{value}` is not a number{hint}"
         ))
     })?;
     Ok((name, number))

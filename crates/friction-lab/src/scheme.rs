@@ -90,7 +90,8 @@ impl std::str::FromStr for SwitchingName {
             .ok_or_else(|| {
                 format!(
                     "unknown switching `{s}`; allowed: event, regularized, naive \
-                     (time-stepping is a scheme: --scheme time-stepping)"
+                     (time-stepping is a scheme: {} time-stepping)",
+                    crate::error::field("scheme")
                 )
             })
     }

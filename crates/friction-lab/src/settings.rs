@@ -6,7 +6,7 @@
 //! (whose `Default` is the declared defaults: [`declared_defaults`]). Each is checked here,
 //! once, against the ranges of [`crate::ranges`].
 
-use crate::error::AppError;
+use crate::error::{field, AppError};
 use crate::params::ParamSource;
 use crate::ranges;
 use crate::scheme::{SchemeName, SwitchingName};
@@ -46,9 +46,14 @@ default_as_declared!(SchemeChoice, RunLimits, SolverSettings, ModelSettings);
 
 /// The note given for `switching = timestepping`, the former spelling of the time-stepping
 /// scheme, which is still taken.
-pub const TIMESTEPPING_SPELLING: &str = "`--switching timestepping` is now spelt `--scheme \
-     time-stepping` (time-stepping is a scheme, not a treatment of v = 0); the old spelling is \
-     taken for now and will be refused in a later release";
+pub fn timestepping_spelling() -> String {
+    let (switching, scheme) = (field("switching"), field("scheme"));
+    format!(
+        "`{switching} timestepping` is now spelt `{scheme} time-stepping` (time-stepping is a \
+         scheme, not a treatment of v = 0); the old spelling is taken for now and will be \
+         refused in a later release"
+    )
+}
 
 /// `--scheme` and `--switching`: how a run or a study is integrated, and how v = 0 is treated
 /// under the event-driven scheme.
@@ -71,12 +76,10 @@ pub struct SchemeChoice {
 }
 
 impl SchemeChoice {
-    /// The notes on their spelling: [`TIMESTEPPING_SPELLING`] for `switching = timestepping`.
+    /// The notes on their spelling: [`timestepping_spelling`] for `switching = timestepping`.
     pub fn spelling_notes(&self) -> Vec<String> {
         let old = self.switching == Some(SwitchingName::TimeStepping);
-        old.then(|| TIMESTEPPING_SPELLING.to_string())
-            .into_iter()
-            .collect()
+        old.then(timestepping_spelling).into_iter().collect()
     }
 
     /// Whether they ask for time-stepping (also by the former spelling
@@ -104,12 +107,15 @@ impl SchemeChoice {
             (
                 SchemeName::TimeStepping,
                 Some(s @ (SwitchingName::Regularized | SwitchingName::Naive)),
-            ) => Err(AppError::Usage(format!(
-                "option `--switching {}` applies to --scheme event-driven: time-stepping \
+            ) => {
+                let (switching, scheme) = (field("switching"), field("scheme"));
+                Err(AppError::Usage(format!(
+                    "option `{switching} {}` applies to {scheme} event-driven: time-stepping \
                      locates no event and treats v = 0 by the set-valued law at the end of each \
                      step",
-                s.name()
-            ))),
+                    s.name()
+                )))
+            }
             _ => Ok(()),
         }
     }
@@ -247,19 +253,20 @@ impl SolverSettings {
         }
         self.scheme.check()?;
         let time_stepping = self.scheme.is_time_stepping();
+        let [scheme, theta_, solver_, dt] = ["scheme", "theta", "solver", "dt"].map(field);
         if let (Some(theta), false) = (self.theta, time_stepping) {
             return Err(AppError::Usage(format!(
-                "option `--theta {}` applies to --scheme time-stepping, the weight of its \
-                 θ-method: the event-driven solvers have none; drop --theta, or choose \
-                 --scheme time-stepping",
+                "option `{theta_} {}` applies to {scheme} time-stepping, the weight of its \
+                 θ-method: the event-driven solvers have none; drop {theta_}, or choose \
+                 {scheme} time-stepping",
                 ranges::show(theta)
             )));
         }
         if let (Some(solver), true) = (self.solver, time_stepping) {
             return Err(AppError::Usage(format!(
-                "option `--solver {}` does not apply to --scheme time-stepping: Moreau–Jean's \
-                 scheme takes no ODE solver (its step is --dt, its weight --theta); drop \
-                 --solver, or choose --scheme event-driven",
+                "option `{solver_} {}` does not apply to {scheme} time-stepping: Moreau–Jean's \
+                 scheme takes no ODE solver (its step is {dt}, its weight {theta_}); drop \
+                 {solver_}, or choose {scheme} event-driven",
                 solver.name()
             )));
         }
@@ -269,9 +276,10 @@ impl SolverSettings {
                 .filter(|s| s.takes_fixed_steps())
                 .map(|s| s.name())
                 .collect();
+            let [fixed_step, rtol, atol] = ["fixed_step", "rtol", "atol"].map(field);
             return Err(AppError::Usage(format!(
-                "option `fixed-step` does not apply to solver `{}`: it chooses its own steps \
-                 from --rtol and --atol; allowed with {}",
+                "option `{fixed_step}` does not apply to solver `{}`: it chooses its own steps \
+                 from {rtol} and {atol}; allowed with {}",
                 self.solver().name(),
                 fixed.join(", ")
             )));

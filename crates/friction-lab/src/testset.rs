@@ -63,8 +63,9 @@ impl TestSet {
         let solver = self.solver.unwrap_or(Solver::RADAU5);
         if solver.is_fixed_step() {
             return Err(AppError::Usage(format!(
-                "option `--solver {}` takes a fixed step: the test set is run with tolerances; \
+                "option `{} {}` takes a fixed step: the test set is run with tolerances; \
                  choose an adaptive solver",
+                crate::error::field("solver"),
                 solver.name()
             )));
         }

@@ -26,9 +26,10 @@ pub fn with_threads<T: Send>(
     f: impl FnOnce() -> T + Send,
 ) -> Result<T, AppError> {
     if threads == Some(0) {
-        return Err(AppError::Usage(
-            "option `threads` = 0 is out of range: allowed [1, inf)".into(),
-        ));
+        return Err(AppError::Usage(format!(
+            "option `{}` = 0 is out of range: allowed [1, inf)",
+            crate::error::field("threads")
+        )));
     }
     let builder = rayon::ThreadPoolBuilder::new().num_threads(threads.unwrap_or(0));
     let pool = match WORKER_WRAPPER.get() {

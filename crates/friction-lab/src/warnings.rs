@@ -2,6 +2,7 @@
 //! steps and what would avoid it, a step too coarse for the problem's natural period, a
 //! parameter given that the run does not read.
 
+use crate::error::field;
 use crate::laws::check_read;
 use crate::ranges;
 use friction_models::ModelId;
@@ -45,8 +46,9 @@ pub fn unresolvable_period_warning(
     Some(format!(
         "the run spans {:.1e} of the shortest natural period 2π√(m/k) = {period:.2e} s, too \
          many to resolve with a few steps each: check the masses and stiffnesses, or shorten \
-         --t-end",
+         {}",
         span / period,
+        field("t_end"),
     ))
 }
 
@@ -80,12 +82,14 @@ pub fn naive_chatter_warning(
         }
     );
     (naive && adaptive && lacked_steps(error)).then(|| {
-        "naive switching steps blindly through the jump of the friction law at v_rel = 0, \
-         where an adaptive solver's error control shrinks the step until the cap: \
-         --switching event locates the switches, regularized smooths the jump (width \
-         epsilon), timestepping takes fixed steps that stick exactly; or keep naive with a \
-         fixed step (--solver rk4 --dt H)"
-            .to_string()
+        let [switching, scheme, solver, dt] = ["switching", "scheme", "solver", "dt"].map(field);
+        format!(
+            "naive switching steps blindly through the jump of the friction law at v_rel = 0, \
+             where an adaptive solver's error control shrinks the step until the cap: \
+             {switching} event locates the switches, regularized smooths the jump (width \
+             epsilon), {scheme} time-stepping takes fixed steps that stick exactly; or keep \
+             naive with a fixed step ({solver} rk4 {dt} H)"
+        )
     })
 }
 
@@ -122,7 +126,7 @@ pub fn unstable_step_warning(
         format!(
             "the explicit method diverged with the fixed step h = {} s: {}",
             ranges::show(h),
-            unstable_step("--dt")
+            unstable_step(&field("dt"))
         )
     })
 }
@@ -159,7 +163,7 @@ pub fn unread_warnings(
     set.iter()
         .filter_map(|s| s.split_once('=').map(|(name, _)| name.trim()))
         .filter_map(|name| check_read("set", name, model, unread_epsilon).err())
-        .map(|e| e.to_string())
+        .map(|e| e.marked())
         .collect()
 }
 
@@ -196,7 +200,7 @@ mod tests {
             warning.starts_with("naive switching steps blindly"),
             "{warning}"
         );
-        assert!(warning.contains("--switching event"), "{warning}");
+        assert!(warning.contains(&format!("{} event", field("switching"))));
         // Not for event switching, nor for a fixed step, nor for a run that did not lack steps.
         let adaptive = spec.step;
         assert_eq!(

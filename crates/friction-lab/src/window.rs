@@ -17,7 +17,9 @@ impl Window {
     /// `T0:T1`, checked against the run's span [0, `t_end`]: 0 ≤ T0 < T1 ≤ t_end; an error
     /// names the option, the value and the allowed range.
     pub fn parse(text: &str, t_end: f64) -> Result<Window, AppError> {
-        let bad = |why: String| AppError::Usage(format!("--window {text}: {why}"));
+        let bad = |why: String| {
+            AppError::Usage(format!("{} {text}: {why}", crate::error::field("window")))
+        };
         let (a, b) = text
             .split_once(':')
             .ok_or_else(|| bad("expected T0:T1 in seconds, such as 10:20".into()))?;
@@ -60,7 +62,7 @@ mod tests {
             }
         );
         let message = |text: &str| Window::parse(text, 50.0).unwrap_err().to_string();
-        assert!(message("10").contains("--window 10: expected T0:T1"));
+        assert!(message("10").contains("window 10: expected T0:T1"));
         assert!(message("a:3").contains("`a` is not a number"));
         assert!(message("20:10").contains("allowed 0 <= T0 < T1 <= 50 s"));
         assert!(message("10:60").contains("allowed 0 <= T0 < T1 <= 50 s"));

@@ -41,7 +41,7 @@ impl OneStepMethod for Rk4Method {
             StepControl::Fixed { h } => Ok(Box::new(Rk4::new(h, dim))),
             StepControl::Adaptive { .. } => Err(SolverError::Unsupported {
                 solver: "rk4",
-                why: "RK4 has no error estimate: give a fixed step (--dt)".into(),
+                why: "RK4 has no error estimate: give a fixed step h (dt)".into(),
             }),
         }
     }

@@ -47,7 +47,7 @@ fn rk4_asks_for_a_fixed_step() {
         .unwrap_err();
     assert_eq!(
         f.error.to_string(),
-        "rk4 cannot integrate this problem: RK4 has no error estimate: give a fixed step (--dt)"
+        "rk4 cannot integrate this problem: RK4 has no error estimate: give a fixed step h (dt)"
     );
 }
 

@@ -32,8 +32,11 @@ pub fn chosen_bodies(system: &System, chosen: &[String]) -> Result<Vec<usize>, A
     // A body chosen twice would repeat its rows in the tidy trajectory.csv.
     if let Some((j, k)) = crate::ranges::first_repeat(&indices) {
         return Err(AppError::Usage(format!(
-            "option `--bodies`: `{}` and `{}` are the same body, {}: choose each body once",
-            chosen[j], chosen[k], system.bodies[indices[k]].name
+            "option `{}`: `{}` and `{}` are the same body, {}: choose each body once",
+            crate::error::field("bodies"),
+            chosen[j],
+            chosen[k],
+            system.bodies[indices[k]].name
         )));
     }
     Ok(indices)
@@ -57,6 +60,7 @@ fn no_body(system: &System, token: &str) -> AppError {
         })
         .collect();
     AppError::Usage(format!(
-        "option `--bodies`: `{token}` is no body: allowed a body's name or an index in [1, {n}]{hint}"
+        "option `{}`: `{token}` is no body: allowed a body's name or an index in [1, {n}]{hint}",
+        crate::error::field("bodies")
     ))
 }

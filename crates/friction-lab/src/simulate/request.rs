@@ -3,7 +3,7 @@
 //! here for the command line, Python and a Rust user alike.
 
 use crate::artifacts::Made;
-use crate::error::AppError;
+use crate::error::{field, AppError};
 use crate::laws::ModelChoice;
 use crate::params::ParamSource;
 use crate::ranges;
@@ -217,9 +217,7 @@ impl Simulation {
     pub fn rig_spec(&self, scenario: Scenario) -> Result<RunSpec, AppError> {
         let (model, params) = self.rig_law(scenario)?;
         if !self.bodies.is_empty() {
-            return Err(AppError::Usage(
-                "option `--bodies` applies to systems (chain, --system), not to a rig".into(),
-            ));
+            return Err(bodies_of_a_rig());
         }
         let (friction, params) = params.resolve_for(Some(scenario))?;
         if self.checked_t_end()?.is_none() {
@@ -263,8 +261,9 @@ impl Simulation {
         };
         if points.saturating_mul(dim) > RECORD_LIMIT {
             return Err(AppError::Usage(format!(
-                "option `points` = {points} would record {} numbers for the system's {dim} \
+                "option `{}` = {points} would record {} numbers for the system's {dim} \
                  unknowns: allowed at most {} numbers, so at most {} points",
+                field("points"),
                 ranges::show((points as f64) * (dim as f64)),
                 ranges::show(RECORD_LIMIT as f64),
                 RECORD_LIMIT / dim.max(1)
@@ -343,6 +342,15 @@ impl Simulation {
     }
 }
 
+/// The error of `bodies` given with a rig: the option chooses among a system's bodies.
+pub fn bodies_of_a_rig() -> AppError {
+    AppError::Usage(format!(
+        "option `{}` applies to systems (chain, {}), not to a rig",
+        field("bodies"),
+        field("system")
+    ))
+}
+
 /// The model of a run of rig `scenario` and where its parameters come from: `model` with
 /// `params`, or without a model the rig's default law, read at its parameter set unless
 /// `params` names one ([`scenarios::Rig::default_law`]); a rig without a default law requires a
@@ -357,8 +365,9 @@ pub fn rig_law(
         return Ok((model.clone(), params));
     }
     let (model, set) = scenario.default_law().ok_or_else(|| {
+        let model = field("model");
         AppError::Usage(format!(
-            "option `--model` is required for scenario {scenario}: e.g. --model CS"
+            "option `{model}` is required for scenario {scenario}: e.g. {model} CS"
         ))
     })?;
     params.param_set.get_or_insert_with(|| set.to_string());
@@ -378,8 +387,9 @@ pub fn derived_t_end(
     match end.rule() {
         Some(rule) if ranges::T_END.check(t_end).is_err() => Err(AppError::Usage(format!(
             "the end time of scenario {scenario}, {rule}, is {t_end:.3e} s: allowed {} s; \
-             choose these parameters so that it falls within, or give --t-end",
-            ranges::T_END.range
+             choose these parameters so that it falls within, or give {}",
+            ranges::T_END.range,
+            field("t_end")
         ))),
         _ => Ok(t_end),
     }
@@ -412,19 +422,20 @@ pub fn system_of(
 ) -> Result<Described, AppError> {
     if let Some(source) = system {
         if model.is_some() {
-            return Err(AppError::Usage(
-                "option `--model` does not apply to --system: each [[contact]] of the file \
-                 names its model"
-                    .into(),
-            ));
+            return Err(AppError::Usage(format!(
+                "option `{}` does not apply to {}: each [[contact]] of the file names its model",
+                field("model"),
+                field("system")
+            )));
         }
         settings.params.check_for_system_file()?;
         if settings.variant != friction_models::Variant::Odd {
-            return Err(AppError::Usage(
-                "option `--variant` does not apply to --system: each [[contact]] of the file \
-                 names its variant"
-                    .into(),
-            ));
+            return Err(AppError::Usage(format!(
+                "option `{}` does not apply to {}: each [[contact]] of the file names its \
+                 variant",
+                field("variant"),
+                field("system")
+            )));
         }
         let assignments = settings.params.file_assignments()?;
         return Ok(Described {
@@ -437,7 +448,10 @@ pub fn system_of(
         });
     }
     let model = model.ok_or_else(|| {
-        AppError::Usage("option `--model` is required for the chain: e.g. --model coulomb".into())
+        let model = field("model");
+        AppError::Usage(format!(
+            "option `{model}` is required for the chain: e.g. {model} coulomb"
+        ))
     })?;
     let mut chain = ChainParams::default();
     let names = CHAIN_PARAMETERS.map(|(name, _, _)| name);

@@ -92,12 +92,13 @@ impl Study for IndependenceStudy<'_> {
             .and(resolution.check(finest))
             .map_err(|_| {
                 AppError::Usage(format!(
-                    "option `start` = {} (finest level {finest:e}) is out of range for {}: every \
-             level must lie in {} (the range of --{})",
+                    "option `{}` = {} (finest level {finest:e}) is out of range for {}: every \
+                     level must lie in {} (the range of {})",
+                    crate::error::field("start"),
                     ranges::show(start),
                     method.label(),
                     resolution.range,
-                    resolution.name
+                    crate::error::field(resolution.name)
                 ))
             })?;
         Ok(())

@@ -251,7 +251,8 @@ pub fn study_file<'a, T: Serialize>(
 pub fn distinct(solvers: &[Solver]) -> Result<(), AppError> {
     match crate::ranges::first_repeat(solvers) {
         Some((_, k)) => Err(AppError::Usage(format!(
-            "option `solvers` names `{}` twice: allowed each solver once",
+            "option `{}` names `{}` twice: allowed each solver once",
+            crate::error::field("solvers"),
             solvers[k].name()
         ))),
         None => Ok(()),

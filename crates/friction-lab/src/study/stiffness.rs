@@ -42,7 +42,8 @@ impl Study for StiffnessStudy<'_> {
         check_lists(self.methods, self.steps, self.tols)?;
         if values.len() > MAX_VALUES {
             return Err(AppError::Usage(format!(
-                "option `values` has {} values: allowed 1 to {MAX_VALUES}",
+                "option `{}` has {} values: allowed 1 to {MAX_VALUES}",
+                crate::error::field("values"),
                 values.len()
             )));
         }

@@ -4,7 +4,7 @@
 
 use super::table2_cost;
 use super::{Study, StudyFiles};
-use crate::error::AppError;
+use crate::error::{field, AppError};
 use crate::laws::check_read;
 use friction_models::{FrictionParams, ModelId};
 use integrators::Solver;
@@ -400,10 +400,11 @@ pub fn reachable(solver: Solver, rtol: f64) -> Result<(), AppError> {
     if steps <= MAX_STEPS_PER_SECOND {
         return Ok(());
     }
+    let option = field("rtol");
     Err(AppError::Usage(format!(
-        "option `--rtol` = {rtol:e} is out of reach of solver `{}`, of order {order}: a \
+        "option `{option}` = {rtol:e} is out of reach of solver `{}`, of order {order}: a \
          protocol run would take about {steps:.0e} steps per simulated second (rtol^(-1/order)), \
-         more than the {MAX_STEPS_PER_SECOND:.0e} allowed; allowed with it: --rtol >= {:e}, or \
+         more than the {MAX_STEPS_PER_SECOND:.0e} allowed; allowed with it: {option} >= {:e}, or \
          choose a method of higher order (the default, bdf)",
         solver.name(),
         MAX_STEPS_PER_SECOND.powf(-order),
@@ -423,16 +424,18 @@ pub fn unread_by_all(set: &[String], laws: &[Law]) -> Vec<String> {
         .filter(|name| !PROTOCOL_PARAMETERS.contains(name))
         .filter(|name| *name == "epsilon" || laws.iter().all(|law| unread_by(name, law)))
         .map(|name| match (name, laws) {
-            ("epsilon", _) => "option `set`: parameter `epsilon` is not read by the \
-                 protocols, which switch at v = 0 by events: every value would give the same \
-                 table"
-                .to_string(),
+            ("epsilon", _) => format!(
+                "option `{}`: parameter `epsilon` is not read by the protocols, which switch at \
+                 v = 0 by events: every value would give the same table",
+                field("set")
+            ),
             (_, [Law::Catalog { model, .. }]) => unread(name, *model)
                 .expect_err("unread by every model")
-                .to_string(),
+                .marked(),
             _ => format!(
-                "option `set`: parameter `{name}` is read by none of the judged models: every \
-                 value would give the same table"
+                "option `{}`: parameter `{name}` is read by none of the judged models: every \
+                 value would give the same table",
+                field("set")
             ),
         })
         .collect()

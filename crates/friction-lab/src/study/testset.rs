@@ -49,8 +49,9 @@ impl Study for TestSetStudy<'_> {
                 .map(|s| s.name())
                 .collect();
             return Err(AppError::Usage(format!(
-                "option `--solvers` names `{}`, which takes a fixed step: the test set is run at \
+                "option `{}` names `{}`, which takes a fixed step: the test set is run at \
                  tolerances; allowed: {}",
+                crate::error::field("solvers"),
                 s.name(),
                 adaptive.join(", ")
             )));

@@ -29,7 +29,10 @@ impl std::str::FromStr for Axis {
 impl Axis {
     /// Parses `NAME=V1,V2`, `NAME=START:STOP:COUNT` or `NAME=log:START:STOP:COUNT`.
     pub fn parse(text: &str) -> Result<Axis, AppError> {
-        let bad = |why: String| AppError::Usage(format!("option `grid` = `{text}`: {why}"));
+        let bad = |why: String| {
+            let grid = crate::error::field("grid");
+            AppError::Usage(format!("option `{grid}` = `{text}`: {why}"))
+        };
         let (name, values) = text
             .split_once('=')
             .ok_or_else(|| bad("expected NAME=VALUES".into()))?;

@@ -103,14 +103,16 @@ impl Study for SweepStudy<'_> {
     fn check(&self) -> Result<(), AppError> {
         if !(self.settle > 0.0 && self.settle <= 1.0) {
             return Err(AppError::Usage(format!(
-                "option `settle` = {} is out of range: allowed (0, 1]",
+                "option `{}` = {} is out of range: allowed (0, 1]",
+                crate::error::field("settle"),
                 crate::ranges::show(self.settle)
             )));
         }
         let grid = self.grid_points();
         if grid.len() > MAX_POINTS {
             return Err(AppError::Usage(format!(
-                "option `grid` makes {} points: allowed at most {MAX_POINTS}",
+                "option `{}` makes {} points: allowed at most {MAX_POINTS}",
+                crate::error::field("grid"),
                 grid.len()
             )));
         }

@@ -3,7 +3,7 @@
 
 use super::{points, Axis, Grid, PointRun, Start, SweepStudy};
 use crate::artifacts::{Artifacts, Made};
-use crate::error::AppError;
+use crate::error::{field, AppError};
 use crate::laws::ModelChoice;
 use crate::output::counted;
 use crate::params::{is_file_path, parse_assignment};
@@ -94,8 +94,10 @@ impl Sweep {
     ) -> Result<Vec<PointResult>, AppError> {
         if let Some(window) = &self.simulation.window {
             return Err(AppError::Usage(format!(
-                "option `window` = {window} applies to simulate, whose figures it draws over \
-                 time: a sweep measures each point's settled part (`settle`)"
+                "option `{}` = {window} applies to simulate, whose figures it draws over \
+                 time: a sweep measures each point's settled part (`{}`)",
+                field("window"),
+                field("settle")
             )));
         }
         check_axes(&self.axes, &self.simulation)?;
@@ -151,8 +153,9 @@ pub fn point_range(text: &str) -> Result<Range<usize>, String> {
     match text.split_once(':').map(|(a, b)| (parse(a), parse(b))) {
         Some((Some(start), Some(end))) => Ok(start..end),
         _ => Err(format!(
-            "option `point-range` = `{text}` is not START:END: allowed two whole numbers \
-             0 <= START <= END, at most the grid's points"
+            "option `{}` = `{text}` is not START:END: allowed two whole numbers \
+             0 <= START <= END, at most the grid's points",
+            field("point_range")
         )),
     }
 }
@@ -165,7 +168,8 @@ fn check_axes(axes: &[Axis], run: &Simulation) -> Result<(), AppError> {
     let names: Vec<&str> = axes.iter().map(|a| a.name.as_str()).collect();
     if let Some((_, k)) = first_repeat(&names) {
         return Err(AppError::Usage(format!(
-            "option `grid`: parameter `{}` has two axes; give all its values in one",
+            "option `{}`: parameter `{}` has two axes; give all its values in one",
+            field("grid"),
             names[k]
         )));
     }
@@ -176,8 +180,10 @@ fn check_axes(axes: &[Axis], run: &Simulation) -> Result<(), AppError> {
             .map(|a| (n, a))
     }) {
         return Err(AppError::Usage(format!(
-            "option `grid`: parameter `{name}` is also given by --set {given}: every point \
-             would override it; give its values in the axis only"
+            "option `{}`: parameter `{name}` is also given by {} {given}: every point \
+             would override it; give its values in the axis only",
+            field("grid"),
+            field("set")
         )));
     }
     if run.system.is_some() {
@@ -185,10 +191,12 @@ fn check_axes(axes: &[Axis], run: &Simulation) -> Result<(), AppError> {
         // shared, any other number is swept by its path in the file.
         if let Some(name) = names.iter().find(|&&n| n != "epsilon" && !is_file_path(n)) {
             return Err(AppError::Usage(format!(
-                "option `grid`: parameter `{name}` cannot be swept on a system file (each \
-                 contact has its own parameters): allowed epsilon, under --switching \
+                "option `{}`: parameter `{name}` cannot be swept on a system file (each \
+                 contact has its own parameters): allowed epsilon, under {} \
                  regularized, or a number of the file by its path TABLE.WHICH.KEY, e.g. \
-                 contact.pad.surface_velocity, spring.2.k, body.caliper.m (docs/systems.md)"
+                 contact.pad.surface_velocity, spring.2.k, body.caliper.m (docs/systems.md)",
+                field("grid"),
+                field("switching")
             )));
         }
     }
@@ -223,9 +231,10 @@ impl Grid for SimulationGrid<'_> {
 /// only: another rig or a system has no such start, refused with exit 2).
 fn prepare(run: &Simulation, start: Start) -> Result<PointRun, AppError> {
     let refuse = |why: &str| {
+        let start = field("start");
         Err(AppError::Usage(format!(
-            "option `--start sliding` {why}: it starts the belt's body at the equilibrium of \
-             steady sliding; use --start rest"
+            "option `{start} sliding` {why}: it starts the belt's body at the equilibrium of \
+             steady sliding; use {start} rest"
         )))
     };
     match (run.target()?, start) {
@@ -239,7 +248,11 @@ fn prepare(run: &Simulation, start: Start) -> Result<PointRun, AppError> {
             if (run.model_settings.params.set.iter())
                 .any(|a| parse_assignment(a).is_ok_and(|(n, _)| n == "x0"))
             {
-                return refuse("sets x0 itself: drop x0 from --set and --grid");
+                return refuse(&format!(
+                    "sets x0 itself: drop x0 from {} and {}",
+                    field("set"),
+                    field("grid")
+                ));
             }
             let model = spec.law.build(&spec.friction)?;
             spec.params.x0 = sliding_start(model.as_ref(), spec.params.v_belt, spec.params.k);

@@ -131,7 +131,7 @@ pub fn check_contacts(system: &System) -> Result<(), SystemError> {
             return Err(SystemError::Invalid {
                 what: format!("[[contact]] {}", j + 1),
                 why: format!(
-                    "{}, or use --switching event or regularized",
+                    "{}, or integrate it event-driven (event or regularized switching)",
                     outside.describe(model.name())
                 ),
             });

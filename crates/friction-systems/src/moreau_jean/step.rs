@@ -90,7 +90,7 @@ impl<'p, 'a> TimeStepper<'p, 'a> {
         let StepControl::Fixed { h } = options.step else {
             return Err(SolverError::Unsupported {
                 solver: NAME,
-                why: "time-stepping takes a fixed step (--dt), not tolerances".into(),
+                why: "time-stepping takes a fixed step h (dt), not tolerances".into(),
             });
         };
         let (t0, t_end) = (options.t0, options.t_end);

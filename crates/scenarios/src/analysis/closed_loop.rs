@@ -167,7 +167,7 @@ impl std::fmt::Display for ClosedLoop {
             None => write!(
                 f,
                 "closed loop: not settled over the last half of the run (neither hunting nor \
-                 converged yet): run longer with --t-end; final error {:.3e} m",
+                 converged yet): run longer (a later end time t_end); final error {:.3e} m",
                 self.final_error
             ),
         }?;

@@ -343,7 +343,7 @@ pub fn stiffness(
     let scheme_parameter = parameter == "epsilon";
     if scheme_parameter && !methods.iter().any(Method::reads_epsilon) {
         return Err(ScenarioError::Invalid(format!(
-            "parameter `epsilon` is read only under --switching regularized (or by a \
+            "parameter `epsilon` is read only under regularized switching (or by a \
              regularised peer); not {}: every value would give the same runs",
             Method::treatment_name(methods)
         )));

@@ -79,7 +79,7 @@ impl IndependenceRequest {
                 )
             }));
             if s.failed.iter().any(|f| f.diverged) {
-                notes.push(diverged_line("--start"));
+                notes.push(diverged_line(&crate::error::field("start")));
             }
             notes.push(format!("verdict: {verdict} the step size"));
             Ok(notes)

@@ -23,13 +23,13 @@ pub use work_precision::{
 };
 
 use crate::artifacts::{Artifacts, Made};
-use crate::error::AppError;
+use crate::error::{field, AppError};
 use crate::laws::ModelChoice;
 use crate::ranges;
 use crate::settings::{ModelSettings, RunLimits, SchemeChoice};
 use crate::simulate;
 use crate::simulate::chosen_bodies;
-use crate::simulate::request::{derived_t_end, rig_law, study_t_end, system_of};
+use crate::simulate::request::{bodies_of_a_rig, derived_t_end, rig_law, study_t_end, system_of};
 use crate::study::Target;
 use crate::warnings::{diverged_line, unread_warnings};
 use friction_models::params::show;
@@ -147,11 +147,12 @@ impl Problem {
     /// The study case: a rig, the chain, or a system file.
     pub fn case(&self) -> Result<CaseSetup, AppError> {
         let Some(target) = &self.target()? else {
-            return Err(AppError::Usage(
-                "the study needs a problem: a SCENARIO, or --system FILE.toml (work-precision \
-                 also takes --testset PROBLEM)"
-                    .into(),
-            ));
+            return Err(AppError::Usage(format!(
+                "the study needs a problem: a SCENARIO, or {} FILE.toml (work-precision also \
+                 takes {} PROBLEM)",
+                field("system"),
+                field("testset")
+            )));
         };
         let check_t_end = |t_end: f64| ranges::T_END.check(t_end);
         let scenario = match target {
@@ -187,9 +188,7 @@ impl Problem {
             ));
         }
         if !self.bodies.is_empty() {
-            return Err(AppError::Usage(
-                "option `--bodies` applies to systems (chain, --system), not to a rig".into(),
-            ));
+            return Err(bodies_of_a_rig());
         }
         let (model, params) = rig_law(scenario, self.model.as_ref(), &self.model_settings.params)?;
         let (friction, params) = params.resolve_for(Some(scenario))?;
@@ -224,10 +223,11 @@ impl Problem {
         defaults: &[Solver],
     ) -> Result<Vec<Method>, AppError> {
         if !given.is_empty() && self.scheme.is_time_stepping() {
+            let (option, scheme) = (field(option), field("scheme"));
             return Err(AppError::Usage(format!(
-                "option `--{option} {}` does not apply to --scheme time-stepping: the study's one \
+                "option `{option} {}` does not apply to {scheme} time-stepping: the study's one \
                  method is Moreau–Jean's scheme over the study's step sizes, which takes no ODE \
-                 solver; drop the solvers, or choose --scheme event-driven",
+                 solver; drop the solvers, or choose {scheme} event-driven",
                 given.iter().map(|s| s.name()).collect::<Vec<_>>().join(",")
             )));
         }
@@ -291,7 +291,7 @@ fn failures(runs: &[StudyRun], csv: &str) -> Vec<String> {
     let diverged = runs
         .iter()
         .any(|r| r.diverged)
-        .then(|| diverged_line("step in --dt-list"));
+        .then(|| diverged_line(&format!("step in {}", field("dt_list"))));
     // A study's runs come method by method (`Method::jobs`), each method once.
     runs.chunk_by(|a, b| a.solver == b.solver)
         .filter_map(|mine| {

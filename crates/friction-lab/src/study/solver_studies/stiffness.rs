@@ -122,9 +122,10 @@ impl StiffnessRequest {
             let methods = setup.with_peers(studied);
             if self.parameter == "epsilon" && !methods.iter().any(Method::reads_epsilon) {
                 return Err(AppError::Usage(format!(
-                    "parameter `epsilon` is read on a system only under --switching regularized, \
-                     or event (by its regularised BDF peer); not {}: every value would give the \
+                    "parameter `epsilon` is read on a system only under {} regularized, or \
+                     event (by its regularised BDF peer); not {}: every value would give the \
                      same runs",
+                    crate::error::field("switching"),
                     Method::treatment_name(&methods)
                 )));
             }
