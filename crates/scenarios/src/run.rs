@@ -134,6 +134,13 @@ pub struct RunSpec {
     pub limits: Limits,
 }
 
+impl RunSpec {
+    /// The end time, s: its own, or its rig's default ([`Scenario::default_t_end`]).
+    pub fn end_time(&self) -> f64 {
+        (self.t_end).unwrap_or_else(|| self.scenario.default_t_end(&self.params, &self.friction))
+    }
+}
+
 /// What bounds one run: a step cap and an optional wall-clock limit, both ending the run with
 /// an error that keeps what was computed.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -519,13 +526,7 @@ pub fn run_system(
     observe: &mut dyn FnMut(f64),
 ) -> Result<Outcome, ScenarioError> {
     validate(spec)?;
-    run_body(spec, system, end_time(spec), false, observe)
-}
-
-/// The end time of `spec`: its own, or its rig's default.
-fn end_time(spec: &RunSpec) -> f64 {
-    spec.t_end
-        .unwrap_or_else(|| spec.scenario.default_t_end(&spec.params, &spec.friction))
+    run_body(spec, system, spec.end_time(), false, observe)
 }
 
 /// Runs the simulation `spec` describes; `observe` is told the time after each step.
@@ -550,7 +551,7 @@ fn run_as(
 ) -> Result<Outcome, ScenarioError> {
     validate(spec)?;
     let model = spec.law.build(&spec.friction)?;
-    let t_end = end_time(spec);
+    let t_end = spec.end_time();
     let apparatus = (spec.scenario.rig()).apparatus(&spec.params, &spec.friction, model.clone());
     Ok(match apparatus {
         Apparatus::SteadySweep(velocities) => run_sweep(spec, model.as_ref(), &velocities, observe),

@@ -4,6 +4,7 @@
 //! end asks for it, checked.
 
 mod bodies;
+mod made;
 mod motion;
 pub mod request;
 mod rig;

@@ -307,9 +307,7 @@ impl Simulation {
         let mut made = match self.target()? {
             Target::Rig(scenario) => {
                 let spec = self.rig_spec(scenario)?;
-                let t_end = (spec.t_end)
-                    .unwrap_or_else(|| spec.scenario.default_t_end(&spec.params, &spec.friction));
-                let window = self.checked_window(t_end)?;
+                let window = self.checked_window(spec.end_time())?;
                 let model = self.rig_law(scenario)?.0;
                 simulate_rig(&spec, &model, out, trajectory_as, window)?
             }

@@ -2,6 +2,7 @@
 //! portrait, friction against velocity and against displacement, stiffness along the run, the
 //! spectrum of the velocity).
 
+use super::made::{made_of_record, Advice};
 use super::spectra::{add_spectra, measured_span, Measured};
 use super::stiffness::add_stiffness;
 use crate::artifacts::{Artifacts, Made};
@@ -13,7 +14,6 @@ use crate::run_record::{
     event_counts, Integrated, RunRecord, RunSetup, RunSummary, StiffnessSummary, RIG_BODY,
 };
 use crate::trajectory::{Trajectory, TrajectoryAs};
-use crate::warnings::{coarse_step_warning, failure_warnings, stiffness_warning};
 use crate::window::Window;
 use friction_models::Parameters;
 use friction_systems::{BodyState, ContactEvent};
@@ -217,9 +217,7 @@ pub fn simulate_rig(
     trajectory_as: TrajectoryAs,
     window: Option<Window>,
 ) -> Result<Made, AppError> {
-    let t_end = spec
-        .t_end
-        .unwrap_or_else(|| spec.scenario.default_t_end(&spec.params, &spec.friction));
+    let t_end = spec.end_time();
     let method = spec.scheme.method_name();
     let what = format!("{} {model} {method}", spec.scenario);
     let bar = Progress::time(t_end, &what);
@@ -271,30 +269,15 @@ pub fn simulate_rig(
     };
     let closed_loop = ClosedLoop::of_outcome(&outcome);
     let record = rig_record(&outcome, setup, has_state, closed_loop);
-    let (failure, caution) = (record.summary.failure(), record.summary.caution());
-    let columns = record.add_files(&mut files, out, trajectory_as)?;
-    Ok(Made {
-        files,
-        trajectory: columns,
-        notes: (closed_loop.iter().map(|c| c.to_string()))
-            .chain(spectra)
-            .collect(),
-        warnings: outcome
-            .stiffness_detected_at
-            .map(|t| stiffness_warning(method, t))
-            .into_iter()
-            .chain(coarse_step_warning(spec.step, outcome.time_scale))
-            .chain(failure_warnings(
-                spec.scheme,
-                spec.step,
-                t_end,
-                outcome.time_scale,
-                outcome.error.as_ref(),
-            ))
-            .chain(caution)
-            .collect(),
-        failure,
-    })
+    let advice = Advice {
+        scheme: spec.scheme,
+        period: outcome.time_scale,
+        own: None,
+    };
+    let notes = (closed_loop.iter().map(|c| c.to_string()))
+        .chain(spectra)
+        .collect();
+    made_of_record(record, files, out, trajectory_as, advice, notes)
 }
 
 #[cfg(test)]

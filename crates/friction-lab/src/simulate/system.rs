@@ -2,6 +2,7 @@
 //! of the bodies chosen, summary, events) and figures (velocities, the space–time picture of
 //! the contact modes, stiffness along the run).
 
+use super::made::{made_of_record, Advice};
 use super::motion::{add_motion, spread, LINE_BODIES};
 use super::space_time::Sampling;
 use super::spectra::{add_spectra, system_velocities};
@@ -175,7 +176,6 @@ pub fn simulate_system(
     } = described;
     let mut parameters = parameters.clone();
     parameters.extend(scheme.parameter().map(|(k, v)| (k.to_string(), v)));
-    system.validate()?;
     let t_end = options.t_end;
     let step = options.step;
     let method = scheme.method_name();
@@ -260,38 +260,20 @@ pub fn simulate_system(
         finals: run.final_states(),
         events,
     };
-    let (failure, caution) = (record.summary.failure(), record.summary.caution());
-    let columns = record.add_files(&mut files, out, trajectory_as)?;
-    let period = integrators::OdeProblem::time_scale(&run.problem);
-    Ok(Made {
-        files,
-        trajectory: columns,
-        notes: std::iter::once(format!(
-            "{}, {}, {}, {:.3} s",
-            counted(system.bodies.len(), "body", "bodies"),
-            counted(run.solution.stats.steps, "step", "steps"),
-            counted(run.solution.stats.events, "event", "events"),
-            run.wall_time_s
-        ))
-        .chain(spectra)
-        .chain(measured_loop.iter().map(|c| c.to_string()))
-        .collect(),
-        warnings: run
-            .solution
-            .stiffness_detected_at
-            .map(|t| crate::warnings::stiffness_warning(method, t))
-            .into_iter()
-            .chain(crate::warnings::coarse_step_warning(step, period))
-            .chain(crate::warnings::failure_warnings(
-                scheme,
-                step,
-                t_end,
-                period,
-                run.error.as_ref(),
-            ))
-            .chain(source.as_ref().and_then(unspread_warning))
-            .chain(caution)
-            .collect(),
-        failure,
-    })
+    let advice = Advice {
+        scheme,
+        period: integrators::OdeProblem::time_scale(&run.problem),
+        own: source.as_ref().and_then(unspread_warning),
+    };
+    let notes = std::iter::once(format!(
+        "{}, {}, {}, {:.3} s",
+        counted(system.bodies.len(), "body", "bodies"),
+        counted(run.solution.stats.steps, "step", "steps"),
+        counted(run.solution.stats.events, "event", "events"),
+        run.wall_time_s
+    ))
+    .chain(spectra)
+    .chain(measured_loop.iter().map(|c| c.to_string()))
+    .collect();
+    made_of_record(record, files, out, trajectory_as, advice, notes)
 }

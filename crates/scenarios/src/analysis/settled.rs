@@ -61,8 +61,7 @@ pub fn until_settled<T, E>(
 /// `spec` over `factor` times its span (its end time, or its scenario's default), with
 /// `factor` times its output intervals: the same output spacing.
 pub fn spanned(spec: &RunSpec, factor: u32) -> RunSpec {
-    let base =
-        (spec.t_end).unwrap_or_else(|| spec.scenario.default_t_end(&spec.params, &spec.friction));
+    let base = spec.end_time();
     let mut longer = spec.clone();
     longer.t_end = Some(base * f64::from(factor));
     longer.output_points = (spec.output_points - 1) * factor as usize + 1;

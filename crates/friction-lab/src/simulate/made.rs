@@ -1,0 +1,65 @@
+//! What a run made, once its record is complete: its files (from the record) and the advice
+//! on it, the same for a rig and a system.
+
+use crate::artifacts::{Artifacts, Made};
+use crate::error::AppError;
+use crate::run_record::RunRecord;
+use crate::trajectory::TrajectoryAs;
+use crate::warnings::{coarse_step_warning, failure_warnings, stiffness_warning};
+use friction_systems::Scheme;
+use std::path::Path;
+
+/// What the advice on a run reads beside its record.
+pub struct Advice {
+    /// The scheme it ran under.
+    pub scheme: Scheme,
+    /// Its shortest natural period 2π√(m/k), s, where it has one.
+    pub period: Option<f64>,
+    /// Advice of its own kind (a chain's spread its law does not read).
+    pub own: Option<String>,
+}
+
+/// What one run made: `record`'s files added to `files` in `out` (the trajectory as a file or
+/// as columns), the `notes`, and the advice on it: where Hairer's test found it stiff, a fixed
+/// step too coarse for its shortest natural period, why it failed under its scheme, its own
+/// advice, and the summary's caution. The failure its summary names is kept for the front end
+/// to report once the files are written.
+pub fn made_of_record(
+    record: RunRecord,
+    mut files: Artifacts,
+    out: &Path,
+    trajectory_as: TrajectoryAs,
+    advice: Advice,
+    notes: Vec<String>,
+) -> Result<Made, AppError> {
+    let Advice {
+        scheme,
+        period,
+        own,
+    } = advice;
+    let (failure, caution) = (record.summary.failure(), record.summary.caution());
+    let setup = &record.summary.setup;
+    let integrated = &record.summary.integrated;
+    let warnings = (integrated.stiffness_detected_at)
+        .map(|t| stiffness_warning(setup.solver, t))
+        .into_iter()
+        .chain(coarse_step_warning(setup.step, period))
+        .chain(failure_warnings(
+            scheme,
+            setup.step,
+            setup.t_end,
+            period,
+            integrated.error.as_ref(),
+        ))
+        .chain(own)
+        .chain(caution)
+        .collect();
+    let trajectory = record.add_files(&mut files, out, trajectory_as)?;
+    Ok(Made {
+        files,
+        trajectory,
+        notes,
+        warnings,
+        failure,
+    })
+}
