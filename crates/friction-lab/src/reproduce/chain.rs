@@ -5,7 +5,7 @@
 use super::Part;
 use crate::error::AppError;
 use crate::study::solver_studies::system_peers;
-use crate::study::{conduct_all, Entry, ReportEntry, ScalingStudy, Target, WorkPrecisionStudy};
+use crate::study::{conduct_all, Entry, Output, ReportEntry, ScalingStudy, WorkPrecisionStudy};
 use friction_models::{FrictionParams, ModelId, Variant};
 use friction_systems::chain::ChainParams;
 use friction_systems::Scheme;
@@ -72,7 +72,7 @@ impl Part for ChainStudies {
         Ok(())
     }
 
-    fn conduct(&self, target: &mut Target) -> Result<String, AppError> {
+    fn conduct(&self, target: &mut Output) -> Result<String, AppError> {
         let friction = &self.friction;
         let chain_100 = chain_case(100, friction, 5.0)?;
         let sizes = [10, 30, 100, 300, 1000];

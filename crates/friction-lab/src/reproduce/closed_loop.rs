@@ -6,7 +6,7 @@ use super::Part;
 use crate::error::AppError;
 use crate::laws::ModelChoice;
 use crate::simulate::{Simulation, Target as RunTarget};
-use crate::study::{conduct, ClosedLoopStudy, ClosedLoops, Target, TASKS};
+use crate::study::{conduct, ClosedLoopStudy, ClosedLoops, Output, TASKS};
 use crate::sweep::{Axis, PointResult, Start, Sweep};
 use friction_models::ModelId;
 use scenarios::phenomena::Protocol;
@@ -171,7 +171,7 @@ impl Part for ClosedLoopPart {
         "closed-loop"
     }
 
-    fn conduct(&self, target: &mut Target) -> Result<String, AppError> {
+    fn conduct(&self, target: &mut Output) -> Result<String, AppError> {
         let laws = plants();
         let mut compensators = laws.clone();
         compensators.push(Law::from(ModelId::Coulomb));

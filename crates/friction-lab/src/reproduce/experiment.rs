@@ -6,7 +6,7 @@ use super::Part;
 use crate::error::AppError;
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Marker, Plot, Series, PALETTE};
-use crate::study::{conduct, Study, StudyFiles, Target};
+use crate::study::{conduct, Output, Study, StudyFiles};
 use friction_models::FrictionParams;
 use scenarios::paper::{experiment, Asymptote, ExperimentFailure, ExperimentRow};
 use scenarios::Scenario;
@@ -144,7 +144,7 @@ impl Part for Experiment {
         HEADING.into()
     }
 
-    fn conduct(&self, target: &mut Target) -> Result<String, AppError> {
+    fn conduct(&self, target: &mut Output) -> Result<String, AppError> {
         let study = ExperimentStudy {
             friction: self.friction,
         };

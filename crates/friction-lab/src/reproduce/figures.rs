@@ -6,7 +6,7 @@ use super::Part;
 use crate::error::AppError;
 use crate::figure::{Drawn, KeyValues};
 use crate::laws::used_parameters;
-use crate::study::{conduct, Study, StudyFiles, Target};
+use crate::study::{conduct, Output, Study, StudyFiles};
 use friction_models::{CurveAxis, FrictionParams, ModelId, Variant};
 use scenarios::curves::{self, Curve};
 use scenarios::figures::{assess, Finding, PaperFigure, PAPER_FIGURES};
@@ -250,7 +250,7 @@ impl Part for Figures {
         self.study().check()
     }
 
-    fn conduct(&self, target: &mut Target) -> Result<String, AppError> {
+    fn conduct(&self, target: &mut Output) -> Result<String, AppError> {
         let figures = conduct(&self.study(), target, "figures")?;
         let mut s = String::from(
             "Each figure draws the model's equations with the parameters of Table 1 \

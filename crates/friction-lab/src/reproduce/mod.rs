@@ -18,7 +18,7 @@ pub use figures::PaperFiguresStudy;
 use crate::artifacts::{stopped_banner, Artifacts, Made};
 use crate::error::AppError;
 use crate::provenance::Provenance;
-use crate::study::{conduct_all, ReportEntry, Target};
+use crate::study::{conduct_all, Output, ReportEntry};
 use crate::threads::with_threads;
 use friction_models::FrictionParams;
 use integrators::interrupt;
@@ -43,7 +43,7 @@ pub trait Part {
     }
 
     /// Conducts its studies into `target` and returns the section's text under its heading.
-    fn conduct(&self, target: &mut Target) -> Result<String, AppError>;
+    fn conduct(&self, target: &mut Output) -> Result<String, AppError>;
 }
 
 /// A part made of studies of one's own: a heading, a paragraph, and entries conducted in order
@@ -68,7 +68,7 @@ impl Part for Section<'_> {
         self.folder
     }
 
-    fn conduct(&self, target: &mut Target) -> Result<String, AppError> {
+    fn conduct(&self, target: &mut Output) -> Result<String, AppError> {
         Ok(format!(
             "{}{}",
             self.intro,
@@ -104,7 +104,7 @@ impl Report<'_> {
         let mut sections = String::new();
         for part in &self.parts {
             let folder = dir.join(part.folder());
-            let mut target = Target {
+            let mut target = Output {
                 files: &mut files,
                 dir: &folder,
                 threads,

@@ -6,8 +6,8 @@
 use super::Part;
 use crate::error::AppError;
 use crate::study::{
-    conduct_all, ConvergenceStudy, Entry, IndependenceStudy, Refinement, ReportEntry,
-    StiffnessStudy, Target, WorkPrecisionStudy,
+    conduct_all, ConvergenceStudy, Entry, IndependenceStudy, Output, Refinement, ReportEntry,
+    StiffnessStudy, WorkPrecisionStudy,
 };
 use friction_models::{FrictionParams, ModelId};
 use friction_systems::{Scheme, Switching};
@@ -68,7 +68,7 @@ impl Part for SolverStudies {
         "studies"
     }
 
-    fn conduct(&self, target: &mut Target) -> Result<String, AppError> {
+    fn conduct(&self, target: &mut Output) -> Result<String, AppError> {
         let friction = &self.friction;
         let from_paper_dt = Refinement {
             start: 1e-3,

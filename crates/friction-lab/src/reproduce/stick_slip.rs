@@ -4,8 +4,8 @@
 use super::Part;
 use crate::error::AppError;
 use crate::study::{
-    conduct_all, Bifurcation, BifurcationStudy, Entry, ReportEntry, StickSlipMap,
-    StickSlipMapStudy, Target,
+    conduct_all, Bifurcation, BifurcationStudy, Entry, Output, ReportEntry, StickSlipMap,
+    StickSlipMapStudy,
 };
 use friction_models::{FrictionParams, ModelId};
 use scenarios::stick_slip::{belt_run, log_space, MapPoint, Regime};
@@ -94,7 +94,7 @@ impl Part for StickSlip {
         "stick-slip"
     }
 
-    fn conduct(&self, target: &mut Target) -> Result<String, AppError> {
+    fn conduct(&self, target: &mut Output) -> Result<String, AppError> {
         // CVS: Coulomb, viscous, static and Stribeck, a falling branch and a rising one.
         let base = belt_run(ModelId::Cvs, &self.friction);
         let ks = log_space(10.0, 1000.0, 9);

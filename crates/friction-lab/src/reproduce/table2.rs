@@ -3,7 +3,7 @@
 
 use super::Part;
 use crate::error::AppError;
-use crate::study::{conduct, Table2Study, Target};
+use crate::study::{conduct, Output, Table2Study};
 use scenarios::phenomena::cost::{SYSTEMS, TARGET_ERROR};
 use scenarios::phenomena::{catalog_laws, Phenomenon, Protocol};
 
@@ -16,7 +16,7 @@ impl Part for Table2 {
         "Table 2, decided by simulation".into()
     }
 
-    fn conduct(&self, target: &mut Target) -> Result<String, AppError> {
+    fn conduct(&self, target: &mut Output) -> Result<String, AppError> {
         let laws = catalog_laws();
         let study = Table2Study {
             phenomena: &Phenomenon::ALL,

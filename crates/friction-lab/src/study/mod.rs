@@ -3,7 +3,7 @@
 //! that result's tables and figures.
 //! [`conduct`] is what every study shares: its options checked before anything runs, its runs
 //! on a pool of threads with a progress bar (collected in order, so the files do not depend on
-//! the thread count), its files added to a [`Target`]. The command line, `reproduce` and a
+//! the thread count), its files added to an [`Output`]. The command line, `reproduce` and a
 //! user's own code conduct the same studies; each study is a file of this module.
 
 mod closed_loop;
@@ -142,7 +142,7 @@ impl StudyFiles<'_> {
 }
 
 /// Where a study's files go, and on how many threads it runs.
-pub struct Target<'a> {
+pub struct Output<'a> {
     /// The files being prepared.
     pub files: &'a mut Artifacts,
     /// The folder.
@@ -159,7 +159,7 @@ pub struct Target<'a> {
 /// its files. Returns its result.
 pub fn conduct<S: Study>(
     study: &S,
-    target: &mut Target,
+    target: &mut Output,
     stem: &str,
 ) -> Result<S::Result, AppError> {
     study.check()?;

@@ -7,7 +7,7 @@ use crate::laws::ModelChoice;
 use crate::params::{ParamSource, DEFAULT_PARAM_SET};
 use crate::ranges;
 use crate::settings::RunLimits;
-use crate::study::{conduct, reachable, unread_by_all, Table2Study, Target};
+use crate::study::{conduct, reachable, unread_by_all, Output, Table2Study};
 use friction_models::Variant;
 use integrators::{Solver, StepControl};
 use scenarios::phenomena::{catalog_laws, Phenomenon, Protocol};
@@ -113,7 +113,7 @@ impl Phenomena {
             },
             parameters,
         };
-        let mut target = Target {
+        let mut target = Output {
             files: &mut files,
             dir: out,
             threads,

@@ -3,7 +3,7 @@
 //! folder and joins their lines. `reproduce`'s solver studies are such tables, and a user's
 //! own study joins one with a line of its own (`examples/own_study.rs`).
 
-use super::{conduct, Study, Target};
+use super::{conduct, Output, Study};
 use crate::error::AppError;
 
 /// A study of a report, whatever its result's type: conducted into a target, it gives its
@@ -13,7 +13,7 @@ pub trait ReportEntry {
     /// (a level of an independence study that failed, a study none of whose runs measured
     /// anything) is returned as the error once they are added: a report does not read a
     /// result that is not one.
-    fn reproduce(&self, target: &mut Target) -> Result<String, AppError>;
+    fn reproduce(&self, target: &mut Output) -> Result<String, AppError>;
 }
 
 /// A study, the stem of its files (`converge-paper-block-CVS` for
@@ -28,7 +28,7 @@ pub struct Entry<S: Study, F: Fn(&S::Result) -> String> {
 }
 
 impl<S: Study, F: Fn(&S::Result) -> String> ReportEntry for Entry<S, F> {
-    fn reproduce(&self, target: &mut Target) -> Result<String, AppError> {
+    fn reproduce(&self, target: &mut Output) -> Result<String, AppError> {
         let result = conduct(&self.study, target, self.stem)?;
         match target.failure.take() {
             Some(failure) => Err(failure),
@@ -40,6 +40,6 @@ impl<S: Study, F: Fn(&S::Result) -> String> ReportEntry for Entry<S, F> {
 /// Conducts every entry of `table` in order into `target`, and joins their Markdown; the
 /// first failure ends it (the files of the studies before it, and of the failed one, are
 /// added).
-pub fn conduct_all(table: &[&dyn ReportEntry], target: &mut Target) -> Result<String, AppError> {
+pub fn conduct_all(table: &[&dyn ReportEntry], target: &mut Output) -> Result<String, AppError> {
     table.iter().map(|entry| entry.reproduce(target)).collect()
 }

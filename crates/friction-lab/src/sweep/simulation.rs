@@ -9,7 +9,7 @@ use crate::output::counted;
 use crate::params::{is_file_path, parse_assignment};
 use crate::ranges::{self, first_repeat};
 use crate::simulate::{chosen_bodies, Simulation, Target};
-use crate::study::{conduct, Target as StudyTarget};
+use crate::study::{conduct, Output};
 use crate::sweep::PointResult;
 use friction_systems::Layout;
 use scenarios::stick_slip::sliding_start;
@@ -63,7 +63,7 @@ impl Sweep {
     pub fn run(&self, out: &Path) -> Result<Made, AppError> {
         let threads = ranges::threads(self.threads)?;
         let mut files = Artifacts::default();
-        let mut target = StudyTarget {
+        let mut target = Output {
             files: &mut files,
             dir: out,
             threads,
@@ -87,11 +87,7 @@ impl Sweep {
     /// Checks the sweep and conducts it into `target` as the study `{stem}` (its files
     /// `{stem}.csv`, `{stem}.json`, `{stem}.png`), returning every point's result: how
     /// `reproduce` draws its hunting map.
-    pub fn conduct(
-        &self,
-        target: &mut StudyTarget,
-        stem: &str,
-    ) -> Result<Vec<PointResult>, AppError> {
+    pub fn conduct(&self, target: &mut Output, stem: &str) -> Result<Vec<PointResult>, AppError> {
         if let Some(window) = &self.simulation.window {
             return Err(AppError::Usage(format!(
                 "option `{}` = {window} applies to simulate, whose figures it draws over \

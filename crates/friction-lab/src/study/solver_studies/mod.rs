@@ -30,7 +30,7 @@ use crate::settings::{ModelSettings, RunLimits, SchemeChoice};
 use crate::simulate;
 use crate::simulate::chosen_bodies;
 use crate::simulate::request::{bodies_of_a_rig, derived_t_end, rig_law, study_t_end, system_of};
-use crate::study::Target;
+use crate::study::Output;
 use crate::warnings::{diverged_line, unread_warnings};
 use friction_models::params::show;
 use friction_systems::file::SystemSource;
@@ -243,11 +243,11 @@ impl Problem {
     fn make(
         &self,
         out: &Path,
-        study: impl FnOnce(&mut Target, &CaseSetup) -> Result<Vec<String>, AppError>,
+        study: impl FnOnce(&mut Output, &CaseSetup) -> Result<Vec<String>, AppError>,
     ) -> Result<Made, AppError> {
         let setup = self.case()?;
         let mut files = Artifacts::default();
-        let mut target = Target {
+        let mut target = Output {
             files: &mut files,
             dir: out,
             threads: ranges::threads(self.threads)?,

@@ -5,7 +5,7 @@ use super::{failures, or_default, Problem};
 use crate::artifacts::{Artifacts, Made};
 use crate::error::AppError;
 use crate::ranges;
-use crate::study::{conduct, Target, TestSetStudy, WorkPrecisionStudy};
+use crate::study::{conduct, Output, TestSetStudy, WorkPrecisionStudy};
 use integrators::Solver;
 use std::path::Path;
 
@@ -132,7 +132,7 @@ impl WorkPrecisionRequest {
             limits: self.problem.limits.limits()?,
         };
         let mut files = Artifacts::default();
-        let mut target = Target {
+        let mut target = Output {
             files: &mut files,
             dir: out,
             threads: ranges::threads(self.problem.threads)?,
