@@ -53,22 +53,22 @@ pub enum Command {
     /// Draw one friction curve: force against velocity, or against displacement under the
     /// paper's prescribed motion (DV, SD, SV, dahl).
     #[command(after_help = EXIT_CODES)]
-    Curve(commands::Writing<friction_lab::curve::FrictionCurve>),
+    Curve(commands::Writing<friction_lab::curve::CurveRequest>),
     /// Integrate one scenario: trajectory.csv, summary.json and figures.
     #[command(after_help = EXIT_CODES)]
-    Simulate(commands::Writing<friction_lab::simulate::Simulation>),
+    Simulate(commands::Writing<friction_lab::simulate::SimulationRequest>),
     /// Decide Table 2 by simulation, beside the paper's table.
     #[command(after_help = EXIT_CODES)]
-    Phenomena(commands::Writing<friction_lab::study::Phenomena>),
+    Phenomena(commands::Writing<friction_lab::study::PhenomenaRequest>),
     /// Sweep a rig, the chain or a system file over a grid of parameters: the settled state at every point
     /// (stick phases per cycle, amplitude and period, friction, solver statistics).
     #[command(after_help = EXIT_CODES)]
-    Sweep(commands::Writing<friction_lab::sweep::Sweep>),
+    Sweep(commands::Writing<friction_lab::sweep::SweepRequest>),
     /// Run one problem of the standard stiff test set (van-der-pol, robertson, hires, orego,
     /// pollution): the state at the end time and the significant correct digits against its
     /// published reference.
     #[command(after_help = EXIT_CODES)]
-    Testset(commands::Writing<friction_lab::testset::TestSet>),
+    Testset(commands::Writing<friction_lab::testset::TestSetRequest>),
     /// Reproduce the paper into one folder: Figures 2-7 with notes, the experiment, Table 2,
     /// the solver studies, and a report.md that links them.
     #[command(after_help = EXIT_CODES)]

@@ -1,8 +1,8 @@
 //! Python's keyword arguments as the library's requests, through their one declaration.
 //!
-//! Each function fills the request the library declares for it ([`Simulation`], [`Sweep`],
-//! [`ConvergeRequest`], [`IndependenceRequest`], [`WorkPrecisionRequest`], [`StiffnessRequest`], [`FrictionCurve`],
-//! [`Phenomena`]) as the command line does: the keyword `t_end` is the option `--t-end`, and
+//! Each function fills the request the library declares for it ([`SimulationRequest`], [`SweepRequest`],
+//! [`ConvergeRequest`], [`IndependenceRequest`], [`WorkPrecisionRequest`], [`StiffnessRequest`], [`CurveRequest`],
+//! [`PhenomenaRequest`]) as the command line does: the keyword `t_end` is the option `--t-end`, and
 //! its value, checked as the option's type (a number, a whole number, a name, a list of them,
 //! `True` for a flag), is given to the option's own parser. So the keywords a function takes,
 //! their defaults, their ranges and the checks between them are the declaration's: an option
@@ -13,12 +13,12 @@
 
 use clap::{ArgAction, Args, FromArgMatches};
 use friction_lab::artifacts::Made;
-use friction_lab::curve::FrictionCurve;
+use friction_lab::curve::CurveRequest;
 use friction_lab::error::{spell_fields, AppError};
-use friction_lab::simulate::Simulation;
+use friction_lab::simulate::SimulationRequest;
 use friction_lab::study::solver_studies::STUDIES;
-use friction_lab::study::Phenomena;
-use friction_lab::sweep::Sweep;
+use friction_lab::study::PhenomenaRequest;
+use friction_lab::sweep::SweepRequest;
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyList, PyString, PyTuple};
@@ -33,10 +33,10 @@ pub type Conduct = Box<dyn FnOnce(&Path) -> Result<Made, AppError> + Send>;
 fn declared(function: &str) -> Option<clap::Command> {
     let command = clap::Command::new("friction_lab").no_binary_name(true);
     Some(match function {
-        "simulate" => Simulation::augment_args(command),
-        "sweep" => Sweep::augment_args(command),
-        "curve" => FrictionCurve::augment_args(command),
-        "phenomena" => Phenomena::augment_args(command),
+        "simulate" => SimulationRequest::augment_args(command),
+        "sweep" => SweepRequest::augment_args(command),
+        "curve" => CurveRequest::augment_args(command),
+        "phenomena" => PhenomenaRequest::augment_args(command),
         study => STUDIES.find(&study.replace('_', "-"))?.declare(command),
     })
 }
@@ -333,7 +333,7 @@ pub fn simulation(
     scenario: Option<&str>,
     system: Option<PathBuf>,
     options: &Bound<'_, PyDict>,
-) -> PyResult<Simulation> {
+) -> PyResult<SimulationRequest> {
     if scenario.is_none() && system.is_none() {
         return Err(PyValueError::new_err(
             "a scenario (a rig's name or \"chain\") or a `system` is required",
@@ -349,7 +349,7 @@ pub fn sweep(
     system: Option<PathBuf>,
     grid: &Bound<'_, PyDict>,
     options: &Bound<'_, PyDict>,
-) -> PyResult<Sweep> {
+) -> PyResult<SweepRequest> {
     let mut words = problem(scenario, system)?;
     words.extend(self::grid(grid)?);
     request("sweep", words, options)
@@ -373,11 +373,11 @@ pub fn study(
 }
 
 /// The curve `curve(model, **options)` asks for.
-pub fn curve(model: &str, options: &Bound<'_, PyDict>) -> PyResult<FrictionCurve> {
+pub fn curve(model: &str, options: &Bound<'_, PyDict>) -> PyResult<CurveRequest> {
     request("curve", vec![model.to_string()], options)
 }
 
 /// Table 2 as `phenomena(**options)` asks for it.
-pub fn phenomena(options: &Bound<'_, PyDict>) -> PyResult<Phenomena> {
+pub fn phenomena(options: &Bound<'_, PyDict>) -> PyResult<PhenomenaRequest> {
     request("phenomena", Vec::new(), options)
 }

@@ -160,7 +160,7 @@ fn json_value<'py>(py: Python<'py>, value: &serde_json::Value) -> PyResult<Bound
     })
 }
 
-/// Runs `simulate`: the library's [`friction_lab::simulate::Simulation`] of `scenario` (a
+/// Runs `simulate`: the library's [`friction_lab::simulate::SimulationRequest`] of `scenario` (a
 /// rig's name or `chain`) or of the system file `system`, with the keyword arguments
 /// `options` ([`bind::simulation`]); the trajectory as columns. Errors and `stop` as [`deliver`].
 #[pyfunction]
@@ -178,7 +178,7 @@ fn simulate(
     })
 }
 
-/// Runs `sweep`: the library's [`friction_lab::sweep::Sweep`] over `grid` (names to lists
+/// Runs `sweep`: the library's [`friction_lab::sweep::SweepRequest`] over `grid` (names to lists
 /// of values or range texts) of the run `simulate` would make ([`bind::sweep`]). Errors and
 /// `stop` as [`deliver`].
 #[pyfunction]

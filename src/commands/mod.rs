@@ -13,8 +13,8 @@ pub mod reproduce;
 #[derive(Args, Debug)]
 pub struct Nothing {}
 
-/// A request of the library, declared there ([`friction_lab::curve::FrictionCurve`],
-/// [`friction_lab::study::Phenomena`], …), and the folder its files are written into.
+/// A request of the library, declared there ([`friction_lab::curve::CurveRequest`],
+/// [`friction_lab::study::PhenomenaRequest`], …), and the folder its files are written into.
 #[derive(Args, Debug)]
 pub struct Writing<R: Args + FromArgMatches> {
     /// Folder to write into (created if missing).

@@ -6,13 +6,13 @@ use super::Writing;
 use friction_lab::error::AppError;
 use friction_lab::plot::Format;
 use friction_lab::ranges;
-use friction_lab::study::Phenomena;
+use friction_lab::study::PhenomenaRequest;
 use friction_lab::threads::with_threads;
 use std::time::Instant;
 
 /// Runs `phenomena`: its files written, then the advice and the failure of undecided cells.
 /// `format`: the figures' size and resolution.
-pub fn run(args: &Writing<Phenomena>, format: Format) -> Result<(), AppError> {
+pub fn run(args: &Writing<PhenomenaRequest>, format: Format) -> Result<(), AppError> {
     let start = Instant::now();
     let threads = ranges::threads(args.request.threads)?;
     let made = args.request.run(&args.out)?;

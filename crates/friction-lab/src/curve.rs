@@ -1,4 +1,4 @@
-//! One friction curve as a front end asks for it ([`FrictionCurve`]): the force against
+//! One friction curve as a front end asks for it ([`CurveRequest`]): the force against
 //! velocity (or against displacement under a prescribed motion), its CSV, figure and a JSON
 //! summary of its key values.
 
@@ -19,7 +19,7 @@ pub const CURVE_POINTS: i64 = 2000;
 
 /// One friction curve of a model of the catalog (`friction-lab curve`).
 #[derive(clap::Args, Clone, Debug)]
-pub struct FrictionCurve {
+pub struct CurveRequest {
     /// The model, as `friction-lab models` lists it (AV, CS, CVS, DV, SD, SV, coulomb, ...).
     #[arg(value_name = "MODEL")]
     pub model: ModelId,
@@ -56,10 +56,10 @@ struct Summary<'a> {
     key_values: KeyValues,
 }
 
-impl FrictionCurve {
+impl CurveRequest {
     /// The curve of `model` with every other setting at its default.
-    pub fn new(model: ModelId) -> FrictionCurve {
-        FrictionCurve {
+    pub fn new(model: ModelId) -> CurveRequest {
+        CurveRequest {
             model,
             v_max: None,
             t_end: None,

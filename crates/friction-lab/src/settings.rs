@@ -362,7 +362,7 @@ mod tests {
         let m = ModelSettings::default();
         assert_eq!((m.params.set_name(), m.variant), ("paper", Variant::Odd));
         // docs/phenomena.md: every protocol with BDF at rtol 1e-10, atol 1e-12.
-        let t = crate::study::Phenomena::default();
+        let t = crate::study::PhenomenaRequest::default();
         assert_eq!((t.solver, t.rtol, t.atol), (Solver::BDF, 1e-10, 1e-12));
         assert!(t.models.is_empty() && t.params.set.is_empty());
     }

@@ -17,7 +17,7 @@ use std::path::Path;
 /// tolerances, its initial step (the solver's choice when `None`), the end time and the
 /// bounds.
 #[derive(clap::Args, Clone, Debug)]
-pub struct TestSet {
+pub struct TestSetRequest {
     /// The problem: van-der-pol, robertson, hires, orego or pollution.
     #[arg(value_name = "PROBLEM")]
     pub problem: String,
@@ -56,7 +56,7 @@ pub struct TestSet {
     pub limits: RunLimits,
 }
 
-impl TestSet {
+impl TestSetRequest {
     /// Checks the run, solves it and makes its files in `out`: `final.csv`, `summary.json`.
     pub fn run(&self, out: &Path) -> Result<Made, AppError> {
         let problem = testset::named(&self.problem).map_err(AppError::Usage)?;
@@ -85,7 +85,7 @@ impl TestSet {
     }
 }
 
-/// A [`TestSet`] run checked: the problem found, the default solver and end time taken.
+/// A [`TestSetRequest`] run checked: the problem found, the default solver and end time taken.
 struct Checked<'a> {
     problem: &'a TestProblem,
     solver: Solver,

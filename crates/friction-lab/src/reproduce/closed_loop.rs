@@ -5,9 +5,9 @@
 use super::Part;
 use crate::error::AppError;
 use crate::laws::ModelChoice;
-use crate::simulate::{Simulation, Target as RunTarget};
+use crate::simulate::{SimulationRequest, Target as RunTarget};
 use crate::study::{conduct, ClosedLoopStudy, ClosedLoops, Output, TASKS};
-use crate::sweep::{Axis, PointResult, Start, Sweep};
+use crate::sweep::{Axis, PointResult, Start, SweepRequest};
 use friction_models::ModelId;
 use scenarios::phenomena::Protocol;
 use scenarios::stick_slip::Regime;
@@ -183,8 +183,8 @@ impl Part for ClosedLoopPart {
             protocol: Protocol::default(),
         };
         let loops = conduct(&study, target, "closed-loop")?;
-        let map = Sweep {
-            simulation: Simulation::new(
+        let map = SweepRequest {
+            simulation: SimulationRequest::new(
                 RunTarget::Rig(Scenario::SERVO),
                 Some(ModelChoice::Catalog(ModelId::Static)),
             ),

@@ -1,6 +1,6 @@
 //! One run simulated and written: a rig ([`simulate_rig`]) or a system of many bodies
 //! ([`simulate_system`]), its files and figures in memory ([`Made`](crate::artifacts::Made)),
-//! for the command line, Python and a Rust user alike; [`Simulation`] is the run as a front
+//! for the command line, Python and a Rust user alike; [`SimulationRequest`] is the run as a front
 //! end asks for it, checked.
 
 mod bodies;
@@ -15,7 +15,7 @@ mod system;
 
 pub use bodies::chosen_bodies;
 pub use motion::{spread, LINE_BODIES};
-pub use request::{scenario_help, Simulation, Target};
+pub use request::{scenario_help, SimulationRequest, Target};
 pub use rig::simulate_rig;
 pub use stiffness::add_stiffness;
 pub use system::{load, simulate_system, Described, SystemRun};

@@ -1,4 +1,4 @@
-//! One run as a front end asks for it ([`Simulation`]): a rig, the chain or a system file,
+//! One run as a front end asks for it ([`SimulationRequest`]): a rig, the chain or a system file,
 //! its model, solver settings, end time, output points and recorded bodies; checked and run
 //! here for the command line, Python and a Rust user alike.
 
@@ -113,10 +113,10 @@ pub fn scenario_help(what: &str, then: &str) -> String {
 }
 
 /// One run (`friction-lab simulate`): what is integrated, with which model and settings, how
-/// long, and what is recorded. [`Simulation::run`] checks it and makes its files.
+/// long, and what is recorded. [`SimulationRequest::run`] checks it and makes its files.
 #[derive(clap::Args, Clone, Debug)]
-pub struct Simulation {
-    /// The rig (docs/scenarios.md) or the chain: [`Simulation::target`] with `system`.
+pub struct SimulationRequest {
+    /// The rig (docs/scenarios.md) or the chain: [`SimulationRequest::target`] with `system`.
     #[arg(
         help = scenario_help(
             "The rig",
@@ -161,14 +161,14 @@ pub struct Simulation {
     pub model_settings: ModelSettings,
 }
 
-impl Simulation {
+impl SimulationRequest {
     /// A run of `target` with `model` and every setting at its default.
-    pub fn new(target: Target, model: Option<ModelChoice>) -> Simulation {
+    pub fn new(target: Target, model: Option<ModelChoice>) -> SimulationRequest {
         let (scenario, system) = match target {
             Target::System(source) => (None, Some(source)),
             named => (Some(named), None),
         };
-        Simulation {
+        SimulationRequest {
             scenario,
             system,
             model,
@@ -317,7 +317,7 @@ impl Simulation {
         Ok(made)
     }
 
-    /// [`Simulation::run`] of the chain or a system file.
+    /// [`SimulationRequest::run`] of the chain or a system file.
     fn run_system(&self, out: &Path, trajectory_as: TrajectoryAs) -> Result<Made, AppError> {
         let described = self.described()?;
         self.solver.checked_step()?;

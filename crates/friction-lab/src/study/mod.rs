@@ -25,7 +25,7 @@ mod work_precision;
 pub use closed_loop::{ClosedLoopStudy, ClosedLoops, Regulation, Task, Tracking, TASKS};
 pub use convergence::ConvergenceStudy;
 pub use independence::{IndependenceStudy, Refinement};
-pub use phenomena::Phenomena;
+pub use phenomena::PhenomenaRequest;
 pub use report::{conduct_all, Entry, ReportEntry};
 pub use scaling::ScalingStudy;
 pub use solver_studies::{

@@ -1,4 +1,4 @@
-//! Table 2 decided by simulation as a front end asks for it ([`Phenomena`]): the laws
+//! Table 2 decided by simulation as a front end asks for it ([`PhenomenaRequest`]): the laws
 //! judged, the solver and tolerances of every protocol, the parameters, the bounds.
 
 use crate::artifacts::{Artifacts, Made};
@@ -16,7 +16,7 @@ use std::path::Path;
 
 /// Table 2 for some laws (`friction-lab phenomena`); its `Default` is the declared defaults.
 #[derive(clap::Args, Clone, Debug)]
-pub struct Phenomena {
+pub struct PhenomenaRequest {
     /// The solver every protocol uses (an adaptive one); BDF by default: the bristle models'
     /// stiff states make Dormand–Prince four times slower, with the same verdicts.
     #[arg(
@@ -64,9 +64,9 @@ pub struct Phenomena {
     pub limits: RunLimits,
 }
 
-crate::settings::default_as_declared!(Phenomena);
+crate::settings::default_as_declared!(PhenomenaRequest);
 
-impl Phenomena {
+impl PhenomenaRequest {
     /// Decides Table 2, its files in `out` (in memory): `table2.md` and `table2.json`, the
     /// advice about parameters no judged law reads, and the failure of undecided cells.
     pub fn run(&self, out: &Path) -> Result<Made, AppError> {

@@ -1,7 +1,7 @@
 //! A sweep: one run per point of a grid of parameters (the product of its axes), in parallel,
 //! each reduced to its settled state (`scenarios::analysis::settled`) and regime, written as `sweep.csv`
 //! (a row per point), `sweep.json` and a figure. A [`SweepStudy`] is a [`Study`]; what is run
-//! at a point comes from a [`Grid`] (a [`Sweep`]: a simulation with the point's values
+//! at a point comes from a [`Grid`] (a [`SweepRequest`]: a simulation with the point's values
 //! assigned, or one's own). The rows do not depend on the thread count.
 
 mod axis;
@@ -11,7 +11,7 @@ mod simulation;
 
 pub use axis::{points, Axis, MAX_AXIS, MAX_POINTS};
 pub use point::{grid_options, PointResult, PointRun, RECORD_LIMIT};
-pub use simulation::{check_point_range, point_range, Sweep, DEFAULT_SETTLE};
+pub use simulation::{check_point_range, point_range, SweepRequest, DEFAULT_SETTLE};
 
 use crate::error::AppError;
 use crate::output::{Cell, Table};

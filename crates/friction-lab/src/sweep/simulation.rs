@@ -1,5 +1,5 @@
-//! The sweep of a [`Simulation`]: the run `simulate` would make, each point's values assigned
-//! after the run's own parameters ([`Sweep`]); its checks, its grid and its files.
+//! The sweep of a [`SimulationRequest`]: the run `simulate` would make, each point's values assigned
+//! after the run's own parameters ([`SweepRequest`]); its checks, its grid and its files.
 
 use super::{points, Axis, Grid, PointRun, Start, SweepStudy};
 use crate::artifacts::{Artifacts, Made};
@@ -8,7 +8,7 @@ use crate::laws::ModelChoice;
 use crate::output::counted;
 use crate::params::{is_file_path, parse_assignment};
 use crate::ranges::{self, first_repeat};
-use crate::simulate::{chosen_bodies, Simulation, Target};
+use crate::simulate::{chosen_bodies, SimulationRequest, Target};
 use crate::study::{conduct, Output};
 use crate::sweep::PointResult;
 use friction_systems::Layout;
@@ -23,11 +23,11 @@ pub const DEFAULT_SETTLE: f64 = 0.5;
 
 /// A sweep of a run over a grid of its parameters (`friction-lab sweep`).
 #[derive(clap::Args, Clone, Debug)]
-pub struct Sweep {
+pub struct SweepRequest {
     /// What to run at every point, before the point's values are assigned: the rig or chain,
     /// the model, the solver and the fixed parameters, as `simulate` takes them.
     #[command(flatten)]
-    pub simulation: Simulation,
+    pub simulation: SimulationRequest,
     /// One axis of the grid, repeatable: NAME=V1,V2,... (a list), NAME=START:STOP:COUNT
     /// (evenly spaced), or NAME=log:START:STOP:COUNT (evenly spaced in log); any friction,
     /// scenario or chain parameter. The grid is the product of the axes, the first varying
@@ -57,7 +57,7 @@ pub struct Sweep {
     pub range: Option<Range<usize>>,
 }
 
-impl Sweep {
+impl SweepRequest {
     /// Checks the sweep, runs its points and makes its files in `out` (in memory): a failed
     /// point is a row that says why, and the sweep's failure.
     pub fn run(&self, out: &Path) -> Result<Made, AppError> {
@@ -160,7 +160,7 @@ pub fn point_range(text: &str) -> Result<Range<usize>, String> {
 /// parameter the run also assigns (every point would override it), a parameter of a system
 /// file other than `epsilon`, or a friction parameter that the run does not read
 /// ([`crate::laws::check_read`]).
-fn check_axes(axes: &[Axis], run: &Simulation) -> Result<(), AppError> {
+fn check_axes(axes: &[Axis], run: &SimulationRequest) -> Result<(), AppError> {
     let names: Vec<&str> = axes.iter().map(|a| a.name.as_str()).collect();
     if let Some((_, k)) = first_repeat(&names) {
         return Err(AppError::Usage(format!(
@@ -206,10 +206,10 @@ fn check_axes(axes: &[Axis], run: &Simulation) -> Result<(), AppError> {
     })
 }
 
-/// A [`Simulation`] swept: each point's values assigned after the run's own, every run's time
+/// A [`SimulationRequest`] swept: each point's values assigned after the run's own, every run's time
 /// limit counted from `since` (the sweep's start).
 struct SimulationGrid<'a> {
-    simulation: &'a Simulation,
+    simulation: &'a SimulationRequest,
     start: Start,
     since: Instant,
 }
@@ -225,7 +225,7 @@ impl Grid for SimulationGrid<'_> {
 
 /// Checks a point's run and sets it up, started from rest or from steady sliding (the belt
 /// only: another rig or a system has no such start, refused with exit 2).
-fn prepare(run: &Simulation, start: Start) -> Result<PointRun, AppError> {
+fn prepare(run: &SimulationRequest, start: Start) -> Result<PointRun, AppError> {
     let refuse = |why: &str| {
         let start = field("start");
         Err(AppError::Usage(format!(
