@@ -40,8 +40,8 @@ pub struct Trajectory {
 }
 
 impl Trajectory {
-    /// A rig's rows; `has_state` when its model has an internal state.
-    pub fn of_outcome(o: &Outcome, has_state: bool) -> Trajectory {
+    /// A rig's rows, with `z` where its law has an internal state.
+    pub fn of_outcome(o: &Outcome) -> Trajectory {
         let column = |f: fn(&scenarios::Row) -> f64| o.rows.iter().map(f).collect();
         Trajectory {
             t: column(|r| r.t),
@@ -50,7 +50,7 @@ impl Trajectory {
             v: column(|r| r.v),
             friction: column(|r| r.friction),
             mode: o.rows.iter().map(|r| Some(r.mode)).collect(),
-            z: has_state.then(|| column(|r| r.z.unwrap_or(f64::NAN))),
+            z: o.has_state.then(|| column(|r| r.z.unwrap_or(f64::NAN))),
         }
     }
 

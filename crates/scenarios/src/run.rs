@@ -251,6 +251,9 @@ pub struct Outcome {
     /// Whether that controller integrates its error (ki > 0): then the loop is at rest only
     /// where the error is zero, and a body stuck off the set point will move again.
     pub integral_action: bool,
+    /// Whether the law at the contact has an internal state (the trajectory's `z`, also when
+    /// no row was recorded).
+    pub has_state: bool,
 }
 
 impl Outcome {
@@ -390,6 +393,7 @@ fn run_body(
             .find(|c| c.body == 0)
             .map(|c| c.reference.clone()),
         integral_action: (system.controllers.iter()).any(|c| c.body == 0 && c.ki > 0.0),
+        has_state: (system.contacts.iter()).any(|c| c.body == 0 && c.model.n_states() > 0),
     })
 }
 
@@ -457,6 +461,7 @@ pub fn run_motion(
         instability: None,
         reference: None,
         integral_action: false,
+        has_state: model.n_states() > 0,
     }
 }
 
@@ -486,6 +491,7 @@ fn run_sweep(
         instability: None,
         reference: None,
         integral_action: false,
+        has_state: model.n_states() > 0,
     };
     for &v in velocities {
         let settle = settling_time(model, v);

@@ -24,12 +24,7 @@ use std::path::Path;
 
 /// The one run record of a rig's `outcome` (a system of one body, named `body`, and one
 /// contact), described by `setup`, with what its closed loop did (a controlled rig).
-fn rig_record(
-    outcome: &Outcome,
-    setup: RunSetup,
-    has_state: bool,
-    closed_loop: Option<ClosedLoop>,
-) -> RunRecord {
+fn rig_record(outcome: &Outcome, setup: RunSetup, closed_loop: Option<ClosedLoop>) -> RunRecord {
     let state = |r: &scenarios::Row| BodyState {
         t: r.t,
         x: r.x,
@@ -68,7 +63,7 @@ fn rig_record(
     RunRecord {
         summary: RunSummary::new(setup, integrated),
         bodies: vec![RIG_BODY.to_string()],
-        trajectory: Trajectory::of_outcome(outcome, has_state),
+        trajectory: Trajectory::of_outcome(outcome),
         finals: outcome.last().map(state).into_iter().collect(),
         events,
     }
@@ -229,7 +224,6 @@ pub fn simulate_rig(
     .map_err(AppError::from)?;
     bar.finish();
 
-    let has_state = spec.law.build(&spec.friction)?.n_states() > 0;
     let name = format!(
         "{} with {model} ({method}, {} switching{})",
         spec.scenario,
@@ -268,7 +262,7 @@ pub fn simulate_rig(
         parameters,
     };
     let closed_loop = ClosedLoop::of_outcome(&outcome);
-    let record = rig_record(&outcome, setup, has_state, closed_loop);
+    let record = rig_record(&outcome, setup, closed_loop);
     let advice = Advice {
         scheme: spec.scheme,
         period: outcome.time_scale,
