@@ -17,11 +17,11 @@
 //!
 //! Run: `cargo run --release --example own_study -- OUT_DIR`.
 
-use friction_lab::artifacts::Made;
 use friction_lab::error::AppError;
 use friction_lab::friction_models::{FrictionParams, ModelId};
 use friction_lab::friction_systems::Scheme;
 use friction_lab::integrators::{Solver, StepControl};
+use friction_lab::made::Made;
 use friction_lab::output::{Cell, Table};
 use friction_lab::plot::{Corner, Marker, Plot, Series, PALETTE};
 use friction_lab::reproduce::{Report, Section};

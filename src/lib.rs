@@ -5,10 +5,11 @@ pub mod commands;
 
 use clap::{Parser, Subcommand};
 use friction_lab::error::{as_option, spell_fields, AppError, ErrorKind};
+use friction_lab::made::Made;
 use friction_lab::plot::Format;
 use friction_lab::study::solver_studies::{NamedStudy, STUDIES};
-use friction_lab::trajectory::TrajectoryAs;
-use friction_lab::{artifacts, destination, ranges};
+use friction_lab::trajectory::RecordAs;
+use friction_lab::{destination, ranges};
 
 /// The exit codes, as `--help` lists them.
 pub const EXIT_CODES: &str = "Exit codes:
@@ -220,7 +221,7 @@ impl Command {
 /// threads, all cores when `None`), prints what was written and the notes, and returns the
 /// failure.
 pub fn deliver(
-    made: artifacts::Made,
+    made: Made,
     out: &std::path::Path,
     threads: Option<usize>,
     format: Format,
@@ -247,10 +248,10 @@ pub fn print_note(warning: &str) {
 /// Runs `curve`, `simulate`, a study, `sweep`, `testset` or `phenomena`, and keeps its files in memory
 /// instead of writing them (figures undrawn): the command line writes them. `models` and
 /// `reproduce` are refused here.
-pub fn make(command: &Command) -> Result<artifacts::Made, AppError> {
+pub fn make(command: &Command) -> Result<Made, AppError> {
     match command {
         Command::Curve(args) => args.request.run(&args.out),
-        Command::Simulate(args) => args.request.run(&args.out, TrajectoryAs::File),
+        Command::Simulate(args) => args.request.run(&args.out, RecordAs::Files),
         Command::Sweep(args) => args.request.run(&args.out),
         Command::Testset(args) => args.request.run(&args.out),
         Command::Phenomena(args) => args.request.run(&args.out),

@@ -160,12 +160,13 @@ class Made:
     """What one command made: its data files by name, each as ``(kind, content)`` (a table's
     typed columns, a JSON document's value, or a text file's bytes), the lines it would
     print, the message of a run that failed part-way (the files keep what was computed),
-    and ``simulate``'s trajectory as numbers (see :class:`Result`)."""
+    and ``simulate``'s record as values: its summary, trajectory as numbers, final states and
+    events (see :class:`Result`)."""
 
     files: Dict[str, Tuple[str, Any]]
     notes: List[str] = field(default_factory=list)
     failure: Optional[str] = None
-    trajectory: Optional[Dict[str, Any]] = None
+    run: Optional[Dict[str, Any]] = None
 
     def table(self, name: str) -> pd.DataFrame:
         """The table ``name`` (a CSV file of the command line) as a DataFrame."""
@@ -200,12 +201,12 @@ def _made(command: str, native: Callable[[], Any]) -> Made:
     """What the native call ``native`` made for ``command``; its messages name the options as
     keywords (the library spells them so for Python)."""
     try:
-        files, notes, advice, failure, trajectory = native()
+        files, notes, advice, failure, run = native()
     except _native.SolverError as e:
         raise SolverError(str(e)) from None
     for line in advice:
         warnings.warn(line, RuntimeWarning, stacklevel=3)
-    return Made(dict(files), list(notes), failure, trajectory)
+    return Made(dict(files), list(notes), failure, run)
 
 
 def system_value(system: Any) -> Optional[str]:

@@ -1,6 +1,6 @@
 """The result of ``simulate``: numpy arrays, the events and the summary, as the command
-line's ``trajectory.csv``, ``events.csv`` and ``summary.json`` hold them; the arrays are made
-from the library's numbers, not from the text of a file."""
+line's ``trajectory.csv``, ``events.csv`` and ``summary.json`` hold them; all are made from
+the run's record as the library hands it over (its values), not from a file."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ from typing import Any, Dict, List, Optional
 import numpy as np
 import pandas as pd
 
-from ._command import Made
+from ._command import Made, frame
 
 
 class Result:
@@ -25,13 +25,14 @@ class Result:
 
     def __init__(self, made: Made):
         self._made = made
+        run = made.run
         #: The fields of ``summary.json`` (docs/files.md): parameters, status, error, time
         #: reached, event counts, energy.
-        self.summary: Dict[str, Any] = made.json("summary.json")
+        self.summary: Dict[str, Any] = run["summary"]
         #: Solver statistics (steps, rejected, rhs_evals, jacobian_evals, ..., events).
         self.stats: Dict[str, Any] = self.summary["stats"]
         # The library's numbers, as bytes of doubles: no text between (docs/python.md).
-        c = made.trajectory
+        c = run["trajectory"]
         doubles = lambda name: np.frombuffer(c[name], dtype="<f8")  # noqa: E731
         #: The bodies the arrays hold, in column order (systems only).
         self.bodies: Optional[List[str]] = c["bodies"]
@@ -45,9 +46,9 @@ class Result:
         self.mode: np.ndarray = names[np.frombuffer(c["mode"], dtype=np.uint8)].reshape(shape)
         self.z: Optional[np.ndarray] = None if c["z"] is None else doubles("z").reshape(shape)
         #: Every switch of a contact: t, body, from, to (a rig's one body is ``body``).
-        self.events: pd.DataFrame = made.table("events.csv")
+        self.events: pd.DataFrame = frame(run["events"][1])
         #: Every body's state at the last recorded point: body, x, v, friction, mode[, z].
-        self.final: pd.DataFrame = made.table("final.csv")
+        self.final: pd.DataFrame = frame(run["final"][1])
 
     def to_pandas(self) -> pd.DataFrame:
         """The tidy trajectory: the rows and columns of ``trajectory.csv`` (``t``, for a system

@@ -12,9 +12,9 @@
 //! and `grid` a mapping of names to values or range texts.
 
 use clap::{ArgAction, Args, FromArgMatches};
-use friction_lab::artifacts::Made;
 use friction_lab::curve::CurveRequest;
 use friction_lab::error::{spell_fields, AppError};
+use friction_lab::made::Made;
 use friction_lab::simulate::SimulationRequest;
 use friction_lab::study::solver_studies::STUDIES;
 use friction_lab::study::PhenomenaRequest;

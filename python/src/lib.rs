@@ -16,7 +16,8 @@ use friction_lab::artifacts::Data;
 use friction_lab::columns::Column;
 use friction_lab::error::{bounded, spell_fields, AppError, ErrorKind};
 use friction_lab::friction_systems::mode_name;
-use friction_lab::trajectory::{Trajectory, TrajectoryAs};
+use friction_lab::run_record::RunValues;
+use friction_lab::trajectory::{RecordAs, Trajectory};
 use integrators::{Mode, SolverError as RunError};
 use pyo3::create_exception;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
@@ -47,13 +48,13 @@ const SIGNAL_POLL: Duration = Duration::from_millis(50);
 /// files returned; nothing is written.
 const IN_MEMORY: &str = ".";
 
-/// What a command made, for the Python layer: `(files, notes, warnings, failure,
-/// trajectory)`, where `files` maps each data file's name (relative to the output folder, e.g.
-/// `summary.json`) to its content ([`data`]: a table's columns, a JSON document as Python
+/// What a command made, for the Python layer: `(files, notes, warnings, failure, run)`,
+/// where `files` maps each data file's name (relative to the output folder, e.g.
+/// `stiffness.csv`) to its content ([`data`]: a table's columns, a JSON document as Python
 /// values, or a text file's bytes), `notes` and `warnings` are the lines the command line prints
 /// on stdout and stderr, `failure` is the message of a run that failed after computing part of
-/// its result (the files keep that part), or `None`, and `trajectory` is `simulate`'s
-/// trajectory as numbers ([`trajectory`]), or `None`.
+/// its result (the values keep that part), or `None`, and `run` is `simulate`'s record as
+/// values ([`run_values`]), or `None`.
 type Made = (
     Vec<(String, Py<PyAny>)>,
     Vec<String>,
@@ -67,6 +68,20 @@ type Made = (
 fn doubles<'py>(py: Python<'py>, values: &[f64]) -> Bound<'py, PyBytes> {
     let bytes: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
     PyBytes::new(py, &bytes)
+}
+
+/// A run's record for the Python layer, from its values (no file in between): `summary`
+/// (Python values), `trajectory` ([`trajectory`]), `final` and `events` (tables as [`data`]
+/// gives them).
+fn run_values<'py>(py: Python<'py>, run: &RunValues) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    let summary = serde_json::to_value(&run.summary)
+        .map_err(|e| PyRuntimeError::new_err(format!("the run's summary: {e}")))?;
+    d.set_item("summary", json_value(py, &summary)?)?;
+    d.set_item("trajectory", trajectory(py, &run.trajectory)?)?;
+    d.set_item("final", data(py, Data::Table(&run.finals))?)?;
+    d.set_item("events", data(py, Data::Table(&run.events))?)?;
+    Ok(d)
 }
 
 /// A run's trajectory for the Python layer: `t`, `x`, `v`, `friction` and `z` (or `None`) as
@@ -174,7 +189,7 @@ fn simulate(
 ) -> PyResult<Made> {
     let run = bind::simulation(scenario.as_deref(), system, &options)?;
     deliver(py, stop.as_ref(), || {
-        run.run(Path::new(IN_MEMORY), TrajectoryAs::Columns)
+        run.run(Path::new(IN_MEMORY), RecordAs::Values)
     })
 }
 
@@ -250,7 +265,7 @@ fn keywords(name: &str) -> PyResult<Vec<String>> {
 fn deliver(
     py: Python<'_>,
     stop: Option<&Bound<'_, PyAny>>,
-    work: impl FnOnce() -> Result<friction_lab::artifacts::Made, AppError> + Send,
+    work: impl FnOnce() -> Result<friction_lab::made::Made, AppError> + Send,
 ) -> PyResult<Made> {
     let made = interruptible(py, stop, work)?;
     // A law written in Python that raised stopped the run: its exception is the answer.
@@ -265,10 +280,8 @@ fn deliver(
         .into_iter()
         .map(|(name, content)| Ok((name.display().to_string(), data(py, content)?.unbind())))
         .collect::<PyResult<_>>()?;
-    let columns = made
-        .trajectory
-        .as_ref()
-        .map(|t| trajectory(py, t).map(Bound::unbind))
+    let run = (made.run.as_ref())
+        .map(|r| run_values(py, r).map(Bound::unbind))
         .transpose()?;
     let spelled = |lines: Vec<String>| -> Vec<String> {
         (lines.iter())
@@ -280,7 +293,7 @@ fn deliver(
         spelled(made.notes),
         spelled(made.warnings),
         made.failure.as_ref().map(failure_message),
-        columns,
+        run,
     ))
 }
 

@@ -353,24 +353,6 @@ fn stopped_beside(root: &Path) -> Result<PathBuf, AppError> {
 /// How many names [`stopped_beside`] tries.
 const STOPPED_CANDIDATES: usize = 100;
 
-/// What a command made: its files staged in memory (figures not drawn yet), the lines it
-/// prints once they are written, and the failure of a run whose partial results the files
-/// keep (a solver that stopped early, a sweep with failed points).
-#[derive(Debug, Default)]
-pub struct Made {
-    /// The files.
-    pub files: Artifacts,
-    /// Lines for the terminal, printed after the files are written.
-    pub notes: Vec<String>,
-    /// Advice about the run (a solver that found the problem stiff), printed on stderr.
-    pub warnings: Vec<String>,
-    /// The failure the files record, returned once they are written.
-    pub failure: Option<AppError>,
-    /// A run's trajectory as columns, where it was asked for instead of its file
-    /// ([`crate::trajectory::TrajectoryAs::Columns`]).
-    pub trajectory: Option<crate::trajectory::Trajectory>,
-}
-
 /// The marker's text after its status line.
 const MARKER_TEXT: &str =
     "This folder was written by friction-lab; the next run into it replaces it whole.\n";

@@ -2,10 +2,11 @@
 //! velocity (or against displacement under a prescribed motion), its CSV, figure and a JSON
 //! summary of its key values.
 
-use crate::artifacts::{Artifacts, Made};
+use crate::artifacts::Artifacts;
 use crate::error::{field, AppError};
 use crate::figure::{Drawn, KeyValues};
 use crate::laws::used_parameters;
+use crate::made::Made;
 use crate::ranges;
 use crate::settings::ModelSettings;
 use friction_models::{CurveAxis, ModelId, Variant};

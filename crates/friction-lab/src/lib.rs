@@ -26,6 +26,7 @@ pub mod error;
 pub mod figure;
 pub mod laws;
 pub mod listing;
+pub mod made;
 pub mod output;
 pub mod params;
 pub mod plot;

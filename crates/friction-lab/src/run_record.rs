@@ -7,7 +7,7 @@ use crate::artifacts::Artifacts;
 use crate::error::AppError;
 use crate::output::{Cell, Table};
 use crate::progress::Progress;
-use crate::trajectory::{Trajectory, TrajectoryAs};
+use crate::trajectory::{RecordAs, Trajectory};
 use friction_models::Variant;
 use friction_systems::{mode_name, BodyState, ContactEvent, EnergyBalance};
 use integrators::stability::Instability;
@@ -241,7 +241,7 @@ impl RunRecord {
     }
 
     /// `final.csv`: `body, x, v, friction, mode[, z]`, one row per body.
-    fn final_table(&self) -> Table {
+    pub fn final_table(&self) -> Table {
         let states = self.has_states();
         let columns = ["body", "x", "v", "friction", "mode", "z"];
         let mut t = Table::new(&columns[..columns.len() - usize::from(!states)]);
@@ -262,7 +262,7 @@ impl RunRecord {
     }
 
     /// `events.csv`: `t, body, from, to`, one row per switch of a contact.
-    fn events_table(&self) -> Table {
+    pub fn events_table(&self) -> Table {
         let mut t = Table::new(&["t", "body", "from", "to"]);
         for e in &self.events {
             t.rows.push(vec![
@@ -275,28 +275,45 @@ impl RunRecord {
         t
     }
 
-    /// Adds the run's files in `out` to `files`: `trajectory.csv` (or, as `trajectory_as`
-    /// asks, nothing, and the trajectory is returned as columns), `final.csv`, `events.csv`
-    /// and `summary.json`.
-    pub fn add_files(
+    /// The record as `record_as` asks: its files in `out` added to `files` (`summary.json`,
+    /// `final.csv`, `events.csv`, `trajectory.csv`), or its values, returned.
+    pub fn deliver(
         self,
         files: &mut Artifacts,
         out: &Path,
-        trajectory_as: TrajectoryAs,
-    ) -> Result<Option<Trajectory>, AppError> {
+        record_as: RecordAs,
+    ) -> Result<Option<RunValues>, AppError> {
+        if record_as == RecordAs::Values {
+            return Ok(Some(RunValues {
+                finals: self.final_table(),
+                events: self.events_table(),
+                summary: self.summary,
+                trajectory: self.trajectory,
+            }));
+        }
         files.add_table(out.join("final.csv"), self.final_table())?;
         files.add_table(out.join("events.csv"), self.events_table())?;
         files.add_json(out.join("summary.json"), &self.summary)?;
-        Ok(match trajectory_as {
-            TrajectoryAs::File => {
-                let path = out.join("trajectory.csv");
-                let progress = Progress::elapsed("formatting trajectory.csv");
-                let bytes = self.trajectory.to_csv(&path)?;
-                progress.finish();
-                files.add(path, bytes);
-                None
-            }
-            TrajectoryAs::Columns => Some(self.trajectory),
-        })
+        let path = out.join("trajectory.csv");
+        let progress = Progress::elapsed("formatting trajectory.csv");
+        let bytes = self.trajectory.to_csv(&path)?;
+        progress.finish();
+        files.add(path, bytes);
+        Ok(None)
     }
+}
+
+/// A run's record as values, for a front end that makes its own arrays and tables of them
+/// (Python): what the command line writes as `summary.json`, `trajectory.csv`, `final.csv`
+/// and `events.csv`.
+#[derive(Clone, Debug)]
+pub struct RunValues {
+    /// The summary.
+    pub summary: RunSummary,
+    /// The trajectory of the bodies written, as columns.
+    pub trajectory: Trajectory,
+    /// Every body at the last recorded point: `body, x, v, friction, mode[, z]`.
+    pub finals: Table,
+    /// Every switch of a contact: `t, body, from, to`.
+    pub events: Table,
 }

@@ -2,8 +2,9 @@
 //! as `testset` writes it: `final.csv` (the state at the end time) and `summary.json` (the
 //! counts and the significant correct digits against the published reference).
 
-use crate::artifacts::{Artifacts, Made};
+use crate::artifacts::Artifacts;
 use crate::error::AppError;
+use crate::made::Made;
 use crate::ranges;
 use crate::settings::RunLimits;
 use integrators::testset::{self, TestProblem};

@@ -8,13 +8,16 @@ use integrators::Mode;
 use scenarios::Outcome;
 use std::path::Path;
 
-/// Where `simulate` puts a run's trajectory.
+/// How `simulate` hands over a run's record (its summary, trajectory, final states and
+/// events).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum TrajectoryAs {
-    /// `trajectory.csv`, among the files (the command line).
-    File,
-    /// [`Trajectory`]'s columns, and no file (Python).
-    Columns,
+pub enum RecordAs {
+    /// As files among the others (`summary.json`, `trajectory.csv`, `final.csv`,
+    /// `events.csv`): the command line.
+    Files,
+    /// As values ([`crate::run_record::RunValues`]), and no file of it: a front end that
+    /// makes its own arrays and tables of them (Python).
+    Values,
 }
 
 /// The rows of `trajectory.csv` as columns: point by point, and within a point of a system body

@@ -15,8 +15,9 @@ mod table2;
 pub use experiment::ExperimentStudy;
 pub use figures::PaperFiguresStudy;
 
-use crate::artifacts::{stopped_banner, Artifacts, Made};
+use crate::artifacts::{stopped_banner, Artifacts};
 use crate::error::AppError;
+use crate::made::Made;
 use crate::provenance::Provenance;
 use crate::study::{conduct_all, Output, ReportEntry};
 use crate::threads::with_threads;
@@ -131,7 +132,7 @@ impl Report<'_> {
             notes: Vec::new(),
             warnings: Vec::new(),
             failure,
-            trajectory: None,
+            run: None,
         })
     }
 }

@@ -1,10 +1,11 @@
 //! What a run made, once its record is complete: its files (from the record) and the advice
 //! on it, the same for a rig and a system.
 
-use crate::artifacts::{Artifacts, Made};
+use crate::artifacts::Artifacts;
 use crate::error::AppError;
+use crate::made::Made;
 use crate::run_record::RunRecord;
-use crate::trajectory::TrajectoryAs;
+use crate::trajectory::RecordAs;
 use crate::warnings::{coarse_step_warning, failure_warnings, stiffness_warning};
 use friction_systems::Scheme;
 use std::path::Path;
@@ -19,8 +20,8 @@ pub struct Advice {
     pub own: Option<String>,
 }
 
-/// What one run made: `record`'s files added to `files` in `out` (the trajectory as a file or
-/// as columns), the `notes`, and the advice on it: where Hairer's test found it stiff, a fixed
+/// What one run made: `record`'s files added to `files` in `out`, or its values, as
+/// `record_as` asks ([`RunRecord::deliver`]), the `notes`, and the advice on it: where Hairer's test found it stiff, a fixed
 /// step too coarse for its shortest natural period, why it failed under its scheme, its own
 /// advice, and the summary's caution. The failure its summary names is kept for the front end
 /// to report once the files are written.
@@ -28,7 +29,7 @@ pub fn made_of_record(
     record: RunRecord,
     mut files: Artifacts,
     out: &Path,
-    trajectory_as: TrajectoryAs,
+    record_as: RecordAs,
     advice: Advice,
     notes: Vec<String>,
 ) -> Result<Made, AppError> {
@@ -54,10 +55,10 @@ pub fn made_of_record(
         .chain(own)
         .chain(caution)
         .collect();
-    let trajectory = record.add_files(&mut files, out, trajectory_as)?;
+    let run = record.deliver(&mut files, out, record_as)?;
     Ok(Made {
         files,
-        trajectory,
+        run,
         notes,
         warnings,
         failure,

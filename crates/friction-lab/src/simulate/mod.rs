@@ -1,5 +1,5 @@
 //! One run simulated and written: a rig ([`simulate_rig`]) or a system of many bodies
-//! ([`simulate_system`]), its files and figures in memory ([`Made`](crate::artifacts::Made)),
+//! ([`simulate_system`]), its files and figures in memory ([`Made`](crate::made::Made)),
 //! for the command line, Python and a Rust user alike; [`SimulationRequest`] is the run as a front
 //! end asks for it, checked.
 

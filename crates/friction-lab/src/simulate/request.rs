@@ -2,15 +2,15 @@
 //! its model, solver settings, end time, output points and recorded bodies; checked and run
 //! here for the command line, Python and a Rust user alike.
 
-use crate::artifacts::Made;
 use crate::error::{field, AppError};
 use crate::laws::ModelChoice;
+use crate::made::Made;
 use crate::params::ParamSource;
 use crate::ranges;
 use crate::settings::{ModelSettings, SolverSettings};
 use crate::simulate::{chosen_bodies, load, simulate_rig, simulate_system, Described, SystemRun};
 use crate::sweep::RECORD_LIMIT;
-use crate::trajectory::TrajectoryAs;
+use crate::trajectory::RecordAs;
 use crate::warnings::unread_warnings;
 use crate::window::Window;
 use friction_systems::chain::{ChainParams, CHAIN_PARAMETERS};
@@ -303,22 +303,22 @@ impl SimulationRequest {
 
     /// Checks the run, runs it and makes its files in `out` (in memory), the trajectory as a
     /// file or as columns.
-    pub fn run(&self, out: &Path, trajectory_as: TrajectoryAs) -> Result<Made, AppError> {
+    pub fn run(&self, out: &Path, record_as: RecordAs) -> Result<Made, AppError> {
         let mut made = match self.target()? {
             Target::Rig(scenario) => {
                 let spec = self.rig_spec(scenario)?;
                 let window = self.checked_window(spec.end_time())?;
                 let model = self.rig_law(scenario)?.0;
-                simulate_rig(&spec, &model, out, trajectory_as, window)?
+                simulate_rig(&spec, &model, out, record_as, window)?
             }
-            _ => self.run_system(out, trajectory_as)?,
+            _ => self.run_system(out, record_as)?,
         };
         made.warnings.extend(self.warnings());
         Ok(made)
     }
 
     /// [`SimulationRequest::run`] of the chain or a system file.
-    fn run_system(&self, out: &Path, trajectory_as: TrajectoryAs) -> Result<Made, AppError> {
+    fn run_system(&self, out: &Path, record_as: RecordAs) -> Result<Made, AppError> {
         let described = self.described()?;
         self.solver.checked_step()?;
         described.system.validate()?;
@@ -336,7 +336,7 @@ impl SimulationRequest {
                 .map(|_| self.model_settings.variant),
             window,
         };
-        simulate_system(run, out, trajectory_as)
+        simulate_system(run, out, record_as)
     }
 }
 

@@ -5,15 +5,16 @@
 use super::made::{made_of_record, Advice};
 use super::spectra::{add_spectra, measured_span, Measured};
 use super::stiffness::add_stiffness;
-use crate::artifacts::{Artifacts, Made};
+use crate::artifacts::Artifacts;
 use crate::error::AppError;
 use crate::laws::ModelChoice;
+use crate::made::Made;
 use crate::plot::{Corner, Marker, Plot, Series, BLUE};
 use crate::progress::Progress;
 use crate::run_record::{
     event_counts, Integrated, RunRecord, RunSetup, RunSummary, StiffnessSummary, RIG_BODY,
 };
-use crate::trajectory::{Trajectory, TrajectoryAs};
+use crate::trajectory::{RecordAs, Trajectory};
 use crate::window::Window;
 use friction_models::Parameters;
 use friction_systems::{BodyState, ContactEvent};
@@ -209,7 +210,7 @@ pub fn simulate_rig(
     spec: &RunSpec,
     model: &ModelChoice,
     out: &Path,
-    trajectory_as: TrajectoryAs,
+    record_as: RecordAs,
     window: Option<Window>,
 ) -> Result<Made, AppError> {
     let t_end = spec.end_time();
@@ -271,7 +272,7 @@ pub fn simulate_rig(
     let notes = (closed_loop.iter().map(|c| c.to_string()))
         .chain(spectra)
         .collect();
-    made_of_record(record, files, out, trajectory_as, advice, notes)
+    made_of_record(record, files, out, record_as, advice, notes)
 }
 
 #[cfg(test)]

@@ -7,15 +7,16 @@ use super::motion::{add_motion, spread, LINE_BODIES};
 use super::space_time::Sampling;
 use super::spectra::{add_spectra, system_velocities};
 use super::stiffness::add_stiffness;
-use crate::artifacts::{Artifacts, Made};
+use crate::artifacts::Artifacts;
 use crate::error::AppError;
+use crate::made::Made;
 use crate::output::counted;
 use crate::progress::Progress;
 use crate::ranges;
 use crate::run_record::{
     event_counts, Integrated, RunRecord, RunSetup, RunSummary, StiffnessSummary,
 };
-use crate::trajectory::{Trajectory, TrajectoryAs};
+use crate::trajectory::{RecordAs, Trajectory};
 use crate::window::Window;
 use friction_models::{FrictionParams, Variant};
 use friction_systems::file::SystemSource;
@@ -154,11 +155,7 @@ fn closed_loop(run: &Run, system: &System) -> Option<ClosedLoop> {
 /// the contact modes, and the stiffness along the run. The warnings are the run's: its
 /// stiffness, a step too coarse for its time scale, why it failed, a chain's spread that a law
 /// of one's own does not read.
-pub fn simulate_system(
-    run: SystemRun,
-    out: &Path,
-    trajectory_as: TrajectoryAs,
-) -> Result<Made, AppError> {
+pub fn simulate_system(run: SystemRun, out: &Path, record_as: RecordAs) -> Result<Made, AppError> {
     let SystemRun {
         described,
         scheme,
@@ -275,5 +272,5 @@ pub fn simulate_system(
     .chain(spectra)
     .chain(measured_loop.iter().map(|c| c.to_string()))
     .collect();
-    made_of_record(record, files, out, trajectory_as, advice, notes)
+    made_of_record(record, files, out, record_as, advice, notes)
 }

@@ -1,9 +1,10 @@
 //! Table 2 decided by simulation as a front end asks for it ([`PhenomenaRequest`]): the laws
 //! judged, the solver and tolerances of every protocol, the parameters, the bounds.
 
-use crate::artifacts::{Artifacts, Made};
+use crate::artifacts::Artifacts;
 use crate::error::AppError;
 use crate::laws::ModelChoice;
+use crate::made::Made;
 use crate::params::{ParamSource, DEFAULT_PARAM_SET};
 use crate::ranges;
 use crate::settings::RunLimits;
@@ -126,7 +127,7 @@ impl PhenomenaRequest {
             notes: Vec::new(),
             warnings: unread_by_all(&p.set, &laws),
             failure,
-            trajectory: None,
+            run: None,
         })
     }
 }

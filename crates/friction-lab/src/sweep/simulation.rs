@@ -2,9 +2,10 @@
 //! after the run's own parameters ([`SweepRequest`]); its checks, its grid and its files.
 
 use super::{points, Axis, Grid, PointRun, Start, SweepStudy};
-use crate::artifacts::{Artifacts, Made};
+use crate::artifacts::Artifacts;
 use crate::error::{field, AppError};
 use crate::laws::ModelChoice;
+use crate::made::Made;
 use crate::output::counted;
 use crate::params::{is_file_path, parse_assignment};
 use crate::ranges::{self, first_repeat};
@@ -80,7 +81,7 @@ impl SweepRequest {
             )],
             warnings: self.simulation.warnings(),
             failure,
-            trajectory: None,
+            run: None,
         })
     }
 

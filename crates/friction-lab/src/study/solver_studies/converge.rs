@@ -1,8 +1,8 @@
 //! `converge`: observed orders of every solver against a reference.
 
 use super::{failures, Problem};
-use crate::artifacts::Made;
 use crate::error::AppError;
+use crate::made::Made;
 use crate::study::{conduct, ConvergenceStudy};
 use integrators::Solver;
 use std::path::Path;

@@ -2,8 +2,8 @@
 //! error left and a verdict.
 
 use super::Problem;
-use crate::artifacts::Made;
 use crate::error::AppError;
+use crate::made::Made;
 use crate::study::{conduct, IndependenceStudy, Refinement};
 use crate::warnings::diverged_line;
 use integrators::Solver;

@@ -22,9 +22,10 @@ pub use work_precision::{
     WorkPrecisionRequest, TESTSET_SOLVERS, TESTSET_TOLERANCES, WP_TOLERANCES,
 };
 
-use crate::artifacts::{Artifacts, Made};
+use crate::artifacts::Artifacts;
 use crate::error::{field, AppError};
 use crate::laws::ModelChoice;
+use crate::made::Made;
 use crate::ranges;
 use crate::settings::{ModelSettings, RunLimits, SchemeChoice};
 use crate::simulate;
@@ -273,7 +274,7 @@ impl Problem {
             .chain(self.scheme.spelling_notes())
             .collect(),
             failure,
-            trajectory: None,
+            run: None,
         })
     }
 }

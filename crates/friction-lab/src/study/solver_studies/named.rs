@@ -5,8 +5,8 @@
 //! declaration.
 
 use super::{ConvergeRequest, IndependenceRequest, StiffnessRequest, WorkPrecisionRequest};
-use crate::artifacts::Made;
 use crate::error::AppError;
+use crate::made::Made;
 use clap::{ArgMatches, Args, FromArgMatches};
 use std::marker::PhantomData;
 use std::path::Path;

@@ -2,9 +2,9 @@
 //! the implicit solvers overtake the explicit ones.
 
 use super::Problem;
-use crate::artifacts::Made;
 use crate::error::AppError;
 use crate::laws::ModelChoice;
+use crate::made::Made;
 use crate::scheme::{SchemeName, SwitchingName};
 use crate::simulate::Target as Run;
 use crate::study::{conduct, StiffnessStudy};

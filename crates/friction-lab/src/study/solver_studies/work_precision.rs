@@ -2,8 +2,9 @@
 //! or on a problem of the stiff test set.
 
 use super::{failures, or_default, Problem};
-use crate::artifacts::{Artifacts, Made};
+use crate::artifacts::Artifacts;
 use crate::error::AppError;
+use crate::made::Made;
 use crate::ranges;
 use crate::study::{conduct, Output, TestSetStudy, WorkPrecisionStudy};
 use integrators::Solver;
