@@ -4,7 +4,7 @@
 //! end asks for it, checked.
 
 mod bodies;
-mod made;
+mod delivered;
 mod motion;
 pub mod request;
 mod rig;

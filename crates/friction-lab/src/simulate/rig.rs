@@ -2,7 +2,7 @@
 //! portrait, friction against velocity and against displacement, stiffness along the run, the
 //! spectrum of the velocity).
 
-use super::made::{made_of_record, Advice};
+use super::delivered::{made_of_record, Advice};
 use super::spectra::{add_spectra, measured_span, Measured};
 use super::stiffness::add_stiffness;
 use crate::artifacts::Artifacts;

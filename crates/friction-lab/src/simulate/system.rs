@@ -2,7 +2,7 @@
 //! of the bodies chosen, summary, events) and figures (velocities, the space–time picture of
 //! the contact modes, stiffness along the run).
 
-use super::made::{made_of_record, Advice};
+use super::delivered::{made_of_record, Advice};
 use super::motion::{add_motion, spread, LINE_BODIES};
 use super::space_time::Sampling;
 use super::spectra::{add_spectra, system_velocities};
