@@ -95,6 +95,12 @@ pub const THREADS: OptionRange = OptionRange {
     unit: "",
     range: closed(1.0, 1024.0),
 };
+/// The settled share of a sweep's run (its last part, measured).
+pub const SETTLE: OptionRange = OptionRange {
+    name: "settle",
+    unit: "",
+    range: left_open(0.0, 1.0),
+};
 /// Timing repetitions of work-precision.
 pub const REPEATS: OptionRange = OptionRange {
     name: "repeats",

@@ -26,10 +26,12 @@ pub fn with_threads<T: Send>(
     f: impl FnOnce() -> T + Send,
 ) -> Result<T, AppError> {
     if threads == Some(0) {
-        return Err(AppError::Usage(format!(
-            "option `{}` = 0 is out of range: allowed [1, inf)",
-            crate::error::field("threads")
-        )));
+        return Err(AppError::Invalid(crate::error::Invalid {
+            field: "threads",
+            value: "0".into(),
+            allowed: "[1, inf)".into(),
+            list: false,
+        }));
     }
     let builder = rayon::ThreadPoolBuilder::new().num_threads(threads.unwrap_or(0));
     let pool = match WORKER_WRAPPER.get() {

@@ -41,11 +41,12 @@ impl Study for StiffnessStudy<'_> {
         positive_list("target", &[self.sweep.target])?;
         check_lists(self.methods, self.steps, self.tols)?;
         if values.len() > MAX_VALUES {
-            return Err(AppError::Usage(format!(
-                "option `{}` has {} values: allowed 1 to {MAX_VALUES}",
-                crate::error::field("values"),
-                values.len()
-            )));
+            return Err(AppError::Invalid(crate::error::Invalid {
+                field: "values",
+                value: format!("{} values", values.len()),
+                allowed: format!("1 to {MAX_VALUES}"),
+                list: true,
+            }));
         }
         Ok(())
     }

@@ -101,13 +101,7 @@ impl Study for SweepStudy<'_> {
     /// `settle` in (0, 1], at most [`MAX_POINTS`] points, and every point's run set up and
     /// checked ([`Grid::run_at`]) before any runs.
     fn check(&self) -> Result<(), AppError> {
-        if !(self.settle > 0.0 && self.settle <= 1.0) {
-            return Err(AppError::Usage(format!(
-                "option `{}` = {} is out of range: allowed (0, 1]",
-                crate::error::field("settle"),
-                crate::ranges::show(self.settle)
-            )));
-        }
+        crate::ranges::SETTLE.check(self.settle)?;
         let grid = self.grid_points();
         if grid.len() > MAX_POINTS {
             return Err(AppError::Usage(format!(
