@@ -297,10 +297,10 @@ impl SolverSettings {
         self.theta.unwrap_or(scenarios::run::DEFAULT_THETA)
     }
 
-    /// The scheme they ask for, regularised at width `epsilon` under regularized switching,
-    /// checked by [`SolverSettings::checked_step`].
+    /// The scheme they ask for, regularised at width `epsilon` under regularized switching
+    /// (the other settings are checked by [`SolverSettings::checked_step`], which every run
+    /// calls first).
     pub fn scheme(&self, epsilon: f64) -> Result<Scheme, AppError> {
-        self.checked_step()?;
         let schemes = self
             .scheme
             .schemes(&[self.solver()], epsilon, self.theta())?;
