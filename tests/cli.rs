@@ -4472,3 +4472,69 @@ fn a_system_given_as_json_text_runs_as_the_same_file_does() {
         "{e}"
     );
 }
+
+#[test]
+fn compare_writes_its_tables_and_refuses_a_scheme_option() {
+    // compare runs every scheme: a --switching or --scheme would choose one, and is refused
+    // by name with exit code 2, nothing written.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("c");
+    for option in [
+        ["--switching", "regularized"],
+        ["--scheme", "time-stepping"],
+    ] {
+        let mut args = vec![
+            "compare",
+            "belt",
+            "--model",
+            "CS",
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        args.extend(option);
+        let o = friction_lab(&args);
+        assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+        let expected = format!("option `{}` does not apply to compare", option[0]);
+        assert!(stderr(&o).contains(&expected), "{}", stderr(&o));
+        assert!(!out.exists());
+    }
+    let o = friction_lab(&[
+        "compare",
+        "belt",
+        "--model",
+        "SV",
+        "--event-solvers",
+        "dopri5,bdf",
+        "--regularized-solvers",
+        "bdf",
+        "--epsilons",
+        "1e-2,1e-3,1e-4",
+        "--tol-list",
+        "1e-3,1e-4,1e-5",
+        "--targets",
+        "1e-2,1e-4",
+        "--repeats",
+        "1",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let cost = std::fs::read_to_string(out.join("compare-cost.csv")).unwrap();
+    // Two targets, five schemes (dopri5 and bdf with events, bdf regularised, dopri5 naive,
+    // Moreau–Jean).
+    assert_eq!(cost.lines().count(), 1 + 2 * 5, "{cost}");
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        stdout.contains("at 1e-4: dopri5 (event) cheapest"),
+        "{stdout}"
+    );
+    for f in [
+        "compare.csv",
+        "compare-epsilon.csv",
+        "compare.json",
+        "compare.png",
+        "compare-epsilon.png",
+    ] {
+        assert!(out.join(f).exists(), "{f}");
+    }
+}

@@ -112,6 +112,7 @@ fn a_registered_study_is_a_command_of_the_command_line() {
             "independence",
             "work-precision",
             "stiffness",
+            "compare",
             "step-counts"
         ]
     );

@@ -24,7 +24,7 @@ from ._sweep import sweep
 
 
 __all__ = ["models", "curve", "simulate", "converge", "independence", "work_precision",
-           "stiffness", "phenomena", "sweep", "Result", "Study", "Table2", "SolverError"]
+           "stiffness", "compare", "phenomena", "sweep", "Result", "Study", "Table2", "SolverError"]
 
 
 def models() -> List[Dict[str, Any]]:
@@ -98,6 +98,15 @@ def work_precision(scenario: str, *, params: Optional[Dict[str, float]] = None, 
 def stiffness(scenario: str, *, params: Optional[Dict[str, float]] = None, **options: Any) -> Study:
     """Where the implicit solvers overtake the explicit ones (``friction-lab stiffness``)."""
     return _study("stiffness", scenario, params, options)
+
+
+def compare(scenario: str, *, params: Optional[Dict[str, float]] = None, **options: Any) -> Study:
+    """Every scheme at v = 0 (events, regularised over ε, naive, time-stepping) against the
+    true nonsmooth solution, with each scheme's cost at target errors (``friction-lab
+    compare --help``): ``study.runs`` holds the runs (``scheme``, ``epsilon``, errors against the
+    true solution, ``discretisation_error``), ``study.tables["compare-cost"]`` each scheme's
+    cost at each target, ``study.tables["compare-epsilon"]`` the model error against ε."""
+    return _study("compare", scenario, params, options)
 
 
 def phenomena(models: Any = None, *, params: Optional[Dict[str, float]] = None,

@@ -68,7 +68,7 @@ def test_each_function_takes_the_command_lines_options_as_keywords(cli):
     # argument of its own).
     from friction_lab._command import keywords
     for command in ["curve", "simulate", "converge", "independence", "work-precision",
-                    "stiffness", "sweep", "phenomena"]:
+                    "stiffness", "compare", "sweep", "phenomena"]:
         text = cli(command, "--help").stdout
         options = set()
         for line in text.splitlines():

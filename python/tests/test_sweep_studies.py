@@ -104,6 +104,29 @@ def test_a_stiffness_study_of_the_chain_sweeps_its_coupling():
         fl.stiffness("chain", model="CS", parameter="sigma", values=[1, 2])
 
 
+def test_compare_scores_every_scheme_against_the_true_solution():
+    study = fl.compare("belt", model="CS", event_solvers=["dopri5", "radau5"],
+                       regularized_solvers=["bdf"], epsilons=[1e-2, 1e-3, 1e-4, 1e-5],
+                       tol_list=[1e-3, 1e-4, 1e-5], ts_dt_list=[0.01, 0.005],
+                       targets=[1e-2, 1e-3], repeats=1, max_steps=200000)
+    runs = study.runs
+    assert set(runs["scheme"]) == {"dopri5 (event)", "radau5 (event)", "bdf (regularized)",
+                                   "dopri5 (naive)", "moreau-jean (timestepping)"}
+    # Only a regularised run has an ε and a discretisation error.
+    regularised = runs["scheme"] == "bdf (regularized)"
+    assert runs.loc[regularised, "epsilon"].notna().all()
+    assert runs.loc[~regularised, "discretisation_error"].isna().all()
+    cost = study.tables["compare-cost"]
+    assert list(cost["target"].unique()) == [1e-2, 1e-3]
+    cheapest = cost[cost["cheapest"] == "yes"]
+    assert list(cheapest["scheme"]) == ["dopri5 (event)", "dopri5 (event)"]
+    # A scheme that missed a target says why.
+    assert cost.loc[cost["reached"] == "false", "reason"].str.len().gt(0).all()
+    assert study.summary["regularisation"]["falls"] is True
+    with pytest.raises(ValueError, match=r"option `switching` does not apply to compare"):
+        fl.compare("belt", model="CS", switching="regularized")
+
+
 def test_an_independence_study_with_a_failed_level_raises_and_keeps_the_others():
     # RK4 at h = 0.5 on the belt is past its stability bound (h*omega = 5): level 0 fails,
     # levels 1 to 3 finish and are judged.

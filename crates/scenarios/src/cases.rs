@@ -124,9 +124,10 @@ fn stick_durations(events: impl Iterator<Item = (f64, bool)>, out: &mut Vec<f64>
 }
 
 impl Measures {
-    /// The measures of a rig's outcome; the rows at events are skipped, so the grid holds
-    /// the evenly spaced rows only.
-    pub fn of(o: &Outcome) -> Measures {
+    /// The measures of a rig's outcome on the output grid `grid`: one row per grid time (the
+    /// last at that time, the state after a switch there: time-stepping switches at its step
+    /// ends, which the grid's times can be), the rows at events between them skipped.
+    pub fn of(o: &Outcome, grid: &[f64]) -> Measures {
         let event_times: Vec<f64> = o.events.iter().map(|e| e.t).collect();
         let mut sticks = Vec::new();
         stick_durations(o.events.iter().map(|e| (e.t, e.to == STICK)), &mut sticks);
@@ -138,10 +139,15 @@ impl Measures {
                 vec![Quantity::Position, Quantity::Velocity],
             ),
         };
-        let grid = (o.rows.iter())
-            .filter(|r| !event_times.contains(&r.t))
-            .map(|r| state(r).0)
-            .collect();
+        let mut times = grid.iter().peekable();
+        let mut grid = Vec::with_capacity(o.rows.len());
+        for (i, r) in o.rows.iter().enumerate() {
+            while times.next_if(|&&g| g < r.t).is_some() {}
+            let last_at_t = o.rows.get(i + 1).is_none_or(|next| next.t != r.t);
+            if last_at_t && times.next_if(|&&g| g == r.t).is_some() {
+                grid.push(state(r).0);
+            }
+        }
         Measures {
             final_state,
             quantities: final_quantities.clone(),
@@ -289,8 +295,9 @@ impl StudyCase for Case {
 
     fn measure(&self, scheme: Scheme, step: StepControl) -> Result<Measured, ScenarioError> {
         let o = run(&self.spec(scheme, step), &mut |_| {})?;
+        let grid = integrators::even_grid(0.0, self.t_end, GRID_POINTS);
         Ok(Measured {
-            measures: Measures::of(&o),
+            measures: Measures::of(&o, &grid),
             stats: o.stats,
             error: o.error,
             wall_time_s: o.wall_time_s,

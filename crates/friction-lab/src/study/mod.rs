@@ -7,6 +7,7 @@
 //! user's own code conduct the same studies; each study is a file of this module.
 
 mod closed_loop;
+mod compare;
 mod convergence;
 mod draw;
 mod independence;
@@ -23,13 +24,15 @@ mod testset;
 mod work_precision;
 
 pub use closed_loop::{ClosedLoopStudy, ClosedLoops, Regulation, Task, Tracking, TASKS};
+pub use compare::{compare_lines, CompareStudy};
 pub use convergence::ConvergenceStudy;
 pub use independence::{IndependenceStudy, Refinement};
 pub use phenomena::PhenomenaRequest;
 pub use report::{conduct_all, Entry, ReportEntry};
 pub use scaling::ScalingStudy;
 pub use solver_studies::{
-    ConvergeRequest, IndependenceRequest, Problem, StiffnessRequest, WorkPrecisionRequest,
+    CompareRequest, ConvergeRequest, IndependenceRequest, Problem, StiffnessRequest,
+    WorkPrecisionRequest,
 };
 pub use stick_slip::{
     regime_series, Bifurcation, BifurcationStudy, StickSlipMap, StickSlipMapStudy, REGIMES,

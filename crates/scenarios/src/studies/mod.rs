@@ -4,6 +4,7 @@
 //! thread count. This module holds what the studies share (the methods, a run against the
 //! reference and its errors); each study is in a file of its own.
 
+mod compare;
 mod convergence;
 mod independence;
 mod orders;
@@ -20,6 +21,11 @@ pub use crate::errors::{Quantity, Scales};
 pub use crate::method::{resolution, steps_for, Method, StepKind};
 pub use crate::study_run::{
     ErrorMeasure, Errors, Reference, StudyRun, WallTimes, REFERENCE_TOLERANCE,
+};
+pub use compare::{
+    compare, scheme_name, CompareSpec, ComparedRun, Comparison, CrossCheck, Crossover, EpsilonFit,
+    Kind, ModelError, NeededWidth, Regularisation, Resolutions, SchemeCost, Schemes, TargetCosts,
+    TrackEnd,
 };
 pub use convergence::{convergence, Convergence, OrderTable};
 pub use independence::{independence, FailedLevel, Independence, OutputCheck};

@@ -5,16 +5,18 @@
 //! they run on a pool of threads and are collected in order, so the files do not depend on the
 //! thread count (wall times, which cannot be reproduced, go to a separate `*-timing.csv`).
 
+mod compare;
 mod converge;
 mod independence;
 mod named;
 mod stiffness;
 mod work_precision;
 
+pub use compare::CompareRequest;
 pub use converge::{ConvergeRequest, CONVERGE_SOLVERS};
 pub use independence::IndependenceRequest;
 pub use named::{
-    Declared, NamedStudy, Runs, StudyRequest, CONVERGE, INDEPENDENCE, STIFFNESS, STUDIES,
+    Declared, NamedStudy, Runs, StudyRequest, COMPARE, CONVERGE, INDEPENDENCE, STIFFNESS, STUDIES,
     WORK_PRECISION,
 };
 pub use stiffness::{StiffnessRequest, STIFFNESS_SOLVERS};

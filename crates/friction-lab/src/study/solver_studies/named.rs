@@ -4,7 +4,9 @@
 //! command of each and Python a call (`study(name, …)`), both from the study's own
 //! declaration.
 
-use super::{ConvergeRequest, IndependenceRequest, StiffnessRequest, WorkPrecisionRequest};
+use super::{
+    CompareRequest, ConvergeRequest, IndependenceRequest, StiffnessRequest, WorkPrecisionRequest,
+};
 use crate::error::AppError;
 use crate::made::Made;
 use clap::{ArgMatches, Args, FromArgMatches};
@@ -107,6 +109,13 @@ pub static STIFFNESS: Declared<StiffnessRequest> = Declared::new(
     "Stiffness sweep: where the implicit solvers overtake the explicit ones",
 );
 
+/// `compare`.
+pub static COMPARE: Declared<CompareRequest> = Declared::new(
+    "compare",
+    "Every scheme at v = 0 (events, regularised over ε, naive, time-stepping) against the true \
+     nonsmooth solution: the cost of each at target errors",
+);
+
 registry::handle!(
     /// A study a front end names: a [`StudyRequest`], built in or a user's own.
     NamedStudy => dyn StudyRequest, STUDIES
@@ -118,12 +127,13 @@ pub static STUDIES: registry::Registry<NamedStudy> =
     registry::Registry::new("study", "studies", &NamedStudy::ALL);
 
 impl NamedStudy {
-    /// The four solver studies, in the order the command line lists them.
-    pub const ALL: [NamedStudy; 4] = [
+    /// The five solver studies, in the order the command line lists them.
+    pub const ALL: [NamedStudy; 5] = [
         NamedStudy::built_in(&CONVERGE),
         NamedStudy::built_in(&INDEPENDENCE),
         NamedStudy::built_in(&WORK_PRECISION),
         NamedStudy::built_in(&STIFFNESS),
+        NamedStudy::built_in(&COMPARE),
     ];
 }
 
@@ -145,5 +155,6 @@ runs!(
     ConvergeRequest,
     IndependenceRequest,
     WorkPrecisionRequest,
-    StiffnessRequest
+    StiffnessRequest,
+    CompareRequest
 );

@@ -1,0 +1,149 @@
+//! `compare`: every formulation of v = 0 — events, regularisation over ε, naive stepping,
+//! time-stepping — against the true nonsmooth solution, with each scheme's cost at a list of
+//! target errors ([`scenarios::studies::compare`]).
+
+use super::Problem;
+use crate::error::{field, AppError};
+use crate::made::Made;
+use crate::ranges;
+use crate::study::{conduct, CompareStudy};
+use integrators::Solver;
+use scenarios::run::DEFAULT_THETA;
+use scenarios::studies::{CompareSpec, Resolutions, Schemes};
+use std::path::Path;
+
+/// The explicit, implicit, regularised, naive and time-stepped runs of one problem, each
+/// scored against the true nonsmooth solution (`friction-lab compare`).
+#[derive(clap::Args, Clone, Debug)]
+pub struct CompareRequest {
+    /// The problem (its scheme options are not read: every scheme is compared).
+    #[command(flatten)]
+    pub problem: Problem,
+    /// The target errors: `grid_relative`, the largest error on the time grid over the
+    /// solution's scale in each quantity (dimensionless).
+    #[arg(
+        long,
+        value_delimiter = ',',
+        allow_hyphen_values = true,
+        default_value = "1e-2,1e-3,1e-4,1e-5,1e-6,1e-7,1e-8"
+    )]
+    pub targets: Vec<f64>,
+    /// Solvers run event-driven, events located at v = 0.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "dopri5,rk4,radau5,rodas,bdf,auto"
+    )]
+    pub event_solvers: Vec<Solver>,
+    /// Solvers run on the regularised law at every width of --epsilons (none: not compared).
+    #[arg(long, value_delimiter = ',', default_value = "radau5,rodas,bdf,dopri5")]
+    pub regularized_solvers: Vec<Solver>,
+    /// The regularisation widths ε, relative to the true solution's velocity scale (its
+    /// largest |v|).
+    #[arg(
+        long,
+        value_delimiter = ',',
+        allow_hyphen_values = true,
+        default_value = "1e-2,1e-3,1e-4,1e-5,1e-6"
+    )]
+    pub epsilons: Vec<f64>,
+    /// Solvers run through sign(0) = 0 without events (none: not compared).
+    #[arg(long, value_delimiter = ',', default_value = "dopri5")]
+    pub naive_solvers: Vec<Solver>,
+    /// Compare Moreau–Jean time-stepping (θ = 1/2) over --ts-dt-list.
+    #[arg(long, default_value_t = true, action = clap::ArgAction::Set, value_name = "BOOL")]
+    pub timestepping: bool,
+    /// Tolerances of the adaptive solvers, loose to tight (extended by tenths down to 1e-13
+    /// while a scheme's error still falls short of the tightest target).
+    #[arg(
+        long,
+        value_delimiter = ',',
+        allow_hyphen_values = true,
+        default_value = "1e-2,1e-3,1e-4,1e-5,1e-6,1e-7,1e-8"
+    )]
+    pub tol_list: Vec<f64>,
+    /// Step sizes of rk4, coarse to fine (extended by halves down to the finest over 64).
+    #[arg(
+        long,
+        value_delimiter = ',',
+        allow_hyphen_values = true,
+        default_value = "0.01,0.005,0.0025"
+    )]
+    pub dt_list: Vec<f64>,
+    /// Step sizes of Moreau–Jean's scheme, coarse to fine (extended the same way).
+    #[arg(
+        long,
+        value_delimiter = ',',
+        allow_hyphen_values = true,
+        default_value = "0.01,0.005,0.0025"
+    )]
+    pub ts_dt_list: Vec<f64>,
+    /// Timings of each run: the median wall time and its quartiles.
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 3,
+        allow_hyphen_values = true
+    )]
+    pub repeats: i64,
+}
+
+impl CompareRequest {
+    /// The comparison of `problem` with every other setting at its declared default.
+    pub fn new(problem: Problem) -> CompareRequest {
+        CompareRequest {
+            problem,
+            ..crate::settings::declared_defaults()
+        }
+    }
+
+    /// The schemes, resolutions and targets asked for.
+    pub fn spec(&self) -> Result<CompareSpec, AppError> {
+        let scheme = &self.problem.scheme;
+        if scheme.switching.is_some() || scheme.is_time_stepping() {
+            let option = match scheme.switching {
+                Some(_) => "switching",
+                None => "scheme",
+            };
+            return Err(AppError::Usage(format!(
+                "option `{}` does not apply to compare: it runs every scheme (choose them with \
+                 {}, {}, {} and {})",
+                field(option),
+                field("event_solvers"),
+                field("regularized_solvers"),
+                field("naive_solvers"),
+                field("timestepping"),
+            )));
+        }
+        Ok(CompareSpec {
+            schemes: Schemes {
+                event: self.event_solvers.clone(),
+                regularised: self.regularized_solvers.clone(),
+                epsilons: self.epsilons.clone(),
+                naive: self.naive_solvers.clone(),
+                theta: self.timestepping.then_some(DEFAULT_THETA),
+            },
+            resolutions: Resolutions {
+                tolerances: self.tol_list.clone(),
+                steps: self.dt_list.clone(),
+                timestepping_steps: self.ts_dt_list.clone(),
+            },
+            targets: self.targets.clone(),
+            repeats: ranges::REPEATS.count(self.repeats)? - 1,
+        })
+    }
+
+    /// Checks and runs the comparison: its files in `out` (in memory), and its answer at each
+    /// target.
+    pub fn run(&self, out: &Path) -> Result<Made, AppError> {
+        let spec = self.spec()?;
+        self.problem.make(out, |t, setup| {
+            let study = CompareStudy {
+                case: setup.case.as_ref(),
+                spec: &spec,
+            };
+            let c = conduct(&study, t, "compare")?;
+            Ok(crate::study::compare_lines(&c))
+        })
+    }
+}

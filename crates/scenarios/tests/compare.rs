@@ -1,0 +1,132 @@
+//! The comparison of formulations scores every scheme against the true nonsmooth solution:
+//! the cross-check agrees, time-stepping is measured on the grid, a short list is extended,
+//! the regularisation's model error is first order in ε on the belt, and the results do not
+//! depend on the thread count.
+
+use friction_models::{FrictionParams, ModelId};
+use integrators::Solver;
+use scenarios::studies::{compare, Case, CompareSpec, Comparison, Resolutions, Schemes};
+use scenarios::{Limits, Scenario};
+
+/// The belt with Coulomb and Stribeck friction (CS), the paper's parameters.
+fn belt() -> Case {
+    let scenario = Scenario::from_name("belt").unwrap();
+    let params = scenario.defaults();
+    let friction = FrictionParams::paper();
+    Case {
+        scenario,
+        law: ModelId::Cs.into(),
+        friction,
+        params,
+        t_end: scenario.default_t_end(&params, &friction),
+        limits: Limits {
+            max_steps: 200_000,
+            ..Limits::default()
+        },
+    }
+}
+
+fn spec() -> CompareSpec {
+    CompareSpec {
+        schemes: Schemes {
+            event: vec![Solver::DOPRI5, Solver::RADAU5],
+            regularised: vec![Solver::BDF],
+            epsilons: vec![1e-2, 1e-3, 1e-4, 1e-5],
+            naive: vec![],
+            theta: Some(0.5),
+        },
+        resolutions: Resolutions {
+            tolerances: vec![1e-3, 1e-4, 1e-5, 1e-6],
+            steps: vec![0.01],
+            timestepping_steps: vec![0.01, 0.005],
+        },
+        targets: vec![1e-2, 1e-3, 1e-4],
+        repeats: 0,
+    }
+}
+
+fn run_on(threads: usize) -> Comparison {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap();
+    pool.install(|| compare(&belt(), &spec(), &|| {}).unwrap())
+}
+
+#[test]
+fn every_scheme_is_scored_against_the_true_solution() {
+    let c = run_on(2);
+    // The true solution (Dormand–Prince at 1e-13 with events) and Radau IIA with events,
+    // another family, agree to far below the targets.
+    let d = c.cross_check.difference.unwrap();
+    assert!(d < 1e-6, "cross-check {d}");
+    assert!(c.resolvable <= 1e-6 && c.costs.iter().all(|t| t.resolved));
+
+    // Time-stepping's step ends fall on the output grid: each of its runs is measured there.
+    let mj: Vec<_> = (c.runs.iter())
+        .filter(|r| r.scheme == "moreau-jean (timestepping)")
+        .collect();
+    assert!(mj.iter().all(|r| r.run.errors.grid_relative.is_finite()));
+    // Its list (0.01, 0.005) stops short of 1e-4; it is halved until the error meets it.
+    assert!(mj.len() > 2, "{} runs", mj.len());
+    let at = |target: f64, scheme: &str| {
+        let t = c.costs.iter().find(|t| t.target == target).unwrap();
+        t.costs.iter().find(|s| s.scheme == scheme).unwrap().clone()
+    };
+    let reached = at(1e-4, "moreau-jean (timestepping)").reached.unwrap();
+    assert!(
+        reached.resolution < 0.005 && reached.error <= 1e-4,
+        "{reached:?}"
+    );
+
+    // A regularised run's error has two parts: against its own tight solution, and the model
+    // error of its ε against the true one.
+    for r in &c.runs {
+        assert_eq!(
+            r.epsilon.is_some(),
+            r.discretisation_error.is_some() || r.run.failure.is_some()
+        );
+    }
+    let reg = c.regularisation.as_ref().unwrap();
+    let errors: Vec<f64> = reg.widths.iter().map(|w| w.error).collect();
+    assert!(errors.windows(2).all(|w| w[1] < w[0]), "{errors:?}");
+    // On the belt the regularised law's drift through each stick phase is first order in ε.
+    let fit = reg.fit.as_ref().unwrap();
+    assert!(reg.falls && (fit.order - 1.0).abs() < 0.25, "{fit:?}");
+    // At ε = 1e-2 of the velocity scale the model error is of the solution's size: no
+    // tolerance reaches 1e-2 there, and the reason names the floor.
+    let wide = at(1e-2, "bdf (regularized)");
+    assert!(wide.reached.is_none() || wide.epsilon.unwrap() < 1e-2 * c.velocity_scale);
+
+    // Explicit with events is cheaper than implicit with events at every target here.
+    for t in &c.costs {
+        assert_eq!(t.cheapest.as_deref(), Some("dopri5 (event)"), "{t:?}");
+    }
+}
+
+#[test]
+fn the_comparison_is_the_same_on_one_thread_and_on_two() {
+    let (one, two) = (run_on(1), run_on(2));
+    let key = |c: &Comparison| {
+        let runs: Vec<String> = (c.runs.iter())
+            .map(|r| {
+                format!(
+                    "{} {} {:?} {}",
+                    r.run.solver, r.run.resolution, r.run.errors, r.run.work
+                )
+            })
+            .collect();
+        let costs: Vec<String> = (c.costs.iter())
+            .flat_map(|t| &t.costs)
+            .map(|s| {
+                format!(
+                    "{} {:?}",
+                    s.scheme,
+                    s.reached.as_ref().map(|r| r.work_estimate.to_bits())
+                )
+            })
+            .collect();
+        (runs, costs, format!("{:?}", c.regularisation))
+    };
+    assert_eq!(key(&one), key(&two));
+}
