@@ -234,6 +234,7 @@ fn bench(c: &mut Criterion) {
         color,
         width: 2,
         marker: Marker::Dot,
+        dash: friction_lab::plot::Dash::Solid,
     })
     .collect();
     let plot = Plot {

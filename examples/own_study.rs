@@ -173,6 +173,7 @@ impl Study for StepCountStudy<'_> {
                 color,
                 width: 2,
                 marker: Marker::Dot,
+                dash: friction_lab::plot::Dash::Solid,
             })
             .collect();
         let plot = Plot {

@@ -182,6 +182,19 @@ fn reproduce_writes_six_figures_notes_and_report_deterministically() {
         "{report}"
     );
     assert!(report.contains("[Figure 6 (SD)](figures/figure-6-SD.png)"));
+    // The paper's claim tested: every scheme against the true solution, the same twice.
+    assert!(report.contains("## Explicit, implicit and time-stepping against the true solution"));
+    assert!(
+        report.contains("| [belt rig with CS](compare/belt-CS.png) | dopri5 (event)"),
+        "{report}"
+    );
+    for file in ["compare/belt-CS-cost.csv", "compare/two_mass-lugre.csv"] {
+        assert_eq!(
+            std::fs::read(a.join(file)).unwrap(),
+            std::fs::read(b.join(file)).unwrap(),
+            "{file} differs"
+        );
+    }
     // The chain, integrated three ways: work-precision at N = 100, cost against N.
     let wp = std::fs::read_to_string(a.join("studies/work-precision-chain-100.csv")).unwrap();
     for label in [
@@ -3205,7 +3218,8 @@ fn a_study_in_which_every_run_failed_exits_one() {
 
 /// A measure that does not exist for a run is an empty cell and JSON `null`, never 0 (which
 /// reads as exact): LuGre has no stick phases, a regularised run no events, and a solver that
-/// never met a stiffness study's target paid no cost.
+/// never met a stiffness study's target (below what any resolution reaches, its lists extended
+/// to their limits) paid no cost.
 #[test]
 fn a_measure_that_does_not_exist_is_empty_never_zero() {
     let dir = tempfile::tempdir().unwrap();
@@ -3293,7 +3307,7 @@ fn a_measure_that_does_not_exist_is_empty_never_zero() {
             "--solvers",
             "rk4,bdf",
             "--target",
-            "1e-9",
+            "1e-14",
             "--dt-list",
             "0.01",
             "--tol-list",
@@ -4498,6 +4512,24 @@ fn compare_writes_its_tables_and_refuses_a_scheme_option() {
         assert!(stderr(&o).contains(&expected), "{}", stderr(&o));
         assert!(!out.exists());
     }
+    // The chain at rest for its first 2 s: no motion to compare on, said so, exit 2.
+    let o = friction_lab(&[
+        "compare",
+        "chain",
+        "--model",
+        "CS",
+        "--t-end",
+        "2",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("does not move on [0, 2] s"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!out.exists());
     let o = friction_lab(&[
         "compare",
         "belt",

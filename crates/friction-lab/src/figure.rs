@@ -107,6 +107,7 @@ pub fn plot(title: String, model: ModelId, curves: &[Drawn]) -> Plot {
             color,
             width,
             marker: Marker::None,
+            dash: crate::plot::Dash::Solid,
         });
     }
     let main = curves[0].curve.at_rest;
@@ -120,6 +121,7 @@ pub fn plot(title: String, model: ModelId, curves: &[Drawn]) -> Plot {
             color: GREEN,
             width: 4,
             marker: Marker::None,
+            dash: crate::plot::Dash::Solid,
         });
     }
     let x_label = match axis {

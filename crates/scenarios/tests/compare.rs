@@ -130,3 +130,87 @@ fn the_comparison_is_the_same_on_one_thread_and_on_two() {
     };
     assert_eq!(key(&one), key(&two));
 }
+
+#[test]
+fn a_stiffness_sweep_extends_a_list_that_stops_short_of_its_target() {
+    // Tolerances 1e-2 and 1e-3 leave Dormand–Prince short of 1e-5 on the regularised belt;
+    // the list is extended by tenths until it meets it, rather than the method being called
+    // unable to.
+    use friction_systems::{Scheme, Switching};
+    use scenarios::studies::{stiffness, Method, Sweep};
+    let case = Case {
+        t_end: 5.0,
+        ..belt()
+    };
+    let dopri5 = Method::of(Scheme::EventDriven {
+        solver: Solver::DOPRI5,
+        switching: Switching::Regularized { epsilon: 1e-2 },
+    });
+    let sweep = Sweep {
+        parameter: "epsilon",
+        values: &[1e-2],
+        target: 1e-5,
+    };
+    let s = stiffness(&case, sweep, &[dopri5], &[0.01], &[1e-2, 1e-3], &|| {}).unwrap();
+    let r = s.points[0].costs[0]
+        .reached
+        .as_ref()
+        .expect("extended until it met the target");
+    assert!(r.resolution < 1e-3 && r.error <= 1e-5, "{r:?}");
+    // Each extension a tenth of the tolerance before: a decimal, not 1.0000000000000001e-5.
+    let digits = format!("{:e}", r.resolution);
+    assert!(digits.len() <= 5, "{digits}");
+}
+
+/// A damped oscillator without friction, m·ẍ + c·ẋ + k·x = 0 with m = k = 1 and c = √R:
+/// for R ≫ 4 its rates are about −c and −1/c, a stiffness ratio of R. Over three slow time
+/// constants (3c) an explicit method's step is held below its stability bound 3.3/c, so its
+/// work grows as R; an implicit method's follows the slow solution alone.
+fn oscillator(ratio: f64) -> scenarios::studies::SystemCase {
+    use friction_systems::{End, System};
+    let c = ratio.sqrt();
+    let mut s = System::default();
+    let wall = s.add_anchor("wall", 0.0, 0.0);
+    let body = s.add_body("body", 1.0, 1.0, 0.0);
+    s.add_spring(End::Anchor(wall), End::Body(body), 1.0, c);
+    scenarios::studies::SystemCase::new(format!("oscillator R = {ratio}"), s, 3.0 * c.max(2.0))
+}
+
+#[test]
+fn on_a_smooth_stiff_problem_the_implicit_method_wins_above_a_stiffness_ratio() {
+    use scenarios::studies::Winner;
+    let spec = CompareSpec {
+        schemes: Schemes {
+            event: vec![Solver::DOPRI5, Solver::RADAU5],
+            regularised: vec![],
+            epsilons: vec![],
+            naive: vec![],
+            theta: None,
+        },
+        // From a tolerance loose enough that no method meets a target with its first run
+        // (whose cost is then bounded above only, and ties).
+        resolutions: Resolutions {
+            tolerances: vec![1e-1, 1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8],
+            ..spec().resolutions
+        },
+        targets: vec![1e-3, 1e-6],
+        ..spec()
+    };
+    let winner = |ratio: f64| {
+        let c = compare(&oscillator(ratio), &spec, &|| {}).unwrap();
+        assert!(c.regularisation.is_none());
+        (c.costs.iter())
+            .map(|t| (t.kind, t.implicit_over_explicit.unwrap()))
+            .collect::<Vec<_>>()
+    };
+    // Critically damped (R = 4): nothing is stiff, and Dormand–Prince is cheaper.
+    for (kind, ratio) in winner(4.0) {
+        assert_eq!(kind, Some(Winner::Explicit), "implicit/explicit {ratio}");
+    }
+    // R = 1e4: Dormand–Prince needs about 3c/(3.3/c) ≈ 0.9·R steps whatever the target;
+    // Radau IIA's work does not grow with R.
+    for (kind, ratio) in winner(1e4) {
+        assert_eq!(kind, Some(Winner::Implicit), "implicit/explicit {ratio}");
+        assert!(ratio < 0.2, "implicit/explicit {ratio}");
+    }
+}

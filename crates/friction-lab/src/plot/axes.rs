@@ -247,6 +247,7 @@ mod tests {
                 color: RED,
                 width: 2,
                 marker: Marker::Dot,
+                dash: crate::plot::Dash::Solid,
             }],
             legend: Corner::default(),
             log: true,

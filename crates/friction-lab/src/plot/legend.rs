@@ -199,6 +199,30 @@ pub(super) enum LegendTarget<'b, DB: DrawingBackend> {
     Below(&'b DrawingArea<DB, Shift>),
 }
 
+/// The corners of a filled square, triangle or diamond of `marker`'s shape about
+/// (`x`, `y`), pixels; none for another marker.
+fn corners(marker: Marker, (x, y): (i32, i32)) -> Vec<(i32, i32)> {
+    let shape: &[(i32, i32)] = match marker {
+        Marker::Square => &[(-4, -4), (4, -4), (4, 4), (-4, 4)],
+        Marker::Triangle => &[(0, -5), (5, 4), (-5, 4)],
+        Marker::Diamond => &[(0, -5), (5, 0), (0, 5), (-5, 0)],
+        _ => &[],
+    };
+    shape.iter().map(|&(dx, dy)| (x + dx, y + dy)).collect()
+}
+
+/// A filled square, triangle or diamond of `marker`'s shape about the origin, pixels (an
+/// empty polygon for another marker).
+pub(super) fn shape(marker: Marker, color: RGBColor) -> Polygon<(i32, i32)> {
+    Polygon::new(corners(marker, (0, 0)), color.filled())
+}
+
+/// Whether `marker` is a filled shape ([`Marker::Square`], `Triangle`, `Diamond`), whose
+/// key is [`filled_key`].
+pub(super) fn is_filled(marker: Marker) -> bool {
+    matches!(marker, Marker::Square | Marker::Triangle | Marker::Diamond)
+}
+
 /// A legend's key: a line sample, a cross and a dot, in pixels from the key's left end, the
 /// ones a series does not draw made transparent.
 type Key = (
@@ -209,8 +233,8 @@ type Key = (
 );
 
 /// The key of a series in a legend, relative to its left end, showing what the series draws:
-/// a line where it draws one (a curve, or a line through its points), and its marker, a dot
-/// or a cross.
+/// a line where it draws one (a curve, or a line through its points), and its marker, a dot,
+/// a cross or a ring ([`filled_key`] for a filled shape).
 pub(super) fn key(color: RGBColor, marker: Marker, width: u32) -> Key {
     let shown = |on: bool| if on { 1.0 } else { 0.0 };
     let line = shown(width > 0 || marker == Marker::None);
@@ -222,6 +246,19 @@ pub(super) fn key(color: RGBColor, marker: Marker, width: u32) -> Key {
         Cross::new((10, 0), 5, color.mix(cross).stroke_width(2)),
         Circle::new((10, 0), 4, color.mix(dot).filled()),
         Circle::new((10, 0), 5, color.mix(ring).stroke_width(2)),
+    )
+}
+
+/// A filled shape's key: a line sample and the shape, in pixels from the key's left end.
+type FilledKey = (PathElement<(i32, i32)>, Polygon<(i32, i32)>);
+
+/// The key of a series marked by a filled shape: a line sample where it draws one (solid; the
+/// plot draws its pattern) and the shape.
+pub(super) fn filled_key(color: RGBColor, marker: Marker, width: u32) -> FilledKey {
+    let line = if width > 0 { 1.0 } else { 0.0 };
+    (
+        PathElement::new([(0, 0), (20, 0)], color.mix(line).stroke_width(3)),
+        Polygon::new(corners(marker, (10, 0)), color.filled()),
     )
 }
 
@@ -237,6 +274,10 @@ pub(super) fn draw_legend_in_strip<DB: DrawingBackend>(
     let labels: Vec<&str> = labelled.iter().filter_map(|s| s.label.as_deref()).collect();
     draw_box(area, &labels, at, |k, at| {
         let s = labelled[k];
+        if is_filled(s.marker) {
+            let (line, filled) = filled_key(s.color, s.marker, s.width);
+            return area.draw(&(EmptyElement::at(at) + line + filled));
+        }
         let (line, cross, dot, ring) = key(s.color, s.marker, s.width);
         area.draw(&(EmptyElement::at(at) + line + cross + dot + ring))
     })
@@ -288,6 +329,7 @@ mod tests {
             color: RED,
             width: 2,
             marker: Marker::Dot,
+            dash: crate::plot::Dash::Solid,
         };
         let plot = |points, legend| Plot {
             title: "t".into(),

@@ -17,8 +17,8 @@ pub use format::{Format, DESIGN_DPI};
 use glyphs::Glyphs;
 pub use legend::Corner;
 use legend::{
-    draw_legend_in_strip, key, layout, legend_pixels, LegendPlace, LegendTarget, LEGEND_BOX,
-    LEGEND_FONT,
+    draw_legend_in_strip, filled_key, is_filled, key, layout, legend_pixels, shape, LegendPlace,
+    LegendTarget, LEGEND_BOX, LEGEND_FONT,
 };
 use plotters::coord::ranged1d::ValueFormatter;
 use plotters::coord::Shift;
@@ -48,6 +48,38 @@ pub struct Series {
     pub width: u32,
     /// How each point is marked.
     pub marker: Marker,
+    /// How its line is drawn.
+    pub dash: Dash,
+}
+
+/// How the line of a series is drawn: a pattern as well as a colour tells series apart in
+/// greyscale.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Dash {
+    /// A solid line.
+    #[default]
+    Solid,
+    /// Dashes of 10 pixels, 5 apart.
+    Dashed,
+    /// Dots of 2 pixels, 4 apart.
+    Dotted,
+    /// Long dashes of 18 pixels, 6 apart.
+    LongDashed,
+}
+
+impl Dash {
+    /// Every pattern, in the order series take them.
+    pub const ALL: [Dash; 4] = [Dash::Solid, Dash::Dashed, Dash::Dotted, Dash::LongDashed];
+
+    /// Dash length and gap, pixels; `None` for a solid line.
+    fn pattern(self) -> Option<(u32, u32)> {
+        match self {
+            Dash::Solid => None,
+            Dash::Dashed => Some((10, 5)),
+            Dash::Dotted => Some((2, 4)),
+            Dash::LongDashed => Some((18, 6)),
+        }
+    }
 }
 
 /// How the points of a series are marked.
@@ -63,6 +95,22 @@ pub enum Marker {
     /// An open circle, drawn around a point that a [`Marker::Dot`] of another series may
     /// fill (a second branch of the same diagram).
     Ring,
+    /// A filled square (a computed run, told apart from the dots in greyscale).
+    Square,
+    /// A filled triangle, point up.
+    Triangle,
+    /// A filled diamond.
+    Diamond,
+}
+
+impl Marker {
+    /// The filled shapes a computed run is drawn with, in the order series take them.
+    pub const FILLED: [Marker; 4] = [
+        Marker::Dot,
+        Marker::Square,
+        Marker::Triangle,
+        Marker::Diamond,
+    ];
 }
 
 /// A labelled line plot.
@@ -373,19 +421,37 @@ where
         let (color, marker, width) = (s.color, s.marker, s.width);
         let drawn = if s.width > 0 {
             let style = ShapeStyle::from(&s.color).stroke_width(s.width);
-            chart
-                .draw_series(LineSeries::new(points.iter().copied(), style))
-                .map_err(err)?
+            match s.dash.pattern() {
+                None => chart
+                    .draw_series(LineSeries::new(points.iter().copied(), style))
+                    .map_err(err)?,
+                Some((size, spacing)) => chart
+                    .draw_series(DashedLineSeries::new(
+                        points.iter().copied(),
+                        size,
+                        spacing,
+                        style,
+                    ))
+                    .map_err(err)?,
+            }
         } else {
             chart
                 .draw_series(std::iter::empty::<PathElement<(f64, f64)>>())
                 .map_err(err)?
         };
         if let Some(label) = &s.label {
-            drawn.label(label.as_str()).legend(move |p| {
-                let (line, cross, dot, ring) = key(color, marker, width);
-                EmptyElement::at(p) + line + cross + dot + ring
-            });
+            let drawn = drawn.label(label.as_str());
+            if is_filled(marker) {
+                drawn.legend(move |p| {
+                    let (line, filled) = filled_key(color, marker, width);
+                    EmptyElement::at(p) + line + filled
+                });
+            } else {
+                drawn.legend(move |p| {
+                    let (line, cross, dot, ring) = key(color, marker, width);
+                    EmptyElement::at(p) + line + cross + dot + ring
+                });
+            }
         }
         match marker {
             Marker::None => {}
@@ -406,6 +472,13 @@ where
             Marker::Ring => {
                 chart
                     .draw_series((points.iter()).map(|&p| Circle::new(p, 6, color.stroke_width(2))))
+                    .map_err(err)?;
+            }
+            Marker::Square | Marker::Triangle | Marker::Diamond => {
+                chart
+                    .draw_series(
+                        (points.iter()).map(|&p| EmptyElement::at(p) + shape(marker, color)),
+                    )
                     .map_err(err)?;
             }
         }
@@ -585,6 +658,7 @@ mod tests {
                     color: RED,
                     width: 0,
                     marker: Marker::Dot,
+                    dash: crate::plot::Dash::Solid,
                 }],
                 legend: Corner::UpperRight,
                 log: false,
@@ -595,6 +669,7 @@ mod tests {
             let curve = Plot {
                 series: vec![Series {
                     marker: Marker::None,
+                    dash: crate::plot::Dash::Solid,
                     width: 2,
                     ..plot.series[0].clone()
                 }],
@@ -619,6 +694,7 @@ mod tests {
                 color: RED,
                 width: 1,
                 marker: Marker::None,
+                dash: crate::plot::Dash::Solid,
             }],
             legend: Corner::default(),
             log: false,
@@ -648,6 +724,7 @@ mod tests {
                 color: RED,
                 width: 1,
                 marker: Marker::None,
+                dash: crate::plot::Dash::Solid,
             }],
             legend: Corner::default(),
             log: false,
@@ -696,6 +773,7 @@ mod tests {
                 color: RED,
                 width: 2,
                 marker: Marker::None,
+                dash: crate::plot::Dash::Solid,
             }],
             legend: Corner::default(),
             log: false,
@@ -743,6 +821,7 @@ mod tests {
             color,
             width: 0,
             marker: Marker::Dot,
+            dash: crate::plot::Dash::Solid,
         };
         let plot = |series, log| Plot {
             title: "kind".into(),
@@ -865,6 +944,7 @@ mod tests {
                 color: RED,
                 width: 0,
                 marker: Marker::Dot,
+                dash: crate::plot::Dash::Solid,
             }],
             legend: Corner::UpperRight,
             log: false,
@@ -888,6 +968,7 @@ mod tests {
                 color: RED,
                 width: 1,
                 marker: Marker::None,
+                dash: crate::plot::Dash::Solid,
             }],
             legend: Corner::default(),
             log: false,
@@ -921,6 +1002,7 @@ mod tests {
                             color: RED,
                             width: 2,
                             marker: Marker::Dot,
+                            dash: crate::plot::Dash::Solid,
                         })
                         .collect(),
                     legend: Corner::UpperRight,

@@ -75,6 +75,7 @@ impl Study for ExperimentStudy {
                 color,
                 width: 2,
                 marker: Marker::None,
+                dash: crate::plot::Dash::Solid,
             });
         }
         let csv = stem.with_extension("csv");

@@ -6,6 +6,7 @@
 
 mod chain;
 mod closed_loop;
+mod comparison;
 mod experiment;
 mod figures;
 mod solver_studies;
@@ -194,7 +195,7 @@ impl Paper {
     }
 
     /// The paper's parts, in the report's order: Figures 2–7, the experiment, Table 2, the
-    /// solver studies, the chain's studies, the belt's stick–slip map and the closed loop.
+    /// solver studies, the comparison of schemes against the true solution, the chain's studies, the belt's stick–slip map and the closed loop.
     pub fn parts(&self) -> Vec<Box<dyn Part>> {
         let friction = self.friction;
         vec![
@@ -205,6 +206,7 @@ impl Paper {
             Box::new(experiment::Experiment { friction }),
             Box::new(table2::Table2),
             Box::new(solver_studies::SolverStudies { friction }),
+            Box::new(comparison::Comparisons { friction }),
             Box::new(chain::ChainStudies { friction }),
             Box::new(stick_slip::StickSlip { friction }),
             Box::new(closed_loop::ClosedLoopPart),

@@ -60,6 +60,7 @@ pub fn add_motion(
                 color: PALETTE[c],
                 width: 2,
                 marker: Marker::None,
+                dash: crate::plot::Dash::Solid,
             })
             .collect()
     };
@@ -98,6 +99,7 @@ pub fn add_motion(
                 color: PALETTE[c],
                 width: 2,
                 marker: Marker::None,
+                dash: crate::plot::Dash::Solid,
             })
         })
         .collect();

@@ -156,6 +156,7 @@ fn figures(o: &Outcome, name: &str, window: Option<Window>) -> Vec<(&'static str
                         color: BLUE,
                         width: 2,
                         marker: Marker::None,
+                        dash: crate::plot::Dash::Solid,
                     }],
                     legend: Corner::default(),
                     log: false,

@@ -144,6 +144,7 @@ pub fn add_spectra(
                 color: PALETTE[c % PALETTE.len()],
                 width: 2,
                 marker: Marker::None,
+                dash: crate::plot::Dash::Solid,
             })
             .collect(),
         legend: Corner::UpperRight,

@@ -33,6 +33,7 @@ fn stiffness_plot(stiffness: &[StiffnessPoint], name: &str, window: Option<Windo
                 color: BLUE,
                 width: 2,
                 marker: Marker::None,
+                dash: crate::plot::Dash::Solid,
             },
             Series {
                 label: Some("dopri5's stability boundary, 3.3".into()),
@@ -40,6 +41,7 @@ fn stiffness_plot(stiffness: &[StiffnessPoint], name: &str, window: Option<Windo
                 color: RED,
                 width: 1,
                 marker: Marker::None,
+                dash: crate::plot::Dash::Solid,
             },
         ],
         legend: Corner::default(),

@@ -520,6 +520,7 @@ fn error_figure(r: &ClosedLoops) -> Plot {
                 color: PALETTE[i % PALETTE.len()],
                 width: 1,
                 marker: Default::default(),
+                dash: crate::plot::Dash::Solid,
             })
             .collect(),
         legend: Corner::UpperRight,

@@ -7,13 +7,15 @@ use super::tables::{resolution_cells, runs_table, timing_table};
 use super::{positive_list, Study, StudyFiles};
 use crate::error::AppError;
 use crate::output::{Cell, Table};
-use crate::plot::{Corner, Marker, Plot, Series, BLUE};
-use plotters::style::RGBColor;
+use crate::plot::{Corner, Dash, Marker, Plot, Series, BLUE};
+use plotters::style::{RGBColor, BLACK};
 
 /// The colour of the targets' lines and the fit: behind the schemes' own.
 const GREY: RGBColor = RGBColor(150, 150, 150);
 use friction_models::params::show;
-use scenarios::studies::{self, CompareSpec, Comparison, ErrorMeasure, StudyCase};
+use scenarios::studies::{
+    self, CompareSpec, ComparedRun, Comparison, ErrorMeasure, StudyCase, StudyRun,
+};
 
 /// Every scheme of `spec` on `case`, against the true solution.
 pub struct CompareStudy<'a> {
@@ -132,8 +134,9 @@ impl Study for CompareStudy<'_> {
     }
 
     /// `{stem}.csv` (a row per run, with its scheme, ε and discretisation error),
-    /// `{stem}-cost.csv` (each scheme at each target), `{stem}-epsilon.csv` (the model error
-    /// against ε), `{stem}-timing.csv`, `{stem}.json`, and the figures `{stem}` (error against
+    /// `{stem}-cost.csv` (each scheme at each target), `{stem}-cost-timing.csv` (the wall
+    /// time at each target met), `{stem}-epsilon.csv` (the model error against ε),
+    /// `{stem}-timing.csv`, `{stem}.json`, and the figures `{stem}` (error against
     /// work: every scheme's runs judged ok, a regularised scheme's at the widths its costs
     /// were met at), `{stem}-timing` (against wall time), `{stem}-regularized` (every
     /// regularised run judged ok) and `{stem}-epsilon` (the model error against ε).
@@ -156,6 +159,8 @@ impl Study for CompareStudy<'_> {
         }
         out.files.add_table(out.path(".csv"), table)?;
         out.files.add_table(out.path("-cost.csv"), cost_table(c))?;
+        out.files
+            .add_table(out.path("-cost-timing.csv"), cost_timing_table(c))?;
         let timing = timing_table(
             &["solver", "h", "tol"],
             runs.iter().map(|r| {
@@ -179,98 +184,117 @@ impl Study for CompareStudy<'_> {
                 .add_plot(&out.path("-epsilon"), &epsilon_plot(c, self.case))?;
         }
         out.add_json(&super::study_file(self.case, &[], c))?;
-        let error = ErrorMeasure::GridRelative.label();
-        let title = |what: &str| {
-            format!(
-                "{what}: {}, every scheme against the true nonsmooth solution",
-                self.case.describe()
-            )
-        };
-        let targets = |largest_x: f64, smallest_x: f64| -> Vec<Series> {
-            (c.costs.iter())
-                .map(|t| Series {
-                    label: None,
-                    points: vec![(smallest_x, t.target), (largest_x, t.target)],
-                    color: GREY,
-                    width: 1,
-                    marker: Marker::None,
-                })
-                .collect()
-        };
-        let xs = |runs: &[studies::StudyRun], x: fn(&studies::StudyRun) -> f64| {
-            let v: Vec<f64> = runs.iter().map(x).filter(|x| *x > 0.0).collect();
-            (
-                v.iter().copied().fold(f64::INFINITY, f64::min),
-                v.iter().copied().fold(0.0, f64::max),
-            )
-        };
-        // The main figures: every scheme's runs judged ok, a regularised scheme's at the ε its
-        // costs were met at (the others in `{stem}-regularized`); every run is in the CSV.
-        let chosen: Vec<(&str, f64)> = (c.costs.iter())
-            .flat_map(|t| &t.costs)
-            .filter_map(|s| Some((s.scheme.as_str(), s.epsilon?)))
-            .collect();
-        let main = |r: &studies::ComparedRun| {
-            r.run.verdict.is_ok()
-                && r.epsilon
-                    .is_none_or(|e| chosen.contains(&(r.scheme.as_str(), e)))
-        };
-        let regularised = |r: &studies::ComparedRun| r.run.verdict.is_ok() && r.epsilon.is_some();
-        let drawn = |keep: &dyn Fn(&studies::ComparedRun) -> bool| -> Vec<studies::StudyRun> {
-            (c.runs.iter())
-                .filter(|r| keep(r))
-                .map(|r| r.run.clone())
-                .collect()
-        };
-        let (main, regularised) = (drawn(&main), drawn(&regularised));
-        for (suffix, runs, what, x_label, x) in [
-            (
-                "-regularized",
-                &regularised,
-                "Regularised schemes, every ε, error against work",
-                "work (f evaluations; Jacobians, LU and solves weighted by flops)",
-                (|r: &studies::StudyRun| r.work as f64) as fn(&studies::StudyRun) -> f64,
-            ),
-            (
-                "",
-                &main,
-                "Error against work",
-                "work (f evaluations; Jacobians, LU and solves weighted by flops)",
-                |r: &studies::StudyRun| r.work as f64,
-            ),
-            (
-                "-timing",
-                &main,
-                "Error against wall time",
-                "wall time, median (s)",
-                |r: &studies::StudyRun| r.wall_time.median,
-            ),
-        ] {
-            if runs.is_empty() {
-                continue;
-            }
-            let (lo, hi) = xs(runs, x);
-            let mut series = targets(hi, lo);
-            series.extend(per_solver_series(
-                runs,
-                |_| true,
-                x,
-                |r| r.errors.grid_relative,
-            ));
-            out.files.add_plot(
-                &out.path(suffix),
-                &Plot {
-                    title: title(what),
-                    x_label: x_label.into(),
-                    y_label: error.into(),
-                    series,
-                    legend: Corner::UpperRight,
-                    log: true,
-                },
-            )?;
+        for (suffix, plot) in figures(c, self.case) {
+            out.files.add_plot(&out.path(suffix), &plot)?;
         }
         Ok(())
     }
+}
+
+/// A comparison's figures, by the suffix of their stem: `""` error against work (every
+/// scheme's runs judged ok, a regularised scheme's at the widths its costs were met at),
+/// `-timing` against the median wall time, `-regularized` every regularised run judged ok
+/// (none without one). The targets are grey lines; a crossover is a black line at the target
+/// where it lies, named in the legend.
+pub fn figures(c: &Comparison, case: &dyn StudyCase) -> Vec<(&'static str, Plot)> {
+    let chosen: Vec<(&str, f64)> = (c.costs.iter())
+        .flat_map(|t| &t.costs)
+        .filter_map(|s| Some((s.scheme.as_str(), s.epsilon?)))
+        .collect();
+    let main = |r: &ComparedRun| {
+        r.run.verdict.is_ok()
+            && (r.epsilon).is_none_or(|e| chosen.contains(&(r.scheme.as_str(), e)))
+    };
+    let regularised = |r: &ComparedRun| r.run.verdict.is_ok() && r.epsilon.is_some();
+    let drawn = |keep: &dyn Fn(&ComparedRun) -> bool| -> Vec<StudyRun> {
+        (c.runs.iter())
+            .filter(|r| keep(r))
+            .map(|r| r.run.clone())
+            .collect()
+    };
+    let (main, regularised) = (drawn(&main), drawn(&regularised));
+    let work: fn(&StudyRun) -> f64 = |r| r.work as f64;
+    let work_label = "work (f evaluations; Jacobians, LU and solves weighted by flops)";
+    [
+        ("", &main, "Error against work", work_label, work),
+        (
+            "-timing",
+            &main,
+            "Error against wall time",
+            "wall time, median (s)",
+            |r: &StudyRun| r.wall_time.median,
+        ),
+        (
+            "-regularized",
+            &regularised,
+            "Regularised schemes, every ε, error against work",
+            work_label,
+            work,
+        ),
+    ]
+    .into_iter()
+    .filter(|(_, runs, ..)| !runs.is_empty())
+    .map(|(suffix, runs, what, x_label, x)| {
+        let v: Vec<f64> = runs.iter().map(x).filter(|x| *x > 0.0).collect();
+        let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = v.iter().copied().fold(0.0, f64::max);
+        let line = |y: f64| vec![(lo, y), (hi, y)];
+        let mut series: Vec<Series> = (c.costs.iter())
+            .map(|t| Series {
+                label: None,
+                points: line(t.target),
+                color: GREY,
+                width: 1,
+                marker: Marker::None,
+                dash: crate::plot::Dash::Solid,
+            })
+            .collect();
+        series.extend(c.crossovers.iter().filter_map(|x| {
+            let at = x.at?;
+            Some(Series {
+                label: Some(format!("crossover {} → {} at {at:.1e}", x.from, x.to)),
+                points: line(at),
+                color: BLACK,
+                width: 2,
+                marker: Marker::None,
+                dash: crate::plot::Dash::Solid,
+            })
+        }));
+        series.extend(in_greyscale(per_solver_series(
+            runs,
+            |_| true,
+            x,
+            |r| r.errors.grid_relative,
+        )));
+        let plot = Plot {
+            title: format!(
+                "{what}: {}, every scheme against the true nonsmooth solution",
+                case.describe()
+            ),
+            x_label: x_label.into(),
+            y_label: ErrorMeasure::GridRelative.label().into(),
+            series,
+            legend: Corner::UpperRight,
+            log: true,
+        };
+        (suffix, plot)
+    })
+    .collect()
+}
+
+/// `series` (one a scheme, as [`per_solver_series`] draws them) told apart without colour:
+/// the k-th scheme's runs marked by the k-th filled shape and drawn with the (k/4)-th dash
+/// pattern, sixteen schemes each their own pair.
+fn in_greyscale(mut series: Vec<Series>) -> Vec<Series> {
+    let shapes = Marker::FILLED.len();
+    for (k, s) in (series.iter_mut())
+        .filter(|s| s.marker == Marker::Dot)
+        .enumerate()
+    {
+        s.marker = Marker::FILLED[k % shapes];
+        s.dash = Dash::ALL[(k / shapes) % Dash::ALL.len()];
+    }
+    series
 }
 
 /// One row per target and scheme: its cost there, or why it has none.
@@ -287,9 +311,6 @@ fn cost_table(c: &Comparison) -> Table {
         "work_estimate",
         "work_low",
         "work_high",
-        "wall_time_s",
-        "wall_time_q1_s",
-        "wall_time_q3_s",
         "cheapest",
         "reason",
     ]);
@@ -297,7 +318,6 @@ fn cost_table(c: &Comparison) -> Table {
         for s in &target.costs {
             let r = s.reached.as_ref();
             let [h, tol] = resolution_cells(r.map(|r| r.step), r.map(|r| r.resolution));
-            let spread = |i: usize| s.wall_spread.map_or(Cell::empty(), |w| Cell::Num(w[i]));
             let cheapest = target.cheapest.as_deref() == Some(&s.scheme);
             t.rows.push(vec![
                 Cell::Num(target.target),
@@ -313,9 +333,6 @@ fn cost_table(c: &Comparison) -> Table {
                     .map_or(Cell::empty(), Cell::Num),
                 r.and_then(|r| r.work_bracket[1])
                     .map_or(Cell::empty(), Cell::Num),
-                s.wall_time.map_or(Cell::empty(), Cell::Num),
-                spread(0),
-                spread(1),
                 Cell::Text(match (cheapest, target.tie) {
                     (true, true) => "tie".into(),
                     (true, false) => "yes".into(),
@@ -323,6 +340,32 @@ fn cost_table(c: &Comparison) -> Table {
                 }),
                 Cell::Text(s.reason.clone().unwrap_or_default()),
             ]);
+        }
+    }
+    t
+}
+
+/// One row per target and scheme that met it: the wall time there (not deterministic, apart
+/// from the cost table).
+fn cost_timing_table(c: &Comparison) -> Table {
+    let mut t = Table::new(&[
+        "target",
+        "scheme",
+        "wall_time_s",
+        "wall_time_q1_s",
+        "wall_time_q3_s",
+    ]);
+    for target in &c.costs {
+        for s in &target.costs {
+            if let (Some(wall), Some([q1, q3])) = (s.wall_time, s.wall_spread) {
+                t.rows.push(vec![
+                    Cell::Num(target.target),
+                    Cell::Text(s.scheme.clone()),
+                    Cell::Num(wall),
+                    Cell::Num(q1),
+                    Cell::Num(q3),
+                ]);
+            }
         }
     }
     t
@@ -341,6 +384,7 @@ fn epsilon_plot(c: &Comparison, case: &dyn StudyCase) -> Plot {
         color: BLUE,
         width: 2,
         marker: Marker::Dot,
+        dash: crate::plot::Dash::Solid,
     }];
     if let (Some(f), true) = (&reg.fit, reg.falls) {
         series.push(Series {
@@ -355,6 +399,7 @@ fn epsilon_plot(c: &Comparison, case: &dyn StudyCase) -> Plot {
             color: GREY,
             width: 1,
             marker: Marker::None,
+            dash: crate::plot::Dash::Solid,
         });
     }
     Plot {
@@ -367,5 +412,35 @@ fn epsilon_plot(c: &Comparison, case: &dyn StudyCase) -> Plot {
         series,
         legend: Corner::UpperLeft,
         log: true,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sixteen_schemes_each_have_their_own_marker_and_dash() {
+        let series = (0..16)
+            .map(|k| Series {
+                label: Some(format!("scheme {k}")),
+                points: vec![(1.0, 1.0)],
+                color: BLUE,
+                width: 2,
+                marker: Marker::Dot,
+                dash: Dash::Solid,
+            })
+            .collect();
+        let styled = in_greyscale(series);
+        let mut pairs: Vec<(Marker, Dash)> = styled.iter().map(|s| (s.marker, s.dash)).collect();
+        pairs.dedup();
+        let distinct: std::collections::HashSet<String> =
+            pairs.iter().map(|p| format!("{p:?}")).collect();
+        assert_eq!(distinct.len(), 16);
+        // The first scheme keeps the dot and the solid line.
+        assert_eq!(
+            (styled[0].marker, styled[0].dash),
+            (Marker::Dot, Dash::Solid)
+        );
     }
 }

@@ -87,6 +87,7 @@ pub fn per_solver_series<R: DrawnRun>(
                 color,
                 width: 2,
                 marker: Marker::Dot,
+                dash: crate::plot::Dash::Solid,
             });
         }
         // A run judged inaccurate is data, drawn where it is, but marked apart from the dots.
@@ -101,6 +102,7 @@ pub fn per_solver_series<R: DrawnRun>(
                 color,
                 width: 0,
                 marker: Marker::Cross,
+                dash: crate::plot::Dash::Solid,
             });
         }
         let top = row_at_top(largest, rows);
@@ -113,6 +115,7 @@ pub fn per_solver_series<R: DrawnRun>(
                 color,
                 width: 0,
                 marker: Marker::Cross,
+                dash: crate::plot::Dash::Solid,
             });
         }
     }
@@ -141,6 +144,7 @@ pub fn fitted_guides(tables: &[&OrderTable]) -> Vec<Series> {
                 color: plotters::style::RGBColor(shade, shade, shade),
                 width: 1,
                 marker: Marker::None,
+                dash: crate::plot::Dash::Solid,
             }
         })
         .collect()

@@ -193,6 +193,7 @@ impl Study for IndependenceStudy<'_> {
                 color,
                 width: 2,
                 marker: Marker::None,
+                dash: crate::plot::Dash::Solid,
             })
             .collect();
         let plot = Plot {

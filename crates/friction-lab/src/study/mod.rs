@@ -24,7 +24,7 @@ mod testset;
 mod work_precision;
 
 pub use closed_loop::{ClosedLoopStudy, ClosedLoops, Regulation, Task, Tracking, TASKS};
-pub use compare::{compare_lines, CompareStudy};
+pub use compare::{compare_lines, figures as compare_figures, CompareStudy};
 pub use convergence::ConvergenceStudy;
 pub use independence::{IndependenceStudy, Refinement};
 pub use phenomena::PhenomenaRequest;

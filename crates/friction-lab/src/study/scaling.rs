@@ -146,6 +146,7 @@ impl Study for ScalingStudy<'_> {
                 color,
                 width: 2,
                 marker: Marker::Dot,
+                dash: crate::plot::Dash::Solid,
             });
         }
         let plot = Plot {

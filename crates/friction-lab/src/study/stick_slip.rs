@@ -61,6 +61,7 @@ pub fn regime_series(regime: Regime, label: &str, points: Vec<(f64, f64)>) -> Se
         color,
         width: 0,
         marker,
+        dash: crate::plot::Dash::Solid,
     }
 }
 
@@ -165,6 +166,7 @@ impl Study for StickSlipMapStudy<'_> {
                 color: plotters::style::RGBColor(90, 90, 90),
                 width: 2,
                 marker: Marker::None,
+                dash: crate::plot::Dash::Solid,
             });
         }
         out.files.add_plot(
@@ -265,6 +267,7 @@ impl Study for BifurcationStudy<'_> {
                 color: RGBColor(170, 170, 170),
                 width: 1,
                 marker: Marker::None,
+                dash: crate::plot::Dash::Solid,
             });
             for (regime, label) in REGIMES {
                 series.push(Series {
@@ -276,6 +279,7 @@ impl Study for BifurcationStudy<'_> {
                     color: regime_style(regime).0,
                     width: 0,
                     marker,
+                    dash: crate::plot::Dash::Solid,
                 });
             }
         }
@@ -291,6 +295,7 @@ impl Study for BifurcationStudy<'_> {
                 color: plotters::style::RGBColor(90, 90, 90),
                 width: 1,
                 marker: Marker::None,
+                dash: crate::plot::Dash::Solid,
             });
         }
         out.files.add_plot(

@@ -166,6 +166,7 @@ impl Study for StiffnessStudy<'_> {
                     color,
                     width: 1,
                     marker: Marker::None,
+                    dash: crate::plot::Dash::Solid,
                 });
             }
             let top = row_at_top(largest, rows);
@@ -180,6 +181,7 @@ impl Study for StiffnessStudy<'_> {
                     color,
                     width: 2,
                     marker: Marker::Dot,
+                    dash: crate::plot::Dash::Solid,
                 });
             }
             if !missed.is_empty() {
@@ -193,6 +195,7 @@ impl Study for StiffnessStudy<'_> {
                     color,
                     width: 0,
                     marker: Marker::Cross,
+                    dash: crate::plot::Dash::Solid,
                 });
             }
         }

@@ -28,6 +28,7 @@ pub fn figure(axes: &[Axis], results: &[PointResult], title: &str) -> Option<Plo
         color: PALETTE[5],
         width: 0,
         marker: Marker::Cross,
+        dash: crate::plot::Dash::Solid,
     };
     let by_regime = |at: &dyn Fn(&PointResult) -> (f64, f64)| {
         let mut series: Vec<Series> = (REGIMES.iter())

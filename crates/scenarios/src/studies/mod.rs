@@ -6,6 +6,7 @@
 
 mod compare;
 mod convergence;
+mod extend;
 mod independence;
 mod orders;
 mod scaling;
@@ -28,6 +29,7 @@ pub use compare::{
     TrackEnd,
 };
 pub use convergence::{convergence, Convergence, OrderTable};
+pub use extend::{next_resolution, FINEST_STEP_DIVISOR, STILL_FALLING, TIGHTEST_TOLERANCE};
 pub use independence::{independence, FailedLevel, Independence, OutputCheck};
 use integrators::StepControl;
 pub use orders::{

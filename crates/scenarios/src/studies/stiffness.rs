@@ -2,10 +2,12 @@
 //! resolutions that bracket it, over the values of a stiffness parameter, and where the
 //! implicit methods overtake the explicit ones (a tie where the brackets cannot tell).
 
+use super::extend::next_resolution;
 use super::{batch, Method, Reference, StepKind, StudyCase, StudyRun};
 use crate::error::ScenarioError;
 use friction_models::{FrictionParams, Parameters};
 use integrators::Stats;
+use integrators::StepControl;
 use serde::Serialize;
 
 /// One solver at one stiffness value: how it met the target, if it did.
@@ -152,6 +154,14 @@ pub fn reached(runs: &[&StudyRun], target: f64) -> Option<Reached> {
         work_estimate,
         work_bracket,
     })
+}
+
+/// The runs of the method labelled `label`, loose to tight: the largest step size or
+/// tolerance first.
+fn loose_to_tight<'a>(runs: &'a [StudyRun], label: &str) -> Vec<&'a StudyRun> {
+    let mut mine: Vec<&StudyRun> = runs.iter().filter(|r| r.solver == label).collect();
+    mine.sort_by(|a, b| b.resolution.total_cmp(&a.resolution));
+    mine
 }
 
 /// A stiffness sweep.
@@ -324,7 +334,8 @@ pub struct Sweep<'a> {
 
 /// Sweeps the parameter over its values (every value's runs in one list) and finds, for each
 /// solver, its cost to reach the target ([`reached`]) among `step_sizes` (or `tolerances`),
-/// and at each value which kind wins ([`winner`]).
+/// the list extended past its end while the method's error still falls short of the target
+/// ([`next_resolution`]), and at each value which kind wins ([`winner`]).
 pub fn stiffness(
     case: &dyn StudyCase,
     sweep: Sweep,
@@ -373,7 +384,44 @@ pub fn stiffness(
         .collect();
     // Every value's runs and references in one list: no value waits for the last run of
     // the one before.
-    let done = batch::run_cases(&posed, 0, progress)?;
+    let mut done = batch::run_cases(&posed, 0, progress)?;
+    // A method that falls short of the target with its error still falling at the end of
+    // its list is run on, a round at a time ([`next_resolution`]): a too-short list decides
+    // no winner.
+    loop {
+        let mut extra: Vec<(usize, [(Method, StepControl); 1])> = Vec::new();
+        for (i, c) in done.iter().enumerate() {
+            for m in &jobs[i].0 {
+                let mine = loose_to_tight(&c.runs, &m.label());
+                if reached(&mine, target).is_some() {
+                    continue;
+                }
+                let listed = m.steps(step_sizes, tolerances, false);
+                if let Ok(step) = next_resolution(&mine, &listed) {
+                    extra.push((i, [(*m, step)]));
+                }
+            }
+        }
+        if extra.is_empty() {
+            break;
+        }
+        let posed: Vec<batch::Posed> = (extra.iter())
+            .map(|(i, jobs)| batch::Posed {
+                case: cases[*i].as_deref().unwrap_or(case),
+                reference_for: None,
+                jobs,
+            })
+            .collect();
+        let more = batch::run_cases(&posed, 0, progress)?;
+        for ((i, _), c) in extra.iter().zip(more) {
+            let batch::CaseRuns { reference, runs } = &mut done[*i];
+            let (_, measures) = reference.as_ref().expect("a stiffness study asks for them");
+            for mut run in c.runs {
+                batch::judge(&mut run, measures);
+                runs.push(run);
+            }
+        }
+    }
     let mut points = Vec::new();
     for (&value, batch::CaseRuns { runs, reference }) in values.iter().zip(done) {
         let (reference, _) = reference.expect("a stiffness study asks for its references");
@@ -381,9 +429,7 @@ pub fn stiffness(
             .iter()
             .map(|m| {
                 let label = m.label();
-                let mut mine: Vec<&StudyRun> = runs.iter().filter(|r| r.solver == label).collect();
-                // Loose to tight: the largest step size or tolerance first.
-                mine.sort_by(|a, b| b.resolution.total_cmp(&a.resolution));
+                let mine = loose_to_tight(&runs, &label);
                 Cost {
                     solver: label,
                     implicit: m.is_implicit(),

@@ -35,7 +35,7 @@ pub struct CompareRequest {
         default_value = "dopri5,rk4,radau5,rodas,bdf,auto"
     )]
     pub event_solvers: Vec<Solver>,
-    /// Solvers run on the regularised law at every width of --epsilons (none: not compared).
+    /// Solvers run on the regularised law at every width of --epsilons.
     #[arg(long, value_delimiter = ',', default_value = "radau5,rodas,bdf,dopri5")]
     pub regularized_solvers: Vec<Solver>,
     /// The regularisation widths ε, relative to the true solution's velocity scale (its
@@ -47,12 +47,18 @@ pub struct CompareRequest {
         default_value = "1e-2,1e-3,1e-4,1e-5,1e-6"
     )]
     pub epsilons: Vec<f64>,
-    /// Solvers run through sign(0) = 0 without events (none: not compared).
+    /// Leave the regularised law out.
+    #[arg(long)]
+    pub no_regularized: bool,
+    /// Solvers run through sign(0) = 0 without events.
     #[arg(long, value_delimiter = ',', default_value = "dopri5")]
     pub naive_solvers: Vec<Solver>,
-    /// Compare Moreau–Jean time-stepping (θ = 1/2) over --ts-dt-list.
-    #[arg(long, default_value_t = true, action = clap::ArgAction::Set, value_name = "BOOL")]
-    pub timestepping: bool,
+    /// Leave naive stepping out.
+    #[arg(long)]
+    pub no_naive: bool,
+    /// Leave Moreau–Jean time-stepping (θ = 1/2, over --ts-dt-list) out.
+    #[arg(long)]
+    pub no_timestepping: bool,
     /// Tolerances of the adaptive solvers, loose to tight (extended by tenths down to 1e-13
     /// while a scheme's error still falls short of the tightest target).
     #[arg(
@@ -62,12 +68,14 @@ pub struct CompareRequest {
         default_value = "1e-2,1e-3,1e-4,1e-5,1e-6,1e-7,1e-8"
     )]
     pub tol_list: Vec<f64>,
-    /// Step sizes of rk4, coarse to fine (extended by halves down to the finest over 64).
+    /// Step sizes of rk4, coarse to fine (extended by halves down to the finest over 64;
+    /// coarse enough that a target is bracketed, not met by the first run, whose cost is then
+    /// bounded above only).
     #[arg(
         long,
         value_delimiter = ',',
         allow_hyphen_values = true,
-        default_value = "0.01,0.005,0.0025"
+        default_value = "0.04,0.02,0.01,0.005,0.0025"
     )]
     pub dt_list: Vec<f64>,
     /// Step sizes of Moreau–Jean's scheme, coarse to fine (extended the same way).
@@ -75,7 +83,7 @@ pub struct CompareRequest {
         long,
         value_delimiter = ',',
         allow_hyphen_values = true,
-        default_value = "0.01,0.005,0.0025"
+        default_value = "0.04,0.02,0.01,0.005,0.0025"
     )]
     pub ts_dt_list: Vec<f64>,
     /// Timings of each run: the median wall time and its quartiles.
@@ -107,21 +115,22 @@ impl CompareRequest {
             };
             return Err(AppError::Usage(format!(
                 "option `{}` does not apply to compare: it runs every scheme (choose them with \
-                 {}, {}, {} and {})",
+                 {}, {}, {}, {} and {})",
                 field(option),
                 field("event_solvers"),
                 field("regularized_solvers"),
-                field("naive_solvers"),
-                field("timestepping"),
+                field("no_regularized"),
+                field("no_naive"),
+                field("no_timestepping"),
             )));
         }
         Ok(CompareSpec {
             schemes: Schemes {
                 event: self.event_solvers.clone(),
-                regularised: self.regularized_solvers.clone(),
+                regularised: unless(self.no_regularized, &self.regularized_solvers),
                 epsilons: self.epsilons.clone(),
-                naive: self.naive_solvers.clone(),
-                theta: self.timestepping.then_some(DEFAULT_THETA),
+                naive: unless(self.no_naive, &self.naive_solvers),
+                theta: (!self.no_timestepping).then_some(DEFAULT_THETA),
             },
             resolutions: Resolutions {
                 tolerances: self.tol_list.clone(),
@@ -145,5 +154,13 @@ impl CompareRequest {
             let c = conduct(&study, t, "compare")?;
             Ok(crate::study::compare_lines(&c))
         })
+    }
+}
+
+/// `solvers`, or none where their family is `left_out`.
+fn unless(left_out: bool, solvers: &[Solver]) -> Vec<Solver> {
+    match left_out {
+        true => Vec::new(),
+        false => solvers.to_vec(),
     }
 }

@@ -32,9 +32,11 @@ pub struct SchemeCost {
     pub epsilon: Option<f64>,
     /// The wall time at the target, s: the median over the repeats of the run that met it,
     /// scaled by the interpolated work over its work (wall time follows work within a scheme);
-    /// `None` where the target was not reached.
+    /// `None` where the target was not reached. Not deterministic: kept out of the JSON.
+    #[serde(skip)]
     pub wall_time: Option<f64>,
     /// The spread of that wall time: the run's quartiles, scaled the same way.
+    #[serde(skip)]
     pub wall_spread: Option<[f64; 2]>,
     /// Why the target was not reached; `None` where it was.
     pub reason: Option<String>,
@@ -50,8 +52,8 @@ pub struct TargetCosts {
     pub resolved: bool,
     /// Every scheme's cost.
     pub costs: Vec<SchemeCost>,
-    /// The cheapest scheme; `None` where no scheme met the target. (`auto` at exactly the
-    /// cost of another scheme ran as that scheme, and is not counted as a second one.)
+    /// The cheapest scheme; `None` where no scheme met the target. (A scheme at exactly the
+    /// cost of one listed before it made the same runs, and is not counted as a second one.)
     pub cheapest: Option<String>,
     /// The next cheapest scheme, where one met the target too.
     pub runner_up: Option<String>,
@@ -186,13 +188,16 @@ pub fn at_target(schemes: &[String], tracks: &[TrackRuns], target: f64) -> Targe
             .as_ref()
             .map_or(f64::INFINITY, |r| r.work_estimate)
     };
-    // `auto` that never switched ran as Dormand–Prince: the same cost is no second scheme.
-    let same_as_another = |c: &SchemeCost| {
-        c.kind == Kind::Switching
-            && (costs.iter()).any(|o| o.kind != Kind::Switching && work(o) == work(c))
+    // A scheme at exactly the cost of one listed before it made the same runs (`auto` that
+    // never switched ran as Dormand–Prince; on a law without a jump at v = 0 naive and
+    // regularised stepping are event stepping): it is not a second scheme.
+    let repeats_earlier = |i: usize| {
+        let w = work(&costs[i]);
+        costs[..i].iter().any(|o| work(o) == w)
     };
-    let mut met: Vec<&SchemeCost> = (costs.iter())
-        .filter(|c| c.reached.is_some() && !same_as_another(c))
+    let mut met: Vec<&SchemeCost> = (costs.iter().enumerate())
+        .filter(|(i, c)| c.reached.is_some() && !repeats_earlier(*i))
+        .map(|(_, c)| c)
         .collect();
     met.sort_by(|a, b| work(a).total_cmp(&work(b)));
     let (cheapest, runner_up) = (met.first(), met.get(1));
@@ -367,6 +372,13 @@ mod tests {
         assert_eq!(table[1].cheapest.as_deref(), Some("a"));
         assert!(!table[1].tie);
         assert!((table[1].costs[0].reached.as_ref().unwrap().work_estimate - 200.0).abs() < 1e-6);
+        // A third scheme that made a's runs exactly is no runner-up of a's.
+        let same = at_target(
+            &["a".into(), "b".into(), "c".into()],
+            &[track("a", &a), track("b", &b), track("c", &a)],
+            5e-2,
+        );
+        assert_eq!(same.runner_up.as_deref(), Some("b"));
         // At 5e-5: a within [1e5, 1e6], b within [5 000, 9 000].
         assert_eq!(table[2].cheapest.as_deref(), Some("b"));
         assert_eq!(table[2].kind, Some(Winner::Implicit));

@@ -16,9 +16,8 @@
 //!
 //! The runs go in rounds, loose to tight: round k runs the k-th resolution of every track (a
 //! scheme at one ε) still going, so that a track stops as soon as it has met the tightest
-//! target, failed, or reached its regularisation floor, and is extended past its list (a
-//! tenth of the tolerance down to [`TIGHTEST_TOLERANCE`], half the step down to
-//! 1/[`FINEST_STEP_DIVISOR`] of the listed finest) while its error still falls. Each round is
+//! target, failed, or reached its regularisation floor, and is extended past its list while
+//! its error still falls ([`next_resolution`]). Each round is
 //! one list on the pool, so the results do not depend on the thread count.
 
 mod cost;
@@ -27,6 +26,7 @@ pub mod regularisation;
 pub use cost::{at_target, crossovers, Crossover, Kind, SchemeCost, TargetCosts, TrackRuns};
 pub use regularisation::{EpsilonFit, ModelError, NeededWidth, Regularisation};
 
+use super::extend::next_resolution;
 use super::{batch, Errors, Measures, Method, Reference, StudyCase, StudyRun};
 use crate::error::ScenarioError;
 use crate::errors::Scales;
@@ -42,13 +42,6 @@ use serde::Serialize;
 pub const CHECK_SOLVER: Solver = Solver::RADAU5;
 /// The tolerance of that cross-check, rtol = atol.
 pub const CHECK_TOLERANCE: f64 = 1e-11;
-/// The tightest tolerance a track is extended to.
-pub const TIGHTEST_TOLERANCE: f64 = 1e-13;
-/// A fixed-step track is extended down to the finest listed step over this.
-pub const FINEST_STEP_DIVISOR: f64 = 64.0;
-/// A run whose error falls by less than this factor from the run before has stopped
-/// falling: its track is not extended.
-pub const STILL_FALLING: f64 = 0.9;
 /// A regularised run within this factor of its model error has reached its floor.
 pub const AT_FLOOR: f64 = 2.0;
 /// The tolerance of the tight solution of a regularised ODE: the reference's.
@@ -203,58 +196,11 @@ impl Track {
         }
     }
 
-    /// The next resolution after its last run: the planned one, or the list extended while
-    /// the error still falls; `Err` with why the track ends.
-    fn next(&self, finest_step: f64) -> Result<StepControl, String> {
-        if let Some(&s) = self.planned.get(self.runs.len()) {
-            return Ok(s);
-        }
-        let ok: Vec<&StudyRun> = (self.runs.iter().map(|r| &r.run))
-            .filter(|r| r.verdict.is_ok())
-            .collect();
-        let falling = match ok.as_slice() {
-            [.., a, b] => b.errors.grid_relative < STILL_FALLING * a.errors.grid_relative,
-            _ => false,
-        };
-        let last = self
-            .runs
-            .last()
-            .map(|r| r.run.resolution)
-            .unwrap_or(f64::NAN);
-        let next = match self.planned.last() {
-            Some(StepControl::Adaptive { .. }) => {
-                let tol = decimal(last / 10.0);
-                (tol >= TIGHTEST_TOLERANCE).then_some(StepControl::Adaptive {
-                    rtol: tol,
-                    atol: tol,
-                    h0: None,
-                })
-            }
-            _ => {
-                let h = decimal(last / 2.0);
-                (h >= decimal(finest_step / FINEST_STEP_DIVISOR))
-                    .then_some(StepControl::Fixed { h })
-            }
-        };
-        match (falling, next) {
-            (true, Some(s)) => Ok(s),
-            (true, None) => Err(format!(
-                "its list ends at {} (extended to {}) with the error still falling",
-                show(last),
-                match self.planned.last() {
-                    Some(StepControl::Adaptive { .. }) => format!("tol {TIGHTEST_TOLERANCE:e}"),
-                    _ => format!("h/{FINEST_STEP_DIVISOR}"),
-                }
-            )),
-            (false, _) => Err(match ok.last() {
-                Some(r) => format!(
-                    "its error stopped falling at {} (error {})",
-                    show(last),
-                    show(r.errors.grid_relative)
-                ),
-                None => "no run ended ok".to_string(),
-            }),
-        }
+    /// The next resolution after its last run ([`next_resolution`]); `Err` with why the
+    /// track ends.
+    fn next(&self) -> Result<StepControl, String> {
+        let runs: Vec<&StudyRun> = self.runs.iter().map(|r| &r.run).collect();
+        next_resolution(&runs, &self.planned)
     }
 
     /// Records `run` and decides whether the track goes on.
@@ -281,14 +227,6 @@ impl Track {
         };
         self.runs.push(run);
     }
-}
-
-/// `x` to six significant digits: a resolution extended by tenths or halves stays the
-/// decimal number it names (1e-11, not 1.0000000000000001e-11).
-fn decimal(x: f64) -> f64 {
-    format!("{x:.5e}")
-        .parse()
-        .expect("a formatted number parses")
 }
 
 /// The planned resolutions of `scheme`.
@@ -319,6 +257,16 @@ pub fn compare(
     // explicit pairs are then free to be the reference).
     let (reference, truth) = batch::reference(case, &[Method::events(CHECK_SOLVER)])?;
     let velocity_scale = Scales::of(&truth).v;
+    // A solution at rest throughout has no scale to be relative to, and no jump is crossed.
+    if velocity_scale.is_nan() || velocity_scale <= 0.0 {
+        return Err(ScenarioError::Invalid(format!(
+            "{} does not move on [0, {}] s (its largest |v| is {}): there is no motion to \
+             compare the schemes on; integrate longer, or start it moving",
+            case.describe(),
+            show(case.t_end()),
+            show(velocity_scale)
+        )));
+    }
     let epsilons: Vec<f64> = s.epsilons.iter().map(|e| e * velocity_scale).collect();
 
     // The cross-check and the tight regularised solutions, one list.
@@ -395,20 +343,6 @@ pub fn compare(
             tracks.push(t);
         }
     }
-    let finest_step = |t: &Track| match t.method.scheme.solver() {
-        None => spec
-            .resolutions
-            .timestepping_steps
-            .iter()
-            .copied()
-            .fold(f64::INFINITY, f64::min),
-        Some(_) => spec
-            .resolutions
-            .steps
-            .iter()
-            .copied()
-            .fold(f64::INFINITY, f64::min),
-    };
 
     // The rounds.
     loop {
@@ -417,7 +351,7 @@ pub fn compare(
             if t.stopped.is_some() {
                 continue;
             }
-            match t.next(finest_step(t)) {
+            match t.next() {
                 Ok(step) => round.push((i, [(t.method, step)])),
                 Err(why) => t.stopped = Some(Some(why)),
             }
