@@ -3340,6 +3340,214 @@ fn a_measure_that_does_not_exist_is_empty_never_zero() {
 /// `inaccurate` (a quarter of the energy unaccounted for): exit 0 with a note. In a study, a
 /// run whose error is as large as the solution is `inaccurate`, kept as data, and left out of
 /// every fit.
+/// One rule for a blown-up run, whatever the scheme: a state beyond 10³ times the system's
+/// reach is `diverged`, exit 1. The servo time-stepped at h = 1 s (its controller's force held
+/// over each step) used to reach 7.4e84 m as `ok`, the actuator's work balancing the energy
+/// books; Dormand–Prince at a fixed step of 1 s reached 3.8e70 m as `inaccurate`, exit 0. At
+/// h = 0.5 s the servo's sampled loop is stable and the run stays `ok`. The step-size note
+/// takes the controller's natural period 2π√(m/kp) too.
+#[test]
+fn a_runaway_is_diverged_whatever_the_scheme() {
+    let dir = tempfile::tempdir().unwrap();
+    let simulate = |name: &str, args: &[&str]| {
+        let out = dir.path().join(name);
+        let mut argv = vec!["simulate"];
+        argv.extend_from_slice(args);
+        argv.extend(["--out", out.to_str().unwrap()]);
+        let o = friction_lab(&argv);
+        let summary: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
+        (o, summary)
+    };
+    let servo = |dt| {
+        [
+            "servo",
+            "--model",
+            "static",
+            "--t-end",
+            "100",
+            "--scheme",
+            "time-stepping",
+            "--dt",
+            dt,
+        ]
+    };
+    for (name, args, t) in [
+        ("servo", &servo("1")[..], 13.4),
+        (
+            "dopri5",
+            &[
+                "belt",
+                "--model",
+                "CVS",
+                "--solver",
+                "dopri5",
+                "--fixed-step",
+                "--dt",
+                "1",
+            ][..],
+            1.61,
+        ),
+    ] {
+        let (o, s) = simulate(name, args);
+        assert_eq!(o.status.code(), Some(1), "{name}: {}", stderr(&o));
+        assert_eq!(s["status"], "diverged", "{name}: {s}");
+        let reason = s["reason"].as_str().unwrap();
+        assert!(
+            reason.starts_with(&format!("at t = {t} the ")),
+            "{name}: {reason}"
+        );
+        assert!(reason.contains("is beyond 1e3 times"), "{name}: {reason}");
+        assert!(
+            stderr(&o).contains("error: the run diverged"),
+            "{name}: {}",
+            stderr(&o)
+        );
+        // What it had is kept, and nothing beyond the bound.
+        assert!(s["t_reached"].as_f64().unwrap() < t, "{name}: {s}");
+    }
+    let (o, _) = simulate("servo-1", &servo("1"));
+    assert!(
+        stderr(&o).contains("the time-stepping scheme diverged with the step h = 1 s"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(
+        stderr(&o).contains("more than a tenth of the shortest natural period, 3.63 s"),
+        "{}",
+        stderr(&o)
+    );
+    // At h = 0.5 s the sampled loop is stable: no runaway, exit 0, but the hunting cycle at
+    // h/2 differs by more than the solution's scale (step doubling): `inaccurate`, not `ok`.
+    let (o, s) = simulate("servo-half", &servo("0.5"));
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert_eq!(s["status"], "inaccurate", "{s}");
+    assert!(
+        s["reason"].as_str().unwrap().contains("step doubling"),
+        "{s}"
+    );
+}
+
+/// A fixed-step run estimates its own error by step doubling (the same run at h/2, compared
+/// on the output grid over the solution's scale) and is `inaccurate` above 0.1, the estimate
+/// in its reason and in `summary.json`'s `step_doubling`. RK4 on the belt at h = 0.1 s was
+/// `ok` while its velocity was wrong by more than the solution's scale; at h = 0.001 s the
+/// estimate is 1e-7. Adaptive runs have none.
+#[test]
+fn a_fixed_step_run_estimates_its_error_by_step_doubling() {
+    let dir = tempfile::tempdir().unwrap();
+    let simulate = |name: &str, args: &[&str]| {
+        let out = dir.path().join(name);
+        let mut argv = vec!["simulate", "belt", "--model", "CVS"];
+        argv.extend_from_slice(args);
+        argv.extend(["--out", out.to_str().unwrap()]);
+        let o = friction_lab(&argv);
+        assert_eq!(o.status.code(), Some(0), "{name}: {}", stderr(&o));
+        let summary: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
+        summary
+    };
+    let coarse = simulate("coarse", &["--solver", "rk4", "--dt", "0.1"]);
+    assert_eq!(coarse["status"], "inaccurate", "{coarse}");
+    let estimate = coarse["step_doubling"]["relative"].as_f64().unwrap();
+    assert!(estimate > 1.0, "{coarse}");
+    let reason = coarse["reason"].as_str().unwrap();
+    assert!(
+        reason.contains("its error estimated by step doubling")
+            && reason.contains("h/2 = 0.05 s")
+            && reason.contains(&format!("is {estimate:.3} at t =")),
+        "{reason}"
+    );
+    let fine = simulate("fine", &["--solver", "rk4", "--dt", "0.001"]);
+    assert_eq!(fine["status"], "ok", "{fine}");
+    let estimate = fine["step_doubling"]["relative"].as_f64().unwrap();
+    assert!(estimate > 1e-9 && estimate < 1e-5, "{fine}");
+    // Moreau–Jean's first order: h = 0.1 s is inaccurate, the default 1e-3 s is not.
+    let stepped = simulate("stepped", &["--scheme", "time-stepping", "--dt", "0.1"]);
+    assert_eq!(stepped["status"], "inaccurate", "{stepped}");
+    let stepped = simulate("stepped-fine", &["--scheme", "time-stepping"]);
+    assert_eq!(stepped["status"], "ok", "{stepped}");
+    let adaptive = simulate("adaptive", &[]);
+    assert!(adaptive["step_doubling"].is_null(), "{adaptive}");
+}
+
+/// Sweeps carry verdicts: every row has the run's status and reason; a diverged point has empty
+/// measures and no regime, and never stops the others from being written (exit 1, every row
+/// kept). RK4 at h = 1 s on the belt at k = 10 used to be written `ok`, `Unsettled`, with an
+/// amplitude of 0.702 m; one runaway point of the time-stepped servo made the whole sweep
+/// write nothing.
+#[test]
+fn a_sweep_writes_every_point_with_its_verdict() {
+    let dir = tempfile::tempdir().unwrap();
+    let rows = |out: &std::path::Path| -> Vec<std::collections::HashMap<String, String>> {
+        let text = std::fs::read_to_string(out.join("sweep.csv")).unwrap();
+        let mut reader = csv::Reader::from_reader(text.as_bytes());
+        let header = reader.headers().unwrap().clone();
+        (reader.records())
+            .map(|r| {
+                let r = r.unwrap();
+                header
+                    .iter()
+                    .map(String::from)
+                    .zip(r.iter().map(String::from))
+                    .collect()
+            })
+            .collect()
+    };
+    for (name, args, bad) in [
+        (
+            "belt",
+            vec![
+                "belt", "--model", "CVS", "--grid", "k=1,10", "--solver", "rk4", "--dt", "1",
+            ],
+            "10",
+        ),
+        (
+            "servo",
+            vec![
+                "servo",
+                "--model",
+                "static",
+                "--grid",
+                "ki=0,4",
+                "--scheme",
+                "time-stepping",
+                "--dt",
+                "1",
+            ],
+            "4",
+        ),
+    ] {
+        let out = dir.path().join(name);
+        let mut argv = vec!["sweep"];
+        argv.extend(args);
+        argv.extend(["--out", out.to_str().unwrap()]);
+        let o = friction_lab(&argv);
+        assert_eq!(o.status.code(), Some(1), "{name}: {}", stderr(&o));
+        assert!(
+            stderr(&o).contains("1 of 2 runs failed or diverged"),
+            "{name}: {}",
+            stderr(&o)
+        );
+        let rows = rows(&out);
+        assert_eq!(rows.len(), 2, "{name}");
+        let axis = if name == "belt" { "k" } else { "ki" };
+        for row in &rows {
+            let status = row["status"].as_str();
+            if row[axis] == bad {
+                assert_eq!(status, "diverged", "{name}: {row:?}");
+                assert!(!row["reason"].is_empty(), "{name}: {row:?}");
+                for measure in ["stick_phases", "period", "x_amplitude", "v_mean", "regime"] {
+                    assert_eq!(row[measure], "", "{name}, {measure}: {row:?}");
+                }
+            } else {
+                assert_ne!(status, "diverged", "{name}: {row:?}");
+                assert_ne!(row["x_amplitude"], "", "{name}: {row:?}");
+            }
+        }
+    }
+}
+
 #[test]
 fn every_run_is_judged_and_a_diverged_run_exits_one() {
     let dir = tempfile::tempdir().unwrap();
@@ -3355,14 +3563,18 @@ fn every_run_is_judged_and_a_diverged_run_exits_one() {
         (o, summary)
     };
     let cvs = |dt| ["belt", "--model", "CVS", "--solver", "rk4", "--dt", dt];
+    // RK4 at h = 1 s: the block leaves the belt's reach (10³ times the largest speed its
+    // forces can give it) at t = 2.2 s, where the run stops: `diverged`.
     let (o, s) = simulate("diverged", &cvs("1"));
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert_eq!(s["status"], "diverged", "{s}");
     let reason = s["reason"].as_str().unwrap();
     assert!(
-        reason.contains("energy balance's residual is 107.7 %"),
+        reason.starts_with("at t = 2.22 the velocity of body \"body\"")
+            && reason.contains("is beyond 1e3 times the largest the system's forces"),
         "{reason}"
     );
+    assert_eq!(s["t_reached"], 2.21, "{s}");
     assert!(
         stderr(&o).contains("error: the run diverged"),
         "{}",
@@ -3621,9 +3833,11 @@ fn the_time_limit_bounds_a_command_of_many_runs_as_a_whole() {
         .collect();
     assert!(!unstarted.is_empty(), "{csv}");
     for row in unstarted {
-        // v_belt, stick_phases, then nine measures empty, settled false, drift empty.
+        // v_belt, then stick_phases and nine measures empty, settled false, drift empty; the
+        // status `failed`.
         let cells: Vec<&str> = row.split(',').collect();
-        assert_eq!(cells[1], "0", "{row}");
+        assert_eq!(cells[1], "", "{row}");
+        assert_eq!(cells[cells.len() - 2], "failed", "{row}");
         assert!(cells[2..10].iter().all(|c| c.is_empty()), "{row}");
         assert_eq!(cells[10], "false", "{row}");
         // A failed run has no regime: an empty cell, not a transient.
@@ -3961,6 +4175,82 @@ fn a_sweep_ranges_points_read_as_written() {
     );
 }
 
+/// One number of a system file set twice, by name and by index or twice alike, by `--set` or
+/// by `--grid`: refused (exit 2, nothing written), both spellings named; only the last would
+/// have been used.
+#[test]
+fn a_system_number_set_twice_is_refused_naming_both_spellings() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("servo.toml");
+    std::fs::write(
+        &file,
+        "[[body]]\nname = \"mass\"\nm = 1.0\n[[contact]]\nbody = \"mass\"\nmodel = \"CS\"\n\
+         [[controller]]\nbody = \"mass\"\nkp = 20.0\nki = 2.0\nkd = 5.0\n\
+         reference = { kind = \"constant\", x = 1.0 }\n",
+    )
+    .unwrap();
+    let system = file.to_str().unwrap();
+    let out = dir.path().join("out");
+    for (args, message) in [
+        (
+            vec![
+                "simulate",
+                "--system",
+                system,
+                "--set",
+                "controller.mass.kp=2",
+                "--set",
+                "controller.1.kp=5",
+            ],
+            "`controller.mass.kp` and `controller.1.kp` set the same number, kp of \
+             [[controller]] 1: set each number once",
+        ),
+        (
+            vec![
+                "simulate",
+                "--system",
+                system,
+                "--set",
+                "body.mass.m=2",
+                "--set",
+                "body.mass.m=3",
+            ],
+            "`body.mass.m` and `body.mass.m` set the same number, m of [[body]] 1",
+        ),
+        (
+            vec![
+                "sweep",
+                "--system",
+                system,
+                "--grid",
+                "controller.mass.kp=1,2",
+                "--grid",
+                "controller.1.kp=3,4",
+            ],
+            "`controller.mass.kp` and `controller.1.kp` set the same number",
+        ),
+        (
+            vec![
+                "sweep",
+                "--system",
+                system,
+                "--grid",
+                "controller.mass.kp=1,2",
+                "--set",
+                "controller.1.kp=3",
+            ],
+            "set the same number, kp of [[controller]] 1",
+        ),
+    ] {
+        let mut all = args.clone();
+        all.extend(["--t-end", "1", "--out", out.to_str().unwrap()]);
+        let o = friction_lab(&all);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains(message), "{args:?}: {}", stderr(&o));
+        assert!(!out.exists(), "{args:?}");
+    }
+}
+
 /// `testset`: a problem of the stiff test set by one solver, its end state and its significant
 /// correct digits against the published reference; elsewhere than the reference's end time
 /// there is no reference, and `scd` is null, not 0.
@@ -4064,6 +4354,60 @@ fn testset_writes_the_end_state_and_the_digits_against_the_reference() {
         assert!(stderr(&o).contains(message), "{args:?}: {}", stderr(&o));
         assert!(!bad.exists(), "{args:?}");
     }
+}
+
+/// `testset` judges a run by its digits as the studies do: fewer than one correct digit is
+/// `inaccurate` (reason: the digits; a warning; exit 0), where the run used to be `ok`; and a
+/// problem's default absolute tolerance is its own (Robertson: 1e-14·rtol, whose y2 is of order
+/// 1e-13), so the defaults give a correct answer.
+#[test]
+fn testset_calls_a_run_without_a_correct_digit_inaccurate_and_defaults_robertsons_atol() {
+    let dir = tempfile::tempdir().unwrap();
+    let summary = |out: &std::path::Path| -> serde_json::Value {
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap()
+    };
+    for (problem, solver) in [("robertson", "implicit-euler"), ("hires", "radau5")] {
+        let out = dir.path().join(problem);
+        let o = friction_lab(&[
+            "testset",
+            problem,
+            "--solver",
+            solver,
+            "--rtol",
+            "1",
+            "--atol",
+            "1",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        let json = summary(&out);
+        let scd = json["stats"]["scd"].as_f64().unwrap();
+        assert!(scd < 1.0, "{json}");
+        assert_eq!(json["status"], "inaccurate", "{json}");
+        let reason = json["reason"].as_str().unwrap();
+        assert!(
+            reason.starts_with(&format!(
+                "{scd:.2} significant correct digits, fewer than 1"
+            )),
+            "{reason}"
+        );
+        assert!(
+            stderr(&o).contains("the run is inaccurate"),
+            "{}",
+            stderr(&o)
+        );
+    }
+    let out = dir.path().join("robertson-defaults");
+    let o = friction_lab(&["testset", "robertson", "--out", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let json = summary(&out);
+    assert_eq!(
+        (json["rtol"].as_f64(), json["atol"].as_f64()),
+        (Some(1e-6), Some(1e-20))
+    );
+    assert_eq!(json["status"], "ok", "{json}");
+    assert!(json["stats"]["scd"].as_f64().unwrap() > 4.0, "{json}");
 }
 
 /// `work-precision --testset`: the test set's problems as a study's case, each run measured by

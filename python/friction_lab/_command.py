@@ -48,13 +48,23 @@ def _mapping(name: str, value: Any, example: str) -> Mapping:
     and what it got."""
     if isinstance(value, Mapping):
         return value
+    pairs = None
     if isinstance(value, pd.Series):
-        return value.to_dict()
-    try:
-        if not isinstance(value, (str, bytes)):
-            return dict(value)
-    except (TypeError, ValueError):
-        pass
+        pairs = list(value.items())
+    elif not isinstance(value, (str, bytes)):
+        try:
+            pairs = [tuple(pair) for pair in value]
+            dict(pairs)
+        except (TypeError, ValueError):
+            pairs = None
+    if pairs is not None:
+        seen: Dict[Any, Any] = {}
+        for key, v in pairs:
+            if key in seen:
+                raise ValueError(f"option `{name}`: `{key}` is given twice, {seen[key]!r} and "
+                                 f"{v!r}: give each name once (only the last would be used)")
+            seen[key] = v
+        return seen
     raise ValueError(f"option `{name}`: a mapping of parameter names to values is expected, "
                      f"e.g. {example}, not {type(value).__name__} {value!r}")
 

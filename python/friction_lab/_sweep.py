@@ -35,8 +35,8 @@ def sweep(scenario: str, *, grid: Dict[str, Union[Sequence[float], str]],
     ``dask.distributed.Client`` runs chunks of ``chunk_size`` points as Dask tasks (default:
     about four chunks per worker). Other options as ``simulate`` and ``friction-lab sweep``
     (``model``, ``solver``, ``switching``, ``t_end``, ``settle``, ...). Points whose run
-    failed raise :class:`SolverError` with the whole table as ``result`` (``status`` says
-    which and why).
+    failed or diverged raise :class:`SolverError` with the whole table as ``result``
+    (``status`` and ``reason`` say which and why; their measures are empty).
     """
     _name("sweep", scenario)
     system = options.pop("system", None)
@@ -49,8 +49,9 @@ def sweep(scenario: str, *, grid: Dict[str, Union[Sequence[float], str]],
         failure = made.failure
     else:
         frame = _on_dask(client, arguments, chunk_size)
-        failed = int((frame["status"] != "ok").sum())
-        failure = (f"{failed} of {len(frame)} runs failed; sweep.csv says which and why"
+        failed = int(frame["status"].isin(["diverged", "failed"]).sum())
+        failure = (f"{failed} of {len(frame)} runs failed or diverged; sweep.csv says which "
+                   "and why"
                    if failed else None)
     if failure is not None:
         raise SolverError(failure, frame)

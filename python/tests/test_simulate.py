@@ -132,6 +132,19 @@ def test_a_solver_failure_raises_solver_error_with_the_partial_result():
     assert 0 < partial.t[-1] < 20.0 and partial.stats["steps"] == 50
 
 
+def test_a_runaway_raises_as_on_the_command_line():
+    # The servo time-stepped at h = 1 s: its sampled loop runs away (7.4e84 m, once `ok`);
+    # beyond 10^3 times the system's reach the run stops, `diverged`, and raises with what it
+    # had.
+    with pytest.raises(fl.SolverError) as e:
+        fl.simulate("servo", model="static", t_end=100.0, scheme="time-stepping", dt=1.0)
+    partial = e.value.result
+    assert partial.summary["status"] == "diverged"
+    assert "is beyond 1e3 times" in partial.summary["reason"]
+    # Stopped at t = 13.4 s, 1.1e9 m away, not at 7.4e84 m: only what came before is kept.
+    assert partial.t[-1] < 13.4 and np.abs(partial.x).max() < 1e10
+
+
 def test_errors_speak_python_not_the_command_line(cli, tmp_path):
     # An unknown keyword argument is Python's TypeError, with the closest one it takes.
     with pytest.raises(TypeError, match=r"simulate\(\) got an unexpected keyword argument "
@@ -201,6 +214,19 @@ def test_bad_options_raise_value_error_naming_the_field(cli, tmp_path):
     pairs = fl.simulate("belt", model="CVS", params=[("v_belt", 0.2)], t_end=1.0)
     series = fl.simulate("belt", model="CVS", params=pd.Series({"v_belt": 0.2}), t_end=1.0)
     assert np.array_equal(pairs.v, series.v)
+
+
+def test_a_number_given_twice_is_refused_naming_both():
+    # Pairs or a Series with a repeated name: refused before anything runs, both values named
+    # (a dict keeps only the last, which would run silently).
+    with pytest.raises(ValueError, match=r"option `params`: `v_belt` is given twice, 0.1 and 0.5"):
+        fl.simulate("belt", model="CVS", params=[("v_belt", 0.1), ("v_belt", 0.5)])
+    with pytest.raises(ValueError, match=r"option `params`: `v_belt` is given twice"):
+        fl.simulate("belt", model="CVS", params=pd.Series([0.1, 0.5], index=["v_belt"] * 2))
+    # One number of a system by its name and by its index.
+    with pytest.raises(ValueError, match=r"`body.b2.m` and `body.2.m` set the same number, m "
+                                         r"of \[\[body\]\] 2"):
+        fl.simulate(system=CHAIN_DICT, params={"body.b2.m": 2.0, "body.2.m": 3.0}, t_end=1.0)
 
 
 def test_numpy_arrays_are_lists_and_their_scalars_values():

@@ -7,7 +7,7 @@ use crate::artifacts::Artifacts;
 use crate::error::AppError;
 use crate::output::{Cell, Table};
 use crate::progress::Progress;
-use crate::trajectory::{RecordAs, Trajectory};
+use crate::trajectory::{RecordAs, StepDoubling, Trajectory};
 use friction_models::Variant;
 use friction_systems::{mode_name, BodyState, ContactEvent, EnergyBalance};
 use integrators::stability::Instability;
@@ -39,12 +39,14 @@ impl RunSummary {
     /// solver's error where it stopped, otherwise by its energy balance (systems with bodies;
     /// [`Verdict::of_energy`]).
     pub fn new(setup: RunSetup, integrated: Integrated) -> RunSummary {
-        let verdict = Verdict::of_error(integrated.error.as_ref())
-            .unwrap_or_else(|| {
-                (integrated.energy.as_ref())
-                    .map_or(Verdict::OK, |e| Verdict::of_energy(e.relative_residual))
-            })
-            .with_instability(integrated.instability.as_ref());
+        let mut verdict = Verdict::of_run(
+            integrated.error.as_ref(),
+            integrated.energy.as_ref().map(|e| e.relative_residual),
+            integrated.instability.as_ref(),
+        );
+        if let (Some(d), StepControl::Fixed { h }) = (&integrated.step_doubling, setup.step) {
+            verdict = verdict.and(Verdict::inaccurate(d.reason(h)));
+        }
         RunSummary {
             setup,
             verdict,
@@ -56,6 +58,7 @@ impl RunSummary {
     /// or a divergence its verdict found.
     pub fn failure(&self) -> Option<AppError> {
         match (&self.integrated.error, &self.verdict) {
+            (Some(e @ SolverError::Runaway { .. }), _) => Some(AppError::Diverged(e.to_string())),
             (Some(e), _) => Some(AppError::Solver(e.clone())),
             (
                 None,
@@ -144,6 +147,11 @@ pub struct Integrated {
     /// (`lambda_re`, `lambda_im` in 1/s, `h` in s, `amplification` |R(hλ)|), if any: the run
     /// is then at least `inaccurate`.
     pub instability: Option<Instability>,
+    /// A fixed-step run's error estimated by step doubling ([`StepDoubling`]: `relative`, `t`,
+    /// `quantity`, `body`): the run is `inaccurate` above
+    /// [`crate::trajectory::STEP_DOUBLING_INACCURATE`]; null for an adaptive run, a run that
+    /// stopped, or one whose run at h/2 stopped.
+    pub step_doubling: Option<StepDoubling>,
     /// What the closed loop did, for a run whose body a controller positions (the `servo`
     /// rig): hunting or converged, the cycle, the tracking error ([`ClosedLoop`]); left out of
     /// the summary of a run without a controller.

@@ -9,7 +9,8 @@ use crate::ranges;
 use crate::settings::RunLimits;
 use integrators::testset::{self, TestProblem};
 use integrators::{MethodSwitch, Solution, Solver};
-use scenarios::studies::{self, TestRun, TestSetCounts};
+use scenarios::studies::{self, TestRun, TestSetCounts, TestSetRun};
+use scenarios::verdict::Status;
 use scenarios::Limits;
 use serde::Serialize;
 use std::path::Path;
@@ -37,14 +38,10 @@ pub struct TestSetRequest {
         default_value = "1e-6"
     )]
     pub rtol: f64,
-    /// Absolute tolerance.
-    #[arg(
-        long,
-        value_name = "A",
-        allow_hyphen_values = true,
-        default_value = "1e-6"
-    )]
-    pub atol: f64,
+    /// Absolute tolerance [default: rtol, but 1e-14·rtol for robertson, whose y2 is of order
+    /// 1e-13].
+    #[arg(long, value_name = "A", allow_hyphen_values = true)]
+    pub atol: Option<f64>,
     /// Initial step, s [default: the solver's choice].
     #[arg(long, value_name = "H", allow_hyphen_values = true)]
     pub h0: Option<f64>,
@@ -70,11 +67,15 @@ impl TestSetRequest {
                 solver.name()
             )));
         }
+        let rtol = ranges::RTOL.check(self.rtol)?;
         let checked = Checked {
             problem,
             solver,
-            rtol: ranges::RTOL.check(self.rtol)?,
-            atol: ranges::ATOL.check(self.atol)?,
+            rtol,
+            atol: match self.atol {
+                Some(atol) => ranges::ATOL.check(atol)?,
+                None => problem.tolerances(rtol).1,
+            },
             h0: self.h0.map(|h| ranges::DT.check(h)).transpose()?,
             t_end: match self.t_end {
                 Some(t) => ranges::TESTSET_T_END.check(t)?,
@@ -119,6 +120,8 @@ struct Summary<'a> {
     h0: Option<f64>,
     t_end: f64,
     status: &'a str,
+    /// Why the run is not `ok`: the solver's error, or too few correct digits.
+    reason: Option<String>,
     error: Option<String>,
     /// The end time when reached; null for a run that recorded nothing.
     t_reached: Option<f64>,
@@ -145,6 +148,17 @@ fn solve_test_problem(run: &Checked, out: &Path) -> Result<Made, AppError> {
         failure,
         wall_time_s,
     } = solved;
+    // Judged by its digits where the published values give them, as the study's runs are.
+    let status = match (&failure, scd) {
+        (Some(_), _) => Status::Failed,
+        (None, Some(d)) => TestSetRun::status(Some(d)),
+        (None, None) => Status::Ok,
+    };
+    let reason = match (&failure, scd) {
+        (Some(e), _) => Some(e.to_string()),
+        (None, Some(d)) if status == Status::Inaccurate => Some(TestSetRun::digits_reason(d)),
+        _ => None,
+    };
     let mut files = Artifacts::default();
     files.add(out.join("final.csv"), final_csv(&solution));
     files.add_json(
@@ -158,7 +172,8 @@ fn solve_test_problem(run: &Checked, out: &Path) -> Result<Made, AppError> {
             atol: run.atol,
             h0: run.h0,
             t_end: run.t_end,
-            status: if failure.is_some() { "failed" } else { "ok" },
+            status: status.name(),
+            reason: reason.clone(),
             error: failure.as_ref().map(|e| e.to_string()),
             t_reached: solution.last().map(|(t, _)| t),
             stats: Counts {
@@ -179,9 +194,14 @@ fn solve_test_problem(run: &Checked, out: &Path) -> Result<Made, AppError> {
             solution.stats.rhs_evals
         ));
     }
+    let warnings = (status == Status::Inaccurate)
+        .then(|| format!("the run is inaccurate: {}", reason.unwrap_or_default()))
+        .into_iter()
+        .collect();
     Ok(Made {
         files,
         notes,
+        warnings,
         failure: failure.map(AppError::Solver),
         ..Made::default()
     })

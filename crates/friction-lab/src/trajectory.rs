@@ -20,6 +20,46 @@ pub enum RecordAs {
     Values,
 }
 
+/// The error estimate of a fixed-step run by step doubling
+/// ([`Trajectory::doubling_difference`]): the largest difference from the same run at half the
+/// step, relative to the solution's scale in that quantity, and where it lies.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct StepDoubling {
+    /// |y_h − y_{h/2}| over the largest |y_{h/2}| in that quantity.
+    pub relative: f64,
+    /// The time where it is largest, s.
+    pub t: f64,
+    /// `x` or `v`.
+    pub quantity: &'static str,
+    /// The body, for a system (`None` for a rig's one body).
+    pub body: Option<String>,
+}
+
+/// A fixed-step run whose step-doubling estimate ([`StepDoubling::relative`]) exceeds this is
+/// `inaccurate`: an error above a tenth of the solution's scale.
+pub const STEP_DOUBLING_INACCURATE: f64 = 0.1;
+
+impl StepDoubling {
+    /// Why the run is `inaccurate`, where the estimate exceeds [`STEP_DOUBLING_INACCURATE`].
+    pub fn reason(&self, h: f64) -> Option<String> {
+        (self.relative > STEP_DOUBLING_INACCURATE).then(|| {
+            let body = self
+                .body
+                .as_ref()
+                .map_or(String::new(), |b| format!(" of body \"{b}\""));
+            format!(
+                "its error estimated by step doubling, the largest difference of {}{body} from \
+                 the same run at h/2 = {} s over the solution's scale, is {:.3} at t = {} s \
+                 (above {STEP_DOUBLING_INACCURATE})",
+                self.quantity,
+                crate::ranges::show(h / 2.0),
+                self.relative,
+                crate::ranges::show(self.t),
+            )
+        })
+    }
+}
+
 /// The rows of `trajectory.csv` as columns: point by point, and within a point of a system body
 /// by body (the bodies written, in [`Trajectory::bodies`]' order).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -89,6 +129,52 @@ impl Trajectory {
             }
         }
         t
+    }
+
+    /// The largest difference between this trajectory, of a fixed step h, and `fine`, the same
+    /// run at h/2, at the times both recorded (the output grid; an event's points are left
+    /// out where the other run has none at that time): per quantity (x, v) over the largest
+    /// |value| of `fine` in it, every body alike. To leading order it is the error of the run
+    /// at h (the error of h/2 is 2^−p of it for a method of order p, so the estimate is within
+    /// a factor 2^p/(2^p − 1) ≤ 2 of the truth). `None` where no time is shared or a scale is
+    /// zero.
+    pub fn doubling_difference(&self, fine: &Trajectory) -> Option<StepDoubling> {
+        let (w, scale) = (self.width(), |values: &[f64]| {
+            values.iter().fold(0.0f64, |m, v| m.max(v.abs()))
+        });
+        let scales = [("x", scale(&fine.x)), ("v", scale(&fine.v))];
+        if w != fine.width() || scales.iter().any(|(_, s)| *s <= 0.0 || s.is_nan()) {
+            return None;
+        }
+        let mut worst: Option<StepDoubling> = None;
+        let mut j = 0;
+        for (k, &t) in self.t.iter().enumerate() {
+            while j < fine.t.len() && fine.t[j] < t {
+                j += 1;
+            }
+            if j == fine.t.len() || fine.t[j] != t {
+                continue;
+            }
+            for b in 0..w {
+                let (mine, theirs) = (k * w + b, j * w + b);
+                let pairs = [
+                    (self.x[mine], fine.x[theirs], scales[0]),
+                    (self.v[mine], fine.v[theirs], scales[1]),
+                ];
+                for (a, b_value, (quantity, scale)) in pairs {
+                    let relative = (a - b_value).abs() / scale;
+                    if worst.as_ref().is_none_or(|w| relative > w.relative) {
+                        worst = Some(StepDoubling {
+                            relative,
+                            t,
+                            quantity,
+                            body: self.bodies.as_ref().map(|names| names[b].clone()),
+                        });
+                    }
+                }
+            }
+        }
+        worst
     }
 
     /// The number of bodies per point: a system's bodies written, or a rig's one.

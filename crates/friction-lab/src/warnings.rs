@@ -110,9 +110,10 @@ pub fn failure_warnings(
         .collect()
 }
 
-/// The advice given when a `scheme` with an explicit solver and a fixed step (RK4, or
-/// Dormand–Prince with `--fixed-step`; not time-stepping) ended past its stability limit
-/// ([`scenarios::run::diverged`]).
+/// The advice given when a run with a fixed step diverged ([`scenarios::run::diverged`]): an
+/// explicit solver (RK4, or Dormand–Prince with `--fixed-step`) past its stability limit, or
+/// any other fixed-step scheme whose state left the system's reach (time-stepping with a
+/// controller, whose force is held over each step).
 pub fn unstable_step_warning(
     scheme: Scheme,
     step: StepControl,
@@ -122,12 +123,24 @@ pub fn unstable_step_warning(
     let StepControl::Fixed { h } = step else {
         return None;
     };
-    scenarios::run::diverged(explicit, step, error).then(|| {
-        format!(
+    let dt = field("dt");
+    scenarios::run::diverged(explicit, step, error).then(|| match (explicit, scheme) {
+        (true, _) => format!(
             "the explicit method diverged with the fixed step h = {} s: {}",
             ranges::show(h),
-            unstable_step(&field("dt"))
-        )
+            unstable_step(&dt)
+        ),
+        (false, Scheme::TimeStepping { .. }) => format!(
+            "the time-stepping scheme diverged with the step h = {} s: a controller's force is \
+             held over each step (zero-order hold), and the sampled loop is unstable once h is \
+             a fair fraction of the loop's natural period; a smaller {dt} avoids it",
+            ranges::show(h)
+        ),
+        (false, _) => format!(
+            "the method diverged with the fixed step h = {} s; a smaller {dt} or an adaptive \
+             step avoids it",
+            ranges::show(h)
+        ),
     })
 }
 

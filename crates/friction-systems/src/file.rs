@@ -260,11 +260,23 @@ pub fn read_with(path: &Path, assignments: &[(String, f64)]) -> Result<System, S
     .map_err(error)
 }
 
-/// `file` with each number at a path of `assignments` set; a bad path or value is named.
+/// `file` with each number at a path of `assignments` set; a bad path or value is named, and
+/// so are two paths that set one number (by name and by index, or twice alike): only the last
+/// would be used.
 fn assigned(mut file: FileSystem, assignments: &[(String, f64)]) -> Result<FileSystem, String> {
+    let mut set: Vec<(assign::Assigned, &str)> = Vec::with_capacity(assignments.len());
     for (path, value) in assignments {
-        file.assign(path, *value)
-            .map_err(|e| format!("`{path}` = {value}: {e}"))?;
+        let number = (file.assign(path, *value)).map_err(|e| format!("`{path}` = {value}: {e}"))?;
+        if let Some((_, first)) = set.iter().find(|(n, _)| *n == number) {
+            return Err(format!(
+                "`{first}` and `{path}` set the same number, {} of [[{}]] {}: set each number \
+                 once (only the last would be used)",
+                number.key,
+                number.table,
+                number.index + 1
+            ));
+        }
+        set.push((number, path));
     }
     Ok(file)
 }

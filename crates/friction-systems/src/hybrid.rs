@@ -573,22 +573,10 @@ impl OdeProblem for FrictionSystem<'_> {
         Control::Continue
     }
 
-    /// The shortest natural period `2π·√(m_i / Σ k)` over the bodies held by springs.
+    /// The shortest natural period `2π·√(m_i / Σ k)` over the bodies held by springs
+    /// ([`System::shortest_period`] without controllers): the scale of the Zeno guard's
+    /// window and of a tie's lookahead.
     fn time_scale(&self) -> Option<f64> {
-        let mut stiffness = vec![0.0; self.system.bodies.len()];
-        for s in &self.system.springs {
-            for end in [s.a, s.b] {
-                if let End::Body(i) = end {
-                    stiffness[i] += s.k;
-                }
-            }
-        }
-        self.system
-            .bodies
-            .iter()
-            .zip(&stiffness)
-            .filter(|(_, &k)| k > 0.0)
-            .map(|(b, &k)| 2.0 * std::f64::consts::PI * (b.m / k).sqrt())
-            .reduce(f64::min)
+        self.system.shortest_period(false)
     }
 }

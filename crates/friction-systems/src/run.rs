@@ -5,6 +5,7 @@
 use crate::energy::EnergyBalance;
 use crate::hybrid::FrictionSystem;
 use crate::moreau_jean::{self, MoreauJean};
+use crate::reach::Reach;
 use crate::scheme::Scheme;
 use crate::system::{System, SystemError};
 use integrators::stability::Instability;
@@ -89,7 +90,7 @@ pub fn simulate<'a>(
         moreau_jean::check_contacts(system)?;
     }
     let problem = FrictionSystem::new(system, scheme.switching());
-    let t0 = options.t0;
+    let (t0, t_end) = (options.t0, options.t_end);
     let y0 = problem.initial_state();
     let modes0 = problem.initial_modes(t0, &y0);
     let clock = Instant::now();
@@ -101,10 +102,17 @@ pub fn simulate<'a>(
             solver.solve_observed(&problem, &y0, &modes0, options, observe)
         }
     };
-    let (solution, error) = match result {
+    let (mut solution, mut error) = match result {
         Ok(s) => (s, None),
         Err(Failure { error, solution }) => (*solution, Some(error)),
     };
+    if !matches!(error, Some(SolverError::NonFinite { .. })) {
+        if let Some((k, what)) = runaway(&problem, &solution, t_end) {
+            let t = solution.t[k];
+            solution.truncate(k);
+            error = Some(SolverError::Runaway { t, what });
+        }
+    }
     Ok(Run {
         problem,
         t0,
@@ -113,6 +121,18 @@ pub fn simulate<'a>(
         solution,
         error,
         wall_time_s: clock.elapsed().as_secs_f64(),
+    })
+}
+
+/// The first recorded point of `solution` at which a body is beyond the system's
+/// [`Reach`] over `[t0, t_end]` times [`crate::RUNAWAY_FACTOR`], with what is beyond it.
+fn runaway(problem: &FrictionSystem, solution: &Solution, t_end: f64) -> Option<(usize, String)> {
+    let (system, layout) = (problem.system, &problem.layout);
+    let reach = Reach::of(system, t_end);
+    (0..solution.len()).find_map(|k| {
+        let y = solution.y_at(k);
+        let beyond = reach.exceeded(&system.bodies, |i| y[layout.x[i]], |i| y[layout.v(i)]);
+        beyond.map(|what| (k, what))
     })
 }
 

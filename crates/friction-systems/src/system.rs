@@ -304,6 +304,30 @@ impl System {
         Ok(())
     }
 
+    /// The shortest natural period `2π·√(m_i / K_i)` over the bodies with `K_i > 0`, where
+    /// `K_i` is the stiffness holding body i: the sum of its springs' `k`, and with
+    /// `controllers` also its controller's proportional gain `kp` (a spring to the
+    /// reference). `None` where no body is held.
+    pub fn shortest_period(&self, controllers: bool) -> Option<f64> {
+        let mut stiffness = vec![0.0; self.bodies.len()];
+        for s in &self.springs {
+            for end in [s.a, s.b] {
+                if let End::Body(i) = end {
+                    stiffness[i] += s.k;
+                }
+            }
+        }
+        if controllers {
+            for c in &self.controllers {
+                stiffness[c.body] += c.kp.abs();
+            }
+        }
+        (self.bodies.iter().zip(&stiffness))
+            .filter(|(_, &k)| k > 0.0)
+            .map(|(b, &k)| 2.0 * std::f64::consts::PI * (b.m / k).sqrt())
+            .reduce(f64::min)
+    }
+
     /// Checks the declaration: at least one body, positive masses, finite values,
     /// non-negative stiffness and damping, ends and bodies that exist, a spring between two
     /// different ends and not between two anchors, unique names, at most one contact a body.

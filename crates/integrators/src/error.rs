@@ -80,6 +80,16 @@ pub enum SolverError {
         /// Which quantity.
         what: String,
     },
+    /// The state grew beyond a bound the problem's own scales set (found by the caller that
+    /// knows the problem, after the solver ended: `friction_systems::Reach`): the
+    /// integration, not the problem, made the motion.
+    #[error("at t = {} {what}", shown(.t))]
+    Runaway {
+        /// Time of the first recorded state beyond the bound.
+        t: f64,
+        /// Which quantity, its value and the bound.
+        what: String,
+    },
     /// Events accumulate: too many in too short a time (chattering or a Zeno point).
     #[error("too many events: {count} events within {window:e} s before t = {} (chattering or Zeno behaviour); last event: {last}", shown(.t))]
     TooManyEvents {

@@ -114,6 +114,21 @@ impl Solution {
         &self.modes[i * self.n_modes..(i + 1) * self.n_modes]
     }
 
+    /// Keeps the first `len` recorded points and the events up to the last of them: what a
+    /// run had computed before a point that is not to be kept.
+    pub fn truncate(&mut self, len: usize) {
+        let len = len.min(self.len());
+        let last = if len == 0 {
+            f64::NEG_INFINITY
+        } else {
+            self.t[len - 1]
+        };
+        self.t.truncate(len);
+        self.y.truncate(len * self.dim);
+        self.modes.truncate(len * self.n_modes);
+        self.events.retain(|e| e.t <= last);
+    }
+
     /// The last recorded time and state.
     pub fn last(&self) -> Option<(f64, &[f64])> {
         let n = self.len();

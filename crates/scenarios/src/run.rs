@@ -20,15 +20,20 @@ use std::time::Instant;
 /// θ of time-stepping unless `--theta` says otherwise: the trapezoidal rule.
 pub const DEFAULT_THETA: f64 = 0.5;
 
-/// Whether a run ended as an explicit method (`explicit`: not implicit, not time-stepped) with
-/// a fixed step ends past its stability limit: in a non-finite state. There h times the
+/// Whether a run diverged: its state went beyond the system's reach (`SolverError::Runaway`,
+/// any method), or an explicit method (`explicit`: not implicit, not time-stepped) with a
+/// fixed step ended past its stability limit in a non-finite state. There h times the
 /// problem's fastest decay rate |λ| exceeds the method's bound on the negative real axis, about
 /// 2.8 for RK4 and 3.3 for Dormand–Prince (Hairer & Wanner, Solving ODEs II, §IV.2), and every
 /// step multiplies the state.
 pub fn diverged(explicit: bool, step: StepControl, error: Option<&SolverError>) -> bool {
-    explicit
-        && matches!(step, StepControl::Fixed { .. })
-        && matches!(error, Some(SolverError::NonFinite { .. }))
+    match error {
+        Some(SolverError::Runaway { .. }) => true,
+        Some(SolverError::NonFinite { .. }) => {
+            explicit && matches!(step, StepControl::Fixed { .. })
+        }
+        _ => false,
+    }
 }
 
 /// The friction law at a rig's contact: a model of the catalog, built from the run's friction
@@ -239,9 +244,10 @@ pub struct Outcome {
     /// The stiffness along the run, `h·ρ` at the recorded points (body scenarios run by
     /// [`run_measuring_stiffness`]; empty otherwise): [`friction_systems::Run::stiffness`].
     pub stiffness: Vec<friction_systems::StiffnessPoint>,
-    /// The body's shortest natural period `2π·√(m/k)` (body scenarios held by a spring;
-    /// `None` otherwise): the scale a fixed step is judged against.
-    pub time_scale: Option<f64>,
+    /// The body's shortest natural period `2π·√(m/(k + kp))` (body scenarios held by a
+    /// spring or a controller, [`friction_systems::System::shortest_period`]; `None`
+    /// otherwise): the scale a fixed step is judged against.
+    pub natural_period: Option<f64>,
     /// The decaying mode at the start that an explicit method's fixed step amplifies, if any
     /// ([`friction_systems::Run::instability`]; body scenarios).
     pub instability: Option<Instability>,
@@ -387,7 +393,7 @@ fn run_body(
         stiffness_detected_at: run.solution.stiffness_detected_at,
         method_switches: run.solution.method_switches.clone(),
         stiffness,
-        time_scale: run.problem.time_scale(),
+        natural_period: system.shortest_period(true),
         instability,
         reference: (system.controllers.iter())
             .find(|c| c.body == 0)
@@ -457,7 +463,7 @@ pub fn run_motion(
         stiffness_detected_at: s.stiffness_detected_at,
         method_switches: s.method_switches.clone(),
         stiffness: Vec::new(),
-        time_scale: None,
+        natural_period: None,
         instability: None,
         reference: None,
         integral_action: false,
@@ -487,7 +493,7 @@ fn run_sweep(
         stiffness_detected_at: None,
         method_switches: Vec::new(),
         stiffness: Vec::new(),
-        time_scale: None,
+        natural_period: None,
         instability: None,
         reference: None,
         integral_action: false,

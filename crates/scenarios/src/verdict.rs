@@ -68,13 +68,39 @@ impl Verdict {
         }
     }
 
-    /// The verdict on a solver's error: `diverged` for a non-finite state, `failed` for any
-    /// other; `None` where there was no error.
+    /// The verdict on a solver's error: `diverged` for a non-finite state or a runaway
+    /// (`friction_systems::Reach`), `failed` for any other; `None` where there was no error.
     pub fn of_error(error: Option<&SolverError>) -> Option<Verdict> {
         error.map(|e| match e {
-            SolverError::NonFinite { .. } => Verdict::new(Status::Diverged, e.to_string()),
+            SolverError::NonFinite { .. } | SolverError::Runaway { .. } => {
+                Verdict::new(Status::Diverged, e.to_string())
+            }
             _ => Verdict::new(Status::Failed, e.to_string()),
         })
+    }
+
+    /// The verdict on a run: by the solver's `error` where it stopped ([`Verdict::of_error`]),
+    /// otherwise by its energy balance's `relative_residual` where it keeps one
+    /// ([`Verdict::of_energy`]); then `inaccurate` too where its fixed step is beyond the
+    /// method's stability limit ([`Verdict::with_instability`]).
+    pub fn of_run(
+        error: Option<&SolverError>,
+        relative_residual: Option<f64>,
+        instability: Option<&Instability>,
+    ) -> Verdict {
+        Verdict::of_error(error)
+            .unwrap_or_else(|| relative_residual.map_or(Verdict::OK, Verdict::of_energy))
+            .with_instability(instability)
+    }
+
+    /// Whether the run computed nothing to measure: `diverged` or `failed`.
+    pub fn is_broken(&self) -> bool {
+        self.status >= Status::Diverged
+    }
+
+    /// `inaccurate` for `reason`, where there is one; `ok` otherwise.
+    pub fn inaccurate(reason: Option<String>) -> Verdict {
+        reason.map_or(Verdict::OK, |r| Verdict::new(Status::Inaccurate, r))
     }
 
     /// The verdict on a relative energy residual ([`ENERGY_INACCURATE`],

@@ -14,10 +14,11 @@ use crate::progress::Progress;
 use crate::run_record::{
     event_counts, Integrated, RunRecord, RunSetup, RunSummary, StiffnessSummary, RIG_BODY,
 };
-use crate::trajectory::{RecordAs, Trajectory};
+use crate::trajectory::{RecordAs, StepDoubling, Trajectory};
 use crate::window::Window;
 use friction_models::Parameters;
 use friction_systems::{BodyState, ContactEvent};
+use integrators::StepControl;
 use scenarios::analysis::closed_loop::ClosedLoop;
 use scenarios::run::Outcome;
 use scenarios::{Law, RunSpec};
@@ -25,7 +26,12 @@ use std::path::Path;
 
 /// The one run record of a rig's `outcome` (a system of one body, named `body`, and one
 /// contact), described by `setup`, with what its closed loop did (a controlled rig).
-fn rig_record(outcome: &Outcome, setup: RunSetup, closed_loop: Option<ClosedLoop>) -> RunRecord {
+fn rig_record(
+    outcome: &Outcome,
+    setup: RunSetup,
+    closed_loop: Option<ClosedLoop>,
+    step_doubling: Option<StepDoubling>,
+) -> RunRecord {
     let state = |r: &scenarios::Row| BodyState {
         t: r.t,
         x: r.x,
@@ -59,6 +65,7 @@ fn rig_record(outcome: &Outcome, setup: RunSetup, closed_loop: Option<ClosedLoop
         method_switches: outcome.method_switches.clone(),
         stiffness: StiffnessSummary::of(&outcome.stiffness),
         instability: outcome.instability,
+        step_doubling,
         closed_loop,
     };
     RunRecord {
@@ -68,6 +75,34 @@ fn rig_record(outcome: &Outcome, setup: RunSetup, closed_loop: Option<ClosedLoop
         finals: outcome.last().map(state).into_iter().collect(),
         events,
     }
+}
+
+/// The error estimate of a fixed-step run that ended, by step doubling: the run `spec` again at
+/// half its step, its trajectory against `outcome`'s ([`Trajectory::doubling_difference`]);
+/// `None` for an adaptive step, a run that stopped, or a run at h/2 that stopped.
+fn step_doubling(
+    spec: &RunSpec,
+    outcome: &Outcome,
+    what: &str,
+) -> Result<Option<StepDoubling>, AppError> {
+    let StepControl::Fixed { h } = spec.step else {
+        return Ok(None);
+    };
+    if outcome.error.is_some() {
+        return Ok(None);
+    }
+    let t_end = spec.end_time();
+    let bar = Progress::time(t_end, &format!("{what} at h/2 (its error estimate)"));
+    let half = RunSpec {
+        step: StepControl::Fixed { h: h / 2.0 },
+        ..spec.clone()
+    };
+    let fine = scenarios::run(&half, &mut |t| bar.at(t)).map_err(AppError::from)?;
+    bar.finish();
+    Ok(match fine.error {
+        Some(_) => None,
+        None => Trajectory::of_outcome(outcome).doubling_difference(&Trajectory::of_outcome(&fine)),
+    })
 }
 
 /// The rows a figure draws: the trajectory's, with the body just before each switch put
@@ -225,6 +260,7 @@ pub fn simulate_rig(
     })
     .map_err(AppError::from)?;
     bar.finish();
+    let step_doubling = step_doubling(spec, &outcome, &what)?;
 
     let name = format!(
         "{} with {model} ({method}, {} switching{})",
@@ -264,10 +300,10 @@ pub fn simulate_rig(
         parameters,
     };
     let closed_loop = ClosedLoop::of_outcome(&outcome);
-    let record = rig_record(&outcome, setup, closed_loop);
+    let record = rig_record(&outcome, setup, closed_loop, step_doubling);
     let advice = Advice {
         scheme: spec.scheme,
-        period: outcome.time_scale,
+        period: outcome.natural_period,
         own: None,
     };
     let notes = (closed_loop.iter().map(|c| c.to_string()))

@@ -21,7 +21,7 @@ use crate::window::Window;
 use friction_models::{FrictionParams, Variant};
 use friction_systems::file::SystemSource;
 use friction_systems::{Run, Scheme, System, SLIP_POSITIVE};
-use integrators::Options;
+use integrators::{Options, StepControl};
 use scenarios::analysis::closed_loop::ClosedLoop;
 use scenarios::chain::ChainSource;
 use scenarios::Row;
@@ -180,11 +180,31 @@ pub fn simulate_system(run: SystemRun, out: &Path, record_as: RecordAs) -> Resul
     // The times each step reached, for the step size at the points where the stiffness is
     // measured.
     let mut step_ends = Vec::new();
+    let half = options.clone();
     let run = friction_systems::simulate(system, scheme, options, &mut |t| {
         bar.at(t);
         step_ends.push(t);
     })?;
     bar.finish();
+    let trajectory = Trajectory::of_run(&run, bodies);
+    let step_doubling = match (step, &run.error) {
+        (StepControl::Fixed { h }, None) => {
+            let bar = Progress::time(
+                t_end,
+                &format!("{name} {method} at h/2 (its error estimate)"),
+            );
+            let half = Options {
+                step: StepControl::Fixed { h: h / 2.0 },
+                ..half
+            };
+            let fine = friction_systems::simulate(system, scheme, half, &mut |t| bar.at(t))?;
+            bar.finish();
+            (fine.error.is_none())
+                .then(|| trajectory.doubling_difference(&Trajectory::of_run(&fine, bodies)))
+                .flatten()
+        }
+        _ => None,
+    };
     let stiffness = run.stiffness(&step_ends);
     drop(step_ends);
 
@@ -248,18 +268,19 @@ pub fn simulate_system(run: SystemRun, out: &Path, record_as: RecordAs) -> Resul
         method_switches: run.solution.method_switches.clone(),
         stiffness: StiffnessSummary::of(&stiffness),
         instability: run.instability(&scheme, step),
+        step_doubling,
         closed_loop: measured_loop,
     };
     let record = RunRecord {
         summary: RunSummary::new(setup, integrated),
         bodies: system.bodies.iter().map(|b| b.name.clone()).collect(),
-        trajectory: Trajectory::of_run(&run, bodies),
+        trajectory,
         finals: run.final_states(),
         events,
     };
     let advice = Advice {
         scheme,
-        period: integrators::OdeProblem::time_scale(&run.problem),
+        period: run.problem.system.shortest_period(true),
         own: source.as_ref().and_then(unspread_warning),
     };
     let notes = std::iter::once(format!(

@@ -151,12 +151,7 @@ fn runs_table(runs: &[TestSetRun]) -> Table {
         ];
         let counts = TestSetCounts::of(&r.stats).values();
         row.extend(counts.map(|n| Cell::Num(n as f64)));
-        row.push(Cell::Text(
-            r.failure
-                .as_ref()
-                .map(|e| e.to_string())
-                .unwrap_or_default(),
-        ));
+        row.push(Cell::Text(r.reason().unwrap_or_default()));
         t.rows.push(row);
     }
     t

@@ -15,11 +15,11 @@ fn log_axis(values: &[f64]) -> bool {
 
 /// The figure of a sweep of one or two axes (none for more): over one axis the settled
 /// amplitude of x − v̄·t at every point, over two the plane of the axes, each point in the
-/// colour and marker of its regime; a failed point is a cross of its own (on the axis, for
+/// colour and marker of its regime; a failed or diverged point is a cross of its own (on the axis, for
 /// one axis).
 pub fn figure(axes: &[Axis], results: &[PointResult], title: &str) -> Option<Plot> {
     let failed = |at: &dyn Fn(&PointResult) -> (f64, f64)| Series {
-        label: Some("failed (sweep.csv says why)".into()),
+        label: Some("failed or diverged (sweep.csv says why)".into()),
         points: results
             .iter()
             .filter(|r| r.regime.is_none())

@@ -134,12 +134,13 @@ impl Study for SweepStudy<'_> {
             .collect()
     }
 
-    /// Points whose run failed: the others are measured, `sweep.csv` says which and why.
+    /// Points whose run failed or diverged: the others are measured, `sweep.csv` says which
+    /// and why.
     fn failure(&self, results: &Vec<PointResult>) -> Option<AppError> {
-        let failed = results.iter().filter(|r| r.error.is_some()).count();
+        let failed = results.iter().filter(|r| r.verdict.is_broken()).count();
         (failed > 0).then(|| {
             AppError::StudyRun(format!(
-                "{failed} of {} runs failed; sweep.csv says which and why",
+                "{failed} of {} runs failed or diverged; sweep.csv says which and why",
                 results.len()
             ))
         })
@@ -168,6 +169,7 @@ impl Study for SweepStudy<'_> {
             "rhs_evals",
             "events",
             "status",
+            "reason",
         ]);
         // A closed loop's own measures (docs/closed-loop.md), after the others.
         let closed = results.iter().any(|r| r.closed_loop.is_some());
@@ -185,8 +187,13 @@ impl Study for SweepStudy<'_> {
         for r in results {
             let s = &r.settled;
             let mut row: Vec<Cell> = r.values.iter().map(|&v| Cell::Num(v)).collect();
+            // A failed or diverged point measured nothing: its stick phases are no count.
+            let stick_phases = match r.verdict.is_broken() {
+                true => Cell::empty(),
+                false => Cell::Num(s.stick_phases as f64),
+            };
             row.extend([
-                Cell::Num(s.stick_phases as f64),
+                stick_phases,
                 num(s.stick_per_cycle),
                 num(s.period),
                 num(s.x_amplitude),
@@ -202,7 +209,8 @@ impl Study for SweepStudy<'_> {
                 Cell::Num(r.stats.steps as f64),
                 Cell::Num(r.stats.rhs_evals as f64),
                 Cell::Num(r.stats.events as f64),
-                Cell::Text(r.error.clone().unwrap_or_else(|| "ok".into())),
+                Cell::Text(r.verdict.status.name().into()),
+                Cell::Text(r.verdict.reason.clone().unwrap_or_default()),
             ]);
             if closed {
                 let c = r.closed_loop.as_ref();

@@ -7,6 +7,7 @@ use integrators::{even_grid, Options, Output, Stats, StepControl};
 use scenarios::analysis::closed_loop::ClosedLoop;
 use scenarios::analysis::settled::{spanned, until_settled, Settled, Trace};
 use scenarios::stick_slip::Regime;
+use scenarios::verdict::Verdict;
 use scenarios::{Limits, RunSpec};
 use serde::Serialize;
 
@@ -66,8 +67,9 @@ pub struct PointResult {
     pub closed_loop: Option<ClosedLoop>,
     /// Solver statistics.
     pub stats: Stats,
-    /// The solver's error, if the run failed (the measures are of what it computed).
-    pub error: Option<String>,
+    /// What the run is worth, and why ([`Verdict::of_run`]): a `diverged` or `failed` point
+    /// has no measures (NaN, no closed loop) and no regime.
+    pub verdict: Verdict,
 }
 
 impl PointRun {
@@ -77,14 +79,14 @@ impl PointRun {
     pub fn run(&self, settle: f64) -> Result<PointResult, AppError> {
         until_settled(
             |factor| self.spanned(settle, factor),
-            |point| point.settled.settled || point.error.is_some(),
+            |point| point.settled.settled || point.verdict.is_broken(),
         )
     }
 
     /// Runs the point over `factor` times its span, with `factor` times its output intervals,
     /// and measures its settled state.
     fn spanned(&self, settle: f64, factor: u32) -> Result<PointResult, AppError> {
-        let (trace, stats, error, surface_velocity, closed_loop) = match self {
+        let (trace, stats, verdict, surface_velocity, closed_loop) = match self {
             PointRun::Rig(spec) => {
                 let o = scenarios::run(&spanned(spec, factor), &mut |_| {})?;
                 let closed_loop = ClosedLoop::of_outcome(&o);
@@ -93,10 +95,15 @@ impl PointRun {
                     true => spec.params.v_belt,
                     false => 0.0,
                 };
+                let verdict = Verdict::of_run(
+                    o.error.as_ref(),
+                    o.energy.map(|e| e.relative_residual),
+                    o.instability.as_ref(),
+                );
                 (
                     Trace::of_outcome(&o),
                     o.stats,
-                    o.error.map(|e| e.to_string()),
+                    verdict,
                     surface,
                     closed_loop,
                 )
@@ -116,6 +123,11 @@ impl PointRun {
                 let points = ((points - 1) * factor as usize + 1).min(RECORD_LIMIT / dim.max(1));
                 let options = grid_options(*step, limits, t_end * f64::from(factor), points);
                 let run = simulate(system, *scheme, options, &mut |_| {})?;
+                let verdict = Verdict::of_run(
+                    run.error.as_ref(),
+                    run.energy().map(|e| e.relative_residual),
+                    run.instability(scheme, *step).as_ref(),
+                );
                 let mut trace = Trace::default();
                 for b in run.body(body) {
                     trace.t.push(b.t);
@@ -132,13 +144,7 @@ impl PointRun {
                 let surface = (system.contacts.iter())
                     .find(|c| c.body == body)
                     .map_or(0.0, |c| c.surface_velocity);
-                (
-                    trace,
-                    run.solution.stats,
-                    run.error.map(|e| e.to_string()),
-                    surface,
-                    None,
-                )
+                (trace, run.solution.stats, verdict, surface, None)
             }
         };
         let mut settled = Settled::of(&trace, settle);
@@ -152,10 +158,14 @@ impl PointRun {
             // The velocity's drift is not the loop's criterion.
             settled.drift = f64::NAN;
         }
-        // A run that failed stopped short of its span: whatever its window shows, it is no
-        // settled state, and it has no regime.
-        settled.settled &= error.is_none();
-        let regime = error.is_none().then(|| match &closed_loop {
+        // A run that failed stopped short of its span, and one that diverged computed its
+        // motion from the integration: whatever its window shows is no measure of the point,
+        // no settled state and no regime.
+        let broken = verdict.is_broken();
+        if broken {
+            settled = settled.undefined();
+        }
+        let regime = (!broken).then(|| match &closed_loop {
             Some(c) => Regime::of_closed_loop(c),
             None => Regime::of(&settled, surface_velocity),
         });
@@ -163,9 +173,9 @@ impl PointRun {
             values: Vec::new(),
             settled,
             regime,
-            closed_loop,
+            closed_loop: closed_loop.filter(|_| !broken),
             stats,
-            error,
+            verdict,
         })
     }
 }

@@ -72,11 +72,11 @@ impl SweepRequest {
         };
         let results = self.conduct(&mut target, "sweep")?;
         let failure = target.failure;
-        let failed = results.iter().filter(|r| r.error.is_some()).count();
+        let failed = results.iter().filter(|r| r.verdict.is_broken()).count();
         Ok(Made {
             files,
             notes: vec![format!(
-                "{}, {failed} failed",
+                "{}, {failed} failed or diverged",
                 counted(results.len(), "point", "points")
             )],
             warnings: self.simulation.warnings(),

@@ -64,9 +64,11 @@ fn entry(table: &str, which: &str, names: &[Option<&str>]) -> Result<usize, Stri
 }
 
 impl FileSystem {
-    /// Sets the number at `path` (`TABLE.WHICH.KEY`) to `value`; the message of a path that
+    /// Sets the number at `path` (`TABLE.WHICH.KEY`) to `value` and says which number that is:
+    /// its table, the entry's 0-based index and its key, so that two spellings of one number
+    /// (`controller.mass.kp`, `controller.1.kp`) are seen to be one. The message of a path that
     /// names no number of the file says which part does not and what is allowed.
-    pub(super) fn assign(&mut self, path: &str, value: f64) -> Result<(), String> {
+    pub(super) fn assign(&mut self, path: &str, value: f64) -> Result<Assigned, String> {
         let allowed = || {
             KEYS.map(|(t, keys)| format!("{t}: {}", keys.join(", ")))
                 .join("; ")
@@ -79,7 +81,7 @@ impl FileSystem {
             ));
         };
         let unknown = || format!("[[{table}]] has no number `{key}`: allowed {}", allowed());
-        match table {
+        let i = match table {
             "body" => {
                 let names: Vec<_> = self.body.iter().map(|b| Some(b.name.as_str())).collect();
                 let i = entry(table, which, &names)?;
@@ -90,6 +92,7 @@ impl FileSystem {
                     "v0" => &mut b.v0,
                     _ => return Err(unknown()),
                 } = value;
+                i
             }
             "anchor" => {
                 let names: Vec<_> = self.anchor.iter().map(|a| Some(a.name.as_str())).collect();
@@ -100,6 +103,7 @@ impl FileSystem {
                     "v" => &mut a.v,
                     _ => return Err(unknown()),
                 } = value;
+                i
             }
             "spring" => {
                 let names = vec![None; self.spring.len()];
@@ -110,6 +114,7 @@ impl FileSystem {
                     "c" => &mut s.c,
                     _ => return Err(unknown()),
                 } = value;
+                i
             }
             "contact" => {
                 let names: Vec<_> = self.contact.iter().map(|c| Some(c.body.as_str())).collect();
@@ -122,6 +127,7 @@ impl FileSystem {
                         c.params.insert(key.to_string(), value);
                     }
                 }
+                i
             }
             "force" => {
                 let names: Vec<_> = self.force.iter().map(|f| Some(f.body.as_str())).collect();
@@ -132,6 +138,7 @@ impl FileSystem {
                     "rate" => &mut f.rate,
                     _ => return Err(unknown()),
                 } = value;
+                i
             }
             "controller" => {
                 let names: Vec<_> = (self.controller.iter())
@@ -146,6 +153,7 @@ impl FileSystem {
                     "saturation" => c.saturation = Some(value),
                     _ => return Err(unknown()),
                 }
+                i
             }
             _ => {
                 return Err(format!(
@@ -153,9 +161,25 @@ impl FileSystem {
                     KEYS.map(|(t, _)| t).join(", ")
                 ))
             }
-        }
-        Ok(())
+        };
+        Ok(Assigned {
+            table: table.to_string(),
+            index: i,
+            key: key.to_string(),
+        })
     }
+}
+
+/// The number of a system file an assignment set: its table, the entry's 0-based index in it,
+/// and its key.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(super) struct Assigned {
+    /// The table (`controller`).
+    pub table: String,
+    /// The entry's index in its table, from 0.
+    pub index: usize,
+    /// The number's key (`kp`).
+    pub key: String,
 }
 
 #[cfg(test)]

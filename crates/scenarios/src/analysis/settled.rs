@@ -111,7 +111,7 @@ impl Trace {
 
 /// The settled-state measures of a [`Trace`]; `NaN` where a measure is not defined (no
 /// oscillation: fewer than two crossings).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
 pub struct Settled {
     /// Start of the measured window, s.
     pub from: f64,
@@ -248,6 +248,27 @@ fn time_mean(t: &[f64], y: &[f64], k: &[usize]) -> f64 {
 }
 
 impl Settled {
+    /// The window of these measures with every measure undefined (NaN, no stick phase) and not
+    /// settled: what a window measures where the run in it is no measure of the problem (it
+    /// failed, or it diverged) or where it holds fewer than two instants.
+    pub fn undefined(self) -> Settled {
+        Settled {
+            from: self.from,
+            to: self.to,
+            stick_phases: 0,
+            stick_per_cycle: f64::NAN,
+            period: f64::NAN,
+            x_amplitude: f64::NAN,
+            v_amplitude: f64::NAN,
+            v_amplitude_ratio: f64::NAN,
+            v_mean: f64::NAN,
+            friction_mean: f64::NAN,
+            friction_peak: f64::NAN,
+            drift: f64::NAN,
+            settled: false,
+        }
+    }
+
     /// The measures of `trace` over the last `settle` fraction (0, 1] of its time span; all
     /// undefined (NaN), and not settled, where the window holds fewer than two instants.
     pub fn of(trace: &Trace, settle: f64) -> Settled {
@@ -264,17 +285,7 @@ impl Settled {
             return Settled {
                 from,
                 to: t1,
-                stick_phases: 0,
-                stick_per_cycle: f64::NAN,
-                period: f64::NAN,
-                x_amplitude: f64::NAN,
-                v_amplitude: f64::NAN,
-                v_amplitude_ratio: f64::NAN,
-                v_mean: f64::NAN,
-                friction_mean: f64::NAN,
-                friction_peak: f64::NAN,
-                drift: f64::NAN,
-                settled: false,
+                ..Settled::default().undefined()
             };
         }
         let v_mean = time_mean(t, &trace.v, &k);

@@ -41,7 +41,7 @@ pub use stiffness::{
 };
 pub use testset::{
     solve as solve_test_problem, testset_work_precision, TestRun, TestSetCounts, TestSetRun,
-    TestSetWorkPrecision,
+    TestSetWorkPrecision, MIN_CORRECT_DIGITS,
 };
 pub use work_precision::{work_precision, WorkPrecision};
 

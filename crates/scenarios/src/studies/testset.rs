@@ -132,6 +132,10 @@ impl TestSetCounts {
     }
 }
 
+/// A test-set run with fewer significant correct digits than this is `inaccurate`
+/// ([`TestSetRun::status`]): its largest relative error exceeds a tenth of the solution.
+pub const MIN_CORRECT_DIGITS: f64 = 1.0;
+
 /// One (solver, tolerance) of a test-set work–precision study.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct TestSetRun {
@@ -162,14 +166,37 @@ pub struct TestSetRun {
 }
 
 impl TestSetRun {
-    /// What a result of `scd` digits is worth: `failed` where the solver stopped, `inaccurate` where it has
-    /// no correct digit (scd ≤ 0: an error as large as the solution), else `ok`.
+    /// What a result of `scd` digits is worth: `failed` where the solver stopped, `inaccurate`
+    /// where it has less than [`MIN_CORRECT_DIGITS`] correct digit (an error above a tenth of
+    /// the solution), else `ok`.
     pub fn status(scd: Option<f64>) -> Status {
         match scd {
             None => Status::Failed,
-            Some(d) if d <= 0.0 => Status::Inaccurate,
+            Some(d) if d < MIN_CORRECT_DIGITS || d.is_nan() => Status::Inaccurate,
             Some(_) => Status::Ok,
         }
+    }
+
+    /// Why the run is not `ok`: the solver's error, or its digits
+    /// ([`TestSetRun::digits_reason`]); `None` for an `ok` run.
+    pub fn reason(&self) -> Option<String> {
+        match (&self.failure, self.status) {
+            (Some(e), _) => Some(e.to_string()),
+            (None, Status::Inaccurate) => self.scd.map(TestSetRun::digits_reason),
+            _ => None,
+        }
+    }
+
+    /// The reason of a run `inaccurate` by its `scd` digits: "0.32 significant correct digits,
+    /// fewer than 1: the largest relative error against the published reference, 4.79e-1, is
+    /// above 0.1".
+    pub fn digits_reason(scd: f64) -> String {
+        format!(
+            "{scd:.2} significant correct digits, fewer than {MIN_CORRECT_DIGITS}: the largest \
+             relative error against the published reference, {:.2e}, is above {}",
+            10f64.powf(-scd),
+            10f64.powf(-MIN_CORRECT_DIGITS),
+        )
     }
 
     /// The largest relative error at the end time, 10^−scd (NaN for a failed run).
