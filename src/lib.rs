@@ -33,12 +33,46 @@ pub struct Cli {
     /// Size of a one-panel figure in inches, WIDTHxHEIGHT (default 3.5x2.6, a journal's
     /// column; 6x4 a page): the text keeps its size in points, so a smaller figure is a denser
     /// one; panels side by side each take this size.
-    #[arg(long, global = true, value_name = "WxH")]
+    #[arg(long, global = true, value_name = "WxH", allow_hyphen_values = true)]
     pub figure_size: Option<String>,
     /// Resolution of the PNG figures, pixels per inch (default 300, for print; 150 on screen).
     /// SVG figures state their size in inches and scale without it.
     #[arg(long, global = true, value_name = "DPI", allow_hyphen_values = true)]
     pub dpi: Option<f64>,
+    /// Replace the output folder even where it now holds files friction-lab did not write
+    /// (they are deleted with it); without it such a folder is refused.
+    #[arg(long, global = true)]
+    pub replace: bool,
+}
+
+/// How a command's files are written: the figures' size and resolution, and whether an output
+/// folder holding files friction-lab did not write is replaced (`--replace`).
+#[derive(Clone, Copy, Debug)]
+pub struct Delivery {
+    /// The figures' size and resolution.
+    pub format: Format,
+    /// `--replace`.
+    pub replace: bool,
+}
+
+impl Delivery {
+    /// `--figure-size`, `--dpi` and `--replace`, checked.
+    pub fn parse(
+        figure_size: Option<&str>,
+        dpi: Option<f64>,
+        replace: bool,
+    ) -> Result<Delivery, AppError> {
+        Ok(Delivery {
+            format: Format::parse(figure_size, dpi)?,
+            replace,
+        })
+    }
+
+    /// Sets `files` to be written so.
+    pub fn apply(&self, files: &mut friction_lab::artifacts::Artifacts) {
+        files.set_format(self.format);
+        files.set_replace(self.replace);
+    }
 }
 
 /// The commands of `friction-lab` (README.md describes each).
@@ -108,6 +142,8 @@ pub struct StudyInvocation {
     pub figure_size: Option<String>,
     /// `--dpi`.
     pub dpi: Option<f64>,
+    /// `--replace`.
+    pub replace: bool,
 }
 
 /// The whole command line: [`Cli`]'s commands, and a command for each study in [`STUDIES`]
@@ -143,6 +179,7 @@ where
                 matches: options.clone(),
                 figure_size: matches.get_one::<String>("figure_size").cloned(),
                 dpi: matches.get_one::<f64>("dpi").copied(),
+                replace: matches.get_flag("replace"),
             }));
         }
     }
@@ -160,19 +197,24 @@ pub fn invoke(invocation: Invocation) -> Result<(), AppError> {
 /// Runs a named study, its figure format and output folder checked first, and writes its
 /// files.
 pub fn run_study(s: StudyInvocation) -> Result<(), AppError> {
-    let format = Format::parse(s.figure_size.as_deref(), s.dpi)?;
-    destination::check(&s.out)?;
+    let delivery = Delivery::parse(s.figure_size.as_deref(), s.dpi, s.replace)?;
+    destination::check(&s.out, delivery.replace)?;
+    let _claim = destination::claim(&s.out)?;
     let threads = ranges::threads(s.study.threads(&s.matches)?)?;
-    deliver(s.study.run(&s.matches, &s.out)?, &s.out, threads, format)
+    deliver(s.study.run(&s.matches, &s.out)?, &s.out, threads, delivery)
 }
 
 /// Runs one parsed command, its figure format and output folder checked first
 /// ([`Format::parse`], [`destination::check`]).
 pub fn run(cli: Cli) -> Result<(), AppError> {
-    let format = Format::parse(cli.figure_size.as_deref(), cli.dpi)?;
-    if let Some(out) = cli.command.out_folder() {
-        destination::check(out)?;
-    }
+    let delivery = Delivery::parse(cli.figure_size.as_deref(), cli.dpi, cli.replace)?;
+    let _claim = match cli.command.out_folder() {
+        Some(out) => {
+            destination::check(out, delivery.replace)?;
+            Some(destination::claim(out)?)
+        }
+        None => None,
+    };
     match &cli.command {
         Command::Models { json } => {
             if cli.figure_size.is_some() || cli.dpi.is_some() {
@@ -182,12 +224,12 @@ pub fn run(cli: Cli) -> Result<(), AppError> {
             }
             commands::models::run(*json)
         }
-        Command::Phenomena(args) => commands::phenomena::run(args, format),
-        Command::Reproduce(args) => commands::reproduce::run(args, format),
+        Command::Phenomena(args) => commands::phenomena::run(args, delivery),
+        Command::Reproduce(args) => commands::reproduce::run(args, delivery),
         command => {
             let (out, threads) = command.destination();
             let threads = ranges::threads(threads)?;
-            deliver(make(command)?, out, threads, format)
+            deliver(make(command)?, out, threads, delivery)
         }
     }
 }
@@ -224,10 +266,10 @@ pub fn deliver(
     made: Made,
     out: &std::path::Path,
     threads: Option<usize>,
-    format: Format,
+    delivery: Delivery,
 ) -> Result<(), AppError> {
     let mut files = made.files;
-    files.set_format(format);
+    delivery.apply(&mut files);
     let written = friction_lab::threads::with_threads(threads, || files.write(out))??;
     println!("{}", written.line());
     for note in &made.notes {
@@ -273,7 +315,8 @@ pub fn options_reference() -> String {
          too (the keyword of `--t-end` is `t_end`, of `--set` `params`). A test holds this page \
          equal to the declarations (`FRICTION_LAB_BLESS=1 cargo test --test docs` rewrites it).\n\n\
          Global options, taken by every command: `--figure-size WxH` (default 3.5x2.6, inches), \
-         `--dpi DPI` (default 300).\n",
+         `--dpi DPI` (default 300), `--replace` (replace an output folder friction-lab wrote \
+         even where it now holds files it did not write, deleting them; docs/inputs.md).\n",
     );
     for command in cli.get_subcommands() {
         out += &format!(

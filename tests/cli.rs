@@ -16,6 +16,18 @@ fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
+/// `simulate` with `args` into the folder `name` under `dir`: its output and its summary.
+fn simulated(dir: &std::path::Path, name: &str, args: &[&str]) -> (Output, serde_json::Value) {
+    let out = dir.join(name);
+    let mut argv = vec!["simulate"];
+    argv.extend_from_slice(args);
+    argv.extend(["--out", out.to_str().unwrap()]);
+    let o = friction_lab(&argv);
+    let summary = serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap())
+        .unwrap_or_else(|e| panic!("{name}: {e}: {}", stderr(&o)));
+    (o, summary)
+}
+
 #[test]
 fn models_json_lists_every_model_and_parameter() {
     let o = friction_lab(&["models", "--json"]);
@@ -1458,7 +1470,11 @@ fn a_folder_is_written_whole_or_not_at_all() {
     assert!(curve(&out).status.success());
     std::fs::remove_file(out.join("curve-CS.json")).unwrap();
     std::fs::create_dir(out.join("curve-CS.json")).unwrap();
+    // A file an earlier run wrote (listed in the marker) that this one does not write.
     std::fs::write(out.join("stale.csv"), "from an earlier run").unwrap();
+    let marker = out.join(".friction-lab-output");
+    let listed = std::fs::read_to_string(&marker).unwrap() + "stale.csv\n";
+    std::fs::write(&marker, listed).unwrap();
     let o = curve(&out);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(out.join("curve-CS.json").is_file());
@@ -3003,8 +3019,8 @@ fn a_run_that_cannot_resolve_its_natural_period_is_told_why() {
         let text = stderr(&o);
         assert!(text.contains("step size underflow"), "{what}: {text}");
         assert!(
-            text.contains("of the shortest natural period 2π√(m/k) = ")
-                && text.contains("check the masses and stiffnesses"),
+            text.contains("of the shortest natural period 2π√(m/(k + kp)) = ")
+                && text.contains("check the masses, the stiffnesses and the controllers' gains kp"),
             "{what}: {text}"
         );
     }
@@ -3334,31 +3350,16 @@ fn a_measure_that_does_not_exist_is_empty_never_zero() {
     }
 }
 
-/// Every run is judged. RK4 at h = 1 s on the belt (h·ω = 10, past its stability bound of
-/// about 2.8) ends at x ≈ −6e50 m without a solver error: its energy balance fails by more than
-/// the largest term, so it is `diverged` and exits 1, its files kept. At h = 0.3 s it is
-/// `inaccurate` (a quarter of the energy unaccounted for): exit 0 with a note. In a study, a
-/// run whose error is as large as the solution is `inaccurate`, kept as data, and left out of
-/// every fit.
 /// One rule for a blown-up run, whatever the scheme: a state beyond 10³ times the system's
 /// reach is `diverged`, exit 1. The servo time-stepped at h = 1 s (its controller's force held
 /// over each step) used to reach 7.4e84 m as `ok`, the actuator's work balancing the energy
 /// books; Dormand–Prince at a fixed step of 1 s reached 3.8e70 m as `inaccurate`, exit 0. At
-/// h = 0.5 s the servo's sampled loop is stable and the run stays `ok`. The step-size note
-/// takes the controller's natural period 2π√(m/kp) too.
+/// h = 0.5 s the servo's sampled loop does not run away (exit 0). The step-size note takes the
+/// controller's natural period 2π√(m/kp) too.
 #[test]
 fn a_runaway_is_diverged_whatever_the_scheme() {
     let dir = tempfile::tempdir().unwrap();
-    let simulate = |name: &str, args: &[&str]| {
-        let out = dir.path().join(name);
-        let mut argv = vec!["simulate"];
-        argv.extend_from_slice(args);
-        argv.extend(["--out", out.to_str().unwrap()]);
-        let o = friction_lab(&argv);
-        let summary: serde_json::Value =
-            serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
-        (o, summary)
-    };
+    let simulate = |name: &str, args: &[&str]| simulated(dir.path(), name, args);
     let servo = |dt| {
         [
             "servo",
@@ -3437,14 +3438,12 @@ fn a_runaway_is_diverged_whatever_the_scheme() {
 fn a_fixed_step_run_estimates_its_error_by_step_doubling() {
     let dir = tempfile::tempdir().unwrap();
     let simulate = |name: &str, args: &[&str]| {
-        let out = dir.path().join(name);
-        let mut argv = vec!["simulate", "belt", "--model", "CVS"];
-        argv.extend_from_slice(args);
-        argv.extend(["--out", out.to_str().unwrap()]);
-        let o = friction_lab(&argv);
+        let (o, summary) = simulated(
+            dir.path(),
+            name,
+            &[&["belt", "--model", "CVS"], args].concat(),
+        );
         assert_eq!(o.status.code(), Some(0), "{name}: {}", stderr(&o));
-        let summary: serde_json::Value =
-            serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
         summary
     };
     let coarse = simulate("coarse", &["--solver", "rk4", "--dt", "0.1"]);
@@ -3546,22 +3545,46 @@ fn a_sweep_writes_every_point_with_its_verdict() {
             }
         }
     }
+    // A fixed-step point is judged by step doubling as `simulate` is: at h = 0.05 s RK4's
+    // velocity differs from the run at h/2 by more than a tenth of its scale (`inaccurate`,
+    // its measures kept as data, exit 0); at h = 0.001 s it is `ok`.
+    for (dt, status) in [("0.05", "inaccurate"), ("0.001", "ok")] {
+        let out = dir.path().join(format!("fixed-{dt}"));
+        let o = friction_lab(&[
+            "sweep",
+            "belt",
+            "--model",
+            "CVS",
+            "--grid",
+            "k=50",
+            "--solver",
+            "rk4",
+            "--dt",
+            dt,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert_eq!(o.status.code(), Some(0), "{dt}: {}", stderr(&o));
+        let row = &rows(&out)[0];
+        assert_eq!(row["status"], status, "{dt}: {row:?}");
+        assert_eq!(
+            row["reason"].contains("step doubling"),
+            status == "inaccurate",
+            "{row:?}"
+        );
+        assert_ne!(row["x_amplitude"], "", "{dt}: {row:?}");
+    }
 }
 
+/// Every run is judged. RK4 at h = 1 s on the belt (h·ω = 10, past its stability bound of
+/// about 2.8) leaves the belt's reach at t = 2.2 s: it is `diverged` and exits 1, its files
+/// kept up to there. At h = 0.3 s it is `inaccurate` (a quarter of the energy unaccounted
+/// for): exit 0 with a note. In a study, a run whose error is as large as the solution is
+/// `inaccurate`, kept as data, and left out of every fit.
 #[test]
 fn every_run_is_judged_and_a_diverged_run_exits_one() {
     let dir = tempfile::tempdir().unwrap();
-    // `simulate` with `args` into `name`: its output and its summary.
-    let simulate = |name: &str, args: &[&str]| {
-        let out = dir.path().join(name);
-        let mut argv = vec!["simulate"];
-        argv.extend_from_slice(args);
-        argv.extend(["--out", out.to_str().unwrap()]);
-        let o = friction_lab(&argv);
-        let summary: serde_json::Value =
-            serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
-        (o, summary)
-    };
+    let simulate = |name: &str, args: &[&str]| simulated(dir.path(), name, args);
     let cvs = |dt| ["belt", "--model", "CVS", "--solver", "rk4", "--dt", dt];
     // RK4 at h = 1 s: the block leaves the belt's reach (10³ times the largest speed its
     // forces can give it) at t = 2.2 s, where the run stops: `diverged`.
@@ -4173,6 +4196,87 @@ fn a_sweep_ranges_points_read_as_written() {
         column,
         ["0.1", "0.2", "0.3", "0.4", "0.5", "0.6", "0.7", "0.8", "0.9", "1"]
     );
+}
+
+/// The pixel limit counts a figure's whole canvas: `converge` with a fixed-step and an adaptive
+/// solver draws two panels side by side, 200 million pixels at 20x20 in and 500 dpi (each
+/// panel alone within the 100 million checked when the options are read). Refused, exit 2,
+/// naming the figure, and nothing written.
+#[test]
+fn the_pixel_limit_counts_the_whole_canvas() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("big");
+    let o = friction_lab(&[
+        "converge",
+        "belt",
+        "--model",
+        "CVS",
+        "--t-end",
+        "2",
+        "--solvers",
+        "rk4,bdf",
+        "--figure-size",
+        "20x20",
+        "--dpi",
+        "500",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains(
+            "the figure converge.png would be 200 million pixels (its panels and legend at \
+             500 dpi), over the 100 million allowed: a smaller --figure-size or --dpi"
+        ),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!out.exists());
+}
+
+/// A rerun never deletes the user's files: friction-lab's marker lists the files it wrote, and
+/// a folder that now holds others (notes, plots beside the results) is refused, exit 2, naming
+/// them, unless `--replace` says to replace it with them.
+#[test]
+fn a_rerun_into_a_folder_holding_the_users_files_is_refused_unless_replace() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("belt");
+    let run = |extra: &[&str]| {
+        let mut args = vec![
+            "simulate", "belt", "--model", "CVS", "--t-end", "1", "--out",
+        ];
+        args.push(out.to_str().unwrap());
+        args.extend_from_slice(extra);
+        friction_lab(&args)
+    };
+    assert!(run(&[]).status.success());
+    let marker = std::fs::read_to_string(out.join(".friction-lab-output")).unwrap();
+    assert!(marker.lines().any(|l| l == "summary.json"), "{marker}");
+    // A rerun of friction-lab's own folder replaces it.
+    assert!(run(&[]).status.success());
+    std::fs::write(out.join("notes.md"), "my notes").unwrap();
+    std::fs::create_dir(out.join("mine")).unwrap();
+    std::fs::write(out.join("mine").join("plot.png"), "x").unwrap();
+    let o = run(&[]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains(
+            "it now holds files that friction-lab did not write (`mine/plot.png`, `notes.md`), \
+             which replacing the folder would delete"
+        ) && stderr(&o).contains("pass --replace"),
+        "{}",
+        stderr(&o)
+    );
+    assert_eq!(
+        std::fs::read_to_string(out.join("notes.md")).unwrap(),
+        "my notes"
+    );
+    let o = run(&["--replace"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!out.join("notes.md").exists() && out.join("summary.json").exists());
+    // Nothing is left beside the folder: no lock, no temporary folder.
+    let beside: Vec<_> = std::fs::read_dir(dir.path()).unwrap().flatten().collect();
+    assert_eq!(beside.len(), 1, "{beside:?}");
 }
 
 /// One number of a system file set twice, by name and by index or twice alike, by `--set` or

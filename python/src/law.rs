@@ -268,13 +268,19 @@ impl FrictionModel for PyLaw {
                     .object
                     .bind(py)
                     .call_method1(intern!(py, "stick"), (x, zs))?;
-                if let Ok(f) = got.extract::<f64>() {
-                    return Ok(StickInterval {
-                        lower: -f.abs(),
-                        upper: f.abs(),
-                    });
+                let (lower, upper): (f64, f64) = match got.extract::<f64>() {
+                    Ok(f) => (-f.abs(), f.abs()),
+                    Err(_) => got.extract()?,
+                };
+                // NaN compares false with every force: taken as is, it would read "never
+                // sticks" without a word.
+                if lower.is_nan() || upper.is_nan() {
+                    return Err(PyValueError::new_err(format!(
+                        "law `{}`: `stick` returned ({lower}, {upper}) at x = {x}: a bound is \
+                         NaN; return the largest force at rest, or (lower, upper)",
+                        self.name
+                    )));
                 }
-                let (lower, upper): (f64, f64) = got.extract()?;
                 if lower > upper {
                     return Err(PyValueError::new_err(format!(
                         "law `{}`: `stick` returned ({lower}, {upper}): lower above upper",

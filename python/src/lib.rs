@@ -11,6 +11,7 @@
 
 mod bind;
 mod law;
+mod law_interrupt;
 
 use friction_lab::artifacts::Data;
 use friction_lab::columns::Column;
@@ -357,7 +358,10 @@ fn interruptible<T: Send>(
             // where attaching a bare thread would create and destroy one per evaluation
             // (11.8 µs an evaluation of a Coulomb law on the belt instead of 0.6 µs;
             // docs/python.md).
-            let result = Python::attach(|py| py.detach(work));
+            let result = Python::attach(|py| {
+                let _registered = law_interrupt::register(py);
+                py.detach(work)
+            });
             // The receiver outlives the worker: the calling thread waits for it below.
             let _ = done.send(());
             result
@@ -378,6 +382,8 @@ fn interruptible<T: Send>(
                 };
                 if let Err(e) = py.check_signals().and(stopped) {
                     integrators::interrupt::request();
+                    // A law that never returns would never let the solvers see the request.
+                    law_interrupt::raise_in_laws(py);
                     signal = Some(e);
                 }
             }
@@ -388,6 +394,9 @@ fn interruptible<T: Send>(
         let result = py.detach(|| worker.join());
         if let Some(e) = signal {
             integrators::interrupt::clear();
+            law_interrupt::withdraw(py);
+            // The law's KeyboardInterrupt, if one raised it, is this stop's, not the next run's.
+            let _ = law::take_error();
             return Err(e);
         }
         result
@@ -400,7 +409,12 @@ fn interruptible<T: Send>(
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     // The pools' workers, as the run's worker in `interruptible`: attached once, detached at
     // once, so that a law written in Python takes the GIL on a living thread state.
-    friction_lab::threads::set_worker_wrapper(|work| Python::attach(|py| py.detach(work)));
+    friction_lab::threads::set_worker_wrapper(|work| {
+        Python::attach(|py| {
+            let _registered = law_interrupt::register(py);
+            py.detach(work)
+        })
+    });
     // Progress of long work as on the command line: a bar on a terminal, else a heartbeat
     // line on stderr (a notebook's log); Ctrl-C is watched by `interruptible`.
     friction_lab::progress::observe_with(std::sync::Arc::new(terminal::Terminal));

@@ -107,6 +107,46 @@ def test_an_exception_in_a_law_stops_the_run_and_is_raised():
     assert fl.simulate("paper-block", model=Coulomb(6.0), t_end=2.0).summary["status"] == "ok"
 
 
+def test_a_nan_from_stick_is_an_error_not_never_sticks():
+    class NanStick(Coulomb):
+        name = "py-nan-stick"
+
+        def stick(self, x, z):
+            return float("nan")
+
+    with pytest.raises(ValueError, match=r"law `py-nan-stick`: `stick` returned \(NaN, NaN\) "
+                                         r"at x = .*: a bound is NaN"):
+        fl.simulate("belt", model=NanStick(6.0), t_end=2.0)
+
+
+def test_ctrl_c_stops_a_law_that_never_returns():
+    import os
+    import signal
+    import threading
+    import time
+
+    class Stuck(Coulomb):
+        name = "py-stuck"
+
+        def force(self, x, v, s, z):
+            # Loops 20 s at its first call (a bound, so that a failure fails the test
+            # instead of hanging it); Ctrl-C must stop it within its call.
+            if not getattr(self, "looped", False):
+                self.looped = True
+                deadline = time.monotonic() + 20.0
+                while time.monotonic() < deadline:
+                    pass
+            return self.f_c * s
+
+    threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
+    start = time.monotonic()
+    with pytest.raises(KeyboardInterrupt):
+        fl.simulate("belt", model=Stuck(6.0), t_end=2.0)
+    assert time.monotonic() - start < 3.0
+    # Nothing is left pending: the next run is not stopped.
+    assert fl.simulate("belt", model=Coulomb(6.0), t_end=2.0).summary["status"] == "ok"
+
+
 def test_a_law_without_its_methods_or_with_a_catalog_name_is_refused():
     class NoStick:
         name = "py-no-stick"

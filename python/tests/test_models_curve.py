@@ -76,9 +76,10 @@ def test_each_function_takes_the_command_lines_options_as_keywords(cli):
             option = next((w.rstrip(",") for w in words[:2] if w.startswith("--")), None)
             if option:
                 options.add(option[2:].replace("-", "_"))
-        # `--figure-size` and `--dpi` size the figures the command line draws; a function
-        # returns the data in memory, and draws none.
-        options -= {"out", "help", "params", "system", "figure_size", "dpi"}
+        # `--figure-size` and `--dpi` size the figures the command line draws, `--replace`
+        # replaces the folder it writes; a function returns the data in memory, and draws
+        # and writes none.
+        options -= {"out", "help", "params", "system", "figure_size", "dpi", "replace"}
         options = {"params" if o == "set" else o for o in options}
         taken = set(keywords(command)) - {"system"}
         assert taken == options, (command, taken ^ options)

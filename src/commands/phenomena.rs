@@ -4,20 +4,19 @@
 
 use super::Writing;
 use friction_lab::error::AppError;
-use friction_lab::plot::Format;
 use friction_lab::ranges;
 use friction_lab::study::PhenomenaRequest;
 use friction_lab::threads::with_threads;
 use std::time::Instant;
 
 /// Runs `phenomena`: its files written, then the advice and the failure of undecided cells.
-/// `format`: the figures' size and resolution.
-pub fn run(args: &Writing<PhenomenaRequest>, format: Format) -> Result<(), AppError> {
+/// `delivery`: the figures' size and resolution, and `--replace`.
+pub fn run(args: &Writing<PhenomenaRequest>, delivery: crate::Delivery) -> Result<(), AppError> {
     let start = Instant::now();
     let threads = ranges::threads(args.request.threads)?;
     let made = args.request.run(&args.out)?;
     let mut files = made.files;
-    files.set_format(format);
+    delivery.apply(&mut files);
     let written = with_threads(threads, || files.write(&args.out))??;
     println!(
         "{} in {:.1} s",

@@ -5,7 +5,6 @@
 use clap::Args;
 use friction_lab::error::AppError;
 use friction_lab::params::ParamSource;
-use friction_lab::plot::Format;
 use friction_lab::ranges;
 use friction_lab::reproduce::Paper;
 use friction_lab::threads::with_threads;
@@ -29,8 +28,8 @@ pub struct ReproduceArgs {
 }
 
 /// Runs `reproduce`.
-/// `format`: the figures' size and resolution.
-pub fn run(args: &ReproduceArgs, format: Format) -> Result<(), AppError> {
+/// `delivery`: the figures' size and resolution, and `--replace`.
+pub fn run(args: &ReproduceArgs, delivery: crate::Delivery) -> Result<(), AppError> {
     let start = Instant::now();
     let threads = ranges::threads(args.threads)?;
     // Friction parameters only: every rig of the report runs at its own defaults.
@@ -68,7 +67,7 @@ pub fn run(args: &ReproduceArgs, format: Format) -> Result<(), AppError> {
         .report(parts.iter().map(|p| p.as_ref()).collect())
         .conduct(&args.out, threads)?;
     let mut files = made.files;
-    files.set_format(format);
+    delivery.apply(&mut files);
     let written = with_threads(threads, || files.write(&args.out))??;
     println!(
         "{} in {:.2} s",

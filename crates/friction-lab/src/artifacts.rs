@@ -51,6 +51,25 @@ impl Content {
     }
 }
 
+impl Content {
+    /// The pixels its PNG holds while drawn (three bytes each): the whole canvas of a figure
+    /// or a raster picture; 0 for any other file.
+    fn pixels(&self, format: &plot::Format) -> f64 {
+        match self {
+            Content::Png(plots) => plot::png_pixels(plots, format),
+            Content::RasterPng(r) => {
+                let (w, h) = format.pixels(r.size(format));
+                f64::from(w) * f64::from(h)
+            }
+            _ => 0.0,
+        }
+    }
+}
+
+/// The most pixels drawn at once, over every figure drawn in parallel: memory for figures is
+/// bounded by the pixels in flight (about 3.4 bytes each), not by the number of threads.
+pub const PIXELS_IN_FLIGHT: f64 = plot::MAX_PIXELS;
+
 /// A data file as the value it was made from ([`Artifacts::data`]).
 #[derive(Clone, Copy, Debug)]
 pub enum Data<'a> {
@@ -67,6 +86,7 @@ pub enum Data<'a> {
 pub struct Artifacts {
     files: Vec<(PathBuf, Content)>,
     format: plot::Format,
+    replace: bool,
 }
 
 impl Artifacts {
@@ -74,6 +94,13 @@ impl Artifacts {
     /// [`plot::Format::default`]).
     pub fn set_format(&mut self, format: plot::Format) {
         self.format = format;
+    }
+
+    /// Replaces the output folder also where it holds files friction-lab did not write
+    /// (`--replace`: they are deleted with it); without it such a folder is refused
+    /// ([`crate::destination::check`]).
+    pub fn set_replace(&mut self, replace: bool) {
+        self.replace = replace;
     }
 
     /// Adds a file.
@@ -178,7 +205,26 @@ impl Artifacts {
             path: root.to_path_buf(),
             why,
         };
-        crate::destination::check(root)?;
+        crate::destination::check(root, self.replace)?;
+        let format = self.format;
+        // Every PNG's whole canvas within the pixel limit (one panel is checked when the
+        // format is read; panels side by side and a legend below add to it), before anything
+        // is made.
+        for (path, content) in &self.files {
+            let pixels = content.pixels(&format);
+            if pixels > plot::MAX_PIXELS {
+                return Err(AppError::Usage(format!(
+                    "the figure {} would be {:.0} million pixels (its panels and legend at {} \
+                     dpi), over the {:.0} million allowed: a smaller {} or {}",
+                    path.strip_prefix(root).unwrap_or(path).display(),
+                    pixels / 1e6,
+                    format.dpi,
+                    plot::MAX_PIXELS / 1e6,
+                    crate::error::field("figure_size"),
+                    crate::error::field("dpi")
+                )));
+            }
+        }
         let stopped = integrators::interrupt::requested();
         let kept = (stopped && holds_stopped(root) == Some(false)).then(|| root.to_path_buf());
         let folder = match &kept {
@@ -193,20 +239,37 @@ impl Artifacts {
             .tempdir_in(&parent)
             .map_err(|e| refuse(format!("no temporary folder can be made beside it: {e}")))?;
         // Held until the folder is in place: the lock tells other runs it is not stale.
-        let _claim = claim(tmp.path(), stopped)?;
+        let listed: Vec<&Path> = (self.files.iter())
+            .map(|(path, _)| path.strip_prefix(root).unwrap_or(path))
+            .collect();
+        let _claim = claim(tmp.path(), stopped, &listed)?;
         let what = format!("writing into {}", folder.display());
         let progress = Progress::count(self.files.len(), "files drawn", &what);
-        // Figures are drawn here, in parallel, in order; the first error (in file order) wins.
-        let format = self.format;
-        let files: Vec<(PathBuf, Vec<u8>)> = self
-            .files
-            .into_par_iter()
-            .map(|(path, content)| {
-                let rendered = content.render(&path, &format).map(|bytes| (path, bytes));
-                progress.inc();
-                rendered
-            })
-            .collect::<Result<_, _>>()?;
+        // Figures are drawn here, in parallel, in order, in batches of at most
+        // [`PIXELS_IN_FLIGHT`] pixels (one figure at least); the first error (in file order)
+        // wins.
+        let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::with_capacity(self.files.len());
+        let mut pending = self.files.into_iter().peekable();
+        while pending.peek().is_some() {
+            let (mut batch, mut in_flight) = (Vec::new(), 0.0);
+            while let Some((_, content)) = pending.peek() {
+                let pixels = content.pixels(&format);
+                if !batch.is_empty() && in_flight + pixels > PIXELS_IN_FLIGHT {
+                    break;
+                }
+                in_flight += pixels;
+                batch.extend(pending.next());
+            }
+            let drawn: Vec<(PathBuf, Vec<u8>)> = batch
+                .into_par_iter()
+                .map(|(path, content)| {
+                    let rendered = content.render(&path, &format).map(|bytes| (path, bytes));
+                    progress.inc();
+                    rendered
+                })
+                .collect::<Result<_, _>>()?;
+            files.extend(drawn);
+        }
         progress.finish();
         let progress = Progress::count(files.len(), "files written", &what);
         let needed: u64 = files.iter().map(|(_, b)| b.len() as u64).sum();
@@ -354,18 +417,20 @@ fn stopped_beside(root: &Path) -> Result<PathBuf, AppError> {
 const STOPPED_CANDIDATES: usize = 100;
 
 /// The marker's text after its status line.
-const MARKER_TEXT: &str =
-    "This folder was written by friction-lab; the next run into it replaces it whole.\n";
+const MARKER_TEXT: &str = "This folder was written by friction-lab; the next run into it \
+    replaces it whole, unless it then holds files not listed below (--replace replaces those \
+    too).\n";
 
 /// What the marker adds in a folder that holds a partial result.
 const STOPPED_TEXT: &str = "A signal stopped the command that wrote it: it holds what was \
     computed until then, a partial result.\n";
 
 /// Writes the marker (its first line the status: [`COMPLETE_STATUS`], or [`STOPPED_STATUS`]
-/// when `stopped`) into the temporary folder `tmp` and returns it open and locked: the
-/// marker is written under another name, locked, then renamed (the lock stays with the file),
-/// so no other run ever sees the marker unlocked while this one lives.
-fn claim(tmp: &Path, stopped: bool) -> Result<std::fs::File, AppError> {
+/// when `stopped`; then the folder's `files`, one a line after
+/// [`crate::destination::FILES_LINE`]) into the temporary folder `tmp` and returns it open and
+/// locked: the marker is written under another name, locked, then renamed (the lock stays
+/// with the file), so no other run ever sees the marker unlocked while this one lives.
+fn claim(tmp: &Path, stopped: bool, files: &[&Path]) -> Result<std::fs::File, AppError> {
     let (pending, marker) = (tmp.join(CLAIM), tmp.join(MARKER));
     let io = |path: &Path| {
         let path = path.to_path_buf();
@@ -373,11 +438,17 @@ fn claim(tmp: &Path, stopped: bool) -> Result<std::fs::File, AppError> {
     };
     let file = std::fs::File::create(&pending).map_err(io(&pending))?;
     file.lock().map_err(io(&pending))?;
-    let text = if stopped {
+    let mut text = if stopped {
         format!("{STOPPED_STATUS}\n{MARKER_TEXT}{STOPPED_TEXT}")
     } else {
         format!("{COMPLETE_STATUS}\n{MARKER_TEXT}")
     };
+    text.push_str(crate::destination::FILES_LINE);
+    text.push('\n');
+    for file in files {
+        text.push_str(&file.to_string_lossy());
+        text.push('\n');
+    }
     write_file(&pending, text.as_bytes())?;
     std::fs::rename(&pending, &marker).map_err(io(&marker))?;
     Ok(file)

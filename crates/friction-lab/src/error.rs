@@ -154,6 +154,11 @@ impl AppError {
         match self {
             AppError::Invalid(invalid) => invalid.message(spell),
             AppError::Usage(m) | AppError::StudyRun(m) => spell_fields(m, spell),
+            AppError::OutputFolder { path, why } => format!(
+                "output folder {}: {}",
+                path.display(),
+                spell_fields(why, spell)
+            ),
             AppError::ParamFile { path, message } => format!(
                 "parameter file {}: {}",
                 path.display(),

@@ -52,6 +52,8 @@ pub const DT: OptionRange = OptionRange {
     unit: "s",
     range: closed(1e-10, 10.0),
 };
+/// The first step of an adaptive run (`testset --h0`), s: the range of [`DT`].
+pub const H0: OptionRange = OptionRange { name: "h0", ..DT };
 /// θ of time-stepping: 1/2 (trapezoidal) to 1 (implicit Euler); below 1/2 the θ-method is
 /// unstable on an undamped oscillator.
 pub const THETA: OptionRange = OptionRange {

@@ -76,7 +76,7 @@ impl TestSetRequest {
                 Some(atol) => ranges::ATOL.check(atol)?,
                 None => problem.tolerances(rtol).1,
             },
-            h0: self.h0.map(|h| ranges::DT.check(h)).transpose()?,
+            h0: self.h0.map(|h| ranges::H0.check(h)).transpose()?,
             t_end: match self.t_end {
                 Some(t) => ranges::TESTSET_T_END.check(t)?,
                 None => problem.t_end,

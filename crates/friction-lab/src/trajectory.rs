@@ -60,6 +60,59 @@ impl StepDoubling {
     }
 }
 
+/// The columns of a run compared by [`step_doubling`]: times, and x and v point by point
+/// (within a point body by body).
+pub type Columns<'a> = (&'a [f64], &'a [f64], &'a [f64]);
+
+/// The largest difference between `coarse`, a run at a fixed step h, and `fine`, the same run
+/// at h/2, at the times both recorded (the output grid; an event's points are left out where
+/// the other run has none at that time), `width` bodies a point, named `bodies` (`None` for a
+/// rig's one): per quantity (x, v) over the largest |value| of `fine` in it, every body alike.
+/// To leading order it is the error of the run at h (the error of h/2 is 2^−p of it for a
+/// method of order p, so the estimate is within a factor 2^p/(2^p − 1) ≤ 2 of the truth).
+/// `None` where no time is shared or a scale is zero.
+pub fn step_doubling(
+    coarse: Columns,
+    fine: Columns,
+    width: usize,
+    bodies: Option<&[String]>,
+) -> Option<StepDoubling> {
+    let scale = |values: &[f64]| values.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let scales = [("x", scale(fine.1)), ("v", scale(fine.2))];
+    if width == 0 || scales.iter().any(|(_, s)| *s <= 0.0 || s.is_nan()) {
+        return None;
+    }
+    let mut worst: Option<StepDoubling> = None;
+    let mut j = 0;
+    for (k, &t) in coarse.0.iter().enumerate() {
+        while j < fine.0.len() && fine.0[j] < t {
+            j += 1;
+        }
+        if j == fine.0.len() || fine.0[j] != t {
+            continue;
+        }
+        for b in 0..width {
+            let (mine, theirs) = (k * width + b, j * width + b);
+            let pairs = [
+                (coarse.1[mine], fine.1[theirs], scales[0]),
+                (coarse.2[mine], fine.2[theirs], scales[1]),
+            ];
+            for (a, b_value, (quantity, scale)) in pairs {
+                let relative = (a - b_value).abs() / scale;
+                if worst.as_ref().is_none_or(|w| relative > w.relative) {
+                    worst = Some(StepDoubling {
+                        relative,
+                        t,
+                        quantity,
+                        body: bodies.map(|names| names[b].clone()),
+                    });
+                }
+            }
+        }
+    }
+    worst
+}
+
 /// The rows of `trajectory.csv` as columns: point by point, and within a point of a system body
 /// by body (the bodies written, in [`Trajectory::bodies`]' order).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -132,49 +185,18 @@ impl Trajectory {
     }
 
     /// The largest difference between this trajectory, of a fixed step h, and `fine`, the same
-    /// run at h/2, at the times both recorded (the output grid; an event's points are left
-    /// out where the other run has none at that time): per quantity (x, v) over the largest
-    /// |value| of `fine` in it, every body alike. To leading order it is the error of the run
-    /// at h (the error of h/2 is 2^−p of it for a method of order p, so the estimate is within
-    /// a factor 2^p/(2^p − 1) ≤ 2 of the truth). `None` where no time is shared or a scale is
-    /// zero.
+    /// run at h/2 ([`step_doubling`]); `None` where the two have different bodies.
     pub fn doubling_difference(&self, fine: &Trajectory) -> Option<StepDoubling> {
-        let (w, scale) = (self.width(), |values: &[f64]| {
-            values.iter().fold(0.0f64, |m, v| m.max(v.abs()))
-        });
-        let scales = [("x", scale(&fine.x)), ("v", scale(&fine.v))];
-        if w != fine.width() || scales.iter().any(|(_, s)| *s <= 0.0 || s.is_nan()) {
+        if self.width() != fine.width() {
             return None;
         }
-        let mut worst: Option<StepDoubling> = None;
-        let mut j = 0;
-        for (k, &t) in self.t.iter().enumerate() {
-            while j < fine.t.len() && fine.t[j] < t {
-                j += 1;
-            }
-            if j == fine.t.len() || fine.t[j] != t {
-                continue;
-            }
-            for b in 0..w {
-                let (mine, theirs) = (k * w + b, j * w + b);
-                let pairs = [
-                    (self.x[mine], fine.x[theirs], scales[0]),
-                    (self.v[mine], fine.v[theirs], scales[1]),
-                ];
-                for (a, b_value, (quantity, scale)) in pairs {
-                    let relative = (a - b_value).abs() / scale;
-                    if worst.as_ref().is_none_or(|w| relative > w.relative) {
-                        worst = Some(StepDoubling {
-                            relative,
-                            t,
-                            quantity,
-                            body: self.bodies.as_ref().map(|names| names[b].clone()),
-                        });
-                    }
-                }
-            }
-        }
-        worst
+        let names = self.bodies.as_deref();
+        step_doubling(
+            (&self.t, &self.x, &self.v),
+            (&fine.t, &fine.x, &fine.v),
+            self.width(),
+            names,
+        )
     }
 
     /// The number of bodies per point: a system's bodies written, or a rig's one.

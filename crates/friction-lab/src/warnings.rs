@@ -44,9 +44,9 @@ pub fn unresolvable_period_warning(
 ) -> Option<String> {
     let period = period.filter(|&p| lacked_steps(error) && span > MANY_PERIODS * p)?;
     Some(format!(
-        "the run spans {:.1e} of the shortest natural period 2π√(m/k) = {period:.2e} s, too \
-         many to resolve with a few steps each: check the masses and stiffnesses, or shorten \
-         {}",
+        "the run spans {:.1e} of the shortest natural period 2π√(m/(k + kp)) = {period:.2e} s, \
+         too many to resolve with a few steps each: check the masses, the stiffnesses and the \
+         controllers' gains kp, or shorten {}",
         span / period,
         field("t_end"),
     ))

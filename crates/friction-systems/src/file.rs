@@ -203,11 +203,9 @@ struct FileForce {
 #[serde(deny_unknown_fields)]
 struct FileController {
     body: String,
-    #[serde(default)]
+    // Each gain given, 0 for a term not wanted: a gain left out ran as 0 without a word.
     kp: f64,
-    #[serde(default)]
     ki: f64,
-    #[serde(default)]
     kd: f64,
     reference: Reference,
     saturation: Option<f64>,

@@ -336,34 +336,115 @@ impl<'a> FrictionSystem<'a> {
     }
 
     /// The mode contact `j` is in at (t, y): by the sign of v_rel, and at v_rel = 0 by the
-    /// stick law. At a tie, the other forces exactly on the bound of a stick interval of zero
-    /// width (a law continuous at rest, as LuGre's, with no force on the body: every block of
-    /// a chain at t = 0), the direction they are heading decides: the other forces
-    /// [`TIE_LOOKAHEAD`] time scales later, the state held (an anchor driven at a speed, a
-    /// force profile). Without it the tie read as sliding backwards, and a switch to sliding
-    /// forwards followed at t ≈ 1e-17.
+    /// stick law. At a tie (the other forces exactly on the bound of a stick interval of zero
+    /// width), the direction they are heading decides, read [`TIE_LOOKAHEAD`] time scales
+    /// later with the state held, or where that still ties, with the whole system integrated
+    /// over that time (docs/solvers.md, "A tie at rest").
     pub fn mode_at(&self, j: usize, t: f64, y: &[f64]) -> Mode {
+        self.first_mode(j, t, y).unwrap_or_else(|| {
+            let modes = self.first_modes(t, y);
+            self.ties_by_motion(&[j], t, y, &modes)[0]
+        })
+    }
+
+    /// The mode contact `j` is in at (t, y) by the forces there: by the sign of v_rel, and at
+    /// v_rel = 0 by the stick law. At a tie, the other forces exactly on the bound of a stick
+    /// interval of zero width (a law continuous at rest, as LuGre's, with no force on the body:
+    /// every block of a chain at t = 0), the direction they are heading decides: the other
+    /// forces [`TIE_LOOKAHEAD`] time scales later, the state held (an anchor driven at a speed,
+    /// a force profile). `None` where the tie holds even then: the force reaches the body
+    /// only through other bodies, which have yet to move.
+    fn first_mode(&self, j: usize, t: f64, y: &[f64]) -> Option<Mode> {
         let c = &self.system.contacts[j];
         let v_rel = y[self.layout.v(c.body)] - c.surface_velocity;
         match Direction::of(v_rel) {
-            Some(Direction::Positive) => SLIP_POSITIVE,
-            Some(Direction::Negative) => SLIP_NEGATIVE,
+            Some(Direction::Positive) => Some(SLIP_POSITIVE),
+            Some(Direction::Negative) => Some(SLIP_NEGATIVE),
             None => {
                 let s = self.stick_interval(j, y);
                 let mut f = self.other_force(c.body, t, y);
                 if s.upper == s.lower && f == s.upper {
-                    let later = t + TIE_LOOKAHEAD * self.time_scale().unwrap_or(1.0);
-                    f = self.other_force(c.body, later, y);
+                    f = self.other_force(c.body, self.tie_horizon(t), y);
+                    if f == s.upper {
+                        return None;
+                    }
                 }
-                if s.upper > s.lower && s.contains(f) {
+                Some(if s.upper > s.lower && s.contains(f) {
                     STICK
                 } else if f > s.upper {
                     SLIP_POSITIVE
                 } else {
                     SLIP_NEGATIVE
-                }
+                })
             }
         }
+    }
+
+    /// Every contact's [`FrictionSystem::first_mode`] at (t, y), a tie held at rest (stick).
+    fn first_modes(&self, t: f64, y: &[f64]) -> Vec<Mode> {
+        (0..self.system.contacts.len())
+            .map(|k| self.first_mode(k, t, y).unwrap_or(STICK))
+            .collect()
+    }
+
+    /// The time [`TIE_LOOKAHEAD`] time scales after t (seconds without a time scale).
+    fn tie_horizon(&self, t: f64) -> f64 {
+        t + TIE_LOOKAHEAD * self.time_scale().unwrap_or(1.0)
+    }
+
+    /// The modes of the tied contacts `tied` at (t, y), decided by the motion: the whole system
+    /// integrated over [`TIE_LOOKAHEAD`] time scales in `modes` (four RK4 steps), every tied
+    /// contact held at rest, and each decided by the other forces on its body then. So a body
+    /// pushed only through a neighbour that has yet to move (the far one of two masses, the
+    /// near one pulled by a driver) slides the way it will be pushed; it once started sliding
+    /// backwards, and an implicit solver that located the arrival at v = 0 with t ≈ 1e-18 kept
+    /// it so for the whole run. A tie that holds even then slides backwards, as before.
+    fn ties_by_motion(&self, tied: &[usize], t: f64, y: &[f64], modes: &[Mode]) -> Vec<Mode> {
+        let mut held = modes.to_vec();
+        for &j in tied {
+            held[j] = STICK;
+        }
+        let later = self.tie_horizon(t);
+        let ahead = self.advanced(t, y, later - t, &held);
+        tied.iter()
+            .map(|&j| {
+                let s = self.stick_interval(j, &ahead);
+                let f = self.other_force(self.system.contacts[j].body, later, &ahead);
+                if f > s.upper {
+                    SLIP_POSITIVE
+                } else {
+                    SLIP_NEGATIVE
+                }
+            })
+            .collect()
+    }
+
+    /// `y` at `t` integrated over `span` in `modes` by four classical Runge–Kutta steps.
+    fn advanced(&self, t: f64, y: &[f64], span: f64, modes: &[Mode]) -> Vec<f64> {
+        const STEPS: usize = 4;
+        let (n, h) = (y.len(), span / STEPS as f64);
+        let mut y = y.to_vec();
+        let (mut k, mut stage, mut sum) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        for i in 0..STEPS {
+            let t = t + i as f64 * h;
+            sum.fill(0.0);
+            for (c, w) in [(0.0, 1.0), (0.5, 2.0), (0.5, 2.0), (1.0, 1.0)] {
+                for m in 0..n {
+                    stage[m] = y[m] + c * h * k[m];
+                }
+                if c == 0.0 {
+                    stage.copy_from_slice(&y);
+                }
+                self.rhs(t + c * h, &stage, modes, &mut k);
+                for m in 0..n {
+                    sum[m] += w * k[m];
+                }
+            }
+            for m in 0..n {
+                y[m] += h / 6.0 * sum[m];
+            }
+        }
+        y
     }
 
     /// The initial state: every body's x0 and v0, internal states and accumulators zero.
@@ -376,11 +457,21 @@ impl<'a> FrictionSystem<'a> {
         y
     }
 
-    /// The modes of every contact at (t0, y0).
+    /// The modes of every contact at (t0, y0): by the forces, and the ties by the motion (one
+    /// lookahead for them all).
     pub fn initial_modes(&self, t0: f64, y0: &[f64]) -> Vec<Mode> {
-        (0..self.system.contacts.len())
-            .map(|j| self.mode_at(j, t0, y0))
-            .collect()
+        let first: Vec<Option<Mode>> = (0..self.system.contacts.len())
+            .map(|j| self.first_mode(j, t0, y0))
+            .collect();
+        let tied: Vec<usize> = (0..first.len()).filter(|&j| first[j].is_none()).collect();
+        let mut modes: Vec<Mode> = first.iter().map(|m| m.unwrap_or(STICK)).collect();
+        if !tied.is_empty() {
+            let decided = self.ties_by_motion(&tied, t0, y0, &modes);
+            for (&j, m) in tied.iter().zip(decided) {
+                modes[j] = m;
+            }
+        }
+        modes
     }
 
     /// The mode of contact `j` to report: the integrated mode under event switching,
@@ -557,18 +648,29 @@ impl OdeProblem for FrictionSystem<'_> {
                 y[self.layout.v(c.body)] = c.surface_velocity;
             }
         }
+        let mut tied = Vec::new();
         for &index in fired {
             let j = index / 2;
-            modes[j] = if modes[j] == STICK {
+            if modes[j] == STICK {
                 // The needed force has left the stick interval through one of its bounds.
-                if index % 2 == 0 {
+                modes[j] = if index % 2 == 0 {
                     SLIP_POSITIVE
                 } else {
                     SLIP_NEGATIVE
-                }
+                };
             } else {
-                self.mode_at(j, t, y)
-            };
+                match self.first_mode(j, t, y) {
+                    Some(m) => modes[j] = m,
+                    None => tied.push(j),
+                }
+            }
+        }
+        // The ties by the motion, the other contacts in their modes (one lookahead for all).
+        if !tied.is_empty() {
+            let decided = self.ties_by_motion(&tied, t, y, modes);
+            for (&j, m) in tied.iter().zip(decided) {
+                modes[j] = m;
+            }
         }
         Control::Continue
     }

@@ -324,43 +324,55 @@ fn refused(controller: &str) -> String {
 #[test]
 fn a_bad_controller_table_is_refused_naming_its_key() {
     let constant = "reference = { kind = \"constant\", x = 1.0 }\n";
-    let e = refused(&format!("body = \"wall\"\nkp = 3\n{constant}"));
+    let gains = "kp = 3\nki = 0\nkd = 0\n";
+    // A gain left out is refused, not run as 0.
+    let e = refused(&format!("body = \"mass\"\nkp = 3\nkd = 0\n{constant}"));
+    assert!(e.contains("missing field `ki`"), "{e}");
+    let e = refused(&format!("body = \"wall\"\n{gains}{constant}"));
     assert!(
         e.contains("[[controller]] 1: `body` names the anchor \"wall\""),
         "{e}"
     );
-    let e = refused(&format!("body = \"cart\"\nkp = 3\n{constant}"));
+    let e = refused(&format!("body = \"cart\"\n{gains}{constant}"));
     assert!(
         e.contains("`body` names \"cart\", which is no body or anchor"),
         "{e}"
     );
-    let e = refused(&format!("body = \"mass\"\nki = -4\n{constant}"));
+    let e = refused(&format!(
+        "body = \"mass\"\nkp = 3\nki = -4\nkd = 0\n{constant}"
+    ));
     assert!(
         e.contains("[[controller]] 1: `ki` = -4 is out of range: allowed [0, inf)"),
         "{e}"
     );
-    let e = refused(
-        "body = \"mass\"\nreference = { kind = \"table\", t = [0, 2, 1], x = [0, 1, 2] }\n",
-    );
+    let e = refused(&format!(
+        "body = \"mass\"\n{gains}reference = {{ kind = \"table\", t = [0, 2, 1], x = [0, 1, 2] }}\n"
+    ));
     assert!(
         e.contains("`reference.t` does not increase: t = 1 after t = 2"),
         "{e}"
     );
-    let e = refused("body = \"mass\"\nreference = { kind = \"step\", x = 1 }\n");
+    let e = refused(&format!(
+        "body = \"mass\"\n{gains}reference = {{ kind = \"step\", x = 1 }}\n"
+    ));
     assert!(e.contains("unknown variant `step`"), "{e}");
     let e = refused(&format!(
-        "body = \"mass\"\n{constant}compensation = {{ model = \"coulomb2\" }}\n"
+        "body = \"mass\"\n{gains}{constant}compensation = {{ model = \"coulomb2\" }}\n"
     ));
     assert!(
         e.contains("[[controller]] 1: `compensation.model`: unknown model `coulomb2`"),
         "{e}"
     );
-    let e = refused(&format!("body = \"mass\"\nsaturation = 0\n{constant}"));
+    let e = refused(&format!(
+        "body = \"mass\"\n{gains}saturation = 0\n{constant}"
+    ));
     assert!(
         e.contains("`saturation` = 0 is out of range: allowed (0, inf)"),
         "{e}"
     );
-    let twice = format!("body = \"mass\"\n{constant}[[controller]]\nbody = \"mass\"\n{constant}");
+    let twice = format!(
+        "body = \"mass\"\n{gains}{constant}[[controller]]\nbody = \"mass\"\n{gains}{constant}"
+    );
     let e = refused(&twice);
     assert!(
         e.contains("[[controller]] 2: body \"mass\" has a controller already"),
@@ -393,7 +405,7 @@ fn a_controller_table_declares_the_controller_of_code() {
 #[test]
 fn a_controller_gain_is_set_by_its_path() {
     let text = format!(
-        "{MASS}[[controller]]\nbody = \"mass\"\nkp = 3\nreference = {{ kind = \"constant\", x = 1 }}\n"
+        "{MASS}[[controller]]\nbody = \"mass\"\nkp = 3\nki = 0\nkd = 0\nreference = {{ kind = \"constant\", x = 1 }}\n"
     );
     let set = |path: &str, value: f64| {
         friction_systems::file::parse_with(&text, &[(path.to_string(), value)])

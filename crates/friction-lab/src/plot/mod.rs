@@ -13,7 +13,7 @@ mod scaled;
 
 use crate::error::AppError;
 use axes::{common_decimals, fixed, log_ticks, sample_ticks, tick_label, TickForm};
-pub use format::{Format, DESIGN_DPI};
+pub use format::{Format, DESIGN_DPI, MAX_PIXELS};
 use glyphs::Glyphs;
 pub use legend::Corner;
 use legend::{
@@ -214,6 +214,13 @@ fn canvas(plots: &[Plot], format: &Format) -> (u32, u32) {
         .max()
         .unwrap_or(0);
     (widths.iter().sum::<u32>().max(panel.0), panel.1 + below)
+}
+
+/// The pixels of the PNG of `plots` side by side in `format`: its whole canvas, every panel
+/// and a legend below included.
+pub fn png_pixels(plots: &[Plot], format: &Format) -> f64 {
+    let (w, h) = format.pixels(canvas(plots, format));
+    f64::from(w) * f64::from(h)
 }
 
 /// Draws `plots` side by side on `root`, each on a panel of `panel` pixels and its legend's

@@ -52,7 +52,7 @@ impl Raster {
 
     /// The canvas: a one-panel figure of `format` for the cells and their axes, and a strip
     /// on the right for the legend, so that it covers no cell and takes no width from them.
-    pub(super) fn size(&self, format: &Format) -> (u32, u32) {
+    pub fn size(&self, format: &Format) -> (u32, u32) {
         let labels: Vec<&str> = self.shown().iter().map(|e| e.1.as_str()).collect();
         let (w, h) = format.design(1);
         (w + box_pixels(&labels).0.ceil() as u32, h)

@@ -14,7 +14,7 @@ use std::path::Path;
 pub struct Advice {
     /// The scheme it ran under.
     pub scheme: Scheme,
-    /// Its shortest natural period 2π√(m/k), s, where it has one.
+    /// Its shortest natural period 2π√(m/(k + kp)), s, where it has one.
     pub period: Option<f64>,
     /// Advice of its own kind (a chain's spread its law does not read).
     pub own: Option<String>,

@@ -151,7 +151,7 @@ pub struct SimulationRequest {
     /// The span of time the figures draw, T0:T1 in seconds (time histories, phase portraits,
     /// friction plots, space-time pictures, stiffness), and the spectra measure [default: the
     /// whole run; the spectra its last half]. The data files keep every point.
-    #[arg(long, value_name = "T0:T1")]
+    #[arg(long, value_name = "T0:T1", allow_hyphen_values = true)]
     pub window: Option<String>,
     /// The scheme, solver, step control and bounds.
     #[command(flatten)]

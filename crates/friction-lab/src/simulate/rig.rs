@@ -3,7 +3,7 @@
 //! spectrum of the velocity).
 
 use super::delivered::{made_of_record, Advice};
-use super::spectra::{add_spectra, measured_span, Measured};
+use super::spectra::{add_spectra, measured_span, no_spectrum_note, Measured, MIN_SPECTRUM_POINTS};
 use super::stiffness::add_stiffness;
 use crate::artifacts::Artifacts;
 use crate::error::AppError;
@@ -210,7 +210,7 @@ fn even_velocity(rows: &[scenarios::Row], window: Option<Window>) -> Option<Meas
     let (from, to) = measured_span(window, (first, last));
     let inside = rows.iter().filter(|r| (from..=to).contains(&r.t)).count();
     let n = inside.min(scenarios::analysis::spectrum::MAX_SAMPLES);
-    if n < 8 || to <= from {
+    if n < MIN_SPECTRUM_POINTS || to <= from {
         return None;
     }
     let dt = (to - from) / (n - 1) as f64;
@@ -275,7 +275,7 @@ pub fn simulate_rig(
     add_stiffness(&mut files, out, &outcome.stiffness, &name, window)?;
     let spectra = match even_velocity(&outcome.rows, window) {
         Some(measured) => add_spectra(&mut files, out, &measured, &name)?,
-        None => Vec::new(),
+        None => vec![no_spectrum_note(window)],
     };
     let mut parameters = model.parameters_read(&spec.friction);
     for &p in spec.scenario.parameters() {

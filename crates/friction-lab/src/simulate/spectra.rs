@@ -57,6 +57,24 @@ pub fn measured_span(window: Option<Window>, (t0, t1): (f64, f64)) -> (f64, f64)
     window.map_or((t1 - MEASURED * (t1 - t0), t1), |w| (w.from, w.to))
 }
 
+/// The fewest evenly spaced points a spectrum is measured from.
+pub const MIN_SPECTRUM_POINTS: usize = 8;
+
+/// The note of a run whose spectrum is not measured: fewer than [`MIN_SPECTRUM_POINTS`]
+/// recorded points in `window` (or in the last half of the run), and what gives more.
+pub fn no_spectrum_note(window: Option<Window>) -> String {
+    let span = match window {
+        Some(w) => format!("the window {}:{} s", w.from, w.to),
+        None => "the last half of the run".into(),
+    };
+    format!(
+        "no spectrum: {span} holds fewer than {MIN_SPECTRUM_POINTS} output points; widen {} or \
+         record more points ({})",
+        crate::error::field("window"),
+        crate::error::field("points")
+    )
+}
+
 /// The velocities of `bodies` of a system's `run` at its recorded points within `window`,
 /// else over the last half of the run (at most its last [`scenarios::analysis::spectrum::MAX_SAMPLES`]
 /// points; the system records its evenly spaced output grid only); `None` for fewer than
@@ -74,7 +92,7 @@ pub fn system_velocities(
     let end = t.partition_point(|&s| s <= to);
     // A longer span is measured over its last samples (`Spectrum::of`).
     let start = start.max(end.saturating_sub(scenarios::analysis::spectrum::MAX_SAMPLES));
-    if end < start + 8 {
+    if end < start + MIN_SPECTRUM_POINTS {
         return None;
     }
     Some(Measured {

@@ -5,7 +5,7 @@
 use super::delivered::{made_of_record, Advice};
 use super::motion::{add_motion, spread, LINE_BODIES};
 use super::space_time::Sampling;
-use super::spectra::{add_spectra, system_velocities};
+use super::spectra::{add_spectra, no_spectrum_note, system_velocities};
 use super::stiffness::add_stiffness;
 use crate::artifacts::Artifacts;
 use crate::error::AppError;
@@ -236,7 +236,7 @@ pub fn simulate_system(run: SystemRun, out: &Path, record_as: RecordAs) -> Resul
     )?;
     let spectra = match system_velocities(&run, system, &shown, window) {
         Some(measured) => add_spectra(&mut files, out, &measured, &title)?,
-        None => Vec::new(),
+        None => vec![no_spectrum_note(window)],
     };
     let setup = RunSetup {
         system: name.clone(),

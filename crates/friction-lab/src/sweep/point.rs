@@ -2,7 +2,8 @@
 //! settled-state measures ([`scenarios::analysis::settled`]) and regime.
 
 use crate::error::AppError;
-use friction_systems::{simulate, Layout, Scheme, System, STICK};
+use crate::trajectory::step_doubling;
+use friction_systems::{simulate, Layout, Run, Scheme, System, STICK};
 use integrators::{even_grid, Options, Output, Stats, StepControl};
 use scenarios::analysis::closed_loop::ClosedLoop;
 use scenarios::analysis::settled::{spanned, until_settled, Settled, Trace};
@@ -72,6 +73,33 @@ pub struct PointResult {
     pub verdict: Verdict,
 }
 
+/// Body `body` of a system's `run` as a trace: its recorded points and its switches into stick.
+fn body_trace(run: &Run, body: usize) -> Trace {
+    let mut trace = Trace::default();
+    for b in run.body(body) {
+        trace.t.push(b.t);
+        trace.x.push(b.x);
+        trace.v.push(b.v);
+        trace.friction.push(b.friction);
+    }
+    trace.stick_entries = run
+        .contact_events()
+        .iter()
+        .filter(|e| e.body == body && e.to == STICK && e.from != STICK)
+        .map(|e| e.t)
+        .collect();
+    trace
+}
+
+/// The verdict of a point run at a fixed step `h` by step doubling: its `trace` against
+/// `fine`, the same run at h/2 ([`step_doubling`]), `inaccurate` above
+/// [`crate::trajectory::STEP_DOUBLING_INACCURATE`]; `ok` where the run at h/2 stopped.
+fn doubling_verdict(trace: &Trace, fine: Option<&Trace>, h: f64) -> Verdict {
+    let estimate = fine
+        .and_then(|f| step_doubling((&trace.t, &trace.x, &trace.v), (&f.t, &f.x, &f.v), 1, None));
+    Verdict::inaccurate(estimate.and_then(|d| d.reason(h)))
+}
+
 impl PointRun {
     /// Runs the point and measures its settled state over its last fraction `settle`: its span
     /// doubled (the output spacing kept) while the run ends without an error and has not
@@ -95,18 +123,25 @@ impl PointRun {
                     true => spec.params.v_belt,
                     false => 0.0,
                 };
+                let trace = Trace::of_outcome(&o);
                 let verdict = Verdict::of_run(
                     o.error.as_ref(),
                     o.energy.map(|e| e.relative_residual),
                     o.instability.as_ref(),
                 );
-                (
-                    Trace::of_outcome(&o),
-                    o.stats,
-                    verdict,
-                    surface,
-                    closed_loop,
-                )
+                let verdict = match (spec.step, &o.error) {
+                    (StepControl::Fixed { h }, None) => {
+                        let half = RunSpec {
+                            step: StepControl::Fixed { h: h / 2.0 },
+                            ..spanned(spec, factor)
+                        };
+                        let fine = scenarios::run(&half, &mut |_| {})?;
+                        let fine = fine.error.is_none().then(|| Trace::of_outcome(&fine));
+                        verdict.and(doubling_verdict(&trace, fine.as_ref(), h))
+                    }
+                    _ => verdict,
+                };
+                (trace, o.stats, verdict, surface, closed_loop)
             }
             PointRun::System {
                 system,
@@ -121,29 +156,28 @@ impl PointRun {
                 let dim = Layout::of(system).dim();
                 // The output spacing kept, within the numbers a run may record.
                 let points = ((points - 1) * factor as usize + 1).min(RECORD_LIMIT / dim.max(1));
-                let options = grid_options(*step, limits, t_end * f64::from(factor), points);
+                let span = t_end * f64::from(factor);
+                let options = grid_options(*step, limits, span, points);
                 let run = simulate(system, *scheme, options, &mut |_| {})?;
                 let verdict = Verdict::of_run(
                     run.error.as_ref(),
                     run.energy().map(|e| e.relative_residual),
                     run.instability(scheme, *step).as_ref(),
                 );
-                let mut trace = Trace::default();
-                for b in run.body(body) {
-                    trace.t.push(b.t);
-                    trace.x.push(b.x);
-                    trace.v.push(b.v);
-                    trace.friction.push(b.friction);
-                }
-                trace.stick_entries = run
-                    .contact_events()
-                    .iter()
-                    .filter(|e| e.body == body && e.to == STICK && e.from != STICK)
-                    .map(|e| e.t)
-                    .collect();
+                let trace = body_trace(&run, body);
                 let surface = (system.contacts.iter())
                     .find(|c| c.body == body)
                     .map_or(0.0, |c| c.surface_velocity);
+                let verdict = match (*step, &run.error) {
+                    (StepControl::Fixed { h }, None) => {
+                        let half = StepControl::Fixed { h: h / 2.0 };
+                        let options = grid_options(half, limits, span, points);
+                        let fine = simulate(system, *scheme, options, &mut |_| {})?;
+                        let fine = fine.error.is_none().then(|| body_trace(&fine, body));
+                        verdict.and(doubling_verdict(&trace, fine.as_ref(), h))
+                    }
+                    _ => verdict,
+                };
                 (trace, run.solution.stats, verdict, surface, None)
             }
         };
