@@ -147,17 +147,32 @@ pub struct StudyInvocation {
 }
 
 /// The whole command line: [`Cli`]'s commands, and a command for each study in [`STUDIES`]
-/// (built in or registered) with the study's declared options and `--out`.
+/// (built in or registered) with the study's declared options and `--out`; an option's value
+/// may start with a hyphen.
 pub fn command() -> clap::Command {
     use clap::{Args, CommandFactory};
-    (STUDIES.all().into_iter()).fold(Cli::command(), |cli, study| {
-        // `--out` as every command declares it ([`commands::Writing`]), then the study's
-        // options; `about` last: a request's own doc comment would replace it.
-        let out =
-            commands::Writing::<commands::Nothing>::augment_args(clap::Command::new(study.name()));
-        let command = study.declare(out);
-        cli.subcommand(command.about(study.about()).after_help(EXIT_CODES))
-    })
+    (STUDIES.all().into_iter())
+        .fold(Cli::command(), |cli, study| {
+            // `--out` as every command declares it ([`commands::Writing`]), then the study's
+            // options; `about` last: a request's own doc comment would replace it.
+            let out = commands::Writing::<commands::Nothing>::augment_args(clap::Command::new(
+                study.name(),
+            ));
+            let command = study.declare(out);
+            cli.subcommand(command.about(study.about()).after_help(EXIT_CODES))
+        })
+        // An option's value may start with a hyphen, so that `--t-end -1` or `--model -x` reaches
+        // the option's own message (its range, the known names) instead of clap's "unexpected
+        // argument '-1'". Positional arguments keep clap's reading: a mistyped option there is
+        // still told apart, with its nearest spelling.
+        .mut_subcommands(|c| {
+            c.mut_args(
+                |a| match a.is_positional() || !a.get_action().takes_values() {
+                    true => a,
+                    false => a.allow_hyphen_values(true),
+                },
+            )
+        })
 }
 
 /// Parses `words` (the program's name first) as [`command`] does.

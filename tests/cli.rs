@@ -333,7 +333,26 @@ fn bad_parameters_are_rejected_with_name_value_and_range() {
         ),
         (
             &["curve", "SD", "--param-set", "steel"],
-            "unknown parameter set `steel`; known sets: paper, lugre-1995",
+            "option `--param-set` = `steel` is no parameter set: known sets: paper, lugre-1995",
+        ),
+        // A value with a leading hyphen reaches the option's own message, not clap's
+        // "unexpected argument '-1' found".
+        (
+            &["simulate", "belt", "--model", "CS", "--t-end", "-1"],
+            "option `--t-end` = -1 is out of range: allowed [1e-6, 1e6] s",
+        ),
+        (
+            &["simulate", "belt", "--model", "-x"],
+            "invalid value '-x' for '--model <MODEL>': unknown model `-x`",
+        ),
+        (
+            &["compare", "belt", "--model", "CS", "--targets", "1e-3,2"],
+            "option `--targets` has 2: allowed values (0, 1): a relative error of 1 or more has \
+             no correct digit",
+        ),
+        (
+            &["stiffness", "belt", "--model", "CS", "--parameter", "abc"],
+            "option `--parameter`: unknown parameter `abc`; known parameters: m, F_ex, k,",
         ),
         (
             &[
@@ -393,7 +412,7 @@ fn bad_options_and_files_are_rejected() {
     let negative = dir.path().join("negative.toml");
     std::fs::write(&negative, "F_s = -1\n").unwrap();
     let negative_message = format!(
-        "parameter file {}: parameter `F_s` = -1 is out of range",
+        "parameter file {} (--params): parameter `F_s` = -1 is out of range",
         negative.display()
     );
     let unknown = dir.path().join("unknown.toml");
@@ -422,11 +441,11 @@ fn bad_options_and_files_are_rejected() {
         ),
         (
             vec!["curve", "AV", "--params", malformed.to_str().unwrap()],
-            "bad.toml: line 2: ",
+            "bad.toml (--params): line 2: ",
         ),
         (
             vec!["curve", "AV", "--params", twice.to_str().unwrap()],
-            "twice.toml: line 3: duplicate key (`F_s = 8`)",
+            "twice.toml (--params): line 3: duplicate key (`F_s = 8`)",
         ),
         (
             vec!["curve", "AV", "--params", text_value.to_str().unwrap()],
@@ -3354,7 +3373,8 @@ fn a_measure_that_does_not_exist_is_empty_never_zero() {
 /// reach is `diverged`, exit 1. The servo time-stepped at h = 1 s (its controller's force held
 /// over each step) used to reach 7.4e84 m as `ok`, the actuator's work balancing the energy
 /// books; Dormand–Prince at a fixed step of 1 s reached 3.8e70 m as `inaccurate`, exit 0. At
-/// h = 0.5 s the servo's sampled loop does not run away (exit 0). The step-size note takes the
+/// h = 0.5 s the servo's sampled loop is unstable while sliding but ends in each stick phase
+/// (exit 0, `inaccurate` for the step map's multiplier). The step-size note takes the
 /// controller's natural period 2π√(m/kp) too.
 #[test]
 fn a_runaway_is_diverged_whatever_the_scheme() {
@@ -3418,15 +3438,24 @@ fn a_runaway_is_diverged_whatever_the_scheme() {
         "{}",
         stderr(&o)
     );
-    // At h = 0.5 s the sampled loop is stable: no runaway, exit 0, but the hunting cycle at
-    // h/2 differs by more than the solution's scale (step doubling): `inaccurate`, not `ok`.
+    // At h = 0.5 s the sampled loop is unstable while the body slides (the derivative term
+    // held over a step multiplies the velocity by about 1 − h·kd/m = −2), but each stick
+    // phase ends the growth: no runaway, exit 0. The step map's multiplier says so, and step
+    // doubling too: `inaccurate`, not `ok`.
     let (o, s) = simulate("servo-half", &servo("0.5"));
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     assert_eq!(s["status"], "inaccurate", "{s}");
+    let reason = s["reason"].as_str().unwrap();
     assert!(
-        s["reason"].as_str().unwrap().contains("step doubling"),
-        "{s}"
+        reason.contains("the fixed step h = 0.5 s is beyond the sampled loop's stability limit")
+            && reason.contains("step doubling"),
+        "{reason}"
     );
+    let mu = s["instability"]["multiplier_re"].as_f64().unwrap();
+    assert!((-3.0..-1.5).contains(&mu), "{s}");
+    // At h = 0.25 s (1 − h·kd/m = −0.5) the sampled loop is stable.
+    let (_, s) = simulate("servo-quarter", &servo("0.25"));
+    assert!(s["instability"].is_null(), "{s}");
 }
 
 /// A fixed-step run estimates its own error by step doubling (the same run at h/2, compared
@@ -5017,4 +5046,92 @@ fn compare_writes_its_tables_and_refuses_a_scheme_option() {
     ] {
         assert!(out.join(f).exists(), "{f}");
     }
+}
+
+/// `orbit` finds the stick–slip cycle of the belt with the static law (m = 1 kg, k = 100 N/m,
+/// c = 0, v_belt = 0.05 m/s, F_s = 7.5 N, F_c = 6 N) by shooting: its period against the
+/// closed form (a harmonic slip arc about F_c/k turning by 2π − 2·atan(d/u), d = (F_s − F_c)/k,
+/// u = v_belt/ω, and a stick phase 2d/v_belt long), its multipliers {1, 0} (the stick phase
+/// collapses the velocity), its two switches. Options that do not apply are refused; a run
+/// that settles onto no cycle says so, exit 1.
+#[test]
+fn orbit_finds_the_stick_slip_cycle_with_its_closed_form_period_and_multipliers() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("orbit");
+    let o = friction_lab(&[
+        "orbit",
+        "belt",
+        "--model",
+        "static",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("orbit.json")).unwrap()).unwrap();
+    let (omega, d, v_belt) = (10.0_f64, 0.015_f64, 0.05);
+    let u = v_belt / omega;
+    let exact = (2.0 * std::f64::consts::PI - 2.0 * (d / u).atan()) / omega + 2.0 * d / v_belt;
+    let period = summary["period"].as_f64().unwrap();
+    assert!((period - exact).abs() < 1e-9, "{period} vs {exact}");
+    assert!(summary["residual"].as_f64().unwrap() <= 1e-10, "{summary}");
+    let mu = summary["floquet"]["multipliers"].as_array().unwrap();
+    assert_eq!(mu.len(), 2, "{summary}");
+    let modulus = |m: &serde_json::Value| m[0].as_f64().unwrap().hypot(m[1].as_f64().unwrap());
+    assert!((mu[0][0].as_f64().unwrap() - 1.0).abs() < 1e-9, "{summary}");
+    assert!(modulus(&mu[1]) < 1e-9, "{summary}");
+    assert_eq!(summary["floquet"]["stability"], "stable");
+    let switches: Vec<&str> = (summary["segments"].as_array().unwrap().iter())
+        .filter_map(|s| s["ends_with"].as_str())
+        .collect();
+    assert_eq!(switches.len(), 2, "{summary}");
+    assert!(switches.contains(&"v_rel=0"), "{switches:?}");
+    // The orbit sampled closes on itself.
+    let csv = std::fs::read_to_string(out.join("orbit.csv")).unwrap();
+    let rows: Vec<Vec<f64>> = (csv.lines().skip(1))
+        .map(|l| l.split(',').map(|c| c.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.len(), 401);
+    let (first, last) = (&rows[0], &rows[400]);
+    assert!((last[0] - period).abs() < 1e-12, "{last:?}");
+    assert!((first[1] - last[1]).abs() < 1e-9 && (first[2] - last[2]).abs() < 1e-9);
+    // What does not apply is refused; no cycle is a failure that says why.
+    let refused = |args: &[&str], message: &str| {
+        let o = friction_lab(&[args, &["--out", dir.path().join("r").to_str().unwrap()]].concat());
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains(message), "{args:?}: {}", stderr(&o));
+    };
+    refused(
+        &[
+            "orbit",
+            "belt",
+            "--model",
+            "CS",
+            "--scheme",
+            "time-stepping",
+        ],
+        "option `--scheme` does not apply to orbit",
+    );
+    refused(
+        &["orbit", "oscillation", "--model", "CS"],
+        "imposes a motion on its contact: it has no body",
+    );
+    refused(
+        &["orbit", "belt", "--model", "CS", "--samples", "1"],
+        "`--samples` = 1",
+    );
+    let o = friction_lab(&[
+        "orbit",
+        "belt",
+        "--model",
+        "viscous",
+        "--out",
+        dir.path().join("steady").to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("settles onto no cycle with switches"),
+        "{}",
+        stderr(&o)
+    );
 }

@@ -113,6 +113,7 @@ fn a_registered_study_is_a_command_of_the_command_line() {
             "work-precision",
             "stiffness",
             "compare",
+            "orbit",
             "step-counts"
         ]
     );

@@ -24,7 +24,7 @@ from ._sweep import sweep
 
 
 __all__ = ["models", "curve", "simulate", "converge", "independence", "work_precision",
-           "stiffness", "compare", "phenomena", "sweep", "Result", "Study", "Table2", "SolverError"]
+           "stiffness", "compare", "orbit", "phenomena", "sweep", "Result", "Study", "Table2", "SolverError"]
 
 
 def models() -> List[Dict[str, Any]]:
@@ -107,6 +107,16 @@ def compare(scenario: str, *, params: Optional[Dict[str, float]] = None, **optio
     true solution, ``discretisation_error``), ``study.tables["compare-cost"]`` each scheme's
     cost at each target, ``study.tables["compare-epsilon"]`` the model error against ε."""
     return _study("compare", scenario, params, options)
+
+
+def orbit(scenario: str, *, params: Optional[Dict[str, float]] = None, **options: Any) -> Study:
+    """The periodic orbit of a rig's body or a system, by shooting through its switches from the
+    cycle its run settles onto by ``t_end`` (``friction-lab orbit --help``): ``study.runs`` is
+    the orbit sampled (``t``, each body's ``x_NAME`` and ``v_NAME``),
+    ``study.tables["orbit-segments"]`` its segments (modes, the switch that ends each), and
+    ``study.summary`` its ``period``, ``residual``, ``floquet`` (``multipliers`` as (re, im)
+    pairs, the trivial one first; ``stability``) and ``amplitudes``."""
+    return _study("orbit", scenario, params, options)
 
 
 def phenomena(models: Any = None, *, params: Optional[Dict[str, float]] = None,

@@ -25,7 +25,8 @@ use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyList};
 use std::path::Path;
-use std::sync::{mpsc, Mutex};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{mpsc, Arc, Mutex};
 use std::time::Duration;
 
 create_exception!(
@@ -189,7 +190,7 @@ fn simulate(
     stop: Option<Bound<'_, PyAny>>,
 ) -> PyResult<Made> {
     let run = bind::simulation(scenario.as_deref(), system, &options)?;
-    deliver(py, stop.as_ref(), || {
+    deliver(py, stop.as_ref(), move || {
         run.run(Path::new(IN_MEMORY), RecordAs::Values)
     })
 }
@@ -208,7 +209,7 @@ fn sweep(
     stop: Option<Bound<'_, PyAny>>,
 ) -> PyResult<Made> {
     let sweep = bind::sweep(scenario.as_deref(), system, &grid, &options)?;
-    deliver(py, stop.as_ref(), || sweep.run(Path::new(IN_MEMORY)))
+    deliver(py, stop.as_ref(), move || sweep.run(Path::new(IN_MEMORY)))
 }
 
 /// Runs the solver study `function` (`converge`, `independence`, `work_precision`,
@@ -266,7 +267,7 @@ fn keywords(name: &str) -> PyResult<Vec<String>> {
 fn deliver(
     py: Python<'_>,
     stop: Option<&Bound<'_, PyAny>>,
-    work: impl FnOnce() -> Result<friction_lab::made::Made, AppError> + Send,
+    work: impl FnOnce() -> Result<friction_lab::made::Made, AppError> + Send + 'static,
 ) -> PyResult<Made> {
     let made = interruptible(py, stop, work)?;
     // A law written in Python that raised stopped the run: its exception is the answer.
@@ -338,41 +339,79 @@ fn to_python(e: AppError) -> PyErr {
     }
 }
 
+/// How many runs a second Ctrl-C abandoned whose worker has not returned yet (a law blocked in
+/// a call into C): while one lives, the solvers' stop request stays raised, so no new run may
+/// start ([`interruptible`] refuses it).
+static ABANDONED: AtomicUsize = AtomicUsize::new(0);
+
+/// Where a run's worker and its caller meet when either is done: whether the worker has
+/// returned, and whether the caller has left without it.
+#[derive(Default)]
+struct Parting {
+    returned: bool,
+    abandoned: bool,
+}
+
 /// Runs `work` on a worker thread with the GIL released, looking for Ctrl-C on the calling
 /// thread every [`SIGNAL_POLL`]: on `KeyboardInterrupt` (or any exception a signal handler
 /// raises) the solvers are asked to stop, the worker is awaited, and the exception is raised.
 /// `stop` is asked at the same moments; once it returns true (or raises), the solvers stop
-/// likewise and `Cancelled` (or its exception) is raised.
-fn interruptible<T: Send>(
+/// likewise and `Cancelled` (or its exception) is raised. A second Ctrl-C while the worker
+/// finishes abandons it, as on the command line: `KeyboardInterrupt` is raised at once, and
+/// the worker, once its law returns, lowers the stop request itself; until then a new run is
+/// refused ([`ABANDONED`]).
+fn interruptible<T: Send + 'static>(
     py: Python<'_>,
     stop: Option<&Bound<'_, PyAny>>,
-    work: impl FnOnce() -> T + Send,
+    work: impl FnOnce() -> T + Send + 'static,
 ) -> PyResult<T> {
-    std::thread::scope(|scope| {
-        let (done, finished) = mpsc::channel();
-        // Behind a lock only so that the closure handed to `detach` may borrow it.
-        let finished = Mutex::new(finished);
-        let worker = scope.spawn(move || {
-            // Attached once, for the worker's whole run, and detached at once: a law written
-            // in Python then takes the GIL on a thread state that lives as long as the run,
-            // where attaching a bare thread would create and destroy one per evaluation
-            // (11.8 µs an evaluation of a Coulomb law on the belt instead of 0.6 µs;
-            // docs/python.md).
-            let result = Python::attach(|py| {
-                let _registered = law_interrupt::register(py);
-                py.detach(work)
-            });
-            // The receiver outlives the worker: the calling thread waits for it below.
-            let _ = done.send(());
-            result
+    if ABANDONED.load(Ordering::SeqCst) > 0 {
+        return Err(PyRuntimeError::new_err(
+            "a run abandoned by a second Ctrl-C is still finishing: one of its Python laws has \
+             not returned yet (a law blocked in a call into C stops when that call returns); \
+             wait for it, or restart the interpreter",
+        ));
+    }
+    let (done, finished) = mpsc::channel();
+    let parting = Arc::new(Mutex::new(Parting::default()));
+    let worker_parting = Arc::clone(&parting);
+    let worker = std::thread::spawn(move || {
+        // Attached once, for the worker's whole run, and detached at once: a law written in
+        // Python then takes the GIL on a thread state that lives as long as the run, where
+        // attaching a bare thread would create and destroy one per evaluation (11.8 µs an
+        // evaluation of a Coulomb law on the belt instead of 0.6 µs; docs/python.md).
+        let result = Python::attach(|py| {
+            let _registered = law_interrupt::register(py);
+            py.detach(work)
         });
-        let mut signal = None;
-        let wait = || {
-            let finished = finished.lock().unwrap_or_else(|e| e.into_inner());
-            finished.recv_timeout(SIGNAL_POLL)
+        let abandoned = {
+            let mut parting = worker_parting.lock().unwrap_or_else(|e| e.into_inner());
+            parting.returned = true;
+            parting.abandoned
         };
-        while py.detach(wait).is_err() {
-            if signal.is_none() {
+        if abandoned {
+            // The caller has gone: lower what it raised, as it would have.
+            Python::attach(|py| {
+                integrators::interrupt::clear();
+                law_interrupt::withdraw(py);
+                let _ = law::take_error();
+            });
+            ABANDONED.fetch_sub(1, Ordering::SeqCst);
+        }
+        // The caller may have gone: then nobody listens.
+        let _ = done.send(());
+        result
+    });
+    let mut signal = None;
+    // Behind a lock only so that the closure handed to `detach` may borrow it.
+    let finished = Mutex::new(finished);
+    let wait = || {
+        let finished = finished.lock().unwrap_or_else(|e| e.into_inner());
+        finished.recv_timeout(SIGNAL_POLL)
+    };
+    while py.detach(wait).is_err() {
+        match signal {
+            None => {
                 let stopped = match stop.map(|s| s.call0().and_then(|r| r.is_truthy())) {
                     Some(Ok(true)) => Err(Cancelled::new_err(
                         "stopped: the caller cancelled the run (its sweep was interrupted)",
@@ -387,21 +426,30 @@ fn interruptible<T: Send>(
                     signal = Some(e);
                 }
             }
-            if worker.is_finished() {
-                break;
+            Some(_) => {
+                if let Err(second) = py.check_signals() {
+                    let mut parting = parting.lock().unwrap_or_else(|e| e.into_inner());
+                    if !parting.returned {
+                        parting.abandoned = true;
+                        ABANDONED.fetch_add(1, Ordering::SeqCst);
+                        return Err(second);
+                    }
+                }
             }
         }
-        let result = py.detach(|| worker.join());
-        if let Some(e) = signal {
-            integrators::interrupt::clear();
-            law_interrupt::withdraw(py);
-            // The law's KeyboardInterrupt, if one raised it, is this stop's, not the next run's.
-            let _ = law::take_error();
-            return Err(e);
+        if worker.is_finished() {
+            break;
         }
-        result
-            .map_err(|_| PyRuntimeError::new_err("friction-lab panicked (a bug: please report it)"))
-    })
+    }
+    let result = py.detach(|| worker.join());
+    if let Some(e) = signal {
+        integrators::interrupt::clear();
+        law_interrupt::withdraw(py);
+        // The law's KeyboardInterrupt, if one raised it, is this stop's, not the next run's.
+        let _ = law::take_error();
+        return Err(e);
+    }
+    result.map_err(|_| PyRuntimeError::new_err("friction-lab panicked (a bug: please report it)"))
 }
 
 /// The module `friction_lab._native`.

@@ -147,6 +147,37 @@ def test_ctrl_c_stops_a_law_that_never_returns():
     assert fl.simulate("belt", model=Coulomb(6.0), t_end=2.0).summary["status"] == "ok"
 
 
+def test_a_second_ctrl_c_abandons_a_run_whose_law_is_blocked():
+    import os
+    import signal
+    import threading
+    import time
+
+    class Sleeping(Coulomb):
+        name = "py-sleeping"
+
+        def force(self, x, v, s, z):
+            # Blocked 3 s in a call into C at its first call: the first Ctrl-C cannot stop
+            # it before the call returns; the second abandons the run.
+            if not getattr(self, "slept", False):
+                self.slept = True
+                time.sleep(3.0)
+            return self.f_c * s
+
+    for delay in (0.3, 0.6):
+        threading.Timer(delay, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
+    start = time.monotonic()
+    with pytest.raises(KeyboardInterrupt):
+        fl.simulate("belt", model=Sleeping(6.0), t_end=2.0)
+    assert time.monotonic() - start < 1.5
+    # While the abandoned run's law sleeps, a new run would be stopped by its request: refused.
+    with pytest.raises(RuntimeError, match="abandoned by a second Ctrl-C is still finishing"):
+        fl.simulate("belt", model=Coulomb(6.0), t_end=2.0)
+    # Once the law returns, the abandoned run ends and lowers its request.
+    time.sleep(3.5)
+    assert fl.simulate("belt", model=Coulomb(6.0), t_end=2.0).summary["status"] == "ok"
+
+
 def test_a_law_without_its_methods_or_with_a_catalog_name_is_refused():
     class NoStick:
         name = "py-no-stick"

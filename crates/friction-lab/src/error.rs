@@ -33,7 +33,7 @@ pub enum AppError {
     Usage(String),
     /// A parameter file that is not valid TOML or holds something other than numbers (the
     /// options its message names marked, as [`AppError::Usage`]'s).
-    #[error("parameter file {path}: {}", spell_fields(.message, &as_declared))]
+    #[error("parameter file {path} ({}): {}", as_declared("params"), spell_fields(.message, &as_declared))]
     ParamFile {
         /// The file.
         path: PathBuf,
@@ -160,8 +160,9 @@ impl AppError {
                 spell_fields(why, spell)
             ),
             AppError::ParamFile { path, message } => format!(
-                "parameter file {}: {}",
+                "parameter file {} ({}): {}",
                 path.display(),
+                spell("params"),
                 spell_fields(message, spell)
             ),
             other => other.to_string(),
@@ -218,9 +219,9 @@ impl From<ScenarioError> for AppError {
             ScenarioError::Param(p) => AppError::Param(p),
             ScenarioError::System(s) => AppError::System(s),
             ScenarioError::Invalid(m) => AppError::Usage(m),
-            e @ (ScenarioError::Solver { .. } | ScenarioError::RunFailed(_)) => {
-                AppError::StudyRun(e.to_string())
-            }
+            e @ (ScenarioError::Solver { .. }
+            | ScenarioError::RunFailed(_)
+            | ScenarioError::Orbit(_)) => AppError::StudyRun(e.to_string()),
         }
     }
 }

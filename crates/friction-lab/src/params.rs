@@ -147,7 +147,14 @@ impl ParamSource {
         other_names: &[&str],
         mut other: impl FnMut(&str, f64) -> Result<bool, AppError>,
     ) -> Result<FrictionParams, AppError> {
-        let mut friction = FrictionParams::named(self.set_name())?;
+        let mut friction = FrictionParams::named(self.set_name()).map_err(|_| {
+            AppError::Usage(format!(
+                "option `{}` = `{}` is no parameter set: known sets: {}",
+                field("param_set"),
+                self.set_name(),
+                friction_models::params::PARAM_SETS.join(", ")
+            ))
+        })?;
         let mut apply = |name: &str, value: f64| -> Result<(), AppError> {
             if FrictionParams::spec(name).is_some() {
                 return Ok(friction.set(name, value)?);

@@ -143,9 +143,11 @@ pub struct Integrated {
     pub method_switches: Vec<MethodSwitch>,
     /// The stiffness along the run, summarised (rigs; `None` where it is not computed).
     pub stiffness: Option<StiffnessSummary>,
-    /// The decaying mode at the start that an explicit method's fixed step amplifies
-    /// (`lambda_re`, `lambda_im` in 1/s, `h` in s, `amplification` |R(hλ)|), if any: the run
-    /// is then at least `inaccurate`.
+    /// The mode a fixed step makes grow, if any ([`Instability`]): a decaying mode of the
+    /// Jacobian that an explicit method's step amplifies (`lambda_re`, `lambda_im` in 1/s, `h`
+    /// in s, `amplification` |R(hλ)|), or a time-stepped sampled loop's multiplier (`multiplier_re`,
+    /// `multiplier_im`, `abscissa` in 1/s, `h`, `t`, `amplification` |μ|): the run is then at
+    /// least `inaccurate`.
     pub instability: Option<Instability>,
     /// A fixed-step run's error estimated by step doubling ([`StepDoubling`]: `relative`, `t`,
     /// `quantity`, `body`): the run is `inaccurate` above

@@ -12,6 +12,10 @@ use integrators::stability::Instability;
 use integrators::{EventRecord, Failure, Mode, Options, Solution, SolverError, StepControl};
 use std::time::Instant;
 
+/// The most recorded states at which [`Run::instability`] takes a time-stepped run's one-step
+/// map (each costs n + 1 steps and two eigenvalue problems of order n).
+pub const SAMPLED_LOOP_STATES: usize = 200;
+
 /// A switch (or a touch of v_rel = 0 that kept the mode) of one contact.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ContactEvent {
@@ -230,31 +234,59 @@ impl Run<'_> {
         out
     }
 
-    /// The decaying mode that the fixed step of `scheme`'s solver amplifies most over the
-    /// recorded states (each with its modes), if any
-    /// ([`integrators::stability::unstable_mode`]; at most
-    /// [`integrators::stability::CHECK_BUDGET`]` / n³` states, evenly spread, the first
-    /// included); `None` for an adaptive step, for time-stepping, for an implicit method and
-    /// for a method whose stability polynomial is not known.
+    /// The mode that the fixed step amplifies most over the recorded states (each with its
+    /// modes), if any; `None` for an adaptive step, for an implicit method and for a method
+    /// whose stability polynomial is not known.
+    /// - An explicit method: the decaying mode of the Jacobian its step amplifies
+    ///   ([`integrators::stability::unstable_mode`]), at
+    ///   [`integrators::stability::CHECK_BUDGET`]` / n³` states, evenly spread, the first
+    ///   included.
+    /// - Time-stepping of a system with controllers: the growing mode of the scheme's one-step
+    ///   map where the continuous system has none ([`integrators::stability::sampled_loop_mode`]:
+    ///   the controllers' forces, held over each step, close a sampled loop), at
+    ///   [`SAMPLED_LOOP_STATES`] states at most. Without a controller the scheme holds no
+    ///   feedback over a step and is not checked.
     pub fn instability(&self, scheme: &Scheme, step: StepControl) -> Option<Instability> {
-        use integrators::stability::{unstable_mode, CHECK_BUDGET};
-        let (Scheme::EventDriven { solver, .. }, StepControl::Fixed { h }) = (scheme, step) else {
+        use integrators::stability::{sampled_loop_mode, unstable_mode, CHECK_BUDGET};
+        let StepControl::Fixed { h } = step else {
             return None;
         };
-        let r = solver.stability_polynomial()?;
         let s = &self.solution;
         let n = integrators::OdeProblem::dim(&self.problem).max(1);
-        let states = (CHECK_BUDGET / n.pow(3)).clamp(1, s.len().max(1));
-        let at = |k: usize| match s.len() {
-            0 => unstable_mode(&self.problem, self.t0, &self.y0, &self.modes0, h, r),
+        let budget = (CHECK_BUDGET / n.pow(3)).max(1);
+        // The state at the k-th of `states` points evenly spread over the run's record.
+        let at = |k: usize, states: usize| match s.len() {
+            0 => (self.t0, self.y0.as_slice(), self.modes0.as_slice()),
             len => {
                 let i = k * (len - 1) / (states - 1).max(1);
-                unstable_mode(&self.problem, s.t[i], s.y_at(i), s.modes_at(i), h, r)
+                (s.t[i], s.y_at(i), s.modes_at(i))
             }
         };
-        (0..states)
-            .filter_map(at)
-            .max_by(|a, b| a.amplification.total_cmp(&b.amplification))
+        let worst = |found: &mut dyn Iterator<Item = Instability>| {
+            found.max_by(|a, b| a.amplification().total_cmp(&b.amplification()))
+        };
+        match scheme {
+            Scheme::EventDriven { solver, .. } => {
+                let r = solver.stability_polynomial()?;
+                let states = budget.min(s.len().max(1));
+                worst(&mut (0..states).filter_map(|k| {
+                    let (t, y, modes) = at(k, states);
+                    unstable_mode(&self.problem, t, y, modes, h, r)
+                }))
+            }
+            Scheme::TimeStepping { theta } => {
+                if self.problem.system.controllers.is_empty() {
+                    return None;
+                }
+                let scheme = MoreauJean { theta: *theta };
+                let states = budget.min(SAMPLED_LOOP_STATES).min(s.len().max(1));
+                worst(&mut (0..states).filter_map(|k| {
+                    let (t, y, modes) = at(k, states);
+                    let mut map = |y: &[f64]| scheme.step_map(&self.problem, (t, h), y, modes);
+                    sampled_loop_mode(&self.problem, (t, h), y, modes, &mut map)
+                }))
+            }
+        }
     }
 
     /// The stiffness along the run: at recorded points evenly spread (as many as

@@ -191,6 +191,46 @@ fn time_stepping_and_regularisation_break_away_where_event_location_does() {
 }
 
 #[test]
+fn a_sampled_pd_loop_is_unstable_where_its_step_map_has_a_multiplier_beyond_one() {
+    // m·ẍ = kp·(1 − x) − kd·ẋ (m = 1, kp = 3, kd = 6: roots −3 ± √6, both decaying), time-
+    // stepped with the control force held over each step. One step of the θ-method on (x, v):
+    //   v' = v + h·(kp·(1 − x) − kd·v),  x' = x + h·(θ·v' + (1 − θ)·v),
+    // a linear map whose matrix [[1 − θh²kp, h(1 − θh·kd)], [−h·kp, 1 − h·kd]] has the
+    // multipliers of the sampled loop (the error's integral adds a multiplier 1).
+    let c = Controller {
+        ki: 0.0,
+        ..pid(0, Reference::Constant { x: 1.0 })
+    };
+    let system = servo(None, c);
+    let theta = 0.5;
+    let multiplier = |h: f64| {
+        let (a, b) = (1.0 - theta * h * h * KP, h * (1.0 - theta * h * KD));
+        let (c, d) = (-h * KP, 1.0 - h * KD);
+        let (trace, det) = (a + d, a * d - b * c);
+        let root = (trace * trace - 4.0 * det).sqrt();
+        ((trace + root) / 2.0)
+            .abs()
+            .max(((trace - root) / 2.0).abs())
+    };
+    let instability = |h: f64| {
+        let scheme = Scheme::TimeStepping { theta };
+        let run = simulate(&system, scheme, Options::fixed(0.0, 3.0, h), &mut |_| {}).unwrap();
+        run.instability(&scheme, StepControl::Fixed { h })
+    };
+    // h = 0.5: |μ| = 2.136, the loop grows though the continuous one decays.
+    let found = instability(0.5).expect("the sampled loop at h = 0.5 s is unstable");
+    assert!(
+        (found.amplification() - multiplier(0.5)).abs() < 1e-6 && multiplier(0.5) > 2.0,
+        "{found:?}, {}",
+        multiplier(0.5)
+    );
+    assert!(found.to_string().contains("zero-order hold"), "{found}");
+    // h = 0.25: |μ| = 0.55, stable.
+    assert!(multiplier(0.25) < 1.0);
+    assert_eq!(instability(0.25), None);
+}
+
+#[test]
 fn the_jacobian_of_a_controlled_body_matches_central_differences() {
     let reference = Reference::Sinusoid {
         x0: 0.2,

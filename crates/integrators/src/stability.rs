@@ -38,9 +38,41 @@ const SCHUR_ITERATIONS: usize = 10_000;
 /// of a 100-block chain).
 pub const CHECK_BUDGET: usize = 100_000_000;
 
+/// A fixed step that makes a mode grow which the exact flow does not: an explicit method's
+/// step beyond its stability limit ([`unstable_mode`]), or a time-stepping scheme's sampled
+/// loop ([`sampled_loop_mode`]). Either makes a run at least `inaccurate`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(untagged)]
+pub enum Instability {
+    /// A decaying mode of the Jacobian that an explicit method's step amplifies.
+    Explicit(AmplifiedMode),
+    /// A growing mode of a time-stepping scheme's one-step map where the continuous system
+    /// has none.
+    SampledLoop(SampledLoop),
+}
+
+impl Instability {
+    /// The factor the mode grows by each step: |R(hλ)| or |μ|.
+    pub fn amplification(&self) -> f64 {
+        match self {
+            Instability::Explicit(m) => m.amplification,
+            Instability::SampledLoop(m) => m.amplification,
+        }
+    }
+}
+
+impl std::fmt::Display for Instability {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Instability::Explicit(m) => m.fmt(f),
+            Instability::SampledLoop(m) => m.fmt(f),
+        }
+    }
+}
+
 /// A decaying mode that a fixed step amplifies.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct Instability {
+pub struct AmplifiedMode {
     /// The eigenvalue λ of the Jacobian, 1/s: real part.
     pub lambda_re: f64,
     /// Its imaginary part, 1/s.
@@ -53,21 +85,69 @@ pub struct Instability {
     pub amplification: f64,
 }
 
-impl std::fmt::Display for Instability {
+impl std::fmt::Display for AmplifiedMode {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let lambda = match self.lambda_im.abs() {
-            0.0 => format!("{:.4}", self.lambda_re),
-            im => format!("{:.4} ± {:.4}i", self.lambda_re, im),
-        };
         write!(
             f,
             "the fixed step h = {} s is beyond the method's stability limit: |R(hλ)| = {:.3} > 1 \
-             for the decaying mode λ = {lambda} 1/s of the Jacobian at t = {} s (|hλ| = {:.3})",
+             for the decaying mode λ = {} 1/s of the Jacobian at t = {} s (|hλ| = {:.3})",
             self.h,
             self.amplification,
+            complex(self.lambda_re, self.lambda_im),
             self.t,
             self.h * self.lambda_re.hypot(self.lambda_im)
         )
+    }
+}
+
+/// The growth per step of a sampled loop beyond which [`sampled_loop_mode`] calls it unstable:
+/// a multiplier |μ| > 1 + this. Finite differences of a map with a double multiplier 1 (a free
+/// body's position and velocity, a Jordan block) split it by about the square root of their
+/// relative error, 1e-4 at most here.
+pub const SAMPLED_GROWTH_MARGIN: f64 = 1e-3;
+
+/// A mode of a time-stepping scheme's one-step map `y_{k+1} = Φ(y_k)` that grows, |μ| > 1,
+/// where every mode of the continuous system's Jacobian decays or is neutral (Re λ ≤ 0): the
+/// controllers' forces, held over each step (a zero-order hold), close a sampled loop that the
+/// step destabilises.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct SampledLoop {
+    /// The multiplier μ of the one-step map's Jacobian: real part.
+    pub multiplier_re: f64,
+    /// Its imaginary part.
+    pub multiplier_im: f64,
+    /// The largest real part of the continuous Jacobian's eigenvalues, 1/s (≤ 0).
+    pub abscissa: f64,
+    /// The step, s.
+    pub h: f64,
+    /// The time of the state the map is taken at, s.
+    pub t: f64,
+    /// |μ| > 1: the factor the mode grows by each step.
+    pub amplification: f64,
+}
+
+impl std::fmt::Display for SampledLoop {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "the fixed step h = {} s is beyond the sampled loop's stability limit: with each \
+             force held over the step (zero-order hold), the step map at t = {} s has the \
+             multiplier μ = {} (|μ| = {:.3} > 1) where every mode of the continuous system \
+             decays or is neutral (largest Re λ = {:.4} 1/s)",
+            self.h,
+            self.t,
+            complex(self.multiplier_re, self.multiplier_im),
+            self.amplification,
+            self.abscissa
+        )
+    }
+}
+
+/// `re ± im·i` at four decimals, `re` alone where `im` is 0.
+fn complex(re: f64, im: f64) -> String {
+    match im.abs() {
+        0.0 => format!("{re:.4}"),
+        im => format!("{re:.4} ± {im:.4}i"),
     }
 }
 
@@ -84,7 +164,12 @@ pub fn amplification(coefficients: &[f64], re: f64, im: f64) -> f64 {
 /// The Jacobian of `problem` at (t, y) in `modes` over its unknowns other than the quadratures,
 /// with the mass matrix divided out: analytic where the problem gives one, else forward
 /// differences. `None` for a differential–algebraic problem (a zero on the mass diagonal).
-fn jacobian(problem: &dyn OdeProblem, t: f64, y: &[f64], modes: &[Mode]) -> Option<DMatrix<f64>> {
+pub fn jacobian(
+    problem: &dyn OdeProblem,
+    t: f64,
+    y: &[f64],
+    modes: &[Mode],
+) -> Option<DMatrix<f64>> {
     let n = problem.dim() - problem.quadratures();
     let mut j = DMatrix::zeros(n, n);
     let mut entries: Vec<Entry> = Vec::new();
@@ -162,18 +247,8 @@ pub fn exact_spectral_radius(
     y: &[f64],
     modes: &[Mode],
 ) -> Option<f64> {
-    let j = jacobian(problem, t, y, modes)?;
-    if !j.iter().all(|v| v.is_finite()) {
-        return None;
-    }
-    let schur = nalgebra::linalg::Schur::try_new(j, f64::EPSILON, SCHUR_ITERATIONS)?;
-    Some(
-        schur
-            .complex_eigenvalues()
-            .iter()
-            .map(|l| l.re.hypot(l.im))
-            .fold(0.0, f64::max),
-    )
+    let lambdas = eigenvalues(jacobian(problem, t, y, modes)?)?;
+    Some(lambdas.iter().map(|l| l.norm()).fold(0.0, f64::max))
 }
 
 /// The decaying mode of `problem` at (t, y) in `modes` that the fixed step `h` of the explicit
@@ -194,19 +269,13 @@ pub fn unstable_mode(
     if problem.dim() > MAX_CHECKED_DIM {
         return None;
     }
-    let j = jacobian(problem, t, y, modes)?;
-    if !j.iter().all(|v| v.is_finite()) {
-        return None;
-    }
     // A mode is decaying (or neutral) when its real part is not positive beyond round-off of
-    // its size.
+    // its size. The Schur iteration is bounded: a state that has left every scale (a diverged
+    // run) may give a matrix on which it would not converge.
     let decaying = |re: f64, im: f64| re <= 1e-12 * re.hypot(im);
-    // The Schur iteration with a bound: a state that has left every scale (a diverged run)
-    // may give a matrix on which it would not converge.
-    let schur = nalgebra::linalg::Schur::try_new(j, f64::EPSILON, SCHUR_ITERATIONS)?;
-    (schur.complex_eigenvalues().iter())
+    (eigenvalues(jacobian(problem, t, y, modes)?)?.iter())
         .filter(|l| decaying(l.re, l.im))
-        .map(|l| Instability {
+        .map(|l| AmplifiedMode {
             lambda_re: l.re,
             lambda_im: l.im,
             h,
@@ -215,6 +284,83 @@ pub fn unstable_mode(
         })
         .filter(|i| i.amplification > 1.0 + 1e-9)
         .max_by(|a, b| a.amplification.total_cmp(&b.amplification))
+        .map(Instability::Explicit)
+}
+
+/// The growing mode of a fixed-step scheme's one-step map `step` (from (t, y) in `modes` to
+/// the end of a step h) where the continuous system has none, if any: with Φ the forward
+/// difference Jacobian of `step` over the unknowns other than the quadratures and α the
+/// largest real part of the eigenvalues of the continuous Jacobian there, the multiplier μ of
+/// Φ of largest modulus when α ≤ 0 and |μ| > 1 + [`SAMPLED_GROWTH_MARGIN`]. The exact flow
+/// changes each mode by e^{hλ} over a step, at most 1 in modulus when α ≤ 0; a scheme that
+/// holds a force over the step (a controller under zero-order hold) may not. Where the
+/// continuous system has a growing mode (a Stribeck slope's negative damping) nothing is
+/// judged here. `None` also where `step` fails, for a differential–algebraic problem and above
+/// [`MAX_CHECKED_DIM`] unknowns.
+pub fn sampled_loop_mode(
+    problem: &dyn OdeProblem,
+    (t, h): (f64, f64),
+    y: &[f64],
+    modes: &[Mode],
+    step: &mut dyn FnMut(&[f64]) -> Option<Vec<f64>>,
+) -> Option<Instability> {
+    if problem.dim() > MAX_CHECKED_DIM {
+        return None;
+    }
+    let lambdas = eigenvalues(jacobian(problem, t, y, modes)?)?;
+    let radius = lambdas.iter().map(|l| l.norm()).fold(0.0, f64::max);
+    let abscissa = lambdas
+        .iter()
+        .map(|l| l.re)
+        .fold(f64::NEG_INFINITY, f64::max);
+    // Growing beyond round-off of the largest eigenvalue's size.
+    if abscissa > 1e-12 * radius {
+        return None;
+    }
+    let n = problem.dim() - problem.quadratures();
+    let end = step(y)?;
+    let mut map = DMatrix::zeros(n, n);
+    let mut yd = y.to_vec();
+    for c in 0..n {
+        // A relative perturbation, floored where the unknown is near zero: the map is
+        // piecewise linear in a friction system (linear while no contact switches), so the
+        // difference is exact but for the step's own solver tolerance.
+        let delta = FD_STEP * y[c].abs().max(FD_FLOOR);
+        yd[c] = y[c] + delta;
+        let moved = step(&yd)?;
+        yd[c] = y[c];
+        for r in 0..n {
+            map[(r, c)] = (moved[r] - end[r]) / delta;
+        }
+    }
+    let mu = eigenvalues(map)?
+        .into_iter()
+        .max_by(|a, b| a.norm().total_cmp(&b.norm()))?;
+    (mu.norm() > 1.0 + SAMPLED_GROWTH_MARGIN).then_some(Instability::SampledLoop(SampledLoop {
+        multiplier_re: mu.re,
+        multiplier_im: mu.im,
+        abscissa,
+        h,
+        t,
+        amplification: mu.norm(),
+    }))
+}
+
+/// The relative perturbation of [`sampled_loop_mode`]'s forward differences.
+const FD_STEP: f64 = 1e-7;
+
+/// The smallest perturbation of [`sampled_loop_mode`]'s forward differences, in the unknown's
+/// units, over [`FD_STEP`].
+const FD_FLOOR: f64 = 1e-3;
+
+/// The eigenvalues of `j` (Schur, at most [`SCHUR_ITERATIONS`]); `None` for a matrix with a
+/// non-finite entry or on which the iteration does not converge.
+fn eigenvalues(j: DMatrix<f64>) -> Option<Vec<nalgebra::Complex<f64>>> {
+    if !j.iter().all(|v| v.is_finite()) {
+        return None;
+    }
+    let schur = nalgebra::linalg::Schur::try_new(j, f64::EPSILON, SCHUR_ITERATIONS)?;
+    Some(schur.complex_eigenvalues().iter().copied().collect())
 }
 
 #[cfg(test)]

@@ -92,6 +92,13 @@ pub trait StudyCase: Sync + Send {
     /// One run under `scheme` with `step`, measured on the common grid.
     fn measure(&self, scheme: Scheme, step: StepControl) -> Result<Measured, ScenarioError>;
 
+    /// The declared system, where the case integrates bodies (a rig with a body, a system
+    /// file, the chain); `None` for a rig that imposes a motion, and for a case that is no
+    /// system.
+    fn system(&self) -> Result<Option<System>, ScenarioError> {
+        Ok(None)
+    }
+
     /// The exact solution's measures, where one is known, with its formula.
     fn closed_form(&self) -> Option<(String, Measures)> {
         None
@@ -293,6 +300,21 @@ impl StudyCase for Case {
         Ok(Box::new(c))
     }
 
+    /// The rig's system with the case's law, for a rig with a body.
+    fn system(&self) -> Result<Option<System>, ScenarioError> {
+        let law = self.law.build(&self.friction)?;
+        // The system does not depend on how it is integrated.
+        let step = StepControl::Adaptive {
+            rtol: 1e-8,
+            atol: 1e-10,
+            h0: None,
+        };
+        Ok(body_system(
+            &self.spec(Scheme::events(Solver::DOPRI5), step),
+            law,
+        ))
+    }
+
     fn measure(&self, scheme: Scheme, step: StepControl) -> Result<Measured, ScenarioError> {
         let o = run(&self.spec(scheme, step), &mut |_| {})?;
         let grid = integrators::even_grid(0.0, self.t_end, GRID_POINTS);
@@ -442,6 +464,10 @@ impl StudyCase for SystemCase {
             chain: Some(source),
             ..self.clone()
         }))
+    }
+
+    fn system(&self) -> Result<Option<System>, ScenarioError> {
+        Ok(Some(self.system.clone()))
     }
 
     fn measure(&self, scheme: Scheme, step: StepControl) -> Result<Measured, ScenarioError> {

@@ -25,6 +25,9 @@ pub enum ScenarioError {
         /// The solver's error.
         error: SolverError,
     },
+    /// A periodic orbit was not found ([`crate::orbit`]).
+    #[error("the periodic orbit: {0}")]
+    Orbit(#[from] periodic::OrbitError),
     /// A run of a study or of a Table 2 protocol did not give what it is for (it failed, or
     /// ended in a transient that decides nothing); the message names which and why.
     #[error("{0}")]

@@ -19,6 +19,7 @@ pub mod figures;
 pub mod grid;
 pub mod method;
 pub mod motion;
+pub mod orbit;
 pub mod paper;
 pub mod params;
 pub mod phenomena;

@@ -77,7 +77,7 @@ impl Format {
         if !(lo..=hi).contains(&dpi) {
             return Err(bad(
                 "dpi",
-                &dpi.to_string(),
+                &friction_models::params::show(dpi),
                 format!("outside [{lo}, {hi}]"),
             ));
         }
@@ -86,7 +86,7 @@ impl Format {
         if f64::from(w) * f64::from(h) > MAX_PIXELS {
             return Err(bad(
                 "dpi",
-                &dpi.to_string(),
+                &friction_models::params::show(dpi),
                 format!(
                     "a {}x{} in figure would be {w} x {h} pixels, over the {} million allowed",
                     size.0,

@@ -4,7 +4,7 @@
 
 use super::draw::per_solver_series;
 use super::tables::{resolution_cells, runs_table, timing_table};
-use super::{positive_list, Study, StudyFiles};
+use super::{positive_list, target_list, Study, StudyFiles};
 use crate::error::AppError;
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Dash, Marker, Plot, Series, BLUE};
@@ -107,7 +107,7 @@ impl Study for CompareStudy<'_> {
 
     fn check(&self) -> Result<(), AppError> {
         let r = &self.spec.resolutions;
-        positive_list("targets", &self.spec.targets)?;
+        target_list("targets", &self.spec.targets)?;
         if !self.spec.schemes.regularised.is_empty() {
             positive_list("epsilons", &self.spec.schemes.epsilons)?;
         }

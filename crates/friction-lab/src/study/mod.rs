@@ -11,6 +11,7 @@ mod compare;
 mod convergence;
 mod draw;
 mod independence;
+mod orbit;
 mod phenomena;
 mod report;
 mod scaling;
@@ -27,11 +28,12 @@ pub use closed_loop::{ClosedLoopStudy, ClosedLoops, Regulation, Task, Tracking, 
 pub use compare::{compare_lines, figures as compare_figures, CompareStudy};
 pub use convergence::ConvergenceStudy;
 pub use independence::{IndependenceStudy, Refinement};
+pub use orbit::{orbit_lines, OrbitStudy};
 pub use phenomena::PhenomenaRequest;
 pub use report::{conduct_all, Entry, ReportEntry};
 pub use scaling::ScalingStudy;
 pub use solver_studies::{
-    CompareRequest, ConvergeRequest, IndependenceRequest, Problem, StiffnessRequest,
+    CompareRequest, ConvergeRequest, IndependenceRequest, OrbitRequest, Problem, StiffnessRequest,
     WorkPrecisionRequest,
 };
 pub use stick_slip::{
@@ -269,6 +271,21 @@ pub fn check_lists(methods: &[Method], steps: &[f64], tols: &[f64]) -> Result<()
     crate::ranges::DT.list("dt_list", steps)?;
     crate::ranges::RTOL.list("tol_list", tols)?;
     Ok(())
+}
+
+/// Refuses a list of target errors (relative to the solution's scale) with a value outside
+/// (0, 1): a relative error of 1 or more is no correct digit ([`positive_list`] first).
+pub fn target_list(name: &'static str, values: &[f64]) -> Result<(), AppError> {
+    positive_list(name, values)?;
+    match values.iter().find(|v| **v >= 1.0) {
+        Some(v) => Err(AppError::Invalid(crate::error::Invalid {
+            field: name,
+            value: friction_models::params::show(*v),
+            allowed: "values (0, 1): a relative error of 1 or more has no correct digit".into(),
+            list: true,
+        })),
+        None => Ok(()),
+    }
 }
 
 /// A list option of positive finite numbers, not empty.

@@ -3,7 +3,7 @@
 
 use super::draw::row_at_top;
 use super::tables::resolution_cells;
-use super::{check_lists, positive_list, study_file, Study, StudyFiles};
+use super::{check_lists, positive_list, study_file, target_list, Study, StudyFiles};
 use crate::error::AppError;
 use crate::output::{Cell, Table};
 use crate::plot::{Corner, Marker, Plot, Series, PALETTE};
@@ -38,7 +38,7 @@ impl Study for StiffnessStudy<'_> {
     fn check(&self) -> Result<(), AppError> {
         let values = self.sweep.values;
         positive_list("values", values)?;
-        positive_list("target", &[self.sweep.target])?;
+        target_list("target", &[self.sweep.target])?;
         check_lists(self.methods, self.steps, self.tols)?;
         if values.len() > MAX_VALUES {
             return Err(AppError::Invalid(crate::error::Invalid {

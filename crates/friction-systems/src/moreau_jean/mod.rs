@@ -175,6 +175,19 @@ impl MoreauJean {
             .map_err(failed)?
             .solve_observed(observe)
     }
+
+    /// The scheme's one-step map: the state one step h after (t, y) in `modes`, the scheme
+    /// started afresh there (each controller's force held at its value at t); `None` where the
+    /// step's contact problem does not converge.
+    pub fn step_map(
+        &self,
+        problem: &FrictionSystem,
+        (t, h): (f64, f64),
+        y: &[f64],
+        modes: &[Mode],
+    ) -> Option<Vec<f64>> {
+        TimeStepper::one_step(problem, self.theta, (t, h), y, modes).ok()
+    }
 }
 
 /// A step's switches as an event record with the names of event switching: `v_rel=0` for a

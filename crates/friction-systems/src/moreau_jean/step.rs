@@ -271,6 +271,19 @@ impl<'p, 'a> TimeStepper<'p, 'a> {
         );
     }
 
+    /// The state one step h after (t0, y0) in `modes0`, the scheme started afresh there.
+    pub(super) fn one_step(
+        p: &'p FrictionSystem<'a>,
+        theta: f64,
+        (t0, h): (f64, f64),
+        y0: &[f64],
+        modes0: &[Mode],
+    ) -> Result<Vec<f64>, SolverError> {
+        let mut s = TimeStepper::build(p, theta, (t0, h), y0, modes0);
+        s.advance(t0, h, false)?;
+        Ok(s.state.y)
+    }
+
     /// One step from t0 to t0 + h, keeping its start in `y_prev` and `modes_prev` if
     /// `keep_start` (the driver interpolates in it).
     #[inline(never)]

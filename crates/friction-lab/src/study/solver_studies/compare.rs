@@ -19,8 +19,8 @@ pub struct CompareRequest {
     /// The problem (its scheme options are not read: every scheme is compared).
     #[command(flatten)]
     pub problem: Problem,
-    /// The target errors: `grid_relative`, the largest error on the time grid over the
-    /// solution's scale in each quantity (dimensionless).
+    /// The target errors, each in (0, 1): `grid_relative`, the largest error on the time grid
+    /// over the solution's scale in each quantity (dimensionless).
     #[arg(
         long,
         value_delimiter = ',',
@@ -107,23 +107,17 @@ impl CompareRequest {
 
     /// The schemes, resolutions and targets asked for.
     pub fn spec(&self) -> Result<CompareSpec, AppError> {
-        let scheme = &self.problem.scheme;
-        if scheme.switching.is_some() || scheme.is_time_stepping() {
-            let option = match scheme.switching {
-                Some(_) => "switching",
-                None => "scheme",
-            };
-            return Err(AppError::Usage(format!(
-                "option `{}` does not apply to compare: it runs every scheme (choose them with \
-                 {}, {}, {}, {} and {})",
-                field(option),
+        self.problem.refuse_scheme(
+            "compare",
+            &format!(
+                "it runs every scheme (choose them with {}, {}, {}, {} and {})",
                 field("event_solvers"),
                 field("regularized_solvers"),
                 field("no_regularized"),
                 field("no_naive"),
                 field("no_timestepping"),
-            )));
-        }
+            ),
+        )?;
         Ok(CompareSpec {
             schemes: Schemes {
                 event: self.event_solvers.clone(),

@@ -9,6 +9,7 @@ mod compare;
 mod converge;
 mod independence;
 mod named;
+mod orbit;
 mod stiffness;
 mod work_precision;
 
@@ -16,9 +17,10 @@ pub use compare::CompareRequest;
 pub use converge::{ConvergeRequest, CONVERGE_SOLVERS};
 pub use independence::IndependenceRequest;
 pub use named::{
-    Declared, NamedStudy, Runs, StudyRequest, COMPARE, CONVERGE, INDEPENDENCE, STIFFNESS, STUDIES,
-    WORK_PRECISION,
+    Declared, NamedStudy, Runs, StudyRequest, COMPARE, CONVERGE, INDEPENDENCE, ORBIT, STIFFNESS,
+    STUDIES, WORK_PRECISION,
 };
+pub use orbit::OrbitRequest;
 pub use stiffness::{StiffnessRequest, STIFFNESS_SOLVERS};
 pub use work_precision::{
     WorkPrecisionRequest, TESTSET_SOLVERS, TESTSET_TOLERANCES, WP_TOLERANCES,
@@ -239,6 +241,23 @@ impl Problem {
             .scheme
             .schemes(&solvers, setup.epsilon, DEFAULT_THETA)?;
         Ok(Method::studied(&schemes))
+    }
+
+    /// Refuses `--scheme` and `--switching` for the study `study`, which chooses its schemes
+    /// itself (`how`: how it does).
+    fn refuse_scheme(&self, study: &str, how: &str) -> Result<(), AppError> {
+        let scheme = &self.scheme;
+        if scheme.switching.is_none() && !scheme.is_time_stepping() {
+            return Ok(());
+        }
+        let option = match scheme.switching {
+            Some(_) => "switching",
+            None => "scheme",
+        };
+        Err(AppError::Usage(format!(
+            "option `{}` does not apply to {study}: {how}",
+            field(option)
+        )))
     }
 
     /// Sets up the case, runs `study` (which returns its lines for the terminal), and keeps

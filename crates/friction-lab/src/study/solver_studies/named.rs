@@ -5,7 +5,8 @@
 //! declaration.
 
 use super::{
-    CompareRequest, ConvergeRequest, IndependenceRequest, StiffnessRequest, WorkPrecisionRequest,
+    CompareRequest, ConvergeRequest, IndependenceRequest, OrbitRequest, StiffnessRequest,
+    WorkPrecisionRequest,
 };
 use crate::error::AppError;
 use crate::made::Made;
@@ -116,6 +117,13 @@ pub static COMPARE: Declared<CompareRequest> = Declared::new(
      nonsmooth solution: the cost of each at target errors",
 );
 
+/// `orbit`.
+pub static ORBIT: Declared<OrbitRequest> = Declared::new(
+    "orbit",
+    "The periodic orbit of a rig or a system by shooting through its switches: period, \
+     segments, Floquet multipliers and stability",
+);
+
 registry::handle!(
     /// A study a front end names: a [`StudyRequest`], built in or a user's own.
     NamedStudy => dyn StudyRequest, STUDIES
@@ -127,13 +135,14 @@ pub static STUDIES: registry::Registry<NamedStudy> =
     registry::Registry::new("study", "studies", &NamedStudy::ALL);
 
 impl NamedStudy {
-    /// The five solver studies, in the order the command line lists them.
-    pub const ALL: [NamedStudy; 5] = [
+    /// The built-in studies, in the order the command line lists them.
+    pub const ALL: [NamedStudy; 6] = [
         NamedStudy::built_in(&CONVERGE),
         NamedStudy::built_in(&INDEPENDENCE),
         NamedStudy::built_in(&WORK_PRECISION),
         NamedStudy::built_in(&STIFFNESS),
         NamedStudy::built_in(&COMPARE),
+        NamedStudy::built_in(&ORBIT),
     ];
 }
 
@@ -156,5 +165,6 @@ runs!(
     IndependenceRequest,
     WorkPrecisionRequest,
     StiffnessRequest,
-    CompareRequest
+    CompareRequest,
+    OrbitRequest
 );

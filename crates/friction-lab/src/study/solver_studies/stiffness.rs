@@ -52,8 +52,8 @@ pub struct StiffnessRequest {
         )
     )]
     pub solvers: Vec<Solver>,
-    /// The error to reach: `grid_relative`, the largest error on the time grid over the
-    /// solution's scale in each quantity (dimensionless).
+    /// The error to reach, in (0, 1): `grid_relative`, the largest error on the time grid over
+    /// the solution's scale in each quantity (dimensionless).
     #[arg(
         long,
         value_name = "E",
@@ -128,6 +128,22 @@ impl StiffnessRequest {
                     crate::error::field("switching"),
                     Method::treatment_name(&methods)
                 )));
+            }
+            // The swept parameter named where the case refuses it, before any run (a value out
+            // of every range is left to `--values`' own check; `epsilon`, the methods' width,
+            // is swept on the methods, not on the case).
+            let first = (self.values.first())
+                .filter(|v| v.is_finite() && **v > 0.0 && self.parameter != "epsilon");
+            if let Some(&first) = first {
+                setup
+                    .case
+                    .with_parameter(&self.parameter, first)
+                    .map_err(|e| {
+                        AppError::Usage(format!(
+                            "option `{}`: {e}",
+                            crate::error::field("parameter")
+                        ))
+                    })?;
             }
             let sweep = studies::Sweep {
                 parameter: &self.parameter,

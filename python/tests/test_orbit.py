@@ -1,0 +1,17 @@
+"""The periodic orbit from Python: the same study as ``friction-lab orbit``."""
+import math
+
+import friction_lab as fl
+
+
+def test_the_belts_stick_slip_orbit_has_its_closed_form_period():
+    # m = 1 kg, k = 100 N/m, v_belt = 0.05 m/s, F_s = 7.5 N, F_c = 6 N (the static law).
+    omega, d, v_belt = 10.0, 0.015, 0.05
+    exact = (2 * math.pi - 2 * math.atan(d / (v_belt / omega))) / omega + 2 * d / v_belt
+    study = fl.orbit("belt", model="static", samples=101)
+    assert abs(study.summary["period"] - exact) < 1e-9
+    trivial, collapsed = study.summary["floquet"]["multipliers"]
+    assert abs(trivial[0] - 1) < 1e-9 and math.hypot(*collapsed) < 1e-9
+    assert list(study.runs.columns) == ["t", "x_body", "v_body"]
+    assert len(study.runs) == 101
+    assert set(study.tables["orbit-segments"]["ends_with"].dropna()) == {"v_rel=0", "break-away-"}
