@@ -5095,6 +5095,35 @@ fn orbit_finds_the_stick_slip_cycle_with_its_closed_form_period_and_multipliers(
     let (first, last) = (&rows[0], &rows[400]);
     assert!((last[0] - period).abs() < 1e-12, "{last:?}");
     assert!((first[1] - last[1]).abs() < 1e-9 && (first[2] - last[2]).abs() < 1e-9);
+    // The servo's hunting cycle with the static law: the orbit's period against the cycle its
+    // 200 s run settled onto (a multiplier of 7.9e-3 a cycle: settled to rounding within a few
+    // of its 38.2 s cycles), two stick phases a cycle, stable.
+    let servo = dir.path().join("servo");
+    let o = friction_lab(&[
+        "orbit",
+        "servo",
+        "--model",
+        "static",
+        "--t-end",
+        "200",
+        "--out",
+        servo.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let hunting: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(servo.join("orbit.json")).unwrap()).unwrap();
+    let (period, settled) = (
+        hunting["period"].as_f64().unwrap(),
+        hunting["guessed_period"].as_f64().unwrap(),
+    );
+    assert!((period - 38.2413).abs() < 1e-3, "{hunting}");
+    assert!(
+        (period - settled).abs() < 1e-6 * period,
+        "{period} vs {settled}"
+    );
+    let mu = hunting["floquet"]["multipliers"].as_array().unwrap();
+    assert!((modulus(&mu[1]) - 7.85e-3).abs() < 1e-4, "{hunting}");
+    assert_eq!(hunting["floquet"]["stability"], "stable");
     // What does not apply is refused; no cycle is a failure that says why.
     let refused = |args: &[&str], message: &str| {
         let o = friction_lab(&[args, &["--out", dir.path().join("r").to_str().unwrap()]].concat());
@@ -5134,4 +5163,130 @@ fn orbit_finds_the_stick_slip_cycle_with_its_closed_form_period_and_multipliers(
         "{}",
         stderr(&o)
     );
+}
+
+/// `continue` follows the belt's branches over v_belt. With the static law (c = 0) every cycle's
+/// period is the closed form of `orbit`'s test at its own v_belt. With CVS the steady sliding
+/// loses stability where the damping c + F'(v_belt) crosses zero (c = 0: where the Stribeck
+/// drop's slope and the viscous term cancel, found here by bisection on the law's own ∂F/∂v):
+/// the Hopf point, to 1e-8; its stick–slip cycle's branch ends where the stick phase vanishes.
+#[test]
+fn continue_follows_the_belts_cycles_and_finds_the_hopf_point_of_steady_sliding() {
+    use friction_models::{Direction, FrictionParams, ModelId, SignLaw, Variant};
+    let dir = tempfile::tempdir().unwrap();
+    let run = |model: &str, range: &str| {
+        let out = dir.path().join(model);
+        let o = friction_lab(&[
+            "continue",
+            "belt",
+            "--model",
+            model,
+            "--parameter",
+            "v_belt",
+            "--range",
+            range,
+            "--at",
+            "0.5",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let read = |file: &str| -> Vec<Vec<String>> {
+            (std::fs::read_to_string(out.join(file)).unwrap().lines())
+                .map(|l| l.split(',').map(str::to_string).collect())
+                .collect()
+        };
+        (read("branch.csv"), read("special_points.csv"))
+    };
+    let (rows, _) = run("static", "0.02:0.5");
+    assert_eq!(
+        rows[0][..5],
+        ["kind", "v_belt", "at", "period", "amplitude"]
+    );
+    let cycles: Vec<&Vec<String>> = rows.iter().filter(|r| r[0] == "cycle").collect();
+    assert!(cycles.len() >= 5, "{rows:?}");
+    let (omega, d) = (10.0_f64, 0.015_f64);
+    for r in &cycles {
+        let v_belt: f64 = r[1].parse().unwrap();
+        let exact = (2.0 * std::f64::consts::PI - 2.0 * (d * omega / v_belt).atan()) / omega
+            + 2.0 * d / v_belt;
+        let period: f64 = r[3].parse().unwrap();
+        assert!(
+            (period - exact).abs() < 1e-8,
+            "{v_belt}: {period} vs {exact}"
+        );
+        assert_eq!(r[7], "stick slip- stick", "{r:?}");
+    }
+    // CVS: the Hopf point where F'(v_belt) = 0 (the belt has no damper).
+    let law = ModelId::Cvs
+        .build(Variant::Odd, &FrictionParams::paper())
+        .unwrap();
+    let slope = |v: f64| law_slope(&*law, v, SignLaw::Frozen(Direction::Positive));
+    let (mut lo, mut hi) = (0.15, 0.3);
+    assert!(slope(lo) < 0.0 && slope(hi) > 0.0);
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if slope(mid) < 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let (rows, special) = run("CVS", "0.02:3");
+    let hopf: Vec<f64> = (special.iter())
+        .filter(|r| r[0] == "hopf")
+        .map(|r| r[2].parse().unwrap())
+        .collect();
+    assert_eq!(hopf.len(), 1, "{special:?}");
+    assert!((hopf[0] - lo).abs() < 1e-8, "Hopf at {} vs {lo}", hopf[0]);
+    // The stick–slip branch ends where its stick phase vanishes (a grazing–sliding
+    // bifurcation), at 0.8186 m/s: steady sliding and stick–slip coexist in between.
+    let ends: Vec<f64> = (special.iter())
+        .filter(|r| r[0] == "segments-change" && r[1] == "cycle")
+        .map(|r| r[2].parse().unwrap())
+        .collect();
+    assert!(
+        ends.len() == 1 && (ends[0] - 0.8186).abs() < 1e-3,
+        "{special:?}"
+    );
+    // Unstable below it, stable above.
+    for r in rows.iter().filter(|r| r[0] == "equilibrium") {
+        let v: f64 = r[1].parse().unwrap();
+        if (v - lo).abs() > 1e-3 {
+            assert_eq!(r[6], (v > lo).to_string(), "{r:?}");
+        }
+    }
+    // The row asked for at v_belt = 0.5 is the orbit `orbit` finds there from its own run.
+    let at: Vec<&Vec<String>> = (rows.iter())
+        .filter(|r| r[0] == "cycle" && r[2] == "true")
+        .collect();
+    assert!(at.len() == 1 && at[0][1] == "0.5", "{at:?}");
+    let out = dir.path().join("orbit-0.5");
+    let o = friction_lab(&[
+        "orbit",
+        "belt",
+        "--model",
+        "CVS",
+        "--set",
+        "v_belt=0.5",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let orbit: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("orbit.json")).unwrap()).unwrap();
+    let period: f64 = at[0][3].parse().unwrap();
+    assert!(
+        (period - orbit["period"].as_f64().unwrap()).abs() < 1e-9,
+        "{period} vs {orbit}"
+    );
+}
+
+/// ∂F/∂v of `law` at v under the sign law `sign`.
+fn law_slope(
+    law: &dyn friction_models::FrictionModel,
+    v: f64,
+    sign: friction_models::SignLaw,
+) -> f64 {
+    law.partials(0.0, v, &[], sign, &mut []).force_dv
 }

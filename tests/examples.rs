@@ -114,6 +114,7 @@ fn a_registered_study_is_a_command_of_the_command_line() {
             "stiffness",
             "compare",
             "orbit",
+            "continue",
             "step-counts"
         ]
     );

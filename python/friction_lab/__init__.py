@@ -24,7 +24,7 @@ from ._sweep import sweep
 
 
 __all__ = ["models", "curve", "simulate", "converge", "independence", "work_precision",
-           "stiffness", "compare", "orbit", "phenomena", "sweep", "Result", "Study", "Table2", "SolverError"]
+           "stiffness", "compare", "orbit", "continuation", "phenomena", "sweep", "Result", "Study", "Table2", "SolverError"]
 
 
 def models() -> List[Dict[str, Any]]:
@@ -68,12 +68,12 @@ def simulate(scenario: Optional[str] = None, *, system: Any = None,
 
 
 def _study(command: str, scenario: str, params: Optional[Dict[str, float]],
-           options: Dict[str, Any]) -> Study:
+           options: Dict[str, Any], main: Optional[str] = None) -> Study:
     _name(command, scenario)
     system = options.pop("system", None)
     given = values(command, params=params, **options)
     made = call(command, scenario, system_value(system), given)
-    study = Study(made, command)
+    study = Study(made, command, main)
     if made.failure is not None:
         # Written and failed (an independence level): the study keeps what finished.
         raise SolverError(made.failure, study)
@@ -117,6 +117,16 @@ def orbit(scenario: str, *, params: Optional[Dict[str, float]] = None, **options
     ``study.summary`` its ``period``, ``residual``, ``floquet`` (``multipliers`` as (re, im)
     pairs, the trivial one first; ``stability``) and ``amplitudes``."""
     return _study("orbit", scenario, params, options)
+
+
+def continuation(scenario: str, *, params: Optional[Dict[str, float]] = None,
+                 **options: Any) -> Study:
+    """The branches of equilibria and periodic orbits over one parameter, by pseudo-arclength
+    continuation (``friction-lab continue --help``; ``parameter="v_belt"``, ``range="0.02:0.5"``):
+    ``study.runs`` is ``branch.csv`` (``kind``, the parameter under its name, ``period``,
+    ``amplitude``, ``spectrum``, ``stable``, ``segments``), ``study.tables["special_points"]``
+    the folds, Hopf points, period doublings and segment changes."""
+    return _study("continue", scenario, params, options, main="branch")
 
 
 def phenomena(models: Any = None, *, params: Optional[Dict[str, float]] = None,

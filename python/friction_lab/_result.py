@@ -72,17 +72,17 @@ class Result:
 
 class Study:
     """The files of a study (``converge``, ``independence``, ``work_precision``,
-    ``stiffness``, ``compare``, ``orbit``): ``tables`` maps each CSV's stem to a DataFrame, ``summary`` is the
+    ``stiffness``, ``compare``, ``orbit``, ``continue``): ``tables`` maps each CSV's stem to a DataFrame, ``summary`` is the
     study's JSON, ``notes`` the lines the command line prints (orders, verdicts)."""
 
-    def __init__(self, made: Made, stem: str):
+    def __init__(self, made: Made, stem: str, main: Optional[str] = None):
         self.tables: Dict[str, pd.DataFrame] = {
             name[: -len(".csv")]: made.table(name) for name in made.files if name.endswith(".csv")
         }
         self.summary: Any = made.json(f"{stem}.json")
         self.notes: List[str] = made.notes
-        #: The study's main table: one row per run.
-        self.runs: pd.DataFrame = self.tables[stem]
+        #: The study's main table: one row per run (``continue``: one per point of a branch).
+        self.runs: pd.DataFrame = self.tables[main or stem]
 
     def __repr__(self) -> str:
         return f"<friction_lab.Study: {', '.join(self.tables)}>"

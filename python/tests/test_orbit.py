@@ -15,3 +15,16 @@ def test_the_belts_stick_slip_orbit_has_its_closed_form_period():
     assert list(study.runs.columns) == ["t", "x_body", "v_body"]
     assert len(study.runs) == 101
     assert set(study.tables["orbit-segments"]["ends_with"].dropna()) == {"v_rel=0", "break-away-"}
+
+
+def test_continuation_finds_the_hopf_point_of_steady_sliding_on_a_stribeck_belt():
+    study = fl.continuation("belt", model="CVS", parameter="v_belt", range="0.02:0.5")
+    special = study.tables["special_points"]
+    hopf = special[special["kind"] == "hopf"]["v_belt"]
+    assert len(hopf) == 1 and 0.2 < hopf.iloc[0] < 0.25
+    kinds = set(study.runs["kind"])
+    assert kinds == {"equilibrium", "cycle"}
+    # The stick-slip cycles are stable all along; steady sliding only beyond the Hopf point.
+    cycles = study.runs[study.runs["kind"] == "cycle"]
+    assert cycles["stable"].all()
+    assert (cycles["segments"] == "stick slip- stick").all()

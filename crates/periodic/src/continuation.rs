@@ -192,6 +192,10 @@ fn cycle_eval(
     out.ok_or_else(|| OrbitError::Unsupported("the family gave no problem".into()))
 }
 
+/// A segment shorter than this fraction of the period where the corrector fails is taken as
+/// vanishing: the branch's mode sequence ends there.
+pub const VANISHING_SEGMENT: f64 = 0.02;
+
 /// The relative step of the central differences in p.
 const P_STEP: f64 = 1e-6;
 
@@ -272,10 +276,25 @@ pub fn continue_cycles(
             }
         };
         let Some((u, iterations)) = corrected else {
-            ended = format!(
-                "the corrector failed at the smallest step {} near p = {}",
-                options.min_step, last.p
-            );
+            // A segment about to vanish: the mode sequence the branch is followed in ends.
+            let shortest = shortest_phase(&last.flow);
+            if shortest < VANISHING_SEGMENT * last.period {
+                special.push(SpecialPoint {
+                    kind: SpecialKind::SegmentsChange,
+                    p: last.p,
+                    between: (points.len() - 1, points.len() - 1),
+                });
+                ended = format!(
+                    "a segment shrinks to zero length near p = {} ({} s of a {} s period): the \
+                     cycle leaves its mode sequence there (a grazing or sliding bifurcation)",
+                    last.p, shortest, last.period
+                );
+            } else {
+                ended = format!(
+                    "the corrector failed at the smallest step {} near p = {}",
+                    options.min_step, last.p
+                );
+            }
             break;
         };
         let (y, t, p) = unpack(&u, &last.y0);
@@ -435,6 +454,18 @@ fn correct_cycle(
 /// The most Newton iterations of one corrector step (a step that needs more is halved).
 const CORRECTOR_ITERATIONS: usize = 8;
 
+/// The shortest phase of a cycle's flow: its segments' durations, the last joined to the first
+/// where the section cuts one phase in two (the same modes at both ends).
+fn shortest_phase(flow: &HybridFlow) -> f64 {
+    let s = &flow.segments;
+    let mut d: Vec<f64> = s.iter().map(|s| s.t1 - s.t0).collect();
+    if s.len() > 1 && s[0].modes == s[s.len() - 1].modes {
+        let last = d.pop().unwrap_or(0.0);
+        d[0] += last;
+    }
+    d.into_iter().fold(f64::INFINITY, f64::min)
+}
+
 /// The parameter at the vertex of the parabola through (s_i, p_i): where a branch that turned
 /// back in p turned.
 fn fold_vertex(s: [f64; 3], p: [f64; 3]) -> f64 {
@@ -448,6 +479,30 @@ fn fold_vertex(s: [f64; 3], p: [f64; 3]) -> f64 {
     // p'(s) = d1 + d2·(2s − s0 − s1) = 0.
     let vertex = 0.5 * (s[0] + s[1] - d1 / d2);
     p[0] + d1 * (vertex - s[0]) + d2 * (vertex - s[0]) * (vertex - s[1])
+}
+
+/// The periodic orbit of `family` at p near the guess (y, modes, T), by Newton at fixed p
+/// ([`crate::find_orbit`]), as a point of a branch.
+pub fn cycle_at(
+    family: &dyn Family,
+    p: f64,
+    (y, modes, period): (&[f64], &[Mode], f64),
+    options: &ShootingOptions,
+) -> Result<CyclePoint, OrbitError> {
+    let mut out = None;
+    family.with_problem(p, &mut |problem| {
+        let orbit = crate::find_orbit(problem, 0.0, (y, modes, period), options)?;
+        out = Some(CyclePoint {
+            p,
+            period: orbit.period,
+            y0: orbit.y0,
+            flow: orbit.flow,
+            floquet: orbit.floquet,
+            iterations: orbit.iterations,
+        });
+        Ok(())
+    })?;
+    out.ok_or_else(|| OrbitError::Unsupported("the family gave no problem".into()))
 }
 
 /// The special points between two consecutive cycle points `a` and `b` (b the `k`-th); `turn`
@@ -553,7 +608,7 @@ fn decays(eigenvalues: &[(f64, f64)]) -> bool {
 
 /// The equilibrium of `family` at p near `y` in `modes` by Newton at fixed p, and its
 /// eigenvalues.
-fn equilibrium_at(
+pub fn equilibrium_at(
     family: &dyn Family,
     p: f64,
     y: &[f64],

@@ -21,10 +21,11 @@ pub struct FlowOptions {
 }
 
 impl Default for FlowOptions {
-    /// Dormand–Prince at rtol = 1e-12, atol = 1e-14: the sensitivities to about 1e-11.
+    /// `auto` (Dormand–Prince, switched to Radau IIA where it finds the problem stiff) at
+    /// rtol = 1e-12, atol = 1e-14: the sensitivities to about 1e-11.
     fn default() -> Self {
         FlowOptions {
-            solver: Solver::DOPRI5,
+            solver: Solver::AUTO,
             rtol: 1e-12,
             atol: 1e-14,
             max_switches: 100_000,

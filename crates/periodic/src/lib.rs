@@ -33,8 +33,8 @@ pub mod shooting;
 mod variational;
 
 pub use continuation::{
-    continue_cycles, continue_equilibria, Branch, ContinuationOptions, CyclePoint,
-    EquilibriumPoint, Family, SpecialKind, SpecialPoint,
+    continue_cycles, continue_equilibria, cycle_at, equilibrium_at, Branch, ContinuationOptions,
+    CyclePoint, EquilibriumPoint, Family, SpecialKind, SpecialPoint,
 };
 pub use error::OrbitError;
 pub use floquet::{Floquet, Stability};

@@ -1,7 +1,8 @@
 //! `reproduce` as a table of studies: a [`Report`] is a title, a preface and a list of
 //! [`Part`]s, each a section of `report.md` whose studies write their files into one folder.
 //! [`Paper::parts`] is the paper's table (Figures 2–7, the experiment, Table 2, the solver
-//! studies, the chain, the belt's stick–slip map); a user's own study joins a report as one more
+//! studies, the comparison of schemes, the chain, the belt's stick–slip map, the closed loop,
+//! the limit cycles as orbits); a user's own study joins a report as one more
 //! part ([`Section`], `examples/own_study.rs`).
 
 mod chain;
@@ -9,6 +10,7 @@ mod closed_loop;
 mod comparison;
 mod experiment;
 mod figures;
+mod orbits;
 mod solver_studies;
 mod stick_slip;
 mod table2;
@@ -210,6 +212,7 @@ impl Paper {
             Box::new(chain::ChainStudies { friction }),
             Box::new(stick_slip::StickSlip { friction }),
             Box::new(closed_loop::ClosedLoopPart),
+            Box::new(orbits::Orbits { friction }),
         ]
     }
 

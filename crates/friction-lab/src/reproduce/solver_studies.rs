@@ -18,7 +18,12 @@ use scenarios::studies::{
 use scenarios::{Limits, Scenario};
 
 /// A study case on the paper's parameters.
-fn case(scenario: Scenario, model: ModelId, friction: &FrictionParams, t_end: f64) -> Case {
+pub(super) fn case(
+    scenario: Scenario,
+    model: ModelId,
+    friction: &FrictionParams,
+    t_end: f64,
+) -> Case {
     Case {
         scenario,
         law: model.into(),

@@ -6,6 +6,7 @@
 //! the thread count), its files added to an [`Output`]. The command line, `reproduce` and a
 //! user's own code conduct the same studies; each study is a file of this module.
 
+mod branches;
 mod closed_loop;
 mod compare;
 mod convergence;
@@ -24,6 +25,7 @@ mod tables;
 mod testset;
 mod work_precision;
 
+pub use branches::{branches_lines, BranchesStudy};
 pub use closed_loop::{ClosedLoopStudy, ClosedLoops, Regulation, Task, Tracking, TASKS};
 pub use compare::{compare_lines, figures as compare_figures, CompareStudy};
 pub use convergence::ConvergenceStudy;

@@ -5,6 +5,7 @@
 //! they run on a pool of threads and are collected in order, so the files do not depend on the
 //! thread count (wall times, which cannot be reproduced, go to a separate `*-timing.csv`).
 
+mod branches;
 mod compare;
 mod converge;
 mod independence;
@@ -13,12 +14,13 @@ mod orbit;
 mod stiffness;
 mod work_precision;
 
+pub use branches::ContinueRequest;
 pub use compare::CompareRequest;
 pub use converge::{ConvergeRequest, CONVERGE_SOLVERS};
 pub use independence::IndependenceRequest;
 pub use named::{
-    Declared, NamedStudy, Runs, StudyRequest, COMPARE, CONVERGE, INDEPENDENCE, ORBIT, STIFFNESS,
-    STUDIES, WORK_PRECISION,
+    Declared, NamedStudy, Runs, StudyRequest, COMPARE, CONTINUE, CONVERGE, INDEPENDENCE, ORBIT,
+    STIFFNESS, STUDIES, WORK_PRECISION,
 };
 pub use orbit::OrbitRequest;
 pub use stiffness::{StiffnessRequest, STIFFNESS_SOLVERS};

@@ -5,8 +5,8 @@
 //! declaration.
 
 use super::{
-    CompareRequest, ConvergeRequest, IndependenceRequest, OrbitRequest, StiffnessRequest,
-    WorkPrecisionRequest,
+    CompareRequest, ContinueRequest, ConvergeRequest, IndependenceRequest, OrbitRequest,
+    StiffnessRequest, WorkPrecisionRequest,
 };
 use crate::error::AppError;
 use crate::made::Made;
@@ -124,6 +124,13 @@ pub static ORBIT: Declared<OrbitRequest> = Declared::new(
      segments, Floquet multipliers and stability",
 );
 
+/// `continue`.
+pub static CONTINUE: Declared<ContinueRequest> = Declared::new(
+    "continue",
+    "The branches of equilibria and periodic orbits over one parameter, by pseudo-arclength \
+     continuation: stability along them, folds, Hopf points, period doublings, segment changes",
+);
+
 registry::handle!(
     /// A study a front end names: a [`StudyRequest`], built in or a user's own.
     NamedStudy => dyn StudyRequest, STUDIES
@@ -136,13 +143,14 @@ pub static STUDIES: registry::Registry<NamedStudy> =
 
 impl NamedStudy {
     /// The built-in studies, in the order the command line lists them.
-    pub const ALL: [NamedStudy; 6] = [
+    pub const ALL: [NamedStudy; 7] = [
         NamedStudy::built_in(&CONVERGE),
         NamedStudy::built_in(&INDEPENDENCE),
         NamedStudy::built_in(&WORK_PRECISION),
         NamedStudy::built_in(&STIFFNESS),
         NamedStudy::built_in(&COMPARE),
         NamedStudy::built_in(&ORBIT),
+        NamedStudy::built_in(&CONTINUE),
     ];
 }
 
@@ -166,5 +174,6 @@ runs!(
     WorkPrecisionRequest,
     StiffnessRequest,
     CompareRequest,
-    OrbitRequest
+    OrbitRequest,
+    ContinueRequest
 );

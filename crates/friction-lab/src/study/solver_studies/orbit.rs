@@ -30,6 +30,19 @@ pub struct OrbitRequest {
 /// The most points an orbit is sampled at.
 pub const MAX_SAMPLES: i64 = 1_000_000;
 
+/// `--samples`, checked: 2 to [`MAX_SAMPLES`].
+pub fn samples(samples: i64) -> Result<usize, AppError> {
+    match (2..=MAX_SAMPLES).contains(&samples) {
+        true => Ok(samples as usize),
+        false => Err(AppError::Invalid(crate::error::Invalid {
+            field: "samples",
+            value: samples.to_string(),
+            allowed: format!("[2, {MAX_SAMPLES}]"),
+            list: false,
+        })),
+    }
+}
+
 impl OrbitRequest {
     /// Checks and finds the orbit: its files in `out` (in memory), and its period and
     /// multipliers as lines.
@@ -38,21 +51,14 @@ impl OrbitRequest {
             "orbit",
             "the orbit is found event-driven, with events at v_rel = 0",
         )?;
-        if !(2..=MAX_SAMPLES).contains(&self.samples) {
-            return Err(AppError::Invalid(crate::error::Invalid {
-                field: "samples",
-                value: self.samples.to_string(),
-                allowed: format!("[2, {MAX_SAMPLES}]"),
-                list: false,
-            }));
-        }
+        let samples = samples(self.samples)?;
         self.problem.make(out, |t, setup| {
             let study = OrbitStudy {
                 case: setup.case.as_ref(),
                 settings: OrbitSettings {
                     settle: setup.case.t_end(),
                     shooting: ShootingOptions::default(),
-                    samples: self.samples as usize,
+                    samples,
                 },
             };
             let orbit = conduct(&study, t, "orbit")?;
