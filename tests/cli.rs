@@ -5290,3 +5290,49 @@ fn law_slope(
 ) -> f64 {
     law.partials(0.0, v, &[], sign, &mut []).force_dv
 }
+
+/// The servo's hunting cycle with the static law followed over ki from 4 to 0.5: stable all
+/// along (stiction above the Coulomb level makes integral action hunt at every gain), its
+/// period growing as ki falls, from the 38.24 s of the default gains. Without a moving surface
+/// there is no steady sliding to follow, and the notes say so.
+#[test]
+fn continue_follows_the_servos_hunting_cycle_over_the_integral_gain() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("ki");
+    let o = friction_lab(&[
+        "continue",
+        "servo",
+        "--model",
+        "static",
+        "--t-end",
+        "200",
+        "--parameter",
+        "ki",
+        "--range",
+        "4:0.5",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let printed = String::from_utf8_lossy(&o.stdout);
+    assert!(printed.contains("no steady sliding"), "{printed}");
+    let csv = std::fs::read_to_string(out.join("branch.csv")).unwrap();
+    let rows: Vec<Vec<&str>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').collect())
+        .collect();
+    assert!(
+        rows.iter().all(|r| r[0] == "cycle" && r[6] == "true"),
+        "{csv}"
+    );
+    let (ki, period): (Vec<f64>, Vec<f64>) = (rows.iter())
+        .map(|r| (r[1].parse::<f64>().unwrap(), r[3].parse::<f64>().unwrap()))
+        .unzip();
+    assert!((period[0] - 38.2413).abs() < 1e-3, "{}", period[0]);
+    assert!(
+        *ki.last().unwrap() < 0.5,
+        "the branch reached the end of the range: {ki:?}"
+    );
+    assert!(period.windows(2).all(|w| w[1] > w[0]), "{period:?}");
+}

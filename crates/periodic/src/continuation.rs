@@ -10,8 +10,9 @@
 //!
 //! the step length growing by 1.5 after an easy correction (at most 3 iterations) and halving
 //! after a failed one. The parameter enters the arclength scaled by its range's width, so that
-//! a step of 0.05 is a twentieth of the range where the branch runs along p. ∂/∂p is a central
-//! difference. Along the branch the stability is read from the Floquet multipliers (cycles) or
+//! a step of 0.05 is a twentieth of the range where the branch runs along p, and a cycle's
+//! period scaled by the first one's. ∂/∂p is a difference quotient (forward in the corrector,
+//! central for the tangent). Along the branch the stability is read from the Floquet multipliers (cycles) or
 //! the eigenvalues (equilibria), and the points where it changes are located and named:
 //! [`SpecialKind`].
 
@@ -211,19 +212,21 @@ pub fn continue_cycles(
 ) -> Result<Branch<CyclePoint>, OrbitError> {
     let first = cycle_eval(family, p0, (y0, modes, period0), &options.shooting)?;
     let n = first.f_end.len();
-    let scale = options.p_scale();
-    // u = (y[..n], T, p/scale).
+    // u = (y[..n], T/T₀, p/scale): the period in units of the first, the parameter in those
+    // of its range, so that neither dominates the arclength.
+    let scales = (period0, options.p_scale());
+    let (t_scale, scale) = scales;
     let pack = |y: &[f64], t: f64, p: f64| {
         let mut u = DVector::zeros(n + 2);
         u.rows_mut(0, n).copy_from_slice(&y[..n]);
-        u[n] = t;
+        u[n] = t / t_scale;
         u[n + 1] = p / scale;
         u
     };
     let unpack = |u: &DVector<f64>, tail: &[f64]| {
         let mut y = u.rows(0, n).iter().copied().collect::<Vec<f64>>();
         y.extend_from_slice(&tail[n..]);
-        (y, u[n], u[n + 1] * scale)
+        (y, u[n] * t_scale, u[n + 1] * scale)
     };
     let point = |p: f64, y: Vec<f64>, t: f64, e: CycleEval, iterations: usize| {
         let floquet = Floquet::of(&e.flow.sensitivity).ok_or(OrbitError::Singular)?;
@@ -259,7 +262,7 @@ pub fn continue_cycles(
         })?;
         let normal = normal.normalize();
         // The tangent at the last point: the kernel of its Jacobian, oriented as before.
-        let jac = cycle_jacobian(family, last, modes, &normal, scale, &options.shooting)?;
+        let jac = cycle_jacobian(family, last, modes, &normal, scales, &options.shooting)?;
         tangent = kernel(&jac, &tangent).ok_or(OrbitError::Singular)?;
         let corrected = loop {
             let predicted = &u_last + step * &tangent;
@@ -267,7 +270,7 @@ pub fn continue_cycles(
                 family,
                 (&predicted, &tangent, step),
                 (modes, &normal, &last.y0),
-                (scale, &unpack),
+                (scales, &unpack),
                 &options.shooting,
             ) {
                 Ok(c) => break Some(c),
@@ -334,14 +337,15 @@ pub fn continue_cycles(
     })
 }
 
-/// The (n+1)×(n+2) Jacobian of the cycle equations at `point`: [[M − I, f_end, ∂φ/∂p·scale],
+/// The (n+1)×(n+2) Jacobian of the cycle equations at `point` in the scaled unknowns
+/// (T/T₀, p/scale): [[M − I, f_end·T₀, ∂φ/∂p·scale],
 /// [nᵀ, 0, 0]].
 fn cycle_jacobian(
     family: &dyn Family,
     point: &CyclePoint,
     modes: &[Mode],
     normal: &DVector<f64>,
-    scale: f64,
+    (t_scale, scale): (f64, f64),
     options: &ShootingOptions,
 ) -> Result<DMatrix<f64>, OrbitError> {
     let n = normal.len();
@@ -362,7 +366,7 @@ fn cycle_jacobian(
     let mut a = DMatrix::zeros(n + 1, n + 2);
     a.view_mut((0, 0), (n, n))
         .copy_from(&(&e.flow.sensitivity - DMatrix::identity(n, n)));
-    a.view_mut((0, n), (n, 1)).copy_from(&e.f_end);
+    a.view_mut((0, n), (n, 1)).copy_from(&(&e.f_end * t_scale));
     for i in 0..n {
         a[(i, n + 1)] = (up.flow.y_end[i] - down.flow.y_end[i]) / (2.0 * dp) * scale;
     }
@@ -393,7 +397,7 @@ fn correct_cycle(
     family: &dyn Family,
     (predicted, tangent, step): (&DVector<f64>, &DVector<f64>, f64),
     (modes, normal, reference): (&[Mode], &DVector<f64>, &[f64]),
-    (scale, unpack): (f64, &Unpack),
+    ((t_scale, scale), unpack): ((f64, f64), &Unpack),
     options: &ShootingOptions,
 ) -> Result<(DVector<f64>, usize), OrbitError> {
     let n = normal.len();
@@ -434,7 +438,7 @@ fn correct_cycle(
         let mut a = DMatrix::zeros(n + 2, n + 2);
         a.view_mut((0, 0), (n, n))
             .copy_from(&(&e.flow.sensitivity - DMatrix::identity(n, n)));
-        a.view_mut((0, n), (n, 1)).copy_from(&e.f_end);
+        a.view_mut((0, n), (n, 1)).copy_from(&(&e.f_end * t_scale));
         a.view_mut((0, n + 1), (n, 1)).copy_from(&column);
         a.view_mut((n, 0), (1, n)).copy_from(&normal.transpose());
         a.row_mut(n + 1).copy_from(&tangent.transpose());
