@@ -2,8 +2,9 @@
 //! size, and its drawing beside the plot.
 
 use super::axes::{bounds, Bounds};
-use super::{drawn, register_font, Marker, Plot, Series};
+use super::{drawn, register_font, Dash, Marker, Plot, Series};
 use plotters::coord::Shift;
+use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
@@ -249,16 +250,30 @@ pub(super) fn key(color: RGBColor, marker: Marker, width: u32) -> Key {
     )
 }
 
-/// A filled shape's key: a line sample and the shape, in pixels from the key's left end.
-type FilledKey = (PathElement<(i32, i32)>, Polygon<(i32, i32)>);
+/// The length of a filled shape's key line, pixels: one period and more of the longest dash
+/// pattern ([`Dash::LongDashed`], 18 on and 6 off), so that every pattern shows as itself.
+const FILLED_KEY_LENGTH: i32 = 26;
 
-/// The key of a series marked by a filled shape: a line sample where it draws one (solid; the
-/// plot draws its pattern) and the shape.
-pub(super) fn filled_key(color: RGBColor, marker: Marker, width: u32) -> FilledKey {
+/// A filled shape's key: a line sample in the series' dash pattern and the shape, in pixels
+/// from the key's left end.
+type FilledKey = (
+    DashedPathElement<std::array::IntoIter<(i32, i32), 2>, u32>,
+    Polygon<(i32, i32)>,
+);
+
+/// The key of a series marked by a filled shape: a line sample where it draws one, in its
+/// dash pattern, and the shape at the sample's middle.
+pub(super) fn filled_key(color: RGBColor, marker: Marker, width: u32, dash: Dash) -> FilledKey {
     let line = if width > 0 { 1.0 } else { 0.0 };
+    let (on, off) = dash.pattern().unwrap_or((FILLED_KEY_LENGTH as u32, 0));
     (
-        PathElement::new([(0, 0), (20, 0)], color.mix(line).stroke_width(3)),
-        Polygon::new(corners(marker, (10, 0)), color.filled()),
+        DashedPathElement::new(
+            [(0, 0), (FILLED_KEY_LENGTH, 0)],
+            on,
+            off,
+            color.mix(line).stroke_width(3),
+        ),
+        Polygon::new(corners(marker, (FILLED_KEY_LENGTH / 2, 0)), color.filled()),
     )
 }
 
@@ -275,7 +290,7 @@ pub(super) fn draw_legend_in_strip<DB: DrawingBackend>(
     draw_box(area, &labels, at, |k, at| {
         let s = labelled[k];
         if is_filled(s.marker) {
-            let (line, filled) = filled_key(s.color, s.marker, s.width);
+            let (line, filled) = filled_key(s.color, s.marker, s.width, s.dash);
             return area.draw(&(EmptyElement::at(at) + line + filled));
         }
         let (line, cross, dot, ring) = key(s.color, s.marker, s.width);
@@ -408,5 +423,53 @@ mod tests {
         };
         assert_eq!(layout(&many, PANEL).0, bounds(&many));
         assert!(matches!(layout(&many, PANEL).1, LegendPlace::Inside(_)));
+    }
+    #[test]
+    fn a_filled_shapes_key_draws_its_series_dash_pattern() {
+        // The strokes of the key's line, in pixels.
+        let key_strokes = |dash: Dash| {
+            let plot = Plot {
+                title: "t".into(),
+                x_label: "x".into(),
+                y_label: "y".into(),
+                series: vec![Series {
+                    label: Some("a scheme".into()),
+                    points: vec![(0.0, 0.0), (1.0, 1.0), (2.0, 4.0)],
+                    color: RED,
+                    width: 2,
+                    marker: Marker::Square,
+                    dash,
+                }],
+                legend: Corner::UpperLeft,
+                log: false,
+            };
+            let page = Format::parse(Some("6x4"), Some(150.0)).unwrap();
+            let svg = svg(&plot, Path::new("key.svg"), &page).unwrap();
+            let mut lengths = Vec::new();
+            for element in svg.split("<polyline").skip(1) {
+                let element = &element[..element.find("/>").unwrap()];
+                // The key's line is 3 pixels wide, the series' own 2.
+                if !element.contains("stroke=\"#C81E1E\" stroke-width=\"3\"") {
+                    continue;
+                }
+                let points = element.split("points=\"").nth(1).unwrap();
+                let xy: Vec<(f64, f64)> = (points.split('"').next().unwrap().split_whitespace())
+                    .map(|p| {
+                        let (x, y) = p.split_once(',').unwrap();
+                        (x.parse().unwrap(), y.parse().unwrap())
+                    })
+                    .collect();
+                assert!(xy.iter().all(|p| p.1 == xy[0].1), "{element}");
+                lengths.push(xy[xy.len() - 1].0 - xy[0].0);
+            }
+            lengths
+        };
+        assert_eq!(key_strokes(Dash::Solid), vec![26.0]);
+        // 10 on, 5 off over 26 pixels: two dashes.
+        assert_eq!(key_strokes(Dash::Dashed), vec![10.0, 10.0]);
+        // 2 on, 4 off: five dots.
+        assert_eq!(key_strokes(Dash::Dotted).len(), 5);
+        // 18 on, 6 off: a long dash and the start of the next.
+        assert_eq!(key_strokes(Dash::LongDashed), vec![18.0, 2.0]);
     }
 }

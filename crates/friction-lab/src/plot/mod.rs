@@ -72,7 +72,7 @@ impl Dash {
     pub const ALL: [Dash; 4] = [Dash::Solid, Dash::Dashed, Dash::Dotted, Dash::LongDashed];
 
     /// Dash length and gap, pixels; `None` for a solid line.
-    fn pattern(self) -> Option<(u32, u32)> {
+    pub(super) fn pattern(self) -> Option<(u32, u32)> {
         match self {
             Dash::Solid => None,
             Dash::Dashed => Some((10, 5)),
@@ -425,7 +425,7 @@ where
     }
     for s in &plot.series {
         let points: Vec<(f64, f64)> = drawn(plot, s).collect();
-        let (color, marker, width) = (s.color, s.marker, s.width);
+        let (color, marker, width, dash) = (s.color, s.marker, s.width, s.dash);
         let drawn = if s.width > 0 {
             let style = ShapeStyle::from(&s.color).stroke_width(s.width);
             match s.dash.pattern() {
@@ -450,7 +450,7 @@ where
             let drawn = drawn.label(label.as_str());
             if is_filled(marker) {
                 drawn.legend(move |p| {
-                    let (line, filled) = filled_key(color, marker, width);
+                    let (line, filled) = filled_key(color, marker, width, dash);
                     EmptyElement::at(p) + line + filled
                 });
             } else {
