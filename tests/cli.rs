@@ -305,7 +305,7 @@ fn bad_parameters_are_rejected_with_name_value_and_range() {
         ),
         (
             &["curve", "SD", "--set", "mu_s=0.7"],
-            "unknown parameter `mu_s`; known parameters: F_s, F_c",
+            "unknown parameter `mu_s` (did you mean `mu_v`?); known parameters: F_s, F_c",
         ),
         (
             &["curve", "SD", "--set", "F_s"],
@@ -382,7 +382,7 @@ fn bad_parameters_are_rejected_with_name_value_and_range() {
         ),
         (
             &["reproduce", "--set", "F_x=3"],
-            "unknown parameter `F_x`; known parameters: F_s, F_c",
+            "unknown parameter `F_x` (did you mean `F_s`?); known parameters: F_s, F_c",
         ),
         (
             &["curve", "gms", "--set", "n_gms=17"],

@@ -12,19 +12,22 @@ and Ctrl-C stops them. See docs/python.md.
 
 from __future__ import annotations
 
+import io
 import json
 from typing import Any, Dict, List, Optional
 
 import numpy as np
+import pandas as pd
 
 from . import _native
 from ._command import SolverError, _name, call, system_value, values
 from ._result import Result, Study, Table2
 from ._sweep import sweep
+from ._compare import compare
 
 
 __all__ = ["models", "curve", "simulate", "converge", "independence", "work_precision",
-           "stiffness", "compare", "orbit", "continuation", "phenomena", "sweep", "Result", "Study", "Table2", "SolverError"]
+           "stiffness", "compare", "orbit", "continuation", "phenomena", "testset", "sweep", "Result", "Study", "Table2", "SolverError"]
 
 
 def models() -> List[Dict[str, Any]]:
@@ -100,15 +103,6 @@ def stiffness(scenario: str, *, params: Optional[Dict[str, float]] = None, **opt
     return _study("stiffness", scenario, params, options)
 
 
-def compare(scenario: str, *, params: Optional[Dict[str, float]] = None, **options: Any) -> Study:
-    """Every scheme at v = 0 (events, regularised over ε, naive, time-stepping) against the
-    true nonsmooth solution, with each scheme's cost at target errors (``friction-lab
-    compare --help``): ``study.runs`` holds the runs (``scheme``, ``epsilon``, errors against the
-    true solution, ``discretisation_error``), ``study.tables["compare-cost"]`` each scheme's
-    cost at each target, ``study.tables["compare-epsilon"]`` the model error against ε."""
-    return _study("compare", scenario, params, options)
-
-
 def orbit(scenario: str, *, params: Optional[Dict[str, float]] = None, **options: Any) -> Study:
     """The periodic orbit of a rig's body or a system, by shooting through its switches from the
     cycle its run settles onto by ``t_end`` (``friction-lab orbit --help``): ``study.runs`` is
@@ -127,6 +121,23 @@ def continuation(scenario: str, *, params: Optional[Dict[str, float]] = None,
     ``amplitude``, ``spectrum``, ``stable``, ``segments``), ``study.tables["special_points"]``
     the folds, Hopf points, period doublings and segment changes."""
     return _study("continue", scenario, params, options, main="branch")
+
+
+def testset(problem: str, **options: Any) -> Dict[str, Any]:
+    """One problem of the stiff test set (``"van-der-pol"``, ``"robertson"``, ``"hires"``,
+    ``"orego"``, ``"pollution"``) solved by one adaptive solver, as ``friction-lab testset``
+    solves it (``solver``, default radau5; ``rtol``; ``atol``, default the problem's own;
+    ``h0``; ``t_end``; ``max_steps``; ``time_limit``): a dict with ``summary`` (the counts,
+    ``scd``: the significant correct digits against the published reference, ``status`` and
+    ``reason``) and ``final`` (the state at the end time, ``final.csv``, as a DataFrame). A run
+    with fewer than one correct digit is ``inaccurate`` and warns."""
+    _name("testset", problem)
+    made = call("testset", problem, values("testset", **options))
+    final = pd.read_csv(io.StringIO(made.text("final.csv")))
+    solved = {"summary": made.json("summary.json"), "final": final}
+    if made.failure is not None:
+        raise SolverError(made.failure, solved)
+    return solved
 
 
 def phenomena(models: Any = None, *, params: Optional[Dict[str, float]] = None,

@@ -136,14 +136,15 @@ def values(command: str, params: Any = None, grid: Any = None,
 
 def call(command: str, *arguments: Any, stop: Optional[Callable[[], bool]] = None) -> "Made":
     """Calls the library's ``command`` with ``arguments`` (GIL released, Ctrl-C honoured):
-    ``_native.simulate``, ``_native.sweep``, ``_native.curve``, ``_native.phenomena``, or for a
+    ``_native.simulate``, ``_native.sweep``, ``_native.curve``, ``_native.phenomena``,
+    ``_native.testset``, or for a
     solver study ``_native.study(name, ...)``. Bad input raises ``ValueError``; a failure with
     no result raises ``SolverError``. ``stop``, if given, is asked every 50 ms while the run
     goes on: once it returns true the run stops as on Ctrl-C and ``_native.Cancelled`` is
     raised."""
     if command == "curve":
         return _made(command, lambda: _native.curve(*arguments))
-    if command in ("simulate", "sweep", "phenomena"):
+    if command in ("simulate", "sweep", "phenomena", "testset"):
         native = getattr(_native, command)
     else:
         native = functools.partial(_native.study, command.replace("-", "_"))

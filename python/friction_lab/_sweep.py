@@ -5,22 +5,18 @@ the library's sweep of its points START <= i < END (the same Rust code, one thre
 chunks' tables are joined in grid order. Every point is computed by the same code from the
 same inputs whatever the split, so the two ways give the same DataFrame, bit for bit.
 
-Ctrl-C (or any exception) while the chunks run cancels the sweep's futures and sets a Dask
-``Event`` of the sweep's own that every chunk asks for every half second: the running chunks
-stop at their next step (as on Ctrl-C in process) and the workers are free for the next call.
+Ctrl-C (or any exception) while the chunks run stops them (``_dask.gather``).
 """
 
 from __future__ import annotations
 
 import math
-import time
-import uuid
-from typing import Any, Callable, Dict, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, Optional, Sequence, Tuple, Union
 
 import pandas as pd
 
-from . import _native
 from ._command import Made, SolverError, _name, call, system_value, values
+from ._dask import gather, stopped
 
 
 def sweep(scenario: str, *, grid: Dict[str, Union[Sequence[float], str]],
@@ -58,27 +54,6 @@ def sweep(scenario: str, *, grid: Dict[str, Union[Sequence[float], str]],
     return frame
 
 
-#: How often a chunk asks whether its sweep was stopped, s (a round trip to the scheduler).
-STOP_POLL_S = 0.5
-
-
-def _stopped(name: str) -> Callable[[], bool]:
-    """Whether the Dask ``Event`` ``name`` is set, asked at most every :data:`STOP_POLL_S`."""
-    import distributed
-
-    event = distributed.Event(name)
-    last = [time.monotonic()]
-
-    def stopped() -> bool:
-        now = time.monotonic()
-        if now - last[0] < STOP_POLL_S:
-            return False
-        last[0] = now
-        return event.is_set()
-
-    return stopped
-
-
 def _chunk(arguments: Tuple[Any, ...], start: int, end: int, stop: str) -> pd.DataFrame:
     """One Dask task: the points START <= i < END of the sweep ``arguments`` (those of
     ``_native.sweep``), as ``sweep.csv``'s rows. A friction law written in Python, the
@@ -87,7 +62,7 @@ def _chunk(arguments: Tuple[Any, ...], start: int, end: int, stop: str) -> pd.Da
     of the worker's process, as Ctrl-C would (docs/python.md)."""
     scenario, system, axes, given = arguments
     part = dict(given, point_range=(start, end))
-    made: Made = call("sweep", scenario, system, axes, part, stop=_stopped(stop))
+    made: Made = call("sweep", scenario, system, axes, part, stop=stopped(stop))
     return made.table("sweep.csv")
 
 
@@ -104,19 +79,8 @@ def _on_dask(client: Any, arguments: Tuple[Any, ...], chunk_size: Optional[int])
     # One Rust thread per task unless told otherwise: Dask's workers are the parallelism.
     given = dict(given, threads=given.get("threads", 1))
     bounds = [(s, min(s + chunk_size, n)) for s in range(0, n, chunk_size)]
-    stop = f"friction-lab-sweep-{uuid.uuid4().hex}"
-    futures = client.map(_chunk, [(scenario, system, axes, given)] * len(bounds),
-                         [b[0] for b in bounds], [b[1] for b in bounds], [stop] * len(bounds),
-                         pure=False)
-    try:
-        results = client.gather(futures)
-    except BaseException:
-        # Ctrl-C, or a chunk that raised: nothing left should run.
-        import distributed
-
-        distributed.Event(stop, client=client).set()
-        client.cancel(futures, force=True)
-        raise
+    results = gather(client, "sweep", _chunk, [(scenario, system, axes, given)] * len(bounds),
+                     [b[0] for b in bounds], [b[1] for b in bounds])
     if not results:
         return head.table("sweep.csv")
     return pd.concat(results, ignore_index=True)

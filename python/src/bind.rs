@@ -17,8 +17,9 @@ use friction_lab::error::{spell_fields, AppError};
 use friction_lab::made::Made;
 use friction_lab::simulate::SimulationRequest;
 use friction_lab::study::solver_studies::STUDIES;
-use friction_lab::study::PhenomenaRequest;
+use friction_lab::study::{CompareRequest, PhenomenaRequest};
 use friction_lab::sweep::SweepRequest;
+use friction_lab::testset::TestSetRequest;
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyList, PyString, PyTuple};
@@ -37,6 +38,7 @@ fn declared(function: &str) -> Option<clap::Command> {
         "sweep" => SweepRequest::augment_args(command),
         "curve" => CurveRequest::augment_args(command),
         "phenomena" => PhenomenaRequest::augment_args(command),
+        "testset" => TestSetRequest::augment_args(command),
         study => STUDIES.find(&study.replace('_', "-"))?.declare(command),
     })
 }
@@ -355,6 +357,16 @@ pub fn sweep(
     request("sweep", words, options)
 }
 
+/// The comparison `compare(scenario, **options)` asks for, as a request of its own (its
+/// parts made and merged on a Dask cluster).
+pub fn compare(
+    scenario: Option<&str>,
+    system: Option<PathBuf>,
+    options: &Bound<'_, PyDict>,
+) -> PyResult<CompareRequest> {
+    request("compare", problem(scenario, system)?, options)
+}
+
 /// The study `function` of [`STUDIES`] (`converge`, `independence`, `work_precision`,
 /// `stiffness`, or one a program registered) of `scenario` or `system` with the keyword
 /// arguments `options`, run into `out`.
@@ -375,6 +387,11 @@ pub fn study(
 /// The curve `curve(model, **options)` asks for.
 pub fn curve(model: &str, options: &Bound<'_, PyDict>) -> PyResult<CurveRequest> {
     request("curve", vec![model.to_string()], options)
+}
+
+/// The run of a test problem `testset(problem, **options)` asks for.
+pub fn testset(problem: &str, options: &Bound<'_, PyDict>) -> PyResult<TestSetRequest> {
+    request("testset", vec![problem.to_string()], options)
 }
 
 /// Table 2 as `phenomena(**options)` asks for it.

@@ -229,11 +229,78 @@ fn study(
     deliver(py, stop.as_ref(), move || study(Path::new(IN_MEMORY)))
 }
 
+/// How many independent parts the comparison of `scenario` or `system` with the keyword
+/// arguments `options` divides into ([`friction_lab::study::CompareRequest::part_count`]);
+/// every option is checked.
+#[pyfunction]
+fn compare_parts(
+    scenario: Option<String>,
+    system: Option<std::path::PathBuf>,
+    options: Bound<'_, PyDict>,
+) -> PyResult<usize> {
+    let request = bind::compare(scenario.as_deref(), system, &options)?;
+    request.part_count().map_err(to_python)
+}
+
+/// Makes part `index` of that comparison ([`friction_lab::study::CompareRequest::part`]),
+/// encoded: one Dask task. Errors and `stop` as [`deliver`].
+#[pyfunction]
+#[pyo3(signature = (scenario, system, options, index, stop=None))]
+fn compare_part<'py>(
+    py: Python<'py>,
+    scenario: Option<String>,
+    system: Option<std::path::PathBuf>,
+    options: Bound<'py, PyDict>,
+    index: usize,
+    stop: Option<Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyBytes>> {
+    let request = bind::compare(scenario.as_deref(), system, &options)?;
+    let part = interruptible(py, stop.as_ref(), move || request.part(index))?;
+    if let Some(e) = law::take_error() {
+        integrators::interrupt::clear();
+        return Err(e);
+    }
+    Ok(PyBytes::new(py, &part.map_err(to_python)?))
+}
+
+/// The comparison made of `parts` (each of [`compare_part`], in any order)
+/// ([`friction_lab::study::CompareRequest::merge`]): what `study("compare", ...)` makes.
+/// Errors and `stop` as [`deliver`].
+#[pyfunction]
+#[pyo3(signature = (scenario, system, options, parts, stop=None))]
+fn compare_merge(
+    py: Python<'_>,
+    scenario: Option<String>,
+    system: Option<std::path::PathBuf>,
+    options: Bound<'_, PyDict>,
+    parts: Vec<Bound<'_, PyBytes>>,
+    stop: Option<Bound<'_, PyAny>>,
+) -> PyResult<Made> {
+    let request = bind::compare(scenario.as_deref(), system, &options)?;
+    let parts: Vec<Vec<u8>> = parts.iter().map(|p| p.as_bytes().to_vec()).collect();
+    deliver(py, stop.as_ref(), move || {
+        request.merge(Path::new(IN_MEMORY), &parts)
+    })
+}
+
 /// Draws the curve of `model` ([`bind::curve`]). Errors as [`deliver`].
 #[pyfunction]
 fn curve(py: Python<'_>, model: &str, options: Bound<'_, PyDict>) -> PyResult<Made> {
     let curve = bind::curve(model, &options)?;
     deliver(py, None, move || curve.run(Path::new(IN_MEMORY)))
+}
+
+/// Solves the test problem `problem` ([`bind::testset`]). Errors and `stop` as [`deliver`].
+#[pyfunction]
+#[pyo3(signature = (problem, options, stop=None))]
+fn testset(
+    py: Python<'_>,
+    problem: &str,
+    options: Bound<'_, PyDict>,
+    stop: Option<Bound<'_, PyAny>>,
+) -> PyResult<Made> {
+    let run = bind::testset(problem, &options)?;
+    deliver(py, stop.as_ref(), move || run.run(Path::new(IN_MEMORY)))
 }
 
 /// Decides Table 2 ([`bind::phenomena`]). Errors and `stop` as [`deliver`].
@@ -468,6 +535,10 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     friction_lab::progress::observe_with(std::sync::Arc::new(terminal::Terminal));
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(testset, m)?)?;
+    m.add_function(wrap_pyfunction!(compare_parts, m)?)?;
+    m.add_function(wrap_pyfunction!(compare_part, m)?)?;
+    m.add_function(wrap_pyfunction!(compare_merge, m)?)?;
     m.add_function(wrap_pyfunction!(study, m)?)?;
     m.add_function(wrap_pyfunction!(curve, m)?)?;
     m.add_function(wrap_pyfunction!(phenomena, m)?)?;

@@ -162,7 +162,7 @@ def test_errors_speak_python_not_the_command_line(cli, tmp_path):
     assert done.stderr.strip() == "error: option `--t-end` = -1 is out of range: allowed [1e-6, 1e6] s"
     with pytest.raises(ValueError) as e:
         fl.simulate("belt", model="CVS", scheme="time-stepping", solver="rk4")
-    assert str(e.value).startswith("option `solver rk4` does not apply to scheme time-stepping")
+    assert str(e.value).startswith("option `solver='rk4'` does not apply to scheme time-stepping")
     assert "--" not in str(e.value)
     with pytest.raises(ValueError) as e:
         fl.simulate("belt", model="CVS", params={"F_s": "abc"})
@@ -270,11 +270,13 @@ def test_one_refusal_names_its_options_as_each_front_end_spells_them(cli, tmp_pa
     with pytest.raises(ValueError) as e:
         fl.simulate("belt", model="CS", theta=0.7)
     python = str(e.value)
-    assert python == ("option `theta 0.7` applies to scheme time-stepping, the weight of its "
+    assert python == ("option `theta=0.7` applies to scheme time-stepping, the weight of its "
                       "θ-method: the event-driven solvers have none; drop theta, or choose "
                       "scheme time-stepping")
     done = cli("simulate", "belt", "--model", "CS", "--theta", "0.7", "--out", tmp_path / "x")
-    command_line = python.replace("theta", "--theta").replace("scheme", "--scheme")
+    # The option with its value as each writes it: `theta=0.7` in Python, `--theta 0.7`.
+    command_line = (python.replace("theta=", "theta ").replace("theta", "--theta")
+                    .replace("scheme", "--scheme"))
     assert (done.returncode, done.stderr.strip()) == (2, "error: " + command_line)
     # An advice too: the command line's `--set` is Python's `params`.
     with pytest.warns(RuntimeWarning, match=r"^option `params`: parameter `F_s` is not read"):

@@ -104,11 +104,16 @@ def test_a_stiffness_study_of_the_chain_sweeps_its_coupling():
         fl.stiffness("chain", model="CS", parameter="sigma", values=[1, 2])
 
 
+#: A comparison small enough for a test: two event-driven solvers, BDF regularised at four
+#: widths, Moreau–Jean.
+SMALL_COMPARISON = dict(model="CS", event_solvers=["dopri5", "radau5"],
+                        regularized_solvers=["bdf"], epsilons=[1e-2, 1e-3, 1e-4, 1e-5],
+                        no_naive=True, tol_list=[1e-3, 1e-4, 1e-5], ts_dt_list=[0.01, 0.005],
+                        targets=[1e-2, 1e-3], repeats=1, max_steps=200000)
+
+
 def test_compare_scores_every_scheme_against_the_true_solution():
-    study = fl.compare("belt", model="CS", event_solvers=["dopri5", "radau5"],
-                       regularized_solvers=["bdf"], epsilons=[1e-2, 1e-3, 1e-4, 1e-5],
-                       no_naive=True, tol_list=[1e-3, 1e-4, 1e-5], ts_dt_list=[0.01, 0.005],
-                       targets=[1e-2, 1e-3], repeats=1, max_steps=200000)
+    study = fl.compare("belt", **SMALL_COMPARISON)
     runs = study.runs
     assert set(runs["scheme"]) == {"dopri5 (event)", "radau5 (event)", "bdf (regularized)",
                                    "moreau-jean (timestepping)"}
@@ -125,6 +130,26 @@ def test_compare_scores_every_scheme_against_the_true_solution():
     assert study.summary["regularisation"]["falls"] is True
     with pytest.raises(ValueError, match=r"option `switching` does not apply to compare"):
         fl.compare("belt", model="CS", switching="regularized")
+
+
+def test_a_comparison_on_a_two_worker_local_cluster_equals_the_in_process_one():
+    distributed = pytest.importorskip("distributed")
+    local = fl.compare("belt", threads=1, **SMALL_COMPARISON)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as cluster, \
+            distributed.Client(cluster) as client:
+        on_dask = fl.compare("belt", client=client, **SMALL_COMPARISON)
+        # Bad input is refused before any task is sent.
+        with pytest.raises(ValueError, match="epsilons"):
+            fl.compare("belt", client=client, **dict(SMALL_COMPARISON, epsilons=[-1.0]))
+    assert set(on_dask.tables) == set(local.tables)
+    # Every table but the two of wall times, bit for bit.
+    for name in set(local.tables) - {"compare-timing", "compare-cost-timing"}:
+        pd.testing.assert_frame_equal(on_dask.tables[name], local.tables[name],
+                                      check_exact=True)
+    for study in (local, on_dask):
+        study.summary.pop("provenance")
+    assert on_dask.summary == local.summary and on_dask.notes == local.notes
 
 
 def test_an_independence_study_with_a_failed_level_raises_and_keeps_the_others():
@@ -221,3 +246,24 @@ def test_the_functions_bind_the_library_not_the_command_line():
         fl.simulate("belt", model="CVS", rtol="1e-6")
     with pytest.raises(ValueError, match=r"^`point_range` = \[1, 2, 3\]: a pair"):
         fl.sweep("belt", model="CVS", grid={"k": [1.0]}, point_range=(1, 2, 3))
+
+
+def test_testset_solves_a_problem_of_the_stiff_test_set():
+    solved = fl.testset("hires", rtol=1e-6)
+    summary = solved["summary"]
+    # radau5 at rtol = atol = 1e-6 gets four digits of the published y(321.8122).
+    assert summary["solver"] == "radau5" and summary["status"] == "ok"
+    assert 3.5 < summary["stats"]["scd"] < 5.5
+    assert list(solved["final"].columns) == ["t"] + [f"y{i}" for i in range(1, 9)]
+    assert solved["final"]["t"].iloc[0] == 321.8122
+    # No correct digit: inaccurate, with a warning naming the digits.
+    with pytest.warns(RuntimeWarning, match="digit"):
+        bad = fl.testset("robertson", solver="implicit-euler", rtol=1.0, atol=1.0)
+    assert bad["summary"]["status"] == "inaccurate"
+    with pytest.raises(ValueError, match=r"option `solver='rk4'` takes a fixed step"):
+        fl.testset("hires", solver="rk4")
+
+
+def test_an_unknown_parameter_name_gets_its_close_match():
+    with pytest.raises(ValueError, match=r"unknown parameter `vbelt` \(did you mean `v_belt`\?\)"):
+        fl.simulate("belt", model="CVS", params={"vbelt": 0.1})

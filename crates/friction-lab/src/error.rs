@@ -238,7 +238,19 @@ pub fn field(name: &str) -> String {
     format!("{FIELD_OPEN}{name}{FIELD_CLOSE}")
 }
 
-/// `text` with every field marked by [`field`] spelled by `spell`.
+/// Where a marked setting's value begins ([`setting`]).
+const VALUE_SEPARATOR: char = '\u{1F}';
+
+/// A request's field with the value it was given (`solver` = `bdf`), named inside a message
+/// for each front end to spell as its user writes it ([`spell_fields`]): the command line as
+/// `--solver bdf`, Python as `solver='bdf'` (a number bare, a comma list as a list).
+pub fn setting(name: &str, value: &str) -> String {
+    format!("{FIELD_OPEN}{name}{VALUE_SEPARATOR}{value}{FIELD_CLOSE}")
+}
+
+/// `text` with every field marked by [`field`] spelled by `spell`, and every setting marked
+/// by [`setting`] as its field so spelled with its value: after a space where the field is
+/// spelled as an option (`--solver bdf`), else as a keyword argument (`solver='bdf'`).
 pub fn spell_fields(text: &str, spell: &dyn Fn(&str) -> String) -> String {
     let mut out = String::with_capacity(text.len());
     let mut rest = text;
@@ -248,10 +260,32 @@ pub fn spell_fields(text: &str, spell: &dyn Fn(&str) -> String) -> String {
             break;
         };
         out += &rest[..start];
-        out += &spell(&after[..end]);
+        out += &match after[..end].split_once(VALUE_SEPARATOR) {
+            None => spell(&after[..end]),
+            Some((name, value)) => match spell(name) {
+                option if option.starts_with("--") => format!("{option} {value}"),
+                keyword => format!("{keyword}={}", keyword_value(value)),
+            },
+        };
         rest = &after[end + FIELD_CLOSE.len_utf8()..];
     }
     out + rest
+}
+
+/// A setting's value as a keyword argument takes it: a number bare, a name quoted, a comma
+/// list as a list (`0.7`, `'bdf'`, `['rk4', 'bdf']`).
+fn keyword_value(value: &str) -> String {
+    let one = |v: &str| match v.parse::<f64>() {
+        Ok(_) => v.to_string(),
+        Err(_) => format!("'{v}'"),
+    };
+    match value.contains(',') {
+        true => format!(
+            "[{}]",
+            value.split(',').map(one).collect::<Vec<_>>().join(", ")
+        ),
+        false => one(value),
+    }
 }
 
 /// A field as its request declares it (`t_end`): how the library's own `Display` spells
@@ -322,7 +356,25 @@ pub fn bounded(message: &str) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::{as_option, bounded, field, spell_fields, AppError, MAX_ECHO};
+    use super::{as_option, bounded, field, setting, spell_fields, AppError, MAX_ECHO};
+
+    #[test]
+    fn a_setting_is_spelled_as_each_front_end_writes_it() {
+        let text = format!(
+            "option `{}`, `{}`, `{}`",
+            setting("solver", "bdf"),
+            setting("theta", "0.7"),
+            setting("solvers", "rk4,bdf")
+        );
+        assert_eq!(
+            spell_fields(&text, &as_option),
+            "option `--solver bdf`, `--theta 0.7`, `--solvers rk4,bdf`"
+        );
+        assert_eq!(
+            spell_fields(&text, &|name: &str| name.to_string()),
+            "option `solver='bdf'`, `theta=0.7`, `solvers=['rk4', 'bdf']`"
+        );
+    }
 
     #[test]
     fn each_front_end_spells_the_marked_fields_its_own_way() {

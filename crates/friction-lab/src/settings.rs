@@ -6,7 +6,7 @@
 //! (whose `Default` is the declared defaults: [`declared_defaults`]). Each is checked here,
 //! once, against the ranges of [`crate::ranges`].
 
-use crate::error::{field, AppError};
+use crate::error::{field, setting, AppError};
 use crate::params::ParamSource;
 use crate::ranges;
 use crate::scheme::{SchemeName, SwitchingName};
@@ -47,11 +47,11 @@ default_as_declared!(SchemeChoice, RunLimits, SolverSettings, ModelSettings);
 /// The note given for `switching = timestepping`, the former spelling of the time-stepping
 /// scheme, which is still taken.
 pub fn timestepping_spelling() -> String {
-    let (switching, scheme) = (field("switching"), field("scheme"));
     format!(
-        "`{switching} timestepping` is now spelt `{scheme} time-stepping` (time-stepping is a \
-         scheme, not a treatment of v = 0); the old spelling is taken for now and will be \
-         refused in a later release"
+        "`{}` is now spelt `{}` (time-stepping is a scheme, not a treatment of v = 0); the old \
+         spelling is taken for now and will be refused in a later release",
+        setting("switching", "timestepping"),
+        setting("scheme", "time-stepping")
     )
 }
 
@@ -256,18 +256,17 @@ impl SolverSettings {
         let [scheme, theta_, solver_, dt] = ["scheme", "theta", "solver", "dt"].map(field);
         if let (Some(theta), false) = (self.theta, time_stepping) {
             return Err(AppError::Usage(format!(
-                "option `{theta_} {}` applies to {scheme} time-stepping, the weight of its \
-                 θ-method: the event-driven solvers have none; drop {theta_}, or choose \
-                 {scheme} time-stepping",
-                ranges::show(theta)
+                "option `{}` applies to {scheme} time-stepping, the weight of its θ-method: the \
+                 event-driven solvers have none; drop {theta_}, or choose {scheme} time-stepping",
+                setting("theta", &ranges::show(theta))
             )));
         }
         if let (Some(solver), true) = (self.solver, time_stepping) {
             return Err(AppError::Usage(format!(
-                "option `{solver_} {}` does not apply to {scheme} time-stepping: Moreau–Jean's \
-                 scheme takes no ODE solver (its step is {dt}, its weight {theta_}); drop \
-                 {solver_}, or choose {scheme} event-driven",
-                solver.name()
+                "option `{}` does not apply to {scheme} time-stepping: Moreau–Jean's scheme takes \
+                 no ODE solver (its step is {dt}, its weight {theta_}); drop {solver_}, or choose \
+                 {scheme} event-driven",
+                setting("solver", solver.name())
             )));
         }
         if self.fixed_step && !self.solver().takes_fixed_steps() && !time_stepping {

@@ -61,10 +61,9 @@ impl TestSetRequest {
         let solver = self.solver.unwrap_or(Solver::RADAU5);
         if solver.is_fixed_step() {
             return Err(AppError::Usage(format!(
-                "option `{} {}` takes a fixed step: the test set is run with tolerances; \
-                 choose an adaptive solver",
-                crate::error::field("solver"),
-                solver.name()
+                "option `{}` takes a fixed step: the test set is run with tolerances; choose \
+                 an adaptive solver",
+                crate::error::setting("solver", solver.name())
             )));
         }
         let rtol = ranges::RTOL.check(self.rtol)?;

@@ -112,11 +112,45 @@ pub struct ParamSpec {
     pub range: Range,
 }
 
+/// " (did you mean `NAME`?)" for the one of `known` closest to `name`, where one is close: at
+/// an edit distance (Levenshtein's, letters compared without case) of at most a third of
+/// `name`'s length, and at least 1 (`vbelt` → `v_belt`, `Fs` → `F_s`); else nothing, and
+/// nothing for a name of one letter (every other one-letter name is one edit away).
+pub fn did_you_mean<'a>(name: &str, known: impl IntoIterator<Item = &'a str>) -> String {
+    let lower = name.to_lowercase();
+    let allowed = match name.chars().count() {
+        0 | 1 => return String::new(),
+        n => (n / 3).max(1),
+    };
+    (known.into_iter())
+        .map(|k| (edit_distance(&lower, &k.to_lowercase()), k))
+        .filter(|&(d, _)| d <= allowed)
+        .min_by_key(|&(d, _)| d)
+        .map_or(String::new(), |(_, k)| format!(" (did you mean `{k}`?)"))
+}
+
+/// The Levenshtein distance of `a` and `b`: the fewest insertions, deletions and
+/// substitutions of one character that make one the other.
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut diagonal = row[0];
+        row[0] = i + 1;
+        for (j, &cb) in b.iter().enumerate() {
+            let substituted = diagonal + usize::from(ca != cb);
+            diagonal = row[j + 1];
+            row[j + 1] = substituted.min(row[j] + 1).min(diagonal + 1);
+        }
+    }
+    row[b.len()]
+}
+
 /// A parameter that could not be accepted.
 #[derive(Clone, Debug, Error, PartialEq)]
 pub enum ParamError {
     /// A name that no parameter has.
-    #[error("unknown parameter `{name}`; known parameters: {known}")]
+    #[error("unknown parameter `{name}`{}; known parameters: {known}", did_you_mean(name, known.split(", ")))]
     Unknown {
         /// The name given.
         name: String,
@@ -410,6 +444,28 @@ mod tests {
         let text = err.to_string();
         assert!(text.starts_with("unknown parameter `mu_s`"), "{text}");
         assert!(text.contains("F_s, F_c, mu_v"), "{text}");
+        // A name one edit from a known one is suggested; one far from all is not.
+        let near = FrictionParams::paper()
+            .set("fs", 0.7)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            near.starts_with("unknown parameter `fs` (did you mean `F_s`?);"),
+            "{near}"
+        );
+        let far = FrictionParams::paper().set("stiffness", 1.0).unwrap_err();
+        assert!(!far.to_string().contains("did you mean"), "{far}");
+    }
+
+    #[test]
+    fn the_closest_name_is_suggested_within_a_third_of_the_length() {
+        let known = ["v_belt", "k", "c", "sigma_0"];
+        assert_eq!(did_you_mean("vbelt", known), " (did you mean `v_belt`?)");
+        assert_eq!(did_you_mean("Sigma0", known), " (did you mean `sigma_0`?)");
+        assert_eq!(did_you_mean("mass", known), "");
+        assert_eq!(did_you_mean("m", known), "");
+        assert_eq!(edit_distance("kitten", "sitting"), 3);
+        assert_eq!(edit_distance("", "abc"), 3);
     }
 
     #[test]

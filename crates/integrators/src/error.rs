@@ -4,7 +4,7 @@ use thiserror::Error;
 
 /// A time as the messages show it: positional between 1e-3 and 1e6, with an exponent outside
 /// (the rule of `friction_models::params::show`; this crate depends on no other of ours).
-fn shown(t: &f64) -> String {
+pub(crate) fn shown(t: &f64) -> String {
     if t.is_finite() && *t != 0.0 && !(1e-3..1e6).contains(&t.abs()) {
         format!("{t:e}")
     } else {
@@ -89,6 +89,13 @@ pub enum SolverError {
         t: f64,
         /// Which quantity, its value and the bound.
         what: String,
+    },
+    /// A failure reported by another process, as its message: a part of a study made
+    /// elsewhere (a Dask worker) and merged, whose failure travelled as text.
+    #[error("{message}")]
+    Reported {
+        /// The failure's message as it was reported.
+        message: String,
     },
     /// Events accumulate: too many in too short a time (chattering or a Zeno point).
     #[error("too many events: {count} events within {window:e} s before t = {} (chattering or Zeno behaviour); last event: {last}", shown(.t))]

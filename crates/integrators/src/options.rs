@@ -25,6 +25,24 @@ pub enum StepControl {
     },
 }
 
+/// As reports write it: `fixed step h = 0.01 s`, `rtol 1e-10, atol 1e-12` (with `, h0 = …
+/// s` where a first step is given).
+impl std::fmt::Display for StepControl {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        use crate::error::shown;
+        match *self {
+            StepControl::Fixed { h } => write!(f, "fixed step h = {} s", shown(&h)),
+            StepControl::Adaptive { rtol, atol, h0 } => {
+                write!(f, "rtol {}, atol {}", shown(&rtol), shown(&atol))?;
+                match h0 {
+                    Some(h) => write!(f, ", h0 = {} s", shown(&h)),
+                    None => Ok(()),
+                }
+            }
+        }
+    }
+}
+
 impl StepControl {
     /// The step the run prescribes: the fixed step `h`, or an adaptive run's `h0`; `None`
     /// when the method is to choose its first step.
@@ -221,5 +239,30 @@ impl Options {
     /// The largest step.
     pub fn h_max(&self) -> f64 {
         self.h_max.unwrap_or(self.t_end - self.t0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::StepControl;
+
+    #[test]
+    fn a_step_control_reads_as_reports_write_it() {
+        let adaptive = StepControl::Adaptive {
+            rtol: 1e-10,
+            atol: 1e-12,
+            h0: None,
+        };
+        assert_eq!(adaptive.to_string(), "rtol 1e-10, atol 1e-12");
+        let started = StepControl::Adaptive {
+            rtol: 1e-6,
+            atol: 1e-6,
+            h0: Some(0.001),
+        };
+        assert_eq!(started.to_string(), "rtol 1e-6, atol 1e-6, h0 = 0.001 s");
+        assert_eq!(
+            StepControl::Fixed { h: 0.01 }.to_string(),
+            "fixed step h = 0.01 s"
+        );
     }
 }

@@ -4,7 +4,7 @@ use serde::Serialize;
 use std::ops::AddAssign;
 
 /// Counts of the work a solver did.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, serde::Deserialize)]
 pub struct Stats {
     /// Accepted steps (a step cut short by an event counts once, as accepted).
     pub steps: usize,

@@ -42,8 +42,15 @@ impl ChainSource {
         }
         if FrictionParams::spec(name).is_none() {
             return Err(ScenarioError::Invalid(format!(
-                "unknown parameter `{name}` of the chain; known: {}, and the friction \
+                "unknown parameter `{name}` of the chain{}; known: {}, and the friction \
                  parameters its law reads",
+                friction_models::params::did_you_mean(
+                    name,
+                    (friction_systems::chain::CHAIN_PARAMETERS
+                        .iter()
+                        .map(|p| p.0))
+                    .chain(FrictionParams::specs().iter().map(|s| s.name))
+                ),
                 friction_systems::chain::CHAIN_PARAMETERS
                     .map(|p| p.0)
                     .join(", ")

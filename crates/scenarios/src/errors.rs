@@ -53,7 +53,7 @@ impl Scales {
 }
 
 /// Errors of a run against the reference (see the module).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, serde::Deserialize)]
 pub struct Errors {
     /// The largest relative error at the end: max over every body's x, v, z of
     /// |Δ(t_end)| / the solution's scale in that quantity ([`Scales`]); dimensionless.

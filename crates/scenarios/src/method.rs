@@ -171,7 +171,7 @@ pub fn resolution(step: StepControl) -> f64 {
 
 /// Which a resolution is: a step size (fixed steps, s) or a tolerance (adaptive steps,
 /// rtol = atol); written `fixed` and `adaptive`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum StepKind {
     /// A step size.

@@ -117,7 +117,7 @@ pub struct StudyRun {
 }
 
 /// The wall times of a run over its repeats, s: their median and spread.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct WallTimes {
     /// How many times the run was timed.
     pub repeats: usize,

@@ -19,7 +19,7 @@ pub const ENERGY_DIVERGED: f64 = 0.9;
 
 /// What a run's result is worth.
 /// Ordered from best to worst: a run's status is the worst any check gives it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Status {
     /// Nothing found against it.
@@ -46,7 +46,7 @@ impl Status {
 }
 
 /// A status and why.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize)]
 pub struct Verdict {
     /// The status.
     pub status: Status,

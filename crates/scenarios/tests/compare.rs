@@ -132,6 +132,45 @@ fn the_comparison_is_the_same_on_one_thread_and_on_two() {
 }
 
 #[test]
+fn parts_made_apart_and_merged_in_any_order_give_the_comparison_made_in_one_piece() {
+    use scenarios::studies::{parts, TrueSolution};
+    let (case, spec) = (belt(), spec());
+    let whole = run_on(2);
+    let divided = parts(&spec);
+    // The cross-check; dopri5, radau5 and Moreau–Jean alone; BDF at each of the four widths.
+    assert_eq!(divided.len(), 1 + 3 + 4);
+    // Each part from its own true solution, as a Dask worker makes it.
+    let made: Vec<_> = (divided.iter())
+        .map(|part| {
+            let truth = TrueSolution::of(&case).unwrap();
+            truth.part(&case, &spec, part, &|| {}).unwrap()
+        })
+        .collect();
+    let truth = TrueSolution::of(&case).unwrap();
+    let mut reversed = made.clone();
+    reversed.reverse();
+    let merged = truth.merge(&spec, reversed).unwrap();
+    // Every field the files hold (the wall times apart), bit for bit.
+    let written = |c: &Comparison| serde_json::to_string(c).unwrap();
+    assert_eq!(written(&merged), written(&whole));
+    let times = |c: &Comparison| {
+        c.runs
+            .iter()
+            .map(|r| r.run.wall_time.repeats)
+            .sum::<usize>()
+    };
+    assert_eq!(times(&merged), times(&whole));
+
+    // A part missing, or given twice, is refused.
+    let missing = truth.merge(&spec, made[1..].to_vec()).unwrap_err();
+    assert!(missing.to_string().contains("0 cross-checks"), "{missing}");
+    let mut twice = made.clone();
+    twice.push(made[1].clone());
+    let twice = truth.merge(&spec, twice).unwrap_err();
+    assert!(twice.to_string().contains("track 0 given twice"), "{twice}");
+}
+
+#[test]
 fn a_stiffness_sweep_extends_a_list_that_stops_short_of_its_target() {
     // Tolerances 1e-2 and 1e-3 leave Dormand–Prince short of 1e-5 on the regularised belt;
     // the list is extended by tenths until it meets it, rather than the method being called

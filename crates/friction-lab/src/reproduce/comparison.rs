@@ -120,6 +120,7 @@ impl Part for Comparisons {
                 let study = CompareStudy {
                     case: case.as_ref(),
                     spec: &spec,
+                    parts: None,
                 };
                 let stem = format!("{}-{model}", system.name);
                 let c = conduct(&study, target, &stem)?;

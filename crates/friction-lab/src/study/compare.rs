@@ -14,7 +14,7 @@ use plotters::style::{RGBColor, BLACK};
 const GREY: RGBColor = RGBColor(150, 150, 150);
 use friction_models::params::show;
 use scenarios::studies::{
-    self, CompareSpec, ComparedRun, Comparison, ErrorMeasure, StudyCase, StudyRun,
+    self, ComparePart, CompareSpec, ComparedRun, Comparison, ErrorMeasure, StudyCase, StudyRun,
 };
 
 /// Every scheme of `spec` on `case`, against the true solution.
@@ -23,6 +23,9 @@ pub struct CompareStudy<'a> {
     pub case: &'a dyn StudyCase,
     /// What is compared.
     pub spec: &'a CompareSpec,
+    /// The parts of the comparison made elsewhere, to be merged; `None`: every run is made
+    /// here ([`studies::compare`]).
+    pub parts: Option<Vec<ComparePart>>,
 }
 
 /// The lines a front end prints of a comparison: the true solution's accuracy, the model
@@ -125,7 +128,13 @@ impl Study for CompareStudy<'_> {
     }
 
     fn run(&self, progress: &(dyn Fn() + Sync)) -> Result<Comparison, AppError> {
-        studies::compare(self.case, self.spec, progress).map_err(AppError::from)
+        Ok(match &self.parts {
+            None => studies::compare(self.case, self.spec, progress)?,
+            Some(parts) => {
+                let truth = studies::TrueSolution::of(self.case)?;
+                truth.merge(self.spec, parts.clone())?
+            }
+        })
     }
 
     fn failure(&self, c: &Comparison) -> Option<AppError> {

@@ -236,7 +236,7 @@ pub fn markdown(
         ));
     }
     s += &format!(
-        "Written by `friction-lab phenomena` with solver {} ({:?}), event switching, {parameters}. \
+        "Written by `friction-lab phenomena` with solver {} ({}), event switching, {parameters}. \
          Each cell reads `measured = paper`; a disagreement is \
          bold, `measured ≠ paper`. The protocols and thresholds are in docs/phenomena.md.\n\n",
         protocol.solver.name(),

@@ -24,9 +24,9 @@ pub use crate::study_run::{
     ErrorMeasure, Errors, Reference, StudyRun, WallTimes, REFERENCE_TOLERANCE,
 };
 pub use compare::{
-    compare, scheme_name, CompareSpec, ComparedRun, Comparison, CrossCheck, Crossover, EpsilonFit,
-    Kind, ModelError, NeededWidth, Regularisation, Resolutions, SchemeCost, Schemes, TargetCosts,
-    TrackEnd,
+    compare, parts, scheme_name, ComparePart, CompareSpec, ComparedRun, Comparison, CrossCheck,
+    Crossover, EpsilonFit, Kind, ModelError, NeededWidth, Part, Regularisation, Resolutions,
+    SchemeCost, Schemes, TargetCosts, TrackEnd, TrueSolution,
 };
 pub use convergence::{convergence, Convergence, OrderTable};
 pub use extend::{next_resolution, FINEST_STEP_DIVISOR, STILL_FALLING, TIGHTEST_TOLERANCE};

@@ -3,13 +3,15 @@
 //! target errors ([`scenarios::studies::compare`]).
 
 use super::Problem;
-use crate::error::{field, AppError};
+use crate::error::{field, AppError, Invalid};
 use crate::made::Made;
 use crate::ranges;
-use crate::study::{conduct, CompareStudy};
+use crate::study::{conduct, CompareStudy, Study};
+use crate::threads::with_threads;
 use integrators::Solver;
 use scenarios::run::DEFAULT_THETA;
-use scenarios::studies::{CompareSpec, Resolutions, Schemes};
+use scenarios::studies::{self, ComparePart, CompareSpec, Resolutions, Schemes, TrueSolution};
+use serde::{Deserialize, Serialize};
 use std::path::Path;
 
 /// The explicit, implicit, regularised, naive and time-stepped runs of one problem, each
@@ -139,16 +141,124 @@ impl CompareRequest {
     /// Checks and runs the comparison: its files in `out` (in memory), and its answer at each
     /// target.
     pub fn run(&self, out: &Path) -> Result<Made, AppError> {
+        self.conduct(out, None)
+    }
+
+    /// The comparison made of `parts` (each made by [`CompareRequest::part`] of this
+    /// request, in any order, on any machine): its files in `out` (in memory), as
+    /// [`CompareRequest::run`] makes them, bit for bit but for the wall times. The true
+    /// solution is computed here again (the reference run and its scale).
+    pub fn merge(&self, out: &Path, parts: &[Vec<u8>]) -> Result<Made, AppError> {
+        let count = self.part_count()?;
+        let mut seen = vec![false; count];
+        let mut decoded = Vec::new();
+        for bytes in parts {
+            let envelope: Envelope = ciborium::from_reader(bytes.as_slice())
+                .map_err(|e| not_a_part(format!("it does not decode ({e})")))?;
+            if envelope.request != self.fingerprint() {
+                return Err(not_a_part(format!(
+                    "it was made for another request ({})",
+                    envelope.request
+                )));
+            }
+            match seen.get_mut(envelope.index) {
+                Some(s) if !*s => *s = true,
+                _ => {
+                    return Err(not_a_part(format!(
+                        "its index {} is given twice or is not below {count}",
+                        envelope.index
+                    )))
+                }
+            }
+            decoded.push(envelope.part);
+        }
+        if let Some(missing) = seen.iter().position(|s| !s) {
+            return Err(not_a_part(format!("part {missing} of {count} is missing")));
+        }
+        self.conduct(out, Some(decoded))
+    }
+
+    /// How many independent parts the comparison divides into ([`studies::parts`]: the
+    /// cross-check, each scheme without ε, each width ε with its regularised schemes).
+    pub fn part_count(&self) -> Result<usize, AppError> {
+        Ok(studies::parts(&self.spec()?).len())
+    }
+
+    /// Makes part `index` of the comparison (below [`CompareRequest::part_count`]) on this
+    /// process's threads, encoded (CBOR) for [`CompareRequest::merge`]: the true solution,
+    /// then the part's runs.
+    pub fn part(&self, index: usize) -> Result<Vec<u8>, AppError> {
+        let spec = self.spec()?;
+        let parts = studies::parts(&spec);
+        let Some(part) = parts.get(index) else {
+            return Err(AppError::Invalid(Invalid {
+                field: "part",
+                value: index.to_string(),
+                allowed: format!("an index below the comparison's {} parts", parts.len()),
+                list: false,
+            }));
+        };
+        let setup = self.problem.case()?;
+        let case = setup.case.as_ref();
+        CompareStudy {
+            case,
+            spec: &spec,
+            parts: None,
+        }
+        .check()?;
+        let made = with_threads(ranges::threads(self.problem.threads)?, || {
+            let truth = TrueSolution::of(case)?;
+            truth.part(case, &spec, part, &|| {})
+        })??;
+        let envelope = Envelope {
+            request: self.fingerprint(),
+            index,
+            part: made,
+        };
+        let mut bytes = Vec::new();
+        ciborium::into_writer(&envelope, &mut bytes)
+            .map_err(|e| AppError::Usage(format!("a comparison's part does not encode: {e}")))?;
+        Ok(bytes)
+    }
+
+    /// What the parts of this request are checked by: the request but for its thread count
+    /// (a part may run on any number of threads).
+    fn fingerprint(&self) -> String {
+        let mut request = self.clone();
+        request.problem.threads = None;
+        format!("{request:?}")
+    }
+
+    /// Conducts the comparison (of `parts` where given) into `out`.
+    fn conduct(&self, out: &Path, parts: Option<Vec<ComparePart>>) -> Result<Made, AppError> {
         let spec = self.spec()?;
         self.problem.make(out, |t, setup| {
             let study = CompareStudy {
                 case: setup.case.as_ref(),
                 spec: &spec,
+                parts,
             };
             let c = conduct(&study, t, "compare")?;
             Ok(crate::study::compare_lines(&c))
         })
     }
+}
+
+/// A part of a comparison as it travels: the request it was made for, its index, and what
+/// it made.
+#[derive(Serialize, Deserialize)]
+struct Envelope {
+    request: String,
+    index: usize,
+    part: ComparePart,
+}
+
+/// The refusal of a part that does not belong to the comparison being merged.
+fn not_a_part(why: String) -> AppError {
+    AppError::Usage(format!(
+        "a part given to merge does not belong to this comparison: {why}; make every part with \
+         the same request"
+    ))
 }
 
 /// `solvers`, or none where their family is `left_out`.

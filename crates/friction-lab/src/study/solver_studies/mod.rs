@@ -29,7 +29,7 @@ pub use work_precision::{
 };
 
 use crate::artifacts::Artifacts;
-use crate::error::{field, AppError};
+use crate::error::{field, setting, AppError};
 use crate::laws::ModelChoice;
 use crate::made::Made;
 use crate::ranges;
@@ -230,12 +230,13 @@ impl Problem {
         defaults: &[Solver],
     ) -> Result<Vec<Method>, AppError> {
         if !given.is_empty() && self.scheme.is_time_stepping() {
-            let (option, scheme) = (field(option), field("scheme"));
+            let scheme = field("scheme");
+            let names: Vec<&str> = given.iter().map(|s| s.name()).collect();
             return Err(AppError::Usage(format!(
-                "option `{option} {}` does not apply to {scheme} time-stepping: the study's one \
-                 method is Moreau–Jean's scheme over the study's step sizes, which takes no ODE \
-                 solver; drop the solvers, or choose {scheme} event-driven",
-                given.iter().map(|s| s.name()).collect::<Vec<_>>().join(",")
+                "option `{}` does not apply to {scheme} time-stepping: the study's one method is \
+                 Moreau–Jean's scheme over the study's step sizes, which takes no ODE solver; \
+                 drop the solvers, or choose {scheme} event-driven",
+                setting(option, &names.join(","))
             )));
         }
         let solvers = or_default(given, defaults);

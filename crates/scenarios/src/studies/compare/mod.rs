@@ -19,6 +19,12 @@
 //! target, failed, or reached its regularisation floor, and is extended past its list while
 //! its error still falls ([`next_resolution`]). Each round is
 //! one list on the pool, so the results do not depend on the thread count.
+//!
+//! The runs fall into independent [`parts`] (the cross-check; each scheme without ε; each
+//! width ε with the regularised schemes at it), each made by [`TrueSolution::part`] from the
+//! true solution alone, and [`TrueSolution::merge`] makes the comparison of them. A
+//! comparison made in one piece ([`compare`]) is the merge of one part holding every run, so
+//! parts made on other machines (Dask workers) give it bit for bit.
 
 mod cost;
 pub mod regularisation;
@@ -27,14 +33,15 @@ pub use cost::{at_target, crossovers, Crossover, Kind, SchemeCost, TargetCosts, 
 pub use regularisation::{EpsilonFit, ModelError, NeededWidth, Regularisation};
 
 use super::extend::next_resolution;
-use super::{batch, Errors, Measures, Method, Reference, StudyCase, StudyRun};
+use super::{batch, Errors, Measures, Method, Reference, StepKind, StudyCase, StudyRun, WallTimes};
 use crate::error::ScenarioError;
 use crate::errors::Scales;
 use crate::study_run::{REFERENCE_MARGIN, REFERENCE_TOLERANCE};
+use crate::verdict::Verdict;
 use friction_models::params::show;
 use friction_systems::{Scheme, Switching};
-use integrators::{Solver, StepControl};
-use serde::Serialize;
+use integrators::{Solver, SolverError, Stats, StepControl};
+use serde::{Deserialize, Serialize};
 
 /// The method of another family that cross-checks the true solution: Radau IIA (order 5,
 /// implicit collocation) with events located, against the explicit 5(4) pairs of the
@@ -90,7 +97,7 @@ pub struct CompareSpec {
 }
 
 /// The second opinion on the true solution: a method of another family.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct CrossCheck {
     /// The scheme (`radau5 (event)`).
     pub scheme: String,
@@ -245,196 +252,456 @@ fn planned(scheme: Scheme, r: &Resolutions) -> Vec<StepControl> {
     }
 }
 
-/// Runs the comparison `spec` on `case` (see the module); `progress` is told of every run.
-pub fn compare(
-    case: &dyn StudyCase,
-    spec: &CompareSpec,
-    progress: &(dyn Fn() + Sync),
-) -> Result<Comparison, ScenarioError> {
-    let s = &spec.schemes;
-    let tightest = spec.targets.iter().copied().fold(f64::INFINITY, f64::min);
-    // The true solution: the event-driven reference of a study of an implicit solver (the
-    // explicit pairs are then free to be the reference).
-    let (reference, truth) = batch::reference(case, &[Method::events(CHECK_SOLVER)])?;
-    let velocity_scale = Scales::of(&truth).v;
-    // A solution at rest throughout has no scale to be relative to, and no jump is crossed.
-    if velocity_scale.is_nan() || velocity_scale <= 0.0 {
-        return Err(ScenarioError::Invalid(format!(
-            "{} does not move on [0, {}] s (its largest |v| is {}): there is no motion to \
-             compare the schemes on; integrate longer, or start it moving",
-            case.describe(),
-            show(case.t_end()),
-            show(velocity_scale)
-        )));
-    }
-    let epsilons: Vec<f64> = s.epsilons.iter().map(|e| e * velocity_scale).collect();
-
-    // The cross-check and the tight regularised solutions, one list.
-    let check = Scheme::events(CHECK_SOLVER);
-    let tight_step = |tol: f64| StepControl::Adaptive {
-        rtol: tol,
-        atol: tol,
-        h0: None,
-    };
-    let mut first: Vec<[(Method, StepControl); 1]> =
-        vec![[(Method::peer(check), tight_step(CHECK_TOLERANCE))]];
-    if !s.regularised.is_empty() {
-        for &epsilon in &epsilons {
-            let scheme = Scheme::EventDriven {
-                solver: TIGHT_SOLVER,
-                switching: Switching::Regularized { epsilon },
-            };
-            first.push([(Method::peer(scheme), tight_step(TIGHT_TOLERANCE))]);
-        }
-    }
-    let posed: Vec<batch::Posed> = (first.iter())
-        .map(|jobs| batch::Posed {
-            case,
-            reference_for: None,
-            jobs,
-        })
-        .collect();
-    let mut tight = batch::run_cases(&posed, 0, &|| {})?
-        .into_iter()
-        .map(|c| c.runs.into_iter().next().expect("one job a case"));
-    let check_run = tight.next().expect("the cross-check runs first");
-    let cross_check = CrossCheck {
-        scheme: scheme_name(check),
-        tolerance: CHECK_TOLERANCE,
-        difference: check_run
-            .failure
-            .is_none()
-            .then(|| Errors::between(&check_run.measures, &truth).grid_relative),
-        failure: check_run.failure.map(|e| e.to_string()),
-    };
-    let model_errors: Vec<ModelError> = (epsilons.iter().zip(&s.epsilons))
-        .zip(tight.by_ref())
-        .map(|((&epsilon, &relative), run)| ModelError {
-            epsilon,
-            relative,
-            error: match run.failure {
-                None => Errors::between(&run.measures, &truth).grid_relative,
-                Some(_) => f64::NAN,
-            },
-            failure: run.failure.as_ref().map(|e| e.to_string()),
-            measures: run.measures,
-        })
-        .collect();
-
-    // The tracks.
-    let mut tracks = Vec::new();
+/// Every track of `s` in order, its scheme and, for a regularised one, the index of its
+/// width in `epsilons` (the absolute widths, m/s): the event-driven solvers, the naive ones,
+/// time-stepping, then each regularised solver at every width.
+fn track_schemes(s: &Schemes, epsilons: &[f64]) -> Vec<(Scheme, Option<usize>)> {
     let events = (s.event.iter()).map(|&solver| Scheme::events(solver));
     let naive = (s.naive.iter()).map(|&solver| Scheme::EventDriven {
         solver,
         switching: Switching::Naive,
     });
     let stepping = (s.theta.iter()).map(|&theta| Scheme::TimeStepping { theta });
-    for scheme in events.chain(naive).chain(stepping) {
-        tracks.push(Track::new(scheme, planned(scheme, &spec.resolutions)));
+    let plain = events
+        .chain(naive)
+        .chain(stepping)
+        .map(|scheme| (scheme, None));
+    let regularised = (s.regularised.iter()).flat_map(|&solver| {
+        (epsilons.iter().enumerate()).map(move |(j, &epsilon)| {
+            let switching = Switching::Regularized { epsilon };
+            (Scheme::EventDriven { solver, switching }, Some(j))
+        })
+    });
+    plain.chain(regularised).collect()
+}
+
+/// Which of a comparison's runs one part makes ([`parts`]).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Part {
+    /// Whether it makes the cross-check.
+    pub cross_check: bool,
+    /// The indices of the regularisation widths whose tight solutions it makes.
+    pub widths: Vec<usize>,
+    /// The indices of the tracks it runs: the event-driven solvers, the naive ones,
+    /// time-stepping, then each regularised solver at every width.
+    pub tracks: Vec<usize>,
+}
+
+impl Part {
+    /// The part that makes every run of `spec`.
+    pub fn whole(spec: &CompareSpec) -> Part {
+        let (plain, widths) = track_counts(&spec.schemes);
+        Part {
+            cross_check: true,
+            widths: (0..widths).collect(),
+            tracks: (0..plain + spec.schemes.regularised.len() * widths).collect(),
+        }
     }
-    for &solver in &s.regularised {
-        for m in &model_errors {
-            let scheme = Scheme::EventDriven {
-                solver,
-                switching: Switching::Regularized { epsilon: m.epsilon },
-            };
-            let mut t = Track::new(scheme, planned(scheme, &spec.resolutions));
-            t.tight = m.failure.is_none().then(|| (m.measures.clone(), m.error));
-            tracks.push(t);
+}
+
+/// How many tracks of `s` have no width, and how many widths are compared.
+fn track_counts(s: &Schemes) -> (usize, usize) {
+    let plain = s.event.len() + s.naive.len() + usize::from(s.theta.is_some());
+    let widths = match s.regularised.is_empty() {
+        true => 0,
+        false => s.epsilons.len(),
+    };
+    (plain, widths)
+}
+
+/// The independent parts of the comparison `spec`: the cross-check; each scheme without ε,
+/// alone; each width ε with every regularised scheme at it (they share its tight solution).
+/// Merged ([`TrueSolution::merge`]) they give the comparison made in one piece.
+pub fn parts(spec: &CompareSpec) -> Vec<Part> {
+    let (plain, widths) = track_counts(&spec.schemes);
+    let solvers = spec.schemes.regularised.len();
+    let alone = (0..plain).map(|i| Part {
+        cross_check: false,
+        widths: Vec::new(),
+        tracks: vec![i],
+    });
+    let at_width = (0..widths).map(|j| Part {
+        cross_check: false,
+        widths: vec![j],
+        tracks: (0..solvers).map(|k| plain + k * widths + j).collect(),
+    });
+    let check = Part {
+        cross_check: true,
+        widths: Vec::new(),
+        tracks: Vec::new(),
+    };
+    std::iter::once(check)
+        .chain(alone)
+        .chain(at_width)
+        .collect()
+}
+
+/// One run of a part as it travels: a [`ComparedRun`] but for its scheme (the merge knows
+/// it), its measures (no longer needed) and its failure, kept as its message.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+struct RunRecord {
+    solver: String,
+    resolution: f64,
+    step: StepKind,
+    errors: Errors,
+    stats: Stats,
+    work: usize,
+    failure: Option<String>,
+    verdict: Verdict,
+    diverged: bool,
+    wall_time: WallTimes,
+    discretisation_error: Option<f64>,
+}
+
+impl RunRecord {
+    fn of(r: ComparedRun) -> RunRecord {
+        let run = r.run;
+        RunRecord {
+            solver: run.solver,
+            resolution: run.resolution,
+            step: run.step,
+            errors: run.errors,
+            stats: run.stats,
+            work: run.work,
+            failure: run.failure.map(|e| e.to_string()),
+            verdict: run.verdict,
+            diverged: run.diverged,
+            wall_time: run.wall_time,
+            discretisation_error: r.discretisation_error,
         }
     }
 
-    // The rounds.
-    loop {
-        let mut round: Vec<(usize, [(Method, StepControl); 1])> = Vec::new();
-        for (i, t) in tracks.iter_mut().enumerate() {
-            if t.stopped.is_some() {
-                continue;
-            }
-            match t.next() {
-                Ok(step) => round.push((i, [(t.method, step)])),
-                Err(why) => t.stopped = Some(Some(why)),
-            }
+    /// The run of `track`.
+    fn run_of(self, track: &Track) -> ComparedRun {
+        ComparedRun {
+            scheme: track.scheme.clone(),
+            epsilon: track.epsilon,
+            run: StudyRun {
+                solver: self.solver,
+                resolution: self.resolution,
+                step: self.step,
+                errors: self.errors,
+                measures: Measures::default(),
+                stats: self.stats,
+                work: self.work,
+                failure: (self.failure).map(|message| SolverError::Reported { message }),
+                verdict: self.verdict,
+                diverged: self.diverged,
+                wall_time: self.wall_time,
+            },
+            discretisation_error: self.discretisation_error,
         }
-        if round.is_empty() {
-            break;
+    }
+}
+
+/// One track's runs and why it stopped, as a part hands them on.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+struct TrackRecord {
+    runs: Vec<RunRecord>,
+    stopped: Option<String>,
+}
+
+/// What one part of a comparison made ([`TrueSolution::part`]): plain data, to be sent
+/// between processes (serde) and merged ([`TrueSolution::merge`]).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ComparePart {
+    cross_check: Option<CrossCheck>,
+    model_errors: Vec<(usize, ModelError)>,
+    tracks: Vec<(usize, TrackRecord)>,
+}
+
+/// The true nonsmooth solution a comparison scores every run against (see the module).
+pub struct TrueSolution {
+    /// Its source: the event-driven reference of a study of an implicit solver (the explicit
+    /// pairs are then free to be the reference).
+    pub reference: Reference,
+    /// Its measures.
+    measures: Measures,
+    /// Its largest |v|, m/s: what the widths ε are relative to.
+    pub velocity_scale: f64,
+}
+
+impl TrueSolution {
+    /// The true solution of `case`; refused where the case does not move (no scale to be
+    /// relative to, no jump crossed).
+    pub fn of(case: &dyn StudyCase) -> Result<TrueSolution, ScenarioError> {
+        let (reference, measures) = batch::reference(case, &[Method::events(CHECK_SOLVER)])?;
+        let velocity_scale = Scales::of(&measures).v;
+        if velocity_scale.is_nan() || velocity_scale <= 0.0 {
+            return Err(ScenarioError::Invalid(format!(
+                "{} does not move on [0, {}] s (its largest |v| is {}): there is no motion to \
+                 compare the schemes on; integrate longer, or start it moving",
+                case.describe(),
+                show(case.t_end()),
+                show(velocity_scale)
+            )));
         }
-        let posed: Vec<batch::Posed> = (round.iter())
-            .map(|(_, jobs)| batch::Posed {
+        Ok(TrueSolution {
+            reference,
+            measures,
+            velocity_scale,
+        })
+    }
+
+    /// The widths of `spec`, m/s.
+    fn epsilons(&self, spec: &CompareSpec) -> Vec<f64> {
+        let relative = &spec.schemes.epsilons;
+        relative.iter().map(|e| e * self.velocity_scale).collect()
+    }
+
+    /// Makes the runs of `part` of the comparison `spec` on `case`; `progress` is told of
+    /// every run of its tracks.
+    pub fn part(
+        &self,
+        case: &dyn StudyCase,
+        spec: &CompareSpec,
+        part: &Part,
+        progress: &(dyn Fn() + Sync),
+    ) -> Result<ComparePart, ScenarioError> {
+        let tightest = spec.targets.iter().copied().fold(f64::INFINITY, f64::min);
+        let epsilons = self.epsilons(spec);
+        let every = track_schemes(&spec.schemes, &epsilons);
+
+        // The cross-check and the tight regularised solutions, one list.
+        let check = Scheme::events(CHECK_SOLVER);
+        let tight_step = |tol: f64| StepControl::Adaptive {
+            rtol: tol,
+            atol: tol,
+            h0: None,
+        };
+        let mut first: Vec<[(Method, StepControl); 1]> = Vec::new();
+        if part.cross_check {
+            first.push([(Method::peer(check), tight_step(CHECK_TOLERANCE))]);
+        }
+        for &j in &part.widths {
+            let scheme = Scheme::EventDriven {
+                solver: TIGHT_SOLVER,
+                switching: Switching::Regularized {
+                    epsilon: epsilons[j],
+                },
+            };
+            first.push([(Method::peer(scheme), tight_step(TIGHT_TOLERANCE))]);
+        }
+        let posed: Vec<batch::Posed> = (first.iter())
+            .map(|jobs| batch::Posed {
                 case,
                 reference_for: None,
                 jobs,
             })
             .collect();
-        let done = batch::run_cases(&posed, spec.repeats, progress)?;
-        for ((i, _), c) in round.iter().zip(done) {
-            let t = &mut tracks[*i];
-            let mut run = c.runs.into_iter().next().expect("one job a case");
-            batch::judge(&mut run, &truth);
-            run.solver = t.label();
-            let discretisation_error = (t.tight.as_ref())
-                .filter(|_| run.failure.is_none())
-                .map(|(m, _)| Errors::between(&run.measures, m).grid_relative);
-            let compared = ComparedRun {
-                scheme: t.scheme.clone(),
-                epsilon: t.epsilon,
-                run,
-                discretisation_error,
-            };
-            t.record(compared, tightest);
+        let mut tight = batch::run_cases(&posed, 0, &|| {})?
+            .into_iter()
+            .map(|c| c.runs.into_iter().next().expect("one job a case"));
+        let cross_check = part.cross_check.then(|| {
+            let run = tight.next().expect("the cross-check runs first");
+            CrossCheck {
+                scheme: scheme_name(check),
+                tolerance: CHECK_TOLERANCE,
+                difference: (run.failure.is_none())
+                    .then(|| Errors::between(&run.measures, &self.measures).grid_relative),
+                failure: run.failure.map(|e| e.to_string()),
+            }
+        });
+        let solutions: Vec<(usize, ModelError, Measures)> = (part.widths.iter())
+            .zip(tight)
+            .map(|(&j, run)| {
+                let model = ModelError {
+                    epsilon: epsilons[j],
+                    relative: spec.schemes.epsilons[j],
+                    error: match run.failure {
+                        None => Errors::between(&run.measures, &self.measures).grid_relative,
+                        Some(_) => f64::NAN,
+                    },
+                    failure: run.failure.as_ref().map(|e| e.to_string()),
+                };
+                (j, model, run.measures)
+            })
+            .collect();
+
+        // The tracks.
+        let mut tracks: Vec<(usize, Track)> = (part.tracks.iter())
+            .map(|&i| {
+                let (scheme, width) = every[i];
+                let mut t = Track::new(scheme, planned(scheme, &spec.resolutions));
+                if let Some(j) = width {
+                    let (_, model, measures) = (solutions.iter())
+                        .find(|(k, ..)| *k == j)
+                        .expect("a part makes the tight solutions of its tracks' widths");
+                    t.tight = (model.failure.is_none()).then(|| (measures.clone(), model.error));
+                }
+                (i, t)
+            })
+            .collect();
+
+        // The rounds.
+        loop {
+            let mut round: Vec<(usize, [(Method, StepControl); 1])> = Vec::new();
+            for (k, (_, t)) in tracks.iter_mut().enumerate() {
+                if t.stopped.is_some() {
+                    continue;
+                }
+                match t.next() {
+                    Ok(step) => round.push((k, [(t.method, step)])),
+                    Err(why) => t.stopped = Some(Some(why)),
+                }
+            }
+            if round.is_empty() {
+                break;
+            }
+            let posed: Vec<batch::Posed> = (round.iter())
+                .map(|(_, jobs)| batch::Posed {
+                    case,
+                    reference_for: None,
+                    jobs,
+                })
+                .collect();
+            let done = batch::run_cases(&posed, spec.repeats, progress)?;
+            for ((k, _), c) in round.iter().zip(done) {
+                let t = &mut tracks[*k].1;
+                let mut run = c.runs.into_iter().next().expect("one job a case");
+                batch::judge(&mut run, &self.measures);
+                run.solver = t.label();
+                let discretisation_error = (t.tight.as_ref())
+                    .filter(|_| run.failure.is_none())
+                    .map(|(m, _)| Errors::between(&run.measures, m).grid_relative);
+                let compared = ComparedRun {
+                    scheme: t.scheme.clone(),
+                    epsilon: t.epsilon,
+                    run,
+                    discretisation_error,
+                };
+                t.record(compared, tightest);
+            }
         }
+        Ok(ComparePart {
+            cross_check,
+            model_errors: (solutions.into_iter())
+                .map(|(j, model, _)| (j, model))
+                .collect(),
+            tracks: (tracks.into_iter())
+                .map(|(i, t)| {
+                    let record = TrackRecord {
+                        stopped: t.stopped.flatten(),
+                        runs: t.runs.into_iter().map(RunRecord::of).collect(),
+                    };
+                    (i, record)
+                })
+                .collect(),
+        })
     }
 
-    // The cross-check's difference bounds the reference's error where the reference is the
-    // more accurate of the two; its own estimate needs the margin of every study.
-    let resolvable = (REFERENCE_MARGIN * reference.estimated_error())
-        .max(cross_check.difference.unwrap_or(f64::INFINITY));
-    let mut names: Vec<String> = Vec::new();
-    for t in &tracks {
-        if !names.contains(&t.scheme) {
-            names.push(t.scheme.clone());
+    /// The comparison `spec` made of `parts`, which must hold the cross-check, every width and
+    /// every track once each (as [`parts`] divides them).
+    pub fn merge(
+        &self,
+        spec: &CompareSpec,
+        parts: Vec<ComparePart>,
+    ) -> Result<Comparison, ScenarioError> {
+        let s = &spec.schemes;
+        let epsilons = self.epsilons(spec);
+        let every = track_schemes(s, &epsilons);
+        let (_, widths) = track_counts(s);
+        let mut checks = Vec::new();
+        let mut models: Vec<Option<ModelError>> = vec![None; widths];
+        let mut records: Vec<Option<TrackRecord>> = vec![None; every.len()];
+        let apart = |what: String| {
+            ScenarioError::Invalid(format!(
+                "the parts do not make one comparison: {what} (each part of the comparison \
+                 must be given once)"
+            ))
+        };
+        for part in parts {
+            checks.extend(part.cross_check);
+            for (j, model) in part.model_errors {
+                let slot = models.get_mut(j).filter(|m| m.is_none());
+                *slot.ok_or_else(|| apart(format!("width {j} given twice or unknown")))? =
+                    Some(model);
+            }
+            for (i, record) in part.tracks {
+                let slot = records.get_mut(i).filter(|r| r.is_none());
+                *slot.ok_or_else(|| apart(format!("track {i} given twice or unknown")))? =
+                    Some(record);
+            }
         }
-    }
-    let track_runs: Vec<TrackRuns> = (tracks.iter())
-        .map(|t| TrackRuns {
-            scheme: &t.scheme,
-            kind: match t.method.scheme.solver() {
-                Some(s) if s == Solver::AUTO => Kind::Switching,
-                _ if t.method.is_implicit() => Kind::Implicit,
-                _ => Kind::Explicit,
-            },
-            epsilon: t.epsilon,
-            runs: t.runs.iter().map(|r| &r.run).collect(),
-            stopped: t.stopped.clone().flatten(),
-        })
-        .collect();
-    let mut targets = spec.targets.clone();
-    targets.sort_by(|a, b| b.total_cmp(a));
-    let costs: Vec<TargetCosts> = (targets.iter())
-        .map(|&target| TargetCosts {
-            resolved: target >= resolvable,
-            ..at_target(&names, &track_runs, target)
-        })
-        .collect();
-    let crossovers = crossovers(&costs);
-    let sticks = !truth.stick_durations.is_empty();
-    let regularisation = (!s.regularised.is_empty())
-        .then(|| Regularisation::of(model_errors, &spec.targets, sticks, resolvable));
-    Ok(Comparison {
-        reference,
-        cross_check,
-        resolvable,
-        velocity_scale,
-        costs,
-        crossovers,
-        regularisation,
-        tracks: (tracks.iter())
-            .map(|t| TrackEnd {
-                scheme: t.scheme.clone(),
+        if checks.len() != 1 {
+            return Err(apart(format!("{} cross-checks", checks.len())));
+        }
+        let cross_check = checks.remove(0);
+        let model_errors: Vec<ModelError> = (models.into_iter().enumerate())
+            .map(|(j, m)| m.ok_or_else(|| apart(format!("width {j} is missing"))))
+            .collect::<Result<_, _>>()?;
+        let mut tracks = Vec::new();
+        for (i, (record, (scheme, _))) in records.into_iter().zip(&every).enumerate() {
+            let record = record.ok_or_else(|| apart(format!("track {i} is missing")))?;
+            let mut t = Track::new(*scheme, Vec::new());
+            t.runs = (record.runs.into_iter()).map(|r| r.run_of(&t)).collect();
+            t.stopped = Some(record.stopped);
+            tracks.push(t);
+        }
+
+        // The cross-check's difference bounds the reference's error where the reference is
+        // the more accurate of the two; its own estimate needs the margin of every study.
+        let resolvable = (REFERENCE_MARGIN * self.reference.estimated_error())
+            .max(cross_check.difference.unwrap_or(f64::INFINITY));
+        let mut names: Vec<String> = Vec::new();
+        for t in &tracks {
+            if !names.contains(&t.scheme) {
+                names.push(t.scheme.clone());
+            }
+        }
+        let track_runs: Vec<TrackRuns> = (tracks.iter())
+            .map(|t| TrackRuns {
+                scheme: &t.scheme,
+                kind: match t.method.scheme.solver() {
+                    Some(s) if s == Solver::AUTO => Kind::Switching,
+                    _ if t.method.is_implicit() => Kind::Implicit,
+                    _ => Kind::Explicit,
+                },
                 epsilon: t.epsilon,
+                runs: t.runs.iter().map(|r| &r.run).collect(),
                 stopped: t.stopped.clone().flatten(),
             })
-            .collect(),
-        runs: tracks.into_iter().flat_map(|t| t.runs).collect(),
-    })
+            .collect();
+        let mut targets = spec.targets.clone();
+        targets.sort_by(|a, b| b.total_cmp(a));
+        let costs: Vec<TargetCosts> = (targets.iter())
+            .map(|&target| TargetCosts {
+                resolved: target >= resolvable,
+                ..at_target(&names, &track_runs, target)
+            })
+            .collect();
+        let crossovers = crossovers(&costs);
+        let sticks = !self.measures.stick_durations.is_empty();
+        let regularisation = (!s.regularised.is_empty())
+            .then(|| Regularisation::of(model_errors, &spec.targets, sticks, resolvable));
+        Ok(Comparison {
+            reference: self.reference.clone(),
+            cross_check,
+            resolvable,
+            velocity_scale: self.velocity_scale,
+            costs,
+            crossovers,
+            regularisation,
+            tracks: (tracks.iter())
+                .map(|t| TrackEnd {
+                    scheme: t.scheme.clone(),
+                    epsilon: t.epsilon,
+                    stopped: t.stopped.clone().flatten(),
+                })
+                .collect(),
+            runs: tracks.into_iter().flat_map(|t| t.runs).collect(),
+        })
+    }
+}
+
+/// Runs the comparison `spec` on `case` (see the module) in one piece; `progress` is told of
+/// every run.
+pub fn compare(
+    case: &dyn StudyCase,
+    spec: &CompareSpec,
+    progress: &(dyn Fn() + Sync),
+) -> Result<Comparison, ScenarioError> {
+    let truth = TrueSolution::of(case)?;
+    let whole = truth.part(case, spec, &Part::whole(spec), progress)?;
+    truth.merge(spec, vec![whole])
 }

@@ -4,13 +4,12 @@
 //! ε a target needs is `(target/C)^(1/p)`; where it does not, its smallest level is the
 //! **floor** no tolerance goes below.
 
-use crate::cases::Measures;
 use crate::studies::{line, student_t_975};
 use friction_models::params::show;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// The model error at one width.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ModelError {
     /// The width, m/s.
     pub epsilon: f64,
@@ -21,9 +20,6 @@ pub struct ModelError {
     pub error: f64,
     /// Why the tight run failed.
     pub failure: Option<String>,
-    /// The tight solution's measures.
-    #[serde(skip)]
-    pub measures: Measures,
 }
 
 /// The fitted order of the model error in ε.
@@ -182,7 +178,6 @@ mod tests {
             relative: epsilon,
             error,
             failure: None,
-            measures: Measures::default(),
         }
     }
 
