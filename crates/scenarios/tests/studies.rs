@@ -693,6 +693,7 @@ fn the_order_rests_on_the_longest_run_of_agreeing_pairs_or_there_is_none() {
             step,
             pairs,
             fit,
+            formal: (step == StepKind::Fixed).then_some(4.0),
         }
     };
     // Halving h from 0.001, each pair with local order p: errors e_(k+1) = e_k / 2^p.
@@ -725,6 +726,23 @@ fn the_order_rests_on_the_longest_run_of_agreeing_pairs_or_there_is_none() {
     assert!(fit.ci[0] < 4.0 && 4.0 < fit.ci[1], "{fit:?}");
     assert!(fit.ci[1] - fit.ci[0] < 1.0, "{fit:?}");
     assert!(t.verdict().starts_with("order 4.0"), "{}", t.verdict());
+    // Its interval holds RK4's formal order 4: nothing is added.
+    assert_eq!(t.against_formal(), None);
+    // Sixth order from a fourth-order method is named, with its likely causes; so is first.
+    let above = table(&halving(1e-3, &[6.0, 6.02, 5.98]), StepKind::Fixed);
+    assert!(
+        above
+            .verdict()
+            .ends_with("; above the formal order 4: a pre-asymptotic range, or errors of opposite sign cancelling (at a switch)"),
+        "{}",
+        above.verdict()
+    );
+    let below = table(&halving(1e-3, &[1.0, 1.02, 0.98]), StepKind::Fixed);
+    assert!(
+        (below.against_formal().unwrap()).starts_with("below the formal order 4"),
+        "{}",
+        below.verdict()
+    );
     // Two runs of two agreeing pairs: the finer is taken.
     let fit = table(&halving(1e-3, &[1.0, 1.1, 3.0, 2.0, 2.1]), StepKind::Fixed).fit;
     assert!((fit.unwrap().slope - 2.05).abs() < 0.01, "{fit:?}");

@@ -50,7 +50,13 @@ fn observed_orders(c: &Convergence, measure: ErrorMeasure) -> String {
                 "{} {}",
                 t.solver,
                 t.fit.map_or("- (no asymptotic range)".into(), |f| {
-                    format!("{:.2} (95 % CI {:.2} to {:.2})", f.slope, f.ci[0], f.ci[1])
+                    let formal = t
+                        .against_formal()
+                        .map_or(String::new(), |a| format!(": {a}"));
+                    format!(
+                        "{:.2} (95 % CI {:.2} to {:.2}{formal})",
+                        f.slope, f.ci[0], f.ci[1]
+                    )
                 })
             )
         })

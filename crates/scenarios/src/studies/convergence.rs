@@ -27,9 +27,38 @@ pub struct OrderTable {
     pub pairs: Vec<PairOrder>,
     /// The fit over the asymptotic range; `None` where fewer than two pairs are in it.
     pub fit: Option<Fit>,
+    /// The method's formal order p in the step size (error = O(h^p)), for fixed steps;
+    /// `None` over tolerances, which have none.
+    pub formal: Option<f64>,
 }
 
 impl OrderTable {
+    /// The fitted order set beside the formal order where its 95 % interval lies wholly on
+    /// one side of it, with the likely cause; `None` where the interval holds it (or holds 0,
+    /// or there is no fit, or no formal order). Above: the errors are not yet asymptotic, or errors of
+    /// opposite sign cancel (at a switch), so the slope overstates the order. Below: the
+    /// error of the located switches, or the law's lost smoothness at v = 0 (a regularised
+    /// or naive treatment), bounds the order.
+    pub fn against_formal(&self) -> Option<String> {
+        let (f, p) = (self.fit.as_ref()?, self.formal?);
+        if f.ci[0] <= 0.0 {
+            // No convergence shown: nothing to set beside an order.
+            None
+        } else if f.ci[0] > p {
+            Some(format!(
+                "above the formal order {p}: a pre-asymptotic range, or errors of opposite \
+                 sign cancelling (at a switch)"
+            ))
+        } else if f.ci[1] < p {
+            Some(format!(
+                "below the formal order {p}: the switches' location error or the law's lost \
+                 smoothness at v = 0 bounds it"
+            ))
+        } else {
+            None
+        }
+    }
+
     /// The name of the fitted slope: `order` over step sizes, `tolerance_exponent` over
     /// tolerances.
     pub fn quantity(&self) -> &'static str {
@@ -42,7 +71,8 @@ impl OrderTable {
     /// What the table concludes, in words: the fitted order with its interval, the pairs it
     /// rests on and their range, as "order 4.00 (95 % CI 3.97 to 4.03) from 3 pairs, h 0.0025
     /// to 0.02"; "error ∝ tol^0.98 (…)" over tolerances; or "no asymptotic range" and why. An
-    /// interval that holds 0 adds "no convergence shown": the error has saturated.
+    /// interval that holds 0 adds "no convergence shown": the error has saturated; one wholly
+    /// above or below the formal order adds [`OrderTable::against_formal`].
     pub fn verdict(&self) -> String {
         let Some(f) = &self.fit else {
             return format!("no asymptotic range ({})", self.why_none());
@@ -61,8 +91,11 @@ impl OrderTable {
         } else {
             ""
         };
+        let formal = self
+            .against_formal()
+            .map_or(String::new(), |a| format!("; {a}"));
         format!(
-            "{slope} (95 % CI {:.2} to {:.2}) from {} pairs, {h} {} to {}{saturated}",
+            "{slope} (95 % CI {:.2} to {:.2}) from {} pairs, {h} {} to {}{saturated}{formal}",
             f.ci[0],
             f.ci[1],
             f.pairs_used,
@@ -181,6 +214,10 @@ pub fn convergence(
                 step,
                 pairs,
                 fit,
+                // A solver's order (an adaptive one run at fixed steps too), or time-stepping's.
+                formal: (step == StepKind::Fixed).then(|| {
+                    (method.scheme.solver()).map_or(method.order_bound(), |s| s.order() as f64)
+                }),
             });
         }
     }
