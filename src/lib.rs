@@ -6,7 +6,7 @@ pub mod commands;
 use clap::{Parser, Subcommand};
 use friction_lab::error::{as_option, spell_fields, AppError, ErrorKind};
 use friction_lab::made::Made;
-use friction_lab::plot::Format;
+use friction_lab::provenance::shell_line;
 use friction_lab::study::solver_studies::{NamedStudy, STUDIES};
 use friction_lab::trajectory::RecordAs;
 use friction_lab::{destination, ranges};
@@ -45,35 +45,7 @@ pub struct Cli {
     pub replace: bool,
 }
 
-/// How a command's files are written: the figures' size and resolution, and whether an output
-/// folder holding files friction-lab did not write is replaced (`--replace`).
-#[derive(Clone, Copy, Debug)]
-pub struct Delivery {
-    /// The figures' size and resolution.
-    pub format: Format,
-    /// `--replace`.
-    pub replace: bool,
-}
-
-impl Delivery {
-    /// `--figure-size`, `--dpi` and `--replace`, checked.
-    pub fn parse(
-        figure_size: Option<&str>,
-        dpi: Option<f64>,
-        replace: bool,
-    ) -> Result<Delivery, AppError> {
-        Ok(Delivery {
-            format: Format::parse(figure_size, dpi)?,
-            replace,
-        })
-    }
-
-    /// Sets `files` to be written so.
-    pub fn apply(&self, files: &mut friction_lab::artifacts::Artifacts) {
-        files.set_format(self.format);
-        files.set_replace(self.replace);
-    }
-}
+pub use friction_lab::delivery::Delivery;
 
 /// The commands of `friction-lab` (README.md describes each).
 #[derive(Subcommand, Debug)]
@@ -107,7 +79,7 @@ pub enum Command {
     /// Reproduce the paper into one folder: Figures 2-7 with notes, the experiment, Table 2,
     /// the solver studies, and a report.md that links them.
     #[command(after_help = EXIT_CODES)]
-    Reproduce(commands::reproduce::ReproduceArgs),
+    Reproduce(commands::Writing<friction_lab::reproduce::ReproduceRequest>),
 }
 
 /// The process exit code of a failed command (as `--help` lists them, [`EXIT_CODES`]): 2 for
@@ -121,9 +93,17 @@ pub fn exit_code(e: &AppError) -> i32 {
     }
 }
 
-/// A parsed command line: one of [`Cli`]'s commands, or a named study ([`STUDIES`]) with its
-/// options.
-pub enum Invocation {
+/// A parsed command line: the line itself, and what it asks for.
+pub struct Invocation {
+    /// The words as typed, as one line ([`shell_line`]; the program by its file name).
+    pub line: String,
+    /// What it asks for.
+    pub request: Request,
+}
+
+/// What a command line asks for: one of [`Cli`]'s commands, or a named study ([`STUDIES`])
+/// with its options.
+pub enum Request {
     /// A command [`Cli`] declares.
     Command(Box<Cli>),
     /// A study of [`STUDIES`], built in or registered.
@@ -182,10 +162,19 @@ where
     T: Into<std::ffi::OsString> + Clone,
 {
     use clap::FromArgMatches;
+    let words: Vec<std::ffi::OsString> = words.into_iter().map(Into::into).collect();
+    let mut typed: Vec<String> = (words.iter())
+        .map(|w| w.to_string_lossy().into_owned())
+        .collect();
+    if let Some(program) = typed.first_mut() {
+        let name = std::path::Path::new(program.as_str()).file_name();
+        *program = name.map_or(String::new(), |n| n.to_string_lossy().into_owned());
+    }
+    let line = shell_line(&typed);
     let matches = command().try_get_matches_from(words)?;
     if let Some((name, options)) = matches.subcommand() {
         if let Some(study) = STUDIES.find(name) {
-            return Ok(Invocation::Study(StudyInvocation {
+            let request = Request::Study(StudyInvocation {
                 study,
                 out: options
                     .get_one::<std::path::PathBuf>("out")
@@ -195,24 +184,29 @@ where
                 figure_size: matches.get_one::<String>("figure_size").cloned(),
                 dpi: matches.get_one::<f64>("dpi").copied(),
                 replace: matches.get_flag("replace"),
-            }));
+            });
+            return Ok(Invocation { line, request });
         }
     }
-    Cli::from_arg_matches(&matches).map(|cli| Invocation::Command(Box::new(cli)))
+    let cli = Cli::from_arg_matches(&matches)?;
+    Ok(Invocation {
+        line,
+        request: Request::Command(Box::new(cli)),
+    })
 }
 
 /// Runs a parsed command line ([`run`], or a study: [`run_study`]).
 pub fn invoke(invocation: Invocation) -> Result<(), AppError> {
-    match invocation {
-        Invocation::Command(cli) => run(*cli),
-        Invocation::Study(study) => run_study(study),
+    match invocation.request {
+        Request::Command(cli) => run(*cli, &invocation.line),
+        Request::Study(study) => run_study(study, &invocation.line),
     }
 }
 
 /// Runs a named study, its figure format and output folder checked first, and writes its
-/// files.
-pub fn run_study(s: StudyInvocation) -> Result<(), AppError> {
-    let delivery = Delivery::parse(s.figure_size.as_deref(), s.dpi, s.replace)?;
+/// files, their provenance naming the command line `line`.
+pub fn run_study(s: StudyInvocation, line: &str) -> Result<(), AppError> {
+    let delivery = Delivery::parse(s.figure_size.as_deref(), s.dpi, s.replace, line)?;
     destination::check(&s.out, delivery.replace)?;
     let _claim = destination::claim(&s.out)?;
     let threads = ranges::threads(s.study.threads(&s.matches)?)?;
@@ -220,9 +214,10 @@ pub fn run_study(s: StudyInvocation) -> Result<(), AppError> {
 }
 
 /// Runs one parsed command, its figure format and output folder checked first
-/// ([`Format::parse`], [`destination::check`]).
-pub fn run(cli: Cli) -> Result<(), AppError> {
-    let delivery = Delivery::parse(cli.figure_size.as_deref(), cli.dpi, cli.replace)?;
+/// ([`friction_lab::plot::Format::parse`], [`destination::check`]); its files' provenance
+/// names the command line `line`.
+pub fn run(cli: Cli, line: &str) -> Result<(), AppError> {
+    let delivery = Delivery::parse(cli.figure_size.as_deref(), cli.dpi, cli.replace, line)?;
     let _claim = match cli.command.out_folder() {
         Some(out) => {
             destination::check(out, delivery.replace)?;
@@ -283,9 +278,7 @@ pub fn deliver(
     threads: Option<usize>,
     delivery: Delivery,
 ) -> Result<(), AppError> {
-    let mut files = made.files;
-    delivery.apply(&mut files);
-    let written = friction_lab::threads::with_threads(threads, || files.write(out))??;
+    let written = delivery.write(made.files, out, threads)?;
     println!("{}", written.line());
     for note in &made.notes {
         println!("{}", spell_fields(note, &as_option));

@@ -556,34 +556,58 @@ fn simulate_writes_trajectory_summary_and_figures() {
             "{stem}"
         );
     }
+    // Friction is drawn against the sliding velocity, as a tribologist reads it.
+    let svg = std::fs::read_to_string(out.join("friction-velocity.svg")).unwrap();
+    assert!(
+        svg.contains("sliding velocity v − v_surface (m/s)"),
+        "{svg}"
+    );
 }
+
+/// The paper's block under LuGre with the 1995 bristles (sigma0 = 1e5 N/m): a stiff run.
+const LUGRE_BLOCK: [&str; 6] = [
+    "simulate",
+    "paper-block",
+    "--model",
+    "lugre",
+    "--param-set",
+    "lugre-1995",
+];
 
 #[test]
 fn a_stiff_run_reports_hairers_stiffness_diagnostic() {
     let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("stiff");
-    let o = friction_lab(&[
-        "simulate",
-        "paper-block",
-        "--model",
-        "lugre",
-        "--param-set",
-        "lugre-1995",
-        "--t-end",
-        "0.5",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
+    let run = |solver: Option<&str>| {
+        let out = dir.path().join(solver.unwrap_or("default"));
+        let mut args = LUGRE_BLOCK.to_vec();
+        args.extend(["--t-end", "0.5", "--out", out.to_str().unwrap()]);
+        args.extend(solver.iter().flat_map(|s| ["--solver", s]));
+        let o = friction_lab(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let s: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
+        (stderr(&o), s)
+    };
+    let (note, s) = run(Some("dopri5"));
     assert!(
-        stderr(&o).contains("dopri5 found the problem stiff at t = "),
-        "{}",
-        stderr(&o)
+        note.contains("dopri5 found the problem stiff at t = "),
+        "{note}"
     );
-    let s: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
     let t = s["stiffness_detected_at"].as_f64().unwrap();
     assert!(t > 0.0 && t < 0.5, "{t}");
+    // By default the run switches to Radau IIA where Dormand-Prince's test fires, with no
+    // advice to: far fewer evaluations of f.
+    let (note, auto) = run(None);
+    assert_eq!(auto["solver"], "auto");
+    assert_eq!(auto["method_switches"][0]["to"], "radau5", "{auto}");
+    assert!(!note.contains("found the problem stiff"), "{note}");
+    let evals = |s: &serde_json::Value| s["stats"]["rhs_evals"].as_f64().unwrap();
+    assert!(
+        evals(&auto) * 10.0 < evals(&s),
+        "{} {}",
+        evals(&auto),
+        evals(&s)
+    );
 }
 
 #[test]
@@ -591,13 +615,8 @@ fn a_failing_solver_keeps_its_trajectory_and_exits_non_zero() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("fail");
     // RK4 with h = 0.01 on LuGre's stiff bristles (sigma0 = 1e5 N/m) overflows.
-    let o = friction_lab(&[
-        "simulate",
-        "paper-block",
-        "--model",
-        "lugre",
-        "--param-set",
-        "lugre-1995",
+    let mut args = LUGRE_BLOCK.to_vec();
+    args.extend([
         "--solver",
         "rk4",
         "--dt",
@@ -605,6 +624,7 @@ fn a_failing_solver_keeps_its_trajectory_and_exits_non_zero() {
         "--out",
         out.to_str().unwrap(),
     ]);
+    let o = friction_lab(&args);
     assert_eq!(o.status.code(), Some(1));
     assert!(
         stderr(&o).contains("non-finite state at t = "),
@@ -766,6 +786,59 @@ fn without_provenance(path: &std::path::Path) -> Vec<u8> {
     bytes
 }
 
+/// Every folder names where its files come from: `provenance.json` lists every file written
+/// (the CSV files and figures carry no header of their own) and the command line as typed,
+/// and every JSON file opens with the same provenance.
+#[test]
+fn every_folder_names_its_provenance_and_lists_its_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("run with space");
+    let o = friction_lab(&[
+        "simulate",
+        "belt",
+        "--model",
+        "CVS",
+        "--t-end",
+        "2",
+        "--set",
+        "v_belt=0.1",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let sidecar: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("provenance.json")).unwrap()).unwrap();
+    let command = format!(
+        "friction-lab simulate belt --model CVS --t-end 2 --set v_belt=0.1 --out '{}'",
+        out.display()
+    );
+    assert_eq!(sidecar["provenance"]["command"], command.as_str());
+    assert_eq!(
+        sidecar["provenance"]["friction_lab"],
+        env!("CARGO_PKG_VERSION")
+    );
+    let mut listed: Vec<String> = (sidecar["files"].as_array().unwrap().iter())
+        .map(|f| f.as_str().unwrap().to_string())
+        .collect();
+    listed.sort();
+    let mut present: Vec<String> = (std::fs::read_dir(&out).unwrap())
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|name| !name.starts_with('.') && name != "provenance.json")
+        .collect();
+    present.sort();
+    assert_eq!(listed, present);
+    assert!(
+        present.contains(&"trajectory.csv".to_string()),
+        "{present:?}"
+    );
+    for json in present.iter().filter(|name| name.ends_with(".json")) {
+        let text = std::fs::read_to_string(out.join(json)).unwrap();
+        assert!(text.starts_with("{\n  \"provenance\""), "{json}: {text}");
+        let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+        assert_eq!(v["provenance"], sidecar["provenance"], "{json}");
+    }
+}
+
 /// Every study's JSON opens with its provenance: the version and git commit, the date, the
 /// machine and the thread count; `report.md` names the same.
 #[test]
@@ -811,6 +884,15 @@ fn every_study_names_its_provenance() {
         "{date}"
     );
     assert_eq!(p["threads"], 1);
+    assert_eq!(
+        p["command"],
+        format!(
+            "friction-lab converge belt --model CS --t-end 1 --solvers rk4 --dt-list \
+             0.01,0.005,0.0025 --threads 1 --out {}",
+            out.display()
+        )
+        .as_str()
+    );
     let cores = std::thread::available_parallelism().unwrap().get();
     assert_eq!(p["machine"]["logical_cores"], cores);
     assert!(!p["machine"]["cpu"].as_str().unwrap().is_empty());

@@ -14,20 +14,25 @@ from __future__ import annotations
 
 import io
 import json
-from typing import Any, Dict, List, Optional
+import os
+import pathlib
+from typing import Any, Dict, List, Optional, Tuple, Union
 
 import numpy as np
 import pandas as pd
 
 from . import _native
-from ._command import SolverError, _name, call, system_value, values
+from ._command import SolverError, _name, call, current_call, recorded, system_value, values
 from ._result import Result, Study, Table2
 from ._sweep import sweep
 from ._compare import compare
 
 
+#: The friction-lab version, the library's (``provenance.json``'s ``friction_lab``).
+__version__: str = _native.__version__
+
 __all__ = ["models", "curve", "simulate", "converge", "independence", "work_precision",
-           "stiffness", "compare", "orbit", "continuation", "phenomena", "testset", "sweep", "Result", "Study", "Table2", "SolverError"]
+           "stiffness", "compare", "orbit", "continuation", "phenomena", "testset", "reproduce", "sweep", "Result", "Study", "Table2", "SolverError"]
 
 
 def models() -> List[Dict[str, Any]]:
@@ -41,6 +46,7 @@ def models() -> List[Dict[str, Any]]:
             for m in listing["models"]]
 
 
+@recorded
 def curve(model: str, params: Optional[Dict[str, float]] = None, **options: Any) -> Dict[str, np.ndarray]:
     """One friction curve, as ``friction-lab curve MODEL`` writes it: a dict of the CSV's
     columns (``v`` or ``x``, ``F``, and the admissible band at rest where there is one).
@@ -53,6 +59,7 @@ def curve(model: str, params: Optional[Dict[str, float]] = None, **options: Any)
     return {c: frame[c].to_numpy() for c in frame.columns}
 
 
+@recorded
 def simulate(scenario: Optional[str] = None, *, system: Any = None,
              params: Optional[Dict[str, float]] = None, **options: Any) -> Result:
     """One run of a rig (``"belt"``, ``"paper-block"``, ...), of the chain (``"chain"``), or
@@ -70,7 +77,7 @@ def simulate(scenario: Optional[str] = None, *, system: Any = None,
     return result
 
 
-def _study(command: str, scenario: str, params: Optional[Dict[str, float]],
+def _study(command: str, scenario: Optional[str], params: Optional[Dict[str, float]],
            options: Dict[str, Any], main: Optional[str] = None) -> Study:
     _name(command, scenario)
     system = options.pop("system", None)
@@ -83,27 +90,32 @@ def _study(command: str, scenario: str, params: Optional[Dict[str, float]],
     return study
 
 
-def converge(scenario: str, *, params: Optional[Dict[str, float]] = None, **options: Any) -> Study:
+@recorded
+def converge(scenario: Optional[str] = None, *, params: Optional[Dict[str, float]] = None, **options: Any) -> Study:
     """Observed orders against a reference (``friction-lab converge --help``)."""
     return _study("converge", scenario, params, options)
 
 
-def independence(scenario: str, *, params: Optional[Dict[str, float]] = None, **options: Any) -> Study:
+@recorded
+def independence(scenario: Optional[str] = None, *, params: Optional[Dict[str, float]] = None, **options: Any) -> Study:
     """Step-size independence with a Richardson estimate (``friction-lab independence``)."""
     return _study("independence", scenario, params, options)
 
 
-def work_precision(scenario: str, *, params: Optional[Dict[str, float]] = None, **options: Any) -> Study:
+@recorded
+def work_precision(scenario: Optional[str] = None, *, params: Optional[Dict[str, float]] = None, **options: Any) -> Study:
     """Error against work for every solver (``friction-lab work-precision --help``)."""
     return _study("work-precision", scenario, params, options)
 
 
-def stiffness(scenario: str, *, params: Optional[Dict[str, float]] = None, **options: Any) -> Study:
+@recorded
+def stiffness(scenario: Optional[str] = None, *, params: Optional[Dict[str, float]] = None, **options: Any) -> Study:
     """Where the implicit solvers overtake the explicit ones (``friction-lab stiffness``)."""
     return _study("stiffness", scenario, params, options)
 
 
-def orbit(scenario: str, *, params: Optional[Dict[str, float]] = None, **options: Any) -> Study:
+@recorded
+def orbit(scenario: Optional[str] = None, *, params: Optional[Dict[str, float]] = None, **options: Any) -> Study:
     """The periodic orbit of a rig's body or a system, by shooting through its switches from the
     cycle its run settles onto by ``t_end`` (``friction-lab orbit --help``): ``study.runs`` is
     the orbit sampled (``t``, each body's ``x_NAME`` and ``v_NAME``),
@@ -113,7 +125,8 @@ def orbit(scenario: str, *, params: Optional[Dict[str, float]] = None, **options
     return _study("orbit", scenario, params, options)
 
 
-def continuation(scenario: str, *, params: Optional[Dict[str, float]] = None,
+@recorded
+def continuation(scenario: Optional[str] = None, *, params: Optional[Dict[str, float]] = None,
                  **options: Any) -> Study:
     """The branches of equilibria and periodic orbits over one parameter, by pseudo-arclength
     continuation (``friction-lab continue --help``; ``parameter="v_belt"``, ``range="0.02:0.5"``):
@@ -123,6 +136,7 @@ def continuation(scenario: str, *, params: Optional[Dict[str, float]] = None,
     return _study("continue", scenario, params, options, main="branch")
 
 
+@recorded
 def testset(problem: str, **options: Any) -> Dict[str, Any]:
     """One problem of the stiff test set (``"van-der-pol"``, ``"robertson"``, ``"hires"``,
     ``"orego"``, ``"pollution"``) solved by one adaptive solver, as ``friction-lab testset``
@@ -140,6 +154,7 @@ def testset(problem: str, **options: Any) -> Dict[str, Any]:
     return solved
 
 
+@recorded
 def phenomena(models: Any = None, *, params: Optional[Dict[str, float]] = None,
               **options: Any) -> Table2:
     """Table 2 decided by simulation (``friction-lab phenomena --help``): every phenomenon's
@@ -151,3 +166,31 @@ def phenomena(models: Any = None, *, params: Optional[Dict[str, float]] = None,
         # Undecided cells: the table keeps the decided ones.
         raise SolverError(made.failure, table)
     return table
+
+
+@recorded
+def reproduce(out: Union[str, os.PathLike], *, params: Optional[Dict[str, float]] = None,
+              param_set: Optional[str] = None, threads: Optional[int] = None,
+              figure_size: Union[str, Tuple[float, float], None] = None,
+              dpi: Optional[float] = None, replace: bool = False) -> pathlib.Path:
+    """The paper reproduced into the folder ``out``, as ``friction-lab reproduce --out OUT``
+    writes it (docs/reproduction.md): Figures 2-7, the experiment, Table 2, the solver studies,
+    the comparison of schemes, the chain, the stick-slip map, the closed loop and the limit
+    cycles, each linked from ``report.md``. ``params`` changes friction parameters of
+    ``param_set`` (a rig's parameter is refused: every rig runs at the paper's settings);
+    ``threads`` (default: all cores) does not change the results. ``figure_size`` (``"6x4"``
+    or ``(6, 4)``, inches), ``dpi`` and ``replace`` as the command line's options. Returns the
+    folder written; a part that failed raises :class:`SolverError` after writing, the folder
+    as its ``result`` (its section of ``report.md`` says why)."""
+    given = values("reproduce", params=params, param_set=param_set, threads=threads)
+    if isinstance(figure_size, (tuple, list)):
+        if len(figure_size) != 2:
+            raise ValueError(f"option `figure_size` = {figure_size!r}: a pair (width, height) "
+                             "in inches is expected, e.g. (6, 4)")
+        figure_size = "x".join(repr(float(side)) for side in figure_size)
+    folder, failure = _native.reproduce(os.fspath(out), given, figure_size, dpi, replace,
+                                        None, call=current_call())
+    written = pathlib.Path(folder)
+    if failure is not None:
+        raise SolverError(failure, written)
+    return written

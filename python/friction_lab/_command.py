@@ -18,6 +18,7 @@ import math
 import numbers
 import os
 import warnings
+from contextvars import ContextVar
 from dataclasses import dataclass, field
 from typing import Any, Callable, Dict, List, Mapping, Optional, Tuple
 
@@ -134,6 +135,34 @@ def values(command: str, params: Any = None, grid: Any = None,
     return out
 
 
+#: The public call being made in this context (``friction_lab.simulate('belt', t_end=5.0)``),
+#: which the files' provenance names (:func:`recorded`).
+_CALL: ContextVar[Optional[str]] = ContextVar("friction_lab_call", default=None)
+
+
+def recorded(function: Callable) -> Callable:
+    """``function`` (a public function of the package) with its call, arguments and keyword
+    arguments as ``repr`` writes them, named as what made the files' provenance
+    (``provenance.json``, and the ``provenance`` every JSON document opens with). A call made
+    inside another (``compare`` running its parts) keeps the outer one."""
+    @functools.wraps(function)
+    def with_call(*args: Any, **kwargs: Any) -> Any:
+        if _CALL.get() is not None:
+            return function(*args, **kwargs)
+        words = [repr(a) for a in args] + [f"{k}={v!r}" for k, v in kwargs.items()]
+        token = _CALL.set(f"friction_lab.{function.__name__}({', '.join(words)})")
+        try:
+            return function(*args, **kwargs)
+        finally:
+            _CALL.reset(token)
+    return with_call
+
+
+def current_call() -> Optional[str]:
+    """The public call being made in this context (:func:`recorded`), if any."""
+    return _CALL.get()
+
+
 def call(command: str, *arguments: Any, stop: Optional[Callable[[], bool]] = None) -> "Made":
     """Calls the library's ``command`` with ``arguments`` (GIL released, Ctrl-C honoured):
     ``_native.simulate``, ``_native.sweep``, ``_native.curve``, ``_native.phenomena``,
@@ -142,13 +171,14 @@ def call(command: str, *arguments: Any, stop: Optional[Callable[[], bool]] = Non
     no result raises ``SolverError``. ``stop``, if given, is asked every 50 ms while the run
     goes on: once it returns true the run stops as on Ctrl-C and ``_native.Cancelled`` is
     raised."""
+    made_by = _CALL.get()
     if command == "curve":
-        return _made(command, lambda: _native.curve(*arguments))
+        return _made(command, lambda: _native.curve(*arguments, call=made_by))
     if command in ("simulate", "sweep", "phenomena", "testset"):
         native = getattr(_native, command)
     else:
         native = functools.partial(_native.study, command.replace("-", "_"))
-    return _made(command, lambda: native(*arguments, stop))
+    return _made(command, lambda: native(*arguments, stop, call=made_by))
 
 
 def frame(columns: List[Tuple[str, str, Any]]) -> pd.DataFrame:
@@ -178,6 +208,13 @@ class Made:
     notes: List[str] = field(default_factory=list)
     failure: Optional[str] = None
     run: Optional[Dict[str, Any]] = None
+
+    @property
+    def provenance(self) -> Dict[str, Any]:
+        """Where the files come from (``provenance.json``'s ``provenance``): ``friction_lab``
+        (the version), ``commit``, ``date``, ``machine``, ``threads``, and ``command``: the
+        Python call with its keyword arguments."""
+        return self.json("provenance.json")["provenance"]
 
     def table(self, name: str) -> pd.DataFrame:
         """The table ``name`` (a CSV file of the command line) as a DataFrame."""

@@ -16,11 +16,12 @@ from __future__ import annotations
 from typing import Any, Dict, Optional, Tuple
 
 from . import _native
-from ._command import SolverError, _made, _name, call, system_value, values
+from ._command import SolverError, _made, _name, call, current_call, recorded, system_value, values
 from ._dask import gather, stopped
 from ._result import Study
 
 
+@recorded
 def compare(scenario: Optional[str] = None, *, params: Optional[Dict[str, float]] = None,
             client: Any = None, **options: Any) -> Study:
     """Every scheme at v = 0 (events, regularised over ε, naive, time-stepping) against the
@@ -41,8 +42,9 @@ def compare(scenario: Optional[str] = None, *, params: Optional[Dict[str, float]
         count = _native.compare_parts(scenario, system, given)
         task = (scenario, system, dict(given, threads=given.get("threads", 1)))
         parts = gather(client, "compare", _part, [task] * count, list(range(count)))
-        made = _made("compare",
-                     lambda: _native.compare_merge(scenario, system, given, parts, None))
+        made_by = current_call()
+        made = _made("compare", lambda: _native.compare_merge(scenario, system, given, parts,
+                                                             None, call=made_by))
     study = Study(made, "compare", None)
     if made.failure is not None:
         raise SolverError(made.failure, study)

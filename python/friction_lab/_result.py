@@ -31,6 +31,9 @@ class Result:
         self.summary: Dict[str, Any] = run["summary"]
         #: Solver statistics (steps, rejected, rhs_evals, jacobian_evals, ..., events).
         self.stats: Dict[str, Any] = self.summary["stats"]
+        #: Where the run comes from (the summary's ``provenance``): version, commit, date,
+        #: machine, threads and the call that made it.
+        self.provenance: Dict[str, Any] = made.provenance
         # The library's numbers, as bytes of doubles: no text between (docs/python.md).
         c = run["trajectory"]
         doubles = lambda name: np.frombuffer(c[name], dtype="<f8")  # noqa: E731
@@ -81,6 +84,8 @@ class Study:
         }
         self.summary: Any = made.json(f"{stem}.json")
         self.notes: List[str] = made.notes
+        #: Where the study comes from: version, commit, date, machine, threads and the call.
+        self.provenance: Dict[str, Any] = made.provenance
         #: The study's main table: one row per run (``continue``: one per point of a branch).
         self.runs: pd.DataFrame = self.tables[main or stem]
 
@@ -110,6 +115,8 @@ class Table2:
     def __init__(self, made: Made):
         self.json: Dict[str, Any] = made.json("table2.json")
         self.markdown: str = made.text("table2.md")
+        #: Where the table comes from: version, commit, date, machine, threads and the call.
+        self.provenance: Dict[str, Any] = made.provenance
         rows = [{"law": law, "phenomenon": phenomenon, "measured": cell["measured"],
                  "paper": cell["paper"], "failed": cell["failed"]}
                 for law, cells in self.json["models"].items()

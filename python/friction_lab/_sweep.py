@@ -15,11 +15,12 @@ from typing import Any, Dict, Optional, Sequence, Tuple, Union
 
 import pandas as pd
 
-from ._command import Made, SolverError, _name, call, system_value, values
+from ._command import Made, SolverError, _name, call, recorded, system_value, values
 from ._dask import gather, stopped
 
 
-def sweep(scenario: str, *, grid: Dict[str, Union[Sequence[float], str]],
+@recorded
+def sweep(scenario: Optional[str] = None, *, grid: Dict[str, Union[Sequence[float], str]],
           params: Optional[Dict[str, float]] = None, client: Any = None,
           chunk_size: Optional[int] = None, **options: Any) -> pd.DataFrame:
     """The settled state at every point of a grid: one row per point, in grid order (the
@@ -33,6 +34,7 @@ def sweep(scenario: str, *, grid: Dict[str, Union[Sequence[float], str]],
     (``model``, ``solver``, ``switching``, ``t_end``, ``settle``, ...). Points whose run
     failed or diverged raise :class:`SolverError` with the whole table as ``result``
     (``status`` and ``reason`` say which and why; their measures are empty).
+    ``frame.attrs["provenance"]`` says where the table comes from (``provenance.json``).
     """
     _name("sweep", scenario)
     system = options.pop("system", None)
@@ -43,12 +45,14 @@ def sweep(scenario: str, *, grid: Dict[str, Union[Sequence[float], str]],
         made = call("sweep", *arguments)
         frame = made.table("sweep.csv")
         failure = made.failure
+        provenance = made.provenance
     else:
-        frame = _on_dask(client, arguments, chunk_size)
+        frame, provenance = _on_dask(client, arguments, chunk_size)
         failed = int(frame["status"].isin(["diverged", "failed"]).sum())
         failure = (f"{failed} of {len(frame)} runs failed or diverged; sweep.csv says which "
                    "and why"
                    if failed else None)
+    frame.attrs["provenance"] = provenance
     if failure is not None:
         raise SolverError(failure, frame)
     return frame
@@ -66,7 +70,10 @@ def _chunk(arguments: Tuple[Any, ...], start: int, end: int, stop: str) -> pd.Da
     return made.table("sweep.csv")
 
 
-def _on_dask(client: Any, arguments: Tuple[Any, ...], chunk_size: Optional[int]) -> pd.DataFrame:
+def _on_dask(client: Any, arguments: Tuple[Any, ...],
+             chunk_size: Optional[int]) -> Tuple[pd.DataFrame, Dict[str, Any]]:
+    """The sweep ``arguments`` as Dask tasks of ``chunk_size`` points: its rows, and the
+    provenance of the check made in this process before any task is sent."""
     scenario, system, axes, given = arguments
     # Every point is checked here, before any task is sent (bad input raises ValueError).
     head = call("sweep", scenario, system, axes, dict(given, point_range=(0, 0)))
@@ -82,5 +89,5 @@ def _on_dask(client: Any, arguments: Tuple[Any, ...], chunk_size: Optional[int])
     results = gather(client, "sweep", _chunk, [(scenario, system, axes, given)] * len(bounds),
                      [b[0] for b in bounds], [b[1] for b in bounds])
     if not results:
-        return head.table("sweep.csv")
-    return pd.concat(results, ignore_index=True)
+        return head.table("sweep.csv"), head.provenance
+    return pd.concat(results, ignore_index=True), head.provenance

@@ -15,6 +15,7 @@ use clap::{ArgAction, Args, FromArgMatches};
 use friction_lab::curve::CurveRequest;
 use friction_lab::error::{spell_fields, AppError};
 use friction_lab::made::Made;
+use friction_lab::reproduce::ReproduceRequest;
 use friction_lab::simulate::SimulationRequest;
 use friction_lab::study::solver_studies::STUDIES;
 use friction_lab::study::{CompareRequest, PhenomenaRequest};
@@ -39,6 +40,7 @@ fn declared(function: &str) -> Option<clap::Command> {
         "curve" => CurveRequest::augment_args(command),
         "phenomena" => PhenomenaRequest::augment_args(command),
         "testset" => TestSetRequest::augment_args(command),
+        "reproduce" => ReproduceRequest::augment_args(command),
         study => STUDIES.find(&study.replace('_', "-"))?.declare(command),
     })
 }
@@ -392,6 +394,11 @@ pub fn curve(model: &str, options: &Bound<'_, PyDict>) -> PyResult<CurveRequest>
 /// The run of a test problem `testset(problem, **options)` asks for.
 pub fn testset(problem: &str, options: &Bound<'_, PyDict>) -> PyResult<TestSetRequest> {
     request("testset", vec![problem.to_string()], options)
+}
+
+/// The paper as `reproduce(out, **options)` asks for it.
+pub fn reproduce(options: &Bound<'_, PyDict>) -> PyResult<ReproduceRequest> {
+    request("reproduce", Vec::new(), options)
 }
 
 /// Table 2 as `phenomena(**options)` asks for it.

@@ -13,10 +13,13 @@ mod bind;
 mod law;
 mod law_interrupt;
 
-use friction_lab::artifacts::Data;
+use friction_lab::artifacts::{open_with, Data};
 use friction_lab::columns::Column;
+use friction_lab::delivery::Delivery;
+use friction_lab::destination;
 use friction_lab::error::{bounded, spell_fields, AppError, ErrorKind};
 use friction_lab::friction_systems::mode_name;
+use friction_lab::provenance::Provenance;
 use friction_lab::run_record::RunValues;
 use friction_lab::trajectory::{RecordAs, Trajectory};
 use integrators::{Mode, SolverError as RunError};
@@ -74,11 +77,18 @@ fn doubles<'py>(py: Python<'py>, values: &[f64]) -> Bound<'py, PyBytes> {
 
 /// A run's record for the Python layer, from its values (no file in between): `summary`
 /// (Python values), `trajectory` ([`trajectory`]), `final` and `events` (tables as [`data`]
-/// gives them).
-fn run_values<'py>(py: Python<'py>, run: &RunValues) -> PyResult<Bound<'py, PyDict>> {
+/// gives them); the summary opens with `provenance`, as `summary.json` does.
+fn run_values<'py>(
+    py: Python<'py>,
+    run: &RunValues,
+    provenance: &Provenance,
+) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
-    let summary = serde_json::to_value(&run.summary)
-        .map_err(|e| PyRuntimeError::new_err(format!("the run's summary: {e}")))?;
+    let failed = |e: serde_json::Error| PyRuntimeError::new_err(format!("the run's summary: {e}"));
+    let mut summary = serde_json::to_value(&run.summary).map_err(failed)?;
+    if let Some(object) = summary.as_object_mut() {
+        open_with(object, &serde_json::to_value(provenance).map_err(failed)?);
+    }
     d.set_item("summary", json_value(py, &summary)?)?;
     d.set_item("trajectory", trajectory(py, &run.trajectory)?)?;
     d.set_item("final", data(py, Data::Table(&run.finals))?)?;
@@ -179,18 +189,19 @@ fn json_value<'py>(py: Python<'py>, value: &serde_json::Value) -> PyResult<Bound
 
 /// Runs `simulate`: the library's [`friction_lab::simulate::SimulationRequest`] of `scenario` (a
 /// rig's name or `chain`) or of the system file `system`, with the keyword arguments
-/// `options` ([`bind::simulation`]); the trajectory as columns. Errors and `stop` as [`deliver`].
+/// `options` ([`bind::simulation`]); the trajectory as columns. Errors, `stop` and `call` as [`deliver`].
 #[pyfunction]
-#[pyo3(signature = (scenario, system, options, stop=None))]
+#[pyo3(signature = (scenario, system, options, stop=None, call=None))]
 fn simulate(
     py: Python<'_>,
     scenario: Option<String>,
     system: Option<std::path::PathBuf>,
     options: Bound<'_, PyDict>,
     stop: Option<Bound<'_, PyAny>>,
+    call: Option<String>,
 ) -> PyResult<Made> {
     let run = bind::simulation(scenario.as_deref(), system, &options)?;
-    deliver(py, stop.as_ref(), move || {
+    deliver(py, stop.as_ref(), call, move || {
         run.run(Path::new(IN_MEMORY), RecordAs::Values)
     })
 }
@@ -199,7 +210,7 @@ fn simulate(
 /// of values or range texts) of the run `simulate` would make ([`bind::sweep`]). Errors and
 /// `stop` as [`deliver`].
 #[pyfunction]
-#[pyo3(signature = (scenario, system, grid, options, stop=None))]
+#[pyo3(signature = (scenario, system, grid, options, stop=None, call=None))]
 fn sweep(
     py: Python<'_>,
     scenario: Option<String>,
@@ -207,16 +218,19 @@ fn sweep(
     grid: Bound<'_, PyDict>,
     options: Bound<'_, PyDict>,
     stop: Option<Bound<'_, PyAny>>,
+    call: Option<String>,
 ) -> PyResult<Made> {
     let sweep = bind::sweep(scenario.as_deref(), system, &grid, &options)?;
-    deliver(py, stop.as_ref(), move || sweep.run(Path::new(IN_MEMORY)))
+    deliver(py, stop.as_ref(), call, move || {
+        sweep.run(Path::new(IN_MEMORY))
+    })
 }
 
 /// Runs the solver study `function` (`converge`, `independence`, `work_precision`,
 /// `stiffness`): the library's study of `scenario` or `system` with the keyword arguments
-/// `options` ([`bind::study`]). Errors and `stop` as [`deliver`].
+/// `options` ([`bind::study`]). Errors, `stop` and `call` as [`deliver`].
 #[pyfunction]
-#[pyo3(signature = (function, scenario, system, options, stop=None))]
+#[pyo3(signature = (function, scenario, system, options, stop=None, call=None))]
 fn study(
     py: Python<'_>,
     function: &str,
@@ -224,9 +238,10 @@ fn study(
     system: Option<std::path::PathBuf>,
     options: Bound<'_, PyDict>,
     stop: Option<Bound<'_, PyAny>>,
+    call: Option<String>,
 ) -> PyResult<Made> {
     let study = bind::study(function, scenario.as_deref(), system, &options)?;
-    deliver(py, stop.as_ref(), move || study(Path::new(IN_MEMORY)))
+    deliver(py, stop.as_ref(), call, move || study(Path::new(IN_MEMORY)))
 }
 
 /// How many independent parts the comparison of `scenario` or `system` with the keyword
@@ -243,7 +258,7 @@ fn compare_parts(
 }
 
 /// Makes part `index` of that comparison ([`friction_lab::study::CompareRequest::part`]),
-/// encoded: one Dask task. Errors and `stop` as [`deliver`].
+/// encoded: one Dask task. Errors, `stop` and `call` as [`deliver`].
 #[pyfunction]
 #[pyo3(signature = (scenario, system, options, index, stop=None))]
 fn compare_part<'py>(
@@ -265,9 +280,9 @@ fn compare_part<'py>(
 
 /// The comparison made of `parts` (each of [`compare_part`], in any order)
 /// ([`friction_lab::study::CompareRequest::merge`]): what `study("compare", ...)` makes.
-/// Errors and `stop` as [`deliver`].
+/// Errors, `stop` and `call` as [`deliver`].
 #[pyfunction]
-#[pyo3(signature = (scenario, system, options, parts, stop=None))]
+#[pyo3(signature = (scenario, system, options, parts, stop=None, call=None))]
 fn compare_merge(
     py: Python<'_>,
     scenario: Option<String>,
@@ -275,44 +290,99 @@ fn compare_merge(
     options: Bound<'_, PyDict>,
     parts: Vec<Bound<'_, PyBytes>>,
     stop: Option<Bound<'_, PyAny>>,
+    call: Option<String>,
 ) -> PyResult<Made> {
     let request = bind::compare(scenario.as_deref(), system, &options)?;
     let parts: Vec<Vec<u8>> = parts.iter().map(|p| p.as_bytes().to_vec()).collect();
-    deliver(py, stop.as_ref(), move || {
+    deliver(py, stop.as_ref(), call, move || {
         request.merge(Path::new(IN_MEMORY), &parts)
     })
 }
 
-/// Draws the curve of `model` ([`bind::curve`]). Errors as [`deliver`].
+/// Draws the curve of `model` ([`bind::curve`]). Errors and `call` as [`deliver`].
 #[pyfunction]
-fn curve(py: Python<'_>, model: &str, options: Bound<'_, PyDict>) -> PyResult<Made> {
+#[pyo3(signature = (model, options, call=None))]
+fn curve(
+    py: Python<'_>,
+    model: &str,
+    options: Bound<'_, PyDict>,
+    call: Option<String>,
+) -> PyResult<Made> {
     let curve = bind::curve(model, &options)?;
-    deliver(py, None, move || curve.run(Path::new(IN_MEMORY)))
+    deliver(py, None, call, move || curve.run(Path::new(IN_MEMORY)))
 }
 
-/// Solves the test problem `problem` ([`bind::testset`]). Errors and `stop` as [`deliver`].
+/// Solves the test problem `problem` ([`bind::testset`]). Errors, `stop` and `call` as [`deliver`].
 #[pyfunction]
-#[pyo3(signature = (problem, options, stop=None))]
+#[pyo3(signature = (problem, options, stop=None, call=None))]
 fn testset(
     py: Python<'_>,
     problem: &str,
     options: Bound<'_, PyDict>,
     stop: Option<Bound<'_, PyAny>>,
+    call: Option<String>,
 ) -> PyResult<Made> {
     let run = bind::testset(problem, &options)?;
-    deliver(py, stop.as_ref(), move || run.run(Path::new(IN_MEMORY)))
+    deliver(py, stop.as_ref(), call, move || {
+        run.run(Path::new(IN_MEMORY))
+    })
 }
 
-/// Decides Table 2 ([`bind::phenomena`]). Errors and `stop` as [`deliver`].
+/// Decides Table 2 ([`bind::phenomena`]). Errors, `stop` and `call` as [`deliver`].
 #[pyfunction]
-#[pyo3(signature = (options, stop=None))]
+#[pyo3(signature = (options, stop=None, call=None))]
 fn phenomena(
     py: Python<'_>,
     options: Bound<'_, PyDict>,
     stop: Option<Bound<'_, PyAny>>,
+    call: Option<String>,
 ) -> PyResult<Made> {
     let table = bind::phenomena(&options)?;
-    deliver(py, stop.as_ref(), move || table.run(Path::new(IN_MEMORY)))
+    deliver(py, stop.as_ref(), call, move || {
+        table.run(Path::new(IN_MEMORY))
+    })
+}
+
+/// Reproduces the paper into the folder `out` ([`friction_lab::reproduce::ReproduceRequest`],
+/// the keyword arguments `options` read by [`bind::reproduce`]) and writes it as the command
+/// line does ([`Delivery`]: `figure_size`, `dpi`, `replace`; its provenance naming `call`).
+/// Returns the folder written (`out`, or `out.stopped` beside a complete result when a stop
+/// cut it short) and the failure of a part that did not finish, if one did not. Errors and
+/// `stop` as [`deliver`].
+#[pyfunction]
+#[pyo3(signature = (out, options, figure_size=None, dpi=None, replace=false, stop=None, call=None))]
+#[allow(clippy::too_many_arguments)]
+fn reproduce(
+    py: Python<'_>,
+    out: std::path::PathBuf,
+    options: Bound<'_, PyDict>,
+    figure_size: Option<String>,
+    dpi: Option<f64>,
+    replace: bool,
+    stop: Option<Bound<'_, PyAny>>,
+    call: Option<String>,
+) -> PyResult<(String, Option<String>)> {
+    let request = bind::reproduce(&options)?;
+    let made_by = call.unwrap_or_default();
+    let delivery = Delivery::parse(figure_size.as_deref(), dpi, replace, &made_by);
+    let delivery = delivery.map_err(to_python)?;
+    let threads = request.threads().map_err(to_python)?;
+    destination::check(&out, replace).map_err(to_python)?;
+    let done = interruptible(py, stop.as_ref(), move || {
+        let _claim = destination::claim(&out)?;
+        let made = request.run(&out)?;
+        let written = delivery.write(made.files, &out, threads)?;
+        Ok::<_, AppError>((written.folder, made.failure))
+    })?;
+    if let Some(e) = law::take_error() {
+        integrators::interrupt::clear();
+        return Err(e);
+    }
+    let (folder, failure) = done.map_err(to_python)?;
+    Ok((
+        folder.display().to_string(),
+        failure.as_ref().map(failure_message),
+    ))
 }
 
 /// The keyword arguments of the function `name` that binds the library directly
@@ -330,10 +400,13 @@ fn keywords(name: &str) -> PyResult<Vec<String>> {
 /// without a result raises `SolverError`; Ctrl-C stops the solvers and raises
 /// `KeyboardInterrupt`. `stop`, if given, is called every [`SIGNAL_POLL`] while the run goes
 /// on; once it returns true the solvers stop as for Ctrl-C and `Cancelled` is raised (how a
-/// Dask task learns that its sweep was cancelled).
+/// Dask task learns that its sweep was cancelled). The files, and a run's summary, are stamped
+/// with their provenance ([`Artifacts::stamp`]), `call` (the Python call with its keyword
+/// arguments) naming what asked for them.
 fn deliver(
     py: Python<'_>,
     stop: Option<&Bound<'_, PyAny>>,
+    call: Option<String>,
     work: impl FnOnce() -> Result<friction_lab::made::Made, AppError> + Send + 'static,
 ) -> PyResult<Made> {
     let made = interruptible(py, stop, work)?;
@@ -342,7 +415,12 @@ fn deliver(
         integrators::interrupt::clear();
         return Err(e);
     }
-    let made = made.map_err(to_python)?;
+    let mut made = made.map_err(to_python)?;
+    let mut provenance = Provenance::now(friction_lab::threads::current());
+    provenance.command = call;
+    made.files
+        .stamp(Path::new(IN_MEMORY), &provenance)
+        .map_err(to_python)?;
     let files = made
         .files
         .data(Path::new(IN_MEMORY))
@@ -350,7 +428,7 @@ fn deliver(
         .map(|(name, content)| Ok((name.display().to_string(), data(py, content)?.unbind())))
         .collect::<PyResult<_>>()?;
     let run = (made.run.as_ref())
-        .map(|r| run_values(py, r).map(Bound::unbind))
+        .map(|r| run_values(py, r, &provenance).map(Bound::unbind))
         .transpose()?;
     let spelled = |lines: Vec<String>| -> Vec<String> {
         (lines.iter())
@@ -533,6 +611,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     // Progress of long work as on the command line: a bar on a terminal, else a heartbeat
     // line on stderr (a notebook's log); Ctrl-C is watched by `interruptible`.
     friction_lab::progress::observe_with(std::sync::Arc::new(terminal::Terminal));
+    m.add("__version__", friction_lab::provenance::VERSION)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
     m.add_function(wrap_pyfunction!(testset, m)?)?;
@@ -542,6 +621,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(study, m)?)?;
     m.add_function(wrap_pyfunction!(curve, m)?)?;
     m.add_function(wrap_pyfunction!(phenomena, m)?)?;
+    m.add_function(wrap_pyfunction!(reproduce, m)?)?;
     m.add_function(wrap_pyfunction!(keywords, m)?)?;
     m.add_function(wrap_pyfunction!(models_json, m)?)?;
     m.add_function(wrap_pyfunction!(law::register_law, m)?)?;

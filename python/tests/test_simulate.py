@@ -51,10 +51,27 @@ CHAIN_DICT = {
 
 
 
+def test_every_result_names_its_provenance_and_the_call_that_made_it(cli):
+    assert fl.__version__ == cli("--version").stdout.split()[-1]
+    r = fl.simulate("belt", model="CVS", t_end=2.0, params={"v_belt": 0.1})
+    assert r.provenance["command"] == \
+        "friction_lab.simulate('belt', model='CVS', t_end=2.0, params={'v_belt': 0.1})"
+    assert r.provenance["friction_lab"] == fl.__version__
+    assert next(iter(r.summary)) == "provenance" and r.summary["provenance"] == r.provenance
+    # A study takes its system by keyword alone; its provenance keeps the study's threads.
+    s = fl.converge(system=CHAIN_DICT, t_end=0.5, solvers=["rk4"],
+                    dt_list=[0.01, 0.005, 0.0025], threads=1)
+    assert s.provenance["threads"] == 1 == s.summary["provenance"]["threads"]
+    assert s.provenance["command"].startswith("friction_lab.converge(system={'body': ")
+    frame = fl.sweep("belt", model="CVS", grid={"v_belt": [0.1, 0.2]}, t_end=5.0)
+    assert frame.attrs["provenance"]["command"] == \
+        "friction_lab.sweep('belt', model='CVS', grid={'v_belt': [0.1, 0.2]}, t_end=5.0)"
+
+
 def test_a_rig_equals_the_command_lines_trajectory(cli, tmp_path):
     r = fl.simulate("belt", model="CVS", solver="dopri5", switching="event",
                     params={"v_belt": 0.1}, t_end=20.0, rtol=1e-8, atol=1e-10)
-    done = cli("simulate", "belt", "--model", "CVS", "--set", "v_belt=0.1", "--t-end", "20",
+    done = cli("simulate", "belt", "--model", "CVS", "--solver", "dopri5", "--set", "v_belt=0.1", "--t-end", "20",
                "--rtol", "1e-8", "--atol", "1e-10", "--out", tmp_path / "belt")
     assert done.returncode == 0, done.stderr
     pd.testing.assert_frame_equal(r.to_pandas(), read(tmp_path / "belt" / "trajectory.csv"),
@@ -66,6 +83,9 @@ def test_a_rig_equals_the_command_lines_trajectory(cli, tmp_path):
     assert r.summary.keys() == written.keys()
     for kept in (written, r.summary):
         kept.pop("wall_time_s")
+        # Where it comes from: the same version and commit, another date and command.
+        provenance = kept.pop("provenance")
+        assert provenance["friction_lab"] == fl.__version__
     assert r.summary == written
     # The record reaches Python as values, not as the files the command line writes of it.
     assert not {"summary.json", "trajectory.csv", "events.csv", "final.csv"} & set(r._made.files)

@@ -6,7 +6,6 @@ use super::Writing;
 use friction_lab::error::AppError;
 use friction_lab::ranges;
 use friction_lab::study::PhenomenaRequest;
-use friction_lab::threads::with_threads;
 use std::time::Instant;
 
 /// Runs `phenomena`: its files written, then the advice and the failure of undecided cells.
@@ -15,9 +14,7 @@ pub fn run(args: &Writing<PhenomenaRequest>, delivery: crate::Delivery) -> Resul
     let start = Instant::now();
     let threads = ranges::threads(args.request.threads)?;
     let made = args.request.run(&args.out)?;
-    let mut files = made.files;
-    delivery.apply(&mut files);
-    let written = with_threads(threads, || files.write(&args.out))??;
+    let written = delivery.write(made.files, &args.out, threads)?;
     println!(
         "{} in {:.1} s",
         written.line(),

@@ -21,6 +21,7 @@ use crate::figure::{self, Drawn};
 use crate::output::{share_folder, to_json, write_file, Table};
 use crate::plot::{self, Plot};
 use crate::progress::Progress;
+use crate::provenance::{Provenance, SIDECAR};
 use friction_models::ModelId;
 use rayon::prelude::*;
 use std::path::{Path, PathBuf};
@@ -79,6 +80,26 @@ pub enum Data<'a> {
     Json(&'a serde_json::Value),
     /// Any other file's bytes (a Markdown report, a table written as text).
     Bytes(&'a [u8]),
+}
+
+/// `object` opened by `provenance` ([`Artifacts::stamp`]): its own `provenance`, if it has one,
+/// gains the fields it lacks; else `provenance` becomes its first field.
+pub fn open_with(
+    object: &mut serde_json::Map<String, serde_json::Value>,
+    provenance: &serde_json::Value,
+) {
+    match (object.get_mut("provenance"), provenance.as_object()) {
+        (Some(serde_json::Value::Object(own)), Some(given)) => {
+            for (key, value) in given {
+                own.entry(key.clone()).or_insert_with(|| value.clone());
+            }
+        }
+        _ => {
+            let rest = std::mem::take(object);
+            object.insert("provenance".into(), provenance.clone());
+            object.extend(rest.into_iter().filter(|(key, _)| key != "provenance"));
+        }
+    }
 }
 
 /// Files to write: each path with its content.
@@ -166,6 +187,39 @@ impl Artifacts {
         self.files
             .push((stem.with_extension("svg"), Content::RasterSvg(boxed())));
         Ok(())
+    }
+
+    /// Names where the files come from: every JSON document that is an object opens with
+    /// `provenance` (one the command made already, a study's with the threads its runs were
+    /// spread over, keeps its fields and gains those it lacks, the command among them), and
+    /// the folder `root` gets the sidecar [`SIDECAR`] with `provenance` (the first document's)
+    /// and `files`, the path inside `root` of every other file.
+    pub fn stamp(&mut self, root: &Path, provenance: &Provenance) -> Result<(), AppError> {
+        let mut stamp = serde_json::to_value(provenance).map_err(|e| AppError::Io {
+            path: root.join(SIDECAR),
+            source: std::io::Error::other(e),
+        })?;
+        let mut first = None;
+        for (path, content) in &mut self.files {
+            if let Content::Json(serde_json::Value::Object(object), bytes) = content {
+                open_with(object, &stamp);
+                first.get_or_insert_with(|| object["provenance"].clone());
+                *bytes = to_json(&serde_json::Value::Object(object.clone()), path)?;
+            }
+        }
+        if let Some(own) = first {
+            stamp = own;
+        }
+        let files: Vec<String> = (self.files.iter())
+            .map(|(path, _)| {
+                path.strip_prefix(root)
+                    .unwrap_or(path)
+                    .display()
+                    .to_string()
+            })
+            .collect();
+        let sidecar = serde_json::json!({ "provenance": stamp, "files": files });
+        self.add_json(root.join(SIDECAR), &sidecar)
     }
 
     /// The data file written as `name` inside the output folder (`summary.json`), if one is.

@@ -21,6 +21,7 @@ pub use scenarios;
 pub mod artifacts;
 pub mod columns;
 pub mod curve;
+pub mod delivery;
 pub mod destination;
 pub mod error;
 pub mod figure;

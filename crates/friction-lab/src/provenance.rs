@@ -1,7 +1,10 @@
 //! Where a result comes from: the friction-lab version and git commit that computed it, when,
-//! on what machine and on how many threads. Every study's JSON and `report.md` name it, so a
-//! figure or a table can be traced to what made it. The results themselves do not depend on
-//! any of it but the version (they are identical on any number of threads).
+//! on what machine, on how many threads, and the command (or the Python call) that asked for
+//! it. Every JSON file a command writes opens with it, every folder holds it beside its files
+//! as [`SIDECAR`] (which lists them: the CSV files and figures carry no header of their own),
+//! and `report.md` names it, so a figure or a table can be traced to what made it. The results
+//! themselves do not depend on any of it but the version (they are identical on any number of
+//! threads).
 
 use serde::Serialize;
 use std::time::{SystemTime, UNIX_EPOCH};
@@ -19,7 +22,19 @@ pub struct Provenance {
     pub machine: Machine,
     /// The worker threads the runs were spread over.
     pub threads: usize,
+    /// What asked for the result: the command line (`friction-lab simulate belt --out run`),
+    /// or the Python call with its keyword arguments (`friction_lab.simulate('belt',
+    /// t_end=5.0)`); absent until a front end names it ([`Provenance::with_command`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub command: Option<String>,
 }
+
+/// The friction-lab version (`Cargo.toml`): `friction_lab.__version__` in Python.
+pub const VERSION: &str = env!("CARGO_PKG_VERSION");
+
+/// The file in every output folder that names the provenance of its files and lists them, by
+/// their paths inside the folder.
+pub const SIDECAR: &str = "provenance.json";
 
 /// The machine a result was computed on.
 #[derive(Clone, Debug, Serialize)]
@@ -36,11 +51,20 @@ impl Provenance {
     /// The provenance of a result computed now, here, on `threads` worker threads.
     pub fn now(threads: usize) -> Provenance {
         Provenance {
-            friction_lab: env!("CARGO_PKG_VERSION"),
+            friction_lab: VERSION,
             commit: env!("FRICTION_LAB_COMMIT"),
             date: utc(SystemTime::now()),
             machine: Machine::this(),
             threads,
+            command: None,
+        }
+    }
+
+    /// The same provenance, made by `command` ([`Provenance::command`]).
+    pub fn with_command(self, command: String) -> Provenance {
+        Provenance {
+            command: Some(command),
+            ..self
         }
     }
 
@@ -79,6 +103,23 @@ impl Machine {
     }
 }
 
+/// `words` as one line a POSIX shell reads back into the same words: a word of letters,
+/// digits and `_-./:=,+@%` as it is, any other (a space, a quote, a `$`, an empty word) in
+/// single quotes, each `'` in it written `'\''`.
+pub fn shell_line<S: AsRef<str>>(words: &[S]) -> String {
+    let plain = |c: char| c.is_ascii_alphanumeric() || "_-./:=,+@%".contains(c);
+    let quoted = |w: &str| {
+        if !w.is_empty() && w.chars().all(plain) {
+            w.to_string()
+        } else {
+            format!("'{}'", w.replace('\'', "'\\''"))
+        }
+    };
+    (words.iter().map(|w| quoted(w.as_ref())))
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
 /// `time` as UTC in ISO 8601 to the second: the civil date of its day number (Hinnant's
 /// `civil_from_days`, valid for every date of the proleptic Gregorian calendar).
 pub fn utc(time: SystemTime) -> String {
@@ -114,5 +155,12 @@ mod tests {
         assert_eq!(at(951_827_696), "2000-02-29T12:34:56Z");
         // 2026-11-27 00:31:05.
         assert_eq!(at(1_795_739_465), "2026-11-27T00:31:05Z");
+    }
+
+    #[test]
+    fn a_command_line_quotes_only_the_words_a_shell_would_split_or_expand() {
+        let line = shell_line(&["friction-lab", "simulate", "--set", "v_belt=0.1", "a b", ""]);
+        assert_eq!(line, "friction-lab simulate --set v_belt=0.1 'a b' ''");
+        assert_eq!(shell_line(&["it's", "$HOME"]), "'it'\\''s' '$HOME'");
     }
 }

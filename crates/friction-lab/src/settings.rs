@@ -195,13 +195,16 @@ pub struct SolverSettings {
     /// The scheme, and the treatment of v = 0 under the event-driven one.
     #[command(flatten)]
     pub scheme: SchemeChoice,
-    /// The solver of event-driven integration; `None`: Dormand–Prince.
+    /// The solver of event-driven integration; `None`: `auto` (Dormand–Prince, switched to
+    /// Radau IIA where the problem turns stiff), or Dormand–Prince with `fixed_step`.
     #[arg(
         long,
         value_name = "SOLVER",
         help = solver_help(
             "The solver of event-driven integration",
-            "[default: dopri5; refused under time-stepping]"
+            "[default: auto, Dormand-Prince switched to Radau IIA where the problem turns \
+             stiff (a run that never does is Dormand-Prince's, value for value); dopri5 with \
+             --fixed-step; refused under time-stepping]"
         )
     )]
     pub solver: Option<Solver>,
@@ -306,9 +309,16 @@ impl SolverSettings {
         Ok(schemes[0])
     }
 
-    /// The solver of event-driven integration: `solver`, or Dormand–Prince.
+    /// The solver of event-driven integration: `solver`; by default `auto`, which is
+    /// Dormand–Prince until Hairer's stiffness test fires and Radau IIA while the problem is
+    /// stiff (the servo, the bristle models), or Dormand–Prince with `fixed_step` (a fixed
+    /// step has no stiffness test to switch on).
     pub fn solver(&self) -> Solver {
-        self.solver.unwrap_or(Solver::DOPRI5)
+        let default = match self.fixed_step {
+            true => Solver::DOPRI5,
+            false => Solver::AUTO,
+        };
+        self.solver.unwrap_or(default)
     }
 
     /// The step control these settings ask for.
@@ -345,8 +355,9 @@ mod tests {
 
     #[test]
     fn the_declared_defaults_are_the_documented_ones() {
-        // docs/inputs.md: dopri5 at rtol 1e-8, atol 1e-10, at most 1e7 steps, event-driven
-        // with event switching, the paper's parameters in the sign-consistent reading.
+        // docs/inputs.md: auto at rtol 1e-8, atol 1e-10 (dopri5 with a fixed step), at most
+        // 1e7 steps, event-driven with event switching, the paper's parameters in the
+        // sign-consistent reading.
         let s = SolverSettings::default();
         assert_eq!(
             (s.rtol, s.atol, s.limits.max_steps),
@@ -357,7 +368,12 @@ mod tests {
             (None, None, None, false)
         );
         assert_eq!(s.scheme.scheme, SchemeName::EventDriven);
-        assert_eq!(s.scheme(1e-3).unwrap(), Scheme::events(Solver::DOPRI5));
+        assert_eq!(s.scheme(1e-3).unwrap(), Scheme::events(Solver::AUTO));
+        let fixed = SolverSettings {
+            fixed_step: true,
+            ..s
+        };
+        assert_eq!(fixed.scheme(1e-3).unwrap(), Scheme::events(Solver::DOPRI5));
         let m = ModelSettings::default();
         assert_eq!((m.params.set_name(), m.variant), ("paper", Variant::Odd));
         // docs/phenomena.md: every protocol with BDF at rtol 1e-10, atol 1e-12.

@@ -47,3 +47,9 @@ pub fn with_threads<T: Send>(
     .map_err(|e| AppError::Usage(format!("cannot start {threads:?} threads: {e}")))?;
     Ok(pool.install(f))
 }
+
+/// The worker threads of the pool the caller runs in ([`with_threads`]'s), or of the global
+/// pool outside any: all cores.
+pub fn current() -> usize {
+    rayon::current_num_threads()
+}

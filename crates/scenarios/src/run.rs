@@ -260,6 +260,10 @@ pub struct Outcome {
     /// Whether the law at the contact has an internal state (the trajectory's `z`, also when
     /// no row was recorded).
     pub has_state: bool,
+    /// The velocity of the surface under the contact, m/s (a belt's `v_belt`; 0 for the
+    /// floor, a prescribed motion and the velocity sweep): the sliding velocity is
+    /// `v − surface_velocity`.
+    pub surface_velocity: f64,
 }
 
 impl Outcome {
@@ -400,6 +404,9 @@ fn run_body(
             .map(|c| c.reference.clone()),
         integral_action: (system.controllers.iter()).any(|c| c.body == 0 && c.ki > 0.0),
         has_state: (system.contacts.iter()).any(|c| c.body == 0 && c.model.n_states() > 0),
+        surface_velocity: (system.contacts.iter())
+            .find(|c| c.body == 0)
+            .map_or(0.0, |c| c.surface_velocity),
     })
 }
 
@@ -468,6 +475,7 @@ pub fn run_motion(
         reference: None,
         integral_action: false,
         has_state: model.n_states() > 0,
+        surface_velocity: 0.0,
     }
 }
 
@@ -498,6 +506,7 @@ fn run_sweep(
         reference: None,
         integral_action: false,
         has_state: model.n_states() > 0,
+        surface_velocity: 0.0,
     };
     for &v in velocities {
         let settle = settling_time(model, v);

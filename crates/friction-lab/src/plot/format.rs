@@ -39,19 +39,23 @@ impl Default for Format {
 }
 
 impl Format {
-    /// The format of `--figure-size WxH` (inches) and `--dpi N`, each defaulting to
-    /// [`Format::default`]'s; an error names the option, the value and the allowed range.
+    /// The format of `figure_size` `WxH` (inches) and `dpi`, each defaulting to
+    /// [`Format::default`]'s; an error names the setting with its value (spelled by each front
+    /// end: `--figure-size 3.5`, `figure_size='3.5'`) and the allowed range.
     pub fn parse(size: Option<&str>, dpi: Option<f64>) -> Result<Self, AppError> {
         let default = Format::default();
         let bad = |option: &str, value: &str, allowed: String| {
-            AppError::Usage(format!("--{option} {value}: {allowed}"))
+            AppError::Usage(format!(
+                "{}: {allowed}",
+                crate::error::setting(option, value)
+            ))
         };
         let size = match size {
             None => default.size,
             Some(text) => {
                 let shape = || {
                     bad(
-                        "figure-size",
+                        "figure_size",
                         text,
                         "expected WIDTHxHEIGHT in inches, such as 3.5x2.6".into(),
                     )
@@ -63,7 +67,7 @@ impl Format {
                 {
                     if !(lo..=hi).contains(&v) {
                         return Err(bad(
-                            "figure-size",
+                            "figure_size",
                             text,
                             format!("the {name} {v} in is outside [{lo}, {hi}] in"),
                         ));
@@ -147,7 +151,9 @@ mod tests {
         let page = Format::parse(Some("6x4"), Some(150.0)).unwrap();
         assert_eq!(page.pixels(page.design(1)), (900, 600));
         let message = |size: Option<&str>, dpi: Option<f64>| {
-            Format::parse(size, dpi).unwrap_err().to_string()
+            Format::parse(size, dpi)
+                .unwrap_err()
+                .message(&crate::error::as_option)
         };
         assert!(message(Some("3.5"), None).contains("--figure-size 3.5: expected WIDTHxHEIGHT"));
         assert!(message(Some("1x3"), None).contains("the width 1 in is outside [2, 20] in"));

@@ -11,12 +11,14 @@ mod comparison;
 mod experiment;
 mod figures;
 mod orbits;
+mod request;
 mod solver_studies;
 mod stick_slip;
 mod table2;
 
 pub use experiment::ExperimentStudy;
 pub use figures::PaperFiguresStudy;
+pub use request::ReproduceRequest;
 
 use crate::artifacts::{stopped_banner, Artifacts};
 use crate::error::AppError;

@@ -41,7 +41,9 @@ pub fn made_of_record(
     let (failure, caution) = (record.summary.failure(), record.summary.caution());
     let setup = &record.summary.setup;
     let integrated = &record.summary.integrated;
+    // `auto` answered the stiffness it found by switching to Radau IIA: no advice then.
     let warnings = (integrated.stiffness_detected_at)
+        .filter(|_| setup.solver != integrators::Solver::AUTO.name())
         .map(|t| stiffness_warning(setup.solver, t))
         .into_iter()
         .chain(coarse_step_warning(setup.step, period))

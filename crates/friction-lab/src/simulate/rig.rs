@@ -120,57 +120,65 @@ fn drawn_rows(o: &Outcome) -> Vec<&scenarios::Row> {
     out
 }
 
-/// The figures of a simulation over `window`: (file stem, plot).
+/// The figures of a simulation over `window`: (file stem, plot). Friction is drawn against
+/// the sliding velocity `v − v_surface` (a belt's speed subtracted; the body's v on the
+/// floor).
 fn figures(o: &Outcome, name: &str, window: Option<Window>) -> Vec<(&'static str, Plot)> {
-    type Pick = fn(&scenarios::Row) -> f64;
+    // A quantity of a row, given the surface velocity.
+    type Pick = fn(&scenarios::Row, f64) -> f64;
+    let sliding = if o.surface_velocity == 0.0 {
+        "sliding velocity v (m/s)"
+    } else {
+        "sliding velocity v − v_surface (m/s)"
+    };
     let specs: [(&str, &str, &str, &str, Pick, Pick); 6] = [
         (
             "history-x",
             "displacement",
             "time t (s)",
             "displacement x (m)",
-            |r| r.t,
-            |r| r.x,
+            |r, _| r.t,
+            |r, _| r.x,
         ),
         (
             "history-v",
             "velocity",
             "time t (s)",
             "velocity v (m/s)",
-            |r| r.t,
-            |r| r.v,
+            |r, _| r.t,
+            |r, _| r.v,
         ),
         (
             "history-friction",
             "friction force",
             "time t (s)",
             "friction force F (N)",
-            |r| r.t,
-            |r| r.friction,
+            |r, _| r.t,
+            |r, _| r.friction,
         ),
         (
             "phase-portrait",
             "phase portrait",
             "displacement x (m)",
             "velocity v (m/s)",
-            |r| r.x,
-            |r| r.v,
+            |r, _| r.x,
+            |r, _| r.v,
         ),
         (
             "friction-velocity",
-            "friction against velocity",
-            "velocity v (m/s)",
+            "friction against sliding velocity",
+            sliding,
             "friction force F (N)",
-            |r| r.v,
-            |r| r.friction,
+            |r, surface| r.v - surface,
+            |r, _| r.friction,
         ),
         (
             "friction-displacement",
             "friction against displacement",
             "displacement x (m)",
             "friction force F (N)",
-            |r| r.x,
-            |r| r.friction,
+            |r, _| r.x,
+            |r, _| r.friction,
         ),
     ];
     let rows: Vec<&scenarios::Row> = (drawn_rows(o).into_iter())
@@ -187,7 +195,9 @@ fn figures(o: &Outcome, name: &str, window: Option<Window>) -> Vec<(&'static str
                     y_label: yl.into(),
                     series: vec![Series {
                         label: None,
-                        points: rows.iter().map(|r| (fx(r), fy(r))).collect(),
+                        points: (rows.iter())
+                            .map(|r| (fx(r, o.surface_velocity), fy(r, o.surface_velocity)))
+                            .collect(),
                         color: BLUE,
                         width: 2,
                         marker: Marker::None,
