@@ -61,7 +61,7 @@ pub use problem::{Control, Crossing, Entry, EventSpec, Mode, OdeProblem};
 pub use radau5::Radau5;
 pub use rk4::Rk4;
 pub use rodas::Rodas;
-pub use solution::{EventRecord, Failure, MethodSwitch, ModeSwitch, Solution};
+pub use solution::{EventRecord, Failure, MethodSwitch, ModeSwitch, Solution, SwitchRule};
 pub use solver::{Solver, SOLVERS};
 pub use stats::{Stats, WorkWeights};
 pub use stepper::{Ode, Stepper, StepperState};

@@ -315,6 +315,80 @@ impl Radau5 {
         self.jac_norm
     }
 
+    /// One attempt at a step of size `h` from (t, y), from a fresh start with a new Jacobian:
+    /// `auto`'s test of whether Radau IIA steps further than the explicit method (LSODA
+    /// compares the two methods' step sizes in the same way, from estimates its shared
+    /// history gives; here a trial step gives it). `true` when the step is accepted: the
+    /// method stands at its end, ready to go on. `false` when Newton's iteration fails, a
+    /// matrix is singular or the error test rejects the step: the method must be started
+    /// again before it steps. Its work is counted either way.
+    pub fn trial(
+        &mut self,
+        ode: &Ode,
+        (t, y): (f64, &[f64]),
+        h: f64,
+        t_stop: f64,
+    ) -> Result<bool, SolverError> {
+        self.set_next_step(h);
+        self.start(ode, t, y)?;
+        self.prepare(ode, t_stop);
+        self.new_jacobian(ode);
+        if !self.new_factorization(ode) {
+            return Ok(false);
+        }
+        Ok(matches!(self.attempt(ode, t_stop)?, Attempt::Accepted))
+    }
+
+    /// What RADCOR does before its first step (HMAXN, H within it, LAST if it reaches XEND)
+    /// and after a restart moved the end (f at the current point).
+    fn prepare(&mut self, ode: &Ode, t_stop: f64) {
+        let t = self.state.t;
+        if self.fresh {
+            // RADCOR: HMAXN = min(|HMAX|, |XEND − X|), H within it, LAST if it reaches XEND.
+            self.hmaxn = self.h_max.abs().min((t_stop - t).abs());
+            self.state.h = self.state.h.abs().min(self.hmaxn);
+            self.hold = self.state.h;
+            if t + self.state.h * 1.0001 - t_stop >= 0.0 {
+                self.state.h = t_stop - t;
+                self.last = true;
+            }
+            self.hopt = self.state.h;
+            self.fresh = false;
+        }
+        if !self.f0_known {
+            ode.rhs(t, &self.state.y, &mut self.f0, &mut self.stats);
+            self.f0_known = true;
+            self.last = t + self.state.h - t_stop >= 0.0;
+            if self.last {
+                self.state.h = t_stop - t;
+            }
+        }
+    }
+
+    /// Label 10: the Jacobian at the current point, and its norm ‖J‖∞.
+    fn new_jacobian(&mut self, ode: &Ode) {
+        let (t, y) = (self.state.t, &self.state.y);
+        newton::jacobian(ode, t, y, &self.f0, &mut self.jac, &mut self.stats);
+        self.row_sums.clear();
+        self.row_sums.resize(y.len(), 0.0);
+        for &(i, _, v) in &self.jac {
+            self.row_sums[i] += v.abs();
+        }
+        self.jac_norm = self.row_sums.iter().fold(0.0, |m, r| r.max(m));
+        self.caljac = true;
+        self.next = Next::Factorize;
+    }
+
+    /// Label 20 with its count: `false` when a matrix is singular.
+    fn new_factorization(&mut self, ode: &Ode) -> bool {
+        let regular = self.factorize(ode.problem.mass());
+        if regular {
+            self.stats.lu_factorizations += 1;
+            self.stats.complex_lu_factorizations += 1;
+        }
+        regular
+    }
+
     /// SCAL(I) = ATOL + RTOL·|Y(I)|.
     fn scale(&mut self) {
         for (s, y) in self.scal.iter_mut().zip(&self.state.y) {
@@ -723,45 +797,12 @@ impl Stepper for Radau5 {
     }
 
     fn step(&mut self, ode: &Ode, t_stop: f64) -> Result<(), SolverError> {
-        let t = self.state.t;
-        if self.fresh {
-            // RADCOR: HMAXN = min(|HMAX|, |XEND − X|), H within it, LAST if it reaches XEND.
-            self.hmaxn = self.h_max.abs().min((t_stop - t).abs());
-            self.state.h = self.state.h.abs().min(self.hmaxn);
-            self.hold = self.state.h;
-            if t + self.state.h * 1.0001 - t_stop >= 0.0 {
-                self.state.h = t_stop - t;
-                self.last = true;
-            }
-            self.hopt = self.state.h;
-            self.fresh = false;
-        }
-        if !self.f0_known {
-            ode.rhs(t, &self.state.y, &mut self.f0, &mut self.stats);
-            self.f0_known = true;
-            self.last = t + self.state.h - t_stop >= 0.0;
-            if self.last {
-                self.state.h = t_stop - t;
-            }
-        }
+        self.prepare(ode, t_stop);
         loop {
             match self.next {
-                Next::Jacobian => {
-                    let (t, y) = (self.state.t, &self.state.y);
-                    newton::jacobian(ode, t, y, &self.f0, &mut self.jac, &mut self.stats);
-                    self.row_sums.clear();
-                    self.row_sums.resize(y.len(), 0.0);
-                    for &(i, _, v) in &self.jac {
-                        self.row_sums[i] += v.abs();
-                    }
-                    self.jac_norm = self.row_sums.iter().fold(0.0, |m, r| r.max(m));
-                    self.caljac = true;
-                    self.next = Next::Factorize;
-                }
+                Next::Jacobian => self.new_jacobian(ode),
                 Next::Factorize => {
-                    if self.factorize(ode.problem.mass()) {
-                        self.stats.lu_factorizations += 1;
-                        self.stats.complex_lu_factorizations += 1;
+                    if self.new_factorization(ode) {
                         self.next = Next::Step;
                     } else {
                         self.unexpected_rejection(true)?;

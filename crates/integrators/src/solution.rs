@@ -58,16 +58,33 @@ pub struct Solution {
     pub method_switches: Vec<MethodSwitch>,
 }
 
-/// A switch of method within a run (`auto`): where, to which method, and the stiffness
-/// estimate `h·ρ̂` that decided it.
+/// A switch of method within a run (`auto`): where, to which method, the rule that decided
+/// it and the stiffness estimate `h·ρ̂` there.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct MethodSwitch {
     /// Time of the switch, s.
     pub t: f64,
     /// The method that takes the steps from there.
     pub to: &'static str,
-    /// `h·ρ̂`: the step times the estimated spectral radius of the Jacobian.
+    /// The rule that decided it.
+    pub rule: SwitchRule,
+    /// `h·ρ̂`: the step times the estimated spectral radius of the Jacobian (Hairer's
+    /// estimate of Dormand–Prince's last step on a switch to Radau IIA; `h·‖J‖∞` of Radau
+    /// IIA's last step on a switch back).
     pub estimate: f64,
+}
+
+/// Why `auto` switched method ([`crate::auto`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SwitchRule {
+    /// LSODA's rule: a trial step of Radau IIA `RATIO` = 5 times Dormand–Prince's was
+    /// accepted.
+    StepRatio,
+    /// Hairer's stiffness test of dopri5.f: `h·ρ̂ > 3.25` fifteen times in a row.
+    StiffnessTest,
+    /// Back to Dormand–Prince: `h·‖J‖∞ ≤ 3.25` for fifteen Radau IIA steps in a row.
+    StabilityBound,
 }
 
 impl Solution {
