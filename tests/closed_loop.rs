@@ -55,8 +55,9 @@ fn simulate_servo_reports_the_hunting_cycle_and_sweep_maps_it() {
         .get("closed_loop")
         .is_none());
 
-    // The hunting map: no integral action converges in the dead zone (kp·1 m = 3 N < F_c),
-    // F_s = F_c (Coulomb alone) is a transient under PID, stiction hunts.
+    // The hunting map: without integral action the body never moves (kp·1 m = 3 N < F_c):
+    // stuck, 1 m off the set point, not converged; F_s = F_c (Coulomb alone) is a transient
+    // under PID, stiction hunts.
     let map = dir.path().join("map");
     let args = [
         "sweep",
@@ -73,11 +74,7 @@ fn simulate_servo_reports_the_hunting_cycle_and_sweep_maps_it() {
     let rows: Vec<Vec<&str>> = csv.lines().map(|l| l.split(',').collect()).collect();
     let col = |name: &str| rows[0].iter().position(|c| *c == name).unwrap();
     let regimes: Vec<&str> = rows[1..].iter().map(|r| r[col("regime")]).collect();
-    assert_eq!(
-        regimes,
-        ["Converged", "Converged", "Unsettled", "Hunting"],
-        "{csv}"
-    );
+    assert_eq!(regimes, ["Stuck", "Stuck", "Unsettled", "Hunting"], "{csv}");
     assert_eq!(rows[1][col("final_error")], "1", "{csv}");
     // The hunting point is the simulated run: the same period.
     let swept: f64 = rows[4][col("period")].parse().unwrap();
@@ -87,7 +84,7 @@ fn simulate_servo_reports_the_hunting_cycle_and_sweep_maps_it() {
     );
     let svg = std::fs::read_to_string(map.join("sweep.svg")).unwrap();
     assert!(
-        svg.contains("hunting (a limit cycle)") && svg.contains("converged"),
+        svg.contains("hunting (a limit cycle)") && svg.contains("stuck all along"),
         "{svg}"
     );
 }

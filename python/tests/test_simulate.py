@@ -2,6 +2,8 @@
 
 import json
 import os
+import warnings
+
 import numpy as np
 import pandas as pd
 import pytest
@@ -117,6 +119,21 @@ def test_a_parameter_the_model_does_not_read_is_a_runtime_warning():
         r = fl.simulate("paper-block", model="coulomb", params={"F_c": 6.0, "F_s": 9.0},
                         t_end=1.0)
     assert np.allclose(r.v, 9.0 * r.t, rtol=0, atol=1e-9)
+
+
+def test_an_unsettled_loop_warns_and_a_stuck_one_says_so():
+    # Coulomb friction under the servo's PID sticks ever closer to the set point: after 800 s
+    # a transient, which Python warns of as the command line does.
+    with pytest.warns(RuntimeWarning, match="closed loop: not settled"):
+        r = fl.simulate("servo", model="coulomb")
+    assert r.summary["closed_loop"]["hunting"] is None
+    # Under P control (ki = kd = 0) kp·1 m = 3 N < F_c = 6 N: the body never moves, a rest
+    # state that is neither converged nor a warning.
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        r = fl.simulate("servo", model="coulomb", params={"ki": 0.0, "kd": 0.0}, t_end=50.0)
+    loop = r.summary["closed_loop"]
+    assert (loop["stuck"], loop["hunting"], loop["final_error"]) == (True, False, 1.0)
 
 
 def test_a_system_from_a_dict_equals_the_same_file_and_is_time_by_body(tmp_path):

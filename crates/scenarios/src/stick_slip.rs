@@ -55,7 +55,8 @@ pub enum Regime {
     StickSlip,
     /// A sustained oscillation that never sticks.
     Oscillation,
-    /// Carried by the belt through the whole window (a cycle longer than the run).
+    /// Stuck all along: carried by the belt through the whole window (a cycle longer than
+    /// the run), or a closed loop's body that never moved off its reference.
     Stuck,
     /// Steady sliding: no oscillation left (a velocity amplitude below
     /// [`STEADY_AMPLITUDE`] of the belt speed).
@@ -65,8 +66,11 @@ pub enum Regime {
     Unsettled,
     /// A closed loop's limit cycle around its reference ([`ClosedLoop::hunting`]).
     Hunting,
-    /// A closed loop at rest: at its set point, or in a PD loop's dead zone.
+    /// A closed loop at rest at its set point.
     Converged,
+    /// A closed loop at rest off its set point after it moved: the friction holds the body
+    /// within the dead zone |e| ≤ F_s/k_p of a loop without integral action.
+    DeadZone,
 }
 
 impl Regime {
@@ -88,10 +92,14 @@ impl Regime {
         }
     }
 
-    /// The regime of a closed loop ([`ClosedLoop`]): hunting, converged, or not settled.
+    /// The regime of a closed loop ([`ClosedLoop`]): hunting; at rest at its set point
+    /// (converged), off it after moving (dead zone) or without ever moving (stuck); or not
+    /// settled.
     pub fn of_closed_loop(c: &ClosedLoop) -> Regime {
         match c.hunting {
             Some(true) => Regime::Hunting,
+            Some(false) if c.stuck => Regime::Stuck,
+            Some(false) if c.off_reference() => Regime::DeadZone,
             Some(false) => Regime::Converged,
             None => Regime::Unsettled,
         }

@@ -5,6 +5,7 @@ use friction_models::{FrictionParams, ModelId};
 use friction_systems::Scheme;
 use integrators::{Solver, StepControl};
 use scenarios::analysis::closed_loop::ClosedLoop;
+use scenarios::stick_slip::Regime;
 use scenarios::{run, Limits, Outcome, RunSpec, Scenario};
 
 fn servo_at(model: ModelId, friction: FrictionParams, solver: Solver, points: usize) -> Outcome {
@@ -136,7 +137,7 @@ fn the_cycle_is_measured_alike_on_a_coarse_output_grid() {
 }
 
 #[test]
-fn a_body_stuck_off_the_set_point_has_converged_only_without_integral_action() {
+fn a_body_at_rest_off_the_set_point_is_stuck_or_in_the_dead_zone_only_without_integral_action() {
     // Coulomb friction, F_c = 6 N. Under PID the body sticks ever closer to the set point
     // while the integral winds up, for ever longer: after 800 s it is stuck 1.7 mm short and
     // will move again, a transient, not a rest state.
@@ -147,25 +148,76 @@ fn a_body_stuck_off_the_set_point_has_converged_only_without_integral_action() {
     ));
     assert_eq!((pid.settled, pid.hunting), (false, None), "{pid:?}");
     assert!(pid.final_error.abs() > 1e-4, "{pid:?}");
+    assert!(!pid.stuck, "{pid:?}");
+    assert_eq!(Regime::of_closed_loop(&pid), Regime::Unsettled);
     // Under PD (ki = 0) the set point is 1 m away and kp·1 m = 3 N < F_c: the body never
-    // moves, and that is the loop's rest state (its dead zone is ±F_c/kp = ±2 m).
-    let pd = scenarios::ScenarioParams {
+    // moves, and that is the loop's rest state: stuck, not converged.
+    let pd = |x_ref: f64| scenarios::ScenarioParams {
         ki: 0.0,
+        x_ref,
         ..Scenario::SERVO.defaults()
     };
-    let o = servo_with(
-        ModelId::Coulomb,
-        FrictionParams::paper(),
-        Solver::DOPRI5,
-        2001,
-        pd,
-    );
-    let c = measures(&o);
+    let coulomb_pd = |x_ref: f64| {
+        measures(&servo_with(
+            ModelId::Coulomb,
+            FrictionParams::paper(),
+            Solver::DOPRI5,
+            2001,
+            pd(x_ref),
+        ))
+    };
+    let c = coulomb_pd(1.0);
     assert_eq!(
-        (c.settled, c.hunting, c.final_error),
-        (true, Some(false), 1.0),
+        (c.settled, c.stuck, c.hunting, c.final_error),
+        (true, true, Some(false), 1.0),
         "{c:?}"
     );
+    assert_eq!(Regime::of_closed_loop(&c), Regime::Stuck);
+    assert!(c.to_string().contains("stuck, the body never moved"), "{c}");
+    // With the set point 6 m away (kp·6 m = 18 N > F_c) it moves, and stops inside the dead
+    // zone |e| <= F_c/kp = 2 m, off the set point.
+    let c = coulomb_pd(6.0);
+    assert!(!c.stuck && c.settled, "{c:?}");
+    assert!(
+        c.final_error.abs() > 1e-3 && c.final_error.abs() <= 2.0 + 1e-9,
+        "{c:?}"
+    );
+    assert_eq!(Regime::of_closed_loop(&c), Regime::DeadZone);
+    assert!(c.to_string().contains("dead zone"), "{c}");
+}
+
+#[test]
+fn a_body_that_never_follows_a_sinusoid_is_stuck_not_hunting() {
+    use friction_systems::Reference;
+    use scenarios::tracking::run_tracking;
+    // x_r = sin(t) m under P control against Coulomb friction: kp·1 m = 3 N < F_c = 6 N, so
+    // the body never moves, while its error r − x = sin(t) crosses zero like a cycle.
+    let spec = RunSpec {
+        t_end: Some(100.0),
+        ..servo_spec(
+            ModelId::Coulomb,
+            FrictionParams::paper(),
+            Solver::DOPRI5,
+            5001,
+            scenarios::ScenarioParams {
+                ki: 0.0,
+                kd: 0.0,
+                ..Scenario::SERVO.defaults()
+            },
+        )
+    };
+    let sine = Reference::Sinusoid {
+        x0: 0.0,
+        amplitude: 1.0,
+        omega: 1.0,
+    };
+    let o = run_tracking(&spec, &sine, None, &mut |_| {}).unwrap();
+    let c = ClosedLoop::of(&o, &sine);
+    assert!(c.stuck, "{c:?}");
+    assert_ne!(c.hunting, Some(true), "{c:?}");
+    assert_ne!(Regime::of_closed_loop(&c), Regime::Hunting);
+    // Its RMS error is the reference's own, 1/√2 m.
+    assert!((c.rms_error - 0.5f64.sqrt()).abs() < 1e-2, "{c:?}");
 }
 
 #[test]

@@ -34,6 +34,9 @@ fn plants() -> Vec<Law> {
 fn rms(r: &ClosedLoops, plant: ModelId, task: &str, compensator: Option<ModelId>) -> String {
     let c = compensator.map(Law::from);
     match r.tracking(&Law::from(plant), task, c.as_ref()) {
+        Some(t) if t.failed.is_none() && t.stuck => {
+            format!("{:.1} mm (stuck: never moved)", 1e3 * t.rms_error)
+        }
         Some(t) if t.failed.is_none() => format!("{:.1} mm", 1e3 * t.rms_error),
         _ => "failed".into(),
     }
@@ -151,13 +154,16 @@ fn reads_map(points: &[PointResult]) -> String {
     format!(
         "- [The hunting map](closed-loop/hunting-map.png) of the servo with `static` friction \
          (F_c = 6 N) over ki ∈ {{{}}} N/(m·s) × F_s ∈ {{{}}} N: hunting at {} of {} points, \
-         converged at {}, not settled at {} (each point run again over up to eight times its \
-         span while it has not settled).\n",
+         converged at {}, at rest in the dead zone at {}, stuck (never moved) at {}, not \
+         settled at {} (each point run again over up to eight times its span while it has not \
+         settled).\n",
         MAP_KI.map(|v| v.to_string()).join(", "),
         MAP_F_S.map(|v| v.to_string()).join(", "),
         count(Regime::Hunting),
         points.len(),
         count(Regime::Converged),
+        count(Regime::DeadZone),
+        count(Regime::Stuck),
         count(Regime::Unsettled),
     )
 }

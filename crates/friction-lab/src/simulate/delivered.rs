@@ -8,6 +8,7 @@ use crate::run_record::RunRecord;
 use crate::trajectory::RecordAs;
 use crate::warnings::{coarse_step_warning, failure_warnings, stiffness_warning};
 use friction_systems::Scheme;
+use scenarios::analysis::closed_loop::ClosedLoop;
 use std::path::Path;
 
 /// What the advice on a run reads beside its record.
@@ -18,6 +19,14 @@ pub struct Advice {
     pub period: Option<f64>,
     /// Advice of its own kind (a chain's spread its law does not read).
     pub own: Option<String>,
+}
+
+/// A closed loop that has not settled (neither hunting nor at rest: a transient whose
+/// measures describe no regime): its line, which every front end gives as a warning.
+fn unsettled_loop(closed_loop: Option<&ClosedLoop>) -> Option<String> {
+    closed_loop
+        .filter(|c| c.hunting.is_none())
+        .map(|c| c.to_string())
 }
 
 /// What one run made: `record`'s files added to `files` in `out`, or its values, as
@@ -41,6 +50,7 @@ pub fn made_of_record(
     let (failure, caution) = (record.summary.failure(), record.summary.caution());
     let setup = &record.summary.setup;
     let integrated = &record.summary.integrated;
+    let unsettled = unsettled_loop(integrated.closed_loop.as_ref());
     // `auto` answered the stiffness it found by switching to Radau IIA: no advice then.
     let warnings = (integrated.stiffness_detected_at)
         .filter(|_| setup.solver != integrators::Solver::AUTO.name())
@@ -56,6 +66,10 @@ pub fn made_of_record(
         ))
         .chain(own)
         .chain(caution)
+        .chain(unsettled.clone())
+        .collect();
+    let notes = (notes.into_iter())
+        .filter(|n| Some(n) != unsettled.as_ref())
         .collect();
     let run = record.deliver(&mut files, out, record_as)?;
     Ok(Made {

@@ -14,6 +14,7 @@ use scenarios::analysis::describing_function::{
     break_away_gain, predict_hunting, HuntingPrediction, Pid, StictionMass,
 };
 use scenarios::phenomena::{own_parameters, thresholds, Protocol};
+use scenarios::stick_slip::Regime;
 use scenarios::tracking::run_tracking;
 use scenarios::{Law, Outcome, RunSpec, Scenario, ScenarioParams};
 use serde::Serialize;
@@ -106,6 +107,9 @@ pub struct Tracking {
     pub rms_error: f64,
     /// The largest tracking error, m (NaN where the run failed).
     pub max_error: f64,
+    /// Whether the body never moved: its error is then the reference's own (`false` where
+    /// the run failed).
+    pub stuck: bool,
     /// Why the run failed, if it did.
     pub failed: Option<String>,
 }
@@ -218,11 +222,11 @@ impl ClosedLoopStudy<'_> {
             .transpose()?;
         let reference = task.reference();
         let o = run_tracking(&spec, &reference, compensation.as_ref(), &mut |_| {})?;
-        let (rms_error, max_error) = match &o.error {
-            Some(_) => (f64::NAN, f64::NAN),
+        let (rms_error, max_error, stuck) = match &o.error {
+            Some(_) => (f64::NAN, f64::NAN, false),
             None => {
                 let c = ClosedLoop::of(&o, &reference);
-                (c.rms_error, c.max_error)
+                (c.rms_error, c.max_error, c.stuck)
             }
         };
         Ok(Tracking {
@@ -231,6 +235,7 @@ impl ClosedLoopStudy<'_> {
             task: task.name,
             rms_error,
             max_error,
+            stuck,
             failed: o.error.as_ref().map(|e| e.to_string()),
         })
     }
@@ -380,10 +385,12 @@ fn markdown(study: &ClosedLoopStudy, r: &ClosedLoops) -> String {
     for g in &r.regulation {
         match (&g.closed_loop, &g.failed) {
             (Some(c), None) => {
-                let verdict = match c.hunting {
-                    Some(true) => "hunting",
-                    Some(false) => "converged",
-                    None => "not settled",
+                let verdict = match Regime::of_closed_loop(c) {
+                    Regime::Hunting => "hunting",
+                    Regime::Converged => "converged",
+                    Regime::DeadZone => "dead zone",
+                    Regime::Stuck => "stuck (never moved)",
+                    _ => "not settled",
                 };
                 s += &format!(
                     "| {} | {verdict} | {} | {} | {} | {} |\n",
@@ -419,6 +426,7 @@ fn markdown(study: &ClosedLoopStudy, r: &ClosedLoops) -> String {
         for plant in study.plants {
             s += &format!("| {plant} |");
             let cell = |c: Option<&Law>| match r.tracking(plant, task.name, c) {
+                Some(t) if t.failed.is_none() && t.stuck => format!("{} stuck", mm(t.rms_error)),
                 Some(t) if t.failed.is_none() => mm(t.rms_error),
                 Some(_) => "failed".into(),
                 None => "-".into(),
@@ -434,8 +442,8 @@ fn markdown(study: &ClosedLoopStudy, r: &ClosedLoops) -> String {
             s += "\n";
         }
     }
-    s += "\nBold: the plant's own model as its compensator. Failed runs: `closed-loop.json` \
-          says why.\n";
+    s += "\nBold: the plant's own model as its compensator. Stuck: the body never moved, so \
+          its error is the reference's own. Failed runs: `closed-loop.json` says why.\n";
     if !r.describing_function.is_empty() {
         s += &describing_markdown(r);
     }

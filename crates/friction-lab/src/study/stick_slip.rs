@@ -27,13 +27,14 @@ fn boundary(base: &RunSpec) -> Result<Vec<f64>, ScenarioError> {
 
 /// What the figures call each regime, in legend order (one list for the map, the bifurcation
 /// diagram and a sweep's figure).
-pub const REGIMES: [(Regime, &str); 7] = [
+pub const REGIMES: [(Regime, &str); 8] = [
     (Regime::Hunting, "hunting (a limit cycle)"),
     (Regime::Converged, "converged"),
+    (Regime::DeadZone, "at rest in the dead zone"),
     (Regime::StickSlip, "stick-slip"),
     (Regime::Oscillation, "oscillation without stick"),
     (Regime::SteadySliding, "steady sliding"),
-    (Regime::Stuck, "carried by the surface all along"),
+    (Regime::Stuck, "stuck all along"),
     (Regime::Unsettled, "not settled (a transient)"),
 ];
 
@@ -48,6 +49,7 @@ fn regime_style(regime: Regime) -> (RGBColor, Marker) {
         Regime::Unsettled => (PALETTE[4], Marker::Cross),
         Regime::Hunting => (PALETTE[0], Marker::Dot),
         Regime::Converged => (BLUE, Marker::Cross),
+        Regime::DeadZone => (PALETTE[2], Marker::Cross),
     }
 }
 

@@ -13,6 +13,13 @@
 //! integral action, e itself is (it has **converged**: a body stuck off the set point while
 //! the integral winds up will move again). Otherwise the run ends in a transient: `hunting`
 //! is undefined (null), never false.
+//!
+//! A body asked to move that **never moved** (its travel from the start within
+//! [`STUCK_TRAVEL`] of the largest distance |r − x0| its reference asked, which is above
+//! [`REST_AMPLITUDE`]) is **stuck**, not hunting whatever its error does (a sinusoidal
+//! reference it never followed crosses it), and settled unless integral action winds up to
+//! free it. A body that moved and came to rest off its set point (without integral action)
+//! stopped in the friction's **dead zone**, |e| ≤ F_s/k_p.
 
 use super::settled::{crossings, half_range, MIN_CYCLES, SETTLE_TOLERANCE};
 use crate::run::{Outcome, Row};
@@ -21,6 +28,12 @@ use serde::Serialize;
 
 /// The half range of the error, m, at or below which the settled loop is at rest.
 pub const REST_AMPLITUDE: f64 = 1e-9;
+
+/// The travel from the start, relative to the largest distance |r − x0| the reference asks
+/// of the body, at or below which it never followed it: a law without a stick mode lets a body
+/// held by friction creep, and a reference that starts moving jolts it (5 mm against a
+/// sinusoid of 1 m under the servo's PID and CS, after which it sticks for good).
+pub const STUCK_TRAVEL: f64 = 1e-2;
 
 /// The speed, relative to the largest speed of the settled part, at or below which a body
 /// counts as stuck although its contact slides: a law without a stick mode (LuGre) holds it
@@ -32,6 +45,10 @@ pub const STUCK_SPEED: f64 = 1e-3;
 pub struct ClosedLoop {
     /// Whether the last half of the run has settled (on a cycle, or at rest).
     pub settled: bool,
+    /// Whether the body never moved although its reference asked it to: the largest distance
+    /// |r − x0| asked is above [`REST_AMPLITUDE`], and the body's travel from the start stays
+    /// within [`STUCK_TRAVEL`] of it at every recorded point.
+    pub stuck: bool,
     /// Whether the settled loop hunts (a limit cycle of the position error); `None` where the
     /// run has not settled.
     pub hunting: Option<bool>,
@@ -127,7 +144,16 @@ impl ClosedLoop {
             && b.cycles >= MIN_CYCLES
             && relative(a.period, b.period) <= SETTLE_TOLERANCE
             && relative(a.amplitude, b.amplitude) <= SETTLE_TOLERANCE;
-        let settled = at_rest || cycling;
+        let x0 = recorded.first().map_or(0.0, |r| r.x);
+        let asked =
+            (recorded.iter()).fold(0.0, |m: f64, r| m.max((reference.at(r.t).0 - x0).abs()));
+        let travel = (recorded.iter()).fold(0.0, |m: f64, r| m.max((r.x - x0).abs()));
+        let never_moved = asked > REST_AMPLITUDE && travel <= STUCK_TRAVEL * asked;
+        let (settled, cycling) = if never_moved {
+            (!integral_action, false)
+        } else {
+            (at_rest || cycling, cycling)
+        };
         let hunting = settled.then_some(cycling);
         let fastest = (k.iter()).fold(0.0, |m: f64, &i| m.max(rows[i].v.abs()));
         let stuck: f64 = (k.windows(2))
@@ -138,6 +164,7 @@ impl ClosedLoop {
         let n = all.len().max(1) as f64;
         ClosedLoop {
             settled,
+            stuck: never_moved,
             hunting,
             period: undefined(cycling, whole.period),
             amplitude: undefined(settled, whole.amplitude),
@@ -149,10 +176,15 @@ impl ClosedLoop {
     }
 }
 
-/// One line: `closed loop: hunting, period 24.45 s, amplitude 6.390e-2 m, stuck 18.75 s a
-/// cycle`, or converged with the final error, or not settled; then the tracking error.
-impl std::fmt::Display for ClosedLoop {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+impl ClosedLoop {
+    /// Whether the loop is at rest off its reference: |r − x| at the end above
+    /// [`REST_AMPLITUDE`].
+    pub fn off_reference(&self) -> bool {
+        self.final_error.abs() > REST_AMPLITUDE
+    }
+
+    /// Hunting, converged or not settled, as [`ClosedLoop`]'s one line says it.
+    fn fmt_regime(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self.hunting {
             Some(true) => write!(
                 f,
@@ -170,6 +202,35 @@ impl std::fmt::Display for ClosedLoop {
                  converged yet): run longer (a later end time t_end); final error {:.3e} m",
                 self.final_error
             ),
+        }
+    }
+}
+
+/// One line: `closed loop: hunting, period 24.45 s, amplitude 6.390e-2 m, stuck 18.75 s a
+/// cycle`, or converged with the final error, at rest in the dead zone, stuck, or not
+/// settled; then the tracking error.
+impl std::fmt::Display for ClosedLoop {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match (self.stuck, self.hunting) {
+            (true, Some(_)) => write!(
+                f,
+                "closed loop: stuck, the body never moved (by more than 1 % of what its \
+                 reference asks), final error {:.3e} m",
+                self.final_error
+            ),
+            (true, None) => write!(
+                f,
+                "closed loop: stuck so far, the body never moved (by more than 1 % of what its \
+                 reference asks), and integral action may yet free it: run longer (a later end \
+                 time t_end); final error {:.3e} m",
+                self.final_error
+            ),
+            (false, Some(false)) if self.off_reference() => write!(
+                f,
+                "closed loop: at rest in the friction's dead zone, off its set point by {:.3e} m",
+                self.final_error
+            ),
+            _ => self.fmt_regime(f),
         }?;
         write!(
             f,
