@@ -1887,8 +1887,8 @@ fn a_study_bounds_each_run_and_draws_the_failed_ones() {
     }
     let svg = std::fs::read_to_string(out.join("converge.svg")).unwrap();
     assert!(
-        svg.contains("rk4: 3 failed (at the top)"),
-        "the failed runs are named"
+        svg.contains("failed run (drawn at the top)"),
+        "the failed runs' crosses are named"
     );
     // A step cap is not a divergence: no word of stability.
     let text = String::from_utf8_lossy(&o.stdout);
@@ -5417,4 +5417,148 @@ fn continue_follows_the_servos_hunting_cycle_over_the_integral_gain() {
         "the branch reached the end of the range: {ki:?}"
     );
     assert!(period.windows(2).all(|w| w[1] > w[0]), "{period:?}");
+}
+
+/// `closed-loop` on one's own loop: the servo at the 1995 gains hunts as `reproduce` finds it,
+/// beside the describing function's cycle; one's own gains change the regime; a system file's
+/// loop is analysed, and told why it is not predicted where it is not of the describing
+/// function's form; a loop without a controller and bad points are refused; an unsettled loop
+/// warns.
+#[test]
+fn closed_loop_measures_ones_own_loop_beside_the_describing_function() {
+    let dir = tempfile::tempdir().unwrap();
+    let json = |out: &std::path::Path| -> serde_json::Value {
+        serde_json::from_str(&std::fs::read_to_string(out.join("closed-loop.json")).unwrap())
+            .unwrap()
+    };
+    // The 1995 example with the static law: Table 2's hunting run and the prediction of
+    // docs/closed-loop.md (38.24 s simulated, 11.94 s predicted).
+    let out = dir.path().join("static");
+    let o = friction_lab(&[
+        "closed-loop",
+        "servo",
+        "--model",
+        "static",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let j = json(&out);
+    assert_eq!(j["regime"], "Hunting", "{j}");
+    let period = j["simulated"]["period"].as_f64().unwrap();
+    assert!((period - 38.24).abs() < 0.01, "{period}");
+    let predicted = j["predicted"][0]["period"].as_f64().unwrap();
+    assert!((predicted - 11.94).abs() < 0.01, "{predicted}");
+    assert_eq!(j["pid"]["ki"], 4.0);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(text.contains("a cycle of period 11.94"), "{text}");
+    for file in [
+        "closed-loop.csv",
+        "closed-loop-predicted.csv",
+        "closed-loop-error.png",
+    ] {
+        assert!(out.join(file).exists(), "{file}");
+    }
+    // Without integral action: kp·1 m = 3 N never breaks the body away (F_s = 7.5 N), it is
+    // stuck; kp = 20 N/m moves it, and it stops off its set point, within F_s/kp = 0.375 m:
+    // the dead zone. The describing function (a PD holds no cycle) predicts none.
+    for (gains, regime) in [
+        (vec!["--set", "ki=0"], "Stuck"),
+        (vec!["--set", "ki=0", "--set", "kp=20"], "DeadZone"),
+    ] {
+        let out = dir.path().join(format!("pd-{}", gains.len()));
+        let mut args = vec!["closed-loop", "servo", "--model", "static"];
+        args.extend(gains.iter().copied());
+        args.extend(["--out", out.to_str().unwrap()]);
+        let o = friction_lab(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let j = json(&out);
+        assert_eq!(j["regime"], regime, "{gains:?}: {j}");
+        assert_eq!(j["predicted"].as_array().unwrap().len(), 0, "{j}");
+        let off = j["simulated"]["final_error"].as_f64().unwrap().abs();
+        match regime {
+            "Stuck" => assert_eq!(off, 1.0, "{j}"),
+            _ => assert!(off > 1e-6 && off <= 7.5 / 20.0, "{j}"),
+        }
+    }
+    // A system file: with CS it hunts as `reproduce`'s CS plant does (39.9 s), held by a
+    // spring it hunts slower; neither is predicted, and each says why.
+    let loop_file = |extra: &str, model: &str| {
+        let file = dir
+            .path()
+            .join(format!("servo-{model}-{}.toml", extra.len()));
+        std::fs::write(
+            &file,
+            format!(
+                "[[body]]\nname = \"mass\"\nm = 1.0\n{extra}[[contact]]\nbody = \"mass\"\n\
+                 model = \"{model}\"\n[[controller]]\nbody = \"mass\"\nkp = 3.0\nki = 4.0\n\
+                 kd = 6.0\nreference = {{ kind = \"constant\", x = 1.0 }}\n"
+            ),
+        )
+        .unwrap();
+        file
+    };
+    let spring = "[[anchor]]\nname = \"wall\"\n[[spring]]\nbetween = [\"wall\", \"mass\"]\n\
+                  k = 1.0\nc = 0.0\n";
+    for (extra, model, why, period) in [
+        ("", "CS", "not of the Coulomb–stiction–viscous form", 39.88),
+        (spring, "static", "a spring holds body mass", 46.89),
+    ] {
+        let out = dir.path().join(format!("system-{model}"));
+        let file = loop_file(extra, model);
+        let o = friction_lab(&[
+            "closed-loop",
+            "--system",
+            file.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let j = json(&out);
+        assert!(j["not_predicted"].as_str().unwrap().contains(why), "{j}");
+        assert_eq!(j["regime"], "Hunting", "{j}");
+        let simulated = j["simulated"]["period"].as_f64().unwrap();
+        assert!((simulated - period).abs() < 0.01, "{model}: {simulated}");
+    }
+    // A system without a controller, and too few points: refused, nothing written.
+    let file = dir.path().join("free.toml");
+    std::fs::write(&file, "[[body]]\nname = \"mass\"\nm = 1.0\n").unwrap();
+    let out = dir.path().join("refused");
+    for (args, message) in [
+        (
+            vec!["--system", file.to_str().unwrap()],
+            "has no controller",
+        ),
+        (
+            vec!["servo", "--model", "static", "--points", "5"],
+            "`--points` = 5 is out of range: allowed [101, 10000000]",
+        ),
+    ] {
+        let mut all = vec!["closed-loop"];
+        all.extend(args.iter().copied());
+        all.extend(["--out", out.to_str().unwrap()]);
+        let o = friction_lab(&all);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains(message), "{args:?}: {}", stderr(&o));
+        assert!(!out.exists(), "{args:?}");
+    }
+    // Ten seconds do not settle the loop: a note on stderr, with the measures.
+    let out = dir.path().join("short");
+    let o = friction_lab(&[
+        "closed-loop",
+        "servo",
+        "--model",
+        "static",
+        "--t-end",
+        "10",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("note: closed loop: not settled"),
+        "{}",
+        stderr(&o)
+    );
+    assert_eq!(json(&out)["regime"], "Unsettled");
 }

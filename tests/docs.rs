@@ -11,6 +11,19 @@ fn docs_copies_of_the_reproduction_are_up_to_date() {
         .output()
         .unwrap();
     assert!(o.status.success());
+    // Every figure it draws is laid out cleanly: no text below the tick size, cut short, out
+    // of its canvas or on another.
+    let mut faults = Vec::new();
+    let mut figures = 0;
+    for svg in files_under(dir.path(), &["svg"]) {
+        figures += 1;
+        let text = std::fs::read_to_string(&svg).unwrap();
+        for fault in friction_lab::plot::layout_faults(&text) {
+            faults.push(format!("{}: {fault}", svg.display()));
+        }
+    }
+    assert!(figures > 50, "{figures} figures");
+    assert!(faults.is_empty(), "{}", faults.join("\n"));
     for name in ["reproduction.md", "table2.md", "paper-experiment.md"] {
         let fresh = std::fs::read_to_string(dir.path().join(name)).unwrap();
         let committed =
@@ -22,6 +35,25 @@ fn docs_copies_of_the_reproduction_are_up_to_date() {
              cp results/figures/*.png docs/figures/`"
         );
     }
+}
+
+/// The files under `dir`, in every subfolder, whose name ends in one of `extensions`.
+fn files_under(dir: &std::path::Path, extensions: &[&str]) -> Vec<std::path::PathBuf> {
+    let mut found = Vec::new();
+    let mut pending = vec![dir.to_path_buf()];
+    while let Some(d) = pending.pop() {
+        for entry in std::fs::read_dir(&d).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                pending.push(path);
+            } else if (path.extension().and_then(|e| e.to_str()))
+                .is_some_and(|e| extensions.contains(&e))
+            {
+                found.push(path);
+            }
+        }
+    }
+    found
 }
 
 #[test]
@@ -43,19 +75,6 @@ fn docs_options_is_every_commands_declared_options() {
 /// The text files of the repository a user reads: README.md, docs/, the sources (whose doc
 /// comments become `--help` and the API docs), the Python package and the scripts.
 fn readable_files() -> Vec<std::path::PathBuf> {
-    fn walk(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
-        for entry in std::fs::read_dir(dir).unwrap() {
-            let path = entry.unwrap().path();
-            if path.is_dir() {
-                walk(&path, out);
-            } else if path
-                .extension()
-                .is_some_and(|e| ["rs", "md", "py", "toml"].contains(&e.to_str().unwrap()))
-            {
-                out.push(path);
-            }
-        }
-    }
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     let mut files = vec![root.join("README.md"), root.join("Cargo.toml")];
     for dir in [
@@ -66,7 +85,7 @@ fn readable_files() -> Vec<std::path::PathBuf> {
         "python/friction_lab",
         "scripts",
     ] {
-        walk(&root.join(dir), &mut files);
+        files.extend(files_under(&root.join(dir), &["rs", "md", "py", "toml"]));
     }
     files
 }

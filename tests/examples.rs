@@ -115,6 +115,7 @@ fn a_registered_study_is_a_command_of_the_command_line() {
             "compare",
             "orbit",
             "continue",
+            "closed-loop",
             "step-counts"
         ]
     );

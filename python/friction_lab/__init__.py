@@ -32,7 +32,7 @@ from ._compare import compare
 __version__: str = _native.__version__
 
 __all__ = ["models", "curve", "simulate", "converge", "independence", "work_precision",
-           "stiffness", "compare", "orbit", "continuation", "phenomena", "testset", "reproduce", "sweep", "Result", "Study", "Table2", "SolverError"]
+           "stiffness", "compare", "orbit", "continuation", "closed_loop", "phenomena", "testset", "reproduce", "sweep", "Result", "Study", "Table2", "SolverError"]
 
 
 def models() -> List[Dict[str, Any]]:
@@ -134,6 +134,22 @@ def continuation(scenario: Optional[str] = None, *, params: Optional[Dict[str, f
     ``amplitude``, ``spectrum``, ``stable``, ``segments``), ``study.tables["special_points"]``
     the folds, Hopf points, period doublings and segment changes."""
     return _study("continue", scenario, params, options, main="branch")
+
+
+@recorded
+def closed_loop(scenario: Optional[str] = None, *, params: Optional[Dict[str, float]] = None,
+                **options: Any) -> Study:
+    """The closed loop of the servo rig (``"servo"``, its gains, mass and set point in
+    ``params``: ``kp``, ``ki``, ``kd``, ``m``, ``x_ref``) or of a system with a controller
+    (``system=``), run under the hunting protocol for 800 s unless ``t_end`` is given
+    (``friction-lab closed-loop --help``): ``study.summary`` holds the simulated loop
+    (``simulated``: ``hunting``, ``period``, ``amplitude``, ``stuck``, ``final_error``, ...),
+    its ``regime``, and the describing function's ``idealised`` plant, ``break_away_gain``
+    and ``predicted`` cycles, or ``not_predicted``, why the loop is not of its form;
+    ``study.runs`` is the trace (``t``, ``r``, ``x``, ``error``),
+    ``study.tables["closed-loop-predicted"]`` the predicted cycles. An unsettled loop warns
+    (``RuntimeWarning``)."""
+    return _study("closed-loop", scenario, params, options)
 
 
 @recorded

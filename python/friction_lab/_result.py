@@ -75,7 +75,7 @@ class Result:
 
 class Study:
     """The files of a study (``converge``, ``independence``, ``work_precision``,
-    ``stiffness``, ``compare``, ``orbit``, ``continue``): ``tables`` maps each CSV's stem to a DataFrame, ``summary`` is the
+    ``stiffness``, ``compare``, ``orbit``, ``continue``, ``closed-loop``): ``tables`` maps each CSV's stem to a DataFrame, ``summary`` is the
     study's JSON, ``notes`` the lines the command line prints (orders, verdicts)."""
 
     def __init__(self, made: Made, stem: str, main: Optional[str] = None):

@@ -318,3 +318,23 @@ def test_one_refusal_names_its_options_as_each_front_end_spells_them(cli, tmp_pa
     # An advice too: the command line's `--set` is Python's `params`.
     with pytest.warns(RuntimeWarning, match=r"^option `params`: parameter `F_s` is not read"):
         fl.simulate("paper-block", model="coulomb", params={"F_s": 9.0}, t_end=0.1)
+
+
+def test_closed_loop_analyses_ones_own_gains_beside_the_describing_function():
+    # The 1995 servo with the static law: Table 2's hunting cycle (38.24 s) beside the
+    # describing function's (11.94 s), as the command line gives them.
+    c = fl.closed_loop("servo", model="static")
+    assert c.summary["regime"] == "Hunting"
+    assert abs(c.summary["simulated"]["period"] - 38.24) < 0.01
+    assert abs(c.summary["predicted"][0]["period"] - 11.94) < 0.01
+    assert list(c.runs.columns) == ["t", "r", "x", "error"]
+    assert np.allclose(c.runs["error"], c.runs["r"] - c.runs["x"])
+    assert len(c.tables["closed-loop-predicted"]) == 1
+    # One's own gains: without integral action and kp = 20 N/m, it stops within F_s/kp.
+    d = fl.closed_loop("servo", model="static", params={"ki": 0.0, "kp": 20.0})
+    assert d.summary["regime"] == "DeadZone"
+    assert 0 < abs(d.summary["simulated"]["final_error"]) <= 7.5 / 20.0
+    # Ten seconds do not settle the loop: a RuntimeWarning, as the command line's note.
+    with pytest.warns(RuntimeWarning, match="closed loop: not settled"):
+        e = fl.closed_loop("servo", model="static", t_end=10.0)
+    assert e.summary["regime"] == "Unsettled"

@@ -170,7 +170,7 @@ impl Artifacts {
         self.add_panels(stem, std::slice::from_ref(plot))
     }
 
-    /// Adds plots side by side as one figure, `stem.png` and `stem.svg` (drawn at writing).
+    /// Adds plots as one figure, in rows of [`plot::PANELS_PER_ROW`] panels, `stem.png` and `stem.svg` (drawn at writing).
     pub fn add_panels(&mut self, stem: &Path, plots: &[Plot]) -> Result<(), AppError> {
         self.files
             .push((stem.with_extension("png"), Content::Png(plots.to_vec())));

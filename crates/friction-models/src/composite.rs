@@ -6,7 +6,9 @@
 //! Dahl, Karnopp) are all values of this one struct; see [`crate::catalog`].
 
 use crate::id::ModelId;
-use crate::model::{CurveAxis, FrictionModel, Partials, StatePartials, StickInterval};
+use crate::model::{
+    CurveAxis, FrictionModel, Partials, StatePartials, StickInterval, StictionLevels,
+};
 use crate::sign::{Direction, SignLaw};
 use crate::terms::{self, Term};
 
@@ -79,6 +81,23 @@ impl FrictionModel for Composite {
 
     fn curve_axis(&self) -> CurveAxis {
         self.id.curve_axis()
+    }
+
+    /// Coulomb (F_c, F_c, 0), viscous (0, 0, μ_v), static (F_c, F_s, 0) and Karnopp (F_c,
+    /// F_s, μ_v): the catalog's laws of that form; `None` for the others (a Stribeck term, a
+    /// static term in slip, a Dahl state).
+    fn stiction_levels(&self) -> Option<StictionLevels> {
+        let (f_c, f_v) = (self.coulomb, self.viscous);
+        match self.id {
+            ModelId::Coulomb | ModelId::Viscous | ModelId::Static | ModelId::Karnopp => {
+                Some(StictionLevels {
+                    f_c,
+                    f_s: self.break_away.unwrap_or(f_c),
+                    f_v,
+                })
+            }
+            _ => None,
+        }
     }
 
     fn n_states(&self) -> usize {

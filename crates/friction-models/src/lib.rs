@@ -20,8 +20,8 @@ pub mod terms;
 
 pub use id::ModelId;
 pub use model::{
-    reported_state, CurveAxis, FrictionModel, Partials, StatePartials, StickInterval, Variant,
-    MAX_STATES,
+    reported_state, CurveAxis, FrictionModel, Partials, StatePartials, StickInterval,
+    StictionLevels, Variant, MAX_STATES,
 };
 pub use params::{FrictionParams, ParamError, ParamSpec, Parameters, Range, PARAM_SETS};
 pub use sign::{Branches, Direction, SignLaw};

@@ -14,7 +14,7 @@
 //!   z and v have opposite signs (unloading is elastic).
 
 use crate::id::ModelId;
-use crate::model::{FrictionModel, Partials, StatePartials, StickInterval};
+use crate::model::{FrictionModel, Partials, StatePartials, StickInterval, StictionLevels};
 use crate::sign::SignLaw;
 use crate::terms;
 
@@ -112,6 +112,16 @@ impl LuGre {
 impl FrictionModel for LuGre {
     fn name(&self) -> &str {
         self.id.name()
+    }
+
+    /// LuGre in the limit of a vanishing Stribeck speed and presliding displacement: (F_c,
+    /// F_s, σ2); `None` for its variants.
+    fn stiction_levels(&self) -> Option<StictionLevels> {
+        (self.id == ModelId::LuGre).then_some(StictionLevels {
+            f_c: self.f_c,
+            f_s: self.f_s,
+            f_v: self.sigma2,
+        })
     }
 
     fn n_states(&self) -> usize {

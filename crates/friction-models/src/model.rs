@@ -134,6 +134,18 @@ fn scratch<T: Copy + Default, R>(n: usize, f: impl FnOnce(&mut [T]) -> R) -> R {
     }
 }
 
+/// A steady friction law's levels (F_c, F_s, F_v), as [`FrictionModel::stiction_levels`]
+/// gives them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StictionLevels {
+    /// Coulomb level F_c, N.
+    pub f_c: f64,
+    /// Static (break-away) level F_s, N (F_c where the law has none above it).
+    pub f_s: f64,
+    /// Viscous coefficient F_v, N·s/m.
+    pub f_v: f64,
+}
+
 /// A friction model: a force law F(x, v, z) with internal states z = (z_1, …, z_n),
 /// n = [`n_states`](FrictionModel::n_states) (0 for static maps, 1 for Dahl and LuGre, the
 /// number of elements for the generalized Maxwell-slip model).
@@ -155,6 +167,14 @@ pub trait FrictionModel: fmt::Debug + Send + Sync {
     /// default), or against displacement under the paper's prescribed motion (Dahl types).
     fn curve_axis(&self) -> CurveAxis {
         CurveAxis::Velocity
+    }
+
+    /// Its steady friction as a Coulomb level, a static (break-away) level and a viscous
+    /// coefficient, F = F_c·sign(v) + F_v·v in slip and |F| ≤ F_s at rest, for the laws of
+    /// that form: the input of the describing-function analysis of a servo's hunting cycle.
+    /// `None` (the default) for a law of another form.
+    fn stiction_levels(&self) -> Option<StictionLevels> {
+        None
     }
 
     /// Number of internal states n, at most [`MAX_STATES`].

@@ -174,25 +174,22 @@ impl ErrorMeasure {
         }
     }
 
-    /// What it is, with its unit, as an axis names it.
+    /// Its name with its unit, short enough for an axis: the definitions are the fields'
+    /// of [`Errors`] (and docs/studies.md's table of measures).
     pub fn label(self) -> &'static str {
         match self {
-            ErrorMeasure::FinalRelative => {
-                "relative error at t_end, max over x, v, z of |Δ|/max|reference| (1)"
-            }
-            ErrorMeasure::GridRelative => {
-                "relative error on the time grid, max over x, v, z of |Δ|/max|reference| (1)"
-            }
-            ErrorMeasure::X => "error in x on the time grid, max |Δx| (m)",
-            ErrorMeasure::V => "error in v on the time grid, max |Δv| (m/s)",
-            ErrorMeasure::Z => "error in z on the time grid, max |Δz| (m)",
-            ErrorMeasure::XRelative => "relative error in x, max |Δx|/max|x| (1)",
-            ErrorMeasure::VRelative => "relative error in v, max |Δv|/max|v| (1)",
-            ErrorMeasure::ZRelative => "relative error in z, max |Δz|/max|z| (1)",
+            ErrorMeasure::FinalRelative => "relative error at t_end (1)",
+            ErrorMeasure::GridRelative => "relative error on the grid (1)",
+            ErrorMeasure::X => "error in x, max |Δx| (m)",
+            ErrorMeasure::V => "error in v, max |Δv| (m/s)",
+            ErrorMeasure::Z => "error in z, max |Δz| (m)",
+            ErrorMeasure::XRelative => "relative error in x (1)",
+            ErrorMeasure::VRelative => "relative error in v (1)",
+            ErrorMeasure::ZRelative => "relative error in z (1)",
             ErrorMeasure::Energy => "energy-balance residual (J)",
-            ErrorMeasure::EnergyRelative => "relative energy-balance residual (1)",
-            ErrorMeasure::EventTimes => "error of the event times, max |Δt| (s)",
-            ErrorMeasure::StickDurations => "error of the stick durations, max |Δ| (s)",
+            ErrorMeasure::EnergyRelative => "relative energy residual (1)",
+            ErrorMeasure::EventTimes => "error of event times (s)",
+            ErrorMeasure::StickDurations => "error of stick durations (s)",
         }
     }
 

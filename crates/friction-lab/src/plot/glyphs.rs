@@ -3,8 +3,10 @@
 //! left side bearing (`px_bounds().min.x` is left out), so letters with a wide bearing stand
 //! apart ("tim e", "dopri 5"); [`Glyphs`] wraps the bitmap back-end and draws text itself:
 //! every glyph outlined at its exact pen position (advances and kerning as the font gives
-//! them), at the vertical position plotters uses. Everything else is the bitmap back-end's.
+//! them), at the vertical position plotters uses. Lines, paths and circles are drawn
+//! anti-aliased ([`smooth`]); everything else is the bitmap back-end's.
 
+use super::smooth;
 use ab_glyph::{Font, FontRef, ScaleFont};
 use plotters::prelude::BitMapBackend;
 use plotters_backend::text_anchor::{HPos, VPos};
@@ -50,6 +52,26 @@ pub fn rasterize(text: &str, size: f64, mut put: impl FnMut(i32, i32, f32)) {
 /// The bitmap back-end with text drawn by [`rasterize`].
 pub struct Glyphs<'a>(pub BitMapBackend<'a>);
 
+impl Glyphs<'_> {
+    /// The polyline `points`, pixels with their fractions, in `color`, `width` pixels wide,
+    /// anti-aliased ([`smooth::stroke`]).
+    pub fn stroke(
+        &mut self,
+        points: &[(f64, f64)],
+        color: BackendColor,
+        width: u32,
+    ) -> Result<(), DrawingErrorKind<<Self as DrawingBackend>::ErrorType>> {
+        if color.alpha == 0.0 {
+            return Ok(());
+        }
+        let inked = smooth::stroke(points, width, self.get_size());
+        for ((x, y), coverage) in inked {
+            self.0.draw_pixel((x, y), color.mix(f64::from(coverage)))?;
+        }
+        Ok(())
+    }
+}
+
 impl DrawingBackend for Glyphs<'_> {
     type ErrorType = <BitMapBackend<'static> as DrawingBackend>::ErrorType;
 
@@ -73,13 +95,14 @@ impl DrawingBackend for Glyphs<'_> {
         self.0.draw_pixel(point, color)
     }
 
+    /// Anti-aliased ([`smooth::stroke`]).
     fn draw_line<S: BackendStyle>(
         &mut self,
         from: BackendCoord,
         to: BackendCoord,
         style: &S,
     ) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
-        self.0.draw_line(from, to, style)
+        self.draw_path([from, to], style)
     }
 
     fn draw_rect<S: BackendStyle>(
@@ -92,12 +115,16 @@ impl DrawingBackend for Glyphs<'_> {
         self.0.draw_rect(upper_left, bottom_right, style, fill)
     }
 
+    /// Anti-aliased, with round joins and caps ([`smooth::stroke`]).
     fn draw_path<S: BackendStyle, I: IntoIterator<Item = BackendCoord>>(
         &mut self,
         path: I,
         style: &S,
     ) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
-        self.0.draw_path(path, style)
+        let points: Vec<(f64, f64)> = (path.into_iter())
+            .map(|(x, y)| (f64::from(x), f64::from(y)))
+            .collect();
+        self.stroke(&points, style.color(), style.stroke_width())
     }
 
     fn fill_polygon<S: BackendStyle, I: IntoIterator<Item = BackendCoord>>(
@@ -108,6 +135,7 @@ impl DrawingBackend for Glyphs<'_> {
         self.0.fill_polygon(vert, style)
     }
 
+    /// Anti-aliased ([`smooth::circle`]).
     fn draw_circle<S: BackendStyle>(
         &mut self,
         center: BackendCoord,
@@ -115,7 +143,25 @@ impl DrawingBackend for Glyphs<'_> {
         style: &S,
         fill: bool,
     ) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
-        self.0.draw_circle(center, radius, style, fill)
+        let color = style.color();
+        if color.alpha == 0.0 {
+            return Ok(());
+        }
+        let size = self.get_size();
+        let mut result = Ok(());
+        smooth::circle(
+            center,
+            radius,
+            style.stroke_width(),
+            fill,
+            size,
+            |x, y, c| {
+                if result.is_ok() {
+                    result = self.0.draw_pixel((x, y), color.mix(f64::from(c)));
+                }
+            },
+        );
+        result
     }
 
     fn blit_bitmap(

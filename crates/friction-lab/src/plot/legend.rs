@@ -2,7 +2,8 @@
 //! size, and its drawing beside the plot.
 
 use super::axes::{bounds, Bounds};
-use super::{drawn, register_font, Dash, Marker, Plot, Series};
+use super::frame::{text_width, Frame, Lines};
+use super::{drawn, Dash, Marker, Plot, Series};
 use plotters::coord::Shift;
 use plotters::element::DashedPathElement;
 use plotters::prelude::*;
@@ -23,25 +24,16 @@ pub enum Corner {
     LowerRight,
 }
 
-/// The plotting area of a panel of `panel` design pixels inside its label areas, margins and
-/// caption, pixels: 100 narrower and 107 lower (measured on the drawn figures: 800 × 493 in a
-/// 900 × 600 panel; the same margins in any panel).
-pub(super) fn plot_area((w, h): (u32, u32)) -> (f64, f64) {
-    (f64::from(w) - 100.0, f64::from(h) - 107.0)
-}
-
-/// The plotting area's top below the panel's, pixels: the margin and the caption (measured
-/// on the drawn figures: a 600-pixel panel's plotting area runs from y = 42 to 534, the 493
-/// of [`plot_area`]).
-const PLOT_TOP: f64 = 42.0;
+/// The room before each entry's text in a legend, for its key, pixels (plotters' legend area).
+pub(super) const KEY_AREA: u32 = 58;
 
 /// The legend box, pixels: its gap to the plotting area's corner, its width besides the
-/// longest label's text (plotters' legend area, 30, and its two margins, 10), and its height
+/// longest label's text (the key's area, [`KEY_AREA`], and two margins of 10), and its height
 /// besides the entries and per entry (measured on the drawn figures: 86 for four entries), and
 /// the margin kept around it for the markers' radius.
 pub(super) const LEGEND_BOX: LegendBox = LegendBox {
     gap: 5.0,
-    width: 50.0,
+    width: KEY_AREA as f64 + 20.0,
     height: 5.0,
     per_entry: 21.0,
     margin: 6.0,
@@ -60,15 +52,35 @@ pub(super) struct LegendBox {
 pub(super) const LEGEND_FONT: (&str, u32) = (super::FAMILY, 15);
 
 /// Where a plot's legend is drawn.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) enum LegendPlace {
     /// In a corner of the plotting area.
     Inside(Corner),
     /// Beside the plotting area, on its right, level with its top.
     Beside,
-    /// Below the panel, level with the plotting area's left: for a panel narrower than
-    /// [`BESIDE_MIN_WIDTH`], which a strip beside would widen past a journal's column.
-    Below,
+    /// Below the panel, level with the plotting area's left, in as many columns as keep it
+    /// no taller than the plotting area (and the panel's width holds): for a panel narrower
+    /// than [`BESIDE_MIN_WIDTH`], which a strip beside would widen past a journal's column,
+    /// and for a legend taller than the panel beside it.
+    Below(Arrangement),
+}
+
+/// How a legend's entries are set: in `columns` (filled column by column), each entry's text
+/// broken into lines no wider than `room` pixels where a room is given.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Arrangement {
+    /// The columns, at least one.
+    pub columns: usize,
+    /// The widest line of an entry's text, pixels; `None`: each on one line.
+    pub room: Option<f64>,
+}
+
+impl Arrangement {
+    /// One column, each entry on one line.
+    pub const ONE: Arrangement = Arrangement {
+        columns: 1,
+        room: None,
+    };
 }
 
 /// The narrowest panel, design pixels, beside which a legend goes (4.7 in at 150 px/in); a
@@ -76,67 +88,140 @@ pub(super) enum LegendPlace {
 pub(super) const BESIDE_MIN_WIDTH: u32 = 700;
 
 /// The axes' ranges as [`bounds`] gives them, and where the legend goes: in the corner of
-/// [`legend_corner`] if it covers no data there, else beside the plot (a stick–slip map's grid
+/// [`legend_corner`] if it covers no data there and fits inside the plotting area, else beside
+/// the plot (a stick–slip map's grid
 /// of markers; the nine methods of a chain's work–precision plot, whose curves reach every
 /// corner: raising the y range above the data, as done before, left six empty decades), unless
-/// it is taller than the panel below the plotting area's top, when it stays in the corner
-/// where it covers least; below the panel where the panel is narrow. The panel is `panel`
+/// it is taller than the panel below the plotting area's top; below the panel where it is
+/// taller or the panel is narrow, in columns ([`LegendPlace::Below`]). The panel is `panel`
 /// design pixels.
 pub(super) fn layout(plot: &Plot, panel: (u32, u32)) -> (Bounds, LegendPlace) {
     let fitted = bounds(plot);
     let (corner, covered) = legend_corner(plot, fitted, panel);
-    let below_top = f64::from(panel.1) - PLOT_TOP;
-    let place = if covered == 0 {
+    let below_top = f64::from(panel.1) - Frame::of(plot, panel).plot_top();
+    let (w, h) = legend_size(plot, panel);
+    let place = if covered == 0 && w <= 1.0 && h <= 1.0 {
         LegendPlace::Inside(corner)
-    } else if panel.0 < BESIDE_MIN_WIDTH {
-        LegendPlace::Below
-    } else if legend_pixels(plot).1 > below_top {
-        LegendPlace::Inside(corner)
+    } else if panel.0 < BESIDE_MIN_WIDTH || legend_pixels(plot, Arrangement::ONE).1 > below_top {
+        LegendPlace::Below(below_arrangement(plot, panel))
     } else {
         LegendPlace::Beside
     };
     (fitted, place)
 }
 
+/// The arrangement of a legend below a panel of `panel` pixels, level with its plotting area's
+/// left and within its right edge: the fewest columns that keep it no taller than the plotting
+/// area, while every entry still fits its column on one line; an entry too wide for one column
+/// takes two lines.
+fn below_arrangement(plot: &Plot, panel: (u32, u32)) -> Arrangement {
+    let frame = Frame::of(plot, panel);
+    let left = f64::from(super::frame::MARGIN + frame.y_area);
+    let b = &LEGEND_BOX;
+    // A box of `columns` ends at left + columns·(width + text + gap) − gap: at most the
+    // panel's right edge less the gap.
+    let room = |columns: usize| {
+        (f64::from(panel.0) - b.gap - left + COLUMN_GAP) / columns as f64 - COLUMN_GAP - b.width
+    };
+    let arranged = |columns| Arrangement {
+        columns,
+        room: Some(room(columns)),
+    };
+    let labels = labels(plot);
+    let widest = (labels.iter())
+        .map(|l| f64::from(text_width(l, LEGEND_FONT.1)))
+        .fold(0.0, f64::max);
+    let height = frame.plot_area(panel).1;
+    let mut columns = 1;
+    while columns < labels.len()
+        && legend_pixels(plot, arranged(columns)).1 > height
+        && widest <= room(columns + 1)
+    {
+        columns += 1;
+    }
+    arranged(columns)
+}
+
+/// The labels of the series of `plot` that have one.
+fn labels(plot: &Plot) -> Vec<&str> {
+    (plot.series.iter())
+        .filter_map(|s| s.label.as_deref())
+        .collect()
+}
+
 /// The legend box of `plot` with its gap and margin, as fractions of the plotting area's width
 /// and height in a panel of `panel` pixels (zero without a legend).
 fn legend_size(plot: &Plot, panel: (u32, u32)) -> (f64, f64) {
-    let (w, h) = legend_pixels(plot);
-    let (area_w, area_h) = plot_area(panel);
+    let (w, h) = legend_pixels(plot, Arrangement::ONE);
+    let (area_w, area_h) = Frame::of(plot, panel).plot_area(panel);
     (w / area_w, h / area_h)
 }
 
-/// The legend box of `plot` with its gap and margin, pixels (zero without a legend).
-pub(super) fn legend_pixels(plot: &Plot) -> (f64, f64) {
-    let labels: Vec<&str> = plot
-        .series
-        .iter()
-        .filter_map(|s| s.label.as_deref())
-        .collect();
-    box_pixels(&labels)
+/// The legend box of `plot` set in `arrangement` with its gap and margin, pixels (zero
+/// without a legend).
+pub(super) fn legend_pixels(plot: &Plot, arrangement: Arrangement) -> (f64, f64) {
+    box_pixels(&labels(plot), arrangement)
 }
 
-/// A legend box of `labels` with its gap and margin, pixels (zero without labels).
-pub(super) fn box_pixels(labels: &[&str]) -> (f64, f64) {
+/// The rows of a legend of `entries` in `columns`, filled column by column.
+fn rows(entries: usize, columns: usize) -> usize {
+    entries.div_ceil(columns.max(1))
+}
+
+/// A legend's entries set in `arrangement`: the lines of each entry's text, and the height of
+/// each row in lines (its tallest entry's).
+fn set_entries(labels: &[&str], arrangement: Arrangement) -> (Vec<Vec<String>>, Vec<usize>) {
+    let size = LEGEND_FONT.1;
+    let lines: Vec<Vec<String>> = (labels.iter())
+        .map(|l| match arrangement.room {
+            Some(room) if f64::from(text_width(l, size)) > room => {
+                Lines::set(l, room.max(1.0) as u32, (size, size)).lines
+            }
+            _ => vec![l.to_string()],
+        })
+        .collect();
+    let rows = rows(labels.len(), arrangement.columns);
+    let heights = (0..rows)
+        .map(|r| {
+            (lines.iter().skip(r).step_by(rows.max(1)))
+                .map(Vec::len)
+                .max()
+                .unwrap_or(1)
+        })
+        .collect();
+    (lines, heights)
+}
+
+/// A legend box of `labels` set in `arrangement` with its gap and margin, pixels (zero without
+/// labels): each column as wide as the widest line of an entry.
+pub(super) fn box_pixels(labels: &[&str], arrangement: Arrangement) -> (f64, f64) {
     if labels.is_empty() {
         return (0.0, 0.0);
     }
-    register_font();
-    let font = (LEGEND_FONT.0, LEGEND_FONT.1).into_font();
-    // The width the font gives each label (ten pixels a character if it cannot say).
-    let text = labels
-        .iter()
-        .map(|l| {
-            font.box_size(l)
-                .map_or(10 * l.chars().count() as u32, |(w, _)| w)
-        })
-        .max()
-        .unwrap_or(0);
+    let (lines, heights) = set_entries(labels, arrangement);
+    let text = widest_line(&lines);
     let b = &LEGEND_BOX;
+    let columns = arrangement.columns.clamp(1, labels.len());
     (
-        b.gap + b.width + f64::from(text) + b.margin,
-        b.gap + b.height + b.per_entry * labels.len() as f64 + b.margin,
+        b.gap + column_width(text) * columns as f64 - COLUMN_GAP + b.margin,
+        b.gap + b.height + b.per_entry * heights.iter().sum::<usize>() as f64 + b.margin,
     )
+}
+
+/// The width of the widest of `lines`, pixels.
+fn widest_line(lines: &[Vec<String>]) -> f64 {
+    (lines.iter().flatten())
+        .map(|l| f64::from(text_width(l, LEGEND_FONT.1)))
+        .fold(0.0, f64::max)
+}
+
+/// The space between two columns of a legend, pixels.
+const COLUMN_GAP: f64 = 10.0;
+
+/// The width of a legend's column whose widest text is `text` pixels, the gap to the next
+/// column included.
+fn column_width(text: f64) -> f64 {
+    LEGEND_BOX.width + text + COLUMN_GAP
 }
 
 /// The corner for the legend of `plot` drawn over `bounds`, and how much it covers there: the
@@ -197,7 +282,7 @@ fn legend_corner(plot: &Plot, ((x0, x1), (y0, y1)): Bounds, panel: (u32, u32)) -
 pub(super) enum LegendTarget<'b, DB: DrawingBackend> {
     Corner(Corner),
     Strip(&'b DrawingArea<DB, Shift>),
-    Below(&'b DrawingArea<DB, Shift>),
+    Below(&'b DrawingArea<DB, Shift>, Arrangement),
 }
 
 /// The corners of a filled square, triangle or diamond of `marker`'s shape about
@@ -250,9 +335,10 @@ pub(super) fn key(color: RGBColor, marker: Marker, width: u32) -> Key {
     )
 }
 
-/// The length of a filled shape's key line, pixels: one period and more of the longest dash
-/// pattern ([`Dash::LongDashed`], 18 on and 6 off), so that every pattern shows as itself.
-const FILLED_KEY_LENGTH: i32 = 26;
+/// The length of a filled shape's key line, pixels: two periods of the longest dash pattern
+/// ([`Dash::LongDashed`], 18 on and 6 off), so that every pattern shows as itself on both
+/// sides of the shape at its middle.
+const FILLED_KEY_LENGTH: i32 = 48;
 
 /// A filled shape's key: a line sample in the series' dash pattern and the shape, in pixels
 /// from the key's left end.
@@ -283,11 +369,12 @@ pub(super) fn filled_key(color: RGBColor, marker: Marker, width: u32, dash: Dash
 pub(super) fn draw_legend_in_strip<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     plot: &Plot,
+    arrangement: Arrangement,
     at: (i32, i32),
 ) -> Result<(), String> {
     let labelled: Vec<&Series> = plot.series.iter().filter(|s| s.label.is_some()).collect();
     let labels: Vec<&str> = labelled.iter().filter_map(|s| s.label.as_deref()).collect();
-    draw_box(area, &labels, at, |k, at| {
+    draw_box(area, &labels, arrangement, at, |k, at| {
         let s = labelled[k];
         if is_filled(s.marker) {
             let (line, filled) = filled_key(s.color, s.marker, s.width, s.dash);
@@ -298,18 +385,19 @@ pub(super) fn draw_legend_in_strip<DB: DrawingBackend>(
     })
 }
 
-/// A legend box of `labels` drawn in `area`, its upper left corner at (`left`, `top`) pixels
-/// of the area: the box of plotters' own legend, each label's key drawn by `key(k, left end of
-/// the key)`, then its text.
+/// A legend box of `labels` set in `arrangement` drawn in `area`, its upper left corner at
+/// (`left`, `top`) pixels of the area: the box of plotters' own legend, each label's key drawn
+/// by `key(k, left end of the key)` level with its first line, then its text.
 pub(super) fn draw_box<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     labels: &[&str],
+    arrangement: Arrangement,
     (left, top): (i32, i32),
     key: impl Fn(usize, (i32, i32)) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>>,
 ) -> Result<(), String> {
     let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
     let b = &LEGEND_BOX;
-    let (w, h) = box_pixels(labels);
+    let (w, h) = box_pixels(labels, arrangement);
     let corner = |x: f64, y: f64| (left + x as i32, top + y as i32);
     let (x0, x1) = (0.0, w - b.gap - b.margin);
     let height = h - b.gap - b.margin;
@@ -318,11 +406,25 @@ pub(super) fn draw_box<DB: DrawingBackend>(
         .map_err(err)?;
     area.draw(&Rectangle::new(frame, BLACK)).map_err(err)?;
     let text = TextStyle::from(LEGEND_FONT.into_font()).pos(Pos::new(HPos::Left, VPos::Center));
-    for (k, label) in labels.iter().enumerate() {
-        let y = b.height / 2.0 + b.per_entry * (k as f64 + 0.5);
-        key(k, corner(x0 + 10.0, y)).map_err(err)?;
-        area.draw(&Text::new(*label, corner(x0 + 40.0, y), &text))
+    let (lines, heights) = set_entries(labels, arrangement);
+    let rows = heights.len().max(1);
+    let widest = widest_line(&lines);
+    for (k, entry) in lines.iter().enumerate() {
+        let (column, row) = (k / rows, k % rows);
+        let x = x0 + column_width(widest) * column as f64;
+        let above: usize = heights[..row].iter().sum();
+        for (i, line) in entry.iter().enumerate() {
+            let y = b.height / 2.0 + b.per_entry * ((above + i) as f64 + 0.5);
+            if i == 0 {
+                key(k, corner(x + 10.0, y)).map_err(err)?;
+            }
+            area.draw(&Text::new(
+                line.as_str(),
+                corner(x + 10.0 + f64::from(KEY_AREA), y),
+                &text,
+            ))
             .map_err(err)?;
+        }
     }
     Ok(())
 }
@@ -415,14 +517,23 @@ mod tests {
             // Beside the data's panel, on a canvas widened for it.
             assert!(label_x > f64::from(PANEL.0), "{label_x}");
         }
-        // A legend of thirty entries is taller than the plot: it stays in the corner where it
-        // covers least, over the data's ranges.
+        // A legend of thirty entries is taller than the plot: it goes below, in as many columns
+        // as keep it no taller than the plotting area, over the data's ranges.
         let many = Plot {
             series: (0..30).map(|_| line(grid.clone())).collect(),
             ..plot(vec![], Corner::UpperLeft)
         };
         assert_eq!(layout(&many, PANEL).0, bounds(&many));
-        assert!(matches!(layout(&many, PANEL).1, LegendPlace::Inside(_)));
+        let LegendPlace::Below(arranged) = layout(&many, PANEL).1 else {
+            panic!("{:?}", layout(&many, PANEL).1)
+        };
+        let height = Frame::of(&many, PANEL).plot_area(PANEL).1;
+        let fewer = Arrangement {
+            columns: arranged.columns - 1,
+            ..arranged
+        };
+        assert!(legend_pixels(&many, arranged).1 <= height, "{arranged:?}");
+        assert!(legend_pixels(&many, fewer).1 > height, "the fewest");
     }
     #[test]
     fn a_filled_shapes_key_draws_its_series_dash_pattern() {
@@ -464,12 +575,12 @@ mod tests {
             }
             lengths
         };
-        assert_eq!(key_strokes(Dash::Solid), vec![26.0]);
-        // 10 on, 5 off over 26 pixels: two dashes.
-        assert_eq!(key_strokes(Dash::Dashed), vec![10.0, 10.0]);
-        // 2 on, 4 off: five dots.
-        assert_eq!(key_strokes(Dash::Dotted).len(), 5);
-        // 18 on, 6 off: a long dash and the start of the next.
-        assert_eq!(key_strokes(Dash::LongDashed), vec![18.0, 2.0]);
+        assert_eq!(key_strokes(Dash::Solid), vec![48.0]);
+        // 10 on, 5 off over 48 pixels: three dashes and the start of a fourth.
+        assert_eq!(key_strokes(Dash::Dashed), vec![10.0, 10.0, 10.0, 3.0]);
+        // 2 on, 4 off: eight dots.
+        assert_eq!(key_strokes(Dash::Dotted).len(), 8);
+        // 18 on, 6 off: two long dashes.
+        assert_eq!(key_strokes(Dash::LongDashed), vec![18.0, 18.0]);
     }
 }

@@ -5,24 +5,32 @@
 //! [`Format`] and drawn at the format's resolution (`scaled`); an SVG names its font.
 
 mod axes;
+mod check;
+mod fine;
 mod format;
+mod frame;
 mod glyphs;
 mod legend;
 mod raster;
 mod scaled;
+mod smooth;
 
 use crate::error::AppError;
 use axes::{common_decimals, fixed, log_ticks, sample_ticks, tick_label, TickForm};
+pub use check::layout_faults;
+use fine::{dashes, FineBackend, FinePath, Mapping};
 pub use format::{Format, DESIGN_DPI, MAX_PIXELS};
+use frame::{Frame, Lines, MARGIN, TICK_SIZE};
 use glyphs::Glyphs;
 pub use legend::Corner;
 use legend::{
-    draw_legend_in_strip, filled_key, is_filled, key, layout, legend_pixels, shape, LegendPlace,
-    LegendTarget, LEGEND_BOX, LEGEND_FONT,
+    draw_legend_in_strip, filled_key, is_filled, key, layout, legend_pixels, shape, Arrangement,
+    LegendPlace, LegendTarget, KEY_AREA, LEGEND_BOX, LEGEND_FONT,
 };
 use plotters::coord::ranged1d::ValueFormatter;
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 pub use raster::{raster_png, raster_svg, Raster};
 use scaled::Scaled;
 use std::path::Path;
@@ -188,59 +196,87 @@ fn panel_widths(plots: &[Plot], panel: (u32, u32)) -> Vec<u32> {
     (plots.iter())
         .map(|plot| match layout(plot, panel).1 {
             LegendPlace::Beside => panel.0 + strip_width(plot),
-            LegendPlace::Inside(_) | LegendPlace::Below => panel.0,
+            LegendPlace::Inside(_) | LegendPlace::Below(_) => panel.0,
         })
         .collect()
 }
 
 /// The width of the strip a legend beside `plot` takes, pixels.
 fn strip_width(plot: &Plot) -> u32 {
-    legend_pixels(plot).0.ceil() as u32 + LEGEND_BOX.gap as u32
+    legend_pixels(plot, Arrangement::ONE).0.ceil() as u32 + LEGEND_BOX.gap as u32
 }
 
-/// The height of the strip a legend below `plot` takes, pixels.
-fn below_height(plot: &Plot) -> u32 {
-    legend_pixels(plot).1.ceil() as u32 + LEGEND_BOX.gap as u32
+/// The height of the strip a legend below `plot` set in `arrangement` takes, pixels.
+fn below_height(plot: &Plot, arrangement: Arrangement) -> u32 {
+    legend_pixels(plot, arrangement).1.ceil() as u32 + LEGEND_BOX.gap as u32
 }
 
-/// The design canvas of `plots` side by side in `format`: the panels' widths, and their
-/// height with the tallest legend below any of them.
+/// The most panels side by side, a page's width of column-sized panels: more wrap into rows.
+pub const PANELS_PER_ROW: usize = 2;
+
+/// The cells of a figure of panels, design pixels: the width of each column of panels (its
+/// widest panel with the strip of a legend beside it) and the height of each row (a panel and
+/// the tallest legend below one of its panels), [`PANELS_PER_ROW`] panels a row.
+fn cells(plots: &[Plot], panel: (u32, u32)) -> (Vec<u32>, Vec<u32>) {
+    let per_row = PANELS_PER_ROW.min(plots.len()).max(1);
+    let widths = panel_widths(plots, panel);
+    let below: Vec<u32> = (plots.iter())
+        .map(|plot| match layout(plot, panel).1 {
+            LegendPlace::Below(arrangement) => below_height(plot, arrangement),
+            _ => 0,
+        })
+        .collect();
+    let columns = (0..per_row)
+        .map(|j| {
+            (widths.iter().skip(j).step_by(per_row))
+                .copied()
+                .max()
+                .unwrap_or(panel.0)
+        })
+        .collect();
+    let rows = (below.chunks(per_row))
+        .map(|row| panel.1 + row.iter().copied().max().unwrap_or(0))
+        .collect();
+    (columns, rows)
+}
+
+/// The design canvas of `plots` in `format`: its panels in rows ([`cells`]).
 fn canvas(plots: &[Plot], format: &Format) -> (u32, u32) {
     let panel = format.design(1);
-    let widths = panel_widths(plots, panel);
-    let below = (plots.iter())
-        .filter(|plot| layout(plot, panel).1 == LegendPlace::Below)
-        .map(below_height)
-        .max()
-        .unwrap_or(0);
-    (widths.iter().sum::<u32>().max(panel.0), panel.1 + below)
+    let (columns, rows) = cells(plots, panel);
+    (
+        columns.iter().sum::<u32>().max(panel.0),
+        rows.iter().sum::<u32>().max(panel.1),
+    )
 }
 
-/// The pixels of the PNG of `plots` side by side in `format`: its whole canvas, every panel
+/// The pixels of the PNG of `plots` in rows of panels in `format`: its whole canvas, every panel
 /// and a legend below included.
 pub fn png_pixels(plots: &[Plot], format: &Format) -> f64 {
     let (w, h) = format.pixels(canvas(plots, format));
     f64::from(w) * f64::from(h)
 }
 
-/// Draws `plots` side by side on `root`, each on a panel of `panel` pixels and its legend's
-/// strip ([`panel_widths`]).
-fn draw<DB: DrawingBackend>(
+/// Draws `plots` on `root` in rows of [`PANELS_PER_ROW`] ([`cells`]), each on a panel of
+/// `panel` pixels and its legend's strip ([`panel_widths`]).
+fn draw<DB: FineBackend>(
     root: DrawingArea<DB, Shift>,
     plots: &[Plot],
     panel: (u32, u32),
 ) -> Result<(), String> {
     let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
     root.fill(&WHITE).map_err(err)?;
-    let widths = panel_widths(plots, panel);
-    let breaks: Vec<u32> = (widths.iter())
-        .scan(0, |x, w| {
-            *x += w;
-            Some(*x)
-        })
-        .take(widths.len().saturating_sub(1))
-        .collect();
-    let panels = root.split_by_breakpoints(breaks, Vec::<u32>::new());
+    let (columns, rows) = cells(plots, panel);
+    let breaks = |sizes: &[u32]| -> Vec<u32> {
+        (sizes.iter())
+            .scan(0, |x, w| {
+                *x += w;
+                Some(*x)
+            })
+            .take(sizes.len().saturating_sub(1))
+            .collect()
+    };
+    let panels = root.split_by_breakpoints(breaks(&columns), breaks(&rows));
     for (whole, plot) in panels.iter().zip(plots) {
         let (((x0, x1), (y0, y1)), legend) = layout(plot, panel);
         // A legend beside the plot takes the strip right of the panel, one below it the strip
@@ -253,18 +289,16 @@ fn draw<DB: DrawingBackend>(
                 strip = b;
                 (a, LegendTarget::Strip(&strip))
             }
-            LegendPlace::Below => (upper, LegendTarget::Below(&lower)),
+            LegendPlace::Below(arrangement) => (upper, LegendTarget::Below(&lower, arrangement)),
             LegendPlace::Inside(c) => (upper, LegendTarget::Corner(c)),
         };
-        let mut builder = ChartBuilder::on(&area);
-        let width = area.dim_in_pixel().0;
-        let caption = caption_size(&plot.title, width);
-        let title = shortened(&plot.title, caption, width);
+        let frame = Frame::of(plot, panel);
+        draw_title(&area, &frame.title).map_err(err)?;
+        let inner = area.margin(MARGIN + frame.title.title_height(), MARGIN, MARGIN, MARGIN);
+        let mut builder = ChartBuilder::on(&inner);
         builder
-            .caption(&title, (FAMILY, caption))
-            .margin(15)
-            .x_label_area_size(50)
-            .y_label_area_size(70);
+            .x_label_area_size(frame.x_area)
+            .y_label_area_size(frame.y_area);
         if plot.log {
             let axis = |a: f64, b: f64, ticks: Vec<f64>| {
                 (a..b)
@@ -278,9 +312,11 @@ fn draw<DB: DrawingBackend>(
             let chart = builder
                 .build_cartesian_2d(axis(x0, x1, x_ticks), axis(y0, y1, y_ticks))
                 .map_err(err)?;
+            draw_axis_names(&chart, &inner, &frame).map_err(err)?;
             draw_on(chart, plot, target, Some(forms))?;
         } else {
             let chart = builder.build_cartesian_2d(x0..x1, y0..y1).map_err(err)?;
+            draw_axis_names(&chart, &inner, &frame).map_err(err)?;
             draw_on(chart, plot, target, None)?;
         }
     }
@@ -292,63 +328,54 @@ fn whole_label(v: &f64) -> String {
     format!("{}", *v as i64)
 }
 
-/// The largest and smallest font sizes of a plot's title, pixels.
-const CAPTION_SIZES: (u32, u32) = (22, 12);
-
-/// The font size of `title` over an area `width` pixels wide: the largest of
-/// [`CAPTION_SIZES`] whose text fits with 10 pixels each side (a model's title with its
-/// reference, such as GMS's, ran over both edges at the largest).
-fn caption_size(title: &str, width: u32) -> u32 {
-    fitting(title, width.saturating_sub(20), CAPTION_SIZES)
-}
-
-/// `title` as it fits an area `width` pixels wide at font size `size` with 10 pixels each
-/// side: whole where it fits, else cut at its end to an ellipsis (a column-wide figure's
-/// title with a reference ran over both edges at the smallest size).
-fn shortened(title: &str, size: u32, width: u32) -> String {
-    let fits = |text: &str| {
-        (FAMILY, size)
-            .into_font()
-            .box_size(text)
-            .map_or(true, |(w, _)| w + 20 <= width)
-    };
-    if fits(title) {
-        return title.to_string();
+/// The lines of a panel's `title`, centred above its plotting area inside the margin, each
+/// padded as plotters pads a caption.
+fn draw_title<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    title: &Lines,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let style =
+        TextStyle::from((FAMILY, title.size).into_font()).pos(Pos::new(HPos::Center, VPos::Top));
+    let centre = area.dim_in_pixel().0 as i32 / 2;
+    let pitch = title.title_height() as i32 / title.lines.len().max(1) as i32;
+    for (k, line) in title.lines.iter().enumerate() {
+        let top = (MARGIN as i32) + 5 + k as i32 * pitch;
+        area.draw(&Text::new(line.as_str(), (centre, top), &style))?;
     }
-    let chars: Vec<char> = title.chars().collect();
-    (0..chars.len())
-        .rev()
-        .map(|n| format!("{}…", chars[..n].iter().collect::<String>().trim_end()))
-        .find(|t| fits(t))
-        .unwrap_or_else(|| "…".into())
+    Ok(())
 }
 
-/// The largest and smallest font sizes of the axes' names, pixels.
-const AXIS_NAME_SIZES: (u32, u32) = (17, 10);
-
-/// The font size of the axes' names `names`, each along an axis of the given length, pixels:
-/// the largest of [`AXIS_NAME_SIZES`] at which each fits its axis (a convergence plot's
-/// long y name ran over both ends of a column-sized figure).
-fn axis_name_size(names: [(&str, u32); 2]) -> u32 {
-    (names.iter())
-        .map(|&(name, length)| fitting(name, length, AXIS_NAME_SIZES))
-        .min()
-        .unwrap_or(AXIS_NAME_SIZES.0)
-}
-
-/// The largest font size of `sizes` (largest, smallest) at which `text` is at most `length`
-/// pixels long; the smallest if none is.
-fn fitting(text: &str, length: u32, (largest, smallest): (u32, u32)) -> u32 {
-    register_font();
-    (smallest..=largest)
-        .rev()
-        .find(|&size| {
-            (FAMILY, size)
-                .into_font()
-                .box_size(text)
-                .map_or(true, |(w, _)| w <= length)
-        })
-        .unwrap_or(smallest)
+/// The axes' names of `frame` in the label areas of `chart`, built on `root`: the x name's last line at the
+/// bottom of its area, centred under the plotting area; the y name turned a quarter left, its
+/// first line at the left of its area, centred beside the plotting area.
+fn draw_axis_names<DB: DrawingBackend, X: Ranged, Y: Ranged>(
+    chart: &ChartContext<'_, DB, Cartesian2d<X, Y>>,
+    root: &DrawingArea<DB, Shift>,
+    frame: &Frame,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let (xs, ys) = chart.plotting_area().get_pixel_range();
+    let (bx, by) = root.get_base_pixel();
+    // The plotting area in the pixels of `root`, the area the chart was built on.
+    let (xs, ys) = ((xs.start - bx, xs.end - bx), (ys.start - by, ys.end - by));
+    let x_style = TextStyle::from((FAMILY, frame.x_name.size).into_font())
+        .pos(Pos::new(HPos::Center, VPos::Bottom));
+    let n = frame.x_name.lines.len() as i32;
+    let pitch = frame.x_name.pitch() as i32;
+    let bottom = ys.1 + frame.x_area as i32;
+    for (k, line) in frame.x_name.lines.iter().enumerate() {
+        let y = bottom - (n - 1 - k as i32) * pitch;
+        root.draw(&Text::new(line.as_str(), ((xs.0 + xs.1) / 2, y), &x_style))?;
+    }
+    let y_style = TextStyle::from((FAMILY, frame.y_name.size).into_font())
+        .transform(FontTransform::Rotate270)
+        .pos(Pos::new(HPos::Center, VPos::Top));
+    let pitch = frame.y_name.pitch() as i32;
+    let left = xs.0 - frame.y_area as i32;
+    for (k, line) in frame.y_name.lines.iter().enumerate() {
+        let at = (left + k as i32 * pitch, (ys.0 + ys.1) / 2);
+        root.draw(&Text::new(line.as_str(), at, &y_style))?;
+    }
+    Ok(())
 }
 
 /// The mesh, the series with their markers, and the legend, on linear or log axes (each log
@@ -360,7 +387,7 @@ fn draw_on<'a, DB, X, Y>(
     log_forms: Option<(TickForm, TickForm)>,
 ) -> Result<(), String>
 where
-    DB: DrawingBackend + 'a,
+    DB: FineBackend + 'a,
     X: Ranged<ValueType = f64> + ValueFormatter<f64>,
     Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
 {
@@ -392,14 +419,9 @@ where
     };
     let x_tick = |v: &f64| linear(zero(*v, &xr), x_decimals, X::format);
     let y_tick = |v: &f64| linear(zero(*v, &yr), y_decimals, Y::format);
-    let (area_w, area_h) = chart.plotting_area().dim_in_pixel();
-    let names = axis_name_size([(&plot.x_label, area_w), (&plot.y_label, area_h)]);
     let mut mesh = chart.configure_mesh();
     mesh.light_line_style(WHITE)
-        .x_desc(plot.x_label.as_str())
-        .y_desc(plot.y_label.as_str())
-        .label_style((FAMILY, 15))
-        .axis_desc_style((FAMILY, names));
+        .label_style((FAMILY, TICK_SIZE));
     if plot.log {
         mesh.x_label_formatter(&x_log_tick)
             .y_label_formatter(&y_log_tick);
@@ -423,24 +445,25 @@ where
                 .map_err(err)?;
         }
     }
+    let (xr, yr) = (chart.x_range(), chart.y_range());
+    let mapping = Mapping::of(&chart, ((xr.start, xr.end), (yr.start, yr.end)), plot.log);
     for s in &plot.series {
         let points: Vec<(f64, f64)> = drawn(plot, s).collect();
         let (color, marker, width, dash) = (s.color, s.marker, s.width, s.dash);
         let drawn = if s.width > 0 {
-            let style = ShapeStyle::from(&s.color).stroke_width(s.width);
-            match s.dash.pattern() {
-                None => chart
-                    .draw_series(LineSeries::new(points.iter().copied(), style))
-                    .map_err(err)?,
-                Some((size, spacing)) => chart
-                    .draw_series(DashedLineSeries::new(
-                        points.iter().copied(),
-                        size,
-                        spacing,
-                        style,
-                    ))
-                    .map_err(err)?,
-            }
+            // At the fractions of a design pixel, dash by dash ([`fine`]).
+            let line: Vec<(f64, f64)> = points.iter().map(|&p| mapping.at(p)).collect();
+            let paths = match s.dash.pattern() {
+                None => vec![line],
+                Some((on, off)) => dashes(&line, (f64::from(on), f64::from(off))),
+            };
+            chart
+                .draw_series(paths.into_iter().map(|points| FinePath {
+                    points,
+                    color,
+                    width,
+                }))
+                .map_err(err)?
         } else {
             chart
                 .draw_series(std::iter::empty::<PathElement<(f64, f64)>>())
@@ -497,6 +520,7 @@ where
         LegendTarget::Corner(corner) => chart
             .configure_series_labels()
             .label_font(LEGEND_FONT)
+            .legend_area_size(KEY_AREA)
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK)
             .position(match corner {
@@ -510,12 +534,17 @@ where
         LegendTarget::Strip(area) => {
             // Level with the plotting area's top (both in the panel's pixels).
             let top = chart.plotting_area().get_base_pixel().1 - area.get_base_pixel().1;
-            draw_legend_in_strip(area, plot, (0, top + LEGEND_BOX.gap as i32))
+            draw_legend_in_strip(
+                area,
+                plot,
+                Arrangement::ONE,
+                (0, top + LEGEND_BOX.gap as i32),
+            )
         }
-        LegendTarget::Below(area) => {
+        LegendTarget::Below(area, arrangement) => {
             // Level with the plotting area's left.
             let left = chart.plotting_area().get_base_pixel().0 - area.get_base_pixel().0;
-            draw_legend_in_strip(area, plot, (left, 0))
+            draw_legend_in_strip(area, plot, arrangement, (left, 0))
         }
     }
 }
@@ -525,7 +554,7 @@ pub fn svg(plot: &Plot, path: &Path, format: &Format) -> Result<String, AppError
     svg_panels(std::slice::from_ref(plot), path, format)
 }
 
-/// Plots side by side as SVG text.
+/// Plots in rows of panels ([`PANELS_PER_ROW`] a row) as SVG text.
 pub fn svg_panels(plots: &[Plot], path: &Path, format: &Format) -> Result<String, AppError> {
     let panel = format.design(1);
     render_svg(canvas(plots, format), path, |root| draw(root, plots, panel))
@@ -536,7 +565,7 @@ pub fn png(plot: &Plot, path: &Path, format: &Format) -> Result<Vec<u8>, AppErro
     png_panels(std::slice::from_ref(plot), path, format)
 }
 
-/// Plots side by side as PNG bytes.
+/// Plots in rows of panels as PNG bytes.
 pub fn png_panels(plots: &[Plot], path: &Path, format: &Format) -> Result<Vec<u8>, AppError> {
     let panel = format.design(1);
     render_png(canvas(plots, format), format, path, |root| {
@@ -613,30 +642,40 @@ mod tests {
     use legend::BESIDE_MIN_WIDTH;
 
     #[test]
-    fn a_long_title_is_set_smaller_to_fit_its_panel() {
+    fn a_long_title_is_set_smaller_then_on_two_lines_to_fit_its_panel() {
         let gms = "gms: generalized Maxwell-slip (Al-Bender et al. 2005) (Al-Bender, Lampaert, \
                    Swevers (2005), IEEE TAC 50(11))";
+        let plot = |title: &str| Plot {
+            title: title.into(),
+            x_label: "x".into(),
+            y_label: "y".into(),
+            series: vec![],
+            legend: Corner::default(),
+            log: false,
+        };
         let width = |size: u32, text: &str| (FAMILY, size).into_font().box_size(text).unwrap().0;
-        // A page-wide panel (6 in, 900 px): the largest size that fits.
-        let size = caption_size(gms, 900);
-        assert!((CAPTION_SIZES.1..CAPTION_SIZES.0).contains(&size), "{size}");
-        assert!(width(size, gms) + 20 <= 900, "{}", width(size, gms));
-        assert!(width(size + 1, gms) + 20 > 900, "the largest that fits");
-        assert_eq!(shortened(gms, size, 900), gms);
-        assert_eq!(
-            caption_size("Work-precision: belt with CS", 900),
-            CAPTION_SIZES.0
-        );
-        // A column (3.5 in, 525 px): the smallest size, cut to an ellipsis that fits.
-        let column = Format::default().design(1).0;
-        let size = caption_size(gms, column);
-        assert_eq!(size, CAPTION_SIZES.1);
-        let cut = shortened(gms, size, column);
+        // A page-wide panel (6 in, 900 px): one line, at the largest size that fits.
+        let page = Frame::of(&plot(gms), (900, 600)).title;
+        assert_eq!(page.lines, [gms]);
         assert!(
-            cut.ends_with('…') && gms.starts_with(cut.trim_end_matches('…')),
-            "{cut}"
+            width(page.size, gms) + 50 <= 900,
+            "{}",
+            width(page.size, gms)
         );
-        assert!(width(size, &cut) + 20 <= column, "{cut}");
+        assert!(
+            width(page.size + 1, gms) + 50 > 900,
+            "the largest that fits"
+        );
+        let short = Frame::of(&plot("Work-precision: belt with CS"), (900, 600)).title;
+        assert_eq!(short.size, frame::TITLE_SIZES.0);
+        // A column (3.5 in, 525 px): two lines at the smallest size, the whole title kept.
+        let column = Format::default().design(1);
+        let two = Frame::of(&plot(gms), column).title;
+        assert_eq!((two.lines.len(), two.size), (2, frame::TITLE_SIZES.1));
+        assert_eq!(two.lines.join(" "), gms);
+        for line in &two.lines {
+            assert!(width(two.size, line) + 50 <= column.0, "{line}");
+        }
     }
 
     /// The visible circles of an SVG: plotters writes a transparent one as `opacity="0"`.
@@ -820,6 +859,20 @@ mod tests {
             .collect()
     }
 
+    /// A raster of three bodies' modes over two cells of time.
+    fn modes() -> Raster {
+        Raster {
+            title: "modes".into(),
+            x_label: "time t (s)".into(),
+            y_label: "body index".into(),
+            x_edges: vec![0.0, 1.0, 2.0],
+            rows: 3,
+            row_index: vec![],
+            cells: vec![0, 1, 0, 1, 0, 1],
+            legend: vec![(RED, "slip+".into()), (BLUE, "stick".into())],
+        }
+    }
+
     #[test]
     fn every_figure_kind_draws_at_its_size_and_keeps_its_legend_off_the_data() {
         let dots = |label: &str, points: Vec<(f64, f64)>, color| Series {
@@ -853,16 +906,7 @@ mod tests {
         let curve = plot(vec![dots("rising", rising, RED)], false);
         let log = plot(vec![dots("falling", falling, BLUE)], true);
         let map = plot(vec![dots("a grid", grid, GREEN)], false);
-        let raster = Raster {
-            title: "modes".into(),
-            x_label: "time t (s)".into(),
-            y_label: "body index".into(),
-            x_edges: vec![0.0, 1.0, 2.0],
-            rows: 3,
-            row_index: vec![],
-            cells: vec![0, 1, 0, 1, 0, 1],
-            legend: vec![(RED, "slip+".into()), (BLUE, "stick".into())],
-        };
+        let raster = modes();
         for format in [
             Format::default(),
             Format::parse(Some("3.5x2.6"), Some(300.0)).unwrap(),
@@ -917,22 +961,6 @@ mod tests {
             let png = decoded(&raster_png(&raster, Path::new("r.png"), &format).unwrap());
             assert_eq!((png.0, png.1), format.pixels(raster.size(&format)));
         }
-    }
-
-    #[test]
-    fn a_long_axis_name_is_set_smaller_to_fit_its_axis() {
-        let long = "relative error on the time grid, max over x, v, z of |Δ|/max|reference| (1)";
-        let size = axis_name_size([("time t (s)", 800), (long, 400)]);
-        assert!(
-            (AXIS_NAME_SIZES.1..AXIS_NAME_SIZES.0).contains(&size),
-            "{size}"
-        );
-        let width = |size: u32| (FAMILY, size).into_font().box_size(long).unwrap().0;
-        assert!(width(size) <= 400 && width(size + 1) > 400);
-        assert_eq!(
-            axis_name_size([("time t (s)", 800), ("v (m/s)", 493)]),
-            AXIS_NAME_SIZES.0
-        );
     }
 
     #[test]
@@ -1026,6 +1054,123 @@ mod tests {
                     "{points:?} {log}"
                 );
             }
+        }
+    }
+
+    #[test]
+    fn every_figure_kind_sets_its_text_no_smaller_than_the_ticks_whole_inside_and_apart() {
+        // The figures' longest names, a study's twelve methods with crosses, a map whose
+        // legend goes beside or below, seven panels in rows, and a raster, in a column and on
+        // a page.
+        let styled = |i: usize, points: Vec<(f64, f64)>| Series {
+            label: Some(format!("method {i} with a long name")),
+            points,
+            color: PALETTE[i % PALETTE.len()],
+            width: 2,
+            marker: Marker::FILLED[i % 4],
+            dash: Dash::ALL[(i + i / 4) % 4],
+        };
+        let plot = |title: &str, x: &str, y: &str, series, log| Plot {
+            title: title.into(),
+            x_label: x.into(),
+            y_label: y.into(),
+            series,
+            legend: Corner::UpperRight,
+            log,
+        };
+        let study = plot(
+            "Cost to reach error 1e-3 against epsilon: paper-block with CS (regularized switching)",
+            "work (f evaluations, weighted)",
+            "relative error on the grid, max over x, v, z of |Δ|/max|reference| (1)",
+            (0..12)
+                .map(|i| {
+                    let points = (0..8)
+                        .map(|k| {
+                            let k = f64::from(k);
+                            (
+                                10f64.powf(2.0 + k / 2.0 + i as f64 / 6.0),
+                                10f64.powf(-k - 1.0),
+                            )
+                        })
+                        .collect();
+                    styled(i, points)
+                })
+                .collect(),
+            true,
+        );
+        let curve = plot(
+            "CVS: Coulomb + viscous + static + Stribeck (paper eq. (7))",
+            "velocity v (m/s)",
+            "friction force F (N)",
+            vec![styled(
+                0,
+                (0..100)
+                    .map(|k| (f64::from(k) / 50.0 - 1.0, f64::from(k % 7)))
+                    .collect(),
+            )],
+            false,
+        );
+        let grid: Vec<(f64, f64)> = (1..=15)
+            .flat_map(|i| (1..=15).map(move |j| (f64::from(i), f64::from(j) * 0.0025)))
+            .collect();
+        let map = plot(
+            "Belt with CVS from rest: settled regime (c = 0, m = 1)",
+            "belt speed v_belt (m/s)",
+            "spring stiffness k (N/m)",
+            vec![Series {
+                width: 0,
+                ..styled(1, grid)
+            }],
+            false,
+        );
+        let panels: Vec<Plot> = (0..7)
+            .map(|i| Plot {
+                title: format!("Servo with plant {i} at its set point"),
+                ..curve.clone()
+            })
+            .collect();
+        let raster = Raster {
+            title: "Chain of 100 blocks: stick and slip of every block".into(),
+            ..modes()
+        };
+        for size in ["3.5x2.6", "6x4"] {
+            let format = Format::parse(Some(size), Some(150.0)).unwrap();
+            let figures: [(&str, &[Plot]); 4] = [
+                ("study", std::slice::from_ref(&study)),
+                ("curve", std::slice::from_ref(&curve)),
+                ("map", std::slice::from_ref(&map)),
+                ("panels", &panels),
+            ];
+            for (kind, plots) in figures {
+                let svg = svg_panels(plots, Path::new("k.svg"), &format).unwrap();
+                let faults = layout_faults(&svg);
+                assert!(faults.is_empty(), "{kind} at {size}: {faults:#?}");
+            }
+            let svg = raster_svg(&raster, Path::new("r.svg"), &format).unwrap();
+            assert_eq!(
+                layout_faults(&svg),
+                Vec::<String>::new(),
+                "raster at {size}"
+            );
+        }
+        // The check sees what it is for: a text below the tick size, one cut short, one out of
+        // the canvas, two on top of each other.
+        let bad = "<svg viewBox=\"0 0 100 100\">\
+                   <text x=\"10\" y=\"10\" font-size=\"8\">small</text>\
+                   <text x=\"10\" y=\"40\" font-size=\"13\">cut…</text>\
+                   <text x=\"90\" y=\"70\" font-size=\"13\">outside</text>\
+                   <text x=\"12\" y=\"41\" font-size=\"13\">on it</text></svg>";
+        let faults = layout_faults(bad);
+        for words in [
+            "below the tick labels",
+            "cut short",
+            "out of the",
+            "overlaps",
+        ] {
+            assert!(
+                faults.iter().any(|f| f.contains(words)),
+                "{words}: {faults:#?}"
+            );
         }
     }
 }

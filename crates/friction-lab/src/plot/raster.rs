@@ -1,7 +1,7 @@
 //! A raster of coloured cells over time and an index: a chain's contact modes.
 
 use super::axes::{common_decimals, fixed};
-use super::legend::{box_pixels, draw_box, LEGEND_BOX};
+use super::legend::{box_pixels, draw_box, Arrangement, LEGEND_BOX};
 use super::{render_png, render_svg, whole_label, Format, FAMILY, MESH_LABELS};
 use crate::error::AppError;
 use plotters::coord::Shift;
@@ -55,7 +55,7 @@ impl Raster {
     pub fn size(&self, format: &Format) -> (u32, u32) {
         let labels: Vec<&str> = self.shown().iter().map(|e| e.1.as_str()).collect();
         let (w, h) = format.design(1);
-        (w + box_pixels(&labels).0.ceil() as u32, h)
+        (w + box_pixels(&labels, Arrangement::ONE).0.ceil() as u32, h)
     }
 }
 
@@ -137,6 +137,7 @@ fn draw_raster<DB: DrawingBackend>(
     draw_box(
         &strip,
         &labels,
+        Arrangement::ONE,
         (0, top + LEGEND_BOX.gap as i32),
         |k, (x, y)| {
             strip.draw(&Rectangle::new(

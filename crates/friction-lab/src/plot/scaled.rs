@@ -28,7 +28,7 @@ impl<B> Scaled<B> {
         )
     }
     /// A length in design pixels in output pixels: at least 1 where it was.
-    fn length(&self, l: u32) -> u32 {
+    pub fn length(&self, l: u32) -> u32 {
         ((l as f64 * self.scale).round() as u32).max(l.min(1))
     }
 
@@ -155,21 +155,7 @@ impl<B: DrawingBackend> DrawingBackend for Scaled<B> {
     ) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
         let stroke = self.stroke(style);
         let points: Vec<BackendCoord> = path.into_iter().map(|p| self.at(p)).collect();
-        if stroke.width <= 1 {
-            return self.inner.draw_path(points, &stroke);
-        }
-        // A wide path segment by segment: plotters fills a wide path as one polygon, which
-        // leaves holes where a dense path folds back over itself. Round joins from width 3.
-        for pair in points.windows(2) {
-            self.inner.draw_line(pair[0], pair[1], &stroke)?;
-        }
-        if stroke.width >= 3 {
-            let joint = Stroke { style, width: 1 };
-            for &p in points.iter().skip(1).take(points.len().saturating_sub(2)) {
-                self.inner.draw_circle(p, stroke.width / 2, &joint, true)?;
-            }
-        }
-        Ok(())
+        self.inner.draw_path(points, &stroke)
     }
 
     fn draw_circle<S: BackendStyle>(

@@ -25,7 +25,7 @@ fn stiffness_plot(stiffness: &[StiffnessPoint], name: &str, window: Option<Windo
     Plot {
         title: format!("{name}: stiffness along the run"),
         x_label: "time t (s)".into(),
-        y_label: "log10(h·ρ), h the step, ρ the spectral radius of ∂f/∂y".into(),
+        y_label: "log10 h·ρ(∂f/∂y) (1)".into(),
         series: vec![
             Series {
                 label: Some("h·ρ at the recorded points".into()),

@@ -20,11 +20,10 @@ use crate::trajectory::{RecordAs, Trajectory};
 use crate::window::Window;
 use friction_models::{FrictionParams, Variant};
 use friction_systems::file::SystemSource;
-use friction_systems::{Run, Scheme, System, SLIP_POSITIVE};
+use friction_systems::{Scheme, System};
 use integrators::{Options, StepControl};
 use scenarios::analysis::closed_loop::ClosedLoop;
 use scenarios::chain::ChainSource;
-use scenarios::Row;
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -120,34 +119,6 @@ pub struct SystemRun<'a> {
     /// The span of time the figures draw and the spectra measure; `None`: the whole run (the
     /// spectra its last half).
     pub window: Option<Window>,
-}
-
-/// The closed loop of the system's first controller ([`ClosedLoop`]), read off its body's
-/// recorded states; `None` for a system without a controller.
-fn closed_loop(run: &Run, system: &System) -> Option<ClosedLoop> {
-    let c = system.controllers.first()?;
-    let rows: Vec<Row> = (run.body(c.body).into_iter())
-        .map(|b| Row {
-            t: b.t,
-            x: b.x,
-            v: b.v,
-            friction: b.friction,
-            // A body without a contact never sticks.
-            mode: b.mode.unwrap_or(SLIP_POSITIVE),
-            z: b.z,
-        })
-        .take_while(Row::is_finite)
-        .collect();
-    let events: Vec<f64> = (run.contact_events().iter())
-        .filter(|e| e.body == c.body)
-        .map(|e| e.t)
-        .collect();
-    Some(ClosedLoop::of_rows(
-        &rows,
-        &events,
-        &c.reference,
-        c.ki > 0.0,
-    ))
 }
 
 /// Simulates `run` and its files into `out`, in memory: `trajectory.csv` (or its columns) of
@@ -253,7 +224,7 @@ pub fn simulate_system(run: SystemRun, out: &Path, record_as: RecordAs) -> Resul
     };
     let events = run.contact_events();
     let energy = run.energy();
-    let measured_loop = closed_loop(&run, system);
+    let measured_loop = ClosedLoop::of_run(&run, system);
     let integrated = Integrated {
         error: run.error.clone(),
         t_reached: run.solution.t.last().copied(),

@@ -354,12 +354,13 @@ impl Study for ClosedLoopStudy<'_> {
     }
 
     /// `{stem}.md` (the hunting table and the tracking tables), `{stem}.json` (every run's
-    /// measures) and `{stem}-error.png`/`.svg` (the position error of every plant).
+    /// measures) and `{stem}-error.png`/`.svg` (the position error of every plant, a panel
+    /// each).
     fn write(&self, result: &ClosedLoops, out: &mut StudyFiles) -> Result<(), AppError> {
         out.files
             .add(out.path(".md"), markdown(self, result).into_bytes());
         out.files
-            .add_plot(&out.path("-error"), &error_figure(result))?;
+            .add_panels(&out.path("-error"), &error_figure(result))?;
         out.add_json(result)
     }
 }
@@ -515,25 +516,26 @@ fn describing_markdown(r: &ClosedLoops) -> String {
     s
 }
 
-/// The position error of every plant at the set point against time.
-fn error_figure(r: &ClosedLoops) -> Plot {
-    Plot {
-        title: "Servo at its set point: position error of each plant".into(),
-        x_label: "time t (s)".into(),
-        y_label: "position error r − x (m)".into(),
-        series: (r.regulation.iter().enumerate())
-            .map(|(i, g)| Series {
-                label: Some(g.plant.to_string()),
+/// The position error of every plant at the set point against time: a panel each, named in
+/// its title (seven square waves on one panel could not be told apart).
+fn error_figure(r: &ClosedLoops) -> Vec<Plot> {
+    (r.regulation.iter().enumerate())
+        .map(|(i, g)| Plot {
+            title: format!("Servo with {} at its set point", g.plant),
+            x_label: "time t (s)".into(),
+            y_label: "position error r − x (m)".into(),
+            series: vec![Series {
+                label: None,
                 points: g.error.clone(),
                 color: PALETTE[i % PALETTE.len()],
                 width: 1,
                 marker: Default::default(),
                 dash: crate::plot::Dash::Solid,
-            })
-            .collect(),
-        legend: Corner::UpperRight,
-        log: false,
-    }
+            }],
+            legend: Corner::UpperRight,
+            log: false,
+        })
+        .collect()
 }
 
 #[cfg(test)]

@@ -7,7 +7,7 @@ use super::tables::{resolution_cells, runs_table, timing_table};
 use super::{positive_list, target_list, Study, StudyFiles};
 use crate::error::AppError;
 use crate::output::{Cell, Table};
-use crate::plot::{Corner, Dash, Marker, Plot, Series, BLUE};
+use crate::plot::{Corner, Marker, Plot, Series, BLUE};
 use plotters::style::{RGBColor, BLACK};
 
 /// The colour of the targets' lines and the fit: behind the schemes' own.
@@ -223,7 +223,7 @@ pub fn figures(c: &Comparison, case: &dyn StudyCase) -> Vec<(&'static str, Plot)
     };
     let (main, regularised) = (drawn(&main), drawn(&regularised));
     let work: fn(&StudyRun) -> f64 = |r| r.work as f64;
-    let work_label = "work (f evaluations; Jacobians, LU and solves weighted by flops)";
+    let work_label = super::draw::WORK_LABEL;
     [
         ("", &main, "Error against work", work_label, work),
         (
@@ -269,12 +269,12 @@ pub fn figures(c: &Comparison, case: &dyn StudyCase) -> Vec<(&'static str, Plot)
                 dash: crate::plot::Dash::Solid,
             })
         }));
-        series.extend(in_greyscale(per_solver_series(
+        series.extend(per_solver_series(
             runs,
             |_| true,
             x,
             |r| r.errors.grid_relative,
-        )));
+        ));
         let plot = Plot {
             title: format!(
                 "{what}: {}, every scheme against the true nonsmooth solution",
@@ -289,21 +289,6 @@ pub fn figures(c: &Comparison, case: &dyn StudyCase) -> Vec<(&'static str, Plot)
         (suffix, plot)
     })
     .collect()
-}
-
-/// `series` (one a scheme, as [`per_solver_series`] draws them) told apart without colour:
-/// the k-th scheme's runs marked by the k-th filled shape and drawn with the (k/4)-th dash
-/// pattern, sixteen schemes each their own pair.
-fn in_greyscale(mut series: Vec<Series>) -> Vec<Series> {
-    let shapes = Marker::FILLED.len();
-    for (k, s) in (series.iter_mut())
-        .filter(|s| s.marker == Marker::Dot)
-        .enumerate()
-    {
-        s.marker = Marker::FILLED[k % shapes];
-        s.dash = Dash::ALL[(k / shapes) % Dash::ALL.len()];
-    }
-    series
 }
 
 /// One row per target and scheme: its cost there, or why it has none.
@@ -421,35 +406,5 @@ fn epsilon_plot(c: &Comparison, case: &dyn StudyCase) -> Plot {
         series,
         legend: Corner::UpperLeft,
         log: true,
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn sixteen_schemes_each_have_their_own_marker_and_dash() {
-        let series = (0..16)
-            .map(|k| Series {
-                label: Some(format!("scheme {k}")),
-                points: vec![(1.0, 1.0)],
-                color: BLUE,
-                width: 2,
-                marker: Marker::Dot,
-                dash: Dash::Solid,
-            })
-            .collect();
-        let styled = in_greyscale(series);
-        let mut pairs: Vec<(Marker, Dash)> = styled.iter().map(|s| (s.marker, s.dash)).collect();
-        pairs.dedup();
-        let distinct: std::collections::HashSet<String> =
-            pairs.iter().map(|p| format!("{p:?}")).collect();
-        assert_eq!(distinct.len(), 16);
-        // The first scheme keeps the dot and the solid line.
-        assert_eq!(
-            (styled[0].marker, styled[0].dash),
-            (Marker::Dot, Dash::Solid)
-        );
     }
 }

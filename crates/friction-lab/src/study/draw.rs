@@ -1,7 +1,11 @@
 //! The figures' pieces the studies share: one series per solver with its failed runs drawn
 //! at the top, and the guides of fitted orders.
 
-use crate::plot::{Marker, Series, PALETTE};
+use crate::plot::{Dash, Marker, Series, PALETTE};
+
+/// The name of the work axis: f evaluations, with each Jacobian, LU factorisation and solve
+/// weighted by its flops in f evaluations (`scenarios::studies::work`, docs/studies.md).
+pub const WORK_LABEL: &str = "work (f evaluations, weighted)";
 use scenarios::studies::{OrderTable, StepKind, StudyRun, TestSetRun};
 use scenarios::verdict::Status;
 
@@ -48,11 +52,34 @@ impl DrawnRun for TestSetRun {
     }
 }
 
-/// One series per solver of the runs `keep` selects, with a dot on every run judged `ok`, a
-/// cross where a run judged inaccurate lies, and, per solver with failed runs, a series of
-/// crosses drawn at the top of the plot at their x, named with their count (a failed run has
-/// no error to plot, but it is not left out), each such solver in a row of its own
-/// ([`row_at_top`]).
+/// The marker and dash pattern of the `i`-th series of a figure: every pair distinct for the
+/// first sixteen, the dash advancing with the marker, so that neither colour nor either alone
+/// is needed to tell series apart (in greyscale).
+pub fn series_style(i: usize) -> (Marker, Dash) {
+    let (markers, dashes) = (Marker::FILLED.len(), Dash::ALL.len());
+    (
+        Marker::FILLED[i % markers],
+        Dash::ALL[(i + i / markers) % dashes],
+    )
+}
+
+/// What one method draws: its runs judged `ok`, those judged inaccurate, and the x of its
+/// failed runs.
+#[derive(PartialEq)]
+struct Drawn {
+    plotted: Vec<(f64, f64)>,
+    judged: Vec<(f64, f64)>,
+    failed: Vec<f64>,
+}
+
+/// One series per solver of the runs `keep` selects, with a marker on every run judged `ok`, a
+/// cross in its colour where a run judged inaccurate lies, and, per solver with failed runs, a
+/// series of crosses drawn at the top of the plot at their x (a failed run has no error to
+/// plot, but it is not left out), each such solver in a row of its own ([`row_at_top`]); the
+/// legend names the two kinds of cross once each, in black (the tables count them), and a
+/// solver without a run judged `ok` by its crosses. Each solver has its colour, marker and dash pattern ([`series_style`]);
+/// solvers whose runs draw the same points (`auto` that never switched from `dopri5`) are
+/// drawn once, named for all of them ("dopri5 = auto"; past three, the first two and a count).
 pub fn per_solver_series<R: DrawnRun>(
     runs: &[R],
     keep: impl Fn(&R) -> bool,
@@ -67,62 +94,102 @@ pub fn per_solver_series<R: DrawnRun>(
         }
     }
     let drawable = |r: &&&R| !r.failed() && y(r) > 0.0 && y(r).is_finite();
-    let plotted = |r: &&&R| drawable(r) && r.judged_ok();
-    let inaccurate = |r: &&&R| drawable(r) && !r.judged_ok();
     let largest = runs
         .iter()
         .filter(drawable)
         .map(|r| y(r))
         .reduce(f64::max)
         .unwrap_or(1.0);
-    let mut series = Vec::new();
-    let mut rows = 0;
-    for (name, &color) in names.iter().zip(PALETTE.iter().cycle()) {
+    // Each solver's points, and the solvers that draw the same ones, in the order of first run.
+    let mut groups: Vec<(Vec<&str>, Drawn)> = Vec::new();
+    for name in &names {
         let mine = || runs.iter().filter(|r| r.method() == *name);
-        let points: Vec<(f64, f64)> = mine().filter(plotted).map(|r| (x(r), y(r))).collect();
-        if !points.is_empty() {
+        let drawn = Drawn {
+            plotted: (mine().filter(|r| drawable(r) && r.judged_ok()))
+                .map(|r| (x(r), y(r)))
+                .collect(),
+            judged: (mine().filter(|r| drawable(r) && !r.judged_ok()))
+                .map(|r| (x(r), y(r)))
+                .collect(),
+            failed: mine().filter(|r| r.failed()).map(|r| x(r)).collect(),
+        };
+        match groups.iter_mut().find(|(_, d)| *d == drawn) {
+            Some((same, _)) => same.push(name),
+            None => groups.push((vec![name], drawn)),
+        }
+    }
+    let mut series = Vec::new();
+    let (mut rows, mut inaccurate) = (0, false);
+    for (i, ((names, drawn), &color)) in groups.into_iter().zip(PALETTE.iter().cycle()).enumerate()
+    {
+        let name = match names.as_slice() {
+            [first, second, _, _, ..] => {
+                format!(
+                    "{first} = {second} and {} more (identical)",
+                    names.len() - 2
+                )
+            }
+            _ => names.join(" = "),
+        };
+        let (marker, dash) = series_style(i);
+        // A solver without a run to mark names its crosses, the first series it draws.
+        let mut unnamed = drawn.plotted.is_empty().then(|| name.clone());
+        if !drawn.plotted.is_empty() {
             series.push(Series {
-                label: Some(name.to_string()),
-                points,
+                label: Some(name.clone()),
+                points: drawn.plotted,
                 color,
                 width: 2,
-                marker: Marker::Dot,
-                dash: crate::plot::Dash::Solid,
+                marker,
+                dash,
             });
         }
         // A run judged inaccurate is data, drawn where it is, but marked apart from the dots.
-        let judged: Vec<(f64, f64)> = mine().filter(inaccurate).map(|r| (x(r), y(r))).collect();
-        if !judged.is_empty() {
+        if !drawn.judged.is_empty() {
+            inaccurate = true;
             series.push(Series {
-                label: Some(format!(
-                    "{name}: {} inaccurate (error ≥ solution)",
-                    judged.len()
-                )),
-                points: judged,
+                label: unnamed.take(),
+                points: drawn.judged,
                 color,
                 width: 0,
                 marker: Marker::Cross,
-                dash: crate::plot::Dash::Solid,
+                dash: Dash::Solid,
             });
         }
         let top = row_at_top(largest, rows);
-        let failed: Vec<(f64, f64)> = mine().filter(|r| r.failed()).map(|r| (x(r), top)).collect();
-        if !failed.is_empty() {
+        if !drawn.failed.is_empty() {
             rows += 1;
             series.push(Series {
-                label: Some(format!("{name}: {} failed (at the top)", failed.len())),
-                points: failed,
+                label: unnamed.take(),
+                points: drawn.failed.iter().map(|&x| (x, top)).collect(),
                 color,
                 width: 0,
                 marker: Marker::Cross,
-                dash: crate::plot::Dash::Solid,
+                dash: Dash::Solid,
             });
         }
+    }
+    // One legend entry for the crosses of every solver (a legend of one entry per solver and
+    // kind outgrew its plot).
+    let crosses = [
+        (inaccurate, "inaccurate run (error ≥ solution)"),
+        (rows > 0, "failed run (drawn at the top)"),
+    ];
+    for (_, label) in crosses.into_iter().filter(|(shown, _)| *shown) {
+        series.push(Series {
+            label: Some(label.into()),
+            points: vec![],
+            color: plotters::style::RGBColor(0, 0, 0),
+            width: 0,
+            marker: Marker::Cross,
+            dash: Dash::Solid,
+        });
     }
     series
 }
 
-/// A guide for each table's fit, drawn through its asymptotic range only: the fitted line
+/// A guide for each table's fit, drawn through its asymptotic range only (grey, dashed, dotted
+/// or long-dashed in turn): the fitted line
 /// error = e^intercept · h^slope from the finest to the coarsest resolution it rests on, named
 /// with the solver, the slope and its 95 % interval (tables without a fit draw none).
 pub fn fitted_guides(tables: &[&OrderTable]) -> Vec<Series> {
@@ -130,7 +197,12 @@ pub fn fitted_guides(tables: &[&OrderTable]) -> Vec<Series> {
         .iter()
         .filter_map(|t| Some((t, t.fit?)))
         .zip([120u8, 160, 80].iter().cycle())
-        .map(|((t, f), &shade)| {
+        .zip(
+            [Dash::Dashed, Dash::Dotted, Dash::LongDashed]
+                .iter()
+                .cycle(),
+        )
+        .map(|(((t, f), &shade), &dash)| {
             let slope = match t.step {
                 StepKind::Fixed => "order",
                 StepKind::Adaptive => "tol exponent",
@@ -144,7 +216,7 @@ pub fn fitted_guides(tables: &[&OrderTable]) -> Vec<Series> {
                 color: plotters::style::RGBColor(shade, shade, shade),
                 width: 1,
                 marker: Marker::None,
-                dash: crate::plot::Dash::Solid,
+                dash,
             }
         })
         .collect()
@@ -201,10 +273,51 @@ mod tests {
         );
         let crosses: Vec<(f64, f64)> = series
             .iter()
-            .filter(|s| s.marker == Marker::Cross)
+            .filter(|s| s.marker == Marker::Cross && !s.points.is_empty())
             .map(|s| s.points[0])
             .collect();
         assert_eq!(crosses, [(0.02, 3e-2), (0.02, 3e-2 * 1.5)]);
+    }
+
+    #[test]
+    fn sixteen_series_each_have_their_own_marker_and_dash_the_first_four_each_their_own_dash() {
+        let pairs: std::collections::HashSet<String> =
+            (0..16).map(|i| format!("{:?}", series_style(i))).collect();
+        assert_eq!(pairs.len(), 16);
+        let dashes: std::collections::HashSet<String> =
+            (0..4).map(|i| format!("{:?}", series_style(i).1)).collect();
+        assert_eq!(dashes.len(), 4);
+        assert_eq!(series_style(0), (Marker::Dot, Dash::Solid));
+    }
+
+    #[test]
+    fn a_solver_drawing_the_same_points_as_another_is_drawn_once_named_for_both() {
+        // auto that never switched from dopri5: the same runs, one series "dopri5 = auto".
+        let runs = [
+            run("dopri5", 1e-4, 1e-5, None),
+            run("dopri5", 1e-6, 1e-7, None),
+            run("rk4", 1e-4, 1e-3, None),
+            run("auto", 1e-4, 1e-5, None),
+            run("auto", 1e-6, 1e-7, None),
+        ];
+        let series = per_solver_series(
+            &runs,
+            |_| true,
+            |r| r.resolution,
+            |r| r.errors.final_relative,
+        );
+        let labels: Vec<&str> = series.iter().filter_map(|s| s.label.as_deref()).collect();
+        assert_eq!(labels, ["dopri5 = auto", "rk4"]);
+        // One point apart, and they are two.
+        let mut apart = runs.to_vec();
+        apart[4].errors.final_relative = 2e-7;
+        let series = per_solver_series(
+            &apart,
+            |_| true,
+            |r| r.resolution,
+            |r| r.errors.final_relative,
+        );
+        assert_eq!(series.len(), 3);
     }
 
     #[test]
@@ -225,7 +338,9 @@ mod tests {
             "bdf (regularized)",
             "moreau-jean (timestepping)",
         ];
-        let runs: Vec<StudyRun> = names.iter().map(|n| run(n, 0.01, 1e-4, None)).collect();
+        let runs: Vec<StudyRun> = (names.iter().enumerate())
+            .map(|(i, n)| run(n, 0.01, 1e-4 * (i + 1) as f64, None))
+            .collect();
         let series = per_solver_series(
             &runs,
             |_| true,

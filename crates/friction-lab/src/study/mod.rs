@@ -16,6 +16,7 @@ mod orbit;
 mod phenomena;
 mod report;
 mod scaling;
+mod servo_loop;
 pub mod solver_studies;
 mod stick_slip;
 mod stiffness;
@@ -34,6 +35,7 @@ pub use orbit::{orbit_lines, OrbitStudy};
 pub use phenomena::PhenomenaRequest;
 pub use report::{conduct_all, Entry, ReportEntry};
 pub use scaling::ScalingStudy;
+pub use servo_loop::{loop_lines, LoopResult, LoopStudy};
 pub use solver_studies::{
     CompareRequest, ConvergeRequest, IndependenceRequest, OrbitRequest, Problem, StiffnessRequest,
     WorkPrecisionRequest,

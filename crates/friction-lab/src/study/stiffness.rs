@@ -205,8 +205,7 @@ impl Study for StiffnessStudy<'_> {
                 studies::describe(case, methods)
             ),
             x_label: parameter.to_string(),
-            y_label: "work at the target (f evaluations; Jacobians, LU and solves weighted), with its bracket"
-                .into(),
+            y_label: "work at the target (f evaluations, weighted)".into(),
             series,
             legend: Corner::UpperRight,
             log: true,

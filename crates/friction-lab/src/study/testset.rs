@@ -2,7 +2,7 @@
 //! counted work and wall time for every solver, the test set's own plot
 //! ([`scenarios::studies::testset_work_precision`]).
 
-use super::draw::per_solver_series;
+use super::draw::{per_solver_series, WORK_LABEL};
 use super::tables::timing_table;
 use super::{distinct, Study, StudyFiles};
 use crate::error::AppError;
@@ -29,8 +29,9 @@ pub struct TestSetStudy<'a> {
     pub limits: Limits,
 }
 
-/// The y axis of the figures: the error whose −log10 is the test set's scd.
-const ERROR_LABEL: &str = "relative error at t_end, max_i |y_i − y_i,ref|/|y_i,ref| = 10^−scd (1)";
+/// The y axis of the figures: the error max_i |y_i − y_i,ref|/|y_i,ref| at t_end, whose
+/// −log10 is the test set's scd.
+const ERROR_LABEL: &str = "relative error at t_end = 10^−scd (1)";
 
 impl Study for TestSetStudy<'_> {
     type Result = TestSetWorkPrecision;
@@ -112,7 +113,7 @@ impl Study for TestSetStudy<'_> {
         let error = |r: &TestSetRun| r.relative_error();
         let plot = Plot {
             title: title.clone(),
-            x_label: "work (f evaluations; Jacobians, LU and solves weighted by flops)".into(),
+            x_label: WORK_LABEL.into(),
             y_label: ERROR_LABEL.into(),
             series: per_solver_series(&w.runs, |_| true, |r| r.work as f64, error),
             legend: Corner::UpperRight,

@@ -1,7 +1,7 @@
 //! Work–precision: error against work and wall time for every solver and peer
 //! ([`scenarios::studies::work_precision`]).
 
-use super::draw::per_solver_series;
+use super::draw::{per_solver_series, WORK_LABEL};
 use super::tables::{resolution_cells, runs_table, timing_table};
 use super::{check_lists, study_file, Study, StudyFiles};
 use crate::error::AppError;
@@ -78,7 +78,7 @@ impl Study for WorkPrecisionStudy<'_> {
         let error = ErrorMeasure::GridRelative.label();
         let plot = Plot {
             title: format!("Work-precision: {}", studies::describe(case, self.methods)),
-            x_label: "work (f evaluations; Jacobians, LU and solves weighted by flops)".into(),
+            x_label: WORK_LABEL.into(),
             y_label: error.into(),
             series: per_solver_series(
                 &w.runs,

@@ -58,7 +58,7 @@ pub fn figure(axes: &[Axis], results: &[PointResult], title: &str) -> Option<Plo
         [x] => Some(Plot {
             title: format!("{title}: settled amplitude"),
             x_label: label(x),
-            y_label: "half the range of x − v̄·t over the settled window (m)".into(),
+            y_label: "amplitude of x − v̄·t (m)".into(),
             series: by_regime(&|r| (r.values[0], r.settled.x_amplitude.max(0.0))),
             legend: Corner::UpperRight,
             log: false,

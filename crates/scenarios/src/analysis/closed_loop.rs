@@ -23,7 +23,7 @@
 
 use super::settled::{crossings, half_range, MIN_CYCLES, SETTLE_TOLERANCE};
 use crate::run::{Outcome, Row};
-use friction_systems::{Reference, STICK};
+use friction_systems::{Reference, Run, System, SLIP_POSITIVE, STICK};
 use serde::Serialize;
 
 /// The half range of the error, m, at or below which the settled loop is at rest.
@@ -102,6 +102,34 @@ impl ClosedLoop {
     pub fn of(outcome: &Outcome, reference: &Reference) -> ClosedLoop {
         let events: Vec<f64> = outcome.events.iter().map(|e| e.t).collect();
         ClosedLoop::of_rows(&outcome.rows, &events, reference, outcome.integral_action)
+    }
+
+    /// The closed loop of `system`'s first controller, read off its body's recorded states in
+    /// `run` (up to the first that is not finite); `None` for a system without a controller.
+    pub fn of_run(run: &Run, system: &System) -> Option<ClosedLoop> {
+        let c = system.controllers.first()?;
+        let rows: Vec<Row> = (run.body(c.body).into_iter())
+            .map(|b| Row {
+                t: b.t,
+                x: b.x,
+                v: b.v,
+                friction: b.friction,
+                // A body without a contact never sticks.
+                mode: b.mode.unwrap_or(SLIP_POSITIVE),
+                z: b.z,
+            })
+            .take_while(Row::is_finite)
+            .collect();
+        let events: Vec<f64> = (run.contact_events().iter())
+            .filter(|e| e.body == c.body)
+            .map(|e| e.t)
+            .collect();
+        Some(ClosedLoop::of_rows(
+            &rows,
+            &events,
+            &c.reference,
+            c.ki > 0.0,
+        ))
     }
 
     /// The measures of a body recorded as `recorded` (evenly spaced rows, and rows at the

@@ -20,7 +20,7 @@
 //! (docs/closed-loop.md gives the numbers).
 
 use crate::run::Law;
-use friction_models::{FrictionParams, ModelId};
+use friction_models::{FrictionModel, FrictionParams};
 use num_complex::Complex64;
 use serde::Serialize;
 use std::f64::consts::PI;
@@ -40,25 +40,30 @@ pub struct StictionMass {
 
 impl StictionMass {
     /// The mass `m` with the friction of `law` at `p` idealised as Coulomb friction, stiction
-    /// and viscous friction, for the laws whose steady friction is of that form: `static`
-    /// (F_c, F_s), `coulomb` (F_c, F_c), `viscous` (μ_v), `karnopp` (F_c, F_s, μ_v), and LuGre
-    /// in the limit of a vanishing Stribeck speed and presliding displacement (F_c, F_s, σ2).
-    /// `None` for the others.
+    /// and viscous friction ([`StictionMass::of`]); `None` for a law of another form, or one
+    /// whose parameters do not build it.
     pub fn idealising(law: &Law, p: &FrictionParams, m: f64) -> Option<Self> {
-        let (f_c, f_s, f_v) = match law.catalog()? {
-            ModelId::Static => (p.f_c, p.f_s, 0.0),
-            ModelId::Coulomb => (p.f_c, p.f_c, 0.0),
-            ModelId::Viscous => (0.0, 0.0, p.mu_v),
-            ModelId::Karnopp => (p.f_c, p.f_s, p.mu_v),
-            ModelId::LuGre => (p.f_c, p.f_s, p.sigma2),
-            _ => return None,
-        };
-        Some(StictionMass { m, f_c, f_s, f_v })
+        Self::of(law.build(p).ok()?.as_ref(), m)
+    }
+
+    /// The mass `m` with the friction `model`'s steady levels
+    /// ([`FrictionModel::stiction_levels`]): `static` (F_c, F_s), `coulomb` (F_c, F_c),
+    /// `viscous` (μ_v), `karnopp` (F_c, F_s, μ_v), LuGre in the limit of a vanishing Stribeck
+    /// speed and presliding displacement (F_c, F_s, σ2), and any law of one's own that gives
+    /// them. `None` for the others.
+    pub fn of(model: &dyn FrictionModel, m: f64) -> Option<Self> {
+        let l = model.stiction_levels()?;
+        Some(StictionMass {
+            m,
+            f_c: l.f_c,
+            f_s: l.f_s,
+            f_v: l.f_v,
+        })
     }
 }
 
 /// A PID on the position error: `u = kp·e + ki·∫e dt + kd·ė`.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Pid {
     /// Proportional gain, N/m.
     pub kp: f64,

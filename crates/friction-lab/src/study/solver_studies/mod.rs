@@ -6,6 +6,7 @@
 //! thread count (wall times, which cannot be reproduced, go to a separate `*-timing.csv`).
 
 mod branches;
+mod closed_loop;
 mod compare;
 mod converge;
 mod independence;
@@ -15,12 +16,13 @@ mod stiffness;
 mod work_precision;
 
 pub use branches::ContinueRequest;
+pub use closed_loop::ClosedLoopRequest;
 pub use compare::CompareRequest;
 pub use converge::{ConvergeRequest, CONVERGE_SOLVERS};
 pub use independence::IndependenceRequest;
 pub use named::{
-    Declared, NamedStudy, Runs, StudyRequest, COMPARE, CONTINUE, CONVERGE, INDEPENDENCE, ORBIT,
-    STIFFNESS, STUDIES, WORK_PRECISION,
+    Declared, NamedStudy, Runs, StudyRequest, CLOSED_LOOP, COMPARE, CONTINUE, CONVERGE,
+    INDEPENDENCE, ORBIT, STIFFNESS, STUDIES, WORK_PRECISION,
 };
 pub use orbit::OrbitRequest;
 pub use stiffness::{StiffnessRequest, STIFFNESS_SOLVERS};

@@ -5,8 +5,8 @@
 //! declaration.
 
 use super::{
-    CompareRequest, ContinueRequest, ConvergeRequest, IndependenceRequest, OrbitRequest,
-    StiffnessRequest, WorkPrecisionRequest,
+    ClosedLoopRequest, CompareRequest, ContinueRequest, ConvergeRequest, IndependenceRequest,
+    OrbitRequest, StiffnessRequest, WorkPrecisionRequest,
 };
 use crate::error::AppError;
 use crate::made::Made;
@@ -124,6 +124,13 @@ pub static ORBIT: Declared<OrbitRequest> = Declared::new(
      segments, Floquet multipliers and stability",
 );
 
+/// `closed-loop`.
+pub static CLOSED_LOOP: Declared<ClosedLoopRequest> = Declared::new(
+    "closed-loop",
+    "The closed loop of the servo or a system with a controller, at one's own gains and plant: \
+     hunting, period, amplitude, regime, beside the describing function's predicted cycle",
+);
+
 /// `continue`.
 pub static CONTINUE: Declared<ContinueRequest> = Declared::new(
     "continue",
@@ -143,7 +150,7 @@ pub static STUDIES: registry::Registry<NamedStudy> =
 
 impl NamedStudy {
     /// The built-in studies, in the order the command line lists them.
-    pub const ALL: [NamedStudy; 7] = [
+    pub const ALL: [NamedStudy; 8] = [
         NamedStudy::built_in(&CONVERGE),
         NamedStudy::built_in(&INDEPENDENCE),
         NamedStudy::built_in(&WORK_PRECISION),
@@ -151,6 +158,7 @@ impl NamedStudy {
         NamedStudy::built_in(&COMPARE),
         NamedStudy::built_in(&ORBIT),
         NamedStudy::built_in(&CONTINUE),
+        NamedStudy::built_in(&CLOSED_LOOP),
     ];
 }
 
@@ -175,5 +183,6 @@ runs!(
     StiffnessRequest,
     CompareRequest,
     OrbitRequest,
-    ContinueRequest
+    ContinueRequest,
+    ClosedLoopRequest
 );
