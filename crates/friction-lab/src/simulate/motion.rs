@@ -60,7 +60,7 @@ pub fn add_motion(
                 color: PALETTE[c],
                 width: 2,
                 marker: Marker::None,
-                dash: crate::plot::Dash::Solid,
+                dash: body_dash(c),
             })
             .collect()
     };
@@ -99,7 +99,7 @@ pub fn add_motion(
                 color: PALETTE[c],
                 width: 2,
                 marker: Marker::None,
-                dash: crate::plot::Dash::Solid,
+                dash: body_dash(c),
             })
         })
         .collect();
@@ -112,6 +112,12 @@ pub fn add_motion(
             friction,
         ),
     )
+}
+
+/// The dash pattern of the `c`-th body drawn: a pattern as well as a colour, so that the bodies
+/// are told apart in greyscale.
+fn body_dash(c: usize) -> crate::plot::Dash {
+    crate::plot::Dash::ALL[c % crate::plot::Dash::ALL.len()]
 }
 
 #[cfg(test)]

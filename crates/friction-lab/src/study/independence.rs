@@ -183,7 +183,8 @@ impl Study for IndependenceStudy<'_> {
             .iter()
             .zip(&s.resolutions)
             .zip(PALETTE.iter().cycle())
-            .map(|((xs, h), &color)| Series {
+            .zip(crate::plot::Dash::ALL.iter().cycle())
+            .map(|(((xs, h), &color), &dash)| Series {
                 label: Some(format!("{} at {h:e}", s.solver)),
                 points: xs
                     .iter()
@@ -193,7 +194,7 @@ impl Study for IndependenceStudy<'_> {
                 color,
                 width: 2,
                 marker: Marker::None,
-                dash: crate::plot::Dash::Solid,
+                dash,
             })
             .collect();
         let plot = Plot {
