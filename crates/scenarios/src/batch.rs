@@ -253,6 +253,61 @@ fn check_labels(jobs: &[(Method, StepControl)]) -> Result<(), ScenarioError> {
     Ok(())
 }
 
+/// The run of `method` at `step` a measurement `o` gives, on a case of `dim` unknowns: its
+/// errors not yet measured ([`judge`]), its wall time `o`'s alone.
+fn study_run(method: &Method, step: StepControl, o: Measured, dim: usize) -> StudyRun {
+    StudyRun {
+        solver: method.label(),
+        resolution: resolution(step),
+        step: StepKind::of(step),
+        errors: Errors::UNMEASURED,
+        measures: o.measures,
+        stats: o.stats,
+        work: o.stats.work(dim),
+        diverged: crate::run::diverged(!method.is_implicit(), step, o.error.as_ref()),
+        verdict: Verdict::of_error(o.error.as_ref())
+            .unwrap_or(Verdict::OK)
+            .with_instability(o.instability.as_ref()),
+        failure: o.error,
+        wall_time: WallTimes::of(&[o.wall_time_s]),
+    }
+}
+
+/// One (`method`, `step`) of `case` on the calling thread, then timed `repeats` times more
+/// where its first run neither failed (its repeats would stop alike, and a partial run's
+/// time measures nothing) nor took [`TIMED_ONCE_FROM`] counted work or more; its errors not
+/// yet measured ([`judge`]). `progress` is told of the run and of every repeat, made or not.
+/// The repeats depend only on the run's own counts, so they are the same on every machine.
+pub fn run_timed(
+    case: &dyn StudyCase,
+    method: &Method,
+    step: StepControl,
+    repeats: usize,
+    progress: &(dyn Fn() + Sync),
+) -> Result<StudyRun, ScenarioError> {
+    let o = case.measure(method.scheme, step)?;
+    progress();
+    let mut run = study_run(method, step, o, case.dim()?);
+    let mut times = vec![run.wall_time.median];
+    for _ in 0..repeats {
+        if run.failure.is_none() && (run.work as f64) < TIMED_ONCE_FROM {
+            times.push(case.measure(method.scheme, step)?.wall_time_s);
+        }
+        progress();
+    }
+    run.wall_time = WallTimes::of(&times);
+    Ok(run)
+}
+
+/// The counted work ([`integrators::Stats::work`]) from which [`run_timed`] times a run once:
+/// about 8 ms at the 82 ns a unit of work that `reproduce`'s comparisons take on the
+/// two-core machine (median over their 2,583 runs; 23 to 230 ns from the 10th to the 90th
+/// percentile). Their three timings spread by about 10 % of the median whatever the run's
+/// length (9 % at 1e5 to 1e6 units, 10 % past 1e6), and a longer run's time is set beside
+/// errors spanning decades, so one timing serves; the runs past it took 90 % of the
+/// comparisons' time, two thirds of it in repeats (docs/performance.md).
+pub const TIMED_ONCE_FROM: f64 = 1e5;
+
 /// Runs each case's jobs, each `1 + repeats` times (the repeats only for their wall time:
 /// [`StudyRun::wall_time`] is their median and spread), with each case's reference where it
 /// asks for one ([`Posed::reference_for`]), as one list (see the module). `progress` is told
@@ -345,21 +400,7 @@ pub fn run_cases(
             if o.error.is_some() {
                 first_failed.store(true, Ordering::Relaxed);
             }
-            Ok(Done::Run(Box::new(StudyRun {
-                solver: method.label(),
-                resolution: resolution(step),
-                step: StepKind::of(step),
-                errors: Errors::UNMEASURED,
-                measures: o.measures,
-                stats: o.stats,
-                work: o.stats.work(dims[case]),
-                diverged: crate::run::diverged(!method.is_implicit(), step, o.error.as_ref()),
-                verdict: Verdict::of_error(o.error.as_ref())
-                    .unwrap_or(Verdict::OK)
-                    .with_instability(o.instability.as_ref()),
-                failure: o.error,
-                wall_time: WallTimes::of(&[o.wall_time_s]),
-            })))
+            Ok(Done::Run(Box::new(study_run(&method, step, o, dims[case]))))
         }
     })?;
     let mut done = done.into_iter().map(|(_, d)| d);

@@ -253,3 +253,26 @@ fn on_a_smooth_stiff_problem_the_implicit_method_wins_above_a_stiffness_ratio() 
         assert!(ratio < 0.2, "implicit/explicit {ratio}");
     }
 }
+
+#[test]
+fn a_run_is_timed_again_only_while_its_work_is_short_of_the_limit() {
+    // Two timing repeats asked for: a run below `TIMED_ONCE_FROM` counted work is timed three
+    // times, a run at or past it (BDF on the regularised law at the smallest widths), and a
+    // failed one, once. The spec has both kinds.
+    let spec = CompareSpec {
+        repeats: 2,
+        ..spec()
+    };
+    let c = compare(&belt(), &spec, &|| {}).unwrap();
+    let limit = scenarios::batch::TIMED_ONCE_FROM;
+    let (short, long): (Vec<_>, Vec<_>) = (c.runs.iter())
+        .map(|r| &r.run)
+        .partition(|r| (r.work as f64) < limit && r.failure.is_none());
+    assert!(!short.is_empty() && !long.is_empty(), "{} and {}", short.len(), long.len());
+    for r in short {
+        assert_eq!(r.wall_time.repeats, 3, "{} at {}", r.solver, r.resolution);
+    }
+    for r in long {
+        assert_eq!(r.wall_time.repeats, 1, "{} at {}: work {}", r.solver, r.resolution, r.work);
+    }
+}

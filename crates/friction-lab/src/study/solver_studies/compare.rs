@@ -88,7 +88,8 @@ pub struct CompareRequest {
         default_value = "0.04,0.02,0.01,0.005,0.0025"
     )]
     pub ts_dt_list: Vec<f64>,
-    /// Timings of each run: the median wall time and its quartiles.
+    /// Timings of each run: the median wall time and its quartiles. A run of 1e5 units of
+    /// counted work or more, or one that failed, is timed once.
     #[arg(
         long,
         value_name = "N",

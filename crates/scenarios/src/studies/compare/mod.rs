@@ -14,11 +14,13 @@
 //! and its **discretisation error**, against that tight solution. The model error as a
 //! function of ε is fitted as `e(ε) ≈ C·ε^p` ([`regularisation`]).
 //!
-//! The runs go in rounds, loose to tight: round k runs the k-th resolution of every track (a
-//! scheme at one ε) still going, so that a track stops as soon as it has met the tightest
-//! target, failed, or reached its regularisation floor, and is extended past its list while
-//! its error still falls ([`next_resolution`]). Each round is
-//! one list on the pool, so the results do not depend on the thread count.
+//! Each track (a scheme at one ε) runs its resolutions loose to tight, one after the other on
+//! one worker, so that it stops as soon as it has met the tightest target, failed, or reached
+//! its regularisation floor, and is extended past its list while its error still falls
+//! ([`next_resolution`]). The workers take the tracks in turn ([`schedule::in_order`]); a
+//! track's runs depend on its own earlier runs alone, so the results do not depend on the
+//! thread count, and no worker waits for another's track. A run is timed again only while
+//! it is short ([`batch::run_timed`]).
 //!
 //! The runs fall into independent [`parts`] (the cross-check; each scheme without ε; each
 //! width ε with the regularised schemes at it), each made by [`TrueSolution::part`] from the
@@ -36,6 +38,7 @@ use super::extend::next_resolution;
 use super::{batch, Errors, Measures, Method, Reference, StepKind, StudyCase, StudyRun, WallTimes};
 use crate::error::ScenarioError;
 use crate::errors::Scales;
+use crate::schedule;
 use crate::study_run::{REFERENCE_MARGIN, REFERENCE_TOLERANCE};
 use crate::verdict::Verdict;
 use friction_models::params::show;
@@ -518,9 +521,14 @@ impl TrueSolution {
             })
             .collect();
 
-        // The tracks.
-        let mut tracks: Vec<(usize, Track)> = (part.tracks.iter())
-            .map(|&i| {
+        // The tracks, each a chain of runs on one worker (each run's resolution follows from
+        // the track's earlier runs alone), the workers taking the tracks in turn.
+        let order: Vec<usize> = (0..part.tracks.len()).collect();
+        let tracks = schedule::in_order(
+            &order,
+            |_| false,
+            |k| {
+                let i = part.tracks[k];
                 let (scheme, width) = every[i];
                 let mut t = Track::new(scheme, planned(scheme, &spec.resolutions));
                 if let Some(j) = width {
@@ -529,57 +537,17 @@ impl TrueSolution {
                         .expect("a part makes the tight solutions of its tracks' widths");
                     t.tight = (model.failure.is_none()).then(|| (measures.clone(), model.error));
                 }
-                (i, t)
-            })
-            .collect();
-
-        // The rounds.
-        loop {
-            let mut round: Vec<(usize, [(Method, StepControl); 1])> = Vec::new();
-            for (k, (_, t)) in tracks.iter_mut().enumerate() {
-                if t.stopped.is_some() {
-                    continue;
-                }
-                match t.next() {
-                    Ok(step) => round.push((k, [(t.method, step)])),
-                    Err(why) => t.stopped = Some(Some(why)),
-                }
-            }
-            if round.is_empty() {
-                break;
-            }
-            let posed: Vec<batch::Posed> = (round.iter())
-                .map(|(_, jobs)| batch::Posed {
-                    case,
-                    reference_for: None,
-                    jobs,
-                })
-                .collect();
-            let done = batch::run_cases(&posed, spec.repeats, progress)?;
-            for ((k, _), c) in round.iter().zip(done) {
-                let t = &mut tracks[*k].1;
-                let mut run = c.runs.into_iter().next().expect("one job a case");
-                batch::judge(&mut run, &self.measures);
-                run.solver = t.label();
-                let discretisation_error = (t.tight.as_ref())
-                    .filter(|_| run.failure.is_none())
-                    .map(|(m, _)| Errors::between(&run.measures, m).grid_relative);
-                let compared = ComparedRun {
-                    scheme: t.scheme.clone(),
-                    epsilon: t.epsilon,
-                    run,
-                    discretisation_error,
-                };
-                t.record(compared, tightest);
-            }
-        }
+                self.run_track(case, &mut t, spec, tightest, progress)?;
+                Ok::<_, ScenarioError>((i, t))
+            },
+        )?;
         Ok(ComparePart {
             cross_check,
             model_errors: (solutions.into_iter())
                 .map(|(j, model, _)| (j, model))
                 .collect(),
             tracks: (tracks.into_iter())
-                .map(|(i, t)| {
+                .map(|(_, (i, t))| {
                     let record = TrackRecord {
                         stopped: t.stopped.flatten(),
                         runs: t.runs.into_iter().map(RunRecord::of).collect(),
@@ -588,6 +556,42 @@ impl TrueSolution {
                 })
                 .collect(),
         })
+    }
+
+    /// Runs track `t` of `case` until it stops: each run at the resolution its earlier runs
+    /// call for ([`Track::next`]), timed by [`batch::run_timed`], scored against the true
+    /// solution, and recorded ([`Track::record`]).
+    fn run_track(
+        &self,
+        case: &dyn StudyCase,
+        t: &mut Track,
+        spec: &CompareSpec,
+        tightest: f64,
+        progress: &(dyn Fn() + Sync),
+    ) -> Result<(), ScenarioError> {
+        while t.stopped.is_none() {
+            let step = match t.next() {
+                Ok(step) => step,
+                Err(why) => {
+                    t.stopped = Some(Some(why));
+                    break;
+                }
+            };
+            let mut run = batch::run_timed(case, &t.method, step, spec.repeats, progress)?;
+            batch::judge(&mut run, &self.measures);
+            run.solver = t.label();
+            let discretisation_error = (t.tight.as_ref())
+                .filter(|_| run.failure.is_none())
+                .map(|(m, _)| Errors::between(&run.measures, m).grid_relative);
+            let compared = ComparedRun {
+                scheme: t.scheme.clone(),
+                epsilon: t.epsilon,
+                run,
+                discretisation_error,
+            };
+            t.record(compared, tightest);
+        }
+        Ok(())
     }
 
     /// The comparison `spec` made of `parts`, which must hold the cross-check, every width and
