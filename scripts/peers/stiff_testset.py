@@ -31,17 +31,16 @@ between the two runs that bracket them (— where no two do).
 
 import argparse
 import csv
-import json
 import math
 import os
 import statistics
-import subprocess
 import time
 
 import numpy as np
 from scipy.integrate import solve_ivp
 
 import friction_cases
+from common import TESTSET, atol_of, run_friction_lab, scd, simulate, time_to_reach
 
 
 def vdp(t, y):
@@ -110,55 +109,14 @@ def orego_jac(t, y):
 
 # name: (f, jac, y0, t_end, reference), as integrators::testset declares them.
 PROBLEMS = {
-    "van-der-pol": (vdp, vdp_jac, [2.0, 0.0], 2.0, [1.706167732170469, -0.8928097010248125]),
-    "robertson": (rober, rober_jac, [1.0, 0.0, 0.0], 1e11,
-                  [0.2083340149701255e-7, 0.8333360770334713e-13, 0.9999999791665050]),
-    "hires": (hires, hires_jac, [1, 0, 0, 0, 0, 0, 0, 0.0057], 321.8122,
-              [0.7371312573325668e-3, 0.1442485726316185e-3, 0.5888729740967575e-4,
-               0.1175651343283149e-2, 0.2386356198831331e-2, 0.6238968252742796e-2,
-               0.2849998395185769e-2, 0.2850001604814231e-2]),
-    "orego": (orego, orego_jac, [1.0, 2.0, 3.0], 360.0,
-              [0.1000814870318523e1, 0.1228178521549917e4, 0.1320554942846706e3]),
+    name: (f, jac, y0, *TESTSET[name])
+    for name, f, jac, y0 in [
+        ("van-der-pol", vdp, vdp_jac, [2.0, 0.0]),
+        ("robertson", rober, rober_jac, [1.0, 0.0, 0.0]),
+        ("hires", hires, hires_jac, [1, 0, 0, 0, 0, 0, 0, 0.0057]),
+        ("orego", orego, orego_jac, [1.0, 2.0, 3.0]),
+    ]
 }
-
-
-def time_to_reach(rows, problem, solver, target):
-    """Median wall time to reach `target` digits, log-interpolated between bracketing runs."""
-    pts = sorted((r["scd"], r["median_s"]) for r in rows
-                 if r["problem"] == problem and r["solver"] == solver and r["scd"] is not None)
-    for (s1, t1), (s2, t2) in zip(pts, pts[1:]):
-        if s1 <= target <= s2 and s2 > s1:
-            w = (target - s1) / (s2 - s1)
-            return math.exp(math.log(t1) + w * (math.log(t2) - math.log(t1)))
-    return None
-
-
-def scd(y, reference):
-    worst = max(abs((a - r) / r) for a, r in zip(y, reference))
-    return math.inf if worst == 0 else -math.log10(worst)
-
-
-def simulate(binary, problem, solver, rtol, atol, out):
-    """A friction case by `friction-lab simulate`: (x, v) at the end, wall time, evaluations."""
-    subprocess.run([binary, "simulate", *friction_cases.CASES[problem][4], "--solver", solver,
-                    "--rtol", str(rtol), "--atol", str(atol), "--points", "2", "--out", out],
-                   check=True, capture_output=True)
-    with open(os.path.join(out, "summary.json")) as f:
-        s = json.load(f)
-    with open(os.path.join(out, "final.csv")) as f:
-        body = next(csv.DictReader(f))
-    return [float(body["x"]), float(body["v"])], s["wall_time_s"], s["stats"]["rhs_evals"]
-
-
-def run_friction_lab(binary, problem, solver, rtol, atol, out):
-    if problem in friction_cases.CASES:
-        end, t, evals = simulate(binary, problem, solver, rtol, atol, out)
-        return scd(end, PROBLEMS[problem][4]), t, evals
-    subprocess.run([binary, "testset", problem, "--solver", solver, "--rtol", str(rtol),
-                    "--atol", str(atol), "--out", out], check=True, capture_output=True)
-    with open(os.path.join(out, "summary.json")) as f:
-        s = json.load(f)
-    return s["stats"]["scd"], s["wall_time_s"], s["stats"]["rhs_evals"]
 
 
 def solve_scipy(problem, method, rtol, atol):
@@ -210,14 +168,19 @@ def main():
     rows = []
     for problem in PROBLEMS:
         for tol in map(float, args.tols.split(",")):
-            atol = tol * 1e-14 if problem == "robertson" else tol
+            atol = atol_of(problem, tol)
             for solver in ours + theirs:
                 times, digits, evals = [], None, None
                 for k in range(args.repeats):
                     if solver in ours:
                         out = os.path.join(args.out, "runs", f"{problem}-{solver}-{tol:g}")
-                        digits, t, evals = run_friction_lab(args.friction_lab, problem, solver,
-                                                            tol, atol, out)
+                        solved = run_friction_lab(args.friction_lab, problem, solver, tol, atol,
+                                                  out, PROBLEMS[problem][4])
+                        if solved is None:  # the solver failed: no digits, no time
+                            digits, t, evals = None, math.nan, None
+                        else:
+                            digits, t, stats = solved
+                            evals = stats["rhs_evals"]
                     else:
                         digits, t, evals = run_scipy(problem, solver, tol, atol)
                     times.append(t)
