@@ -268,11 +268,20 @@ fn a_run_is_timed_again_only_while_its_work_is_short_of_the_limit() {
     let (short, long): (Vec<_>, Vec<_>) = (c.runs.iter())
         .map(|r| &r.run)
         .partition(|r| (r.work as f64) < limit && r.failure.is_none());
-    assert!(!short.is_empty() && !long.is_empty(), "{} and {}", short.len(), long.len());
+    assert!(
+        !short.is_empty() && !long.is_empty(),
+        "{} and {}",
+        short.len(),
+        long.len()
+    );
     for r in short {
         assert_eq!(r.wall_time.repeats, 3, "{} at {}", r.solver, r.resolution);
     }
     for r in long {
-        assert_eq!(r.wall_time.repeats, 1, "{} at {}: work {}", r.solver, r.resolution, r.work);
+        assert_eq!(
+            r.wall_time.repeats, 1,
+            "{} at {}: work {}",
+            r.solver, r.resolution, r.work
+        );
     }
 }
