@@ -138,3 +138,34 @@ fn a_run_that_stopped_at_its_start_measures_nothing_and_has_not_settled() {
         }
     }
 }
+
+#[test]
+fn a_rigs_trace_is_its_evenly_spaced_rows_without_those_recorded_at_events() {
+    use friction_models::{FrictionParams, ModelId};
+    use friction_systems::Scheme;
+    use integrators::{even_grid, Solver, StepControl};
+    use scenarios::{run, Limits, RunSpec, Scenario};
+    let spec = RunSpec {
+        scenario: Scenario::BELT,
+        law: ModelId::Cvs.into(),
+        friction: FrictionParams::paper(),
+        params: Scenario::BELT.defaults(),
+        scheme: Scheme::events(Solver::DOPRI5),
+        step: StepControl::Adaptive {
+            rtol: 1e-8,
+            atol: 1e-10,
+            h0: None,
+        },
+        t_end: Some(20.0),
+        output_points: 201,
+        limits: Limits::default(),
+    };
+    let o = run(&spec, &mut |_| {}).unwrap();
+    let trace = Trace::of_outcome(&o);
+    // Stick–slip: the rows at the switches come on top of the grid's 201.
+    assert!(o.events.len() > 10, "{} events", o.events.len());
+    assert_eq!(o.rows.len(), 201 + o.events.len());
+    assert_eq!(trace.t, even_grid(0.0, 20.0, 201));
+    let stick = o.events.iter().filter(|e| e.to == friction_systems::STICK);
+    assert_eq!(trace.stick_entries.len(), stick.count());
+}

@@ -89,11 +89,16 @@ impl Trace {
     /// left out) and its switches into stick.
     pub fn of_outcome(o: &Outcome) -> Trace {
         let mut trace = Trace::default();
-        for r in o
-            .rows
-            .iter()
-            .filter(|r| !o.events.iter().any(|e| e.t == r.t))
-        {
+        // The event times sorted once (−0 read as 0, as `==` reads it): a row is left out when
+        // its time is one of them, found by bisection, not by a scan of every event per row.
+        let mut at_events: Vec<f64> = o.events.iter().map(|e| e.t + 0.0).collect();
+        at_events.sort_by(f64::total_cmp);
+        let at_event = |t: f64| {
+            at_events
+                .binary_search_by(|e| e.total_cmp(&(t + 0.0)))
+                .is_ok()
+        };
+        for r in o.rows.iter().filter(|r| !at_event(r.t)) {
             trace.t.push(r.t);
             trace.x.push(r.x);
             trace.v.push(r.v);
