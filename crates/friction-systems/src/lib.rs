@@ -45,7 +45,7 @@ pub use hybrid::FrictionSystem;
 pub use layout::Layout;
 pub use moreau_jean::MoreauJean;
 pub use reach::{Reach, RUNAWAY_FACTOR};
-pub use run::{simulate, BodyState, ContactEvent, Run, StiffnessPoint};
+pub use run::{simulate, simulate_spans, BodyState, ContactEvent, Run, StiffnessPoint};
 pub use scheme::Scheme;
 pub use switching::{mode_name, Switching, SLIP_NEGATIVE, SLIP_POSITIVE, STICK};
 pub use system::{Anchor, Body, Contact, End, Force, Profile, Spring, System, SystemError};

@@ -9,7 +9,9 @@ use crate::reach::Reach;
 use crate::scheme::Scheme;
 use crate::system::{System, SystemError};
 use integrators::stability::Instability;
-use integrators::{EventRecord, Failure, Mode, Options, Solution, SolverError, StepControl};
+use integrators::{
+    EventRecord, Failure, Integrator, Mode, OdeProblem, Options, Solution, SolverError, StepControl,
+};
 use std::time::Instant;
 
 /// The most recorded states at which [`Run::instability`] takes a time-stepped run's one-step
@@ -106,10 +108,28 @@ pub fn simulate<'a>(
             solver.solve_observed(&problem, &y0, &modes0, options, observe)
         }
     };
-    let (mut solution, mut error) = match result {
+    let (solution, error) = match result {
         Ok(s) => (s, None),
         Err(Failure { error, solution }) => (*solution, Some(error)),
     };
+    Ok(Run {
+        t0,
+        y0,
+        modes0,
+        wall_time_s: clock.elapsed().as_secs_f64(),
+        ..judged(problem, solution, error, t_end)
+    })
+}
+
+/// A run of `problem` that computed `solution` and ended with `error`, judged: cut at the first
+/// recorded point beyond the system's reach over `[t0, t_end]` ([`runaway`]), a solver that
+/// failed on a non-finite value left as it said. Its start and wall time are to be filled in.
+fn judged<'a>(
+    problem: FrictionSystem<'a>,
+    mut solution: Solution,
+    mut error: Option<SolverError>,
+    t_end: f64,
+) -> Run<'a> {
     if !matches!(error, Some(SolverError::NonFinite { .. })) {
         if let Some((k, what)) = runaway(&problem, &solution, t_end) {
             let t = solution.t[k];
@@ -117,15 +137,76 @@ pub fn simulate<'a>(
             error = Some(SolverError::Runaway { t, what });
         }
     }
-    Ok(Run {
+    Run {
         problem,
-        t0,
-        y0,
-        modes0,
+        t0: 0.0,
+        y0: Vec::new(),
+        modes0: Vec::new(),
         solution,
         error,
-        wall_time_s: clock.elapsed().as_secs_f64(),
-    })
+        wall_time_s: 0.0,
+    }
+}
+
+/// Integrates `system` by `scheme` over the spans `next` asks for: first with `options`, then,
+/// while `next` returns the options of a longer run (these options but for the end time, the
+/// largest step and the output grid), with those. Each run is the one [`simulate`] gives for
+/// its options. An event-driven run of a method that can be copied continues the run before it
+/// from before its last step ([`Integrator::extend`]), so that no span is integrated twice;
+/// any other is run again from the start. `next` sees every run; the last is returned, its
+/// wall time that of all the spans.
+pub fn simulate_spans<'a>(
+    system: &'a System,
+    scheme: Scheme,
+    options: Options,
+    next: &mut dyn FnMut(&Run<'a>) -> Option<Options>,
+) -> Result<Run<'a>, SystemError> {
+    system.validate()?;
+    let problem = FrictionSystem::new(system, scheme.switching());
+    let (t0, y0) = (options.t0, problem.initial_state());
+    let modes0 = problem.initial_modes(t0, &y0);
+    // The integration to continue: an event-driven scheme whose method makes a stepper.
+    let resumable = |options: &Options| match scheme {
+        Scheme::EventDriven { solver, .. } => {
+            let stepper = solver.method().stepper(options, problem.dim()).ok()?;
+            let integrator = Integrator::new(&problem, stepper, &y0, &modes0, options.clone());
+            Some((integrator.ok()?.resumable(), solver.method().name()))
+        }
+        Scheme::TimeStepping { .. } => None,
+    };
+    let clock = Instant::now();
+    let mut options = options;
+    let mut integration = resumable(&options);
+    loop {
+        let run = match integration.as_mut() {
+            Some((integrator, name)) => {
+                let error = integrator.advance(&mut |_| {}).err();
+                let mut solution = integrator.solution();
+                solution.solver = name;
+                let problem = FrictionSystem::new(system, scheme.switching());
+                Run {
+                    t0,
+                    y0: y0.clone(),
+                    modes0: modes0.clone(),
+                    ..judged(problem, solution, error, options.t_end)
+                }
+            }
+            None => simulate(system, scheme, options.clone(), &mut |_| {})?,
+        };
+        let Some(longer) = next(&run) else {
+            return Ok(Run {
+                wall_time_s: clock.elapsed().as_secs_f64(),
+                ..run
+            });
+        };
+        let extended = integration
+            .as_mut()
+            .is_some_and(|(i, _)| run.error.is_none() && i.extend(longer.clone()));
+        if !extended {
+            integration = resumable(&longer);
+        }
+        options = longer;
+    }
 }
 
 /// The first recorded point of `solution` at which a body is beyond the system's

@@ -92,11 +92,13 @@ impl OneStepMethod for AutoMethod {
             since_trial: 0,
             trial_every: TRIAL_EVERY,
             switches: Vec::new(),
+            end_read: false,
         }))
     }
 }
 
 /// Dormand–Prince and Radau IIA(5), one of them stepping.
+#[derive(Clone)]
 pub struct Auto {
     explicit: Dopri5,
     implicit: Radau5,
@@ -110,6 +112,8 @@ pub struct Auto {
     since_trial: usize,
     trial_every: usize,
     switches: Vec<MethodSwitch>,
+    /// Whether a trial was left out because it would have reached the end.
+    end_read: bool,
 }
 
 impl Auto {
@@ -129,9 +133,9 @@ impl Auto {
         let state = self.explicit.state();
         let h = RATIO * state.h;
         let due = self.since_trial >= self.trial_every
-            && self.explicit.stiffness_estimate() >= TRIAL_HLAMB
-            && state.t + h < t_stop;
-        if !due {
+            && self.explicit.stiffness_estimate() >= TRIAL_HLAMB;
+        self.end_read |= due && state.t + h >= t_stop;
+        if !due || state.t + h >= t_stop {
             return Ok(false);
         }
         self.since_trial = 0;
@@ -247,5 +251,25 @@ impl Stepper for Auto {
 
     fn method_switches(&self) -> &[MethodSwitch] {
         &self.switches
+    }
+
+    fn copy(&self) -> Option<Box<dyn Stepper>> {
+        Some(Box::new(self.clone()))
+    }
+
+    /// As the method stepping says, and for Dormand–Prince also when a trial of Radau IIA,
+    /// [`RATIO`] times its step, would reach the end.
+    fn may_read_end(&self, t_stop: f64) -> bool {
+        if self.stiff {
+            return self.implicit.may_read_end(t_stop);
+        }
+        let state = self.explicit.state();
+        self.explicit.may_read_end(t_stop) || state.t + RATIO * state.h >= t_stop
+    }
+
+    fn resume(&mut self, options: &Options) -> bool {
+        let explicit = self.explicit.resume(options);
+        let implicit = self.implicit.resume(options);
+        explicit && implicit && !self.end_read
     }
 }

@@ -162,6 +162,9 @@ pub struct Dopri5 {
     nstiff: usize,
     /// The last stiffness test's h·ρ̂ (HLAMB).
     hlamb: f64,
+    /// Whether a step so far read where the run ends: shortened to land on it, or sized by
+    /// the largest step (the span by default) or by the distance to it ([`Stepper::resume`]).
+    end_read: bool,
     stats: Stats,
 }
 
@@ -189,6 +192,7 @@ impl Dopri5 {
             stiff_at: None,
             nstiff: NSTIFF,
             hlamb: 0.0,
+            end_read: false,
             stats: Stats::default(),
         }
     }
@@ -223,6 +227,7 @@ impl Dopri5 {
         } else {
             (dny / dnf).sqrt() * 0.01
         };
+        self.end_read |= h > self.h_max.min(t_stop - self.state.t);
         h = h.min(self.h_max).min(t_stop - self.state.t);
         for i in 0..y.len() {
             self.y1[i] = y[i] + h * f0[i];
@@ -240,6 +245,7 @@ impl Dopri5 {
         } else {
             (0.01 / der12).powf(1.0 / HINIT_ORDER)
         };
+        self.end_read |= (100.0 * h).min(h1) > self.h_max;
         (100.0 * h).min(h1).min(self.h_max)
     }
 
@@ -380,6 +386,7 @@ impl Stepper for Dopri5 {
         let (rtol, atol) = match self.control {
             StepControl::Fixed { h } => {
                 let t_new = next_grid_point(self.t_start, h, self.state.t, t_stop);
+                self.end_read |= t_new == t_stop;
                 let step = t_new - self.state.t;
                 self.attempts += 1;
                 check_limits(self.attempts, self.max_steps, self.state.t, step)?;
@@ -398,6 +405,7 @@ impl Stepper for Dopri5 {
             let last = self.state.t + 1.01 * h - t_stop > 0.0;
             if last {
                 h = t_stop - self.state.t;
+                self.end_read = true;
             }
             self.stages(ode, h);
             let err = wrms(&self.err, &self.state.y, &self.y1, rtol, atol);
@@ -419,10 +427,12 @@ impl Stepper for Dopri5 {
                 // On the last step DOPCOR returns H = HNEW before the HMAX and REJECT limits.
                 self.state.h = if last {
                     h_new
-                } else if self.reject {
-                    h_new.min(self.h_max).min(h)
                 } else {
-                    h_new.min(self.h_max)
+                    self.end_read |= h_new > self.h_max;
+                    match self.reject {
+                        true => h_new.min(self.h_max).min(h),
+                        false => h_new.min(self.h_max),
+                    }
                 };
                 self.reject = false;
                 return Ok(());
@@ -458,5 +468,26 @@ impl Stepper for Dopri5 {
 
     fn stiffness_detected_at(&self) -> Option<f64> {
         self.stiff_at
+    }
+
+    fn copy(&self) -> Option<Box<dyn Stepper>> {
+        Some(Box::new(self.clone()))
+    }
+
+    /// The next step reads the end when it is the first after a (re)start (HINIT sizes it
+    /// by the distance to the end), when it would come within 1 % of a step of the end
+    /// (DOPCOR's `X+1.01D0*H-XEND`), or, at a fixed step, when it lands on the end.
+    fn may_read_end(&self, t_stop: f64) -> bool {
+        let (t, h) = (self.state.t, self.state.h);
+        match self.control {
+            StepControl::Fixed { h } => next_grid_point(self.t_start, h, t, t_stop) == t_stop,
+            StepControl::Adaptive { .. } => h == 0.0 || t + 1.01 * h - t_stop > 0.0,
+        }
+    }
+
+    fn resume(&mut self, options: &Options) -> bool {
+        self.h_max = options.h_max();
+        self.max_steps = options.max_steps;
+        !self.end_read
     }
 }

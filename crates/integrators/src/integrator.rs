@@ -32,6 +32,19 @@ pub enum StopReason {
     },
 }
 
+/// The integration as it stood before a step that may read where it ends
+/// ([`Stepper::may_read_end`]): what [`Integrator::extend`] continues from.
+struct Checkpoint {
+    stepper: Box<dyn Stepper>,
+    modes: Vec<Mode>,
+    watch: EventWatch,
+    /// Points and events recorded then.
+    recorded: (usize, usize),
+    grid_next: usize,
+    cut_at_event: usize,
+    steps: usize,
+}
+
 /// An integration in progress.
 pub struct Integrator<'a> {
     problem: &'a dyn OdeProblem,
@@ -56,6 +69,11 @@ pub struct Integrator<'a> {
     /// [`Options::time_limit_since`].
     clock: std::time::Instant,
     done: bool,
+    /// Whether an event's action stopped the integration.
+    stopped: bool,
+    /// Whether the run keeps a [`Checkpoint`] for [`Integrator::extend`].
+    resumable: bool,
+    checkpoint: Option<Checkpoint>,
 }
 
 impl<'a> Integrator<'a> {
@@ -113,7 +131,68 @@ impl<'a> Integrator<'a> {
             steps: 0,
             clock,
             done: false,
+            stopped: false,
+            resumable: false,
+            checkpoint: None,
         })
+    }
+
+    /// The integration kept ready to be continued to a later end ([`Integrator::extend`]):
+    /// a copy of the method is kept before every step that may read the end (a few steps a
+    /// run, and the first after each event).
+    pub fn resumable(mut self) -> Self {
+        self.resumable = true;
+        self
+    }
+
+    /// Continues a run that reached its end to the later end of `options`, which must be
+    /// this run's options but for the end time, the largest step and the output grid (whose
+    /// points up to the old end must be the same): from before the step that read the old
+    /// end, the output recorded since dropped, so that the run goes on as one from the start
+    /// to the new end would, step for step. `false`, the run left as it is, where it cannot: a
+    /// run not made [`Integrator::resumable`], not at its end (failed or stopped by an
+    /// event), a method that cannot be copied or whose steps read the old end
+    /// ([`Stepper::resume`]), or other options.
+    pub fn extend(&mut self, options: Options) -> bool {
+        let same_but_end = Options {
+            t_end: options.t_end,
+            h_max: options.h_max,
+            output: options.output.clone(),
+            ..self.options.clone()
+        } == options;
+        let Some(c) = self.checkpoint.as_mut() else {
+            return false;
+        };
+        let grid_kept = match (&self.options.output, &options.output) {
+            (Output::Steps, Output::Steps) => true,
+            (Output::Grid(old), Output::Grid(new))
+            | (Output::GridOnly(old), Output::GridOnly(new)) => {
+                new.get(..c.grid_next) == old.get(..c.grid_next)
+            }
+            _ => false,
+        };
+        if !self.done
+            || self.stopped
+            || !same_but_end
+            || !grid_kept
+            || options.t_end <= self.options.t_end
+            || !c.stepper.resume(&options)
+        {
+            return false;
+        }
+        let Some(c) = self.checkpoint.take() else {
+            return false;
+        };
+        self.stepper = c.stepper;
+        self.modes = c.modes;
+        self.watch = c.watch;
+        self.solution.keep_first(c.recorded.0, c.recorded.1);
+        self.grid_next = c.grid_next;
+        self.cut_at_event = c.cut_at_event;
+        self.steps = c.steps;
+        self.done = false;
+        self.options = options;
+        true
     }
 
     /// The current modes.
@@ -183,6 +262,24 @@ impl<'a> Integrator<'a> {
         if crate::interrupt::requested() {
             return Err(SolverError::Interrupted {
                 t: self.stepper.state().t,
+            });
+        }
+        // A copy whose steps read the end already cannot be continued: the last one that
+        // can is kept instead.
+        let copy = (self.resumable && self.stepper.may_read_end(t_end))
+            .then(|| self.stepper.copy())
+            .flatten()
+            .and_then(|mut copy| copy.resume(&self.options).then_some(copy));
+        if let Some(stepper) = copy {
+            self.checkpoint = Some(Checkpoint {
+                stepper,
+                modes: self.modes.clone(),
+                watch: self.watch.clone(),
+                recorded: (self.solution.len(), self.solution.events.len()),
+                grid_next: self.grid_next,
+                cut_at_event: self.cut_at_event,
+                // This step is counted already; a continued run counts it again.
+                steps: self.steps - 1,
             });
         }
         let ode = Ode {
@@ -312,6 +409,7 @@ impl<'a> Integrator<'a> {
         let stop = control == Control::Stop;
         if stop || t >= self.options.t_end {
             self.done = true;
+            self.stopped = stop;
             return Ok(if stop {
                 StopReason::Stopped { t }
             } else {
@@ -353,18 +451,23 @@ impl<'a> Integrator<'a> {
     /// As [`Integrator::solve`], telling `observe` the time reached after every step (for a
     /// progress display).
     pub fn solve_observed(mut self, observe: &mut dyn FnMut(f64)) -> Result<Solution, Failure> {
+        match self.advance(observe) {
+            Ok(()) => Ok(self.into_solution()),
+            Err(error) => Err(Failure {
+                error,
+                solution: Box::new(self.into_solution()),
+            }),
+        }
+    }
+
+    /// Steps to the end (or to a stopping event), telling `observe` the time reached after
+    /// every step; the integration stays, to be read ([`Integrator::solution`]) and extended
+    /// ([`Integrator::extend`]). A failure keeps what was computed before it.
+    pub fn advance(&mut self, observe: &mut dyn FnMut(f64)) -> Result<(), SolverError> {
         loop {
-            match self.step() {
-                Ok(StopReason::EndReached | StopReason::Stopped { .. }) => {
-                    return Ok(self.into_solution())
-                }
-                Ok(_) => observe(self.t()),
-                Err(error) => {
-                    return Err(Failure {
-                        error,
-                        solution: Box::new(self.into_solution()),
-                    })
-                }
+            match self.step()? {
+                StopReason::EndReached | StopReason::Stopped { .. } => return Ok(()),
+                _ => observe(self.t()),
             }
         }
     }

@@ -22,6 +22,7 @@ fn mass_at(mass: Option<&[f64]>, j: usize) -> f64 {
 }
 
 /// `E = fac·M − J` factorised.
+#[derive(Clone)]
 pub enum RealSystem {
     /// `decsol.f`'s DEC.
     Dense(DenseLu),
@@ -82,6 +83,7 @@ impl RealSystem {
 }
 
 /// `E2 = (alphn + i·betan)·M − J` factorised.
+#[derive(Clone)]
 pub enum ComplexSystem {
     /// `decsol.f`'s DECC.
     Dense(DenseComplexLu),
@@ -161,6 +163,7 @@ impl ComplexSystem {
 }
 
 /// The factorised pair E1, E2 of a Radau IIA(5) step.
+#[derive(Clone)]
 pub struct RadauSystems {
     /// E1 = (γ/h)·M − J.
     pub real: RealSystem,

@@ -193,7 +193,7 @@ impl LinearSolver for FaerDenseLu {
 }
 
 /// faer's sparse LU.
-#[derive(Default)]
+#[derive(Clone, Default)]
 pub struct FaerSparseLu {
     lu: Option<faer::sparse::linalg::solvers::Lu<usize, f64>>,
 }

@@ -187,6 +187,7 @@ enum Attempt {
 }
 
 /// Hairer's RADAU5 (RADCOR) for `n` unknowns.
+#[derive(Clone)]
 pub struct Radau5 {
     k: Coefficients,
     /// RTOL and ATOL after RADAU5's transformation.
@@ -227,6 +228,11 @@ pub struct Radau5 {
     /// initialisation, which needs XEND).
     fresh: bool,
     hmaxn: f64,
+    /// Where HMAXN was last set against the end.
+    hmaxn_at: f64,
+    /// Whether a step so far read where the run ends: shortened to land on it, or sized by
+    /// HMAXN, the distance to it or the largest step ([`Stepper::resume`]).
+    end_read: bool,
     hold: f64,
     hopt: f64,
     faccon: f64,
@@ -292,6 +298,8 @@ impl Radau5 {
             caljac: false,
             fresh: true,
             hmaxn: h_max,
+            hmaxn_at: 0.0,
+            end_read: false,
             hold: 0.0,
             hopt: 0.0,
             faccon: 1.0,
@@ -346,11 +354,14 @@ impl Radau5 {
         if self.fresh {
             // RADCOR: HMAXN = min(|HMAX|, |XEND − X|), H within it, LAST if it reaches XEND.
             self.hmaxn = self.h_max.abs().min((t_stop - t).abs());
+            self.hmaxn_at = t;
+            self.end_read |= self.state.h.abs() > self.hmaxn;
             self.state.h = self.state.h.abs().min(self.hmaxn);
             self.hold = self.state.h;
             if t + self.state.h * 1.0001 - t_stop >= 0.0 {
                 self.state.h = t_stop - t;
                 self.last = true;
+                self.end_read = true;
             }
             self.hopt = self.state.h;
             self.fresh = false;
@@ -361,6 +372,7 @@ impl Radau5 {
             self.last = t + self.state.h - t_stop >= 0.0;
             if self.last {
                 self.state.h = t_stop - t;
+                self.end_read = true;
             }
         }
     }
@@ -712,6 +724,7 @@ impl Radau5 {
             return Ok(Attempt::Accepted);
         }
         ode.rhs(self.state.t, &self.state.y, &mut self.f0, &mut self.stats);
+        self.end_read |= hnew.abs() > self.hmaxn;
         hnew = hnew.abs().min(self.hmaxn);
         self.hopt = h.min(hnew);
         if self.reject {
@@ -722,6 +735,7 @@ impl Radau5 {
         if self.state.t + hnew / QUOT1 - t_stop >= 0.0 {
             self.state.h = t_stop - self.state.t;
             self.last = true;
+            self.end_read = true;
         } else {
             let qt = hnew / h;
             if theta_small && (QUOT1..=QUOT2).contains(&qt) {
@@ -837,5 +851,25 @@ impl Stepper for Radau5 {
 
     fn stats(&self) -> Stats {
         self.stats
+    }
+
+    fn copy(&self) -> Option<Box<dyn Stepper>> {
+        Some(Box::new(self.clone()))
+    }
+
+    /// The next step reads the end when it is the first after a (re)start (HMAXN, LAST), or
+    /// when it or the step after it may reach the end: the step grows at most 1/FACR = 8
+    /// times, and RADCOR aims the next step at XEND once `X + HNEW/QUOT1` passes it.
+    fn may_read_end(&self, t_stop: f64) -> bool {
+        let (t, h) = (self.state.t, self.state.h.abs());
+        self.fresh || !self.f0_known || t + h + h / (FACR * QUOT1) - t_stop >= 0.0
+    }
+
+    /// HMAXN as a run to the later end would have set it where it was last set.
+    fn resume(&mut self, options: &Options) -> bool {
+        self.h_max = options.h_max();
+        self.max_steps = options.max_steps;
+        self.hmaxn = self.h_max.abs().min((options.t_end - self.hmaxn_at).abs());
+        !self.end_read
     }
 }

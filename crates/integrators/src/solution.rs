@@ -146,6 +146,15 @@ impl Solution {
         self.events.retain(|e| e.t <= last);
     }
 
+    /// Keeps the first `points` recorded points and the first `events` events, drops the
+    /// rest: the solution as it stood when it held that many.
+    pub fn keep_first(&mut self, points: usize, events: usize) {
+        self.t.truncate(points);
+        self.y.truncate(points * self.dim);
+        self.modes.truncate(points * self.n_modes);
+        self.events.truncate(events);
+    }
+
     /// The last recorded time and state.
     pub fn last(&self) -> Option<(f64, &[f64])> {
         let n = self.len();

@@ -1,6 +1,7 @@
 //! The interface every one-step method implements, and the problem as a method sees it.
 
 use crate::error::SolverError;
+use crate::options::Options;
 use crate::problem::{Mode, OdeProblem};
 use crate::solution::{EventRecord, MethodSwitch};
 use crate::stats::Stats;
@@ -122,6 +123,30 @@ pub trait Stepper {
     fn modes_inside(&self, before: &[Mode], after: &[Mode], out: &mut [Mode]) {
         let _ = after;
         out.copy_from_slice(before);
+    }
+
+    /// A copy of the method as it stands, for [`crate::Integrator::extend`] to continue the
+    /// run from; `None` (the default) for a method that cannot be copied, whose runs are then
+    /// extended by running them again from the start.
+    fn copy(&self) -> Option<Box<dyn Stepper>> {
+        None
+    }
+
+    /// Whether the next step may read where the run ends, `t_stop`: be shortened to land on
+    /// it, or size a step by it. The driver of a run that may be extended keeps a
+    /// [`Stepper::copy`] before every such step. True by default.
+    fn may_read_end(&self, t_stop: f64) -> bool {
+        let _ = t_stop;
+        true
+    }
+
+    /// Readies a copy to continue the run to a later end under `options` (its largest step
+    /// and step cap taken over): `false` where a step taken so far read the old end (was
+    /// shortened to it, or bounded by a largest step that was the old span), so that a run from
+    /// the start to the later end would have stepped otherwise. False by default.
+    fn resume(&mut self, options: &Options) -> bool {
+        let _ = options;
+        false
     }
 }
 

@@ -274,7 +274,7 @@ impl Outcome {
 }
 
 /// Checks the scenario parameters and the combination.
-fn validate(spec: &RunSpec) -> Result<(), ScenarioError> {
+pub(crate) fn validate(spec: &RunSpec) -> Result<(), ScenarioError> {
     spec.params.validate()?;
     spec.scenario.rig().check(&spec.params)?;
     if !spec.scenario.has_body() && spec.scheme.is_time_stepping() {
@@ -346,16 +346,24 @@ fn run_body(
     measure_stiffness: bool,
     observe: &mut dyn FnMut(f64),
 ) -> Result<Outcome, ScenarioError> {
-    let scheme = spec.scheme;
     let mut step_ends = Vec::new();
-    let run = friction_systems::simulate(system, scheme, options(spec, t_end), &mut |t| {
+    let run = friction_systems::simulate(system, spec.scheme, options(spec, t_end), &mut |t| {
         if measure_stiffness {
             step_ends.push(t);
         }
         observe(t)
     })?;
-    let stiffness = run.stiffness(&step_ends);
-    let instability = run.instability(&scheme, spec.step);
+    Ok(outcome_of(spec, system, &run, run.stiffness(&step_ends)))
+}
+
+/// The outcome of `run`, a run of `spec` on `system`, with the `stiffness` measured along it.
+pub(crate) fn outcome_of(
+    spec: &RunSpec,
+    system: &System,
+    run: &friction_systems::Run,
+    stiffness: Vec<friction_systems::StiffnessPoint>,
+) -> Outcome {
+    let instability = run.instability(&spec.scheme, spec.step);
     let row = |b: friction_systems::BodyState| Row {
         t: b.t,
         x: b.x,
@@ -371,7 +379,7 @@ fn run_body(
         .take_while(Row::is_finite)
         .collect();
     let last = rows.last().map_or(f64::NEG_INFINITY, |r| r.t);
-    Ok(Outcome {
+    Outcome {
         before_switches: run
             .before_switches(0)
             .into_iter()
@@ -390,7 +398,7 @@ fn run_body(
             .collect(),
         stats: run.solution.stats,
         energy: run.energy(),
-        error: run.error,
+        error: run.error.clone(),
         friction_work: None,
         loop_area: None,
         wall_time_s: run.wall_time_s,
@@ -407,7 +415,7 @@ fn run_body(
         surface_velocity: (system.contacts.iter())
             .find(|c| c.body == 0)
             .map_or(0.0, |c| c.surface_velocity),
-    })
+    }
 }
 
 /// Runs a prescribed motion from rest with zero internal state.

@@ -10,10 +10,11 @@
 //! where.
 
 use crate::analysis::closed_loop::ClosedLoop;
-use crate::analysis::settled::{spanned, until_settled, Settled, Trace};
+use crate::analysis::settled::{Settled, Trace};
 use crate::error::ScenarioError;
-use crate::run::{run, Limits, RunSpec};
+use crate::run::{Limits, Outcome, RunSpec};
 use crate::scenario::Scenario;
+use crate::spans::run_until;
 use friction_models::{steady, Direction, FrictionModel, SignLaw};
 use friction_models::{FrictionParams, ModelId};
 use friction_systems::Scheme;
@@ -189,17 +190,12 @@ fn belt_spec(base: &RunSpec, v_belt: f64, k: f64, x0: f64) -> RunSpec {
 }
 
 /// The settled state of the belt run `spec` over the last `settle` of its span, which is
-/// doubled while the run has not settled ([`Regime::is_transient`]; [`until_settled`]).
+/// doubled while the run has not settled ([`Regime::is_transient`]; [`run_until`]).
 fn settled(spec: &RunSpec, settle: f64) -> Result<Settled, ScenarioError> {
-    until_settled(
-        |factor| measured(&spanned(spec, factor), settle),
-        |s| !Regime::of(s, spec.params.v_belt).is_transient(),
-    )
-}
-
-/// The settled-state measures of one run of `spec` over the last `settle` of its span.
-fn measured(spec: &RunSpec, settle: f64) -> Result<Settled, ScenarioError> {
-    let o = run(spec, &mut |_| {})?;
+    let measured = |o: &Outcome| Settled::of(&Trace::of_outcome(o), settle);
+    let o = run_until(spec, &mut |o| {
+        o.error.is_some() || !Regime::of(&measured(o), spec.params.v_belt).is_transient()
+    })?;
     if let Some(error) = o.error {
         return Err(ScenarioError::Solver {
             what: format!(
@@ -209,7 +205,7 @@ fn measured(spec: &RunSpec, settle: f64) -> Result<Settled, ScenarioError> {
             error,
         });
     }
-    Ok(Settled::of(&Trace::of_outcome(&o), settle))
+    Ok(measured(&o))
 }
 
 /// The map over `v_belts` × `ks` from rest (the base's other parameters), in parallel, rows

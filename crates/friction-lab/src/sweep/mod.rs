@@ -10,7 +10,7 @@ mod point;
 mod simulation;
 
 pub use axis::{points, Axis, MAX_AXIS, MAX_POINTS};
-pub use point::{grid_options, PointResult, PointRun, RECORD_LIMIT};
+pub use point::{grid_options, PointResult, PointRun, SystemPoint, RECORD_LIMIT};
 pub use simulation::{check_point_range, point_range, SweepRequest, DEFAULT_SETTLE};
 
 use crate::error::AppError;

@@ -7,6 +7,7 @@ use friction_systems::{simulate, Layout, Run, Scheme, System, STICK};
 use integrators::{even_grid, Options, Output, Stats, StepControl};
 use scenarios::analysis::closed_loop::ClosedLoop;
 use scenarios::analysis::settled::{spanned, until_settled, Settled, Trace};
+use scenarios::simulate_until;
 use scenarios::stick_slip::Regime;
 use scenarios::verdict::Verdict;
 use scenarios::{Limits, RunSpec};
@@ -21,22 +22,53 @@ pub enum PointRun {
     /// A rig.
     Rig(RunSpec),
     /// The chain or a system file.
-    System {
-        /// The system.
-        system: System,
-        /// How it is integrated.
-        scheme: Scheme,
-        /// The step control.
-        step: StepControl,
-        /// The bounds of the run.
-        limits: Limits,
-        /// The end time, s.
-        t_end: f64,
-        /// Evenly spaced output points on [0, t_end].
-        points: usize,
-        /// The body measured (0-based).
-        body: usize,
-    },
+    System(SystemPoint),
+}
+
+/// The run of a system (the chain or a system file) at one point of a sweep.
+pub struct SystemPoint {
+    /// The system.
+    pub system: System,
+    /// How it is integrated.
+    pub scheme: Scheme,
+    /// The step control.
+    pub step: StepControl,
+    /// The bounds of the run.
+    pub limits: Limits,
+    /// The end time, s.
+    pub t_end: f64,
+    /// Evenly spaced output points on [0, t_end].
+    pub points: usize,
+    /// The body measured (0-based).
+    pub body: usize,
+}
+
+impl SystemPoint {
+    /// The options of the run over `factor` times its span: the output spacing kept, within
+    /// the numbers a run may record ([`RECORD_LIMIT`]).
+    fn options(&self, factor: u32) -> Options {
+        let dim = Layout::of(&self.system).dim();
+        let points = ((self.points - 1) * factor as usize + 1).min(RECORD_LIMIT / dim.max(1));
+        let span = self.t_end * f64::from(factor);
+        grid_options(self.step, &self.limits, span, points)
+    }
+
+    /// The measured body of `run`, judged by [`Verdict::of_run`].
+    fn measured(&self, run: &Run) -> Measured {
+        Measured {
+            trace: body_trace(run, self.body),
+            stats: run.solution.stats,
+            verdict: Verdict::of_run(
+                run.error.as_ref(),
+                run.energy().map(|e| e.relative_residual),
+                run.instability(&self.scheme, self.step).as_ref(),
+            ),
+            surface_velocity: (self.system.contacts.iter())
+                .find(|c| c.body == self.body)
+                .map_or(0.0, |c| c.surface_velocity),
+            closed_loop: None,
+        }
+    }
 }
 
 /// The options of a system's run over [0, `t_end`] with `points` evenly spaced output times
@@ -103,33 +135,38 @@ fn doubling_verdict(trace: &Trace, fine: Option<&Trace>, h: f64) -> Verdict {
 impl PointRun {
     /// Runs the point and measures its settled state over its last fraction `settle`: its span
     /// doubled (the output spacing kept) while the run ends without an error and has not
-    /// settled ([`Settled::settled`]; [`until_settled`]).
+    /// settled ([`Settled::settled`]; [`until_settled`]). At adaptive steps each longer run
+    /// continues the one before ([`scenarios::run_until`], [`simulate_until`]); at a fixed step,
+    /// judged by step doubling, each span is run from the start.
     pub fn run(&self, settle: f64) -> Result<PointResult, AppError> {
-        until_settled(
-            |factor| self.spanned(settle, factor),
-            |point| point.settled.settled || point.verdict.is_broken(),
-        )
+        let done = |point: &PointResult| point.settled.settled || point.verdict.is_broken();
+        match self {
+            PointRun::Rig(spec) if !matches!(spec.step, StepControl::Fixed { .. }) => {
+                let measured = |o: &scenarios::Outcome| Measured::of_rig(spec, o).result(settle);
+                let o = scenarios::run_until(spec, &mut |o| done(&measured(o)))?;
+                Ok(measured(&o))
+            }
+            PointRun::System(p) if !matches!(p.step, StepControl::Fixed { .. }) => {
+                let measured = |run: &Run| p.measured(run).result(settle);
+                let options = |factor| p.options(factor);
+                let run = simulate_until(&p.system, p.scheme, &options, &mut |_, run| {
+                    done(&measured(run))
+                })?;
+                Ok(measured(&run))
+            }
+            _ => until_settled(|factor| self.spanned(settle, factor), done),
+        }
     }
 
     /// Runs the point over `factor` times its span, with `factor` times its output intervals,
     /// and measures its settled state.
     fn spanned(&self, settle: f64, factor: u32) -> Result<PointResult, AppError> {
-        let (trace, stats, verdict, surface_velocity, closed_loop) = match self {
+        let measured = match self {
             PointRun::Rig(spec) => {
                 let o = scenarios::run(&spanned(spec, factor), &mut |_| {})?;
-                let closed_loop = ClosedLoop::of_outcome(&o);
-                // The belt under the body, where the rig has one; the floor otherwise.
-                let surface = match spec.scenario.parameters().contains(&"v_belt") {
-                    true => spec.params.v_belt,
-                    false => 0.0,
-                };
-                let trace = Trace::of_outcome(&o);
-                let verdict = Verdict::of_run(
-                    o.error.as_ref(),
-                    o.energy.map(|e| e.relative_residual),
-                    o.instability.as_ref(),
-                );
-                let verdict = match (spec.step, &o.error) {
+                let mut measured = Measured::of_rig(spec, &o);
+                let (trace, verdict) = (&measured.trace, measured.verdict.clone());
+                measured.verdict = match (spec.step, &o.error) {
                     (StepControl::Fixed { h }, None) => {
                         let half = RunSpec {
                             step: StepControl::Fixed { h: h / 2.0 },
@@ -137,50 +174,73 @@ impl PointRun {
                         };
                         let fine = scenarios::run(&half, &mut |_| {})?;
                         let fine = fine.error.is_none().then(|| Trace::of_outcome(&fine));
-                        verdict.and(doubling_verdict(&trace, fine.as_ref(), h))
+                        verdict.and(doubling_verdict(trace, fine.as_ref(), h))
                     }
                     _ => verdict,
                 };
-                (trace, o.stats, verdict, surface, closed_loop)
+                measured
             }
-            PointRun::System {
-                system,
-                scheme,
-                step,
-                limits,
-                t_end,
-                points,
-                body,
-            } => {
-                let body = *body;
-                let dim = Layout::of(system).dim();
-                // The output spacing kept, within the numbers a run may record.
-                let points = ((points - 1) * factor as usize + 1).min(RECORD_LIMIT / dim.max(1));
-                let span = t_end * f64::from(factor);
-                let options = grid_options(*step, limits, span, points);
-                let run = simulate(system, *scheme, options, &mut |_| {})?;
-                let verdict = Verdict::of_run(
-                    run.error.as_ref(),
-                    run.energy().map(|e| e.relative_residual),
-                    run.instability(scheme, *step).as_ref(),
-                );
-                let trace = body_trace(&run, body);
-                let surface = (system.contacts.iter())
-                    .find(|c| c.body == body)
-                    .map_or(0.0, |c| c.surface_velocity);
-                let verdict = match (*step, &run.error) {
-                    (StepControl::Fixed { h }, None) => {
-                        let half = StepControl::Fixed { h: h / 2.0 };
-                        let options = grid_options(half, limits, span, points);
-                        let fine = simulate(system, *scheme, options, &mut |_| {})?;
-                        let fine = fine.error.is_none().then(|| body_trace(&fine, body));
-                        verdict.and(doubling_verdict(&trace, fine.as_ref(), h))
-                    }
-                    _ => verdict,
-                };
-                (trace, run.solution.stats, verdict, surface, None)
+            PointRun::System(p) => {
+                let options = p.options(factor);
+                let run = simulate(&p.system, p.scheme, options.clone(), &mut |_| {})?;
+                let mut measured = p.measured(&run);
+                if let (StepControl::Fixed { h }, None) = (p.step, &run.error) {
+                    let half = Options {
+                        step: StepControl::Fixed { h: h / 2.0 },
+                        ..options
+                    };
+                    let fine = simulate(&p.system, p.scheme, half, &mut |_| {})?;
+                    let fine = fine.error.is_none().then(|| body_trace(&fine, p.body));
+                    let doubling = doubling_verdict(&measured.trace, fine.as_ref(), h);
+                    measured.verdict = measured.verdict.and(doubling);
+                }
+                measured
             }
         };
+        Ok(measured.result(settle))
+    }
+}
+
+/// What a point's run gives its measures from: the measured body's trace, the counts, the
+/// verdict, the velocity of the surface under the body and, for a rig whose body a
+/// controller positions, the closed loop.
+struct Measured {
+    trace: Trace,
+    stats: Stats,
+    verdict: Verdict,
+    surface_velocity: f64,
+    closed_loop: Option<ClosedLoop>,
+}
+
+impl Measured {
+    /// A rig's outcome `o` of `spec`, judged by [`Verdict::of_run`].
+    fn of_rig(spec: &RunSpec, o: &scenarios::Outcome) -> Measured {
+        Measured {
+            trace: Trace::of_outcome(o),
+            stats: o.stats,
+            verdict: Verdict::of_run(
+                o.error.as_ref(),
+                o.energy.map(|e| e.relative_residual),
+                o.instability.as_ref(),
+            ),
+            // The belt under the body, where the rig has one; the floor otherwise.
+            surface_velocity: match spec.scenario.parameters().contains(&"v_belt") {
+                true => spec.params.v_belt,
+                false => 0.0,
+            },
+            closed_loop: ClosedLoop::of_outcome(o),
+        }
+    }
+
+    /// The point's result: its settled state over the last fraction `settle` and its regime.
+    fn result(self, settle: f64) -> PointResult {
+        let Measured {
+            trace,
+            stats,
+            verdict,
+            surface_velocity,
+            closed_loop,
+        } = self;
         let mut settled = Settled::of(&trace, settle);
         // A closed loop has settled when its position error has; its cycle is read off that
         // error (`closed_loop`), not off the velocity's crossings, which a body creeping
@@ -203,13 +263,13 @@ impl PointRun {
             Some(c) => Regime::of_closed_loop(c),
             None => Regime::of(&settled, surface_velocity),
         });
-        Ok(PointResult {
+        PointResult {
             values: Vec::new(),
             settled,
             regime,
             closed_loop: closed_loop.filter(|_| !broken),
             stats,
             verdict,
-        })
+        }
     }
 }

@@ -1,7 +1,7 @@
 //! The sweep of a [`SimulationRequest`]: the run `simulate` would make, each point's values assigned
 //! after the run's own parameters ([`SweepRequest`]); its checks, its grid and its files.
 
-use super::{points, Axis, Grid, PointRun, Start, SweepStudy};
+use super::{points, Axis, Grid, PointRun, Start, SweepStudy, SystemPoint};
 use crate::artifacts::Artifacts;
 use crate::error::{field, AppError};
 use crate::laws::ModelChoice;
@@ -273,7 +273,7 @@ fn prepare(run: &SimulationRequest, start: Start) -> Result<PointRun, AppError> 
             let t_end = run.system_t_end()?;
             let points = run.system_points(Layout::of(&described.system).dim())?;
             let scheme = run.solver.scheme(described.friction.epsilon)?;
-            Ok(PointRun::System {
+            Ok(PointRun::System(SystemPoint {
                 system: described.system,
                 scheme,
                 step,
@@ -281,7 +281,7 @@ fn prepare(run: &SimulationRequest, start: Start) -> Result<PointRun, AppError> 
                 t_end,
                 points,
                 body,
-            })
+            }))
         }
     }
 }

@@ -46,7 +46,7 @@ pub const MAX_EXTENSION: u32 = 8;
 /// the first that `settled` accepts (or at the bound): a run extended until it settles.
 pub fn until_settled<T, E>(
     mut run: impl FnMut(u32) -> Result<T, E>,
-    settled: impl Fn(&T) -> bool,
+    mut settled: impl FnMut(&T) -> bool,
 ) -> Result<T, E> {
     let mut factor = 1;
     loop {
