@@ -153,8 +153,8 @@ fn judged<'a>(
 /// largest step and the output grid), with those. Each run is the one [`simulate`] gives for
 /// its options. An event-driven run of a method that can be copied continues the run before it
 /// from before its last step ([`Integrator::extend`]), so that no span is integrated twice;
-/// any other is run again from the start. `next` sees every run; the last is returned, its
-/// wall time that of all the spans.
+/// any other is run again from the start. `next` sees every run, its wall time that of the
+/// spans so far; the last is returned.
 pub fn simulate_spans<'a>(
     system: &'a System,
     scheme: Scheme,
@@ -193,11 +193,13 @@ pub fn simulate_spans<'a>(
             }
             None => simulate(system, scheme, options.clone(), &mut |_| {})?,
         };
+        // Every run `next` sees counts the spans before it.
+        let run = Run {
+            wall_time_s: clock.elapsed().as_secs_f64(),
+            ..run
+        };
         let Some(longer) = next(&run) else {
-            return Ok(Run {
-                wall_time_s: clock.elapsed().as_secs_f64(),
-                ..run
-            });
+            return Ok(run);
         };
         let extended = integration
             .as_mut()

@@ -67,3 +67,17 @@ fn a_stick_slip_run_extended_twice_is_the_run_over_four_spans() {
 fn an_auto_run_extended_to_eight_spans_is_the_run_over_eight() {
     assert_extended_is_fresh(&belt(0.03, 30.0, Solver::AUTO), 4, 320.0, 20);
 }
+
+#[test]
+fn an_extended_runs_wall_time_counts_its_spans() {
+    let spec = belt(0.01, 10.0, Solver::DOPRI5);
+    let mut times = Vec::new();
+    let o = run_until(&spec, &mut |o| {
+        times.push(o.wall_time_s);
+        times.len() == 3
+    })
+    .unwrap();
+    assert!(times[0] > 0.0, "{times:?}");
+    assert!(times.windows(2).all(|w| w[1] >= w[0]), "{times:?}");
+    assert_eq!(o.wall_time_s, times[2]);
+}
