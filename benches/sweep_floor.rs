@@ -21,11 +21,11 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use friction_lab::friction_models::{FrictionParams, ModelId, SignLaw, Variant};
-use friction_lab::friction_systems::Scheme;
+use friction_lab::integrators::even_grid;
 use friction_lab::integrators::events::{illinois, TIME_TOLERANCE, ZERO};
-use friction_lab::integrators::{even_grid, Solver, StepControl};
 use friction_lab::scenarios::analysis::settled::{until_settled, Settled, Trace};
-use friction_lab::scenarios::{Limits, RunSpec, Scenario};
+use friction_lab::scenarios::stick_slip::belt_run;
+use friction_lab::scenarios::{RunSpec, Scenario};
 use friction_lab::sweep::PointRun;
 use std::hint::black_box;
 
@@ -48,22 +48,14 @@ fn grid() -> Vec<(f64, f64)> {
 
 /// The general code: a sweep's point run, as `friction-lab sweep` runs it.
 fn general_point(v_belt: f64, k: f64) -> PointRun {
-    let mut params = Scenario::BELT.defaults();
+    let base = belt_run(ModelId::Cvs, &FrictionParams::paper());
+    let mut params = base.params;
     (params.v_belt, params.k) = (v_belt, k);
     PointRun::Rig(RunSpec {
-        scenario: Scenario::BELT,
-        law: ModelId::Cvs.into(),
-        friction: FrictionParams::paper(),
         params,
-        scheme: Scheme::events(Solver::DOPRI5),
-        step: StepControl::Adaptive {
-            rtol: RTOL,
-            atol: ATOL,
-            h0: None,
-        },
         t_end: Some(T_END),
         output_points: POINTS,
-        limits: Limits::default(),
+        ..base
     })
 }
 

@@ -112,40 +112,35 @@ pub fn simulate<'a>(
         Ok(s) => (s, None),
         Err(Failure { error, solution }) => (*solution, Some(error)),
     };
+    let (solution, error) = judged(&problem, solution, error, t_end);
     Ok(Run {
+        problem,
         t0,
         y0,
         modes0,
+        solution,
+        error,
         wall_time_s: clock.elapsed().as_secs_f64(),
-        ..judged(problem, solution, error, t_end)
     })
 }
 
-/// A run of `problem` that computed `solution` and ended with `error`, judged: cut at the first
-/// recorded point beyond the system's reach over `[t0, t_end]` ([`runaway`]), a solver that
-/// failed on a non-finite value left as it said. Its start and wall time are to be filled in.
-fn judged<'a>(
-    problem: FrictionSystem<'a>,
+/// `solution`, computed for `problem` and ended with `error`, judged: cut at the first recorded
+/// point beyond the system's reach over `[t0, t_end]` ([`runaway`]), a solver that failed on a
+/// non-finite value left as it said.
+fn judged(
+    problem: &FrictionSystem,
     mut solution: Solution,
     mut error: Option<SolverError>,
     t_end: f64,
-) -> Run<'a> {
+) -> (Solution, Option<SolverError>) {
     if !matches!(error, Some(SolverError::NonFinite { .. })) {
-        if let Some((k, what)) = runaway(&problem, &solution, t_end) {
+        if let Some((k, what)) = runaway(problem, &solution, t_end) {
             let t = solution.t[k];
             solution.truncate(k);
             error = Some(SolverError::Runaway { t, what });
         }
     }
-    Run {
-        problem,
-        t0: 0.0,
-        y0: Vec::new(),
-        modes0: Vec::new(),
-        solution,
-        error,
-        wall_time_s: 0.0,
-    }
+    (solution, error)
 }
 
 /// Integrates `system` by `scheme` over the spans `next` asks for: first with `options`, then,
@@ -183,20 +178,22 @@ pub fn simulate_spans<'a>(
                 let error = integrator.advance(&mut |_| {}).err();
                 let mut solution = integrator.solution();
                 solution.solver = name;
-                let problem = FrictionSystem::new(system, scheme.switching());
+                let (solution, error) = judged(&problem, solution, error, options.t_end);
                 Run {
+                    problem: FrictionSystem::new(system, scheme.switching()),
                     t0,
                     y0: y0.clone(),
                     modes0: modes0.clone(),
-                    ..judged(problem, solution, error, options.t_end)
+                    solution,
+                    error,
+                    wall_time_s: clock.elapsed().as_secs_f64(),
                 }
             }
-            None => simulate(system, scheme, options.clone(), &mut |_| {})?,
-        };
-        // Every run `next` sees counts the spans before it.
-        let run = Run {
-            wall_time_s: clock.elapsed().as_secs_f64(),
-            ..run
+            // Its wall time counts the spans before it too.
+            None => Run {
+                wall_time_s: clock.elapsed().as_secs_f64(),
+                ..simulate(system, scheme, options.clone(), &mut |_| {})?
+            },
         };
         let Some(longer) = next(&run) else {
             return Ok(run);

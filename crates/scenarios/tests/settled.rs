@@ -142,23 +142,13 @@ fn a_run_that_stopped_at_its_start_measures_nothing_and_has_not_settled() {
 #[test]
 fn a_rigs_trace_is_its_evenly_spaced_rows_without_those_recorded_at_events() {
     use friction_models::{FrictionParams, ModelId};
-    use friction_systems::Scheme;
-    use integrators::{even_grid, Solver, StepControl};
-    use scenarios::{run, Limits, RunSpec, Scenario};
-    let spec = RunSpec {
-        scenario: Scenario::BELT,
-        law: ModelId::Cvs.into(),
-        friction: FrictionParams::paper(),
-        params: Scenario::BELT.defaults(),
-        scheme: Scheme::events(Solver::DOPRI5),
-        step: StepControl::Adaptive {
-            rtol: 1e-8,
-            atol: 1e-10,
-            h0: None,
-        },
+    use integrators::even_grid;
+    use scenarios::run;
+    use scenarios::stick_slip::belt_run;
+    let spec = scenarios::RunSpec {
         t_end: Some(20.0),
         output_points: 201,
-        limits: Limits::default(),
+        ..belt_run(ModelId::Cvs, &FrictionParams::paper())
     };
     let o = run(&spec, &mut |_| {}).unwrap();
     let trace = Trace::of_outcome(&o);

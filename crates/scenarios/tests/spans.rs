@@ -3,27 +3,20 @@
 
 use friction_models::{FrictionParams, ModelId};
 use friction_systems::Scheme;
-use integrators::{Solver, StepControl};
+use integrators::Solver;
 use scenarios::analysis::settled::{spanned, until_settled};
-use scenarios::{run, run_until, Limits, Outcome, RunSpec, Scenario};
+use scenarios::stick_slip::belt_run;
+use scenarios::{run, run_until, Outcome, RunSpec};
 
 fn belt(v_belt: f64, k: f64, solver: Solver) -> RunSpec {
-    let mut params = Scenario::BELT.defaults();
+    let base = belt_run(ModelId::Cvs, &FrictionParams::paper());
+    let mut params = base.params;
     (params.v_belt, params.k) = (v_belt, k);
     RunSpec {
-        scenario: Scenario::BELT,
-        law: ModelId::Cvs.into(),
-        friction: FrictionParams::paper(),
         params,
         scheme: Scheme::events(solver),
-        step: StepControl::Adaptive {
-            rtol: 1e-8,
-            atol: 1e-10,
-            h0: None,
-        },
-        t_end: Some(40.0),
         output_points: 2001,
-        limits: Limits::default(),
+        ..base
     }
 }
 
